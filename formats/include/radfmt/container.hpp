@@ -1,0 +1,139 @@
+// The container shared by every file of the chain: a text header with provenance,
+// then an aligned little-endian binary body. See formats/README.md for the byte layout.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace radfmt {
+
+inline constexpr std::string_view kMagic = "#?RADIOSITY-FILE";
+inline constexpr std::uint32_t kContainerVersion = 1;
+inline constexpr std::size_t kBodyAlignment = 64;
+inline constexpr std::size_t kMaxHeaderBytes = 1 << 20;
+
+// Every problem with a file is a FormatError whose message starts with the file's path.
+struct FormatError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+enum class Kind { Mesh, FormFactors, Radiosity };
+std::string_view kind_name(Kind kind);
+std::string_view kind_description(Kind kind);
+std::uint32_t kind_version(Kind kind);
+
+struct InputRecord {
+    std::string path;
+    std::string hash; // "xxh64:" + 16 hex digits
+};
+
+struct Header {
+    Kind kind = Kind::Mesh;
+    std::uint32_t version = 0;
+    std::string tool;                    // producing tool and its version
+    std::string command;                 // producing command line
+    std::vector<std::string> provenance; // commands of the ancestors, oldest first
+    std::vector<InputRecord> inputs;
+    std::vector<std::pair<std::string, std::string>> fields; // kind-specific facts
+    std::uint64_t body_size = 0;
+    std::string body_hash;
+
+    void set(const std::string& key, const std::string& value);
+    // Returns the field or throws FormatError naming `path` when it is missing.
+    const std::string& get(const std::string& key, const std::string& path) const;
+    const std::string* find(const std::string& key) const;
+    // Ancestors plus this file's own command: what a file derived from this one inherits.
+    std::vector<std::string> chain() const;
+};
+
+std::string hash_hex(std::uint64_t hash);
+std::uint64_t hash_bytes(const void* data, std::size_t size);
+// xxh64 of a whole file's bytes, as "xxh64:<hex>"; throws FormatError if unreadable.
+std::string hash_file(const std::filesystem::path& path);
+
+// Appends values to a body, keeping every array aligned to 8 bytes.
+class BodyWriter {
+  public:
+    void u64(std::uint64_t value);
+    void string(std::string_view text);
+    template <class T> void array(std::span<const T> values) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        align();
+        const auto* bytes = reinterpret_cast<const std::byte*>(values.data());
+        bytes_.insert(bytes_.end(), bytes, bytes + values.size_bytes());
+        align();
+    }
+    template <class T> void array(const std::vector<T>& values) {
+        array(std::span<const T>(values.data(), values.size()));
+    }
+    const std::vector<std::byte>& bytes() const { return bytes_; }
+
+  private:
+    void align();
+    std::vector<std::byte> bytes_;
+};
+
+// Reads a body with bounds checks; every failure names the file.
+class BodyReader {
+  public:
+    BodyReader(std::span<const std::byte> body, std::string path)
+        : body_(body), path_(std::move(path)) {}
+    std::uint64_t u64();
+    std::string string();
+    // Reads a count that will size an array of `element_size` bytes: refuses counts that
+    // cannot fit in the rest of the body, so corrupt counts never drive huge allocations.
+    std::uint64_t count(std::size_t element_size, const char* what);
+    template <class T> std::vector<T> array(std::uint64_t count, const char* what) {
+        align();
+        need(count * sizeof(T), what);
+        std::vector<T> out(count);
+        if (count) std::memcpy(out.data(), body_.data() + pos_, count * sizeof(T));
+        pos_ += count * sizeof(T);
+        align();
+        return out;
+    }
+    void expect_end();
+    [[noreturn]] void fail(const std::string& message) const;
+
+  private:
+    void align();
+    void need(std::uint64_t bytes, const char* what);
+    std::span<const std::byte> body_;
+    std::string path_;
+    std::size_t pos_ = 0;
+};
+
+struct LoadedFile {
+    Header header;
+    std::vector<std::byte> body;
+};
+
+// Serialises header and body to `path` atomically: a temporary file in the same folder is
+// written, flushed and renamed into place, so no reader ever sees a half-written file.
+void write_file(const std::filesystem::path& path, Header header,
+                const std::vector<std::byte>& body);
+
+// Reads and validates magic, versions, header and body checksums, and size. When
+// `expected` is given, a file of another kind is refused.
+LoadedFile read_file(const std::filesystem::path& path, const Kind* expected = nullptr);
+// Reads only the header (still validating its checksum); fast for large files.
+Header read_header(const std::filesystem::path& path);
+
+// Writes a file atomically through a callback that fills a temporary path.
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(const std::filesystem::path&)>& fill);
+
+// The temporary path currently being written, removed by signal handlers (see
+// install_cleanup_handlers) so Ctrl-C never leaves a partial file behind.
+void install_cleanup_handlers();
+
+} // namespace radfmt

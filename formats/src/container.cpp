@@ -1,0 +1,417 @@
+#include "radfmt/container.hpp"
+
+#include <xxhash.h>
+
+#include <algorithm>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace radfmt {
+namespace fs = std::filesystem;
+
+std::string_view kind_name(Kind kind) {
+    switch (kind) {
+    case Kind::Mesh: return "mesh";
+    case Kind::FormFactors: return "formfactors";
+    case Kind::Radiosity: return "radiosity";
+    }
+    return "?";
+}
+
+std::string_view kind_description(Kind kind) {
+    switch (kind) {
+    case Kind::Mesh: return "patch mesh";
+    case Kind::FormFactors: return "form-factor matrix";
+    case Kind::Radiosity: return "radiosity solution";
+    }
+    return "?";
+}
+
+std::uint32_t kind_version(Kind) { return 1; }
+
+static bool parse_kind(std::string_view name, Kind& kind) {
+    for (Kind k : {Kind::Mesh, Kind::FormFactors, Kind::Radiosity}) {
+        if (kind_name(k) == name) {
+            kind = k;
+            return true;
+        }
+    }
+    return false;
+}
+
+void Header::set(const std::string& key, const std::string& value) {
+    for (auto& [k, v] : fields) {
+        if (k == key) {
+            v = value;
+            return;
+        }
+    }
+    fields.emplace_back(key, value);
+}
+
+const std::string* Header::find(const std::string& key) const {
+    for (const auto& [k, v] : fields)
+        if (k == key) return &v;
+    return nullptr;
+}
+
+const std::string& Header::get(const std::string& key, const std::string& path) const {
+    if (const auto* v = find(key)) return *v;
+    throw FormatError(path + ": header has no '" + key + "' field");
+}
+
+std::vector<std::string> Header::chain() const {
+    auto out = provenance;
+    out.push_back(command);
+    return out;
+}
+
+std::string hash_hex(std::uint64_t hash) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+    return text;
+}
+
+std::uint64_t hash_bytes(const void* data, std::size_t size) { return XXH64(data, size, 0); }
+
+std::string hash_file(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw FormatError(path.string() + ": cannot open for reading");
+    XXH64_state_t* state = XXH64_createState();
+    XXH64_reset(state, 0);
+    std::vector<char> buffer(1 << 20);
+    while (in) {
+        in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+        XXH64_update(state, buffer.data(), static_cast<std::size_t>(in.gcount()));
+    }
+    const auto hash = XXH64_digest(state);
+    XXH64_freeState(state);
+    return "xxh64:" + hash_hex(hash);
+}
+
+// ---- body encoding ----
+
+void BodyWriter::u64(std::uint64_t value) {
+    align();
+    std::byte raw[8];
+    for (int i = 0; i < 8; ++i) raw[i] = std::byte((value >> (8 * i)) & 0xff);
+    bytes_.insert(bytes_.end(), raw, raw + 8);
+}
+
+void BodyWriter::string(std::string_view text) {
+    u64(text.size());
+    const auto* bytes = reinterpret_cast<const std::byte*>(text.data());
+    bytes_.insert(bytes_.end(), bytes, bytes + text.size());
+    align();
+}
+
+void BodyWriter::align() {
+    while (bytes_.size() % 8) bytes_.push_back(std::byte{0});
+}
+
+void BodyReader::fail(const std::string& message) const {
+    throw FormatError(path_ + ": corrupt body: " + message);
+}
+
+void BodyReader::align() { pos_ = std::min(body_.size(), (pos_ + 7) / 8 * 8); }
+
+void BodyReader::need(std::uint64_t bytes, const char* what) {
+    if (bytes > body_.size() - pos_)
+        fail(std::string(what) + " needs " + std::to_string(bytes) + " bytes but only " +
+             std::to_string(body_.size() - pos_) + " remain");
+}
+
+std::uint64_t BodyReader::u64() {
+    align();
+    need(8, "an integer");
+    std::uint64_t value = 0;
+    for (int i = 0; i < 8; ++i)
+        value |= std::uint64_t(std::to_integer<unsigned>(body_[pos_ + i])) << (8 * i);
+    pos_ += 8;
+    return value;
+}
+
+std::string BodyReader::string() {
+    const auto size = count(1, "a string");
+    std::string text(reinterpret_cast<const char*>(body_.data() + pos_), size);
+    pos_ += size;
+    align();
+    return text;
+}
+
+std::uint64_t BodyReader::count(std::size_t element_size, const char* what) {
+    const auto value = u64();
+    const auto remaining = body_.size() - pos_;
+    if (element_size && value > remaining / element_size)
+        fail(std::string("count of ") + what + " (" + std::to_string(value) +
+             ") exceeds the body size");
+    return value;
+}
+
+void BodyReader::expect_end() {
+    align();
+    if (pos_ != body_.size())
+        fail(std::to_string(body_.size() - pos_) + " unexpected bytes after the data");
+}
+
+// ---- header text ----
+
+static std::string escape(std::string_view value) {
+    std::string out;
+    for (char c : value) {
+        if (c == '\\') out += "\\\\";
+        else if (c == '\n') out += "\\n";
+        else if (c == '\r') out += "\\r";
+        else out += c;
+    }
+    return out;
+}
+
+static std::string unescape(std::string_view value) {
+    std::string out;
+    for (std::size_t i = 0; i < value.size(); ++i) {
+        if (value[i] == '\\' && i + 1 < value.size()) {
+            char next = value[++i];
+            out += next == 'n' ? '\n' : next == 'r' ? '\r' : next;
+        } else {
+            out += value[i];
+        }
+    }
+    return out;
+}
+
+// Header lines before the checksum line; the checksum covers exactly these bytes.
+static std::string header_text(const Header& h) {
+    std::ostringstream out;
+    out << kMagic << ' ' << kContainerVersion << '\n';
+    out << "kind=" << kind_name(h.kind) << '\n';
+    out << "version=" << h.version << '\n';
+    out << "tool=" << escape(h.tool) << '\n';
+    out << "command=" << escape(h.command) << '\n';
+    for (const auto& p : h.provenance) out << "provenance=" << escape(p) << '\n';
+    for (const auto& in : h.inputs) out << "input=" << in.hash << ' ' << escape(in.path) << '\n';
+    for (const auto& [k, v] : h.fields) out << "field." << k << '=' << escape(v) << '\n';
+    out << "body_size=" << h.body_size << '\n';
+    out << "body_hash=" << h.body_hash << '\n';
+    return out.str();
+}
+
+static std::string serialise_header(const Header& h) {
+    auto text = header_text(h);
+    text += "header_hash=xxh64:" + hash_hex(hash_bytes(text.data(), text.size())) + "\n\n";
+    text.resize((text.size() + kBodyAlignment - 1) / kBodyAlignment * kBodyAlignment, '\0');
+    return text;
+}
+
+// ---- atomic writes ----
+
+namespace {
+// Signal handlers may only touch plain memory: keep the temporary path in a fixed buffer.
+char g_temp_path[4096];
+std::atomic<bool> g_temp_active{false};
+
+extern "C" void remove_temp_and_exit(int signal_number) {
+    if (g_temp_active.load()) ::unlink(g_temp_path);
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+}
+} // namespace
+
+void install_cleanup_handlers() {
+    for (int s : {SIGINT, SIGTERM, SIGHUP, SIGSEGV, SIGABRT, SIGBUS, SIGFPE})
+        std::signal(s, remove_temp_and_exit);
+}
+
+void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& fill) {
+    fs::path target = path;
+    fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    if (!fs::is_directory(dir))
+        throw FormatError(path.string() + ": cannot write: folder '" + dir.string() +
+                          "' does not exist");
+    fs::path temp = dir / ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()));
+    const auto temp_text = temp.string();
+    if (temp_text.size() < sizeof g_temp_path) {
+        std::memcpy(g_temp_path, temp_text.c_str(), temp_text.size() + 1);
+        g_temp_active = true;
+    }
+    try {
+        fill(temp);
+        std::error_code ec;
+        fs::rename(temp, target, ec);
+        if (ec) throw FormatError(path.string() + ": cannot rename into place: " + ec.message());
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(temp, ignored);
+        g_temp_active = false;
+        throw;
+    }
+    g_temp_active = false;
+}
+
+void write_file(const fs::path& path, Header header, const std::vector<std::byte>& body) {
+    header.version = header.version ? header.version : kind_version(header.kind);
+    header.body_size = body.size();
+    header.body_hash = "xxh64:" + hash_hex(hash_bytes(body.data(), body.size()));
+    const auto head = serialise_header(header);
+    write_atomically(path, [&](const fs::path& temp) {
+        std::FILE* f = std::fopen(temp.c_str(), "wb");
+        if (!f) throw FormatError(path.string() + ": cannot open for writing: " + std::strerror(errno));
+        bool ok = std::fwrite(head.data(), 1, head.size(), f) == head.size();
+        ok = ok && (body.empty() || std::fwrite(body.data(), 1, body.size(), f) == body.size());
+        ok = ok && std::fflush(f) == 0 && ::fsync(fileno(f)) == 0;
+        ok = (std::fclose(f) == 0) && ok;
+        if (!ok) throw FormatError(path.string() + ": write failed: " + std::strerror(errno));
+    });
+}
+
+// ---- reading ----
+
+static std::uint64_t parse_u64(const std::string& text, const std::string& path,
+                               const char* what) {
+    std::uint64_t value = 0;
+    std::size_t used = 0;
+    try {
+        value = std::stoull(text, &used);
+    } catch (...) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size())
+        throw FormatError(path + ": corrupt header: bad " + std::string(what) + " '" + text + "'");
+    return value;
+}
+
+struct ParsedHeader {
+    Header header;
+    std::size_t body_offset = 0;
+};
+
+static ParsedHeader parse_header(std::string_view bytes, const std::string& path,
+                                 std::uint64_t file_size) {
+    if (bytes.substr(0, kMagic.size()) != kMagic)
+        throw FormatError(path + ": not a radiosity file (wrong magic; expected '" +
+                          std::string(kMagic) + "')");
+    const auto end = bytes.find("\n\n");
+    if (end == std::string_view::npos)
+        throw FormatError(path + ": truncated or corrupt header (no end of header found)");
+    const std::string_view text = bytes.substr(0, end + 1);
+    const auto hash_pos = text.rfind("header_hash=");
+    if (hash_pos == std::string_view::npos)
+        throw FormatError(path + ": corrupt header: no header_hash line");
+    const auto covered = text.substr(0, hash_pos);
+    const auto stored = std::string(text.substr(hash_pos + 12, end - hash_pos - 12));
+    if (stored != "xxh64:" + hash_hex(hash_bytes(covered.data(), covered.size())))
+        throw FormatError(path + ": corrupt header: checksum mismatch (the file was modified or damaged)");
+
+    ParsedHeader parsed;
+    Header& h = parsed.header;
+    std::istringstream lines{std::string(covered)};
+    std::string line;
+    std::getline(lines, line);
+    const auto container_version = line.substr(kMagic.size());
+    if (container_version != " " + std::to_string(kContainerVersion))
+        throw FormatError(path + ": unsupported container version '" + container_version.substr(1) +
+                          "' (this build reads version " + std::to_string(kContainerVersion) + ")");
+    bool have_kind = false;
+    while (std::getline(lines, line)) {
+        const auto eq = line.find('=');
+        if (eq == std::string::npos) throw FormatError(path + ": corrupt header line '" + line + "'");
+        const auto key = line.substr(0, eq);
+        const auto value = line.substr(eq + 1);
+        if (key == "kind") {
+            if (!parse_kind(value, h.kind))
+                throw FormatError(path + ": unknown file kind '" + value + "'");
+            have_kind = true;
+        } else if (key == "version") {
+            h.version = static_cast<std::uint32_t>(parse_u64(value, path, "version"));
+        } else if (key == "tool") {
+            h.tool = unescape(value);
+        } else if (key == "command") {
+            h.command = unescape(value);
+        } else if (key == "provenance") {
+            h.provenance.push_back(unescape(value));
+        } else if (key == "input") {
+            const auto space = value.find(' ');
+            if (space == std::string::npos) throw FormatError(path + ": corrupt input line");
+            h.inputs.push_back({unescape(value.substr(space + 1)), value.substr(0, space)});
+        } else if (key.rfind("field.", 0) == 0) {
+            h.fields.emplace_back(key.substr(6), unescape(value));
+        } else if (key == "body_size") {
+            h.body_size = parse_u64(value, path, "body size");
+        } else if (key == "body_hash") {
+            h.body_hash = value;
+        } else {
+            throw FormatError(path + ": corrupt header: unknown key '" + key + "'");
+        }
+    }
+    if (!have_kind) throw FormatError(path + ": corrupt header: no kind");
+    if (h.version != kind_version(h.kind))
+        throw FormatError(path + ": " + std::string(kind_name(h.kind)) + " format version " +
+                          std::to_string(h.version) + " is not supported (this build reads version " +
+                          std::to_string(kind_version(h.kind)) + ")");
+    parsed.body_offset = (end + 2 + kBodyAlignment - 1) / kBodyAlignment * kBodyAlignment;
+    const auto expected = parsed.body_offset + h.body_size;
+    if (file_size < expected)
+        throw FormatError(path + ": truncated: expected " + std::to_string(expected) +
+                          " bytes, found " + std::to_string(file_size));
+    if (file_size > expected)
+        throw FormatError(path + ": corrupt: " + std::to_string(file_size - expected) +
+                          " unexpected bytes after the body");
+    return parsed;
+}
+
+static std::string read_prefix(std::ifstream& in, std::uint64_t file_size) {
+    std::string prefix(std::min<std::uint64_t>(file_size, kMaxHeaderBytes), '\0');
+    in.read(prefix.data(), static_cast<std::streamsize>(prefix.size()));
+    return prefix;
+}
+
+static void check_kind(const Header& h, const std::string& path, const Kind* expected) {
+    if (expected && h.kind != *expected)
+        throw FormatError(path + ": is a " + std::string(kind_description(h.kind)) + " (" +
+                          std::string(kind_name(h.kind)) + ") file, but a " +
+                          std::string(kind_description(*expected)) + " (" +
+                          std::string(kind_name(*expected)) + ") file was expected");
+}
+
+static std::uint64_t open_sized(std::ifstream& in, const fs::path& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw FormatError(path.string() + ": is a folder, not a file");
+    in.open(path, std::ios::binary);
+    if (!in) throw FormatError(path.string() + ": cannot open for reading (" + std::strerror(errno) + ")");
+    const auto size = fs::file_size(path, ec);
+    if (ec) throw FormatError(path.string() + ": cannot read size: " + ec.message());
+    if (size == 0) throw FormatError(path.string() + ": is empty (truncated)");
+    return size;
+}
+
+Header read_header(const fs::path& path) {
+    std::ifstream in;
+    const auto size = open_sized(in, path);
+    return parse_header(read_prefix(in, size), path.string(), size).header;
+}
+
+LoadedFile read_file(const fs::path& path, const Kind* expected) {
+    std::ifstream in;
+    const auto size = open_sized(in, path);
+    auto parsed = parse_header(read_prefix(in, size), path.string(), size);
+    check_kind(parsed.header, path.string(), expected);
+    LoadedFile file;
+    file.header = std::move(parsed.header);
+    file.body.resize(file.header.body_size);
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(parsed.body_offset));
+    in.read(reinterpret_cast<char*>(file.body.data()),
+            static_cast<std::streamsize>(file.body.size()));
+    if (static_cast<std::uint64_t>(in.gcount()) != file.body.size())
+        throw FormatError(path.string() + ": truncated body");
+    const auto hash = "xxh64:" + hash_hex(hash_bytes(file.body.data(), file.body.size()));
+    if (hash != file.header.body_hash)
+        throw FormatError(path.string() + ": corrupt body: checksum mismatch (the file was modified or damaged)");
+    return file;
+}
+
+} // namespace radfmt

@@ -1,0 +1,58 @@
+// Small 3-vector helpers over radfmt::Vec3 (std::array<double,3>).
+#pragma once
+#include "radfmt/kinds.hpp"
+
+#include <cmath>
+
+namespace rad {
+using radfmt::Rgb;
+using radfmt::Vec3;
+
+inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+inline Vec3 operator-(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline Vec3 operator*(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+inline Vec3 operator*(double s, const Vec3& a) { return a * s; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
+inline Vec3 normalized(const Vec3& a) {
+    const double l = length(a);
+    return l > 0 ? a * (1.0 / l) : Vec3{0, 0, 0};
+}
+inline bool finite(const Vec3& a) {
+    return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
+}
+
+// Newell's method: a robust polygon normal whose length is twice the polygon's area.
+template <class Points> Vec3 newell_normal(const Points& pts) {
+    Vec3 n{0, 0, 0};
+    const std::size_t count = pts.size();
+    for (std::size_t i = 0; i < count; ++i) {
+        const Vec3& a = pts[i];
+        const Vec3& b = pts[(i + 1) % count];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    return n;
+}
+
+// Area-weighted centroid of a planar polygon (fan of triangles from vertex 0).
+template <class Points> Vec3 polygon_centroid(const Points& pts) {
+    Vec3 sum{0, 0, 0};
+    double total = 0;
+    for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
+        const double a = length(cross(pts[i] - pts[0], pts[i + 1] - pts[0]));
+        sum = sum + (pts[0] + pts[i] + pts[i + 1]) * (a / 3.0);
+        total += a;
+    }
+    if (total <= 0) {
+        Vec3 mean{0, 0, 0};
+        for (const auto& p : pts) mean = mean + p;
+        return mean * (1.0 / pts.size());
+    }
+    return sum * (1.0 / total);
+}
+} // namespace rad

@@ -1,0 +1,348 @@
+#include "radiosity/cli.hpp"
+#include "radiosity/scene.hpp"
+#include "radiosity/vec.hpp"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/Utils/vector_cast.hh>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+namespace rad {
+
+namespace {
+
+using Edge = std::uint64_t; // two vertex indices, smaller first
+
+Edge edge_key(std::uint32_t a, std::uint32_t b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t(a) << 32) | b;
+}
+
+struct Element { // a triangle or convex quad over scene vertices, ready to subdivide
+    std::array<std::uint32_t, 4> v{};
+    int corners = 3;
+    std::uint32_t group = 0, material = 0;
+    Vec3 normal{};
+    double area = 0;
+};
+
+std::string where(const Scene& scene, const Polygon& p) {
+    return scene.path + (p.line ? ":" + std::to_string(p.line) : std::string()) + ": ";
+}
+
+double limit_for(const std::map<std::string, double>& by_group, const std::string& group,
+                 double fallback) {
+    const auto it = by_group.find(group);
+    return it != by_group.end() ? it->second : fallback;
+}
+
+// Ear clipping in the polygon's plane; polygons here are planar and simple.
+std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec3>& pts,
+                                                      const std::vector<std::uint32_t>& ids,
+                                                      const Vec3& normal) {
+    std::vector<std::size_t> remaining(pts.size());
+    std::iota(remaining.begin(), remaining.end(), 0);
+    std::vector<std::array<std::uint32_t, 3>> out;
+    auto convex = [&](std::size_t a, std::size_t b, std::size_t c) {
+        return dot(cross(pts[b] - pts[a], pts[c] - pts[b]), normal) > 0;
+    };
+    auto inside = [&](const Vec3& p, std::size_t a, std::size_t b, std::size_t c) {
+        const double d1 = dot(cross(pts[b] - pts[a], p - pts[a]), normal);
+        const double d2 = dot(cross(pts[c] - pts[b], p - pts[b]), normal);
+        const double d3 = dot(cross(pts[a] - pts[c], p - pts[c]), normal);
+        return d1 >= 0 && d2 >= 0 && d3 >= 0;
+    };
+    std::size_t guard = 0;
+    while (remaining.size() > 3 && guard++ < 10 * pts.size() * pts.size()) {
+        const std::size_t m = remaining.size();
+        bool clipped = false;
+        for (std::size_t i = 0; i < m && !clipped; ++i) {
+            const auto a = remaining[(i + m - 1) % m], b = remaining[i], c = remaining[(i + 1) % m];
+            if (!convex(a, b, c)) continue;
+            bool ear = true;
+            for (auto o : remaining)
+                if (o != a && o != b && o != c && inside(pts[o], a, b, c)) {
+                    ear = false;
+                    break;
+                }
+            if (!ear) continue;
+            out.push_back({ids[a], ids[b], ids[c]});
+            remaining.erase(remaining.begin() + static_cast<long>(i));
+            clipped = true;
+        }
+        if (!clipped) break; // numerically stuck: fall back to a fan for the rest
+    }
+    for (std::size_t i = 1; i + 1 < remaining.size(); ++i)
+        out.push_back({ids[remaining[0]], ids[remaining[i]], ids[remaining[i + 1]]});
+    return out;
+}
+
+struct UnionFind {
+    std::vector<std::size_t> parent;
+    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+    std::size_t find(std::size_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    }
+    void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
+} // namespace
+
+radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options,
+                           SubdivisionReport* report) {
+    SubdivisionReport local;
+    SubdivisionReport& rep = report ? *report : local;
+
+    // Scene size sets what "degenerate" means.
+    double extent = 0;
+    {
+        Vec3 lo = scene.vertices.empty() ? Vec3{0, 0, 0} : scene.vertices[0], hi = lo;
+        for (const auto& v : scene.vertices)
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = std::min(lo[k], v[k]);
+                hi[k] = std::max(hi[k], v[k]);
+            }
+        extent = length(hi - lo);
+    }
+    const double min_area = 1e-14 * extent * extent;
+
+    std::vector<Element> elements;
+    for (const auto& poly : scene.polygons) {
+        // Drop repeated consecutive vertices, which contribute nothing.
+        std::vector<std::uint32_t> ids;
+        for (auto id : poly.vertices)
+            if (ids.empty() || scene.vertices[ids.back()] != scene.vertices[id]) ids.push_back(id);
+        while (ids.size() > 1 && scene.vertices[ids.front()] == scene.vertices[ids.back()]) ids.pop_back();
+        std::vector<Vec3> pts;
+        for (auto id : ids) pts.push_back(scene.vertices[id]);
+        const Vec3 n2 = pts.size() >= 3 ? newell_normal(pts) : Vec3{0, 0, 0};
+        const double area = 0.5 * length(n2);
+        if (pts.size() < 3 || !(area > min_area)) {
+            ++rep.degenerate_dropped;
+            continue;
+        }
+        const Vec3 normal = n2 * (0.5 / area);
+        // Planarity: every vertex within a tolerance (relative to the face size) of the plane.
+        const Vec3 centre = polygon_centroid(pts);
+        double size = 0;
+        for (const auto& p : pts) size = std::max(size, length(p - centre));
+        for (std::size_t k = 0; k < pts.size(); ++k) {
+            const double off = std::abs(dot(pts[k] - centre, normal));
+            if (off > options.planarity_tolerance * size)
+                throw InputError(where(scene, poly) + "face is not planar: vertex " +
+                                 std::to_string(k + 1) + " lies " + std::to_string(off) +
+                                 " off the face's plane (tolerance " +
+                                 std::to_string(options.planarity_tolerance * size) + ")");
+        }
+        bool convex_quad = pts.size() == 4;
+        for (std::size_t k = 0; k < 4 && convex_quad; ++k)
+            convex_quad = dot(cross(pts[(k + 1) % 4] - pts[k], pts[(k + 2) % 4] - pts[(k + 1) % 4]),
+                              normal) > 0;
+        auto add = [&](std::initializer_list<std::uint32_t> corners) {
+            Element e;
+            std::copy(corners.begin(), corners.end(), e.v.begin());
+            e.corners = static_cast<int>(corners.size());
+            e.group = poly.group;
+            e.material = poly.material;
+            e.normal = normal;
+            std::vector<Vec3> c;
+            for (int k = 0; k < e.corners; ++k) c.push_back(scene.vertices[e.v[k]]);
+            e.area = 0.5 * length(newell_normal(c));
+            if (e.area > min_area) elements.push_back(e);
+            else ++rep.degenerate_dropped;
+        };
+        if (pts.size() == 3) {
+            add({ids[0], ids[1], ids[2]});
+        } else if (convex_quad) {
+            add({ids[0], ids[1], ids[2], ids[3]});
+        } else {
+            ++rep.polygons_triangulated;
+            for (const auto& t : triangulate(pts, ids, normal)) add({t[0], t[1], t[2]});
+        }
+    }
+    if (elements.empty())
+        throw InputError(scene.path + ": scene is empty (every face is degenerate)");
+
+    // Number the edges, tie the ones that must share a segment count, and agree on counts.
+    std::unordered_map<Edge, std::size_t> edge_index;
+    std::vector<Edge> edges;
+    auto edge_of = [&](std::uint32_t a, std::uint32_t b) {
+        auto [it, inserted] = edge_index.try_emplace(edge_key(a, b), edges.size());
+        if (inserted) edges.push_back(edge_key(a, b));
+        return it->second;
+    };
+    std::vector<std::array<std::size_t, 4>> element_edges(elements.size());
+    for (std::size_t f = 0; f < elements.size(); ++f) {
+        const auto& e = elements[f];
+        for (int k = 0; k < e.corners; ++k) element_edges[f][k] = edge_of(e.v[k], e.v[(k + 1) % e.corners]);
+    }
+    std::vector<double> edge_limit(edges.size(), 0);
+    UnionFind classes(edges.size());
+    for (std::size_t f = 0; f < elements.size(); ++f) {
+        const auto& e = elements[f];
+        const auto& ee = element_edges[f];
+        const auto& group = scene.groups[e.group];
+        const double limit = limit_for(options.max_edge_by_group, group, options.max_edge);
+        for (int k = 0; k < e.corners; ++k)
+            if (limit > 0 && (edge_limit[ee[k]] == 0 || limit < edge_limit[ee[k]])) edge_limit[ee[k]] = limit;
+        if (e.corners == 4) {
+            classes.unite(ee[0], ee[2]);
+            classes.unite(ee[1], ee[3]);
+        } else {
+            classes.unite(ee[0], ee[1]);
+            classes.unite(ee[1], ee[2]);
+        }
+    }
+    std::vector<std::size_t> segments(edges.size(), 1);
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        if (edge_limit[i] <= 0) continue;
+        const auto a = static_cast<std::uint32_t>(edges[i] >> 32), b = static_cast<std::uint32_t>(edges[i]);
+        const double len = length(scene.vertices[a] - scene.vertices[b]);
+        auto& s = segments[classes.find(i)];
+        s = std::max(s, static_cast<std::size_t>(std::ceil(len / edge_limit[i] - 1e-9)));
+    }
+    // Area limits raise counts until every element's patches are small enough; counts only
+    // grow, so this settles.
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (std::size_t f = 0; f < elements.size(); ++f) {
+            const auto& e = elements[f];
+            const double limit = limit_for(options.max_area_by_group, scene.groups[e.group], options.max_area);
+            if (limit <= 0) continue;
+            auto& a = segments[classes.find(element_edges[f][0])];
+            auto& b = segments[classes.find(element_edges[f][1])];
+            const double pieces = e.corners == 4 ? double(a) * double(b) : double(a) * double(a);
+            if (e.area / pieces <= limit * (1 + 1e-9)) continue;
+            if (e.corners == 3 || &a == &b) {
+                a = static_cast<std::size_t>(std::ceil(std::sqrt(e.area / limit) - 1e-9));
+            } else if (a <= b) {
+                ++a;
+            } else {
+                ++b;
+            }
+            changed = true;
+        }
+    }
+    auto count_of = [&](std::size_t edge) { return segments[classes.find(edge)]; };
+
+    radfmt::MeshData mesh;
+    mesh.groups = scene.groups;
+    mesh.materials = scene.materials;
+    std::vector<std::uint32_t> remap(scene.vertices.size(), radfmt::kNoVertex);
+    auto corner_vertex = [&](std::uint32_t id) {
+        if (remap[id] == radfmt::kNoVertex) {
+            remap[id] = static_cast<std::uint32_t>(mesh.vertices.size());
+            mesh.vertices.push_back(scene.vertices[id]);
+        }
+        return remap[id];
+    };
+    std::unordered_map<Edge, std::uint32_t> edge_points; // first interior point of an edge
+    // The vertex at step k of n from a to b; interior points are created once per edge, from
+    // its smaller endpoint, so both faces sharing the edge use the same vertices.
+    auto edge_vertex = [&](std::uint32_t a, std::uint32_t b, std::size_t k, std::size_t n) {
+        if (k == 0) return corner_vertex(a);
+        if (k == n) return corner_vertex(b);
+        const auto lo = std::min(a, b), hi = std::max(a, b);
+        const std::size_t step = a < b ? k : n - k;
+        auto [it, inserted] = edge_points.try_emplace(edge_key(a, b), 0);
+        if (inserted) {
+            it->second = static_cast<std::uint32_t>(mesh.vertices.size());
+            for (std::size_t i = 1; i < n; ++i) {
+                const double t = double(i) / double(n);
+                mesh.vertices.push_back(scene.vertices[lo] * (1 - t) + scene.vertices[hi] * t);
+            }
+        }
+        return static_cast<std::uint32_t>(it->second + step - 1);
+    };
+    auto emit = [&](const Element& e, std::initializer_list<std::uint32_t> corners) {
+        radfmt::Patch p;
+        std::copy(corners.begin(), corners.end(), p.corners.begin());
+        std::vector<Vec3> pts;
+        for (auto c : corners) pts.push_back(mesh.vertices[c]);
+        p.group = e.group;
+        p.material = e.material;
+        p.normal = e.normal;
+        p.area = 0.5 * length(newell_normal(pts));
+        p.centroid = polygon_centroid(pts);
+        mesh.patches.push_back(p);
+    };
+
+    for (std::size_t f = 0; f < elements.size(); ++f) {
+        const auto& e = elements[f];
+        const auto& v = e.v;
+        if (e.corners == 4) {
+            const std::size_t nu = count_of(element_edges[f][0]), nv = count_of(element_edges[f][1]);
+            std::vector<std::uint32_t> grid((nu + 1) * (nv + 1));
+            auto at = [&](std::size_t i, std::size_t j) -> std::uint32_t& { return grid[j * (nu + 1) + i]; };
+            const Vec3 p0 = scene.vertices[v[0]], p1 = scene.vertices[v[1]], p2 = scene.vertices[v[2]],
+                       p3 = scene.vertices[v[3]];
+            for (std::size_t j = 0; j <= nv; ++j)
+                for (std::size_t i = 0; i <= nu; ++i) {
+                    if (j == 0) at(i, j) = edge_vertex(v[0], v[1], i, nu);
+                    else if (j == nv) at(i, j) = edge_vertex(v[3], v[2], i, nu);
+                    else if (i == 0) at(i, j) = edge_vertex(v[0], v[3], j, nv);
+                    else if (i == nu) at(i, j) = edge_vertex(v[1], v[2], j, nv);
+                    else {
+                        const double s = double(i) / nu, t = double(j) / nv;
+                        at(i, j) = static_cast<std::uint32_t>(mesh.vertices.size());
+                        mesh.vertices.push_back(p0 * ((1 - s) * (1 - t)) + p1 * (s * (1 - t)) +
+                                                p2 * (s * t) + p3 * ((1 - s) * t));
+                    }
+                }
+            for (std::size_t j = 0; j < nv; ++j)
+                for (std::size_t i = 0; i < nu; ++i)
+                    emit(e, {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+        } else {
+            const std::size_t n = count_of(element_edges[f][0]);
+            std::vector<std::uint32_t> grid((n + 1) * (n + 1), radfmt::kNoVertex);
+            auto at = [&](std::size_t i, std::size_t j) -> std::uint32_t& { return grid[j * (n + 1) + i]; };
+            const Vec3 p0 = scene.vertices[v[0]], p1 = scene.vertices[v[1]], p2 = scene.vertices[v[2]];
+            for (std::size_t j = 0; j <= n; ++j)
+                for (std::size_t i = 0; i + j <= n; ++i) {
+                    if (j == 0) at(i, j) = edge_vertex(v[0], v[1], i, n);
+                    else if (i == 0) at(i, j) = edge_vertex(v[0], v[2], j, n);
+                    else if (i + j == n) at(i, j) = edge_vertex(v[1], v[2], j, n);
+                    else {
+                        at(i, j) = static_cast<std::uint32_t>(mesh.vertices.size());
+                        mesh.vertices.push_back(p0 + (p1 - p0) * (double(i) / n) + (p2 - p0) * (double(j) / n));
+                    }
+                }
+            for (std::size_t j = 0; j < n; ++j)
+                for (std::size_t i = 0; i + j < n; ++i) {
+                    emit(e, {at(i, j), at(i + 1, j), at(i, j + 1)});
+                    if (i + j + 1 < n) emit(e, {at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+                }
+        }
+    }
+    if (mesh.patches.size() >= radfmt::kNoVertex)
+        throw InputError(scene.path + ": too many patches for 32-bit indices");
+    return mesh;
+}
+
+Topology analyze_topology(const radfmt::MeshData& mesh) {
+    using OMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
+    OMesh om;
+    std::vector<OMesh::VertexHandle> handles;
+    handles.reserve(mesh.vertices.size());
+    for (const auto& v : mesh.vertices) handles.push_back(om.add_vertex(OMesh::Point(v[0], v[1], v[2])));
+    Topology topo;
+    omerr().disable(); // OpenMesh reports each non-manifold face; we count them instead
+    for (const auto& p : mesh.patches) {
+        std::vector<OMesh::VertexHandle> face;
+        for (int k = 0; k < p.corner_count(); ++k) face.push_back(handles[p.corners[k]]);
+        if (!om.add_face(face).is_valid()) ++topo.rejected_patches;
+    }
+    omerr().enable();
+    for (auto e : om.edges()) {
+        ++topo.edges;
+        if (om.is_boundary(e)) ++topo.boundary_edges;
+    }
+    return topo;
+}
+
+} // namespace rad
