@@ -18,6 +18,11 @@ std::string command_line(int argc, char** argv) {
     std::string out;
     for (int i = 0; i < argc; ++i) {
         std::string arg = argv[i];
+        if (arg == "--threads") {
+            ++i;
+            continue;
+        }
+        if (arg.rfind("--threads=", 0) == 0 || arg == "-q" || arg == "--quiet") continue;
         if (i == 0) arg = std::filesystem::path(arg).filename().string();
         const bool plain = !arg.empty() && arg.find_first_of(" \t\"'\\$`*?;&|<>()") == std::string::npos;
         if (!out.empty()) out += ' ';

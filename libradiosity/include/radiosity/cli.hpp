@@ -17,6 +17,8 @@ struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// The command line as recorded in provenance headers. Options that cannot change a result
+// (--threads N, -q/--quiet) are left out, so outputs are byte-identical at any thread count.
 std::string command_line(int argc, char** argv);
 std::string tool_version(const std::string& tool);
 

@@ -1,0 +1,107 @@
+#include "radiosity/rays.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace rad {
+
+struct RayScene::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    std::vector<std::uint32_t> triangle_patch; // Embree primitive -> patch
+    std::vector<Vec3> normals;
+};
+
+RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>()) {
+    impl_->device = rtcNewDevice(nullptr);
+    if (!impl_->device)
+        throw std::runtime_error("Embree device creation failed (error " +
+                                 std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    impl_->scene = rtcNewScene(impl_->device);
+    // Robust mode makes shared edges watertight, so rays do not leak between patches.
+    rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+
+    std::size_t triangles = 0;
+    for (const auto& p : mesh.patches) triangles += p.corner_count() - 2;
+    RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+        for (int k = 0; k < 3; ++k) {
+            vertices[3 * v + k] = static_cast<float>(mesh.vertices[v][k]);
+            lo[k] = std::min(lo[k], mesh.vertices[v][k]);
+            hi[k] = std::max(hi[k], mesh.vertices[v][k]);
+        }
+    impl_->triangle_patch.reserve(triangles);
+    std::size_t t = 0;
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const auto& c = mesh.patches[i].corners;
+        for (int k = 0; k + 2 < mesh.patches[i].corner_count(); ++k, ++t) {
+            indices[3 * t] = c[0];
+            indices[3 * t + 1] = c[k + 1];
+            indices[3 * t + 2] = c[k + 2];
+            impl_->triangle_patch.push_back(static_cast<std::uint32_t>(i));
+        }
+        impl_->normals.push_back(mesh.patches[i].normal);
+    }
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(impl_->scene, geometry);
+    rtcReleaseGeometry(geometry);
+    rtcCommitScene(impl_->scene);
+    epsilon_ = std::max(1e-9, 1e-5 * length(hi - lo));
+}
+
+RayScene::~RayScene() {
+    if (impl_->scene) rtcReleaseScene(impl_->scene);
+    if (impl_->device) rtcReleaseDevice(impl_->device);
+}
+
+bool RayScene::visible(const Vec3& from, const Vec3& to) const {
+    const Vec3 d = to - from;
+    const double distance = length(d);
+    if (distance <= 2 * epsilon_) return true;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray{};
+    ray.org_x = static_cast<float>(from[0]);
+    ray.org_y = static_cast<float>(from[1]);
+    ray.org_z = static_cast<float>(from[2]);
+    ray.dir_x = static_cast<float>(d[0] / distance);
+    ray.dir_y = static_cast<float>(d[1] / distance);
+    ray.dir_z = static_cast<float>(d[2] / distance);
+    ray.tnear = static_cast<float>(epsilon_);
+    ray.tfar = static_cast<float>(distance - epsilon_);
+    ray.mask = 0xFFFFFFFFu;
+    rtcOccluded1(impl_->scene, &context, &ray);
+    return ray.tfar >= 0; // Embree sets tfar to -inf on a hit
+}
+
+std::int64_t RayScene::first_hit(const Vec3& origin, const Vec3& direction, bool& front) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    rh.ray.org_x = static_cast<float>(origin[0]);
+    rh.ray.org_y = static_cast<float>(origin[1]);
+    rh.ray.org_z = static_cast<float>(origin[2]);
+    rh.ray.dir_x = static_cast<float>(direction[0]);
+    rh.ray.dir_y = static_cast<float>(direction[1]);
+    rh.ray.dir_z = static_cast<float>(direction[2]);
+    rh.ray.tnear = static_cast<float>(epsilon_);
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
+    const auto patch = impl_->triangle_patch[rh.hit.primID];
+    front = dot(direction, impl_->normals[patch]) < 0;
+    return patch;
+}
+
+} // namespace rad
