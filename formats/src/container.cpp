@@ -291,6 +291,8 @@ struct ParsedHeader {
 
 static ParsedHeader parse_header(std::string_view bytes, const std::string& path,
                                  std::uint64_t file_size) {
+    if (bytes.size() < kMagic.size() && kMagic.substr(0, bytes.size()) == bytes)
+        throw FormatError(path + ": truncated: the file ends inside its magic line");
     if (bytes.substr(0, kMagic.size()) != kMagic)
         throw FormatError(path + ": not a radiosity file (wrong magic; expected '" +
                           std::string(kMagic) + "')");

@@ -102,18 +102,6 @@ std::vector<Sample> gauss_samples(const PatchGeometry& g, double area, const std
     return out;
 }
 
-// Jittered stratified points on an m x m grid, weighted by the map's area element.
-std::vector<Sample> jittered_samples(const PatchGeometry& g, double area, int m, Rng& rng) {
-    std::vector<Sample> out;
-    for (int a = 0; a < m; ++a)
-        for (int b = 0; b < m; ++b) {
-            double jacobian = 0;
-            const Vec3 p = patch_point(g, (a + rng.uniform()) / m, (b + rng.uniform()) / m, jacobian);
-            out.push_back({p, jacobian / (area * m * m)});
-        }
-    return out;
-}
-
 // An area-uniform point on a convex polygon (fan of triangles).
 Vec3 uniform_point(std::span<const Vec3> poly, std::span<const double> fan_cdf, double u0, double u1, double u2) {
     std::size_t tri = 0;
@@ -246,6 +234,9 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
                 diameter[i] = std::max(diameter[i], length(geometry[i].corners[a] - geometry[i].corners[b]));
     std::vector<double> gl_nodes, gl_weights;
     gauss_legendre(m, gl_nodes, gl_weights);
+    std::vector<double> gl_far_nodes, gl_far_weights, gl_close_nodes, gl_close_weights;
+    gauss_legendre(2 * m, gl_close_nodes, gl_close_weights);
+    gauss_legendre(m_far, gl_far_nodes, gl_far_weights);
 
     std::vector<std::vector<std::pair<std::uint32_t, float>>> rows(n);
     std::atomic<std::uint64_t> rays_cast{0};
@@ -307,9 +298,14 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
         } else {
             const auto samples_i = options.method == FormFactorMethod::Analytic
                                        ? gauss_samples(geometry[i], pi.area, gl_nodes, gl_weights)
-                                       : jittered_samples(geometry[i], pi.area, m_near, rng);
+                                       : gauss_samples(geometry[i], pi.area, gl_nodes, gl_weights);
+            // Analytic: close pairs (the integrand varies fast near a shared edge) get twice
+            // the points per axis.
+            const auto samples_i_close = options.method == FormFactorMethod::Analytic
+                                             ? gauss_samples(geometry[i], pi.area, gl_close_nodes, gl_close_weights)
+                                             : std::vector<Sample>{};
             const auto samples_i_far = options.method == FormFactorMethod::Pairwise
-                                           ? jittered_samples(geometry[i], pi.area, m_far, rng)
+                                           ? gauss_samples(geometry[i], pi.area, gl_far_nodes, gl_far_weights)
                                            : std::vector<Sample>{};
             for (std::size_t j = 0; j < n; ++j) {
                 if (j == i || !in_front(i, j) || !in_front(j, i)) continue;
@@ -323,19 +319,29 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
                     if (clipped.size() < 3) continue;
                     const auto cdf = fan_cdf(clipped);
                     const int vis = std::max(1, options.visibility_rays);
-                    for (const auto& s : samples_i) {
-                        int seen = 0;
+                    const bool close = length(pj.centroid - pi.centroid) < 2 * std::max(diameter[i], diameter[j]);
+                    for (const auto& s : close ? samples_i_close : samples_i) {
+                        // Visible fraction from this point: rays to area-uniform points of j,
+                        // weighted by the kernel cos cos / r^2 so that the parts of j that
+                        // matter most count most (exact when all or none are visible).
+                        double seen = 0, total = 0;
                         for (int r = 0; r < vis; ++r) {
                             const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-                            seen += scene.visible(s.point, uniform_point(clipped, cdf, u0, u1, u2));
+                            const Vec3 y = uniform_point(clipped, cdf, u0, u1, u2);
+                            const Vec3 d = y - s.point;
+                            const double r2 = dot(d, d);
+                            const double kernel = vis == 1 ? 1.0 : std::max(0.0, dot(d, pi.normal)) * std::max(0.0, -dot(d, pj.normal)) / (r2 * r2 + 1e-300);
+                            total += kernel;
+                            if (scene.visible(s.point, y)) seen += kernel;
                         }
                         local_rays += vis;
-                        if (seen)
-                            f += s.weight * (double(seen) / vis) *
+                        if (seen > 0)
+                            f += s.weight * (total > 0 ? seen / total : 0.0) *
                                  point_to_polygon_form_factor(s.point, pi.normal, clipped);
                     }
                 } else {
-                    // Pairwise: eq. 5 by sample pairs. Each sample of j stands for its cell of
+                    // Pairwise: eq. 5 by sample pairs: Gauss-Legendre points on i, and on j an
+                    // m x m grid of cells, each standing for its own area. Each sample of j stands for its cell of
                     // j's m x m grid; the cell's form factor from the point of i is taken in
                     // closed form, which keeps adjacent pairs finite as r -> 0, and one ray per
                     // pair decides whether the cell is visible.

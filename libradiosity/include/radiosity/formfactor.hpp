@@ -19,7 +19,7 @@ struct FormFactorOptions {
     int samples = 16;        // points per patch (analytic, pairwise), rounded to a square;
                              // pairwise uses a quarter of the resolution for distant pairs
     int visibility_rays = 1; // analytic: rays per sample point towards the other patch
-    int rays = 4096;         // hemisphere: rays per patch
+    int rays = 8192;         // hemisphere: rays per patch
     std::uint64_t seed = 1;
     bool quiet = false;
 };

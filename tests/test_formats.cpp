@@ -1,0 +1,147 @@
+// Round trips of every file kind and rejection of damaged files.
+#include "helpers.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace testing_helpers;
+using Catch::Matchers::Contains;
+
+namespace {
+radfmt::Header header_for(const std::string& tool) {
+    radfmt::Header h;
+    h.tool = tool + " test";
+    h.command = tool + " in.x -o 'out file'";
+    h.provenance = {"rad-mesh a.obj -o a.mesh"};
+    h.inputs = {{"in.x", "xxh64:0123456789abcdef"}};
+    return h;
+}
+
+radfmt::MeshData small_mesh() {
+    radfmt::MeshData m;
+    m.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    radfmt::Patch q;
+    q.corners = {0, 1, 2, 3};
+    q.area = 1;
+    q.centroid = {0.5, 0.5, 0};
+    q.normal = {0, 0, 1};
+    radfmt::Patch t;
+    t.corners = {0, 1, 2, radfmt::kNoVertex};
+    t.group = 1;
+    t.material = 1;
+    t.area = 0.5;
+    t.centroid = {2.0 / 3, 1.0 / 3, 0};
+    t.normal = {0, 0, 1};
+    m.patches = {q, t};
+    m.groups = {"floor", "wall"};
+    m.materials = {{"grey", {0.5, 0.5, 0.5}, {0, 0, 0}}, {"lamp", {0.1, 0.2, 0.3}, {10, 20, 30}}};
+    return m;
+}
+
+std::string read_all(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+} // namespace
+
+TEST_CASE("mesh files round-trip with header and provenance") {
+    const auto dir = temp_dir("formats");
+    const auto path = dir / "a.mesh";
+    const auto mesh = small_mesh();
+    radfmt::write_mesh(path, header_for("rad-mesh"), mesh);
+    radfmt::Header h;
+    const auto back = radfmt::read_mesh(path, &h);
+    REQUIRE(back.vertices == mesh.vertices);
+    REQUIRE(back.patches.size() == 2);
+    CHECK(back.patches[1].corner_count() == 3);
+    CHECK(back.patches[1].material == 1);
+    CHECK(back.materials[1].emission == radfmt::Rgb{10, 20, 30});
+    CHECK(back.groups == mesh.groups);
+    CHECK(h.command == "rad-mesh in.x -o 'out file'");
+    CHECK(h.provenance == std::vector<std::string>{"rad-mesh a.obj -o a.mesh"});
+    CHECK(h.get("patches", "") == "2");
+    CHECK(h.get("geometry_hash", "") == mesh.geometry_hash());
+    // The body starts 64-byte aligned.
+    const auto text = read_all(path);
+    const auto body_at = text.size() - h.body_size;
+    CHECK(body_at % 64 == 0);
+}
+
+TEST_CASE("form-factor and radiosity files round-trip") {
+    const auto dir = temp_dir("formats");
+    radfmt::FormFactorData ff;
+    ff.patch_count = 3;
+    ff.row_start = {0, 2, 2, 3};
+    ff.columns = {1, 2, 0};
+    ff.values = {0.25f, 0.5f, 0.125f};
+    radfmt::write_form_factors(dir / "a.ff", header_for("rad-ff"), ff);
+    const auto ff2 = radfmt::read_form_factors(dir / "a.ff");
+    CHECK(ff2.row_start == ff.row_start);
+    CHECK(ff2.columns == ff.columns);
+    CHECK(ff2.values == ff.values);
+
+    radfmt::RadiosityData rad{{{1, 2, 3}, {0.5, 0.25, 0.125}}};
+    radfmt::write_radiosity(dir / "a.rad", header_for("rad-solve"), rad);
+    CHECK(radfmt::read_radiosity(dir / "a.rad").radiosity == rad.radiosity);
+
+    std::ostringstream csv;
+    radfmt::write_csv(dir / "a.ff", csv);
+    CHECK(csv.str() == "row,col,f\n0,1,0.25\n0,2,0.5\n2,0,0.125\n");
+    std::ostringstream csv2;
+    radfmt::write_csv(dir / "a.rad", csv2);
+    CHECK(csv2.str() == "patch,b_r,b_g,b_b\n0,1,2,3\n1,0.5,0.25,0.125\n");
+}
+
+TEST_CASE("damaged files are refused with a clear message") {
+    const auto dir = temp_dir("formats");
+    const auto good = dir / "good.mesh";
+    radfmt::write_mesh(good, header_for("rad-mesh"), small_mesh());
+    const auto bytes = read_all(good);
+    const auto bad = dir / "bad.mesh";
+    auto expect_error = [&](const std::string& content, const std::string& fragment) {
+        write_text(bad, content);
+        CAPTURE(fragment);
+        REQUIRE_THROWS_WITH(radfmt::read_mesh(bad), Contains(bad.string()) && Contains(fragment));
+    };
+    SECTION("truncated at several offsets") {
+        for (std::size_t cut : {std::size_t(0), std::size_t(10), bytes.find("\n\n"), bytes.size() / 2, bytes.size() - 1})
+            expect_error(bytes.substr(0, cut), cut == 0 ? "empty" : "truncated");
+    }
+    SECTION("a flipped byte in the header") {
+        auto copy = bytes;
+        copy[copy.find("command=") + 10] ^= 0x20;
+        expect_error(copy, "checksum mismatch");
+    }
+    SECTION("a flipped byte in the body") {
+        auto copy = bytes;
+        copy[copy.size() - 20] ^= 0x01;
+        expect_error(copy, "corrupt body");
+    }
+    SECTION("wrong magic") { expect_error("P6\n" + bytes.substr(3), "wrong magic"); }
+    SECTION("wrong kind version") {
+        auto copy = bytes;
+        const auto at = copy.find("version=1\n");
+        copy.replace(at, 10, "version=9\n");
+        // Re-sign the header so only the version is wrong.
+        const auto end = copy.find("header_hash=");
+        const auto hash = "xxh64:" + radfmt::hash_hex(radfmt::hash_bytes(copy.data(), end));
+        copy.replace(end + 12, hash.size(), hash);
+        expect_error(copy, "version 9 is not supported");
+    }
+    SECTION("trailing garbage") { expect_error(bytes + "xx", "unexpected bytes"); }
+    SECTION("wrong kind") {
+        radfmt::write_radiosity(bad, header_for("rad-solve"), {{{1, 1, 1}}});
+        REQUIRE_THROWS_WITH(radfmt::read_mesh(bad), Contains("radiosity solution") && Contains("patch mesh"));
+    }
+}
+
+TEST_CASE("writes are atomic: a failed write leaves no file") {
+    const auto dir = temp_dir("formats");
+    const auto path = dir / "out.rad";
+    REQUIRE_THROWS(radfmt::write_atomically(path, [](const fs::path& temp) {
+        write_text(temp, "partial");
+        throw std::runtime_error("interrupted");
+    }));
+    CHECK_FALSE(fs::exists(path));
+    CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 0);
+    REQUIRE_THROWS_WITH(radfmt::write_radiosity(dir / "missing" / "x.rad", {}, {}), Contains("does not exist"));
+}

@@ -1,0 +1,185 @@
+// rad-solve: furnace, agreement with a direct dense solve, convergence behaviour, APR.
+#include "helpers.hpp"
+#include "radiosity/formfactor.hpp"
+#include "radiosity/solver.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace testing_helpers;
+using radfmt::Rgb;
+using rad::SolveMethod;
+
+namespace {
+
+const SolveMethod kAll[] = {SolveMethod::Jacobi, SolveMethod::GaussSeidel, SolveMethod::Progressive,
+                            SolveMethod::ProgressiveAmbient};
+
+radfmt::FormFactorData analytic(const radfmt::MeshData& mesh) {
+    rad::FormFactorOptions options;
+    options.quiet = true;
+    return rad::compute_form_factors(mesh, options);
+}
+
+std::vector<std::vector<double>> dense(const radfmt::FormFactorData& ff) {
+    std::vector<std::vector<double>> f(ff.patch_count, std::vector<double>(ff.patch_count, 0));
+    for (std::size_t i = 0; i < ff.patch_count; ++i)
+        for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) f[i][ff.columns[k]] = ff.values[k];
+    return f;
+}
+
+radfmt::FormFactorData sparse(const std::vector<std::vector<double>>& f) {
+    radfmt::FormFactorData ff;
+    ff.patch_count = f.size();
+    ff.row_start.push_back(0);
+    for (const auto& row : f) {
+        for (std::size_t j = 0; j < row.size(); ++j)
+            if (row[j] != 0) {
+                ff.columns.push_back(static_cast<std::uint32_t>(j));
+                ff.values.push_back(static_cast<float>(row[j]));
+            }
+        ff.row_start.push_back(ff.columns.size());
+    }
+    return ff;
+}
+
+// Makes A_i F_ij = A_j F_ji exact, as progressive refinement assumes.
+std::vector<std::vector<double>> reciprocal(const std::vector<std::vector<double>>& f, const std::vector<double>& area) {
+    auto g = f;
+    for (std::size_t i = 0; i < f.size(); ++i)
+        for (std::size_t j = 0; j < f.size(); ++j) g[i][j] = 0.5 * (area[i] * f[i][j] + area[j] * f[j][i]) / area[i];
+    return g;
+}
+
+// Direct solve of (I - diag(rho) F) B = E by Gaussian elimination with partial pivoting.
+std::vector<Rgb> dense_solve(const rad::Problem& p) {
+    const auto f = dense(*p.form_factors);
+    const std::size_t n = f.size();
+    std::vector<Rgb> b(n);
+    for (int c = 0; c < 3; ++c) {
+        std::vector<std::vector<double>> m(n, std::vector<double>(n + 1));
+        for (std::size_t i = 0; i < n; ++i) {
+            for (std::size_t j = 0; j < n; ++j) m[i][j] = (i == j) - p.reflectance[i][c] * f[i][j];
+            m[i][n] = p.emission[i][c];
+        }
+        for (std::size_t col = 0; col < n; ++col) {
+            std::size_t pivot = col;
+            for (std::size_t r = col + 1; r < n; ++r)
+                if (std::abs(m[r][col]) > std::abs(m[pivot][col])) pivot = r;
+            std::swap(m[col], m[pivot]);
+            for (std::size_t r = 0; r < n; ++r) {
+                if (r == col) continue;
+                const double factor = m[r][col] / m[col][col];
+                for (std::size_t k = col; k <= n; ++k) m[r][k] -= factor * m[col][k];
+            }
+        }
+        for (std::size_t i = 0; i < n; ++i) b[i][c] = m[i][n] / m[i][i];
+    }
+    return b;
+}
+
+rad::SolveResult run(const rad::Problem& p, SolveMethod method, double tolerance, long iterations = 0,
+                     std::vector<rad::IterationRecord>* log = nullptr) {
+    rad::SolveOptions options;
+    options.method = method;
+    options.tolerance = tolerance;
+    options.max_iterations = iterations ? iterations : 10000000;
+    if (log) options.on_iteration = [&](const rad::IterationRecord& r, const std::vector<Rgb>&) { log->push_back(r); };
+    return rad::solve(p, options);
+}
+
+// A closed cube with a floating two-sided block inside (occlusion), light on part of the top.
+radfmt::MeshData occluded_scene() {
+    return mesh_from_obj(cube_obj() +
+                             "v 0.3 0.3 0.4\nv 0.7 0.3 0.4\nv 0.7 0.7 0.4\nv 0.3 0.7 0.4\n"
+                             "g block\nf 9 10 11 12\nf 9 12 11 10\n",
+                         0.34);
+}
+
+} // namespace
+
+TEST_CASE("furnace: a closed cube with uniform rho and E gives B = E / (1 - rho) for every method") {
+    const auto mesh = mesh_from_obj(cube_obj(), 0.25);
+    auto f = dense(analytic(mesh));
+    // Equal areas: a symmetric matrix is reciprocal. Sinkhorn balancing then makes every row
+    // (and column) sum to exactly one, the closed scene's exact property.
+    f = reciprocal(f, std::vector<double>(f.size(), 1.0));
+    for (int round = 0; round < 200; ++round) {
+        std::vector<double> scale(f.size());
+        for (std::size_t i = 0; i < f.size(); ++i) {
+            double sum = 0;
+            for (double x : f[i]) sum += x;
+            scale[i] = 1 / std::sqrt(sum);
+        }
+        for (std::size_t i = 0; i < f.size(); ++i)
+            for (std::size_t j = 0; j < f.size(); ++j) f[i][j] *= scale[i] * scale[j];
+    }
+    const auto ff = sparse(f);
+    rad::Problem p;
+    p.form_factors = &ff;
+    const Rgb rho{0.5, 0.8, 0.2}, e{1, 2, 3};
+    for (const auto& patch : mesh.patches) {
+        p.area.push_back(patch.area);
+        p.reflectance.push_back(rho);
+        p.emission.push_back(e);
+    }
+    for (auto method : kAll) {
+        const auto result = run(p, method, 1e-12);
+        CAPTURE(rad::solve_method_name(method));
+        for (const auto& b : result.radiosity)
+            for (int c = 0; c < 3; ++c) CHECK(b[c] == Approx(e[c] / (1 - rho[c])).epsilon(1e-6));
+    }
+}
+
+TEST_CASE("every method agrees with a direct dense solve on an occluded scene") {
+    const auto mesh = occluded_scene();
+    std::vector<double> area;
+    for (const auto& patch : mesh.patches) area.push_back(patch.area);
+    const auto ff = sparse(reciprocal(dense(analytic(mesh)), area));
+    rad::Problem p;
+    p.form_factors = &ff;
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const auto& patch = mesh.patches[i];
+        p.area.push_back(patch.area);
+        const bool lamp = patch.group == 1 && patch.centroid[0] < 0.5; // part of the top
+        p.reflectance.push_back(patch.group == 6 ? Rgb{0.7, 0.3, 0.1} : Rgb{0.6, 0.6, 0.6});
+        p.emission.push_back(lamp ? Rgb{5, 4, 3} : Rgb{0, 0, 0});
+    }
+    const auto exact = dense_solve(p);
+    double scale = 0;
+    for (const auto& b : exact) scale = std::max({scale, b[0], b[1], b[2]});
+    for (auto method : kAll) {
+        const auto result = run(p, method, 1e-13);
+        CAPTURE(rad::solve_method_name(method));
+        for (std::size_t i = 0; i < exact.size(); ++i)
+            for (int c = 0; c < 3; ++c) CHECK(std::abs(result.radiosity[i][c] - exact[i][c]) < 1e-6 * scale);
+    }
+    CHECK(run(p, SolveMethod::GaussSeidel, 1e-8).iterations < run(p, SolveMethod::Jacobi, 1e-8).iterations);
+
+    SECTION("Gauss-Seidel brightens monotonically from B = E") {
+        std::vector<rad::IterationRecord> log;
+        run(p, SolveMethod::GaussSeidel, 0, 10, &log);
+        REQUIRE(log.size() == 10);
+        for (std::size_t k = 1; k < log.size(); ++k)
+            for (int c = 0; c < 3; ++c) CHECK(log[k].power[c] >= log[k - 1].power[c]);
+        CHECK(log[3].power[0] > log[0].power[0]); // iteration 4 is brighter than iteration 1
+    }
+    SECTION("APR's first shot lights every patch; PR's leaves some black; the ambient term decays") {
+        const auto apr = run(p, SolveMethod::ProgressiveAmbient, 0, 1);
+        const auto pr = run(p, SolveMethod::Progressive, 0, 1);
+        std::size_t pr_black = 0;
+        for (std::size_t i = 0; i < apr.radiosity.size(); ++i) {
+            CHECK(apr.radiosity[i][0] > 0);
+            pr_black += pr.radiosity[i][0] == 0;
+        }
+        CHECK(pr_black > 0);
+        auto ambient_gap = [&](long shots) {
+            const auto a = run(p, SolveMethod::ProgressiveAmbient, 0, shots);
+            const auto b = run(p, SolveMethod::Progressive, 0, shots);
+            double gap = 0;
+            for (std::size_t i = 0; i < a.radiosity.size(); ++i) gap += a.radiosity[i][0] - b.radiosity[i][0];
+            return gap;
+        };
+        CHECK(ambient_gap(100) < ambient_gap(10));
+        CHECK(ambient_gap(10) < ambient_gap(1));
+    }
+}
