@@ -1,0 +1,19 @@
+# The Cornell chain through Makefile.examples in a temporary folder; changing the light
+# colour re-runs rad-solve and rad-shade only, never rad-ff.
+source "$(dirname "$0")/lib.sh"
+cd "$SRC"
+MK="make -f Makefile.examples BIN=$BIN OUT=$TMP/out SIZE=-x\ 96\ -y\ 96"
+eval $MK cornell >"$TMP/make.log" 2>&1 || { cat "$TMP/make.log"; fail "make cornell"; }
+for f in cornell.mesh cornell.ff cornell.rad cornell-gs-1.rad cornell-gs-4.rad cornell-pr-10.rad cornell-apr-100.rad; do
+  "$BIN/rad-info" "$TMP/out/$f" >/dev/null || fail "rad-info $f"
+done
+for f in cornell.exr cornell.png cornell-blue.exr fig3-cornell-gs-1.exr fig3-cornell-apr-10.png; do
+  [ -s "$TMP/out/$f" ] || fail "missing $f"
+done
+dry=$(eval $MK -n cornell)
+grep -q "rad-" <<<"$dry" && fail "an up-to-date tree would re-run: $dry"
+dry=$(eval $MK -n cornell LIGHT=10,20,40)
+grep -q "rad-solve" <<<"$dry" || fail "a new light colour must re-run rad-solve"
+grep -q "rad-shade" <<<"$dry" || fail "a new light colour must re-run rad-shade"
+grep -q "rad-ff\|rad-mesh" <<<"$dry" && fail "a new light colour must not re-run rad-ff: $dry"
+finish

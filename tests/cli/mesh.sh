@@ -1,0 +1,30 @@
+# rad-mesh: subdivision of the Cornell box, bad inputs give file:line messages and no output.
+source "$(dirname "$0")/lib.sh"
+total=""
+for edge in 0.2 0.1 0.05 0.03; do
+  err=$("$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/c.mesh" --max-edge $edge 2>&1) || fail "mesh at $edge"
+  area=$(sed -n 's/.*total area \([0-9.e+-]*\),.*/\1/p' <<<"$err")
+  [ -z "$total" ] && total=$area
+  python3 -c "import sys; a,b=float('$area'),float('$total'); sys.exit(abs(a-b) > 1e-9*b)" || fail "area $area vs $total"
+done
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/g.mesh" --max-edge 0.1 --max-edge floor=0.02 -q || fail "per-group"
+[ "$("$BIN/rad-info" --csv "$TMP/g.mesh" | grep -c ',floor,')" -gt 700 ] || fail "floor override"
+cd "$TMP"
+printf 'newmtl grey\nKd 0.5 0.5 0.5\n' > s.mtl
+printf 'mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 7\n' > index.obj
+expect_error "index.obj:6: face refers to vertex 7, but only 3 vertices are defined" out.mesh "$BIN/rad-mesh" index.obj -o out.mesh
+printf 'mtllib s.mtl\nv 0 0 0\nv 1 nan 0\n' > nan.obj
+expect_error "nan.obj:3:" out.mesh "$BIN/rad-mesh" nan.obj -o out.mesh
+printf 'mtllib none.mtl\nv 0 0 0\n' > nomtl.obj
+expect_error "nomtl.obj:1: material library 'none.mtl' not found" out.mesh "$BIN/rad-mesh" nomtl.obj -o out.mesh
+printf 'mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 1\nv 0 1 0\nusemtl grey\nf 1 2 3 4\n' > bent.obj
+expect_error "bent.obj:7: face is not planar" out.mesh "$BIN/rad-mesh" bent.obj -o out.mesh
+printf 'mtllib s.mtl\n' > empty.obj
+expect_error "empty" out.mesh "$BIN/rad-mesh" empty.obj -o out.mesh
+printf 'mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nusemtl grey\nf 1 2 3\nf 1 2 4\n' > degen.obj
+err=$("$BIN/rad-mesh" degen.obj -o out.mesh 2>&1) || fail "degenerate face should only warn"
+grep -q "dropped 1 degenerate" <<<"$err" || fail "degenerate warning: $err"
+expect_error "no group 'nothere'" out2.mesh "$BIN/rad-mesh" degen.obj -o out2.mesh --max-edge nothere=0.1
+expect_error "does not exist" "" "$BIN/rad-mesh" degen.obj -o nofolder/out.mesh
+"$BIN/rad-mesh" --help | grep -q -- "--max-edge" || fail "help"
+finish

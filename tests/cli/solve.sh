@@ -1,0 +1,38 @@
+# rad-solve: stale form factors, overrides equal re-meshing, snapshots, logs, bad input.
+source "$(dirname "$0")/lib.sh"
+cornell_mesh 0.1
+"$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/c.ff" -q
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/other.mesh" --max-edge 0.2 -q
+expect_error "c.ff is stale" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/other.mesh" "$TMP/c.ff" -o "$TMP/x.rad"
+# An override equals re-meshing with the changed MTL (same geometry, so the .ff is reused).
+mkdir "$TMP/alt"; cp "$SRC/scenes/cornell/cornell.obj" "$TMP/alt/"
+sed 's/^Ke 40 32 20$/Ke 10 20 30/; s/^Kd 0.63 0.065 0.05$/Kd 0.5 0.5 0.1/' "$SRC/scenes/cornell/cornell.mtl" > "$TMP/alt/cornell.mtl"
+"$BIN/rad-mesh" "$TMP/alt/cornell.obj" -o "$TMP/alt.mesh" --max-edge 0.1 -q
+"$BIN/rad-solve" "$TMP/alt.mesh" "$TMP/c.ff" -o "$TMP/remeshed.rad" -q || fail "solve with re-meshed materials"
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/override.rad" --emission light=10,20,30 --reflectance red=0.5,0.5,0.1 -q || fail "override"
+cmp -s <("$BIN/rad-info" --csv "$TMP/remeshed.rad") <("$BIN/rad-info" --csv "$TMP/override.rad") || fail "override differs from re-meshing"
+"$BIN/rad-info" "$TMP/override.rad" | grep -q "override.emission.light = 10,20,30" || fail "override recorded"
+# Emission scale is linear.
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/a.rad" -q
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/b.rad" --emission-scale 2 -q
+python3 - "$TMP" "$BIN" <<'PY' || fail "emission scale"
+import subprocess, sys
+tmp, bin = sys.argv[1], sys.argv[2]
+read = lambda p: [list(map(float, l.split(",")[1:])) for l in subprocess.check_output([bin + "/rad-info", "--csv", p], text=True).splitlines()[1:]]
+a, b = read(tmp + "/a.rad"), read(tmp + "/b.rad")
+sys.exit(any(abs(2 * x - y) > 1e-6 * max(1, y) for ra, rb in zip(a, b) for x, y in zip(ra, rb)))
+PY
+# Snapshots and the log.
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/gs.rad" --iterations 10 --snapshot "$TMP/it-%d.rad" --snapshot-at 1,4 --log "$TMP/log.csv" -q
+[ -e "$TMP/it-1.rad" ] && [ -e "$TMP/it-4.rad" ] || fail "snapshots"
+[ "$(head -1 "$TMP/log.csv")" = "iteration,residual,power_r,power_g,power_b,seconds" ] || fail "log header"
+[ "$(tail -n +2 "$TMP/log.csv" | wc -l)" -eq 10 ] || fail "log rows"
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/pr.rad" --method pr --sweeps 2 -q
+"$BIN/rad-info" "$TMP/pr.rad" | grep -q "iterations = $((2 * $("$BIN/rad-info" --csv "$TMP/c.mesh" | tail -n +2 | wc -l)))" || fail "sweeps-equivalent"
+expect_error "may not converge" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --reflectance white=1,0.5,0.5
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/f.rad" --reflectance white=1,0.5,0.5 --force --iterations 3 -q || fail "--force"
+err=$("$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/k.rad" --emission light=0 -q 2>&1)
+grep -q "no patch emits light" <<<"$err" || fail "black warning"
+expect_error "no material 'lamp'" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission lamp=1,1,1
+expect_error "is not MATERIAL=r,g,b" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission light
+finish
