@@ -22,7 +22,8 @@ inline void write_text(const fs::path& path, const std::string& text) {
     std::ofstream(path) << text;
 }
 
-inline const char* kGreyMtl = "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0.2 0.2 0.2\nKe 10 8 6\n";
+inline const char* kGreyMtl =
+    "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0.2 0.2 0.2\nKe 10 8 6\n";
 
 // Writes OBJ + MTL and loads them.
 inline rad::Scene scene_from_obj(const std::string& obj, const std::string& mtl = kGreyMtl,
@@ -41,12 +42,12 @@ inline std::string cube_obj(double s = 1.0, const std::string& material = "grey"
              std::to_string(s * ((i >> 2) & 1)) + "\n";
     // Vertex index = 1 + x + 2y + 4z; faces wound so normals point into the cube.
     return v + "usemtl " + material + "\n" +
-           "g bottom\nf 1 2 4 3\n"   // z=0, normal +z
-           "g top\nf 5 7 8 6\n"      // z=1, normal -z
-           "g front\nf 1 5 6 2\n"    // y=0, normal +y
-           "g back\nf 3 4 8 7\n"     // y=1, normal -y
-           "g left\nf 1 3 7 5\n"     // x=0, normal +x
-           "g right\nf 2 6 8 4\n";   // x=1, normal -x
+           "g bottom\nf 1 2 4 3\n" // z=0, normal +z
+           "g top\nf 5 7 8 6\n"    // z=1, normal -z
+           "g front\nf 1 5 6 2\n"  // y=0, normal +y
+           "g back\nf 3 4 8 7\n"   // y=1, normal -y
+           "g left\nf 1 3 7 5\n"   // x=0, normal +x
+           "g right\nf 2 6 8 4\n"; // x=1, normal -x
 }
 
 inline radfmt::MeshData mesh_from_obj(const std::string& obj, double max_edge = 0) {

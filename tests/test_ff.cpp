@@ -22,30 +22,36 @@ std::string v(double x, double y, double z) {
 
 // Two a x b rectangles facing each other at distance c (patch 0 at z=0 facing up).
 radfmt::MeshData parallel(double a, double b, double c, const std::string& extra = "") {
-    return mesh_from_obj(v(0, 0, 0) + v(a, 0, 0) + v(a, b, 0) + v(0, b, 0) + v(0, 0, c) + v(a, 0, c) + v(a, b, c) +
-                         v(0, b, c) + "usemtl grey\nf 1 2 3 4\nf 5 8 7 6\n" + extra);
+    return mesh_from_obj(v(0, 0, 0) + v(a, 0, 0) + v(a, b, 0) + v(0, b, 0) + v(0, 0, c) +
+                         v(a, 0, c) + v(a, b, c) + v(0, b, c) +
+                         "usemtl grey\nf 1 2 3 4\nf 5 8 7 6\n" + extra);
 }
 
 // Floor w x l (patch 0, normal +z) and wall h x l (patch 1, normal +x) sharing the edge x=0.
 radfmt::MeshData perpendicular(double h, double l, double w) {
-    return mesh_from_obj(v(0, 0, 0) + v(w, 0, 0) + v(w, l, 0) + v(0, l, 0) + v(0, 0, h) + v(0, l, h) +
-                         "usemtl grey\nf 1 2 3 4\nf 1 4 6 5\n");
+    return mesh_from_obj(v(0, 0, 0) + v(w, 0, 0) + v(w, l, 0) + v(0, l, 0) + v(0, 0, h) +
+                         v(0, l, h) + "usemtl grey\nf 1 2 3 4\nf 1 4 6 5\n");
 }
 
-radfmt::FormFactorData compute(const radfmt::MeshData& mesh, FormFactorMethod method, int samples = 0, int rays = 0,
-                               std::uint64_t seed = 1, int visibility_rays = 1) {
+radfmt::FormFactorData compute(const radfmt::MeshData& mesh, FormFactorMethod method,
+                               int samples = 0, int rays = 0, std::uint64_t seed = 1,
+                               int visibility_rays = 1) {
     rad::FormFactorOptions options;
     options.method = method;
     options.quiet = true;
     options.seed = seed;
     options.visibility_rays = visibility_rays;
-    if (samples) options.samples = samples;
-    else if (method == FormFactorMethod::Pairwise) options.samples = 64; // rad-ff's default for pairwise
+    if (samples)
+        options.samples = samples;
+    else if (method == FormFactorMethod::Pairwise)
+        options.samples = 64; // rad-ff's default for pairwise
     if (rays) options.rays = rays;
     return rad::compute_form_factors(mesh, options);
 }
 
-double tolerance_of(FormFactorMethod m) { return m == FormFactorMethod::Analytic ? 1e-3 : 0.02; }
+double tolerance_of(FormFactorMethod m) {
+    return m == FormFactorMethod::Analytic ? 1e-3 : 0.02;
+}
 
 } // namespace
 
@@ -74,7 +80,8 @@ TEST_CASE("every method matches the closed forms for parallel and perpendicular 
         const double f = rad::perpendicular_rectangles_form_factor(h, l, w);
         cases.push_back({perpendicular(h, l, w), f, f * (w * l) / (h * l)});
     }
-    for (auto method : {FormFactorMethod::Analytic, FormFactorMethod::Pairwise, FormFactorMethod::Hemisphere}) {
+    for (auto method :
+         {FormFactorMethod::Analytic, FormFactorMethod::Pairwise, FormFactorMethod::Hemisphere}) {
         for (std::size_t c = 0; c < cases.size(); ++c) {
             const auto ff = compute(cases[c].mesh, method);
             CAPTURE(rad::method_name(method), c);
@@ -103,15 +110,18 @@ TEST_CASE("the error falls as samples and rays grow") {
     const double hemi_fine = mean_error(FormFactorMethod::Hemisphere, 0, 16000);
     CHECK(hemi_fine < hemi_coarse);
     CHECK(hemi_fine < 0.005);
-    const double analytic_coarse = std::abs(entry(compute(mesh, FormFactorMethod::Analytic, 4), 0, 1) - exact);
-    const double analytic_fine = std::abs(entry(compute(mesh, FormFactorMethod::Analytic, 36), 0, 1) - exact);
+    const double analytic_coarse =
+        std::abs(entry(compute(mesh, FormFactorMethod::Analytic, 4), 0, 1) - exact);
+    const double analytic_fine =
+        std::abs(entry(compute(mesh, FormFactorMethod::Analytic, 36), 0, 1) - exact);
     CHECK(analytic_fine < analytic_coarse);
 }
 
 TEST_CASE("closed cube: rows sum to one and reciprocity holds") {
     const auto mesh = mesh_from_obj(cube_obj(), 0.25); // 96 patches
     REQUIRE(mesh.patches.size() == 96);
-    for (auto method : {FormFactorMethod::Analytic, FormFactorMethod::Hemisphere, FormFactorMethod::Pairwise}) {
+    for (auto method :
+         {FormFactorMethod::Analytic, FormFactorMethod::Hemisphere, FormFactorMethod::Pairwise}) {
         const auto ff = compute(mesh, method);
         const double tol = method == FormFactorMethod::Analytic ? 1e-3 : 0.02;
         CAPTURE(rad::method_name(method));
@@ -133,11 +143,14 @@ TEST_CASE("closed cube: rows sum to one and reciprocity holds") {
 
 TEST_CASE("occluders cut the form factor by the expected amount") {
     // A blocker at half height, facing down, larger than both squares: nothing is visible.
-    const std::string big = v(-1, -1, 0.5) + v(2, -1, 0.5) + v(2, 2, 0.5) + v(-1, 2, 0.5) + "f 9 10 11 12\n";
+    const std::string big =
+        v(-1, -1, 0.5) + v(2, -1, 0.5) + v(2, 2, 0.5) + v(-1, 2, 0.5) + "f 9 10 11 12\n";
     // A blocker covering x < 0.5 at half height: by symmetry it blocks exactly half of F.
-    const std::string half = v(-1, -1, 0.5) + v(0.5, -1, 0.5) + v(0.5, 2, 0.5) + v(-1, 2, 0.5) + "f 9 10 11 12\n";
+    const std::string half =
+        v(-1, -1, 0.5) + v(0.5, -1, 0.5) + v(0.5, 2, 0.5) + v(-1, 2, 0.5) + "f 9 10 11 12\n";
     const double open = rad::parallel_rectangles_form_factor(1, 1, 1);
-    for (auto method : {FormFactorMethod::Analytic, FormFactorMethod::Pairwise, FormFactorMethod::Hemisphere}) {
+    for (auto method :
+         {FormFactorMethod::Analytic, FormFactorMethod::Pairwise, FormFactorMethod::Hemisphere}) {
         CAPTURE(rad::method_name(method));
         CHECK(entry(compute(parallel(1, 1, 1, big), method), 0, 1) == 0);
         const auto ff = method == FormFactorMethod::Analytic
@@ -148,10 +161,12 @@ TEST_CASE("occluders cut the form factor by the expected amount") {
 }
 
 TEST_CASE("the same seed gives identical form factors at any thread count") {
-    const auto mesh = mesh_from_obj(cube_obj() + v(0.3, 0.3, 0.4) + v(0.7, 0.3, 0.4) + v(0.7, 0.7, 0.4) +
-                                        v(0.3, 0.7, 0.4) + "g block\nf 9 10 11 12\nf 9 12 11 10\n",
-                                    0.25);
-    for (auto method : {FormFactorMethod::Analytic, FormFactorMethod::Pairwise, FormFactorMethod::Hemisphere}) {
+    const auto mesh =
+        mesh_from_obj(cube_obj() + v(0.3, 0.3, 0.4) + v(0.7, 0.3, 0.4) + v(0.7, 0.7, 0.4) +
+                          v(0.3, 0.7, 0.4) + "g block\nf 9 10 11 12\nf 9 12 11 10\n",
+                      0.25);
+    for (auto method :
+         {FormFactorMethod::Analytic, FormFactorMethod::Pairwise, FormFactorMethod::Hemisphere}) {
         radfmt::FormFactorData one, two;
         {
             rad::ThreadLimit limit(1);
@@ -171,6 +186,8 @@ TEST_CASE("the same seed gives identical form factors at any thread count") {
 }
 
 TEST_CASE("point-to-polygon form factor: a point under the centre of a huge square sees ~1") {
-    const std::vector<radfmt::Vec3> square{{-1e4, -1e4, 1}, {1e4, -1e4, 1}, {1e4, 1e4, 1}, {-1e4, 1e4, 1}};
-    CHECK(rad::point_to_polygon_form_factor({0, 0, 0}, {0, 0, 1}, square) == Approx(1).epsilon(1e-3));
+    const std::vector<radfmt::Vec3> square{
+        {-1e4, -1e4, 1}, {1e4, -1e4, 1}, {1e4, 1e4, 1}, {-1e4, 1e4, 1}};
+    CHECK(rad::point_to_polygon_form_factor({0, 0, 0}, {0, 0, 1}, square) ==
+          Approx(1).epsilon(1e-3));
 }

@@ -103,7 +103,8 @@ TEST_CASE("damaged files are refused with a clear message") {
         REQUIRE_THROWS_WITH(radfmt::read_mesh(bad), Contains(bad.string()) && Contains(fragment));
     };
     SECTION("truncated at several offsets") {
-        for (std::size_t cut : {std::size_t(0), std::size_t(10), bytes.find("\n\n"), bytes.size() / 2, bytes.size() - 1})
+        for (std::size_t cut : {std::size_t(0), std::size_t(10), bytes.find("\n\n"),
+                                bytes.size() / 2, bytes.size() - 1})
             expect_error(bytes.substr(0, cut), cut == 0 ? "empty" : "truncated");
     }
     SECTION("a flipped byte in the header") {
@@ -116,7 +117,9 @@ TEST_CASE("damaged files are refused with a clear message") {
         copy[copy.size() - 20] ^= 0x01;
         expect_error(copy, "corrupt body");
     }
-    SECTION("wrong magic") { expect_error("P6\n" + bytes.substr(3), "wrong magic"); }
+    SECTION("wrong magic") {
+        expect_error("P6\n" + bytes.substr(3), "wrong magic");
+    }
     SECTION("wrong kind version") {
         auto copy = bytes;
         const auto at = copy.find("version=1\n");
@@ -127,10 +130,13 @@ TEST_CASE("damaged files are refused with a clear message") {
         copy.replace(end + 12, hash.size(), hash);
         expect_error(copy, "version 9 is not supported");
     }
-    SECTION("trailing garbage") { expect_error(bytes + "xx", "unexpected bytes"); }
+    SECTION("trailing garbage") {
+        expect_error(bytes + "xx", "unexpected bytes");
+    }
     SECTION("wrong kind") {
         radfmt::write_radiosity(bad, header_for("rad-solve"), {{{1, 1, 1}}});
-        REQUIRE_THROWS_WITH(radfmt::read_mesh(bad), Contains("radiosity solution") && Contains("patch mesh"));
+        REQUIRE_THROWS_WITH(radfmt::read_mesh(bad),
+                            Contains("radiosity solution") && Contains("patch mesh"));
     }
 }
 
@@ -143,5 +149,6 @@ TEST_CASE("writes are atomic: a failed write leaves no file") {
     }));
     CHECK_FALSE(fs::exists(path));
     CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 0);
-    REQUIRE_THROWS_WITH(radfmt::write_radiosity(dir / "missing" / "x.rad", {}, {}), Contains("does not exist"));
+    REQUIRE_THROWS_WITH(radfmt::write_radiosity(dir / "missing" / "x.rad", {}, {}),
+                        Contains("does not exist"));
 }

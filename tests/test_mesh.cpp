@@ -9,7 +9,8 @@ using namespace testing_helpers;
 using Catch::Matchers::Contains;
 
 TEST_CASE("materials come from the MTL, Ke included, and groups are kept") {
-    const auto scene = scene_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\ng panel\nusemtl lamp\nf 1 2 3 4\n");
+    const auto scene =
+        scene_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\ng panel\nusemtl lamp\nf 1 2 3 4\n");
     REQUIRE(scene.materials.size() == 2);
     const auto& lamp = scene.materials[scene.polygons[0].material];
     CHECK(lamp.name == "lamp");
@@ -36,15 +37,16 @@ TEST_CASE("subdivision preserves area and gives the expected patch counts") {
         std::size_t quads = 0, tris = 0;
         for (const auto& p : mesh.patches) (p.corner_count() == 4 ? quads : tris)++;
         if (edge == 0.5) {
-            CHECK(quads == 4 * 2);  // 4 x 2 grid
-            CHECK(tris == 3 * 3);   // legs need 2 segments, the hypotenuse 3: all take 3
+            CHECK(quads == 4 * 2); // 4 x 2 grid
+            CHECK(tris == 3 * 3);  // legs need 2 segments, the hypotenuse 3: all take 3
         }
         for (const auto& p : mesh.patches) {
             for (int a = 0; a < p.corner_count(); ++a) {
                 const auto& u = mesh.vertices[p.corners[a]];
                 const auto& v = mesh.vertices[p.corners[(a + 1) % p.corner_count()]];
-                const double len = std::sqrt((u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
-                                             (u[2] - v[2]) * (u[2] - v[2]));
+                const double len =
+                    std::sqrt((u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
+                              (u[2] - v[2]) * (u[2] - v[2]));
                 if (edge > 0) CHECK(len <= edge * (1 + 1e-9));
             }
         }
@@ -52,8 +54,9 @@ TEST_CASE("subdivision preserves area and gives the expected patch counts") {
 }
 
 TEST_CASE("area limits and per-group overrides") {
-    const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-                            "usemtl grey\ng floor\nf 1 2 3 4\ng roof\nf 5 8 7 6\n";
+    const std::string obj =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "usemtl grey\ng floor\nf 1 2 3 4\ng roof\nf 5 8 7 6\n";
     rad::SubdivisionOptions options;
     options.max_area = 0.1;
     options.max_edge_by_group["floor"] = 0.25;
@@ -90,9 +93,10 @@ TEST_CASE("a subdivided closed cube is conforming: every edge has exactly two pa
 
 TEST_CASE("polygons with more than four vertices and concave quads are triangulated") {
     // An L-shaped hexagon, area 3.
-    const auto mesh = mesh_from_obj("v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nusemtl grey\nf 1 2 3 4 5 6\n"
-                                    "v 5 0 0\nv 7 0 0\nv 6 0.2 0\nv 6 2 0\nf 7 8 9 10\n",
-                                    0.4);
+    const auto mesh = mesh_from_obj(
+        "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nusemtl grey\nf 1 2 3 4 5 6\n"
+        "v 5 0 0\nv 7 0 0\nv 6 0.2 0\nv 6 2 0\nf 7 8 9 10\n",
+        0.4);
     double total = 0;
     for (const auto& p : mesh.patches) {
         CHECK(p.corner_count() == 3);
@@ -111,22 +115,30 @@ TEST_CASE("bad OBJ input names the file and line") {
         }
         return std::string("no error");
     };
-    CHECK_THAT(error_of("v 0 0 nan\n"), Contains("scene.obj:2:") && Contains("not a finite number"));
+    CHECK_THAT(error_of("v 0 0 nan\n"),
+               Contains("scene.obj:2:") && Contains("not a finite number"));
     CHECK_THAT(error_of("v 0 0 inf\n"), Contains("scene.obj:2:"));
     CHECK_THAT(error_of("v 0 0 0\nusemtl grey\nf 1 2 3\n"),
-               Contains("scene.obj:4:") && Contains("refers to vertex 2, but only 1 vertices are defined"));
-    CHECK_THAT(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf -4 1 2\n"), Contains("scene.obj:6:"));
-    CHECK_THAT(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), Contains("scene.obj:5:") && Contains("no material"));
+               Contains("scene.obj:4:") &&
+                   Contains("refers to vertex 2, but only 1 vertices are defined"));
+    CHECK_THAT(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf -4 1 2\n"),
+               Contains("scene.obj:6:"));
+    CHECK_THAT(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+               Contains("scene.obj:5:") && Contains("no material"));
     CHECK_THAT(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl chrome\nf 1 2 3\n"),
                Contains("scene.obj:5:") && Contains("unknown material 'chrome'"));
     CHECK_THAT(error_of("# nothing\n"), Contains("empty"));
-    CHECK_THAT(error_of("mtllib missing.mtl\n"), Contains("scene.obj:2:") && Contains("missing.mtl"));
+    CHECK_THAT(error_of("mtllib missing.mtl\n"),
+               Contains("scene.obj:2:") && Contains("missing.mtl"));
 }
 
 TEST_CASE("non-planar quads are refused, degenerate faces dropped and counted") {
-    const auto bent = scene_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0.2\nv 0 1 0\nusemtl grey\nf 1 2 3 4\n");
-    REQUIRE_THROWS_WITH(rad::subdivide(bent, {}), Contains("scene.obj:7:") && Contains("not planar"));
-    const auto scene = scene_from_obj("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\nf 1 2 4\n");
+    const auto bent =
+        scene_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0.2\nv 0 1 0\nusemtl grey\nf 1 2 3 4\n");
+    REQUIRE_THROWS_WITH(rad::subdivide(bent, {}),
+                        Contains("scene.obj:7:") && Contains("not planar"));
+    const auto scene =
+        scene_from_obj("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\nf 1 2 4\n");
     rad::SubdivisionReport report;
     const auto mesh = rad::subdivide(scene, {}, &report);
     CHECK(report.degenerate_dropped == 1);

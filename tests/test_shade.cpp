@@ -34,9 +34,11 @@ rad::View straight_view() {
 } // namespace
 
 TEST_CASE("a quad filling the view shows the interpolated vertex values") {
-    // Looking down -z (so +x is right), z = -1 and a 90 degree view: the quad covers the image exactly. Value f = 1 + (x + y) / 2.
+    // Looking down -z (so +x is right), z = -1 and a 90 degree view: the quad covers the image
+    // exactly. Value f = 1 + (x + y) / 2.
     const auto mesh = quad({radfmt::Vec3{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}});
-    std::vector<std::array<Rgb, 4>> corners{{Rgb{0, 0, 0}, Rgb{1, 1, 1}, Rgb{2, 2, 2}, Rgb{1, 1, 1}}};
+    std::vector<std::array<Rgb, 4>> corners{
+        {Rgb{0, 0, 0}, Rgb{1, 1, 1}, Rgb{2, 2, 2}, Rgb{1, 1, 1}}};
     const int n = 64;
     const auto image = rad::render(mesh, corners, straight_view(), n, n, 1);
     CHECK(image.covered_pixels == n * n);
@@ -44,7 +46,8 @@ TEST_CASE("a quad filling the view shows the interpolated vertex values") {
         const double sx = (x + 0.5) / n * 2 - 1, sy = 1 - (y + 0.5) / n * 2;
         return 1 + (sx + sy) / 2;
     };
-    for (auto [x, y] : {std::pair{0, 0}, {n - 1, 0}, {0, n - 1}, {n - 1, n - 1}, {n / 2, n / 2}, {10, 50}})
+    for (auto [x, y] :
+         {std::pair{0, 0}, {n - 1, 0}, {0, n - 1}, {n - 1, n - 1}, {n / 2, n / 2}, {10, 50}})
         CHECK(pixel(image, x, y) == Approx(expected(x, y)).margin(1e-5));
 }
 
@@ -52,7 +55,8 @@ TEST_CASE("interpolation is perspective-correct") {
     // A plane receding in depth, coloured by its own depth: every pixel must show the depth
     // where its ray meets the plane (screen-space interpolation would not).
     const auto mesh = quad({radfmt::Vec3{-4, -1, -1}, {4, -1, -1}, {4, -1, -9}, {-4, -1, -9}});
-    std::vector<std::array<Rgb, 4>> corners{{Rgb{1, 1, 1}, Rgb{1, 1, 1}, Rgb{9, 9, 9}, Rgb{9, 9, 9}}};
+    std::vector<std::array<Rgb, 4>> corners{
+        {Rgb{1, 1, 1}, Rgb{1, 1, 1}, Rgb{9, 9, 9}, Rgb{9, 9, 9}}};
     const int n = 64;
     const auto image = rad::render(mesh, corners, straight_view(), n, n, 1);
     for (int y = n / 2 + 2; y < n; y += 5) {
@@ -70,7 +74,8 @@ TEST_CASE("the z-buffer keeps the nearest surface and supersampling averages") {
     radfmt::Patch near = mesh.patches[0];
     near.corners = {4, 5, 6, 7};
     mesh.patches.push_back(near);
-    const auto corners = rad::corner_colours(mesh, {Rgb{1, 1, 1}, Rgb{5, 5, 5}}, rad::Smoothing::Flat);
+    const auto corners =
+        rad::corner_colours(mesh, {Rgb{1, 1, 1}, Rgb{5, 5, 5}}, rad::Smoothing::Flat);
     const auto image = rad::render(mesh, corners, straight_view(), 8, 8, 4);
     CHECK(pixel(image, 1, 4) == Approx(5)); // near half on the left
     CHECK(pixel(image, 5, 4) == Approx(1)); // far quad on the right
@@ -95,8 +100,8 @@ TEST_CASE("smoothing: averages, area weights, creases and flat") {
     m.groups = {"g"};
     const std::vector<Rgb> values{{1, 1, 1}, {3, 3, 3}};
     const auto average = rad::corner_colours(m, values, rad::Smoothing::Average);
-    CHECK(average[0][0][0] == 1);  // vertex 0 touches A only
-    CHECK(average[0][1][0] == 2);  // shared vertex: (1 + 3) / 2
+    CHECK(average[0][0][0] == 1); // vertex 0 touches A only
+    CHECK(average[0][1][0] == 2); // shared vertex: (1 + 3) / 2
     CHECK(average[1][0][0] == 2);
     const auto area = rad::corner_colours(m, values, rad::Smoothing::Area);
     CHECK(area[0][1][0] == Approx((1 * 1 + 3 * 3) / 4.0));
@@ -124,7 +129,8 @@ TEST_CASE("smoothing: averages, area weights, creases and flat") {
 TEST_CASE("EXR, PNG and PLY outputs read back with the expected values") {
     const auto dir = temp_dir("shade");
     const auto mesh = quad({radfmt::Vec3{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}});
-    std::vector<std::array<Rgb, 4>> corners{{Rgb{0, 0.1, 0.2}, Rgb{1, 1.1, 1.2}, Rgb{2, 2.1, 2.2}, Rgb{1, 1.1, 1.2}}};
+    std::vector<std::array<Rgb, 4>> corners{
+        {Rgb{0, 0.1, 0.2}, Rgb{1, 1.1, 1.2}, Rgb{2, 2.1, 2.2}, Rgb{1, 1.1, 1.2}}};
     const auto image = rad::render(mesh, corners, straight_view(), 16, 12, 2);
     const auto exr = (dir / "a.exr").string();
     rad::write_exr(exr, image, {{"radiosity:provenance", "1. rad-mesh x\n2. rad-shade y\n"}});
@@ -144,7 +150,8 @@ TEST_CASE("EXR, PNG and PLY outputs read back with the expected values") {
     std::vector<std::uint8_t> pixels(PNG_IMAGE_SIZE(read));
     REQUIRE(png_image_finish_read(&read, nullptr, pixels.data(), 0, nullptr));
     CHECK(read.width == 16);
-    for (std::size_t i = 0; i < pixels.size(); ++i) CHECK(int(pixels[i]) == int(rad::to_srgb8(image.rgb[i] * 0.4)));
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+        CHECK(int(pixels[i]) == int(rad::to_srgb8(image.rgb[i] * 0.4)));
 
     const auto ply = (dir / "a.ply").string();
     rad::write_ply(ply, mesh, corners, 0.4);

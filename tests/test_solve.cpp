@@ -6,8 +6,8 @@
 #include <catch2/catch.hpp>
 
 using namespace testing_helpers;
-using radfmt::Rgb;
 using rad::SolveMethod;
+using radfmt::Rgb;
 
 namespace {
 
@@ -23,7 +23,8 @@ radfmt::FormFactorData analytic(const radfmt::MeshData& mesh) {
 std::vector<std::vector<double>> dense(const radfmt::FormFactorData& ff) {
     std::vector<std::vector<double>> f(ff.patch_count, std::vector<double>(ff.patch_count, 0));
     for (std::size_t i = 0; i < ff.patch_count; ++i)
-        for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) f[i][ff.columns[k]] = ff.values[k];
+        for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k)
+            f[i][ff.columns[k]] = ff.values[k];
     return f;
 }
 
@@ -43,10 +44,12 @@ radfmt::FormFactorData sparse(const std::vector<std::vector<double>>& f) {
 }
 
 // Makes A_i F_ij = A_j F_ji exact, as progressive refinement assumes.
-std::vector<std::vector<double>> reciprocal(const std::vector<std::vector<double>>& f, const std::vector<double>& area) {
+std::vector<std::vector<double>> reciprocal(const std::vector<std::vector<double>>& f,
+                                            const std::vector<double>& area) {
     auto g = f;
     for (std::size_t i = 0; i < f.size(); ++i)
-        for (std::size_t j = 0; j < f.size(); ++j) g[i][j] = 0.5 * (area[i] * f[i][j] + area[j] * f[j][i]) / area[i];
+        for (std::size_t j = 0; j < f.size(); ++j)
+            g[i][j] = 0.5 * (area[i] * f[i][j] + area[j] * f[j][i]) / area[i];
     return g;
 }
 
@@ -77,27 +80,30 @@ std::vector<Rgb> dense_solve(const rad::Problem& p) {
     return b;
 }
 
-rad::SolveResult run(const rad::Problem& p, SolveMethod method, double tolerance, long iterations = 0,
-                     std::vector<rad::IterationRecord>* log = nullptr) {
+rad::SolveResult run(const rad::Problem& p, SolveMethod method, double tolerance,
+                     long iterations = 0, std::vector<rad::IterationRecord>* log = nullptr) {
     rad::SolveOptions options;
     options.method = method;
     options.tolerance = tolerance;
     options.max_iterations = iterations ? iterations : 10000000;
-    if (log) options.on_iteration = [&](const rad::IterationRecord& r, const std::vector<Rgb>&) { log->push_back(r); };
+    if (log)
+        options.on_iteration = [&](const rad::IterationRecord& r, const std::vector<Rgb>&) {
+            log->push_back(r);
+        };
     return rad::solve(p, options);
 }
 
 // A closed cube with a floating two-sided block inside (occlusion), light on part of the top.
 radfmt::MeshData occluded_scene() {
-    return mesh_from_obj(cube_obj() +
-                             "v 0.3 0.3 0.4\nv 0.7 0.3 0.4\nv 0.7 0.7 0.4\nv 0.3 0.7 0.4\n"
-                             "g block\nf 9 10 11 12\nf 9 12 11 10\n",
+    return mesh_from_obj(cube_obj() + "v 0.3 0.3 0.4\nv 0.7 0.3 0.4\nv 0.7 0.7 0.4\nv 0.3 0.7 0.4\n"
+                                      "g block\nf 9 10 11 12\nf 9 12 11 10\n",
                          0.34);
 }
 
 } // namespace
 
-TEST_CASE("furnace: a closed cube with uniform rho and E gives B = E / (1 - rho) for every method") {
+TEST_CASE(
+    "furnace: a closed cube with uniform rho and E gives B = E / (1 - rho) for every method") {
     const auto mesh = mesh_from_obj(cube_obj(), 0.25);
     auto f = dense(analytic(mesh));
     // Equal areas: a symmetric matrix is reciprocal. Sinkhorn balancing then makes every row
@@ -151,9 +157,11 @@ TEST_CASE("every method agrees with a direct dense solve on an occluded scene") 
         const auto result = run(p, method, 1e-13);
         CAPTURE(rad::solve_method_name(method));
         for (std::size_t i = 0; i < exact.size(); ++i)
-            for (int c = 0; c < 3; ++c) CHECK(std::abs(result.radiosity[i][c] - exact[i][c]) < 1e-6 * scale);
+            for (int c = 0; c < 3; ++c)
+                CHECK(std::abs(result.radiosity[i][c] - exact[i][c]) < 1e-6 * scale);
     }
-    CHECK(run(p, SolveMethod::GaussSeidel, 1e-8).iterations < run(p, SolveMethod::Jacobi, 1e-8).iterations);
+    CHECK(run(p, SolveMethod::GaussSeidel, 1e-8).iterations <
+          run(p, SolveMethod::Jacobi, 1e-8).iterations);
 
     SECTION("Gauss-Seidel brightens monotonically from B = E") {
         std::vector<rad::IterationRecord> log;
@@ -163,7 +171,8 @@ TEST_CASE("every method agrees with a direct dense solve on an occluded scene") 
             for (int c = 0; c < 3; ++c) CHECK(log[k].power[c] >= log[k - 1].power[c]);
         CHECK(log[3].power[0] > log[0].power[0]); // iteration 4 is brighter than iteration 1
     }
-    SECTION("APR's first shot lights every patch; PR's leaves some black; the ambient term decays") {
+    SECTION(
+        "APR's first shot lights every patch; PR's leaves some black; the ambient term decays") {
         const auto apr = run(p, SolveMethod::ProgressiveAmbient, 0, 1);
         const auto pr = run(p, SolveMethod::Progressive, 0, 1);
         std::size_t pr_black = 0;
@@ -176,7 +185,8 @@ TEST_CASE("every method agrees with a direct dense solve on an occluded scene") 
             const auto a = run(p, SolveMethod::ProgressiveAmbient, 0, shots);
             const auto b = run(p, SolveMethod::Progressive, 0, shots);
             double gap = 0;
-            for (std::size_t i = 0; i < a.radiosity.size(); ++i) gap += a.radiosity[i][0] - b.radiosity[i][0];
+            for (std::size_t i = 0; i < a.radiosity.size(); ++i)
+                gap += a.radiosity[i][0] - b.radiosity[i][0];
             return gap;
         };
         CHECK(ambient_gap(100) < ambient_gap(10));

@@ -17,10 +17,14 @@ std::uint64_t parse_size(const std::string& text) {
     }
     std::string unit = text.substr(used);
     double scale = 1;
-    if (unit == "K" || unit == "KiB" || unit == "k") scale = 1024.0;
-    else if (unit == "M" || unit == "MiB") scale = 1024.0 * 1024;
-    else if (unit == "G" || unit == "GiB") scale = 1024.0 * 1024 * 1024;
-    else if (unit == "T" || unit == "TiB") scale = 1024.0 * 1024 * 1024 * 1024;
+    if (unit == "K" || unit == "KiB" || unit == "k")
+        scale = 1024.0;
+    else if (unit == "M" || unit == "MiB")
+        scale = 1024.0 * 1024;
+    else if (unit == "G" || unit == "GiB")
+        scale = 1024.0 * 1024 * 1024;
+    else if (unit == "T" || unit == "TiB")
+        scale = 1024.0 * 1024 * 1024 * 1024;
     else if (!unit.empty() && unit != "B")
         throw rad::InputError("--max-memory: unknown unit '" + unit + "' (use K, M, G or T)");
     if (!(value > 0)) throw rad::InputError("--max-memory must be positive");
@@ -29,8 +33,9 @@ std::uint64_t parse_size(const std::string& text) {
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Compute the form factors F_ij between every pair of patches of a mesh (ray-cast\n"
-                 "visibility with Embree, rows in parallel) and write the sparse form-factor file."};
+    CLI::App app{
+        "Compute the form factors F_ij between every pair of patches of a mesh (ray-cast\n"
+        "visibility with Embree, rows in parallel) and write the sparse form-factor file."};
     std::string input, output, method = "analytic", max_memory;
     rad::FormFactorOptions options;
     int threads = 0;
@@ -65,9 +70,9 @@ int main(int argc, char** argv) {
         options.method = rad::parse_method(method);
         if (app.count("--samples") == 0)
             options.samples = options.method == rad::FormFactorMethod::Pairwise ? 64 : 16;
-        const std::uint64_t limit = max_memory.empty()
-                                        ? static_cast<std::uint64_t>(0.8 * rad::physical_memory_bytes())
-                                        : parse_size(max_memory);
+        const std::uint64_t limit =
+            max_memory.empty() ? static_cast<std::uint64_t>(0.8 * rad::physical_memory_bytes())
+                               : parse_size(max_memory);
         rad::ThreadLimit thread_limit(threads);
         radfmt::Header mesh_header;
         const auto mesh = radfmt::read_mesh(input, &mesh_header);

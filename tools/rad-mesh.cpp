@@ -24,8 +24,10 @@ void parse_limits(const std::vector<std::string>& specs, const char* option, dou
         }
         if (!(value > 0) || !std::isfinite(value))
             throw rad::InputError(std::string(option) + ": '" + spec + "' must be positive");
-        if (eq == std::string::npos) fallback = value;
-        else by_group[spec.substr(0, eq)] = value;
+        if (eq == std::string::npos)
+            fallback = value;
+        else
+            by_group[spec.substr(0, eq)] = value;
     }
 }
 } // namespace
@@ -58,7 +60,8 @@ int main(int argc, char** argv) {
         const auto scene = rad::load_obj(input);
         for (const auto* by_group : {&options.max_edge_by_group, &options.max_area_by_group})
             for (const auto& [group, value] : *by_group)
-                if (std::find(scene.groups.begin(), scene.groups.end(), group) == scene.groups.end())
+                if (std::find(scene.groups.begin(), scene.groups.end(), group) ==
+                    scene.groups.end())
                     throw rad::InputError("no group '" + group + "' in " + input);
         rad::SubdivisionReport report;
         const auto mesh = rad::subdivide(scene, options, &report);
@@ -70,14 +73,15 @@ int main(int argc, char** argv) {
         header.tool = rad::tool_version("rad-mesh");
         header.command = rad::command_line(argc, argv);
         header.inputs.push_back({input, radfmt::hash_file(input)});
-        for (const auto& mtl : scene.material_files) header.inputs.push_back({mtl, radfmt::hash_file(mtl)});
+        for (const auto& mtl : scene.material_files)
+            header.inputs.push_back({mtl, radfmt::hash_file(mtl)});
         radfmt::write_mesh(output, header, mesh);
         if (!quiet) {
             const auto topo = rad::analyze_topology(mesh);
-            std::fprintf(stderr, "rad-mesh: %zu patches, %zu vertices, total area %.9g, %zu open edges%s\n",
-                         mesh.patches.size(), mesh.vertices.size(), mesh.total_area(),
-                         topo.boundary_edges,
-                         topo.rejected_patches ? " (non-manifold parts present)" : "");
+            std::fprintf(
+                stderr, "rad-mesh: %zu patches, %zu vertices, total area %.9g, %zu open edges%s\n",
+                mesh.patches.size(), mesh.vertices.size(), mesh.total_area(), topo.boundary_edges,
+                topo.rejected_patches ? " (non-manifold parts present)" : "");
         }
         return 0;
     });

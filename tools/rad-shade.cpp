@@ -16,20 +16,30 @@ int main(int argc, char** argv) {
     app.add_option("MESH", mesh_path, "Patch mesh from rad-mesh")->required();
     app.add_option("RADIOSITY", rad_path, "Radiosity from rad-solve (not needed with --albedo)");
     app.add_option("-o,--output", output, "Output OpenEXR image")->required();
-    app.add_option("--view", view_text, "Radiance view options, e.g. \"-vp 0 1 3 -vd 0 0 -1 -vu 0 1 0 -vh 40 -vv 40\"");
-    app.add_option("--view-file", view_file, "File with Radiance view options (e.g. scenes/cornell/cornell.vf)");
-    app.add_option("-x,--width", width, "Image width in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
-    app.add_option("-y,--height", height, "Image height in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
-    app.add_option("--aa", aa, "Supersampling: N x N samples per pixel")->capture_default_str()->check(CLI::Range(1, 8));
+    app.add_option("--view", view_text,
+                   "Radiance view options, e.g. \"-vp 0 1 3 -vd 0 0 -1 -vu 0 1 0 -vh 40 -vv 40\"");
+    app.add_option("--view-file", view_file,
+                   "File with Radiance view options (e.g. scenes/cornell/cornell.vf)");
+    app.add_option("-x,--width", width, "Image width in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 16384));
+    app.add_option("-y,--height", height, "Image height in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 16384));
+    app.add_option("--aa", aa, "Supersampling: N x N samples per pixel")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 8));
     app.add_flag("--flat", flat, "One colour per patch (same as --smooth flat)");
     app.add_option("--smooth", smooth,
                    "average: vertex = mean of adjacent patches (the paper's); area: area-weighted; "
                    "crease: area-weighted, not across material boundaries or sharp edges; flat")
         ->capture_default_str()
         ->check(CLI::IsMember({"average", "area", "crease", "flat"}));
-    app.add_option("--crease-angle", crease, "crease: largest normal angle smoothed across (degrees)")
+    app.add_option("--crease-angle", crease,
+                   "crease: largest normal angle smoothed across (degrees)")
         ->capture_default_str();
-    app.add_flag("--albedo", albedo, "Show reflectance colours only, flat (the paper's Figure 1(a) and 4)");
+    app.add_flag("--albedo", albedo,
+                 "Show reflectance colours only, flat (the paper's Figure 1(a) and 4)");
     app.add_option("--png", png, "Also write an sRGB tone-mapped PNG preview");
     app.add_option("--ply", ply, "Also write the smoothed mesh with vertex colours as PLY");
     app.add_option("--exposure", exposure, "Linear multiplier for PNG/PLY (default: automatic)");
@@ -39,7 +49,8 @@ int main(int argc, char** argv) {
 
     return rad::run_tool("rad-shade", [&] {
         rad::ThreadLimit thread_limit(threads);
-        if (view_text.empty() && view_file.empty()) throw rad::InputError("give a camera with --view or --view-file");
+        if (view_text.empty() && view_file.empty())
+            throw rad::InputError("give a camera with --view or --view-file");
         rad::View view = view_file.empty() ? rad::View{} : rad::read_view_file(view_file);
         if (!view_text.empty()) view = rad::parse_view(view_text, "--view", view);
 
@@ -48,17 +59,21 @@ int main(int argc, char** argv) {
         std::vector<radfmt::Rgb> values;
         std::vector<std::string> chain = mesh_header.chain();
         if (albedo) {
-            for (const auto& p : mesh.patches) values.push_back(mesh.materials[p.material].reflectance);
+            for (const auto& p : mesh.patches)
+                values.push_back(mesh.materials[p.material].reflectance);
             flat = true;
         } else {
             if (rad_path.empty()) throw rad::InputError("give a radiosity file (or use --albedo)");
             values = radfmt::read_radiosity(rad_path, &rad_header).radiosity;
             const auto* recorded = rad_header.find("mesh_geometry_hash");
-            if (!recorded || *recorded != mesh.geometry_hash() || values.size() != mesh.patches.size())
-                throw rad::InputError(rad_path + " does not belong to " + mesh_path + ": it was solved for geometry " +
+            if (!recorded || *recorded != mesh.geometry_hash() ||
+                values.size() != mesh.patches.size())
+                throw rad::InputError(rad_path + " does not belong to " + mesh_path +
+                                      ": it was solved for geometry " +
                                       (recorded ? *recorded : std::string("(unknown)")) + " with " +
                                       std::to_string(values.size()) + " patches, the mesh has " +
-                                      mesh.geometry_hash() + " with " + std::to_string(mesh.patches.size()) +
+                                      mesh.geometry_hash() + " with " +
+                                      std::to_string(mesh.patches.size()) +
                                       " patches; run rad-ff and rad-solve again");
             chain = rad_header.chain();
         }
@@ -66,25 +81,33 @@ int main(int argc, char** argv) {
         const auto corners = rad::corner_colours(mesh, values, mode, crease);
         const auto image = rad::render(mesh, corners, view, width, height, aa);
         if (image.covered_pixels == 0)
-            throw rad::InputError("the view sees no geometry of " + mesh_path +
-                                  " (camera outside looking away, or inside an object facing nothing)");
+            throw rad::InputError(
+                "the view sees no geometry of " + mesh_path +
+                " (camera outside looking away, or inside an object facing nothing)");
 
         std::map<std::string, std::string> attributes;
         std::string provenance;
-        for (std::size_t i = 0; i < chain.size(); ++i) provenance += std::to_string(i + 1) + ". " + chain[i] + "\n";
-        provenance += std::to_string(chain.size() + 1) + ". " + rad::command_line(argc, argv) + "\n";
+        for (std::size_t i = 0; i < chain.size(); ++i)
+            provenance += std::to_string(i + 1) + ". " + chain[i] + "\n";
+        provenance +=
+            std::to_string(chain.size() + 1) + ". " + rad::command_line(argc, argv) + "\n";
         attributes["radiosity:provenance"] = provenance;
         attributes["radiosity:tool"] = rad::tool_version("rad-shade");
         attributes["radiosity:mesh"] = mesh_path + " " + radfmt::hash_file(mesh_path);
-        if (!albedo) attributes["radiosity:radiosity"] = rad_path + " " + radfmt::hash_file(rad_path);
+        if (!albedo)
+            attributes["radiosity:radiosity"] = rad_path + " " + radfmt::hash_file(rad_path);
         attributes["radiosity:units"] = albedo ? "reflectance" : "radiosity W/m^2 (linear)";
         rad::write_exr(output, image, attributes);
         const double scale = exposure > 0 ? exposure : rad::auto_exposure(image);
         if (!png.empty()) rad::write_png(png, image, scale);
         if (!ply.empty()) rad::write_ply(ply, mesh, corners, scale);
         if (!quiet)
-            std::fprintf(stderr, "rad-shade: wrote %s (%dx%d, %s%s), exposure %.4g\n", output.c_str(), width, height,
-                         albedo ? "albedo" : flat ? "flat" : smooth.c_str(), png.empty() ? "" : ", png", scale);
+            std::fprintf(stderr, "rad-shade: wrote %s (%dx%d, %s%s), exposure %.4g\n",
+                         output.c_str(), width, height,
+                         albedo ? "albedo"
+                         : flat ? "flat"
+                                : smooth.c_str(),
+                         png.empty() ? "" : ", png", scale);
         return 0;
     });
 }

@@ -27,20 +27,25 @@ Override parse_override(const std::string& spec, const char* option) {
     std::string item;
     int count = 0;
     while (std::getline(parts, item, ',')) {
-        if (count == 3) throw rad::InputError(std::string(option) + ": '" + spec + "' has more than 3 values");
+        if (count == 3)
+            throw rad::InputError(std::string(option) + ": '" + spec + "' has more than 3 values");
         try {
             std::size_t used = 0;
             o.value[count] = std::stod(item, &used);
             if (used != item.size()) throw std::invalid_argument(item);
         } catch (...) {
-            throw rad::InputError(std::string(option) + ": '" + item + "' in '" + spec + "' is not a number");
+            throw rad::InputError(std::string(option) + ": '" + item + "' in '" + spec +
+                                  "' is not a number");
         }
         if (!std::isfinite(o.value[count]) || o.value[count] < 0)
-            throw rad::InputError(std::string(option) + ": values must be finite and non-negative in '" + spec + "'");
+            throw rad::InputError(std::string(option) +
+                                  ": values must be finite and non-negative in '" + spec + "'");
         ++count;
     }
-    if (count == 1) o.value = {o.value[0], o.value[0], o.value[0]};
-    else if (count != 3) throw rad::InputError(std::string(option) + ": '" + spec + "' needs 1 or 3 values");
+    if (count == 1)
+        o.value = {o.value[0], o.value[0], o.value[0]};
+    else if (count != 3)
+        throw rad::InputError(std::string(option) + ": '" + spec + "' needs 1 or 3 values");
     return o;
 }
 
@@ -53,16 +58,18 @@ std::string rgb_text(const radfmt::Rgb& v) {
 // "out/iter-%d.rad" with the iteration number substituted.
 std::string snapshot_path(const std::string& pattern, long iteration) {
     const auto pos = pattern.find("%d");
-    if (pos == std::string::npos) throw rad::InputError("--snapshot pattern '" + pattern + "' has no %d");
+    if (pos == std::string::npos)
+        throw rad::InputError("--snapshot pattern '" + pattern + "' has no %d");
     return pattern.substr(0, pos) + std::to_string(iteration) + pattern.substr(pos + 2);
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Solve B_i = E_i + rho_i sum_j F_ij B_j per RGB channel from a cached form-factor\n"
-                 "file and write the per-patch radiosity. Materials can be overridden at solve time,\n"
-                 "so new light colours or reflectances never need rad-ff again."};
+    CLI::App app{
+        "Solve B_i = E_i + rho_i sum_j F_ij B_j per RGB channel from a cached form-factor\n"
+        "file and write the per-patch radiosity. Materials can be overridden at solve time,\n"
+        "so new light colours or reflectances never need rad-ff again."};
     std::string mesh_path, ff_path, output, method = "gs", log_path, snapshot, snapshot_at;
     std::vector<std::string> emission_overrides, reflectance_overrides;
     double emission_scale = 1, tolerance = 1e-6, row_tolerance = 0.01, sweeps = 0;
@@ -70,7 +77,8 @@ int main(int argc, char** argv) {
     long snapshot_every = 0;
     bool force = false, quiet = false, verbose = false;
     app.add_option("MESH", mesh_path, "Patch mesh from rad-mesh")->required();
-    app.add_option("FORMFACTORS", ff_path, "Form-factor file from rad-ff for this mesh")->required();
+    app.add_option("FORMFACTORS", ff_path, "Form-factor file from rad-ff for this mesh")
+        ->required();
     app.add_option("-o,--output", output, "Output radiosity file")->required();
     app.add_option("--method", method,
                    "gs: Gauss-Seidel (the paper's); jacobi; pr: progressive refinement (one "
@@ -80,21 +88,30 @@ int main(int argc, char** argv) {
     app.add_option("--iterations", iterations,
                    "Stop after N iterations (sweeps for gs/jacobi, shots for pr/apr); given "
                    "without --tolerance, exactly N are run");
-    app.add_option("--sweeps", sweeps, "pr/apr: stop after this many sweeps-equivalent (x patches shots)");
+    app.add_option("--sweeps", sweeps,
+                   "pr/apr: stop after this many sweeps-equivalent (x patches shots)");
     app.add_option("--tolerance", tolerance,
                    "Stop when the relative change of a sweep (gs/jacobi) or the unshot power "
                    "fraction (pr/apr) falls below this")
         ->capture_default_str();
-    app.add_option("--log", log_path, "Write iteration,residual,power_r,power_g,power_b,seconds as CSV");
-    app.add_option("--snapshot", snapshot, "Write the state after chosen iterations to this pattern (with %d)");
-    app.add_option("--snapshot-at", snapshot_at, "Comma-separated iterations to snapshot, e.g. 1,4,10");
+    app.add_option("--log", log_path,
+                   "Write iteration,residual,power_r,power_g,power_b,seconds as CSV");
+    app.add_option("--snapshot", snapshot,
+                   "Write the state after chosen iterations to this pattern (with %d)");
+    app.add_option("--snapshot-at", snapshot_at,
+                   "Comma-separated iterations to snapshot, e.g. 1,4,10");
     app.add_option("--snapshot-every", snapshot_every, "Snapshot every k iterations");
-    app.add_option("--emission", emission_overrides, "Override a material's exitance: MATERIAL=r,g,b (W/m^2)");
-    app.add_option("--reflectance", reflectance_overrides, "Override a material's reflectance: MATERIAL=r,g,b");
-    app.add_option("--emission-scale", emission_scale, "Scale every emission")->capture_default_str();
-    app.add_option("--row-sum-tolerance", row_tolerance, "Warn when a form-factor row sums above 1 + this")
+    app.add_option("--emission", emission_overrides,
+                   "Override a material's exitance: MATERIAL=r,g,b (W/m^2)");
+    app.add_option("--reflectance", reflectance_overrides,
+                   "Override a material's reflectance: MATERIAL=r,g,b");
+    app.add_option("--emission-scale", emission_scale, "Scale every emission")
         ->capture_default_str();
-    app.add_flag("--force", force, "Solve even with a reflectance >= 1 (convergence not guaranteed)");
+    app.add_option("--row-sum-tolerance", row_tolerance,
+                   "Warn when a form-factor row sums above 1 + this")
+        ->capture_default_str();
+    app.add_flag("--force", force,
+                 "Solve even with a reflectance >= 1 (convergence not guaranteed)");
     app.add_flag("-q,--quiet", quiet, "No summary");
     app.add_flag("-v,--verbose", verbose, "Log every iteration to stderr");
     if (int rc = rad::parse_arguments(app, argc, argv); rc >= 0) return rc;
@@ -108,9 +125,10 @@ int main(int argc, char** argv) {
         if (!recorded || *recorded != mesh_geometry || ff.patch_count != mesh.patches.size())
             throw rad::InputError(ff_path + " is stale: it was computed for a mesh with geometry " +
                                   (recorded ? *recorded : std::string("(unknown)")) + " and " +
-                                  std::to_string(ff.patch_count) + " patches, but " + mesh_path + " has " +
-                                  mesh_geometry + " and " + std::to_string(mesh.patches.size()) +
-                                  " patches; run rad-ff on " + mesh_path + " again");
+                                  std::to_string(ff.patch_count) + " patches, but " + mesh_path +
+                                  " has " + mesh_geometry + " and " +
+                                  std::to_string(mesh.patches.size()) + " patches; run rad-ff on " +
+                                  mesh_path + " again");
 
         radfmt::Header header;
         auto find_material = [&](const std::string& name) -> radfmt::Material& {
@@ -118,7 +136,8 @@ int main(int argc, char** argv) {
                 if (m.name == name) return m;
             std::string known;
             for (const auto& m : mesh.materials) known += (known.empty() ? "" : ", ") + m.name;
-            throw rad::InputError("no material '" + name + "' in " + mesh_path + " (it has: " + known + ")");
+            throw rad::InputError("no material '" + name + "' in " + mesh_path +
+                                  " (it has: " + known + ")");
         };
         for (const auto& spec : emission_overrides) {
             const auto o = parse_override(spec, "--emission");
@@ -144,12 +163,14 @@ int main(int argc, char** argv) {
             const auto& m = mesh.materials[mesh.patches[p].material];
             for (int c = 0; c < 3; ++c) {
                 if (m.reflectance[c] >= 1 && !force)
-                    throw rad::InputError("material '" + m.name + "' has reflectance " + rgb_text(m.reflectance) +
-                                          ": a channel >= 1 may not converge (use --force to solve anyway)");
+                    throw rad::InputError(
+                        "material '" + m.name + "' has reflectance " + rgb_text(m.reflectance) +
+                        ": a channel >= 1 may not converge (use --force to solve anyway)");
                 any_emitter = any_emitter || m.emission[c] > 0;
             }
         }
-        if (!any_emitter) std::cerr << "rad-solve: warning: no patch emits light: the result is black\n";
+        if (!any_emitter)
+            std::cerr << "rad-solve: warning: no patch emits light: the result is black\n";
         std::size_t heavy_rows = 0;
         double heaviest = 0;
         for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
@@ -159,8 +180,8 @@ int main(int argc, char** argv) {
             heaviest = std::max(heaviest, sum);
         }
         if (heavy_rows)
-            std::cerr << "rad-solve: warning: " << heavy_rows << " form-factor row(s) of " << ff_path
-                      << " sum above 1 + " << row_tolerance << " (largest " << heaviest
+            std::cerr << "rad-solve: warning: " << heavy_rows << " form-factor row(s) of "
+                      << ff_path << " sum above 1 + " << row_tolerance << " (largest " << heaviest
                       << "): the form factors are inaccurate; use more samples or rays\n";
 
         rad::SolveOptions options;
@@ -168,14 +189,17 @@ int main(int argc, char** argv) {
         const bool progressive = options.method == rad::SolveMethod::Progressive ||
                                  options.method == rad::SolveMethod::ProgressiveAmbient;
         if (sweeps > 0) {
-            if (!progressive) throw rad::InputError("--sweeps applies to pr and apr; use --iterations for gs/jacobi");
+            if (!progressive)
+                throw rad::InputError(
+                    "--sweeps applies to pr and apr; use --iterations for gs/jacobi");
             iterations = static_cast<long>(std::ceil(sweeps * double(mesh.patches.size())));
         }
         options.max_iterations = iterations;
         const bool tolerance_given = app.count("--tolerance") > 0;
         options.tolerance = (iterations > 0 && !tolerance_given) ? 0 : tolerance;
         if (options.max_iterations == 0)
-            options.max_iterations = progressive ? 1000 * static_cast<long>(mesh.patches.size()) : 100000;
+            options.max_iterations =
+                progressive ? 1000 * static_cast<long>(mesh.patches.size()) : 100000;
 
         std::set<long> snapshot_iterations;
         {
@@ -185,7 +209,8 @@ int main(int argc, char** argv) {
                 try {
                     snapshot_iterations.insert(std::stol(item));
                 } catch (...) {
-                    throw rad::InputError("--snapshot-at: '" + item + "' is not an iteration number");
+                    throw rad::InputError("--snapshot-at: '" + item +
+                                          "' is not an iteration number");
                 }
             }
         }
@@ -207,10 +232,11 @@ int main(int argc, char** argv) {
         const auto problem = rad::make_problem(mesh, ff);
         std::ostringstream log;
         log << "iteration,residual,power_r,power_g,power_b,seconds\n";
-        options.on_iteration = [&](const rad::IterationRecord& r, const std::vector<radfmt::Rgb>& b) {
+        options.on_iteration = [&](const rad::IterationRecord& r,
+                                   const std::vector<radfmt::Rgb>& b) {
             char line[200];
-            std::snprintf(line, sizeof line, "%ld,%.9g,%.9g,%.9g,%.9g,%.6f\n", r.iteration, r.residual,
-                          r.power[0], r.power[1], r.power[2], r.seconds);
+            std::snprintf(line, sizeof line, "%ld,%.9g,%.9g,%.9g,%.9g,%.6f\n", r.iteration,
+                          r.residual, r.power[0], r.power[1], r.power[2], r.seconds);
             if (!log_path.empty()) log << line;
             if (verbose) std::cerr << "rad-solve: " << line;
             if (!snapshot.empty() && (snapshot_iterations.count(r.iteration) ||
@@ -237,10 +263,12 @@ int main(int argc, char** argv) {
         }
         if (!quiet) {
             const auto power = rad::total_power(problem.area, result.radiosity);
-            std::fprintf(stderr, "rad-solve: %s, %ld %s, %s %.3g%s, power %.6g %.6g %.6g W\n", method.c_str(),
-                         result.iterations, progressive ? "shots" : "sweeps",
+            std::fprintf(stderr, "rad-solve: %s, %ld %s, %s %.3g%s, power %.6g %.6g %.6g W\n",
+                         method.c_str(), result.iterations, progressive ? "shots" : "sweeps",
                          progressive ? "unshot fraction" : "residual", result.residual,
-                         options.tolerance > 0 && !result.converged ? " (not converged: iteration limit)" : "",
+                         options.tolerance > 0 && !result.converged
+                             ? " (not converged: iteration limit)"
+                             : "",
                          power[0], power[1], power[2]);
         }
         return 0;

@@ -15,23 +15,31 @@ namespace fs = std::filesystem;
 
 std::string_view kind_name(Kind kind) {
     switch (kind) {
-    case Kind::Mesh: return "mesh";
-    case Kind::FormFactors: return "formfactors";
-    case Kind::Radiosity: return "radiosity";
+    case Kind::Mesh:
+        return "mesh";
+    case Kind::FormFactors:
+        return "formfactors";
+    case Kind::Radiosity:
+        return "radiosity";
     }
     return "?";
 }
 
 std::string_view kind_description(Kind kind) {
     switch (kind) {
-    case Kind::Mesh: return "patch mesh";
-    case Kind::FormFactors: return "form-factor matrix";
-    case Kind::Radiosity: return "radiosity solution";
+    case Kind::Mesh:
+        return "patch mesh";
+    case Kind::FormFactors:
+        return "form-factor matrix";
+    case Kind::Radiosity:
+        return "radiosity solution";
     }
     return "?";
 }
 
-std::uint32_t kind_version(Kind) { return 1; }
+std::uint32_t kind_version(Kind) {
+    return 1;
+}
 
 static bool parse_kind(std::string_view name, Kind& kind) {
     for (Kind k : {Kind::Mesh, Kind::FormFactors, Kind::Radiosity}) {
@@ -76,7 +84,9 @@ std::string hash_hex(std::uint64_t hash) {
     return text;
 }
 
-std::uint64_t hash_bytes(const void* data, std::size_t size) { return XXH64(data, size, 0); }
+std::uint64_t hash_bytes(const void* data, std::size_t size) {
+    return XXH64(data, size, 0);
+}
 
 std::string hash_file(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -117,7 +127,9 @@ void BodyReader::fail(const std::string& message) const {
     throw FormatError(path_ + ": corrupt body: " + message);
 }
 
-void BodyReader::align() { pos_ = std::min(body_.size(), (pos_ + 7) / 8 * 8); }
+void BodyReader::align() {
+    pos_ = std::min(body_.size(), (pos_ + 7) / 8 * 8);
+}
 
 void BodyReader::need(std::uint64_t bytes, const char* what) {
     if (bytes > body_.size() - pos_)
@@ -163,10 +175,14 @@ void BodyReader::expect_end() {
 static std::string escape(std::string_view value) {
     std::string out;
     for (char c : value) {
-        if (c == '\\') out += "\\\\";
-        else if (c == '\n') out += "\\n";
-        else if (c == '\r') out += "\\r";
-        else out += c;
+        if (c == '\\')
+            out += "\\\\";
+        else if (c == '\n')
+            out += "\\n";
+        else if (c == '\r')
+            out += "\\r";
+        else
+            out += c;
     }
     return out;
 }
@@ -259,7 +275,8 @@ void write_file(const fs::path& path, Header header, const std::vector<std::byte
     const auto head = serialise_header(header);
     write_atomically(path, [&](const fs::path& temp) {
         std::FILE* f = std::fopen(temp.c_str(), "wb");
-        if (!f) throw FormatError(path.string() + ": cannot open for writing: " + std::strerror(errno));
+        if (!f)
+            throw FormatError(path.string() + ": cannot open for writing: " + std::strerror(errno));
         bool ok = std::fwrite(head.data(), 1, head.size(), f) == head.size();
         ok = ok && (body.empty() || std::fwrite(body.data(), 1, body.size(), f) == body.size());
         ok = ok && std::fflush(f) == 0 && ::fsync(fileno(f)) == 0;
@@ -270,8 +287,7 @@ void write_file(const fs::path& path, Header header, const std::vector<std::byte
 
 // ---- reading ----
 
-static std::uint64_t parse_u64(const std::string& text, const std::string& path,
-                               const char* what) {
+static std::uint64_t parse_u64(const std::string& text, const std::string& path, const char* what) {
     std::uint64_t value = 0;
     std::size_t used = 0;
     try {
@@ -306,7 +322,8 @@ static ParsedHeader parse_header(std::string_view bytes, const std::string& path
     const auto covered = text.substr(0, hash_pos);
     const auto stored = std::string(text.substr(hash_pos + 12, end - hash_pos - 12));
     if (stored != "xxh64:" + hash_hex(hash_bytes(covered.data(), covered.size())))
-        throw FormatError(path + ": corrupt header: checksum mismatch (the file was modified or damaged)");
+        throw FormatError(path +
+                          ": corrupt header: checksum mismatch (the file was modified or damaged)");
 
     ParsedHeader parsed;
     Header& h = parsed.header;
@@ -320,7 +337,8 @@ static ParsedHeader parse_header(std::string_view bytes, const std::string& path
     bool have_kind = false;
     while (std::getline(lines, line)) {
         const auto eq = line.find('=');
-        if (eq == std::string::npos) throw FormatError(path + ": corrupt header line '" + line + "'");
+        if (eq == std::string::npos)
+            throw FormatError(path + ": corrupt header line '" + line + "'");
         const auto key = line.substr(0, eq);
         const auto value = line.substr(eq + 1);
         if (key == "kind") {
@@ -352,7 +370,8 @@ static ParsedHeader parse_header(std::string_view bytes, const std::string& path
     if (!have_kind) throw FormatError(path + ": corrupt header: no kind");
     if (h.version != kind_version(h.kind))
         throw FormatError(path + ": " + std::string(kind_name(h.kind)) + " format version " +
-                          std::to_string(h.version) + " is not supported (this build reads version " +
+                          std::to_string(h.version) +
+                          " is not supported (this build reads version " +
                           std::to_string(kind_version(h.kind)) + ")");
     parsed.body_offset = (end + 2 + kBodyAlignment - 1) / kBodyAlignment * kBodyAlignment;
     const auto expected = parsed.body_offset + h.body_size;
@@ -383,7 +402,9 @@ static std::uint64_t open_sized(std::ifstream& in, const fs::path& path) {
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw FormatError(path.string() + ": is a folder, not a file");
     in.open(path, std::ios::binary);
-    if (!in) throw FormatError(path.string() + ": cannot open for reading (" + std::strerror(errno) + ")");
+    if (!in)
+        throw FormatError(path.string() + ": cannot open for reading (" + std::strerror(errno) +
+                          ")");
     const auto size = fs::file_size(path, ec);
     if (ec) throw FormatError(path.string() + ": cannot read size: " + ec.message());
     if (size == 0) throw FormatError(path.string() + ": is empty (truncated)");
@@ -412,7 +433,8 @@ LoadedFile read_file(const fs::path& path, const Kind* expected) {
         throw FormatError(path.string() + ": truncated body");
     const auto hash = "xxh64:" + hash_hex(hash_bytes(file.body.data(), file.body.size()));
     if (hash != file.header.body_hash)
-        throw FormatError(path.string() + ": corrupt body: checksum mismatch (the file was modified or damaged)");
+        throw FormatError(path.string() +
+                          ": corrupt body: checksum mismatch (the file was modified or damaged)");
     return file;
 }
 

@@ -155,7 +155,8 @@ FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
     if (ff.row_start.front() != 0 || ff.row_start.back() != nnz)
         r.fail("row starts do not span the non-zeros");
     for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
-        if (ff.row_start[i] > ff.row_start[i + 1]) r.fail("row starts decrease at row " + std::to_string(i));
+        if (ff.row_start[i] > ff.row_start[i + 1])
+            r.fail("row starts decrease at row " + std::to_string(i));
     }
     for (auto c : ff.columns)
         if (c >= ff.patch_count) r.fail("column " + std::to_string(c) + " out of range");
@@ -199,7 +200,8 @@ void write_csv(const fs::path& path, std::ostream& out) {
             const auto& p = mesh.patches[i];
             const auto& m = mesh.materials[p.material];
             std::snprintf(line, sizeof line,
-                          "%zu,%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n",
+                          "%zu,%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%."
+                          "10g,%.10g,%.10g\n",
                           i, mesh.groups[p.group].c_str(), m.name.c_str(), p.area, p.centroid[0],
                           p.centroid[1], p.centroid[2], p.normal[0], p.normal[1], p.normal[2],
                           m.reflectance[0], m.reflectance[1], m.reflectance[2], m.emission[0],

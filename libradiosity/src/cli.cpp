@@ -24,7 +24,8 @@ std::string command_line(int argc, char** argv) {
         }
         if (arg.rfind("--threads=", 0) == 0 || arg == "-q" || arg == "--quiet") continue;
         if (i == 0) arg = std::filesystem::path(arg).filename().string();
-        const bool plain = !arg.empty() && arg.find_first_of(" \t\"'\\$`*?;&|<>()") == std::string::npos;
+        const bool plain =
+            !arg.empty() && arg.find_first_of(" \t\"'\\$`*?;&|<>()") == std::string::npos;
         if (!out.empty()) out += ' ';
         if (plain) {
             out += arg;
@@ -37,7 +38,9 @@ std::string command_line(int argc, char** argv) {
     return out;
 }
 
-std::string tool_version(const std::string& tool) { return tool + " " RADIOSITY_VERSION; }
+std::string tool_version(const std::string& tool) {
+    return tool + " " RADIOSITY_VERSION;
+}
 
 int run_tool(const char* tool, const std::function<int()>& body) {
     radfmt::install_cleanup_handlers();

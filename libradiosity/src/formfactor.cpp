@@ -21,7 +21,10 @@ constexpr double kPi = std::numbers::pi;
 // splitmix64: tiny, fast and good enough for sample placement; seeded per row.
 struct Rng {
     std::uint64_t state;
-    Rng(std::uint64_t seed, std::uint64_t stream) : state(seed * 0x9E3779B97F4A7C15ull ^ (stream + 0x632BE59BD9B4E019ull)) { next(); }
+    Rng(std::uint64_t seed, std::uint64_t stream)
+        : state(seed * 0x9E3779B97F4A7C15ull ^ (stream + 0x632BE59BD9B4E019ull)) {
+        next();
+    }
     std::uint64_t next() {
         std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
         z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -78,7 +81,8 @@ PatchGeometry patch_geometry(const radfmt::MeshData& mesh, const radfmt::Patch& 
 Vec3 patch_point(const PatchGeometry& g, double s, double t, double& jacobian) {
     const auto& c = g.corners;
     if (g.count == 4) {
-        const Vec3 p = c[0] * ((1 - s) * (1 - t)) + c[1] * (s * (1 - t)) + c[2] * (s * t) + c[3] * ((1 - s) * t);
+        const Vec3 p = c[0] * ((1 - s) * (1 - t)) + c[1] * (s * (1 - t)) + c[2] * (s * t) +
+                       c[3] * ((1 - s) * t);
         const Vec3 ds = (c[1] - c[0]) * (1 - t) + (c[2] - c[3]) * t;
         const Vec3 dt = (c[3] - c[0]) * (1 - s) + (c[2] - c[1]) * s;
         jacobian = length(cross(ds, dt));
@@ -90,7 +94,8 @@ Vec3 patch_point(const PatchGeometry& g, double s, double t, double& jacobian) {
 }
 
 // Quadrature points (Gauss-Legendre product rule) for smooth integrands.
-std::vector<Sample> gauss_samples(const PatchGeometry& g, double area, const std::vector<double>& nodes,
+std::vector<Sample> gauss_samples(const PatchGeometry& g, double area,
+                                  const std::vector<double>& nodes,
                                   const std::vector<double>& weights) {
     std::vector<Sample> out;
     for (std::size_t a = 0; a < nodes.size(); ++a)
@@ -103,7 +108,8 @@ std::vector<Sample> gauss_samples(const PatchGeometry& g, double area, const std
 }
 
 // An area-uniform point on a convex polygon (fan of triangles).
-Vec3 uniform_point(std::span<const Vec3> poly, std::span<const double> fan_cdf, double u0, double u1, double u2) {
+Vec3 uniform_point(std::span<const Vec3> poly, std::span<const double> fan_cdf, double u0,
+                   double u1, double u2) {
     std::size_t tri = 0;
     while (tri + 1 < fan_cdf.size() && u0 > fan_cdf[tri]) ++tri;
     const double r = std::sqrt(u1);
@@ -136,7 +142,8 @@ std::vector<Vec3> clip_to_front(std::span<const Vec3> poly, const Vec3& point, c
 }
 
 Vec3 orthogonal(const Vec3& n) {
-    return std::abs(n[0]) > 0.5 ? normalized(cross(n, Vec3{0, 1, 0})) : normalized(cross(n, Vec3{1, 0, 0}));
+    return std::abs(n[0]) > 0.5 ? normalized(cross(n, Vec3{0, 1, 0}))
+                                : normalized(cross(n, Vec3{1, 0, 0}));
 }
 
 // Radical inverse in base b: the Halton sequence, rotated per patch (Cranley-Patterson).
@@ -150,7 +157,9 @@ double radical_inverse(std::uint64_t i, std::uint64_t base) {
     return r;
 }
 
-double wrap(double x) { return x - std::floor(x); }
+double wrap(double x) {
+    return x - std::floor(x);
+}
 
 } // namespace
 
@@ -158,19 +167,24 @@ FormFactorMethod parse_method(const std::string& name) {
     if (name == "pairwise") return FormFactorMethod::Pairwise;
     if (name == "analytic") return FormFactorMethod::Analytic;
     if (name == "hemisphere") return FormFactorMethod::Hemisphere;
-    throw InputError("unknown form-factor method '" + name + "' (use pairwise, analytic or hemisphere)");
+    throw InputError("unknown form-factor method '" + name +
+                     "' (use pairwise, analytic or hemisphere)");
 }
 
 std::string method_name(FormFactorMethod method) {
     switch (method) {
-    case FormFactorMethod::Pairwise: return "pairwise";
-    case FormFactorMethod::Analytic: return "analytic";
-    case FormFactorMethod::Hemisphere: return "hemisphere";
+    case FormFactorMethod::Pairwise:
+        return "pairwise";
+    case FormFactorMethod::Analytic:
+        return "analytic";
+    case FormFactorMethod::Hemisphere:
+        return "hemisphere";
     }
     return "?";
 }
 
-double point_to_polygon_form_factor(const Vec3& point, const Vec3& normal, std::span<const Vec3> polygon) {
+double point_to_polygon_form_factor(const Vec3& point, const Vec3& normal,
+                                    std::span<const Vec3> polygon) {
     double sum = 0;
     const std::size_t n = polygon.size();
     for (std::size_t k = 0; k < n; ++k) {
@@ -189,8 +203,9 @@ double parallel_rectangles_form_factor(double a, double b, double c) {
     const double x = a / c, y = b / c;
     const double x1 = std::sqrt(1 + x * x), y1 = std::sqrt(1 + y * y);
     return 2 / (kPi * x * y) *
-           (std::log(std::sqrt((1 + x * x) * (1 + y * y) / (1 + x * x + y * y))) + x * y1 * std::atan(x / y1) +
-            y * x1 * std::atan(y / x1) - x * std::atan(x) - y * std::atan(y));
+           (std::log(std::sqrt((1 + x * x) * (1 + y * y) / (1 + x * x + y * y))) +
+            x * y1 * std::atan(x / y1) + y * x1 * std::atan(y / x1) - x * std::atan(x) -
+            y * std::atan(y));
 }
 
 double perpendicular_rectangles_form_factor(double h, double l, double w) {
@@ -205,17 +220,20 @@ double perpendicular_rectangles_form_factor(double h, double l, double w) {
     return term / (kPi * W);
 }
 
-std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh, const FormFactorOptions& options) {
+std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
+                                          const FormFactorOptions& options) {
     const std::uint64_t n = mesh.patches.size();
-    const std::uint64_t per_row = options.method == FormFactorMethod::Hemisphere
-                                      ? std::min<std::uint64_t>(n, static_cast<std::uint64_t>(options.rays))
-                                      : n;
+    const std::uint64_t per_row =
+        options.method == FormFactorMethod::Hemisphere
+            ? std::min<std::uint64_t>(n, static_cast<std::uint64_t>(options.rays))
+            : n;
     // Rows are built then packed: entries (4 + 4 bytes) are held twice at the peak; Embree
     // and the mesh take a few hundred bytes per patch.
     return 2 * n * per_row * 8 + n * 400 + mesh.vertices.size() * 64;
 }
 
-radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const FormFactorOptions& options,
+radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
+                                            const FormFactorOptions& options,
                                             FormFactorStats* stats) {
     const auto start = std::chrono::steady_clock::now();
     const std::size_t n = mesh.patches.size();
@@ -225,13 +243,15 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
     geometry.reserve(n);
     for (const auto& p : mesh.patches) geometry.push_back(patch_geometry(mesh, p));
 
-    const int m = std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, options.samples)))));
+    const int m =
+        std::max(1, static_cast<int>(std::lround(std::sqrt(std::max(1, options.samples)))));
     const int m_near = m, m_far = std::max(1, (m + 2) / 4);
     std::vector<double> diameter(n, 0);
     for (std::size_t i = 0; i < n; ++i)
         for (int a = 0; a < geometry[i].count; ++a)
             for (int b = a + 1; b < geometry[i].count; ++b)
-                diameter[i] = std::max(diameter[i], length(geometry[i].corners[a] - geometry[i].corners[b]));
+                diameter[i] =
+                    std::max(diameter[i], length(geometry[i].corners[a] - geometry[i].corners[b]));
     std::vector<double> gl_nodes, gl_weights;
     gauss_legendre(m, gl_nodes, gl_weights);
     std::vector<double> gl_far_nodes, gl_far_weights, gl_close_nodes, gl_close_weights;
@@ -278,7 +298,8 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
                 while (tri + 1 < cdf.size() && u0 > cdf[tri]) lo = cdf[tri++];
                 const double within = (u0 - lo) / std::max(1e-300, cdf[tri] - lo);
                 const double rr = std::sqrt(within);
-                const Vec3 origin = poly[0] * (1 - rr) + poly[tri + 1] * (rr * (1 - u1)) + poly[tri + 2] * (rr * u1);
+                const Vec3 origin = poly[0] * (1 - rr) + poly[tri + 1] * (rr * (1 - u1)) +
+                                    poly[tri + 2] * (rr * u1);
                 // Cosine-weighted direction: Malley's method.
                 const double radius = std::sqrt(u2), phi = 2 * kPi * u3;
                 const Vec3 dir = tu * (radius * std::cos(phi)) + tv * (radius * std::sin(phi)) +
@@ -286,7 +307,8 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
                 bool front = false;
                 const auto hit = scene.first_hit(origin, dir, front);
                 ++local_rays;
-                if (hit >= 0 && front && static_cast<std::size_t>(hit) != i) hits.push_back(static_cast<std::uint32_t>(hit));
+                if (hit >= 0 && front && static_cast<std::size_t>(hit) != i)
+                    hits.push_back(static_cast<std::uint32_t>(hit));
             }
             std::sort(hits.begin(), hits.end());
             for (std::size_t a = 0; a < hits.size();) {
@@ -301,12 +323,14 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
                                        : gauss_samples(geometry[i], pi.area, gl_nodes, gl_weights);
             // Analytic: close pairs (the integrand varies fast near a shared edge) get twice
             // the points per axis.
-            const auto samples_i_close = options.method == FormFactorMethod::Analytic
-                                             ? gauss_samples(geometry[i], pi.area, gl_close_nodes, gl_close_weights)
-                                             : std::vector<Sample>{};
-            const auto samples_i_far = options.method == FormFactorMethod::Pairwise
-                                           ? gauss_samples(geometry[i], pi.area, gl_far_nodes, gl_far_weights)
-                                           : std::vector<Sample>{};
+            const auto samples_i_close =
+                options.method == FormFactorMethod::Analytic
+                    ? gauss_samples(geometry[i], pi.area, gl_close_nodes, gl_close_weights)
+                    : std::vector<Sample>{};
+            const auto samples_i_far =
+                options.method == FormFactorMethod::Pairwise
+                    ? gauss_samples(geometry[i], pi.area, gl_far_nodes, gl_far_weights)
+                    : std::vector<Sample>{};
             for (std::size_t j = 0; j < n; ++j) {
                 if (j == i || !in_front(i, j) || !in_front(j, i)) continue;
                 const auto& pj = mesh.patches[j];
@@ -319,7 +343,8 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
                     if (clipped.size() < 3) continue;
                     const auto cdf = fan_cdf(clipped);
                     const int vis = std::max(1, options.visibility_rays);
-                    const bool close = length(pj.centroid - pi.centroid) < 2 * std::max(diameter[i], diameter[j]);
+                    const bool close =
+                        length(pj.centroid - pi.centroid) < 2 * std::max(diameter[i], diameter[j]);
                     for (const auto& s : close ? samples_i_close : samples_i) {
                         // Visible fraction from this point: rays to area-uniform points of j,
                         // weighted by the kernel cos cos / r^2 so that the parts of j that
@@ -330,7 +355,10 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
                             const Vec3 y = uniform_point(clipped, cdf, u0, u1, u2);
                             const Vec3 d = y - s.point;
                             const double r2 = dot(d, d);
-                            const double kernel = vis == 1 ? 1.0 : std::max(0.0, dot(d, pi.normal)) * std::max(0.0, -dot(d, pj.normal)) / (r2 * r2 + 1e-300);
+                            const double kernel = vis == 1 ? 1.0
+                                                           : std::max(0.0, dot(d, pi.normal)) *
+                                                                 std::max(0.0, -dot(d, pj.normal)) /
+                                                                 (r2 * r2 + 1e-300);
                             total += kernel;
                             if (scene.visible(s.point, y)) seen += kernel;
                         }
@@ -341,13 +369,14 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
                     }
                 } else {
                     // Pairwise: eq. 5 by sample pairs: Gauss-Legendre points on i, and on j an
-                    // m x m grid of cells, each standing for its own area. Each sample of j stands for its cell of
-                    // j's m x m grid; the cell's form factor from the point of i is taken in
-                    // closed form, which keeps adjacent pairs finite as r -> 0, and one ray per
-                    // pair decides whether the cell is visible.
-                    // Far pairs have a smooth integrand: a quarter of the resolution suffices.
+                    // m x m grid of cells, each standing for its own area. Each sample of j stands
+                    // for its cell of j's m x m grid; the cell's form factor from the point of i is
+                    // taken in closed form, which keeps adjacent pairs finite as r -> 0, and one
+                    // ray per pair decides whether the cell is visible. Far pairs have a smooth
+                    // integrand: a quarter of the resolution suffices.
                     const auto& gj = geometry[j];
-                    const bool far = length(pj.centroid - pi.centroid) > 4 * std::max(diameter[i], diameter[j]);
+                    const bool far =
+                        length(pj.centroid - pi.centroid) > 4 * std::max(diameter[i], diameter[j]);
                     const int m = far ? m_far : m_near;
                     for (const auto& s : far ? samples_i_far : samples_i) {
                         for (int a = 0; a < m; ++a)
@@ -360,11 +389,13 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
                                     patch_point(gj, double(a) / m, double(b + 1) / m, jac)};
                                 const auto clipped = clip_to_front(cell, s.point, pi.normal);
                                 if (clipped.size() < 3) continue;
-                                const Vec3 target = patch_point(gj, (a + rng.uniform()) / m, (b + rng.uniform()) / m, jac);
+                                const Vec3 target = patch_point(gj, (a + rng.uniform()) / m,
+                                                                (b + rng.uniform()) / m, jac);
                                 if (dot(target - s.point, pi.normal) <= 0) continue;
                                 ++local_rays;
                                 if (!scene.visible(s.point, target)) continue;
-                                f += s.weight * point_to_polygon_form_factor(s.point, pi.normal, clipped);
+                                f += s.weight *
+                                     point_to_polygon_form_factor(s.point, pi.normal, clipped);
                             }
                     }
                 }
@@ -374,9 +405,10 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
         rays_cast += local_rays;
         progress.advance(1);
     };
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) compute_row(i);
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) compute_row(i);
+                      });
     progress.finish();
 
     radfmt::FormFactorData ff;
@@ -399,7 +431,8 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh, const 
     }
     if (stats) {
         stats->rays_cast = rays_cast;
-        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats->seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats->mean_row_sum = n ? sum_rows / n : 0;
         stats->max_row_sum = max_row;
     }

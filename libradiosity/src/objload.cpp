@@ -21,7 +21,9 @@ struct LintResult {
     std::size_t vertex_count = 0;
 };
 
-std::string where(const fs::path& path, int line) { return path.string() + ":" + std::to_string(line); }
+std::string where(const fs::path& path, int line) {
+    return path.string() + ":" + std::to_string(line);
+}
 
 bool parse_double(const std::string& token, double& value) {
     const char* begin = token.data();
@@ -72,13 +74,14 @@ LintResult lint_obj(const fs::path& path) {
                 const auto head = token.substr(0, slash);
                 auto [ptr, ec] = std::from_chars(head.data(), head.data() + head.size(), index);
                 if (ec != std::errc() || ptr != head.data() + head.size())
-                    throw InputError(where(path, number) + ": bad vertex reference '" + token + "'");
+                    throw InputError(where(path, number) + ": bad vertex reference '" + token +
+                                     "'");
                 const long count = static_cast<long>(result.vertex_count);
                 const long resolved = index < 0 ? count + index + 1 : index;
                 if (index == 0 || resolved < 1 || resolved > count)
                     throw InputError(where(path, number) + ": face refers to vertex " +
-                                     std::to_string(index) + ", but only " +
-                                     std::to_string(count) + " vertices are defined");
+                                     std::to_string(index) + ", but only " + std::to_string(count) +
+                                     " vertices are defined");
                 ++corners;
             }
             if (corners < 3)
@@ -123,7 +126,8 @@ Scene load_obj(const fs::path& path) {
     scene.path = path.string();
     const auto& attrib = reader.GetAttrib();
     for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
-        scene.vertices.push_back({attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]});
+        scene.vertices.push_back(
+            {attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]});
 
     std::set<std::string> known;
     for (const auto& m : reader.GetMaterials()) {
@@ -166,7 +170,8 @@ Scene load_obj(const fs::path& path) {
             poly.line = lines_match ? lint.face_lines[face_number] : 0;
             const int count = shape.mesh.num_face_vertices[f];
             for (int k = 0; k < count; ++k)
-                poly.vertices.push_back(static_cast<std::uint32_t>(shape.mesh.indices[offset + k].vertex_index));
+                poly.vertices.push_back(
+                    static_cast<std::uint32_t>(shape.mesh.indices[offset + k].vertex_index));
             offset += count;
             const int material = shape.mesh.material_ids[f];
             if (material < 0 || material >= static_cast<int>(scene.materials.size()))

@@ -47,19 +47,27 @@ View parse_view(const std::string& text, const std::string& source, View view) {
     };
     while (in >> word) {
         if (word == "rvu" || word == "-vtv" || word.rfind("#", 0) == 0) continue;
-        if (word == "-vp") view.position = vector(word);
-        else if (word == "-vd") view.direction = vector(word);
-        else if (word == "-vu") view.up = vector(word);
-        else if (word == "-vh") view.horizontal_deg = number(word);
-        else if (word == "-vv") view.vertical_deg = number(word);
-        else throw InputError(source + ": unknown view option '" + word + "' (use -vp -vd -vu -vh -vv)");
+        if (word == "-vp")
+            view.position = vector(word);
+        else if (word == "-vd")
+            view.direction = vector(word);
+        else if (word == "-vu")
+            view.up = vector(word);
+        else if (word == "-vh")
+            view.horizontal_deg = number(word);
+        else if (word == "-vv")
+            view.vertical_deg = number(word);
+        else
+            throw InputError(source + ": unknown view option '" + word +
+                             "' (use -vp -vd -vu -vh -vv)");
     }
     if (length(view.direction) == 0) throw InputError(source + ": view direction -vd is zero");
     if (length(cross(view.direction, view.up)) <= 1e-9 * length(view.direction) * length(view.up))
         throw InputError(source + ": view up -vu is zero or parallel to the direction -vd");
     for (double angle : {view.horizontal_deg, view.vertical_deg})
         if (!(angle > 0 && angle < 180))
-            throw InputError(source + ": view angles -vh and -vv must be between 0 and 180 degrees");
+            throw InputError(source +
+                             ": view angles -vh and -vv must be between 0 and 180 degrees");
     return view;
 }
 
@@ -87,8 +95,9 @@ Smoothing parse_smoothing(const std::string& name) {
     throw InputError("unknown smoothing '" + name + "' (use average, area, crease or flat)");
 }
 
-std::vector<std::array<Rgb, 4>> corner_colours(const radfmt::MeshData& mesh, const std::vector<Rgb>& patch,
-                                               Smoothing mode, double crease_deg) {
+std::vector<std::array<Rgb, 4>> corner_colours(const radfmt::MeshData& mesh,
+                                               const std::vector<Rgb>& patch, Smoothing mode,
+                                               double crease_deg) {
     const std::size_t n = mesh.patches.size();
     std::vector<std::array<Rgb, 4>> out(n);
     if (mode == Smoothing::Flat) {
@@ -124,8 +133,8 @@ std::vector<std::array<Rgb, 4>> corner_colours(const radfmt::MeshData& mesh, con
 namespace {
 
 struct ScreenVertex {
-    double x, y;    // pixel coordinates of the supersampled frame
-    double inv_z;   // 1 / depth, interpolated linearly in screen space
+    double x, y;  // pixel coordinates of the supersampled frame
+    double inv_z; // 1 / depth, interpolated linearly in screen space
     Rgb colour_over_z;
 };
 
@@ -136,14 +145,15 @@ struct ScreenTriangle {
 
 } // namespace
 
-Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners, const View& view,
-             int width, int height, int supersampling) {
+Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners,
+             const View& view, int width, int height, int supersampling) {
     const int ss = std::max(1, supersampling);
     const int W = width * ss, H = height * ss;
     const Vec3 dir = normalized(view.direction);
     const Vec3 right = normalized(cross(dir, view.up));
     const Vec3 up = cross(right, dir);
-    const double tan_h = std::tan(0.5 * view.horizontal_deg * kDeg), tan_v = std::tan(0.5 * view.vertical_deg * kDeg);
+    const double tan_h = std::tan(0.5 * view.horizontal_deg * kDeg),
+                 tan_v = std::tan(0.5 * view.vertical_deg * kDeg);
     double extent = 0;
     for (const auto& v : mesh.vertices) extent = std::max(extent, length(v - view.position));
     const double near = std::max(1e-9, 1e-5 * extent);
@@ -220,8 +230,10 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
                     if (inv_z <= depth[at]) continue;
                     depth[at] = inv_z;
                     for (int ch = 0; ch < 3; ++ch)
-                        hi[3 * at + ch] = static_cast<float>(
-                            (w0 * a.colour_over_z[ch] + w1 * bb.colour_over_z[ch] + w2 * c.colour_over_z[ch]) / inv_z);
+                        hi[3 * at + ch] = static_cast<float>((w0 * a.colour_over_z[ch] +
+                                                              w1 * bb.colour_over_z[ch] +
+                                                              w2 * c.colour_over_z[ch]) /
+                                                             inv_z);
                 }
         }
     });
@@ -236,23 +248,28 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
             bool covered = false;
             for (int sy = 0; sy < ss; ++sy)
                 for (int sx = 0; sx < ss; ++sx) {
-                    const std::size_t at = static_cast<std::size_t>(y * ss + sy) * W + (x * ss + sx);
+                    const std::size_t at =
+                        static_cast<std::size_t>(y * ss + sy) * W + (x * ss + sx);
                     covered = covered || depth[at] > 0;
                     for (int c = 0; c < 3; ++c) sum[c] += hi[3 * at + c];
                 }
             image.covered_pixels += covered;
             for (int c = 0; c < 3; ++c)
-                image.rgb[3 * (static_cast<std::size_t>(y) * width + x) + c] = static_cast<float>(sum[c] / (ss * ss));
+                image.rgb[3 * (static_cast<std::size_t>(y) * width + x) + c] =
+                    static_cast<float>(sum[c] / (ss * ss));
         }
     return image;
 }
 
-void write_exr(const std::string& path, const Image& image, const std::map<std::string, std::string>& attributes) {
+void write_exr(const std::string& path, const Image& image,
+               const std::map<std::string, std::string>& attributes) {
     radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
         try {
             Imf::Header header(image.width, image.height);
-            for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-            for (const auto& [key, value] : attributes) header.insert(key, Imf::StringAttribute(value));
+            for (const char* name : {"R", "G", "B"})
+                header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            for (const auto& [key, value] : attributes)
+                header.insert(key, Imf::StringAttribute(value));
             Imf::OutputFile file(temp.c_str(), header);
             Imf::FrameBuffer fb;
             char* base = reinterpret_cast<char*>(const_cast<float*>(image.rgb.data()));
@@ -298,7 +315,8 @@ Image read_exr(const std::string& path, std::map<std::string, std::string>* attr
 double auto_exposure(const Image& image) {
     std::vector<float> luminance;
     for (std::size_t i = 0; i + 2 < image.rgb.size(); i += 3) {
-        const float y = 0.2126f * image.rgb[i] + 0.7152f * image.rgb[i + 1] + 0.0722f * image.rgb[i + 2];
+        const float y =
+            0.2126f * image.rgb[i] + 0.7152f * image.rgb[i + 1] + 0.0722f * image.rgb[i + 2];
         if (y > 0) luminance.push_back(y);
     }
     if (luminance.empty()) return 1;
@@ -309,7 +327,8 @@ double auto_exposure(const Image& image) {
 
 std::uint8_t to_srgb8(double linear) {
     linear = std::clamp(linear, 0.0, 1.0);
-    const double s = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+    const double s =
+        linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
     return static_cast<std::uint8_t>(std::lround(s * 255));
 }
 
@@ -327,28 +346,33 @@ void write_png(const std::string& path, const Image& image, double exposure) {
     });
 }
 
-void write_ply(const std::string& path, const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners,
-               double exposure) {
+void write_ply(const std::string& path, const radfmt::MeshData& mesh,
+               const std::vector<std::array<Rgb, 4>>& corners, double exposure) {
     radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
         std::ofstream out(temp);
         std::size_t vertex_count = 0;
         for (const auto& p : mesh.patches) vertex_count += p.corner_count();
         // Each patch corner gets its own vertex: crease-aware smoothing gives one vertex
         // different colours on different sides of an edge.
-        out << "ply\nformat ascii 1.0\ncomment radiosity rad-shade: colours are smoothed radiosity, sRGB\n"
-            << "element vertex " << vertex_count << "\nproperty float x\nproperty float y\nproperty float z\n"
+        out << "ply\nformat ascii 1.0\ncomment radiosity rad-shade: colours are smoothed "
+               "radiosity, sRGB\n"
+            << "element vertex " << vertex_count
+            << "\nproperty float x\nproperty float y\nproperty float z\n"
             << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-            << "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n"
-            << "element face " << mesh.patches.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+            << "property float radiosity_r\nproperty float radiosity_g\nproperty float "
+               "radiosity_b\n"
+            << "element face " << mesh.patches.size()
+            << "\nproperty list uchar int vertex_indices\nend_header\n";
         out.precision(9);
         for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
             const auto& p = mesh.patches[i];
             for (int k = 0; k < p.corner_count(); ++k) {
                 const auto& v = mesh.vertices[p.corners[k]];
                 const auto& c = corners[i][k];
-                out << v[0] << ' ' << v[1] << ' ' << v[2] << ' ' << int(to_srgb8(c[0] * exposure)) << ' '
-                    << int(to_srgb8(c[1] * exposure)) << ' ' << int(to_srgb8(c[2] * exposure)) << ' ' << c[0]
-                    << ' ' << c[1] << ' ' << c[2] << '\n';
+                out << v[0] << ' ' << v[1] << ' ' << v[2] << ' ' << int(to_srgb8(c[0] * exposure))
+                    << ' ' << int(to_srgb8(c[1] * exposure)) << ' '
+                    << int(to_srgb8(c[2] * exposure)) << ' ' << c[0] << ' ' << c[1] << ' ' << c[2]
+                    << '\n';
             }
         }
         std::size_t next = 0;

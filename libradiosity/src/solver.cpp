@@ -19,10 +19,14 @@ SolveMethod parse_solve_method(const std::string& name) {
 
 std::string solve_method_name(SolveMethod method) {
     switch (method) {
-    case SolveMethod::Jacobi: return "jacobi";
-    case SolveMethod::GaussSeidel: return "gs";
-    case SolveMethod::Progressive: return "pr";
-    case SolveMethod::ProgressiveAmbient: return "apr";
+    case SolveMethod::Jacobi:
+        return "jacobi";
+    case SolveMethod::GaussSeidel:
+        return "gs";
+    case SolveMethod::Progressive:
+        return "pr";
+    case SolveMethod::ProgressiveAmbient:
+        return "apr";
     }
     return "?";
 }
@@ -49,7 +53,8 @@ namespace {
 
 // One sweep; Gauss-Seidel reads the values updated earlier in the same sweep, Jacobi only
 // the previous sweep's. Returns sum |B_new - B_old| and sum |B_new| over patches and channels.
-std::pair<double, double> sweep(const Problem& p, std::vector<Rgb>& b, std::vector<Rgb>& scratch, bool in_place) {
+std::pair<double, double> sweep(const Problem& p, std::vector<Rgb>& b, std::vector<Rgb>& scratch,
+                                bool in_place) {
     const auto& ff = *p.form_factors;
     const std::size_t n = b.size();
     const std::vector<Rgb>& source = in_place ? b : scratch;
@@ -81,7 +86,9 @@ SolveResult solve(const Problem& p, const SolveOptions& options) {
     const std::size_t n = p.area.size();
     SolveResult result;
     std::vector<Rgb> b = p.emission; // start from B = E
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    auto elapsed = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
     auto keep_going = [&](long done, double residual) {
         if (options.max_iterations > 0 && done >= options.max_iterations) return false;
         if (options.tolerance > 0 && done > 0 && residual < options.tolerance) return false;
@@ -93,10 +100,12 @@ SolveResult solve(const Problem& p, const SolveOptions& options) {
         long done = 0;
         double residual = 1;
         while (keep_going(done, residual)) {
-            const auto [change, magnitude] = sweep(p, b, scratch, options.method == SolveMethod::GaussSeidel);
+            const auto [change, magnitude] =
+                sweep(p, b, scratch, options.method == SolveMethod::GaussSeidel);
             residual = magnitude > 0 ? change / magnitude : 0;
             ++done;
-            if (options.on_iteration) options.on_iteration({done, residual, total_power(p.area, b), elapsed()}, b);
+            if (options.on_iteration)
+                options.on_iteration({done, residual, total_power(p.area, b), elapsed()}, b);
             if (magnitude == 0) break; // nothing emits: the black solution is exact
         }
         result.radiosity = std::move(b);
@@ -121,7 +130,9 @@ SolveResult solve(const Problem& p, const SolveOptions& options) {
     for (auto& r : mean_reflectance) r = total_area > 0 ? r / total_area : 0;
     const bool ambient = options.method == SolveMethod::ProgressiveAmbient;
 
-    auto unshot_fraction = [&](double unshot_power) { return emitted > 0 ? unshot_power / emitted : 0; };
+    auto unshot_fraction = [&](double unshot_power) {
+        return emitted > 0 ? unshot_power / emitted : 0;
+    };
     // APR's display adds rho_i times Cohen's ambient estimate: the unshot power spread over
     // the scene and multiplied by the interreflection factor 1 / (1 - mean rho).
     auto displayed = [&]() {
@@ -132,7 +143,8 @@ SolveResult solve(const Problem& p, const SolveOptions& options) {
         std::vector<Rgb> shown = b;
         for (std::size_t i = 0; i < n; ++i)
             for (int c = 0; c < 3; ++c)
-                shown[i][c] += p.reflectance[i][c] * unshot_mean[c] / (1 - std::min(mean_reflectance[c], 0.999999));
+                shown[i][c] += p.reflectance[i][c] * unshot_mean[c] /
+                               (1 - std::min(mean_reflectance[c], 0.999999));
         return shown;
     };
 

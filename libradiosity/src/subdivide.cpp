@@ -117,7 +117,8 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
         std::vector<std::uint32_t> ids;
         for (auto id : poly.vertices)
             if (ids.empty() || scene.vertices[ids.back()] != scene.vertices[id]) ids.push_back(id);
-        while (ids.size() > 1 && scene.vertices[ids.front()] == scene.vertices[ids.back()]) ids.pop_back();
+        while (ids.size() > 1 && scene.vertices[ids.front()] == scene.vertices[ids.back()])
+            ids.pop_back();
         std::vector<Vec3> pts;
         for (auto id : ids) pts.push_back(scene.vertices[id]);
         const Vec3 n2 = pts.size() >= 3 ? newell_normal(pts) : Vec3{0, 0, 0};
@@ -153,8 +154,10 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
             std::vector<Vec3> c;
             for (int k = 0; k < e.corners; ++k) c.push_back(scene.vertices[e.v[k]]);
             e.area = 0.5 * length(newell_normal(c));
-            if (e.area > min_area) elements.push_back(e);
-            else ++rep.degenerate_dropped;
+            if (e.area > min_area)
+                elements.push_back(e);
+            else
+                ++rep.degenerate_dropped;
         };
         if (pts.size() == 3) {
             add({ids[0], ids[1], ids[2]});
@@ -179,7 +182,8 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
     std::vector<std::array<std::size_t, 4>> element_edges(elements.size());
     for (std::size_t f = 0; f < elements.size(); ++f) {
         const auto& e = elements[f];
-        for (int k = 0; k < e.corners; ++k) element_edges[f][k] = edge_of(e.v[k], e.v[(k + 1) % e.corners]);
+        for (int k = 0; k < e.corners; ++k)
+            element_edges[f][k] = edge_of(e.v[k], e.v[(k + 1) % e.corners]);
     }
     std::vector<double> edge_limit(edges.size(), 0);
     UnionFind classes(edges.size());
@@ -189,7 +193,8 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
         const auto& group = scene.groups[e.group];
         const double limit = limit_for(options.max_edge_by_group, group, options.max_edge);
         for (int k = 0; k < e.corners; ++k)
-            if (limit > 0 && (edge_limit[ee[k]] == 0 || limit < edge_limit[ee[k]])) edge_limit[ee[k]] = limit;
+            if (limit > 0 && (edge_limit[ee[k]] == 0 || limit < edge_limit[ee[k]]))
+                edge_limit[ee[k]] = limit;
         if (e.corners == 4) {
             classes.unite(ee[0], ee[2]);
             classes.unite(ee[1], ee[3]);
@@ -201,7 +206,8 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
     std::vector<std::size_t> segments(edges.size(), 1);
     for (std::size_t i = 0; i < edges.size(); ++i) {
         if (edge_limit[i] <= 0) continue;
-        const auto a = static_cast<std::uint32_t>(edges[i] >> 32), b = static_cast<std::uint32_t>(edges[i]);
+        const auto a = static_cast<std::uint32_t>(edges[i] >> 32),
+                   b = static_cast<std::uint32_t>(edges[i]);
         const double len = length(scene.vertices[a] - scene.vertices[b]);
         auto& s = segments[classes.find(i)];
         s = std::max(s, static_cast<std::size_t>(std::ceil(len / edge_limit[i] - 1e-9)));
@@ -212,7 +218,8 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
         changed = false;
         for (std::size_t f = 0; f < elements.size(); ++f) {
             const auto& e = elements[f];
-            const double limit = limit_for(options.max_area_by_group, scene.groups[e.group], options.max_area);
+            const double limit =
+                limit_for(options.max_area_by_group, scene.groups[e.group], options.max_area);
             if (limit <= 0) continue;
             auto& a = segments[classes.find(element_edges[f][0])];
             auto& b = segments[classes.find(element_edges[f][1])];
@@ -276,17 +283,24 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
         const auto& e = elements[f];
         const auto& v = e.v;
         if (e.corners == 4) {
-            const std::size_t nu = count_of(element_edges[f][0]), nv = count_of(element_edges[f][1]);
+            const std::size_t nu = count_of(element_edges[f][0]),
+                              nv = count_of(element_edges[f][1]);
             std::vector<std::uint32_t> grid((nu + 1) * (nv + 1));
-            auto at = [&](std::size_t i, std::size_t j) -> std::uint32_t& { return grid[j * (nu + 1) + i]; };
-            const Vec3 p0 = scene.vertices[v[0]], p1 = scene.vertices[v[1]], p2 = scene.vertices[v[2]],
-                       p3 = scene.vertices[v[3]];
+            auto at = [&](std::size_t i, std::size_t j) -> std::uint32_t& {
+                return grid[j * (nu + 1) + i];
+            };
+            const Vec3 p0 = scene.vertices[v[0]], p1 = scene.vertices[v[1]],
+                       p2 = scene.vertices[v[2]], p3 = scene.vertices[v[3]];
             for (std::size_t j = 0; j <= nv; ++j)
                 for (std::size_t i = 0; i <= nu; ++i) {
-                    if (j == 0) at(i, j) = edge_vertex(v[0], v[1], i, nu);
-                    else if (j == nv) at(i, j) = edge_vertex(v[3], v[2], i, nu);
-                    else if (i == 0) at(i, j) = edge_vertex(v[0], v[3], j, nv);
-                    else if (i == nu) at(i, j) = edge_vertex(v[1], v[2], j, nv);
+                    if (j == 0)
+                        at(i, j) = edge_vertex(v[0], v[1], i, nu);
+                    else if (j == nv)
+                        at(i, j) = edge_vertex(v[3], v[2], i, nu);
+                    else if (i == 0)
+                        at(i, j) = edge_vertex(v[0], v[3], j, nv);
+                    else if (i == nu)
+                        at(i, j) = edge_vertex(v[1], v[2], j, nv);
                     else {
                         const double s = double(i) / nu, t = double(j) / nv;
                         at(i, j) = static_cast<std::uint32_t>(mesh.vertices.size());
@@ -300,16 +314,23 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
         } else {
             const std::size_t n = count_of(element_edges[f][0]);
             std::vector<std::uint32_t> grid((n + 1) * (n + 1), radfmt::kNoVertex);
-            auto at = [&](std::size_t i, std::size_t j) -> std::uint32_t& { return grid[j * (n + 1) + i]; };
-            const Vec3 p0 = scene.vertices[v[0]], p1 = scene.vertices[v[1]], p2 = scene.vertices[v[2]];
+            auto at = [&](std::size_t i, std::size_t j) -> std::uint32_t& {
+                return grid[j * (n + 1) + i];
+            };
+            const Vec3 p0 = scene.vertices[v[0]], p1 = scene.vertices[v[1]],
+                       p2 = scene.vertices[v[2]];
             for (std::size_t j = 0; j <= n; ++j)
                 for (std::size_t i = 0; i + j <= n; ++i) {
-                    if (j == 0) at(i, j) = edge_vertex(v[0], v[1], i, n);
-                    else if (i == 0) at(i, j) = edge_vertex(v[0], v[2], j, n);
-                    else if (i + j == n) at(i, j) = edge_vertex(v[1], v[2], j, n);
+                    if (j == 0)
+                        at(i, j) = edge_vertex(v[0], v[1], i, n);
+                    else if (i == 0)
+                        at(i, j) = edge_vertex(v[0], v[2], j, n);
+                    else if (i + j == n)
+                        at(i, j) = edge_vertex(v[1], v[2], j, n);
                     else {
                         at(i, j) = static_cast<std::uint32_t>(mesh.vertices.size());
-                        mesh.vertices.push_back(p0 + (p1 - p0) * (double(i) / n) + (p2 - p0) * (double(j) / n));
+                        mesh.vertices.push_back(p0 + (p1 - p0) * (double(i) / n) +
+                                                (p2 - p0) * (double(j) / n));
                     }
                 }
             for (std::size_t j = 0; j < n; ++j)
@@ -329,7 +350,8 @@ Topology analyze_topology(const radfmt::MeshData& mesh) {
     OMesh om;
     std::vector<OMesh::VertexHandle> handles;
     handles.reserve(mesh.vertices.size());
-    for (const auto& v : mesh.vertices) handles.push_back(om.add_vertex(OMesh::Point(v[0], v[1], v[2])));
+    for (const auto& v : mesh.vertices)
+        handles.push_back(om.add_vertex(OMesh::Point(v[0], v[1], v[2])));
     Topology topo;
     omerr().disable(); // OpenMesh reports each non-manifold face; we count them instead
     for (const auto& p : mesh.patches) {

@@ -62,13 +62,10 @@ struct RadiosityData {
 void write_mesh(const std::filesystem::path& path, Header header, const MeshData& mesh);
 MeshData read_mesh(const std::filesystem::path& path, Header* header_out = nullptr);
 
-void write_form_factors(const std::filesystem::path& path, Header header,
-                        const FormFactorData& ff);
-FormFactorData read_form_factors(const std::filesystem::path& path,
-                                 Header* header_out = nullptr);
+void write_form_factors(const std::filesystem::path& path, Header header, const FormFactorData& ff);
+FormFactorData read_form_factors(const std::filesystem::path& path, Header* header_out = nullptr);
 
-void write_radiosity(const std::filesystem::path& path, Header header,
-                     const RadiosityData& rad);
+void write_radiosity(const std::filesystem::path& path, Header header, const RadiosityData& rad);
 RadiosityData read_radiosity(const std::filesystem::path& path, Header* header_out = nullptr);
 
 // Decodes whichever kind `file` holds and writes it as CSV (columns in formats/README.md).

@@ -48,7 +48,7 @@ double point_to_polygon_form_factor(const Vec3& point, const Vec3& normal,
                                     std::span<const Vec3> polygon);
 
 // Closed forms for tests and checks (Howell's catalogue, C-11 and C-14).
-double parallel_rectangles_form_factor(double a, double b, double c); // a x b, distance c
+double parallel_rectangles_form_factor(double a, double b, double c);      // a x b, distance c
 double perpendicular_rectangles_form_factor(double h, double l, double w); // common edge l
 
 } // namespace rad

@@ -29,8 +29,9 @@ Smoothing parse_smoothing(const std::string& name);
 // Colour at each corner of each patch. Average: the plain mean of the patches around a
 // vertex (the paper's); Area: weighted by area; Crease: area-weighted over neighbours of
 // the same material whose normals are within `crease_deg`, so edges stay sharp.
-std::vector<std::array<Rgb, 4>> corner_colours(const radfmt::MeshData& mesh, const std::vector<Rgb>& patch,
-                                               Smoothing mode, double crease_deg = 30);
+std::vector<std::array<Rgb, 4>> corner_colours(const radfmt::MeshData& mesh,
+                                               const std::vector<Rgb>& patch, Smoothing mode,
+                                               double crease_deg = 30);
 
 struct Image {
     int width = 0, height = 0;
@@ -38,16 +39,17 @@ struct Image {
     std::size_t covered_pixels = 0;
 };
 
-Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners, const View& view,
-             int width, int height, int supersampling);
+Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners,
+             const View& view, int width, int height, int supersampling);
 
-void write_exr(const std::string& path, const Image& image, const std::map<std::string, std::string>& attributes);
+void write_exr(const std::string& path, const Image& image,
+               const std::map<std::string, std::string>& attributes);
 Image read_exr(const std::string& path, std::map<std::string, std::string>* attributes = nullptr);
 // Multiplier that maps the 95th-percentile luminance of covered pixels to 0.8.
 double auto_exposure(const Image& image);
 void write_png(const std::string& path, const Image& image, double exposure);
-void write_ply(const std::string& path, const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners,
-               double exposure);
+void write_ply(const std::string& path, const radfmt::MeshData& mesh,
+               const std::vector<std::array<Rgb, 4>>& corners, double exposure);
 std::uint8_t to_srgb8(double linear);
 
 } // namespace rad

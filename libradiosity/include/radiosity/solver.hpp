@@ -23,7 +23,7 @@ struct Problem {
 Problem make_problem(const radfmt::MeshData& mesh, const radfmt::FormFactorData& ff);
 
 struct IterationRecord {
-    long iteration = 0; // sweeps for jacobi/gs, shots for pr/apr
+    long iteration = 0;  // sweeps for jacobi/gs, shots for pr/apr
     double residual = 0; // relative change per sweep (jacobi/gs), unshot power fraction (pr/apr)
     radfmt::Rgb power{}; // sum_i B_i A_i of the displayed solution, per channel
     double seconds = 0;
