@@ -224,7 +224,9 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
                     const double w0 = ((bb.x - px) * (c.y - py) - (bb.y - py) * (c.x - px)) / area;
                     const double w1 = ((c.x - px) * (a.y - py) - (c.y - py) * (a.x - px)) / area;
                     const double w2 = 1 - w0 - w1;
-                    if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+                    // A small tolerance: the two triangles beside a shared edge compute it in
+                    // opposite orders, and rounding must not leave a crack between them.
+                    if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;
                     const double inv_z = w0 * a.inv_z + w1 * bb.inv_z + w2 * c.inv_z;
                     const std::size_t at = static_cast<std::size_t>(y) * W + x;
                     if (inv_z <= depth[at]) continue;
