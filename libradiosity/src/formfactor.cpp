@@ -48,7 +48,6 @@ void gauss_legendre(int m, std::vector<double>& nodes, std::vector<double>& weig
                 p0 = p1;
                 p1 = p2;
             }
-            if (m == 1) p1 = x, p0 = 1;
             dp = m * (x * p1 - p0) / (x * x - 1);
             const double dx = p1 / dp;
             x -= dx;
@@ -107,13 +106,27 @@ std::vector<Sample> gauss_samples(const PatchGeometry& g, double area,
     return out;
 }
 
+// The fan triangle (of a convex polygon) that u in [0,1) falls in by area; `remainder`, when
+// asked for, is u rescaled to [0,1) within that triangle, so one number can serve twice.
+std::size_t pick_fan_triangle(std::span<const double> fan_cdf, double u,
+                              double* remainder = nullptr) {
+    std::size_t tri = 0;
+    double lo = 0;
+    while (tri + 1 < fan_cdf.size() && u > fan_cdf[tri]) lo = fan_cdf[tri++];
+    if (remainder) *remainder = (u - lo) / std::max(1e-300, fan_cdf[tri] - lo);
+    return tri;
+}
+
+// An area-uniform point of fan triangle `tri` (vertices 0, tri+1, tri+2) for u, v in [0,1).
+Vec3 fan_triangle_point(std::span<const Vec3> poly, std::size_t tri, double u, double v) {
+    const double r = std::sqrt(u);
+    return poly[0] * (1 - r) + poly[tri + 1] * (r * (1 - v)) + poly[tri + 2] * (r * v);
+}
+
 // An area-uniform point on a convex polygon (fan of triangles).
 Vec3 uniform_point(std::span<const Vec3> poly, std::span<const double> fan_cdf, double u0,
                    double u1, double u2) {
-    std::size_t tri = 0;
-    while (tri + 1 < fan_cdf.size() && u0 > fan_cdf[tri]) ++tri;
-    const double r = std::sqrt(u1);
-    return poly[0] * (1 - r) + poly[tri + 1] * (r * (1 - u2)) + poly[tri + 2] * (r * u2);
+    return fan_triangle_point(poly, pick_fan_triangle(fan_cdf, u0), u1, u2);
 }
 
 std::vector<double> fan_cdf(std::span<const Vec3> poly) {
@@ -293,13 +306,9 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
                 const double u2 = wrap(radical_inverse(r + 1, 3) + rot[2]);
                 const double u3 = wrap(radical_inverse(r + 1, 5) + rot[3]);
                 // Choose a fan triangle with u0, then reuse u0's remainder: stays stratified.
-                std::size_t tri = 0;
-                double lo = 0;
-                while (tri + 1 < cdf.size() && u0 > cdf[tri]) lo = cdf[tri++];
-                const double within = (u0 - lo) / std::max(1e-300, cdf[tri] - lo);
-                const double rr = std::sqrt(within);
-                const Vec3 origin = poly[0] * (1 - rr) + poly[tri + 1] * (rr * (1 - u1)) +
-                                    poly[tri + 2] * (rr * u1);
+                double within = 0;
+                const std::size_t tri = pick_fan_triangle(cdf, u0, &within);
+                const Vec3 origin = fan_triangle_point(poly, tri, within, u1);
                 // Cosine-weighted direction: Malley's method.
                 const double radius = std::sqrt(u2), phi = 2 * kPi * u3;
                 const Vec3 dir = tu * (radius * std::cos(phi)) + tv * (radius * std::sin(phi)) +
