@@ -14,14 +14,9 @@ void parse_limits(const std::vector<std::string>& specs, const char* option, dou
         const auto eq = spec.rfind('=');
         const std::string number = eq == std::string::npos ? spec : spec.substr(eq + 1);
         double value = 0;
-        try {
-            std::size_t used = 0;
-            value = std::stod(number, &used);
-            if (used != number.size()) throw std::invalid_argument(number);
-        } catch (...) {
+        if (!rad::parse_number(number, value))
             throw rad::InputError(std::string(option) + ": '" + spec +
                                   "' is not a number or GROUP=number");
-        }
         if (!(value > 0) || !std::isfinite(value))
             throw rad::InputError(std::string(option) + ": '" + spec + "' must be positive");
         if (eq == std::string::npos)

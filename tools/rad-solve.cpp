@@ -29,14 +29,9 @@ Override parse_override(const std::string& spec, const char* option) {
     while (std::getline(parts, item, ',')) {
         if (count == 3)
             throw rad::InputError(std::string(option) + ": '" + spec + "' has more than 3 values");
-        try {
-            std::size_t used = 0;
-            o.value[count] = std::stod(item, &used);
-            if (used != item.size()) throw std::invalid_argument(item);
-        } catch (...) {
+        if (!rad::parse_number(item, o.value[count]))
             throw rad::InputError(std::string(option) + ": '" + item + "' in '" + spec +
                                   "' is not a number");
-        }
         if (!std::isfinite(o.value[count]) || o.value[count] < 0)
             throw rad::InputError(std::string(option) +
                                   ": values must be finite and non-negative in '" + spec + "'");

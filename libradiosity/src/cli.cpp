@@ -7,6 +7,7 @@
 #include <tbb/info.h>
 
 #include <atomic>
+#include <charconv>
 #include <cstdio>
 #include <iostream>
 #include <mutex>
@@ -109,6 +110,21 @@ void Progress::print(std::uint64_t done, bool final) {
                  static_cast<unsigned long long>(done), static_cast<unsigned long long>(total_),
                  rate, eta, final ? "\n" : "   ");
     std::fflush(stderr);
+}
+
+bool parse_number(const std::string& text, double& value) {
+    const char* begin = text.data();
+    const char* end = begin + text.size();
+    auto [ptr, ec] = std::from_chars(begin, end, value);
+    if (ec == std::errc() && ptr == end) return true;
+    // from_chars rejects some spellings stod takes ("nan", "inf", leading space, hex).
+    try {
+        std::size_t used = 0;
+        value = std::stod(text, &used);
+        return used == text.size();
+    } catch (...) {
+        return false;
+    }
 }
 
 std::uint64_t physical_memory_bytes() {

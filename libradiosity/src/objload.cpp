@@ -25,21 +25,6 @@ std::string where(const fs::path& path, int line) {
     return path.string() + ":" + std::to_string(line);
 }
 
-bool parse_double(const std::string& token, double& value) {
-    const char* begin = token.data();
-    const char* end = begin + token.size();
-    auto [ptr, ec] = std::from_chars(begin, end, value);
-    if (ec == std::errc() && ptr == end) return true;
-    // from_chars rejects "nan"/"inf" spellings in some cases; parse them to report them.
-    try {
-        std::size_t used = 0;
-        value = std::stod(token, &used);
-        return used == token.size();
-    } catch (...) {
-        return false;
-    }
-}
-
 // Checks what tinyobjloader would accept silently or report without a line number.
 LintResult lint_obj(const fs::path& path) {
     std::ifstream in(path);
@@ -58,7 +43,7 @@ LintResult lint_obj(const fs::path& path) {
             double xyz[3];
             for (int k = 0; k < 3; ++k) {
                 std::string token;
-                if (!(words >> token) || !parse_double(token, xyz[k]))
+                if (!(words >> token) || !parse_number(token, xyz[k]))
                     throw InputError(where(path, number) + ": vertex needs three numbers");
                 if (!std::isfinite(xyz[k]))
                     throw InputError(where(path, number) + ": vertex coordinate '" + token +

@@ -31,13 +31,8 @@ View parse_view(const std::string& text, const std::string& source, View view) {
         std::string token;
         double value = 0;
         if (!(in >> token)) throw InputError(source + ": " + option + " needs a number");
-        try {
-            std::size_t used = 0;
-            value = std::stod(token, &used);
-            if (used != token.size()) throw std::invalid_argument(token);
-        } catch (...) {
+        if (!parse_number(token, value))
             throw InputError(source + ": " + option + ": '" + token + "' is not a number");
-        }
         if (!std::isfinite(value)) throw InputError(source + ": " + option + " must be finite");
         return value;
     };

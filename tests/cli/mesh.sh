@@ -26,5 +26,7 @@ err=$("$BIN/rad-mesh" degen.obj -o out.mesh 2>&1) || fail "degenerate face shoul
 grep -q "dropped 1 degenerate" <<<"$err" || fail "degenerate warning: $err"
 expect_error "no group 'nothere'" out2.mesh "$BIN/rad-mesh" degen.obj -o out2.mesh --max-edge nothere=0.1
 expect_error "does not exist" "" "$BIN/rad-mesh" degen.obj -o nofolder/out.mesh
+expect_error "'floor=abc' is not a number or GROUP=number" out3.mesh "$BIN/rad-mesh" degen.obj -o out3.mesh --max-edge floor=abc
+expect_error "'-1' must be positive" out3.mesh "$BIN/rad-mesh" degen.obj -o out3.mesh --max-edge=-1
 "$BIN/rad-mesh" --help | grep -q -- "--max-edge" || fail "help"
 finish

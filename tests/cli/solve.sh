@@ -35,4 +35,5 @@ err=$("$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/k.rad" --emission ligh
 grep -q "no patch emits light" <<<"$err" || fail "black warning"
 expect_error "no material 'lamp'" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission lamp=1,1,1
 expect_error "is not MATERIAL=r,g,b" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission light
+expect_error "'x' in 'light=1,x,3' is not a number" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission light=1,x,3
 finish

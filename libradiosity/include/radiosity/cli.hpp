@@ -64,6 +64,10 @@ inline int parse_arguments(CLI::App& app, int argc, char** argv) {
     return -1;
 }
 
+// Parses the whole of `text` as a number (nan and inf spellings included, so callers can
+// report them); false when it is not one.
+bool parse_number(const std::string& text, double& value);
+
 std::uint64_t physical_memory_bytes();
 std::string human_bytes(double bytes);
 
