@@ -60,6 +60,7 @@ TEST_CASE("mesh files round-trip with header and provenance") {
     CHECK(h.provenance == std::vector<std::string>{"rad-mesh a.obj -o a.mesh"});
     CHECK(h.get("patches", "") == "2");
     CHECK(h.get("geometry_hash", "") == mesh.geometry_hash());
+    CHECK(h.file_hash == radfmt::hash_file(path)); // hashed while read, same as a re-read
     // The body starts 64-byte aligned.
     const auto text = read_all(path);
     const auto body_at = text.size() - h.body_size;

@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
         header.tool = rad::tool_version("rad-ff");
         header.command = rad::command_line(argc, argv);
         header.provenance = mesh_header.chain();
-        header.inputs.push_back({input, radfmt::hash_file(input)});
+        header.inputs.push_back({input, mesh_header.file_hash});
         header.set("method", method);
         if (options.method == rad::FormFactorMethod::Hemisphere) {
             header.set("rays", std::to_string(options.rays));

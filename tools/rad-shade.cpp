@@ -93,9 +93,8 @@ int main(int argc, char** argv) {
             std::to_string(chain.size() + 1) + ". " + rad::command_line(argc, argv) + "\n";
         attributes["radiosity:provenance"] = provenance;
         attributes["radiosity:tool"] = rad::tool_version("rad-shade");
-        attributes["radiosity:mesh"] = mesh_path + " " + radfmt::hash_file(mesh_path);
-        if (!albedo)
-            attributes["radiosity:radiosity"] = rad_path + " " + radfmt::hash_file(rad_path);
+        attributes["radiosity:mesh"] = mesh_path + " " + mesh_header.file_hash;
+        if (!albedo) attributes["radiosity:radiosity"] = rad_path + " " + rad_header.file_hash;
         attributes["radiosity:units"] = albedo ? "reflectance" : "radiosity W/m^2 (linear)";
         rad::write_exr(output, image, attributes);
         const double scale = exposure > 0 ? exposure : rad::auto_exposure(image);

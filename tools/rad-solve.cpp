@@ -218,8 +218,8 @@ int main(int argc, char** argv) {
         header.tool = rad::tool_version("rad-solve");
         header.command = rad::command_line(argc, argv);
         header.provenance = ff_header.chain();
-        header.inputs.push_back({mesh_path, radfmt::hash_file(mesh_path)});
-        header.inputs.push_back({ff_path, radfmt::hash_file(ff_path)});
+        header.inputs.push_back({mesh_path, mesh_header.file_hash});
+        header.inputs.push_back({ff_path, ff_header.file_hash});
         header.set("method", method);
         header.set("mesh_geometry_hash", mesh_geometry);
         header.set("form_factor_hash", ff_header.body_hash);

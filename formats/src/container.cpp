@@ -78,6 +78,8 @@ std::vector<std::string> Header::chain() const {
     return out;
 }
 
+using HashState = std::unique_ptr<XXH64_state_t, decltype(&XXH64_freeState)>;
+
 std::string hash_hex(std::uint64_t hash) {
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
@@ -91,15 +93,14 @@ std::uint64_t hash_bytes(const void* data, std::size_t size) {
 std::string hash_file(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw FormatError(path.string() + ": cannot open for reading");
-    XXH64_state_t* state = XXH64_createState();
-    XXH64_reset(state, 0);
+    const HashState state(XXH64_createState(), XXH64_freeState);
+    XXH64_reset(state.get(), 0);
     std::vector<char> buffer(1 << 20);
     while (in) {
         in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-        XXH64_update(state, buffer.data(), static_cast<std::size_t>(in.gcount()));
+        XXH64_update(state.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
     }
-    const auto hash = XXH64_digest(state);
-    XXH64_freeState(state);
+    const auto hash = XXH64_digest(state.get());
     return "xxh64:" + hash_hex(hash);
 }
 
@@ -420,8 +421,21 @@ Header read_header(const fs::path& path) {
 LoadedFile read_file(const fs::path& path, const Kind* expected) {
     std::ifstream in;
     const auto size = open_sized(in, path);
-    auto parsed = parse_header(read_prefix(in, size), path.string(), size);
+    const auto prefix = read_prefix(in, size);
+    auto parsed = parse_header(prefix, path.string(), size);
     check_kind(parsed.header, path.string(), expected);
+    // Hash the whole file while it is read: header and padding, then the body.
+    const HashState state(XXH64_createState(), XXH64_freeState);
+    XXH64_reset(state.get(), 0);
+    const std::size_t head = std::min<std::size_t>(parsed.body_offset, prefix.size());
+    XXH64_update(state.get(), prefix.data(), head);
+    if (parsed.body_offset > head) { // a header at the 1 MiB limit: read the rest of its padding
+        std::string gap(parsed.body_offset - head, '\0');
+        in.clear();
+        in.seekg(static_cast<std::streamoff>(head));
+        in.read(gap.data(), static_cast<std::streamsize>(gap.size()));
+        XXH64_update(state.get(), gap.data(), gap.size());
+    }
     LoadedFile file;
     file.header = std::move(parsed.header);
     file.body.resize(file.header.body_size);
@@ -431,6 +445,8 @@ LoadedFile read_file(const fs::path& path, const Kind* expected) {
             static_cast<std::streamsize>(file.body.size()));
     if (static_cast<std::uint64_t>(in.gcount()) != file.body.size())
         throw FormatError(path.string() + ": truncated body");
+    XXH64_update(state.get(), file.body.data(), file.body.size());
+    file.header.file_hash = "xxh64:" + hash_hex(XXH64_digest(state.get()));
     const auto hash = "xxh64:" + hash_hex(hash_bytes(file.body.data(), file.body.size()));
     if (hash != file.header.body_hash)
         throw FormatError(path.string() +

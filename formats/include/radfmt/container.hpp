@@ -46,6 +46,9 @@ struct Header {
     std::vector<std::pair<std::string, std::string>> fields; // kind-specific facts
     std::uint64_t body_size = 0;
     std::string body_hash;
+    // Set by read_file (not stored): xxh64 of the whole file as read, for the input records
+    // of files derived from it, so no tool reads a large input twice to hash it.
+    std::string file_hash;
 
     void set(const std::string& key, const std::string& value);
     // Returns the field or throws FormatError naming `path` when it is missing.
