@@ -4,6 +4,7 @@
 #include "radiosity/rays.hpp"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -271,6 +272,23 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
     gauss_legendre(2 * m, gl_close_nodes, gl_close_weights);
     gauss_legendre(m_far, gl_far_nodes, gl_far_weights);
 
+    // Hemisphere: the low-discrepancy points are the same for every patch (only their
+    // rotation differs), so they are computed once rather than per ray.
+    std::vector<std::array<double, 4>> qmc;
+    if (options.method == FormFactorMethod::Hemisphere) {
+        const int k_rays = std::max(1, options.rays);
+        qmc.resize(k_rays);
+        for (int r = 0; r < k_rays; ++r)
+            qmc[r] = {(r + 0.5) / k_rays, radical_inverse(r, 2), radical_inverse(r + 1, 3),
+                      radical_inverse(r + 1, 5)};
+    }
+
+    struct HitTally {
+        std::vector<std::uint32_t> counts; // hits per patch, all zero between rows
+        std::vector<std::uint32_t> touched;
+    };
+    tbb::enumerable_thread_specific<HitTally> hit_tally;
+
     std::vector<std::vector<std::pair<std::uint32_t, float>>> rows(n);
     std::atomic<std::uint64_t> rays_cast{0};
     Progress progress("rad-ff " + method_name(options.method), n, options.quiet);
@@ -298,13 +316,17 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
             // origin, Halton bases 3 and 5 for the direction), rotated per patch by seeded
             // offsets (Cranley-Patterson), so the estimate is unbiased and stratified jointly.
             const double rot[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-            std::vector<std::uint32_t> hits;
-            hits.reserve(k_rays);
+            // Hits are tallied in a per-thread counter over all patches; only the distinct
+            // patches hit are sorted (fewer than the rays), and the counter is reset after.
+            auto& tally = hit_tally.local();
+            if (tally.counts.size() != n) tally.counts.assign(n, 0);
+            auto& hit_patches = tally.touched;
+            hit_patches.clear();
             for (int r = 0; r < k_rays; ++r) {
-                const double u0 = wrap((r + 0.5) / k_rays + rot[0]);
-                const double u1 = wrap(radical_inverse(r, 2) + rot[1]);
-                const double u2 = wrap(radical_inverse(r + 1, 3) + rot[2]);
-                const double u3 = wrap(radical_inverse(r + 1, 5) + rot[3]);
+                const double u0 = wrap(qmc[r][0] + rot[0]);
+                const double u1 = wrap(qmc[r][1] + rot[1]);
+                const double u2 = wrap(qmc[r][2] + rot[2]);
+                const double u3 = wrap(qmc[r][3] + rot[3]);
                 // Choose a fan triangle with u0, then reuse u0's remainder: stays stratified.
                 double within = 0;
                 const std::size_t tri = pick_fan_triangle(cdf, u0, &within);
@@ -316,15 +338,15 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
                 bool front = false;
                 const auto hit = scene.first_hit(origin, dir, front);
                 ++local_rays;
-                if (hit >= 0 && front && static_cast<std::size_t>(hit) != i)
-                    hits.push_back(static_cast<std::uint32_t>(hit));
+                if (hit >= 0 && front && static_cast<std::size_t>(hit) != i &&
+                    tally.counts[hit]++ == 0)
+                    hit_patches.push_back(static_cast<std::uint32_t>(hit));
             }
-            std::sort(hits.begin(), hits.end());
-            for (std::size_t a = 0; a < hits.size();) {
-                std::size_t b = a;
-                while (b < hits.size() && hits[b] == hits[a]) ++b;
-                row.emplace_back(hits[a], static_cast<float>(double(b - a) / k_rays));
-                a = b;
+            std::sort(hit_patches.begin(), hit_patches.end());
+            row.reserve(hit_patches.size());
+            for (const auto j : hit_patches) {
+                row.emplace_back(j, static_cast<float>(double(tally.counts[j]) / k_rays));
+                tally.counts[j] = 0;
             }
         } else {
             const auto samples_i = options.method == FormFactorMethod::Analytic
