@@ -106,12 +106,12 @@ int main(int argc, char** argv) {
         radfmt::write_form_factors(output, header, ff);
         if (!options.quiet) {
             std::fprintf(stderr,
-                         "rad-ff: %llu patches, %llu non-zeros, %llu rays in %.3f s (%.3g rays/s, "
-                         "%d threads), row sums mean %.5f max %.5f\n",
+                         "rad-ff: %llu patches, %llu non-zeros, %llu rays in %.3f s (%.3g rays/s "
+                         "while tracing, %d threads), row sums mean %.5f max %.5f\n",
                          static_cast<unsigned long long>(ff.patch_count),
                          static_cast<unsigned long long>(ff.nonzeros()),
                          static_cast<unsigned long long>(stats.rays_cast), stats.seconds,
-                         stats.seconds > 0 ? stats.rays_cast / stats.seconds : 0.0,
+                         stats.trace_seconds > 0 ? stats.rays_cast / stats.trace_seconds : 0.0,
                          thread_limit.threads(), stats.mean_row_sum, stats.max_row_sum);
         }
         return 0;

@@ -436,10 +436,13 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
         rays_cast += local_rays;
         progress.advance(1);
     };
+    const auto trace_start = std::chrono::steady_clock::now();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i != range.end(); ++i) compute_row(i);
                       });
+    const double trace_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - trace_start).count();
     progress.finish();
 
     radfmt::FormFactorData ff;
@@ -464,6 +467,7 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
         stats->rays_cast = rays_cast;
         stats->seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats->trace_seconds = trace_seconds;
         stats->mean_row_sum = n ? sum_rows / n : 0;
         stats->max_row_sum = max_row;
     }

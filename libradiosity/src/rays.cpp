@@ -11,7 +11,6 @@ namespace rad {
 struct RayScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
-    std::vector<std::uint32_t> triangle_patch; // Embree primitive -> patch
     std::vector<Vec3> normals;
 };
 
@@ -25,14 +24,15 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
     rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
 
-    std::size_t triangles = 0;
-    for (const auto& p : mesh.patches) triangles += p.corner_count() - 2;
-    RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // One Embree quad per patch, so a hit's primitive ID is the patch index. Triangles are
+    // quads whose last vertex repeats the third (Embree's own encoding).
+    const std::size_t count = mesh.patches.size();
+    RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
     auto* vertices = static_cast<float*>(
         rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                 3 * sizeof(float), mesh.vertices.size()));
     auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), count));
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
         for (int k = 0; k < 3; ++k) {
@@ -40,17 +40,10 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
             lo[k] = std::min(lo[k], mesh.vertices[v][k]);
             hi[k] = std::max(hi[k], mesh.vertices[v][k]);
         }
-    impl_->triangle_patch.reserve(triangles);
-    std::size_t t = 0;
-    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
-        const auto& c = mesh.patches[i].corners;
-        for (int k = 0; k + 2 < mesh.patches[i].corner_count(); ++k, ++t) {
-            indices[3 * t] = c[0];
-            indices[3 * t + 1] = c[k + 1];
-            indices[3 * t + 2] = c[k + 2];
-            impl_->triangle_patch.push_back(static_cast<std::uint32_t>(i));
-        }
-        impl_->normals.push_back(mesh.patches[i].normal);
+    for (std::size_t i = 0; i < count; ++i) {
+        const auto& p = mesh.patches[i];
+        for (int k = 0; k < 4; ++k) indices[4 * i + k] = p.corners[k < p.corner_count() ? k : 2];
+        impl_->normals.push_back(p.normal);
     }
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(impl_->scene, geometry);
@@ -100,7 +93,7 @@ std::int64_t RayScene::first_hit(const Vec3& origin, const Vec3& direction, bool
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
-    const auto patch = impl_->triangle_patch[rh.hit.primID];
+    const auto patch = rh.hit.primID;
     front = dot(direction, impl_->normals[patch]) < 0;
     return patch;
 }

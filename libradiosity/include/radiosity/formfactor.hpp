@@ -26,7 +26,8 @@ struct FormFactorOptions {
 
 struct FormFactorStats {
     std::uint64_t rays_cast = 0;
-    double seconds = 0;
+    double seconds = 0;       // all of compute_form_factors
+    double trace_seconds = 0; // the parallel row phase alone (rays and integrals)
     double mean_row_sum = 0;
     double max_row_sum = 0;
 };
