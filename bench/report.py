@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""Turns bench/run's measurements (rows.tsv) into bench/results.md, with machine facts."""
+import datetime
+import os
+import platform
+import subprocess
+import sys
+
+
+def sh(cmd):
+    try:
+        return subprocess.check_output(cmd, shell=True, text=True, stderr=subprocess.DEVNULL).strip()
+    except subprocess.CalledProcessError:
+        return "?"
+
+
+timed, extra = {}, {}
+for line in open(sys.argv[1]):
+    parts = line.rstrip("\n").split("\t")
+    if parts[0] == "extra":
+        extra[parts[1]] = parts[2]
+    else:
+        timed[parts[0]] = (float(parts[1]), int(parts[2]) * 1024, int(parts[3]))
+
+sizes = [n for n in ("1000", "10000", "100000", "1000000") if f"mesh {n}" in timed]
+gib = 1024 ** 3
+bandwidth = float(extra["bandwidth"])
+
+
+def t(label):
+    return timed[label][0] if label in timed else None
+
+
+def mem(label):
+    return timed[label][1] if label in timed else None
+
+
+def fmt_t(x):
+    return "-" if x is None else (f"{x:.2f} s" if x >= 0.1 else f"{x * 1000:.0f} ms")
+
+
+def fmt_m(x):
+    return "-" if x is None else f"{x / 2**20:.0f} MiB"
+
+
+out = []
+out.append("# Benchmark results\n")
+out.append(f"Written by `bench/run` on {datetime.date.today()}. Times are medians of repeated runs "
+           "(the runs column), wall clock; memory is peak resident set size (`/usr/bin/time`).\n")
+out.append("## Machine\n")
+cpu = sh("lscpu | sed -n 's/^Model name: *//p'")
+memory = sh("free -g | awk '/Mem:/ {print $2}'")
+compiler = sh("c++ --version | head -1")
+embree = sh("dpkg-query -W -f='${Version}' libembree-dev")
+out.append(f"- CPU: {cpu}, {os.cpu_count()} cores")
+out.append(f"- Memory: {memory} GiB; kernel {platform.release()}")
+out.append(f"- Compiler: {compiler}; Embree {embree}")
+out.append(f"- Measured single-thread read bandwidth (`bench-membw`): {bandwidth / 1e9:.1f} GB/s\n")
+
+out.append("## Scaling: the Cornell box meshed finer (hemisphere form factors, 1000 rays per patch)\n")
+out.append("| target N | patches | rad-mesh | rad-ff hemisphere | rad-ff peak | rays/s | raw Embree rays/s | ratio | "
+           "rad-solve gs (10 sweeps) | solve peak | GS sweep | sweep GB/s | / bandwidth | rad-solve pr (1 sweep) | rad-shade 512^2 |")
+out.append("|" + "---|" * 15)
+ratios, sweep_ratio = {}, {}
+for n in sizes:
+    p = int(extra[f"patches {n}"])
+    nnz = int(extra[f"nonzeros {n}"])
+    rays = float(extra[f"ff rays/s {n}"])
+    raw = float(extra[f"raw rays/s {n}"])
+    sweep = float(extra[f"sweep seconds {n}"])
+    # Streamed per sweep: the matrix (u32 column + f32 value per non-zero, u64 row starts)
+    # and per patch E, rho (read) and B (written); gathered B reads are not counted.
+    streamed = nnz * 8 + (p + 1) * 8 + p * 72
+    gbs = streamed / sweep / 1e9 if sweep > 0 else float("nan")
+    ratios[n] = rays / raw
+    sweep_ratio[n] = gbs * 1e9 / bandwidth
+    out.append(f"| {n} | {p} | {fmt_t(t(f'mesh {n}'))} | {fmt_t(t(f'ff hemisphere {n}'))} | {fmt_m(mem(f'ff hemisphere {n}'))} | "
+               f"{rays:.3g} | {raw:.3g} | {ratios[n]:.2f} | {fmt_t(t(f'solve gs {n}'))} | {fmt_m(mem(f'solve gs {n}'))} | "
+               f"{sweep * 1000:.1f} ms | {gbs:.2f} | {sweep_ratio[n]:.2f} | {fmt_t(t(f'solve pr {n}'))} | {fmt_t(t(f'shade {n}'))} |")
+out.append("")
+out.append("Other methods (O(n^2) pairs):\n")
+out.append("| scene | patches | rad-ff analytic | rad-ff pairwise (1 run) |")
+out.append("|---|---|---|---|")
+if "ff analytic 1000" in timed:
+    out.append(f"| Cornell | {extra['patches 1000']} | {fmt_t(t('ff analytic 1000'))} | {fmt_t(t('ff pairwise 1000'))} |")
+out.append(f"| room2 (the paper's 1500-patch Scene 2) | {extra['patches room2']} | {fmt_t(t('ff analytic room2'))} | "
+           f"{fmt_t(t('ff pairwise room2'))} |")
+out.append("")
+out.append(f"Whole Cornell chain (rad-mesh, rad-ff analytic, rad-solve gs, rad-shade 512^2) at "
+           f"{extra['patches chain']} patches: {fmt_t(t('chain 175'))} end to end (median of 5).\n")
+
+out.append("## Targets\n")
+out.append("| target | measured | verdict |")
+out.append("|---|---|---|")
+
+
+def verdict(ok, miss):
+    return "met" if ok else f"missed: {miss}"
+
+
+big = "100000" if "100000" in sizes else sizes[-1]
+r = ratios[big]
+out.append(f"| rad-ff hemisphere rays/s >= 0.7 x raw Embree (N={big}) | {r:.2f} x | {verdict(r >= 0.7, f'{0.7 / r:.2f}x short')} |")
+tb, mb = t(f"ff hemisphere {big}"), mem(f"ff hemisphere {big}")
+out.append(f"| N=1e5, 1000 rays: <= 60 s | {fmt_t(tb)} | {verdict(tb <= 60, f'{tb / 60:.2f}x over')} |")
+out.append(f"| N=1e5, 1000 rays: <= 4 GiB peak | {fmt_m(mb)} | {verdict(mb <= 4 * gib, f'{mb / (4 * gib):.2f}x over')} |")
+for m in ("analytic", "pairwise"):
+    x = t(f"ff {m} room2")
+    out.append(f"| rad-ff {m} on the 1500-patch scene <= 5 s | {fmt_t(x)} | {verdict(x <= 5, f'{x / 5:.1f}x over')} |")
+s = sweep_ratio[big]
+out.append(f"| GS sweep at N=1e5 >= 0.5 x bandwidth | {s:.2f} x | {verdict(s >= 0.5, f'{0.5 / s:.2f}x short')} |")
+c = t("chain 175")
+out.append(f"| Cornell chain at ~175 patches <= 0.5 s | {fmt_t(c)} | {verdict(c <= 0.5, f'{c / 0.5:.2f}x over')} |")
+out.append("")
+notes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "notes.md")
+if os.path.exists(notes):
+    out.append(open(notes).read())
+print("\n".join(out))
