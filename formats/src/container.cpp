@@ -106,22 +106,47 @@ std::string hash_file(const fs::path& path) {
 
 // ---- body encoding ----
 
+void BodyWriter::add(const std::byte* data, std::size_t size, bool copy) {
+    if (size == 0) return;
+    if (copy) {
+        pieces_.push_back({nullptr, owned_.size(), size});
+        owned_.insert(owned_.end(), data, data + size);
+    } else {
+        pieces_.push_back({data, 0, size});
+    }
+    size_ += size;
+}
+
 void BodyWriter::u64(std::uint64_t value) {
     align();
     std::byte raw[8];
     for (int i = 0; i < 8; ++i) raw[i] = std::byte((value >> (8 * i)) & 0xff);
-    bytes_.insert(bytes_.end(), raw, raw + 8);
+    add(raw, 8, true);
 }
 
 void BodyWriter::string(std::string_view text) {
     u64(text.size());
-    const auto* bytes = reinterpret_cast<const std::byte*>(text.data());
-    bytes_.insert(bytes_.end(), bytes, bytes + text.size());
+    add(reinterpret_cast<const std::byte*>(text.data()), text.size(), true);
     align();
 }
 
 void BodyWriter::align() {
-    while (bytes_.size() % 8) bytes_.push_back(std::byte{0});
+    static constexpr std::byte zeros[8] = {};
+    if (size_ % 8) add(zeros, 8 - size_ % 8, true);
+}
+
+void BodyWriter::for_each_piece(
+    const std::function<void(const std::byte*, std::size_t)>& sink) const {
+    for (const auto& piece : pieces_)
+        sink(piece.external ? piece.external : owned_.data() + piece.offset, piece.size);
+}
+
+std::uint64_t BodyWriter::hash() const {
+    const HashState state(XXH64_createState(), XXH64_freeState);
+    XXH64_reset(state.get(), 0);
+    for_each_piece(
+        [&](const std::byte* data, std::size_t size) { XXH64_update(state.get(), data, size); });
+    return XXH64_digest(state.get());
 }
 
 void BodyReader::fail(const std::string& message) const {
@@ -269,17 +294,19 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
     g_temp_active = false;
 }
 
-void write_file(const fs::path& path, Header header, const std::vector<std::byte>& body) {
+void write_file(const fs::path& path, Header header, const BodyWriter& body) {
     header.version = header.version ? header.version : kind_version(header.kind);
     header.body_size = body.size();
-    header.body_hash = "xxh64:" + hash_hex(hash_bytes(body.data(), body.size()));
+    header.body_hash = "xxh64:" + hash_hex(body.hash());
     const auto head = serialise_header(header);
     write_atomically(path, [&](const fs::path& temp) {
         std::FILE* f = std::fopen(temp.c_str(), "wb");
         if (!f)
             throw FormatError(path.string() + ": cannot open for writing: " + std::strerror(errno));
         bool ok = std::fwrite(head.data(), 1, head.size(), f) == head.size();
-        ok = ok && (body.empty() || std::fwrite(body.data(), 1, body.size(), f) == body.size());
+        body.for_each_piece([&](const std::byte* data, std::size_t size) {
+            ok = ok && std::fwrite(data, 1, size, f) == size;
+        });
         ok = ok && std::fflush(f) == 0 && ::fsync(fileno(f)) == 0;
         ok = (std::fclose(f) == 0) && ok;
         if (!ok) throw FormatError(path.string() + ": write failed: " + std::strerror(errno));

@@ -19,7 +19,7 @@ std::string MeshData::geometry_hash() const {
     w.array(vertices);
     w.u64(patches.size());
     for (const auto& p : patches) w.array(std::span<const std::uint32_t>(p.corners));
-    return "xxh64:" + hash_hex(hash_bytes(w.bytes().data(), w.bytes().size()));
+    return "xxh64:" + hash_hex(w.hash());
 }
 
 static std::string number(double value) {
@@ -71,7 +71,7 @@ void write_mesh(const fs::path& path, Header header, const MeshData& mesh) {
         w.array(std::span<const double>(m.reflectance));
         w.array(std::span<const double>(m.emission));
     }
-    write_file(path, std::move(header), w.bytes());
+    write_file(path, std::move(header), w);
 }
 
 MeshData read_mesh(const fs::path& path, Header* header_out) {
@@ -138,7 +138,7 @@ void write_form_factors(const fs::path& path, Header header, const FormFactorDat
     w.array(ff.row_start);
     w.array(ff.columns);
     w.array(ff.values);
-    write_file(path, std::move(header), w.bytes());
+    write_file(path, std::move(header), w);
 }
 
 FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
@@ -172,7 +172,7 @@ void write_radiosity(const fs::path& path, Header header, const RadiosityData& r
     BodyWriter w;
     w.u64(rad.radiosity.size());
     w.array(rad.radiosity);
-    write_file(path, std::move(header), w.bytes());
+    write_file(path, std::move(header), w);
 }
 
 RadiosityData read_radiosity(const fs::path& path, Header* header_out) {

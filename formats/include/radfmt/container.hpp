@@ -63,7 +63,8 @@ std::uint64_t hash_bytes(const void* data, std::size_t size);
 // xxh64 of a whole file's bytes, as "xxh64:<hex>"; throws FormatError if unreadable.
 std::string hash_file(const std::filesystem::path& path);
 
-// Appends values to a body, keeping every array aligned to 8 bytes.
+// Lays out a body, keeping every value and array aligned to 8 bytes. Arrays are referenced,
+// not copied (a form-factor body can be gigabytes): they must outlive the writer's use.
 class BodyWriter {
   public:
     void u64(std::uint64_t value);
@@ -71,18 +72,27 @@ class BodyWriter {
     template <class T> void array(std::span<const T> values) {
         static_assert(std::is_trivially_copyable_v<T>);
         align();
-        const auto* bytes = reinterpret_cast<const std::byte*>(values.data());
-        bytes_.insert(bytes_.end(), bytes, bytes + values.size_bytes());
+        add(reinterpret_cast<const std::byte*>(values.data()), values.size_bytes(), false);
         align();
     }
     template <class T> void array(const std::vector<T>& values) {
         array(std::span<const T>(values.data(), values.size()));
     }
-    const std::vector<std::byte>& bytes() const { return bytes_; }
+    std::uint64_t size() const { return size_; }
+    // Hands the body's bytes to `sink` piece by piece, in order.
+    void for_each_piece(const std::function<void(const std::byte*, std::size_t)>& sink) const;
+    std::uint64_t hash() const; // xxh64 of the body
 
   private:
     void align();
-    std::vector<std::byte> bytes_;
+    void add(const std::byte* data, std::size_t size, bool copy);
+    struct Piece {
+        const std::byte* external; // nullptr: the bytes are owned_[offset, offset + size)
+        std::size_t offset, size;
+    };
+    std::vector<Piece> pieces_;
+    std::vector<std::byte> owned_; // scalars, strings and padding
+    std::uint64_t size_ = 0;
 };
 
 // Reads a body with bounds checks; every failure names the file.
@@ -122,8 +132,7 @@ struct LoadedFile {
 
 // Serialises header and body to `path` atomically: a temporary file in the same folder is
 // written, flushed and renamed into place, so no reader ever sees a half-written file.
-void write_file(const std::filesystem::path& path, Header header,
-                const std::vector<std::byte>& body);
+void write_file(const std::filesystem::path& path, Header header, const BodyWriter& body);
 
 // Reads and validates magic, versions, header and body checksums, and size. When
 // `expected` is given, a file of another kind is refused.
