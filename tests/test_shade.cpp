@@ -28,7 +28,7 @@ float pixel(const rad::Image& image, int x, int y, int c = 0) {
 }
 
 rad::View straight_view() {
-    return rad::parse_view("-vp 0 0 0 -vd 0 0 -1 -vu 0 1 0 -vh 90 -vv 90", "test");
+    return rad::parse_view("-vp 0 0 0 -vd 0 0 -1 -vu 0 1 0 -vh 90 -vv 90", {"test"});
 }
 
 } // namespace
@@ -173,9 +173,9 @@ TEST_CASE("EXR, PNG and PLY outputs read back with the expected values") {
 }
 
 TEST_CASE("bad views are refused") {
-    CHECK_THROWS_WITH(rad::parse_view("-vd 0 0 0", "v"), Catch::Contains("zero"));
-    CHECK_THROWS_WITH(rad::parse_view("-vd 0 1 0 -vu 0 2 0", "v"), Catch::Contains("parallel"));
-    CHECK_THROWS_WITH(rad::parse_view("-vh 180", "v"), Catch::Contains("between 0 and 180"));
-    CHECK_THROWS_WITH(rad::parse_view("-vp 1 2", "v"), Catch::Contains("needs a number"));
-    CHECK_THROWS_WITH(rad::parse_view("-vz 1", "v"), Catch::Contains("unknown view option"));
+    CHECK_THROWS_WITH(rad::parse_view("-vd 0 0 0", {"v"}), Catch::Contains("zero"));
+    CHECK_THROWS_WITH(rad::parse_view("-vd 0 1 0 -vu 0 2 0", {"v"}), Catch::Contains("parallel"));
+    CHECK_THROWS_WITH(rad::parse_view("-vh 180", {"v"}), Catch::Contains("between 0 and 180"));
+    CHECK_THROWS_WITH(rad::parse_view("-vp 1 2", {"v"}), Catch::Contains("needs a number"));
+    CHECK_THROWS_WITH(rad::parse_view("-vz 1", {"v"}), Catch::Contains("unknown view option"));
 }

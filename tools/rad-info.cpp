@@ -1,7 +1,7 @@
 // rad-info: prints the header, provenance and summary of any file of the chain, or its
 // data as CSV.
 #include "radfmt/kinds.hpp"
-#include "radiosity/cli.hpp"
+#include "tool.hpp"
 
 #include <filesystem>
 #include <iostream>
@@ -13,13 +13,13 @@ int main(int argc, char** argv) {
     std::string path;
     bool csv = false;
     app.add_option("FILE", path, "File to inspect")->required();
-    app.add_flag("--csv", csv,
-                 "Print the data as CSV: mesh: patch,group,material,area,cx,cy,cz,nx,ny,nz,"
-                 "rho_r,rho_g,rho_b,e_r,e_g,e_b; form factors: row,col,f; radiosity: "
-                 "patch,b_r,b_g,b_b");
-    if (int rc = rad::parse_arguments(app, argc, argv); rc >= 0) return rc;
+    std::string csv_help = "Print the data as CSV:";
+    for (const auto& kind : radfmt::kind_table())
+        csv_help += " " + std::string(kind.name) + ": " + std::string(kind.csv_columns) + ";";
+    app.add_flag("--csv", csv, csv_help);
+    if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
-    return rad::run_tool("rad-info", [&] {
+    return rad::tool::run_tool("rad-info", [&] {
         if (csv) {
             std::ios::sync_with_stdio(false);
             radfmt::write_csv(path, std::cout);
@@ -28,29 +28,8 @@ int main(int argc, char** argv) {
         }
         // Read the whole file so checksums and structure are validated, not just the header.
         radfmt::Header h;
-        const auto kind = radfmt::read_header(path).kind;
-        std::string summary;
-        if (kind == radfmt::Kind::Mesh) {
-            const auto mesh = radfmt::read_mesh(path, &h);
-            std::size_t quads = 0;
-            for (const auto& p : mesh.patches) quads += p.corner_count() == 4;
-            summary = std::to_string(mesh.patches.size()) + " patches (" + std::to_string(quads) +
-                      " quads, " + std::to_string(mesh.patches.size() - quads) + " triangles), " +
-                      std::to_string(mesh.vertices.size()) + " vertices";
-        } else if (kind == radfmt::Kind::FormFactors) {
-            const auto ff = radfmt::read_form_factors(path, &h);
-            const double n = static_cast<double>(ff.patch_count);
-            char text[160];
-            std::snprintf(text, sizeof text, "%llu x %llu, %llu non-zeros (%.2f%% dense)",
-                          static_cast<unsigned long long>(ff.patch_count),
-                          static_cast<unsigned long long>(ff.patch_count),
-                          static_cast<unsigned long long>(ff.nonzeros()),
-                          n > 0 ? 100.0 * ff.nonzeros() / (n * n) : 0.0);
-            summary = text;
-        } else {
-            const auto r = radfmt::read_radiosity(path, &h);
-            summary = std::to_string(r.radiosity.size()) + " patches";
-        }
+        const auto& kind = radfmt::kind_info(radfmt::read_header(path).kind);
+        const auto summary = kind.summary(path, h);
         std::cout << "file:      " << path << '\n'
                   << "kind:      " << radfmt::kind_name(h.kind) << " ("
                   << radfmt::kind_description(h.kind) << "), version " << h.version << '\n'

@@ -1,7 +1,14 @@
 // rad-mesh: OBJ+MTL scene -> conforming patch mesh.
+#include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
-#include "radiosity/cli.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
+#include "radiosity/version.hpp"
+#include "tool.hpp"
+
+#include <algorithm>
+#include <cmath>
 
 #include <cstdio>
 #include <iostream>
@@ -17,7 +24,7 @@ void parse_limits(const std::vector<std::string>& specs, const char* option, dou
         if (!rad::parse_number(number, value))
             throw rad::InputError(std::string(option) + ": '" + spec +
                                   "' is not a number or GROUP=number");
-        if (!(value > 0) || !std::isfinite(value))
+        if (!(value > 0))
             throw rad::InputError(std::string(option) + ": '" + spec + "' must be positive");
         if (eq == std::string::npos)
             fallback = value;
@@ -43,11 +50,12 @@ int main(int argc, char** argv) {
     app.add_option("--planarity-tolerance", planarity,
                    "Largest distance of a face vertex from the face's plane, relative to the "
                    "face's size")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1.0));
     app.add_flag("-q,--quiet", quiet, "Print no summary");
-    if (int rc = rad::parse_arguments(app, argc, argv); rc >= 0) return rc;
+    if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
-    return rad::run_tool("rad-mesh", [&] {
+    return rad::tool::run_tool("rad-mesh", [&] {
         rad::SubdivisionOptions options;
         parse_limits(max_edge, "--max-edge", options.max_edge, options.max_edge_by_group);
         parse_limits(max_area, "--max-area", options.max_area, options.max_area_by_group);
@@ -64,12 +72,10 @@ int main(int argc, char** argv) {
             std::cerr << "rad-mesh: warning: " << input << ": dropped " << report.degenerate_dropped
                       << " degenerate (zero-area) face(s)\n";
 
-        radfmt::Header header;
-        header.tool = rad::tool_version("rad-mesh");
-        header.command = rad::command_line(argc, argv);
-        header.inputs.push_back({input, radfmt::hash_file(input)});
-        for (const auto& mtl : scene.material_files)
-            header.inputs.push_back({mtl, radfmt::hash_file(mtl)});
+        std::vector<radfmt::Parent> sources{{input, nullptr}};
+        for (const auto& mtl : scene.material_files) sources.push_back({mtl, nullptr});
+        const auto header = radfmt::derived_header(rad::tool_version("rad-mesh"),
+                                                   radfmt::command_line(argc, argv), sources);
         radfmt::write_mesh(output, header, mesh);
         if (!quiet) {
             const auto topo = rad::analyze_topology(mesh);

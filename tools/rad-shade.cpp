@@ -1,7 +1,11 @@
 // rad-shade: mesh + radiosity + view -> linear OpenEXR image (+ PNG preview, PLY mesh).
+#include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
-#include "radiosity/cli.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/progress.hpp"
 #include "radiosity/shade.hpp"
+#include "radiosity/version.hpp"
+#include "tool.hpp"
 
 #include <cstdio>
 #include <iostream>
@@ -43,16 +47,18 @@ int main(int argc, char** argv) {
     app.add_option("--png", png, "Also write an sRGB tone-mapped PNG preview");
     app.add_option("--ply", ply, "Also write the smoothed mesh with vertex colours as PLY");
     app.add_option("--exposure", exposure, "Linear multiplier for PNG/PLY (default: automatic)");
-    app.add_option("--threads", threads, "Worker threads (0: all cores)")->capture_default_str();
+    app.add_option("--threads", threads, "Worker threads (0: all cores)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, rad::ThreadLimit::max_threads()));
     app.add_flag("-q,--quiet", quiet, "No summary");
-    if (int rc = rad::parse_arguments(app, argc, argv); rc >= 0) return rc;
+    if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
-    return rad::run_tool("rad-shade", [&] {
+    return rad::tool::run_tool("rad-shade", [&] {
         rad::ThreadLimit thread_limit(threads);
         if (view_text.empty() && view_file.empty())
             throw rad::InputError("give a camera with --view or --view-file");
         rad::View view = view_file.empty() ? rad::View{} : rad::read_view_file(view_file);
-        if (!view_text.empty()) view = rad::parse_view(view_text, "--view", view);
+        if (!view_text.empty()) view = rad::parse_view(view_text, rad::FileLoc{"--view"}, view);
 
         radfmt::Header mesh_header, rad_header;
         const auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
@@ -65,16 +71,8 @@ int main(int argc, char** argv) {
         } else {
             if (rad_path.empty()) throw rad::InputError("give a radiosity file (or use --albedo)");
             values = radfmt::read_radiosity(rad_path, &rad_header).radiosity;
-            const auto* recorded = rad_header.find("mesh_geometry_hash");
-            if (!recorded || *recorded != mesh.geometry_hash() ||
-                values.size() != mesh.patches.size())
-                throw rad::InputError(rad_path + " does not belong to " + mesh_path +
-                                      ": it was solved for geometry " +
-                                      (recorded ? *recorded : std::string("(unknown)")) + " with " +
-                                      std::to_string(values.size()) + " patches, the mesh has " +
-                                      mesh.geometry_hash() + " with " +
-                                      std::to_string(mesh.patches.size()) +
-                                      " patches; run rad-ff and rad-solve again");
+            radfmt::require_same_geometry(rad_path, rad_header, values.size(), mesh_path, mesh,
+                                          "run rad-ff and rad-solve on " + mesh_path + " again");
             chain = rad_header.chain();
         }
         const auto mode = flat ? rad::Smoothing::Flat : rad::parse_smoothing(smooth);
@@ -90,7 +88,7 @@ int main(int argc, char** argv) {
         for (std::size_t i = 0; i < chain.size(); ++i)
             provenance += std::to_string(i + 1) + ". " + chain[i] + "\n";
         provenance +=
-            std::to_string(chain.size() + 1) + ". " + rad::command_line(argc, argv) + "\n";
+            std::to_string(chain.size() + 1) + ". " + radfmt::command_line(argc, argv) + "\n";
         attributes["radiosity:provenance"] = provenance;
         attributes["radiosity:tool"] = rad::tool_version("rad-shade");
         attributes["radiosity:mesh"] = mesh_path + " " + mesh_header.file_hash;

@@ -1,4 +1,5 @@
 #include "radfmt/container.hpp"
+#include "radfmt/kinds.hpp"
 
 #include <xxhash.h>
 
@@ -12,44 +13,6 @@
 
 namespace radfmt {
 namespace fs = std::filesystem;
-
-std::string_view kind_name(Kind kind) {
-    switch (kind) {
-    case Kind::Mesh:
-        return "mesh";
-    case Kind::FormFactors:
-        return "formfactors";
-    case Kind::Radiosity:
-        return "radiosity";
-    }
-    return "?";
-}
-
-std::string_view kind_description(Kind kind) {
-    switch (kind) {
-    case Kind::Mesh:
-        return "patch mesh";
-    case Kind::FormFactors:
-        return "form-factor matrix";
-    case Kind::Radiosity:
-        return "radiosity solution";
-    }
-    return "?";
-}
-
-std::uint32_t kind_version(Kind) {
-    return 1;
-}
-
-static bool parse_kind(std::string_view name, Kind& kind) {
-    for (Kind k : {Kind::Mesh, Kind::FormFactors, Kind::Radiosity}) {
-        if (kind_name(k) == name) {
-            kind = k;
-            return true;
-        }
-    }
-    return false;
-}
 
 void Header::set(const std::string& key, const std::string& value) {
     for (auto& [k, v] : fields) {
@@ -274,7 +237,11 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
     if (!fs::is_directory(dir))
         throw FormatError(path.string() + ": cannot write: folder '" + dir.string() +
                           "' does not exist");
-    fs::path temp = dir / ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()));
+    std::string temp_name = "."; // built by appending: GCC 12 warns falsely on "x" + string&&
+    temp_name += target.filename().string();
+    temp_name += ".tmp.";
+    temp_name += std::to_string(::getpid());
+    fs::path temp = dir / temp_name;
     const auto temp_text = temp.string();
     if (temp_text.size() < sizeof g_temp_path) {
         std::memcpy(g_temp_path, temp_text.c_str(), temp_text.size() + 1);
@@ -284,7 +251,7 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
         fill(temp);
         std::error_code ec;
         fs::rename(temp, target, ec);
-        if (ec) throw FormatError(path.string() + ": cannot rename into place: " + ec.message());
+        if (ec) throw WriteError(path.string() + ": cannot rename into place: " + ec.message());
     } catch (...) {
         std::error_code ignored;
         fs::remove(temp, ignored);
@@ -302,14 +269,14 @@ void write_file(const fs::path& path, Header header, const BodyWriter& body) {
     write_atomically(path, [&](const fs::path& temp) {
         std::FILE* f = std::fopen(temp.c_str(), "wb");
         if (!f)
-            throw FormatError(path.string() + ": cannot open for writing: " + std::strerror(errno));
+            throw WriteError(path.string() + ": cannot open for writing: " + std::strerror(errno));
         bool ok = std::fwrite(head.data(), 1, head.size(), f) == head.size();
         body.for_each_piece([&](const std::byte* data, std::size_t size) {
             ok = ok && std::fwrite(data, 1, size, f) == size;
         });
         ok = ok && std::fflush(f) == 0 && ::fsync(fileno(f)) == 0;
         ok = (std::fclose(f) == 0) && ok;
-        if (!ok) throw FormatError(path.string() + ": write failed: " + std::strerror(errno));
+        if (!ok) throw WriteError(path.string() + ": write failed: " + std::strerror(errno));
     });
 }
 
@@ -359,7 +326,7 @@ static ParsedHeader parse_header(std::string_view bytes, const std::string& path
     std::string line;
     std::getline(lines, line);
     const auto container_version = line.substr(kMagic.size());
-    if (container_version != " " + std::to_string(kContainerVersion))
+    if (container_version != (std::string(" ") += std::to_string(kContainerVersion)))
         throw FormatError(path + ": unsupported container version '" + container_version.substr(1) +
                           "' (this build reads version " + std::to_string(kContainerVersion) + ")");
     bool have_kind = false;
@@ -396,7 +363,7 @@ static ParsedHeader parse_header(std::string_view bytes, const std::string& path
         }
     }
     if (!have_kind) throw FormatError(path + ": corrupt header: no kind");
-    if (h.version != kind_version(h.kind))
+    if (h.version > kind_version(h.kind) || h.version < kind_info(h.kind).oldest_version)
         throw FormatError(path + ": " + std::string(kind_name(h.kind)) + " format version " +
                           std::to_string(h.version) +
                           " is not supported (this build reads version " +

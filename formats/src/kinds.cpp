@@ -68,8 +68,8 @@ void write_mesh(const fs::path& path, Header header, const MeshData& mesh) {
     w.u64(mesh.materials.size());
     for (const auto& m : mesh.materials) {
         w.string(m.name);
-        w.array(std::span<const double>(m.reflectance));
-        w.array(std::span<const double>(m.emission));
+        w.array(std::span<const double>(m.reflectance.c));
+        w.array(std::span<const double>(m.emission.c));
     }
     write_file(path, std::move(header), w);
 }
@@ -187,52 +187,123 @@ RadiosityData read_radiosity(const fs::path& path, Header* header_out) {
     return rad;
 }
 
-// ---- CSV ----
+// ---- CSV and summaries, one pair per kind ----
+
+namespace {
+
+void mesh_csv(const fs::path& path, std::ostream& out) {
+    const auto mesh = read_mesh(path);
+    char line[512];
+    out << kind_info(Kind::Mesh).csv_columns << '\n';
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const auto& p = mesh.patches[i];
+        const auto& m = mesh.materials[p.material];
+        std::snprintf(line, sizeof line,
+                      "%zu,%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%."
+                      "10g,%.10g,%.10g\n",
+                      i, mesh.groups[p.group].c_str(), m.name.c_str(), p.area, p.centroid[0],
+                      p.centroid[1], p.centroid[2], p.normal[0], p.normal[1], p.normal[2],
+                      m.reflectance[0], m.reflectance[1], m.reflectance[2], m.emission[0],
+                      m.emission[1], m.emission[2]);
+        out << line;
+        if (!out) return; // the reader went away (closed pipe): stop writing
+    }
+}
+
+std::string mesh_summary(const fs::path& path, Header& header) {
+    const auto mesh = read_mesh(path, &header);
+    std::size_t quads = 0;
+    for (const auto& p : mesh.patches) quads += p.corner_count() == 4;
+    return std::to_string(mesh.patches.size()) + " patches (" + std::to_string(quads) + " quads, " +
+           std::to_string(mesh.patches.size() - quads) + " triangles), " +
+           std::to_string(mesh.vertices.size()) + " vertices";
+}
+
+void form_factor_csv(const fs::path& path, std::ostream& out) {
+    const auto ff = read_form_factors(path);
+    char line[128];
+    out << kind_info(Kind::FormFactors).csv_columns << '\n';
+    for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
+        for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) {
+            std::snprintf(line, sizeof line, "%llu,%u,%.9g\n", static_cast<unsigned long long>(i),
+                          ff.columns[k], static_cast<double>(ff.values[k]));
+            out << line;
+        }
+        if (!out) return;
+    }
+}
+
+std::string form_factor_summary(const fs::path& path, Header& header) {
+    const auto ff = read_form_factors(path, &header);
+    const double n = static_cast<double>(ff.patch_count);
+    char text[160];
+    std::snprintf(text, sizeof text, "%llu x %llu, %llu non-zeros (%.2f%% dense)",
+                  static_cast<unsigned long long>(ff.patch_count),
+                  static_cast<unsigned long long>(ff.patch_count),
+                  static_cast<unsigned long long>(ff.nonzeros()),
+                  n > 0 ? 100.0 * ff.nonzeros() / (n * n) : 0.0);
+    return text;
+}
+
+void radiosity_csv(const fs::path& path, std::ostream& out) {
+    const auto rad = read_radiosity(path);
+    char line[128];
+    out << kind_info(Kind::Radiosity).csv_columns << '\n';
+    for (std::size_t i = 0; i < rad.radiosity.size(); ++i) {
+        const auto& b = rad.radiosity[i];
+        std::snprintf(line, sizeof line, "%zu,%.10g,%.10g,%.10g\n", i, b[0], b[1], b[2]);
+        out << line;
+        if (!out) return;
+    }
+}
+
+std::string radiosity_summary(const fs::path& path, Header& header) {
+    const auto rad = read_radiosity(path, &header);
+    return std::to_string(rad.radiosity.size()) + " patches";
+}
+
+constexpr KindInfo kKinds[] = {
+    {Kind::Mesh, "mesh", "patch mesh", 1, 1,
+     "patch,group,material,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b", mesh_csv,
+     mesh_summary},
+    {Kind::FormFactors, "formfactors", "form-factor matrix", 1, 1, "row,col,f", form_factor_csv,
+     form_factor_summary},
+    {Kind::Radiosity, "radiosity", "radiosity solution", 1, 1, "patch,b_r,b_g,b_b", radiosity_csv,
+     radiosity_summary},
+};
+
+} // namespace
+
+std::span<const KindInfo> kind_table() {
+    return kKinds;
+}
+
+const KindInfo& kind_info(Kind kind) {
+    for (const auto& k : kKinds)
+        if (k.kind == kind) return k;
+    throw std::logic_error("file kind missing from the kind table");
+}
+
+std::string_view kind_name(Kind kind) {
+    return kind_info(kind).name;
+}
+std::string_view kind_description(Kind kind) {
+    return kind_info(kind).description;
+}
+std::uint32_t kind_version(Kind kind) {
+    return kind_info(kind).version;
+}
+bool parse_kind(std::string_view name, Kind& kind) {
+    for (const auto& k : kKinds)
+        if (k.name == name) {
+            kind = k.kind;
+            return true;
+        }
+    return false;
+}
 
 void write_csv(const fs::path& path, std::ostream& out) {
-    const auto header = read_header(path);
-    char line[512];
-    switch (header.kind) {
-    case Kind::Mesh: {
-        const auto mesh = read_mesh(path);
-        out << "patch,group,material,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b\n";
-        for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
-            const auto& p = mesh.patches[i];
-            const auto& m = mesh.materials[p.material];
-            std::snprintf(line, sizeof line,
-                          "%zu,%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%."
-                          "10g,%.10g,%.10g\n",
-                          i, mesh.groups[p.group].c_str(), m.name.c_str(), p.area, p.centroid[0],
-                          p.centroid[1], p.centroid[2], p.normal[0], p.normal[1], p.normal[2],
-                          m.reflectance[0], m.reflectance[1], m.reflectance[2], m.emission[0],
-                          m.emission[1], m.emission[2]);
-            out << line;
-        }
-        break;
-    }
-    case Kind::FormFactors: {
-        const auto ff = read_form_factors(path);
-        out << "row,col,f\n";
-        for (std::uint64_t i = 0; i < ff.patch_count; ++i)
-            for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) {
-                std::snprintf(line, sizeof line, "%llu,%u,%.9g\n",
-                              static_cast<unsigned long long>(i), ff.columns[k],
-                              static_cast<double>(ff.values[k]));
-                out << line;
-            }
-        break;
-    }
-    case Kind::Radiosity: {
-        const auto rad = read_radiosity(path);
-        out << "patch,b_r,b_g,b_b\n";
-        for (std::size_t i = 0; i < rad.radiosity.size(); ++i) {
-            const auto& b = rad.radiosity[i];
-            std::snprintf(line, sizeof line, "%zu,%.10g,%.10g,%.10g\n", i, b[0], b[1], b[2]);
-            out << line;
-        }
-        break;
-    }
-    }
+    kind_info(read_header(path).kind).write_csv(path, out);
 }
 
 } // namespace radfmt

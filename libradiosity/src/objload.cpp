@@ -1,4 +1,5 @@
-#include "radiosity/cli.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/vec.hpp"
 
@@ -21,10 +22,6 @@ struct LintResult {
     std::size_t vertex_count = 0;
 };
 
-std::string where(const fs::path& path, int line) {
-    return path.string() + ":" + std::to_string(line);
-}
-
 // Checks what tinyobjloader would accept silently or report without a line number.
 LintResult lint_obj(const fs::path& path) {
     std::ifstream in(path);
@@ -43,11 +40,15 @@ LintResult lint_obj(const fs::path& path) {
             double xyz[3];
             for (int k = 0; k < 3; ++k) {
                 std::string token;
-                if (!(words >> token) || !parse_number(token, xyz[k]))
-                    throw InputError(where(path, number) + ": vertex needs three numbers");
-                if (!std::isfinite(xyz[k]))
-                    throw InputError(where(path, number) + ": vertex coordinate '" + token +
-                                     "' is not a finite number");
+                if (!(words >> token))
+                    throw InputError(FileLoc{path.string(), number}, "vertex needs three numbers");
+                if (spells_non_finite(token))
+                    throw InputError(FileLoc{path.string(), number},
+                                     "vertex coordinate '" + token + "' is not a finite number");
+                if (!parse_number(token, xyz[k]))
+                    throw InputError(FileLoc{path.string(), number},
+                                     "vertex coordinate '" + token +
+                                         "' is not a decimal number (such as 1.5 or -2e-3)");
             }
             ++result.vertex_count;
         } else if (keyword == "f") {
@@ -59,22 +60,24 @@ LintResult lint_obj(const fs::path& path) {
                 const auto head = token.substr(0, slash);
                 auto [ptr, ec] = std::from_chars(head.data(), head.data() + head.size(), index);
                 if (ec != std::errc() || ptr != head.data() + head.size())
-                    throw InputError(where(path, number) + ": bad vertex reference '" + token +
-                                     "'");
+                    throw InputError(FileLoc{path.string(), number},
+                                     "bad vertex reference '" + token + "'");
                 const long count = static_cast<long>(result.vertex_count);
                 const long resolved = index < 0 ? count + index + 1 : index;
                 if (index == 0 || resolved < 1 || resolved > count)
-                    throw InputError(where(path, number) + ": face refers to vertex " +
-                                     std::to_string(index) + ", but only " + std::to_string(count) +
-                                     " vertices are defined");
+                    throw InputError(FileLoc{path.string(), number},
+                                     "face refers to vertex " + std::to_string(index) +
+                                         ", but only " + std::to_string(count) +
+                                         " vertices are defined");
                 ++corners;
             }
             if (corners < 3)
-                throw InputError(where(path, number) + ": face has " + std::to_string(corners) +
-                                 " vertices; at least 3 are needed");
+                throw InputError(FileLoc{path.string(), number},
+                                 "face has " + std::to_string(corners) +
+                                     " vertices; at least 3 are needed");
             if (!have_material)
-                throw InputError(where(path, number) +
-                                 ": face has no material (put 'usemtl NAME' before it)");
+                throw InputError(FileLoc{path.string(), number},
+                                 "face has no material (put 'usemtl NAME' before it)");
             result.face_lines.push_back(number);
         } else if (keyword == "usemtl") {
             std::string name;
@@ -86,8 +89,9 @@ LintResult lint_obj(const fs::path& path) {
             std::getline(words >> std::ws, name);
             const auto mtl = path.parent_path() / name;
             if (!fs::is_regular_file(mtl))
-                throw InputError(where(path, number) + ": material library '" + name +
-                                 "' not found (looked for " + mtl.string() + ")");
+                throw InputError(FileLoc{path.string(), number}, "material library '" + name +
+                                                                     "' not found (looked for " +
+                                                                     mtl.string() + ")");
         }
     }
     return result;
@@ -133,8 +137,8 @@ Scene load_obj(const fs::path& path) {
     }
     for (const auto& [line, name] : lint.usemtl)
         if (!known.count(name))
-            throw InputError(where(path, line) + ": unknown material '" + name +
-                             "' (not defined in any mtllib)");
+            throw InputError(FileLoc{path.string(), line},
+                             "unknown material '" + name + "' (not defined in any mtllib)");
 
     std::size_t face_number = 0;
     const bool lines_match = [&] {
@@ -160,7 +164,7 @@ Scene load_obj(const fs::path& path) {
             offset += count;
             const int material = shape.mesh.material_ids[f];
             if (material < 0 || material >= static_cast<int>(scene.materials.size()))
-                throw InputError(where(path, poly.line) + ": face has no known material");
+                throw InputError(FileLoc{path.string(), poly.line}, "face has no known material");
             poly.material = static_cast<std::uint32_t>(material);
             scene.polygons.push_back(std::move(poly));
         }

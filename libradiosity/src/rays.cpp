@@ -1,9 +1,11 @@
 #include "radiosity/rays.hpp"
 
+#include "radiosity/error.hpp"
+
 #include <embree3/rtcore.h>
 
 #include <limits>
-#include <stdexcept>
+#include <mutex>
 #include <string>
 
 namespace rad {
@@ -12,13 +14,38 @@ struct RayScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     std::vector<Vec3> normals;
+    // Embree reports errors through a callback; the first one is kept and raised after the
+    // call that caused it, with Embree's own message.
+    std::mutex error_mutex;
+    RTCError error = RTC_ERROR_NONE;
+    std::string error_message;
+
+    void raise_if_failed(const char* during) {
+        std::lock_guard lock(error_mutex);
+        if (error == RTC_ERROR_NONE) return;
+        const std::string message = std::string("Embree failed while ") + during + ": " +
+                                    error_message + " (error " + std::to_string(error) + ")";
+        if (error == RTC_ERROR_OUT_OF_MEMORY) throw SystemError(message);
+        throw InternalError(message);
+    }
 };
+
+namespace {
+extern "C" void record_embree_error(void* user, RTCError code, const char* message) {
+    auto* impl = static_cast<RayScene::Impl*>(user);
+    std::lock_guard lock(impl->error_mutex);
+    if (impl->error != RTC_ERROR_NONE) return;
+    impl->error = code;
+    impl->error_message = message ? message : "no message";
+}
+} // namespace
 
 RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>()) {
     impl_->device = rtcNewDevice(nullptr);
     if (!impl_->device)
-        throw std::runtime_error("Embree device creation failed (error " +
-                                 std::to_string(rtcGetDeviceError(nullptr)) + ")");
+        throw SystemError("Embree device creation failed (error " +
+                          std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    rtcSetDeviceErrorFunction(impl_->device, record_embree_error, impl_.get());
     impl_->scene = rtcNewScene(impl_->device);
     // Robust mode makes shared edges watertight, so rays do not leak between patches.
     rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
@@ -33,6 +60,7 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
                                 3 * sizeof(float), mesh.vertices.size()));
     auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
         geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), count));
+    if (!vertices || !indices) impl_->raise_if_failed("allocating the ray scene's geometry");
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
         for (int k = 0; k < 3; ++k) {
@@ -49,6 +77,7 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
     rtcAttachGeometry(impl_->scene, geometry);
     rtcReleaseGeometry(geometry);
     rtcCommitScene(impl_->scene);
+    impl_->raise_if_failed("building the ray scene");
     epsilon_ = std::max(1e-9, 1e-5 * length(hi - lo));
 }
 

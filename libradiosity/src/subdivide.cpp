@@ -1,4 +1,4 @@
-#include "radiosity/cli.hpp"
+#include "radiosity/error.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/vec.hpp"
 
@@ -30,8 +30,8 @@ struct Element { // a triangle or convex quad over scene vertices, ready to subd
     double area = 0;
 };
 
-std::string where(const Scene& scene, const Polygon& p) {
-    return scene.path + (p.line ? ":" + std::to_string(p.line) : std::string()) + ": ";
+FileLoc where(const Scene& scene, const Polygon& p) {
+    return {scene.path, p.line};
 }
 
 double limit_for(const std::map<std::string, double>& by_group, const std::string& group,
@@ -135,10 +135,10 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
         for (std::size_t k = 0; k < pts.size(); ++k) {
             const double off = std::abs(dot(pts[k] - centre, normal));
             if (off > options.planarity_tolerance * size)
-                throw InputError(where(scene, poly) + "face is not planar: vertex " +
-                                 std::to_string(k + 1) + " lies " + std::to_string(off) +
-                                 " off the face's plane (tolerance " +
-                                 std::to_string(options.planarity_tolerance * size) + ")");
+                throw InputError(where(scene, poly),
+                                 "face is not planar: vertex " + std::to_string(k + 1) + " lies " +
+                                     std::to_string(off) + " off the face's plane (tolerance " +
+                                     std::to_string(options.planarity_tolerance * size) + ")");
         }
         bool convex_quad = pts.size() == 4;
         for (std::size_t k = 0; k < 4 && convex_quad; ++k)

@@ -19,4 +19,13 @@ expect_error "not a size" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff"
 timeout -s INT 1 "$BIN/rad-ff" "$TMP/big.mesh" -o "$TMP/big.ff" --method pairwise -q
 [ ! -e "$TMP/big.ff" ] || fail "interrupted run left an output"
 [ -z "$(ls -A "$TMP" | grep tmp)" ] || fail "temporary file left: $(ls -A "$TMP")"
+# Exit codes by class: a write the system refuses is 2 ("system error"), not bad input.
+err=$("$BIN/rad-ff" "$TMP/c.mesh" -o /proc/radiosity-test.ff -q 2>&1); rc=$?
+[ $rc -eq 2 ] || fail "unwritable output: exit $rc (wanted 2): $err"
+grep -q "system error" <<<"$err" || fail "unwritable output message: $err"
+# --help lists every registered method.
+help=$("$BIN/rad-ff" --help)
+for m in analytic pairwise hemisphere; do grep -q "$m:" <<<"$help" || fail "--help lacks $m"; done
+expect_error "" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --method radiance
+expect_error "" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --threads -1
 finish

@@ -21,15 +21,23 @@ inline constexpr std::uint32_t kContainerVersion = 1;
 inline constexpr std::size_t kBodyAlignment = 64;
 inline constexpr std::size_t kMaxHeaderBytes = 1 << 20;
 
-// Every problem with a file is a FormatError whose message starts with the file's path.
+// Every problem with a file's contents is a FormatError whose message starts with the
+// file's path: bad input (exit code 1).
 struct FormatError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
+// The system refused a write (cannot create, disk full, rename failed): exit code 2.
+struct WriteError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
+// The file kinds; what each is (name, description, version, CSV, summary) is the table in
+// kinds.hpp, which the container and rad-info read.
 enum class Kind { Mesh, FormFactors, Radiosity };
 std::string_view kind_name(Kind kind);
 std::string_view kind_description(Kind kind);
 std::uint32_t kind_version(Kind kind);
+bool parse_kind(std::string_view name, Kind& kind);
 
 struct InputRecord {
     std::string path;

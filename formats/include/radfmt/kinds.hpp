@@ -4,14 +4,30 @@
 
 #include <array>
 #include <cstdint>
+#include <iosfwd>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
 namespace radfmt {
 
+// A point or direction in space, metres.
 using Vec3 = std::array<double, 3>;
-using Rgb = std::array<double, 3>;
+
+// A colour triple (reflectance, exitance in W/m^2): its own type, so that a colour cannot be
+// passed where a position is expected or the other way round. Same bytes as double[3].
+struct Rgb {
+    std::array<double, 3> c{};
+    double& operator[](std::size_t k) { return c[k]; }
+    const double& operator[](std::size_t k) const { return c[k]; }
+    double* begin() { return c.data(); }
+    double* end() { return c.data() + 3; }
+    const double* begin() const { return c.data(); }
+    const double* end() const { return c.data() + 3; }
+    bool operator==(const Rgb&) const = default;
+};
+static_assert(sizeof(Rgb) == 24 && std::is_trivially_copyable_v<Rgb>);
 inline constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
 
 struct Material {
@@ -70,5 +86,22 @@ RadiosityData read_radiosity(const std::filesystem::path& path, Header* header_o
 
 // Decodes whichever kind `file` holds and writes it as CSV (columns in formats/README.md).
 void write_csv(const std::filesystem::path& path, std::ostream& out);
+
+// What the chain knows about each kind of file, as data: the container validates names and
+// versions against it and rad-info prints through it. A new kind is one more row.
+struct KindInfo {
+    Kind kind;
+    std::string_view name;
+    std::string_view description;
+    std::uint32_t version;        // the version written
+    std::uint32_t oldest_version; // the oldest version still read
+    std::string_view csv_columns;
+    // Reads and validates the whole file, then writes its data as CSV.
+    void (*write_csv)(const std::filesystem::path& path, std::ostream& out);
+    // Reads and validates the whole file; returns a one-line summary and its header.
+    std::string (*summary)(const std::filesystem::path& path, Header& header);
+};
+std::span<const KindInfo> kind_table();
+const KindInfo& kind_info(Kind kind);
 
 } // namespace radfmt

@@ -1,27 +1,31 @@
-// Form factors F_ij (equation 5 of the paper) for every pair of patches, three ways.
+// Form factors F_ij (equation 5 of the paper) for every pair of patches. The methods are
+// plugins (formfactor_method.hpp); this is what callers use.
 #pragma once
 #include "radfmt/kinds.hpp"
 #include "radiosity/vec.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rad {
 
-enum class FormFactorMethod { Pairwise, Analytic, Hemisphere };
-FormFactorMethod parse_method(const std::string& name);
-std::string method_name(FormFactorMethod method);
-
 struct FormFactorOptions {
-    FormFactorMethod method = FormFactorMethod::Analytic;
-    int samples = 16;        // points per patch (analytic, pairwise), rounded to a square;
-                             // pairwise uses a quarter of the resolution for distant pairs
-    int visibility_rays = 1; // analytic: rays per sample point towards the other patch
-    int rays = 8192;         // hemisphere: rays per patch
+    std::string method = "analytic"; // a name from form_factor_methods()
+    int samples = 0;                 // points per patch, rounded to a square (0: the method's)
+    int visibility_rays = 1;         // analytic: rays per sample point towards the other patch
+    int rays = 8192;                 // hemisphere: rays per patch
     std::uint64_t seed = 1;
     bool quiet = false;
+};
+
+// Rows [begin, end) of the matrix: the seam for sharded and distributed computation.
+struct RowRange {
+    std::uint64_t begin = 0;
+    std::uint64_t end = std::numeric_limits<std::uint64_t>::max(); // clamped to the patch count
 };
 
 struct FormFactorStats {
@@ -32,15 +36,25 @@ struct FormFactorStats {
     double max_row_sum = 0;
 };
 
+// The options with the method's defaults filled in (e.g. `samples`); throws InputError for
+// an unknown method.
+FormFactorOptions resolve_form_factor_options(FormFactorOptions options);
+
 // Upper bound of the memory compute_form_factors needs for `mesh`, in bytes.
 std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
                                           const FormFactorOptions& options);
 
+// The header fields describing how a form-factor file was computed (method, its options,
+// seed): what makes two files comparable.
+std::vector<std::pair<std::string, std::string>>
+form_factor_header_fields(const FormFactorOptions& options);
+
 // Rows are computed in parallel (TBB); each row draws its random numbers from (seed, row)
-// alone, so the result is identical for any number of threads.
+// alone, so the result is identical for any number of threads. Rows outside `rows` are
+// left empty (patch_count is still the mesh's).
 radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
                                             const FormFactorOptions& options,
-                                            FormFactorStats* stats = nullptr);
+                                            FormFactorStats* stats = nullptr, RowRange rows = {});
 
 // Exact form factor from a differential area at `point` with unit normal `normal` to a
 // planar polygon (contour integral, Lambert/Sparrow); the polygon must lie in front of the

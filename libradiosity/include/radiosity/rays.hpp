@@ -22,8 +22,9 @@ class RayScene {
     std::int64_t first_hit(const Vec3& origin, const Vec3& direction, bool& front) const;
     double epsilon() const { return epsilon_; }
 
+    struct Impl; // public so Embree's C error callback can reach it
+
   private:
-    struct Impl;
     std::unique_ptr<Impl> impl_;
     double epsilon_ = 1e-6;
 };

@@ -1,52 +1,56 @@
-// Solving B_i = E_i + rho_i sum_j F_ij B_j per RGB channel from cached form factors.
+// Solvers as plugins over a transport operator: one file per solver under src/solver/ and
+// one line in src/solver/registry.cpp.
 #pragma once
-#include "radfmt/kinds.hpp"
+#include "radiosity/transport.hpp"
 
 #include <functional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rad {
 
-enum class SolveMethod { Jacobi, GaussSeidel, Progressive, ProgressiveAmbient };
-SolveMethod parse_solve_method(const std::string& name);
-std::string solve_method_name(SolveMethod method);
-
-struct Problem {
-    std::vector<double> area;
-    std::vector<radfmt::Rgb> reflectance;
-    std::vector<radfmt::Rgb> emission;
-    const radfmt::FormFactorData* form_factors = nullptr;
-};
-
-// The materials of the mesh, patch by patch, after solve-time overrides.
-Problem make_problem(const radfmt::MeshData& mesh, const radfmt::FormFactorData& ff);
-
 struct IterationRecord {
-    long iteration = 0;  // sweeps for jacobi/gs, shots for pr/apr
-    double residual = 0; // relative change per sweep (jacobi/gs), unshot power fraction (pr/apr)
-    radfmt::Rgb power{}; // sum_i B_i A_i of the displayed solution, per channel
+    long iteration = 0;        // sweeps for sweep solvers, shots for shooting solvers
+    double residual = 0;       // relative change per sweep, or the unshot power fraction
+    std::vector<double> power; // sum_i B_i A_i of the displayed solution, per channel
     double seconds = 0;
 };
 
-struct SolveOptions {
-    SolveMethod method = SolveMethod::GaussSeidel;
+struct SolveControl {
     long max_iterations = 0; // 0: no limit besides the tolerance
     double tolerance = 0;    // 0: run max_iterations exactly
     // Called after every iteration with the displayed state (APR includes its ambient term).
-    std::function<void(const IterationRecord&, const std::vector<radfmt::Rgb>&)> on_iteration;
+    std::function<void(const IterationRecord&, const Channels&)> on_iteration;
 };
 
 struct SolveResult {
-    std::vector<radfmt::Rgb> radiosity; // what to display: APR includes the ambient term
+    Channels radiosity; // what to display: APR includes the ambient term
     long iterations = 0;
     double residual = 0;
     bool converged = false;
 };
 
-SolveResult solve(const Problem& problem, const SolveOptions& options);
+class Solver {
+  public:
+    virtual ~Solver() = default;
+    virtual std::string_view name() const = 0;
+    virtual std::string_view summary() const = 0; // one line for --help
+    // Shooting solvers count shots as iterations (so --sweeps applies); sweep solvers count
+    // sweeps over all patches.
+    virtual bool shooting() const = 0;
+    // The header field the final residual is recorded under.
+    std::string_view residual_name() const { return shooting() ? "unshot_fraction" : "residual"; }
+    // Iterations when the user sets none: enough to converge on any sane scene.
+    virtual long default_max_iterations(std::size_t patches) const = 0;
+    virtual SolveResult solve(const TransportOperator& op, const Channels& emission,
+                              const SolveControl& control) const = 0;
+};
 
-// Power of a solution, per channel: sum_i B_i A_i.
-radfmt::Rgb total_power(const std::vector<double>& area, const std::vector<radfmt::Rgb>& b);
+std::span<const Solver* const> solvers();
+std::vector<std::string> solver_names();
+// Throws InputError naming the known solvers when `name` is not one of them.
+const Solver& solver(std::string_view name);
 
 } // namespace rad

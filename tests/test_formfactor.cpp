@@ -1,12 +1,12 @@
 // rad-ff: form factors against closed forms, closure, reciprocity, occlusion, determinism.
 #include "helpers.hpp"
-#include "radiosity/cli.hpp"
 #include "radiosity/formfactor.hpp"
+#include "radiosity/formfactor_method.hpp"
+#include "radiosity/progress.hpp"
 
 #include <catch2/catch.hpp>
 
 using namespace testing_helpers;
-using rad::FormFactorMethod;
 
 namespace {
 
@@ -33,7 +33,7 @@ radfmt::MeshData perpendicular(double h, double l, double w) {
                          v(0, l, h) + "usemtl grey\nf 1 2 3 4\nf 1 4 6 5\n");
 }
 
-radfmt::FormFactorData compute(const radfmt::MeshData& mesh, FormFactorMethod method,
+radfmt::FormFactorData compute(const radfmt::MeshData& mesh, const std::string& method,
                                int samples = 0, int rays = 0, std::uint64_t seed = 1,
                                int visibility_rays = 1) {
     rad::FormFactorOptions options;
@@ -43,14 +43,14 @@ radfmt::FormFactorData compute(const radfmt::MeshData& mesh, FormFactorMethod me
     options.visibility_rays = visibility_rays;
     if (samples)
         options.samples = samples;
-    else if (method == FormFactorMethod::Pairwise)
+    else if (method == "pairwise")
         options.samples = 64; // rad-ff's default for pairwise
     if (rays) options.rays = rays;
     return rad::compute_form_factors(mesh, options);
 }
 
-double tolerance_of(FormFactorMethod m) {
-    return m == FormFactorMethod::Analytic ? 1e-3 : 0.02;
+double tolerance_of(const std::string& m) {
+    return m == "analytic" ? 1e-3 : 0.02;
 }
 
 } // namespace
@@ -80,11 +80,10 @@ TEST_CASE("every method matches the closed forms for parallel and perpendicular 
         const double f = rad::perpendicular_rectangles_form_factor(h, l, w);
         cases.push_back({perpendicular(h, l, w), f, f * (w * l) / (h * l)});
     }
-    for (auto method :
-         {FormFactorMethod::Analytic, FormFactorMethod::Pairwise, FormFactorMethod::Hemisphere}) {
+    for (const auto& method : rad::form_factor_method_names()) {
         for (std::size_t c = 0; c < cases.size(); ++c) {
             const auto ff = compute(cases[c].mesh, method);
-            CAPTURE(rad::method_name(method), c);
+            CAPTURE(method, c);
             CHECK(entry(ff, 0, 1) == Approx(cases[c].f01).epsilon(tolerance_of(method)));
             CHECK(entry(ff, 1, 0) == Approx(cases[c].f10).epsilon(tolerance_of(method)));
         }
@@ -94,7 +93,7 @@ TEST_CASE("every method matches the closed forms for parallel and perpendicular 
 TEST_CASE("the error falls as samples and rays grow") {
     const auto mesh = perpendicular(1, 1, 1);
     const double exact = rad::perpendicular_rectangles_form_factor(1, 1, 1);
-    auto mean_error = [&](FormFactorMethod m, int samples, int rays) {
+    auto mean_error = [&](const std::string& m, int samples, int rays) {
         double sum = 0;
         for (std::uint64_t seed = 1; seed <= 6; ++seed) {
             const auto ff = compute(mesh, m, samples, rays, seed);
@@ -102,35 +101,32 @@ TEST_CASE("the error falls as samples and rays grow") {
         }
         return sum / 12 / exact;
     };
-    const double pairwise_coarse = mean_error(FormFactorMethod::Pairwise, 16, 0);
-    const double pairwise_fine = mean_error(FormFactorMethod::Pairwise, 256, 0);
+    const double pairwise_coarse = mean_error("pairwise", 16, 0);
+    const double pairwise_fine = mean_error("pairwise", 256, 0);
     CHECK(pairwise_fine < pairwise_coarse);
     CHECK(pairwise_fine < 0.01);
-    const double hemi_coarse = mean_error(FormFactorMethod::Hemisphere, 0, 1000);
-    const double hemi_fine = mean_error(FormFactorMethod::Hemisphere, 0, 16000);
+    const double hemi_coarse = mean_error("hemisphere", 0, 1000);
+    const double hemi_fine = mean_error("hemisphere", 0, 16000);
     CHECK(hemi_fine < hemi_coarse);
     CHECK(hemi_fine < 0.005);
-    const double analytic_coarse =
-        std::abs(entry(compute(mesh, FormFactorMethod::Analytic, 4), 0, 1) - exact);
-    const double analytic_fine =
-        std::abs(entry(compute(mesh, FormFactorMethod::Analytic, 36), 0, 1) - exact);
+    const double analytic_coarse = std::abs(entry(compute(mesh, "analytic", 4), 0, 1) - exact);
+    const double analytic_fine = std::abs(entry(compute(mesh, "analytic", 36), 0, 1) - exact);
     CHECK(analytic_fine < analytic_coarse);
 }
 
-TEST_CASE("closed cube: rows sum to one and reciprocity holds") {
+TEST_CASE("closed cube: rows sum to one and reciprocity holds", "[slow]") {
     const auto mesh = mesh_from_obj(cube_obj(), 0.25); // 96 patches
     REQUIRE(mesh.patches.size() == 96);
-    for (auto method :
-         {FormFactorMethod::Analytic, FormFactorMethod::Hemisphere, FormFactorMethod::Pairwise}) {
+    for (const auto& method : rad::form_factor_method_names()) {
         const auto ff = compute(mesh, method);
-        const double tol = method == FormFactorMethod::Analytic ? 1e-3 : 0.02;
-        CAPTURE(rad::method_name(method));
+        const double tol = method == "analytic" ? 1e-3 : 0.02;
+        CAPTURE(method);
         for (std::uint32_t i = 0; i < ff.patch_count; ++i) {
             double sum = 0;
             for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) sum += ff.values[k];
             CHECK(sum == Approx(1).margin(tol));
         }
-        if (method != FormFactorMethod::Analytic) continue;
+        if (method != "analytic") continue;
         for (std::uint32_t i = 0; i < ff.patch_count; ++i)
             for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) {
                 const auto j = ff.columns[k];
@@ -149,24 +145,22 @@ TEST_CASE("occluders cut the form factor by the expected amount") {
     const std::string half =
         v(-1, -1, 0.5) + v(0.5, -1, 0.5) + v(0.5, 2, 0.5) + v(-1, 2, 0.5) + "f 9 10 11 12\n";
     const double open = rad::parallel_rectangles_form_factor(1, 1, 1);
-    for (auto method :
-         {FormFactorMethod::Analytic, FormFactorMethod::Pairwise, FormFactorMethod::Hemisphere}) {
-        CAPTURE(rad::method_name(method));
+    for (const auto& method : rad::form_factor_method_names()) {
+        CAPTURE(method);
         CHECK(entry(compute(parallel(1, 1, 1, big), method), 0, 1) == 0);
-        const auto ff = method == FormFactorMethod::Analytic
+        const auto ff = method == "analytic"
                             ? compute(parallel(1, 1, 1, half), method, 16, 0, 1, 16)
                             : compute(parallel(1, 1, 1, half), method);
         CHECK(entry(ff, 0, 1) == Approx(open / 2).epsilon(0.03));
     }
 }
 
-TEST_CASE("the same seed gives identical form factors at any thread count") {
+TEST_CASE("the same seed gives identical form factors at any thread count", "[slow]") {
     const auto mesh =
         mesh_from_obj(cube_obj() + v(0.3, 0.3, 0.4) + v(0.7, 0.3, 0.4) + v(0.7, 0.7, 0.4) +
                           v(0.3, 0.7, 0.4) + "g block\nf 9 10 11 12\nf 9 12 11 10\n",
                       0.25);
-    for (auto method :
-         {FormFactorMethod::Analytic, FormFactorMethod::Pairwise, FormFactorMethod::Hemisphere}) {
+    for (const auto& method : rad::form_factor_method_names()) {
         radfmt::FormFactorData one, two;
         {
             rad::ThreadLimit limit(1);
@@ -176,12 +170,12 @@ TEST_CASE("the same seed gives identical form factors at any thread count") {
             rad::ThreadLimit limit(2);
             two = compute(mesh, method, 0, 0, 7);
         }
-        CAPTURE(rad::method_name(method));
+        CAPTURE(method);
         CHECK(one.row_start == two.row_start);
         CHECK(one.columns == two.columns);
         CHECK(one.values == two.values);
         const auto other_seed = compute(mesh, method, 0, 0, 8);
-        if (method != FormFactorMethod::Analytic) CHECK(other_seed.values != one.values);
+        if (method != "analytic") CHECK(other_seed.values != one.values);
     }
 }
 
@@ -190,4 +184,51 @@ TEST_CASE("point-to-polygon form factor: a point under the centre of a huge squa
         {-1e4, -1e4, 1}, {1e4, -1e4, 1}, {1e4, 1e4, 1}, {-1e4, 1e4, 1}};
     CHECK(rad::point_to_polygon_form_factor({0, 0, 0}, {0, 0, 1}, square) ==
           Approx(1).epsilon(1e-3));
+}
+
+TEST_CASE("the method registry drives names, defaults and header fields") {
+    CHECK(rad::form_factor_method_names() ==
+          std::vector<std::string>{"analytic", "pairwise", "hemisphere"});
+    CHECK_THROWS_WITH(rad::form_factor_method("radiance"),
+                      Catch::Contains("use analytic, pairwise, hemisphere"));
+    rad::FormFactorOptions options;
+    options.method = "pairwise";
+    CHECK(rad::resolve_form_factor_options(options).samples == 64);
+    options.method = "analytic";
+    CHECK(rad::resolve_form_factor_options(options).samples == 16);
+    options.samples = 9;
+    CHECK(rad::resolve_form_factor_options(options).samples == 9);
+    options.method = "hemisphere";
+    options.rays = 100;
+    std::vector<std::string> keys;
+    for (const auto& [k, v] : rad::form_factor_header_fields(options)) keys.push_back(k);
+    CHECK(keys == std::vector<std::string>{"method", "rays", "seed"});
+}
+
+TEST_CASE("a row range computes exactly those rows of the full matrix") {
+    const auto mesh = mesh_from_obj(cube_obj(), 0.5);
+    for (const auto& method : rad::form_factor_method_names()) {
+        CAPTURE(method);
+        rad::FormFactorOptions options;
+        options.method = method;
+        options.quiet = true;
+        options.samples = 4;
+        options.rays = 256;
+        const auto full = rad::compute_form_factors(mesh, options);
+        const std::uint64_t n = full.patch_count, a = n / 3, b = 2 * n / 3;
+        const auto part = rad::compute_form_factors(mesh, options, nullptr, {a, b});
+        REQUIRE(part.patch_count == n);
+        for (std::uint64_t i = 0; i < n; ++i) {
+            const auto len = part.row_start[i + 1] - part.row_start[i];
+            if (i < a || i >= b) {
+                CHECK(len == 0);
+                continue;
+            }
+            REQUIRE(len == full.row_start[i + 1] - full.row_start[i]);
+            for (std::uint64_t k = 0; k < len; ++k) {
+                CHECK(part.columns[part.row_start[i] + k] == full.columns[full.row_start[i] + k]);
+                CHECK(part.values[part.row_start[i] + k] == full.values[full.row_start[i] + k]);
+            }
+        }
+    }
 }

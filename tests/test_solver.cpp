@@ -1,18 +1,33 @@
 // rad-solve: furnace, agreement with a direct dense solve, convergence behaviour, APR.
 #include "helpers.hpp"
+#include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/solver.hpp"
 
 #include <catch2/catch.hpp>
 
 using namespace testing_helpers;
-using rad::SolveMethod;
 using radfmt::Rgb;
 
 namespace {
 
-const SolveMethod kAll[] = {SolveMethod::Jacobi, SolveMethod::GaussSeidel, SolveMethod::Progressive,
-                            SolveMethod::ProgressiveAmbient};
+const std::vector<std::string> kAll = rad::solver_names();
+
+// An operator over its own form factors, with per-patch RGB reflectance and emission.
+struct Problem {
+    radfmt::FormFactorData ff;
+    std::vector<double> area;
+    std::vector<Rgb> reflectance, emission;
+
+    rad::TransportOperator op() const {
+        rad::TransportOperator o;
+        o.form_factors = &ff;
+        o.area = area;
+        for (const auto& r : reflectance)
+            for (double x : r) o.reflectance.push_back(x);
+        return o;
+    }
+};
 
 radfmt::FormFactorData analytic(const radfmt::MeshData& mesh) {
     rad::FormFactorOptions options;
@@ -54,8 +69,8 @@ std::vector<std::vector<double>> reciprocal(const std::vector<std::vector<double
 }
 
 // Direct solve of (I - diag(rho) F) B = E by Gaussian elimination with partial pivoting.
-std::vector<Rgb> dense_solve(const rad::Problem& p) {
-    const auto f = dense(*p.form_factors);
+std::vector<Rgb> dense_solve(const Problem& p) {
+    const auto f = dense(p.ff);
     const std::size_t n = f.size();
     std::vector<Rgb> b(n);
     for (int c = 0; c < 3; ++c) {
@@ -80,17 +95,16 @@ std::vector<Rgb> dense_solve(const rad::Problem& p) {
     return b;
 }
 
-rad::SolveResult run(const rad::Problem& p, SolveMethod method, double tolerance,
+rad::SolveResult run(const Problem& p, const std::string& method, double tolerance,
                      long iterations = 0, std::vector<rad::IterationRecord>* log = nullptr) {
-    rad::SolveOptions options;
-    options.method = method;
-    options.tolerance = tolerance;
-    options.max_iterations = iterations ? iterations : 10000000;
+    rad::SolveControl control;
+    control.tolerance = tolerance;
+    control.max_iterations = iterations ? iterations : 10000000;
     if (log)
-        options.on_iteration = [&](const rad::IterationRecord& r, const std::vector<Rgb>&) {
+        control.on_iteration = [&](const rad::IterationRecord& r, const rad::Channels&) {
             log->push_back(r);
         };
-    return rad::solve(p, options);
+    return rad::solver(method).solve(p.op(), rad::to_channels(p.emission), control);
 }
 
 // A closed cube with a floating two-sided block inside (occlusion), light on part of the top.
@@ -119,19 +133,18 @@ TEST_CASE(
         for (std::size_t i = 0; i < f.size(); ++i)
             for (std::size_t j = 0; j < f.size(); ++j) f[i][j] *= scale[i] * scale[j];
     }
-    const auto ff = sparse(f);
-    rad::Problem p;
-    p.form_factors = &ff;
+    Problem p;
+    p.ff = sparse(f);
     const Rgb rho{0.5, 0.8, 0.2}, e{1, 2, 3};
     for (const auto& patch : mesh.patches) {
         p.area.push_back(patch.area);
         p.reflectance.push_back(rho);
         p.emission.push_back(e);
     }
-    for (auto method : kAll) {
+    for (const auto& method : kAll) {
         const auto result = run(p, method, 1e-12);
-        CAPTURE(rad::solve_method_name(method));
-        for (const auto& b : result.radiosity)
+        CAPTURE(method);
+        for (const auto& b : rad::to_rgb(result.radiosity))
             for (int c = 0; c < 3; ++c) CHECK(b[c] == Approx(e[c] / (1 - rho[c])).epsilon(1e-6));
     }
 }
@@ -140,9 +153,8 @@ TEST_CASE("every method agrees with a direct dense solve on an occluded scene") 
     const auto mesh = occluded_scene();
     std::vector<double> area;
     for (const auto& patch : mesh.patches) area.push_back(patch.area);
-    const auto ff = sparse(reciprocal(dense(analytic(mesh)), area));
-    rad::Problem p;
-    p.form_factors = &ff;
+    Problem p;
+    p.ff = sparse(reciprocal(dense(analytic(mesh)), area));
     for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
         const auto& patch = mesh.patches[i];
         p.area.push_back(patch.area);
@@ -153,19 +165,18 @@ TEST_CASE("every method agrees with a direct dense solve on an occluded scene") 
     const auto exact = dense_solve(p);
     double scale = 0;
     for (const auto& b : exact) scale = std::max({scale, b[0], b[1], b[2]});
-    for (auto method : kAll) {
+    for (const auto& method : kAll) {
         const auto result = run(p, method, 1e-13);
-        CAPTURE(rad::solve_method_name(method));
+        CAPTURE(method);
         for (std::size_t i = 0; i < exact.size(); ++i)
             for (int c = 0; c < 3; ++c)
-                CHECK(std::abs(result.radiosity[i][c] - exact[i][c]) < 1e-6 * scale);
+                CHECK(std::abs(result.radiosity.at(i, c) - exact[i][c]) < 1e-6 * scale);
     }
-    CHECK(run(p, SolveMethod::GaussSeidel, 1e-8).iterations <
-          run(p, SolveMethod::Jacobi, 1e-8).iterations);
+    CHECK(run(p, "gs", 1e-8).iterations < run(p, "jacobi", 1e-8).iterations);
 
     SECTION("Gauss-Seidel brightens monotonically from B = E") {
         std::vector<rad::IterationRecord> log;
-        run(p, SolveMethod::GaussSeidel, 0, 10, &log);
+        run(p, "gs", 0, 10, &log);
         REQUIRE(log.size() == 10);
         for (std::size_t k = 1; k < log.size(); ++k)
             for (int c = 0; c < 3; ++c) CHECK(log[k].power[c] >= log[k - 1].power[c]);
@@ -173,23 +184,74 @@ TEST_CASE("every method agrees with a direct dense solve on an occluded scene") 
     }
     SECTION(
         "APR's first shot lights every patch; PR's leaves some black; the ambient term decays") {
-        const auto apr = run(p, SolveMethod::ProgressiveAmbient, 0, 1);
-        const auto pr = run(p, SolveMethod::Progressive, 0, 1);
+        const auto apr = run(p, "apr", 0, 1);
+        const auto pr = run(p, "pr", 0, 1);
         std::size_t pr_black = 0;
-        for (std::size_t i = 0; i < apr.radiosity.size(); ++i) {
-            CHECK(apr.radiosity[i][0] > 0);
-            pr_black += pr.radiosity[i][0] == 0;
+        for (std::size_t i = 0; i < apr.radiosity.patches(); ++i) {
+            CHECK(apr.radiosity.at(i, 0) > 0);
+            pr_black += pr.radiosity.at(i, 0) == 0;
         }
         CHECK(pr_black > 0);
         auto ambient_gap = [&](long shots) {
-            const auto a = run(p, SolveMethod::ProgressiveAmbient, 0, shots);
-            const auto b = run(p, SolveMethod::Progressive, 0, shots);
+            const auto a = run(p, "apr", 0, shots);
+            const auto b = run(p, "pr", 0, shots);
             double gap = 0;
-            for (std::size_t i = 0; i < a.radiosity.size(); ++i)
-                gap += a.radiosity[i][0] - b.radiosity[i][0];
+            for (std::size_t i = 0; i < a.radiosity.patches(); ++i)
+                gap += a.radiosity.at(i, 0) - b.radiosity.at(i, 0);
             return gap;
         };
         CHECK(ambient_gap(100) < ambient_gap(10));
         CHECK(ambient_gap(10) < ambient_gap(1));
     }
+}
+
+TEST_CASE("right-hand sides with any number of channels: each channel solves on its own") {
+    // Two RGB light groups stacked as 6 channels (channel c reflects with colour c % 3) give,
+    // channel by channel, the same numbers as two separate RGB solves.
+    const auto mesh = occluded_scene();
+    Problem p;
+    for (const auto& patch : mesh.patches) {
+        p.area.push_back(patch.area);
+        p.reflectance.push_back(patch.group == 6 ? Rgb{0.7, 0.3, 0.1} : Rgb{0.6, 0.5, 0.4});
+    }
+    p.ff = sparse(reciprocal(dense(analytic(mesh)), p.area));
+    const std::size_t n = mesh.patches.size();
+    rad::Channels a(n, 3), b(n, 3), both(n, 6);
+    for (std::size_t i = 0; i < n; ++i) {
+        const bool top = mesh.patches[i].group == 1, bottom = mesh.patches[i].group == 0;
+        for (int c = 0; c < 3; ++c) {
+            a.at(i, c) = top ? 5.0 + c : 0;
+            b.at(i, c) = bottom ? 1.0 + 2 * c : 0;
+            both.at(i, c) = a.at(i, c);
+            both.at(i, 3 + c) = b.at(i, c);
+        }
+    }
+    for (const auto& method : kAll) {
+        CAPTURE(method);
+        rad::SolveControl control;
+        control.tolerance = 1e-12;
+        control.max_iterations = 10000000;
+        const auto& solver = rad::solver(method);
+        const auto ra = solver.solve(p.op(), a, control);
+        const auto rb = solver.solve(p.op(), b, control);
+        const auto rboth = solver.solve(p.op(), both, control);
+        REQUIRE(rboth.radiosity.channels == 6);
+        double scale = 0;
+        for (double v : rboth.radiosity.values) scale = std::max(scale, v);
+        for (std::size_t i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) {
+                CHECK(std::abs(rboth.radiosity.at(i, c) - ra.radiosity.at(i, c)) < 1e-6 * scale);
+                CHECK(std::abs(rboth.radiosity.at(i, 3 + c) - rb.radiosity.at(i, c)) <
+                      1e-6 * scale);
+            }
+    }
+}
+
+TEST_CASE("the solver registry lists every solver and names them in errors") {
+    CHECK(rad::solver_names() == std::vector<std::string>{"gs", "jacobi", "pr", "apr"});
+    CHECK(rad::solver("pr").shooting());
+    CHECK_FALSE(rad::solver("gs").shooting());
+    CHECK(rad::solver("apr").residual_name() == "unshot_fraction");
+    CHECK_THROWS_AS(rad::solver("sor"), rad::InputError);
+    CHECK_THROWS_WITH(rad::solver("sor"), Catch::Contains("use gs, jacobi, pr, apr"));
 }

@@ -1,0 +1,62 @@
+#include "radfmt/chain.hpp"
+
+namespace radfmt {
+namespace fs = std::filesystem;
+
+std::string command_line(int argc, const char* const* argv) {
+    std::string out;
+    for (int i = 0; i < argc; ++i) {
+        std::string arg = argv[i];
+        if (arg == "--threads") {
+            ++i;
+            continue;
+        }
+        if (arg.rfind("--threads=", 0) == 0 || arg == "-q" || arg == "--quiet") continue;
+        if (i == 0) arg = fs::path(arg).filename().string();
+        const bool plain =
+            !arg.empty() && arg.find_first_of(" \t\"'\\$`*?;&|<>()") == std::string::npos;
+        if (!out.empty()) out += ' ';
+        if (plain) {
+            out += arg;
+        } else {
+            out += '\'';
+            for (char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+            out += '\'';
+        }
+    }
+    return out;
+}
+
+Header derived_header(std::string tool, std::string command, std::span<const Parent> parents) {
+    Header h;
+    h.tool = std::move(tool);
+    h.command = std::move(command);
+    const Header* longest = nullptr;
+    for (const auto& parent : parents) {
+        if (parent.header) {
+            h.inputs.push_back({parent.path.string(), parent.header->file_hash});
+            if (!longest || parent.header->provenance.size() >= longest->provenance.size())
+                longest = parent.header;
+        } else {
+            h.inputs.push_back({parent.path.string(), hash_file(parent.path)});
+        }
+    }
+    if (longest) h.provenance = longest->chain();
+    return h;
+}
+
+void require_same_geometry(const fs::path& file, const Header& header, std::uint64_t file_patches,
+                           const fs::path& mesh_path, const MeshData& mesh,
+                           std::string_view remedy) {
+    const auto* recorded = header.find("mesh_geometry_hash");
+    const auto actual = mesh.geometry_hash();
+    if (recorded && *recorded == actual && file_patches == mesh.patches.size()) return;
+    throw FormatError(file.string() + " is stale: it does not belong to " + mesh_path.string() +
+                      ": it was computed for a mesh with geometry " +
+                      (recorded ? *recorded : std::string("(unknown)")) + " and " +
+                      std::to_string(file_patches) + " patches, but " + mesh_path.string() +
+                      " has " + actual + " and " + std::to_string(mesh.patches.size()) +
+                      " patches; " + std::string(remedy));
+}
+
+} // namespace radfmt

@@ -1,0 +1,76 @@
+// Form-factor methods as plugins. A method is one file under src/formfactor/ that defines a
+// FormFactorMethod and one line in src/formfactor/registry.cpp. compute_form_factors owns
+// the parallel loop, the per-row random streams and the sparse packing; a method only says
+// how to fill one row.
+#pragma once
+#include "radfmt/kinds.hpp"
+#include "radiosity/formfactor.hpp"
+#include "radiosity/random.hpp"
+#include "radiosity/rays.hpp"
+
+#include <array>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace rad {
+
+// One patch as a polygon of 3 or 4 corners.
+struct PatchPolygon {
+    std::array<Vec3, 4> corners;
+    int count;
+    std::span<const Vec3> points() const { return {corners.data(), static_cast<size_t>(count)}; }
+};
+
+// What every method may use, built once per mesh.
+struct FormFactorContext {
+    const radfmt::MeshData& mesh;
+    const RayScene& scene;
+    std::vector<PatchPolygon> polygons; // per patch
+    std::vector<double> diameter;       // per patch: its longest corner-to-corner distance
+    double epsilon;                     // the ray scene's offset, relative to the scene size
+
+    FormFactorContext(const radfmt::MeshData& mesh, const RayScene& scene);
+    // Does any corner of patch j lie strictly in front of patch i's plane?
+    bool in_front(std::size_t i, std::size_t j) const;
+};
+
+// Row i of F: (column, F_ij) for the non-zero entries, columns ascending.
+using FormFactorRow = std::vector<std::pair<std::uint32_t, float>>;
+
+// A method prepared for one mesh: computes rows, from many threads at once.
+class RowKernel {
+  public:
+    virtual ~RowKernel() = default;
+    // Fills `row` (given empty) with row i, drawing every random number from `rng`, the
+    // row's own stream. Returns the number of rays cast.
+    virtual std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row) const = 0;
+};
+
+class FormFactorMethod {
+  public:
+    virtual ~FormFactorMethod() = default;
+    virtual std::string_view name() const = 0;
+    // One line for --help: what the method does and when to use it.
+    virtual std::string_view summary() const = 0;
+    // Fills in the method's defaults (options the user left at 0).
+    virtual void apply_defaults(FormFactorOptions& options) const = 0;
+    // The fields recorded in the .ff header after `method` and before `seed`.
+    virtual std::vector<std::pair<std::string, std::string>>
+    header_fields(const FormFactorOptions& options) const = 0;
+    // The most entries one row can have: bounds the memory of the result.
+    virtual std::uint64_t max_row_entries(const radfmt::MeshData& mesh,
+                                          const FormFactorOptions& options) const = 0;
+    // Per-mesh preparation (tables, per-thread scratch); the kernel may keep `context`.
+    virtual std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
+                                               const FormFactorOptions& options) const = 0;
+};
+
+// Every registered method, in the order --help lists them.
+std::span<const FormFactorMethod* const> form_factor_methods();
+std::vector<std::string> form_factor_method_names();
+// Throws InputError naming the known methods when `name` is not one of them.
+const FormFactorMethod& form_factor_method(std::string_view name);
+
+} // namespace rad

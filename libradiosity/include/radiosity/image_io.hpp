@@ -1,0 +1,21 @@
+// Image and mesh output: linear OpenEXR with attributes, sRGB PNG, vertex-coloured PLY.
+#pragma once
+#include "radiosity/raster.hpp"
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+namespace rad {
+
+void write_exr(const std::string& path, const Image& image,
+               const std::map<std::string, std::string>& attributes);
+Image read_exr(const std::string& path, std::map<std::string, std::string>* attributes = nullptr);
+// Multiplier that maps the 95th-percentile luminance of covered pixels to 0.8.
+double auto_exposure(const Image& image);
+void write_png(const std::string& path, const Image& image, double exposure);
+void write_ply(const std::string& path, const radfmt::MeshData& mesh,
+               const std::vector<std::array<Rgb, 4>>& corners, double exposure);
+std::uint8_t to_srgb8(double linear);
+
+} // namespace rad

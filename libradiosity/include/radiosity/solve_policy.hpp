@@ -1,0 +1,69 @@
+// What rad-solve decides before and after solving, as library code with unit tests:
+// material overrides, reflectance checks, form-factor row-sum warnings, stopping rules, and
+// what is recorded in the .rad header.
+#pragma once
+#include "radfmt/kinds.hpp"
+#include "radiosity/solver.hpp"
+
+#include <string>
+#include <vector>
+
+namespace rad {
+
+struct MaterialOverride {
+    std::string material;
+    radfmt::Rgb value;
+};
+// "MATERIAL=r,g,b" or "MATERIAL=v" (grey); values finite and >= 0. `option` names the
+// option in messages.
+MaterialOverride parse_material_override(const std::string& spec, const std::string& option);
+
+// "0.5,0.25,1" as the header records colours.
+std::string rgb_text(const radfmt::Rgb& value);
+
+struct SolveRequest {
+    std::string method = "gs";
+    std::vector<std::string> emission_overrides;    // MATERIAL=r,g,b
+    std::vector<std::string> reflectance_overrides; // MATERIAL=r,g,b
+    double emission_scale = 1;
+    long iterations = 0; // 0: the solver's default (or until the tolerance)
+    double sweeps = 0;   // shooting solvers: sweeps-equivalent (x patches shots)
+    double tolerance = 1e-6;
+    bool tolerance_given = false; // with iterations and no tolerance, exactly N are run
+    double row_sum_tolerance = 0.01;
+    bool force = false; // solve even with a reflectance >= 1
+};
+
+// Applies the overrides and the emission scale to `mesh`'s materials and records each in
+// `header` (override.emission.M, override.reflectance.M, override.emission_scale). Throws
+// InputError for unknown materials (listing the known ones) and malformed values.
+void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& request,
+                              radfmt::Header& header);
+
+// Throws InputError listing every material (used by a patch) with a reflectance channel >= 1
+// at once, with the override that would fix each, unless `force`.
+void check_reflectances(const radfmt::MeshData& mesh, bool force);
+bool any_emitter(const radfmt::MeshData& mesh);
+
+struct RowSumReport {
+    std::size_t rows_above = 0; // rows summing above 1 + tolerance
+    double largest = 0;
+};
+RowSumReport check_row_sums(const radfmt::FormFactorData& ff, double tolerance);
+
+// Warnings a solve of `mesh` over `ff` deserves (no emitter, heavy rows), as message lines.
+std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh,
+                                        const radfmt::FormFactorData& ff,
+                                        const std::string& ff_path, double row_sum_tolerance);
+
+// The stopping rule for `request` on `patches` patches: --sweeps into shots, the solver's
+// default iteration count, and the tolerance (off when iterations are set without one).
+SolveControl stop_rule(const Solver& solver, const SolveRequest& request, std::size_t patches);
+
+// Header fields of a solution: method and the hashes tying it to its inputs (after any
+// override fields), then, once solved, iterations and the residual.
+void record_solve_inputs(radfmt::Header& header, const SolveRequest& request,
+                         const radfmt::MeshData& mesh, const radfmt::Header& ff_header);
+void record_solve_result(radfmt::Header& header, const Solver& solver, const SolveResult& result);
+
+} // namespace rad

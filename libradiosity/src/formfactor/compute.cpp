@@ -1,0 +1,123 @@
+// The parts every form-factor method shares: the per-mesh context, the parallel loop over
+// rows with a random stream per row, and the packing of rows into sparse storage.
+#include "radiosity/formfactor.hpp"
+#include "radiosity/formfactor_method.hpp"
+#include "radiosity/progress.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+
+namespace rad {
+
+FormFactorContext::FormFactorContext(const radfmt::MeshData& mesh_, const RayScene& scene_)
+    : mesh(mesh_), scene(scene_), epsilon(scene_.epsilon()) {
+    const std::size_t n = mesh.patches.size();
+    polygons.reserve(n);
+    diameter.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto& p = mesh.patches[i];
+        PatchPolygon g{};
+        g.count = p.corner_count();
+        for (int k = 0; k < g.count; ++k) g.corners[k] = mesh.vertices[p.corners[k]];
+        for (int a = 0; a < g.count; ++a)
+            for (int b = a + 1; b < g.count; ++b)
+                diameter[i] = std::max(diameter[i], length(g.corners[a] - g.corners[b]));
+        polygons.push_back(g);
+    }
+}
+
+bool FormFactorContext::in_front(std::size_t i, std::size_t j) const {
+    const auto& pi = mesh.patches[i];
+    for (int k = 0; k < polygons[j].count; ++k)
+        if (dot(polygons[j].corners[k] - pi.centroid, pi.normal) > epsilon) return true;
+    return false;
+}
+
+FormFactorOptions resolve_form_factor_options(FormFactorOptions options) {
+    form_factor_method(options.method).apply_defaults(options);
+    return options;
+}
+
+std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
+                                          const FormFactorOptions& options) {
+    const std::uint64_t n = mesh.patches.size();
+    const std::uint64_t per_row = form_factor_method(options.method).max_row_entries(mesh, options);
+    // Rows are built then packed: entries (4 + 4 bytes) are held twice at the peak; Embree
+    // and the mesh take a few hundred bytes per patch.
+    return 2 * n * per_row * 8 + n * 400 + mesh.vertices.size() * 64;
+}
+
+std::vector<std::pair<std::string, std::string>>
+form_factor_header_fields(const FormFactorOptions& options) {
+    const auto& method = form_factor_method(options.method);
+    std::vector<std::pair<std::string, std::string>> fields{{"method", options.method}};
+    for (auto& field : method.header_fields(options)) fields.push_back(std::move(field));
+    fields.emplace_back("seed", std::to_string(options.seed));
+    return fields;
+}
+
+radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
+                                            const FormFactorOptions& options_in,
+                                            FormFactorStats* stats, RowRange range) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto options = resolve_form_factor_options(options_in);
+    const auto& method = form_factor_method(options.method);
+    const std::size_t n = mesh.patches.size();
+    const std::size_t first = std::min<std::uint64_t>(range.begin, n);
+    const std::size_t last =
+        std::max(first, static_cast<std::size_t>(std::min<std::uint64_t>(range.end, n)));
+
+    const RayScene scene(mesh);
+    const FormFactorContext context(mesh, scene);
+    const auto kernel = method.prepare(context, options);
+
+    std::vector<FormFactorRow> rows(n);
+    std::atomic<std::uint64_t> rays_cast{0};
+    Progress progress("rad-ff " + options.method, last - first, options.quiet);
+    const auto trace_start = std::chrono::steady_clock::now();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 1),
+                      [&](const tbb::blocked_range<std::size_t>& block) {
+                          for (std::size_t i = block.begin(); i != block.end(); ++i) {
+                              Rng rng(options.seed, i);
+                              rays_cast += kernel->compute_row(i, rng, rows[i]);
+                              progress.advance(1);
+                          }
+                      });
+    const double trace_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - trace_start).count();
+    progress.finish();
+
+    radfmt::FormFactorData ff;
+    ff.patch_count = n;
+    ff.row_start.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ff.row_start[i + 1] = ff.row_start[i] + rows[i].size();
+    ff.columns.reserve(ff.row_start[n]);
+    ff.values.reserve(ff.row_start[n]);
+    double sum_rows = 0, max_row = 0;
+    for (auto& row : rows) {
+        double sum = 0;
+        for (const auto& [col, value] : row) {
+            ff.columns.push_back(col);
+            ff.values.push_back(value);
+            sum += value;
+        }
+        sum_rows += sum;
+        max_row = std::max(max_row, sum);
+        FormFactorRow().swap(row);
+    }
+    if (stats) {
+        stats->rays_cast = rays_cast;
+        stats->seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats->trace_seconds = trace_seconds;
+        stats->mean_row_sum = last > first ? sum_rows / double(last - first) : 0;
+        stats->max_row_sum = max_row;
+    }
+    return ff;
+}
+
+} // namespace rad

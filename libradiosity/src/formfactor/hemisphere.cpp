@@ -1,0 +1,110 @@
+// hemisphere: K cosine-weighted rays per patch from area-uniform origins (quasi-Monte
+// Carlo); F_ij = hits on j's front / K. Scales to large scenes.
+#include "sampling.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+
+namespace rad::ff {
+namespace {
+
+class HemisphereKernel final : public RowKernel {
+  public:
+    HemisphereKernel(const FormFactorContext& context, const FormFactorOptions& options)
+        : context_(context), rays_(std::max(1, options.rays)) {
+        // The low-discrepancy points are the same for every patch (only their rotation
+        // differs), so they are computed once rather than per ray.
+        qmc_.resize(rays_);
+        for (int r = 0; r < rays_; ++r)
+            qmc_[r] = {(r + 0.5) / rays_, radical_inverse(r, 2), radical_inverse(r + 1, 3),
+                       radical_inverse(r + 1, 5)};
+    }
+
+    std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row) const override {
+        const auto& mesh = context_.mesh;
+        const auto& pi = mesh.patches[i];
+        const std::size_t n = mesh.patches.size();
+        const auto poly = context_.polygons[i].points();
+        const auto cdf = fan_cdf(poly);
+        const Vec3 tu = orthogonal(pi.normal), tv = cross(pi.normal, tu);
+        // Quasi-Monte Carlo: a 4D low-discrepancy set (Hammersley's (0,2)-net for the
+        // origin, Halton bases 3 and 5 for the direction), rotated per patch by seeded
+        // offsets (Cranley-Patterson), so the estimate is unbiased and stratified jointly.
+        const double rot[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
+        // Hits are tallied in a per-thread counter over all patches; only the distinct
+        // patches hit are sorted (fewer than the rays), and the counter is reset after.
+        auto& tally = tally_.local();
+        if (tally.counts.size() != n) tally.counts.assign(n, 0);
+        auto& hit_patches = tally.touched;
+        hit_patches.clear();
+        for (int r = 0; r < rays_; ++r) {
+            const double u0 = wrap(qmc_[r][0] + rot[0]);
+            const double u1 = wrap(qmc_[r][1] + rot[1]);
+            const double u2 = wrap(qmc_[r][2] + rot[2]);
+            const double u3 = wrap(qmc_[r][3] + rot[3]);
+            // Choose a fan triangle with u0, then reuse u0's remainder: stays stratified.
+            double within = 0;
+            const std::size_t tri = pick_fan_triangle(cdf, u0, &within);
+            const Vec3 origin = fan_triangle_point(poly, tri, within, u1);
+            // Cosine-weighted direction: Malley's method.
+            const double radius = std::sqrt(u2), phi = 2 * kPi * u3;
+            const Vec3 dir = tu * (radius * std::cos(phi)) + tv * (radius * std::sin(phi)) +
+                             pi.normal * std::sqrt(std::max(0.0, 1 - u2));
+            bool front = false;
+            const auto hit = context_.scene.first_hit(origin, dir, front);
+            if (hit >= 0 && front && static_cast<std::size_t>(hit) != i && tally.counts[hit]++ == 0)
+                hit_patches.push_back(static_cast<std::uint32_t>(hit));
+        }
+        std::sort(hit_patches.begin(), hit_patches.end());
+        row.reserve(hit_patches.size());
+        for (const auto j : hit_patches) {
+            row.emplace_back(j, static_cast<float>(double(tally.counts[j]) / rays_));
+            tally.counts[j] = 0;
+        }
+        return static_cast<std::uint64_t>(rays_);
+    }
+
+  private:
+    struct HitTally {
+        std::vector<std::uint32_t> counts; // hits per patch, all zero between rows
+        std::vector<std::uint32_t> touched;
+    };
+    const FormFactorContext& context_;
+    int rays_;
+    std::vector<std::array<double, 4>> qmc_;
+    mutable tbb::enumerable_thread_specific<HitTally> tally_;
+};
+
+class Hemisphere final : public FormFactorMethod {
+  public:
+    std::string_view name() const override { return "hemisphere"; }
+    std::string_view summary() const override {
+        return "cosine-weighted rays per patch, F_ij = hits/rays (scales to large scenes)";
+    }
+    void apply_defaults(FormFactorOptions& options) const override {
+        if (options.samples == 0) options.samples = 16; // unused; kept for a stable record
+    }
+    std::vector<std::pair<std::string, std::string>>
+    header_fields(const FormFactorOptions& options) const override {
+        return {{"rays", std::to_string(options.rays)}};
+    }
+    std::uint64_t max_row_entries(const radfmt::MeshData& mesh,
+                                  const FormFactorOptions& options) const override {
+        return std::min<std::uint64_t>(mesh.patches.size(),
+                                       static_cast<std::uint64_t>(std::max(1, options.rays)));
+    }
+    std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
+                                       const FormFactorOptions& options) const override {
+        return std::make_unique<HemisphereKernel>(context, options);
+    }
+};
+
+} // namespace
+
+const FormFactorMethod& hemisphere_method() {
+    static const Hemisphere method;
+    return method;
+}
+
+} // namespace rad::ff

@@ -1,0 +1,40 @@
+// The form-factor methods, by name. Adding a method: one file under src/formfactor/ that
+// defines `const FormFactorMethod& NAME_method()`, plus one X(NAME) line here.
+#include "radiosity/error.hpp"
+#include "radiosity/formfactor_method.hpp"
+
+#define RAD_FORM_FACTOR_METHODS(X)                                                                 \
+    X(analytic)                                                                                    \
+    X(pairwise)                                                                                    \
+    X(hemisphere)
+
+namespace rad {
+namespace ff {
+#define RAD_DECLARE_METHOD(name) const FormFactorMethod& name##_method();
+RAD_FORM_FACTOR_METHODS(RAD_DECLARE_METHOD)
+#undef RAD_DECLARE_METHOD
+} // namespace ff
+
+std::span<const FormFactorMethod* const> form_factor_methods() {
+#define RAD_LIST_METHOD(name) &ff::name##_method(),
+    static const FormFactorMethod* const all[] = {RAD_FORM_FACTOR_METHODS(RAD_LIST_METHOD)};
+#undef RAD_LIST_METHOD
+    return all;
+}
+
+std::vector<std::string> form_factor_method_names() {
+    std::vector<std::string> names;
+    for (const auto* m : form_factor_methods()) names.emplace_back(m->name());
+    return names;
+}
+
+const FormFactorMethod& form_factor_method(std::string_view name) {
+    std::string known;
+    for (const auto* m : form_factor_methods()) {
+        if (m->name() == name) return *m;
+        known += (known.empty() ? "" : ", ") + std::string(m->name());
+    }
+    throw InputError("unknown form-factor method '" + std::string(name) + "' (use " + known + ")");
+}
+
+} // namespace rad

@@ -1,0 +1,59 @@
+// Quadrature and sampling on patches, shared by the form-factor methods (internal header).
+#pragma once
+#include "radiosity/formfactor_method.hpp"
+#include "radiosity/vec.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <span>
+#include <vector>
+
+namespace rad::ff {
+
+inline constexpr double kPi = std::numbers::pi;
+
+// Gauss-Legendre nodes and weights on [0,1].
+void gauss_legendre(int m, std::vector<double>& nodes, std::vector<double>& weights);
+
+struct Sample {
+    Vec3 point;
+    double weight; // fraction of the patch's area this sample stands for; weights sum to 1
+};
+
+// A point of the patch for (s,t) in [0,1]^2 and the area the unit square maps to there:
+// bilinear for quads, the collapsed (Duffy) square for triangles.
+Vec3 patch_point(const PatchPolygon& g, double s, double t, double& jacobian);
+
+// Quadrature points (Gauss-Legendre product rule) for smooth integrands.
+std::vector<Sample> gauss_samples(const PatchPolygon& g, double area,
+                                  const std::vector<double>& nodes,
+                                  const std::vector<double>& weights);
+
+// The fan triangle (of a convex polygon) that u in [0,1) falls in by area; `remainder`, when
+// asked for, is u rescaled to [0,1) within that triangle, so one number can serve twice.
+std::size_t pick_fan_triangle(std::span<const double> fan_cdf, double u,
+                              double* remainder = nullptr);
+// An area-uniform point of fan triangle `tri` (vertices 0, tri+1, tri+2) for u, v in [0,1).
+Vec3 fan_triangle_point(std::span<const Vec3> poly, std::size_t tri, double u, double v);
+// An area-uniform point on a convex polygon (fan of triangles).
+Vec3 uniform_point(std::span<const Vec3> poly, std::span<const double> fan_cdf, double u0,
+                   double u1, double u2);
+std::vector<double> fan_cdf(std::span<const Vec3> poly);
+
+// Keeps the part of `poly` on the positive side of the plane (point, normal).
+std::vector<Vec3> clip_to_front(std::span<const Vec3> poly, const Vec3& point, const Vec3& normal);
+
+// A unit vector orthogonal to n.
+Vec3 orthogonal(const Vec3& n);
+
+// Radical inverse in base b: the Halton sequence.
+double radical_inverse(std::uint64_t i, std::uint64_t base);
+
+inline double wrap(double x) {
+    return x - std::floor(x);
+}
+
+// Points per axis for `samples` points per patch (rounded to a square).
+int points_per_axis(int samples);
+
+} // namespace rad::ff

@@ -1,0 +1,146 @@
+// Images out (and in, for tests): linear OpenEXR with provenance attributes, sRGB PNG
+// previews, vertex-coloured PLY meshes.
+#include "radiosity/image_io.hpp"
+
+#include "radfmt/container.hpp"
+#include "radiosity/error.hpp"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+namespace rad {
+
+void write_exr(const std::string& path, const Image& image,
+               const std::map<std::string, std::string>& attributes) {
+    radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
+        try {
+            Imf::Header header(image.width, image.height);
+            for (const char* name : {"R", "G", "B"})
+                header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            for (const auto& [key, value] : attributes)
+                header.insert(key, Imf::StringAttribute(value));
+            Imf::OutputFile file(temp.c_str(), header);
+            Imf::FrameBuffer fb;
+            char* base = reinterpret_cast<char*>(const_cast<float*>(image.rgb.data()));
+            const std::size_t xs = 3 * sizeof(float), ys = xs * image.width;
+            fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
+            fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
+            fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+            file.setFrameBuffer(fb);
+            file.writePixels(image.height);
+        } catch (const std::exception& e) {
+            throw SystemError(path + ": cannot write EXR: " + e.what());
+        }
+    });
+}
+
+Image read_exr(const std::string& path, std::map<std::string, std::string>* attributes) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const auto dw = file.header().dataWindow();
+        Image image;
+        image.width = dw.max.x - dw.min.x + 1;
+        image.height = dw.max.y - dw.min.y + 1;
+        image.rgb.assign(static_cast<std::size_t>(image.width) * image.height * 3, 0.0f);
+        Imf::FrameBuffer fb;
+        char* base = reinterpret_cast<char*>(image.rgb.data());
+        const std::size_t xs = 3 * sizeof(float), ys = xs * image.width;
+        base -= (dw.min.x * xs + dw.min.y * ys);
+        fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
+        fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
+        fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        if (attributes)
+            for (auto it = file.header().begin(); it != file.header().end(); ++it)
+                if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+                    (*attributes)[it.name()] = s->value();
+        return image;
+    } catch (const std::exception& e) {
+        throw InputError(path + ": cannot read EXR: " + e.what());
+    }
+}
+
+double auto_exposure(const Image& image) {
+    std::vector<float> luminance;
+    for (std::size_t i = 0; i + 2 < image.rgb.size(); i += 3) {
+        const float y =
+            0.2126f * image.rgb[i] + 0.7152f * image.rgb[i + 1] + 0.0722f * image.rgb[i + 2];
+        if (y > 0) luminance.push_back(y);
+    }
+    if (luminance.empty()) return 1;
+    const auto at = luminance.begin() + static_cast<long>(0.95 * (luminance.size() - 1));
+    std::nth_element(luminance.begin(), at, luminance.end());
+    return *at > 0 ? 0.8 / *at : 1;
+}
+
+std::uint8_t to_srgb8(double linear) {
+    linear = std::clamp(linear, 0.0, 1.0);
+    const double s =
+        linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+    return static_cast<std::uint8_t>(std::lround(s * 255));
+}
+
+void write_png(const std::string& path, const Image& image, double exposure) {
+    std::vector<std::uint8_t> pixels(image.rgb.size());
+    for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = to_srgb8(image.rgb[i] * exposure);
+    radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
+        png_image png{};
+        png.version = PNG_IMAGE_VERSION;
+        png.width = static_cast<png_uint_32>(image.width);
+        png.height = static_cast<png_uint_32>(image.height);
+        png.format = PNG_FORMAT_RGB;
+        if (!png_image_write_to_file(&png, temp.c_str(), 0, pixels.data(), 0, nullptr))
+            throw SystemError(path + ": cannot write PNG: " + png.message);
+    });
+}
+
+void write_ply(const std::string& path, const radfmt::MeshData& mesh,
+               const std::vector<std::array<Rgb, 4>>& corners, double exposure) {
+    radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
+        std::ofstream out(temp);
+        std::size_t vertex_count = 0;
+        for (const auto& p : mesh.patches) vertex_count += p.corner_count();
+        // Each patch corner gets its own vertex: crease-aware smoothing gives one vertex
+        // different colours on different sides of an edge.
+        out << "ply\nformat ascii 1.0\ncomment radiosity rad-shade: colours are smoothed "
+               "radiosity, sRGB\n"
+            << "element vertex " << vertex_count
+            << "\nproperty float x\nproperty float y\nproperty float z\n"
+            << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+            << "property float radiosity_r\nproperty float radiosity_g\nproperty float "
+               "radiosity_b\n"
+            << "element face " << mesh.patches.size()
+            << "\nproperty list uchar int vertex_indices\nend_header\n";
+        out.precision(9);
+        for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+            const auto& p = mesh.patches[i];
+            for (int k = 0; k < p.corner_count(); ++k) {
+                const auto& v = mesh.vertices[p.corners[k]];
+                const auto& c = corners[i][k];
+                out << v[0] << ' ' << v[1] << ' ' << v[2] << ' ' << int(to_srgb8(c[0] * exposure))
+                    << ' ' << int(to_srgb8(c[1] * exposure)) << ' '
+                    << int(to_srgb8(c[2] * exposure)) << ' ' << c[0] << ' ' << c[1] << ' ' << c[2]
+                    << '\n';
+            }
+        }
+        std::size_t next = 0;
+        for (const auto& p : mesh.patches) {
+            out << p.corner_count();
+            for (int k = 0; k < p.corner_count(); ++k) out << ' ' << next++;
+            out << '\n';
+        }
+        if (!out.flush()) throw SystemError(path + ": cannot write PLY");
+    });
+}
+
+} // namespace rad

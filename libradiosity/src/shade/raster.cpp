@@ -1,0 +1,151 @@
+// A z-buffer rasteriser with near-plane clipping, perspective-correct interpolation and
+// supersampling, in parallel row bands.
+#include "radiosity/raster.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace rad {
+
+namespace {
+constexpr double kDeg = std::numbers::pi / 180;
+}
+
+namespace {
+
+struct ScreenVertex {
+    double x, y;  // pixel coordinates of the supersampled frame
+    double inv_z; // 1 / depth, interpolated linearly in screen space
+    Rgb colour_over_z;
+};
+
+struct ScreenTriangle {
+    std::array<ScreenVertex, 3> v;
+    double min_y, max_y;
+};
+
+} // namespace
+
+Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners,
+             const View& view, int width, int height, int supersampling) {
+    const int ss = std::max(1, supersampling);
+    const int W = width * ss, H = height * ss;
+    const Vec3 dir = normalized(view.direction);
+    const Vec3 right = normalized(cross(dir, view.up));
+    const Vec3 up = cross(right, dir);
+    const double tan_h = std::tan(0.5 * view.horizontal_deg * kDeg),
+                 tan_v = std::tan(0.5 * view.vertical_deg * kDeg);
+    double extent = 0;
+    for (const auto& v : mesh.vertices) extent = std::max(extent, length(v - view.position));
+    const double near = std::max(1e-9, 1e-5 * extent);
+
+    struct CamPoint {
+        Vec3 p; // camera space: x right, y up, z depth
+        Rgb c;
+    };
+    std::vector<ScreenTriangle> triangles;
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const auto& patch = mesh.patches[i];
+        std::vector<CamPoint> poly;
+        for (int k = 0; k < patch.corner_count(); ++k) {
+            const Vec3 d = mesh.vertices[patch.corners[k]] - view.position;
+            poly.push_back({{dot(d, right), dot(d, up), dot(d, dir)}, corners[i][k]});
+        }
+        // Clip against the near plane so geometry behind the eye never projects.
+        std::vector<CamPoint> clipped;
+        for (std::size_t k = 0; k < poly.size(); ++k) {
+            const auto& a = poly[k];
+            const auto& b = poly[(k + 1) % poly.size()];
+            if (a.p[2] >= near) clipped.push_back(a);
+            if ((a.p[2] >= near) != (b.p[2] >= near)) {
+                const double t = (near - a.p[2]) / (b.p[2] - a.p[2]);
+                CamPoint m;
+                m.p = a.p + (b.p - a.p) * t;
+                for (int c = 0; c < 3; ++c) m.c[c] = a.c[c] + (b.c[c] - a.c[c]) * t;
+                clipped.push_back(m);
+            }
+        }
+        if (clipped.size() < 3) continue;
+        std::vector<ScreenVertex> screen;
+        for (const auto& cp : clipped) {
+            const double inv_z = 1.0 / cp.p[2];
+            ScreenVertex sv;
+            sv.x = (cp.p[0] * inv_z / tan_h + 1) * 0.5 * W;
+            sv.y = (1 - cp.p[1] * inv_z / tan_v) * 0.5 * H;
+            sv.inv_z = inv_z;
+            for (int c = 0; c < 3; ++c) sv.colour_over_z[c] = cp.c[c] * inv_z;
+            screen.push_back(sv);
+        }
+        for (std::size_t k = 1; k + 1 < screen.size(); ++k) {
+            ScreenTriangle t{{screen[0], screen[k], screen[k + 1]}, 0, 0};
+            t.min_y = std::min({t.v[0].y, t.v[1].y, t.v[2].y});
+            t.max_y = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
+            if (t.max_y < 0 || t.min_y > H) continue;
+            triangles.push_back(t);
+        }
+    }
+
+    std::vector<float> hi(static_cast<std::size_t>(W) * H * 3, 0.0f);
+    std::vector<double> depth(static_cast<std::size_t>(W) * H, 0.0); // stores 1/z; 0 = empty
+    const int band = 16;
+    tbb::parallel_for(0, (H + band - 1) / band, [&](int b) {
+        const int y0 = b * band, y1 = std::min(H, y0 + band);
+        for (const auto& t : triangles) {
+            if (t.max_y < y0 || t.min_y > y1) continue;
+            const auto &a = t.v[0], &bb = t.v[1], &c = t.v[2];
+            const double area = (bb.x - a.x) * (c.y - a.y) - (bb.y - a.y) * (c.x - a.x);
+            if (std::abs(area) < 1e-12) continue;
+            const int ya = std::max(y0, static_cast<int>(std::floor(t.min_y)));
+            const int yb = std::min(y1 - 1, static_cast<int>(std::ceil(t.max_y)));
+            const int xa = std::max(0, static_cast<int>(std::floor(std::min({a.x, bb.x, c.x}))));
+            const int xb = std::min(W - 1, static_cast<int>(std::ceil(std::max({a.x, bb.x, c.x}))));
+            for (int y = ya; y <= yb; ++y)
+                for (int x = xa; x <= xb; ++x) {
+                    const double px = x + 0.5, py = y + 0.5;
+                    const double w0 = ((bb.x - px) * (c.y - py) - (bb.y - py) * (c.x - px)) / area;
+                    const double w1 = ((c.x - px) * (a.y - py) - (c.y - py) * (a.x - px)) / area;
+                    const double w2 = 1 - w0 - w1;
+                    // A small tolerance: the two triangles beside a shared edge compute it in
+                    // opposite orders, and rounding must not leave a crack between them.
+                    if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;
+                    const double inv_z = w0 * a.inv_z + w1 * bb.inv_z + w2 * c.inv_z;
+                    const std::size_t at = static_cast<std::size_t>(y) * W + x;
+                    if (inv_z <= depth[at]) continue;
+                    depth[at] = inv_z;
+                    for (int ch = 0; ch < 3; ++ch)
+                        hi[3 * at + ch] = static_cast<float>((w0 * a.colour_over_z[ch] +
+                                                              w1 * bb.colour_over_z[ch] +
+                                                              w2 * c.colour_over_z[ch]) /
+                                                             inv_z);
+                }
+        }
+    });
+
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.rgb.assign(static_cast<std::size_t>(width) * height * 3, 0.0f);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            double sum[3] = {0, 0, 0};
+            bool covered = false;
+            for (int sy = 0; sy < ss; ++sy)
+                for (int sx = 0; sx < ss; ++sx) {
+                    const std::size_t at =
+                        static_cast<std::size_t>(y * ss + sy) * W + (x * ss + sx);
+                    covered = covered || depth[at] > 0;
+                    for (int c = 0; c < 3; ++c) sum[c] += hi[3 * at + c];
+                }
+            image.covered_pixels += covered;
+            for (int c = 0; c < 3; ++c)
+                image.rgb[3 * (static_cast<std::size_t>(y) * width + x) + c] =
+                    static_cast<float>(sum[c] / (ss * ss));
+        }
+    return image;
+}
+
+} // namespace rad

@@ -1,0 +1,60 @@
+// From one radiosity per patch to a colour per patch corner (vertex smoothing).
+#include "radiosity/smoothing.hpp"
+
+#include "radiosity/error.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace rad {
+
+namespace {
+constexpr double kDeg = std::numbers::pi / 180;
+}
+
+Smoothing parse_smoothing(const std::string& name) {
+    if (name == "flat") return Smoothing::Flat;
+    if (name == "average") return Smoothing::Average;
+    if (name == "area") return Smoothing::Area;
+    if (name == "crease") return Smoothing::Crease;
+    throw InputError("unknown smoothing '" + name + "' (use average, area, crease or flat)");
+}
+
+std::vector<std::array<Rgb, 4>> corner_colours(const radfmt::MeshData& mesh,
+                                               const std::vector<Rgb>& patch, Smoothing mode,
+                                               double crease_deg) {
+    const std::size_t n = mesh.patches.size();
+    std::vector<std::array<Rgb, 4>> out(n);
+    if (mode == Smoothing::Flat) {
+        for (std::size_t i = 0; i < n; ++i) out[i].fill(patch[i]);
+        return out;
+    }
+    std::vector<std::vector<std::uint32_t>> around(mesh.vertices.size());
+    for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < mesh.patches[i].corner_count(); ++k)
+            around[mesh.patches[i].corners[k]].push_back(static_cast<std::uint32_t>(i));
+    const double cos_crease = std::cos(crease_deg * kDeg);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+        const auto& p = mesh.patches[i];
+        for (int k = 0; k < p.corner_count(); ++k) {
+            Rgb sum{0, 0, 0};
+            double weight = 0;
+            for (auto q : around[p.corners[k]]) {
+                const auto& pq = mesh.patches[q];
+                if (mode == Smoothing::Crease &&
+                    (pq.material != p.material || dot(pq.normal, p.normal) < cos_crease))
+                    continue;
+                const double w = mode == Smoothing::Average ? 1.0 : pq.area;
+                for (int c = 0; c < 3; ++c) sum[c] += w * patch[q][c];
+                weight += w;
+            }
+            for (int c = 0; c < 3; ++c) out[i][k][c] = weight > 0 ? sum[c] / weight : patch[i][c];
+        }
+        if (p.corner_count() == 3) out[i][3] = out[i][2];
+    });
+    return out;
+}
+
+} // namespace rad

@@ -1,0 +1,161 @@
+#include "radiosity/solve_policy.hpp"
+
+#include "radiosity/error.hpp"
+#include "radiosity/numbers.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace rad {
+
+MaterialOverride parse_material_override(const std::string& spec, const std::string& option) {
+    const auto eq = spec.find('=');
+    MaterialOverride o{};
+    if (eq == std::string::npos || eq == 0)
+        throw InputError(option + ": '" + spec + "' is not MATERIAL=r,g,b");
+    o.material = spec.substr(0, eq);
+    std::stringstream parts(spec.substr(eq + 1));
+    std::string item;
+    int count = 0;
+    while (std::getline(parts, item, ',')) {
+        if (count == 3) throw InputError(option + ": '" + spec + "' has more than 3 values");
+        if (!parse_number(item, o.value[count]))
+            throw InputError(option + ": '" + item + "' in '" + spec +
+                             "' is not a number (finite, decimal)");
+        if (o.value[count] < 0)
+            throw InputError(option + ": values must be finite and non-negative in '" + spec + "'");
+        ++count;
+    }
+    if (count == 1)
+        o.value = {o.value[0], o.value[0], o.value[0]};
+    else if (count != 3)
+        throw InputError(option + ": '" + spec + "' needs 1 or 3 values");
+    return o;
+}
+
+std::string rgb_text(const radfmt::Rgb& v) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", v[0], v[1], v[2]);
+    return text;
+}
+
+namespace {
+radfmt::Material& find_material(radfmt::MeshData& mesh, const std::string& name) {
+    for (auto& m : mesh.materials)
+        if (m.name == name) return m;
+    std::string known;
+    for (const auto& m : mesh.materials) known += (known.empty() ? "" : ", ") + m.name;
+    throw InputError("no material '" + name + "' in the mesh (it has: " + known + ")");
+}
+} // namespace
+
+void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& request,
+                              radfmt::Header& header) {
+    for (const auto& spec : request.emission_overrides) {
+        const auto o = parse_material_override(spec, "--emission");
+        find_material(mesh, o.material).emission = o.value;
+        header.set("override.emission." + o.material, rgb_text(o.value));
+    }
+    for (const auto& spec : request.reflectance_overrides) {
+        const auto o = parse_material_override(spec, "--reflectance");
+        find_material(mesh, o.material).reflectance = o.value;
+        header.set("override.reflectance." + o.material, rgb_text(o.value));
+    }
+    if (!(request.emission_scale >= 0) || !std::isfinite(request.emission_scale))
+        throw InputError("--emission-scale must be finite and non-negative");
+    if (request.emission_scale != 1) {
+        for (auto& m : mesh.materials)
+            for (auto& e : m.emission) e *= request.emission_scale;
+        char scale[32];
+        std::snprintf(scale, sizeof scale, "%.9g", request.emission_scale);
+        header.set("override.emission_scale", scale);
+    }
+}
+
+void check_reflectances(const radfmt::MeshData& mesh, bool force) {
+    if (force) return;
+    std::vector<bool> used(mesh.materials.size(), false);
+    for (const auto& p : mesh.patches) used[p.material] = true;
+    std::string list;
+    for (std::size_t m = 0; m < mesh.materials.size(); ++m) {
+        const auto& mat = mesh.materials[m];
+        if (!used[m]) continue;
+        if (mat.reflectance[0] < 1 && mat.reflectance[1] < 1 && mat.reflectance[2] < 1) continue;
+        radfmt::Rgb fixed = mat.reflectance;
+        for (auto& v : fixed) v = std::min(v, 0.95);
+        list += "\n  material '" + mat.name + "' has reflectance " + rgb_text(mat.reflectance) +
+                " (fix: --reflectance " + mat.name + "=" + rgb_text(fixed) + ")";
+    }
+    if (!list.empty())
+        throw InputError("a reflectance channel >= 1 may not converge (use --force to solve "
+                         "anyway):" +
+                         list);
+}
+
+bool any_emitter(const radfmt::MeshData& mesh) {
+    for (const auto& p : mesh.patches)
+        for (double e : mesh.materials[p.material].emission)
+            if (e > 0) return true;
+    return false;
+}
+
+RowSumReport check_row_sums(const radfmt::FormFactorData& ff, double tolerance) {
+    RowSumReport report;
+    for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
+        double sum = 0;
+        for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) sum += ff.values[k];
+        if (sum > 1 + tolerance) ++report.rows_above;
+        report.largest = std::max(report.largest, sum);
+    }
+    return report;
+}
+
+std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh,
+                                        const radfmt::FormFactorData& ff,
+                                        const std::string& ff_path, double row_sum_tolerance) {
+    std::vector<std::string> out;
+    if (!any_emitter(mesh)) out.push_back("no patch emits light: the result is black");
+    const auto rows = check_row_sums(ff, row_sum_tolerance);
+    if (rows.rows_above) {
+        std::ostringstream text;
+        text << rows.rows_above << " form-factor row(s) of " << ff_path << " sum above 1 + "
+             << row_sum_tolerance << " (largest " << rows.largest
+             << "): the form factors are inaccurate; use more samples or rays";
+        out.push_back(text.str());
+    }
+    return out;
+}
+
+SolveControl stop_rule(const Solver& solver, const SolveRequest& request, std::size_t patches) {
+    SolveControl control;
+    long iterations = request.iterations;
+    if (request.sweeps > 0) {
+        if (!solver.shooting())
+            throw InputError("--sweeps applies to shooting solvers (pr, apr); use --iterations "
+                             "for " +
+                             std::string(solver.name()));
+        iterations = static_cast<long>(std::ceil(request.sweeps * double(patches)));
+    }
+    control.max_iterations = iterations;
+    control.tolerance = (iterations > 0 && !request.tolerance_given) ? 0 : request.tolerance;
+    if (control.max_iterations == 0)
+        control.max_iterations = solver.default_max_iterations(patches);
+    return control;
+}
+
+void record_solve_inputs(radfmt::Header& header, const SolveRequest& request,
+                         const radfmt::MeshData& mesh, const radfmt::Header& ff_header) {
+    header.set("method", request.method);
+    header.set("mesh_geometry_hash", mesh.geometry_hash());
+    header.set("form_factor_hash", ff_header.body_hash);
+}
+
+void record_solve_result(radfmt::Header& header, const Solver& solver, const SolveResult& result) {
+    header.set("iterations", std::to_string(result.iterations));
+    char residual[32];
+    std::snprintf(residual, sizeof residual, "%.6g", result.residual);
+    header.set(std::string(solver.residual_name()), residual);
+}
+
+} // namespace rad

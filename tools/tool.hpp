@@ -1,0 +1,28 @@
+// What every tool's main shares (tools only: the library knows nothing of CLI11): argument
+// parsing with the house exit codes, and running a tool body with errors mapped to them.
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace rad::tool {
+
+// Parses arguments; returns -1 to go on, or the exit code to return at once (0 after
+// --help, 1 for a usage error).
+int parse_arguments(CLI::App& app, int argc, char** argv);
+
+// Runs a tool body: prints "<tool>: error: ..." and returns 1 for bad input or usage
+// (InputError, FormatError), 2 for system failures (SystemError, WriteError, out of memory,
+// a closed output pipe is not one: it ends the tool quietly with 0), 3 for anything else.
+int run_tool(const char* tool, const std::function<int()>& body);
+
+// "name1, name2 or name3" for help texts.
+std::string one_of(const std::vector<std::string>& names);
+
+// "8G", "512M", "100K", "1T" (binary units) or plain bytes; throws InputError naming
+// `option` otherwise.
+std::uint64_t parse_size(const std::string& text, const std::string& option);
+
+} // namespace rad::tool
