@@ -3,10 +3,13 @@
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor_method.hpp"
 
-#define RAD_FORM_FACTOR_METHODS(X)                                                                 \
-    X(analytic)                                                                                    \
-    X(pairwise)                                                                                    \
-    X(hemisphere)
+// clang-format off
+#define RAD_FORM_FACTOR_METHODS(X) \
+    X(analytic)                    \
+    X(pairwise)                    \
+    X(hemisphere)                  \
+    /* one X(name) line per method, above this line */
+// clang-format on
 
 namespace rad {
 namespace ff {

@@ -3,11 +3,14 @@
 #include "radiosity/error.hpp"
 #include "radiosity/solver.hpp"
 
-#define RAD_SOLVERS(X)                                                                             \
-    X(gs)                                                                                          \
-    X(jacobi)                                                                                      \
-    X(pr)                                                                                          \
-    X(apr)
+// clang-format off
+#define RAD_SOLVERS(X) \
+    X(gs)              \
+    X(jacobi)          \
+    X(pr)              \
+    X(apr)             \
+    /* one X(name) line per solver, above this line */
+// clang-format on
 
 namespace rad {
 namespace solve_impl {
