@@ -1,5 +1,6 @@
 // Round trips of every file kind and rejection of damaged files.
 #include "helpers.hpp"
+#include "radfmt/chain.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -152,4 +153,47 @@ TEST_CASE("writes are atomic: a failed write leaves no file") {
     CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 0);
     REQUIRE_THROWS_WITH(radfmt::write_radiosity(dir / "missing" / "x.rad", {}, {}),
                         Contains("does not exist"));
+}
+
+TEST_CASE("derived headers record every parent and the longest history") {
+    radfmt::Header mesh;
+    mesh.command = "rad-mesh a.obj -o a.mesh";
+    mesh.file_hash = "xxh64:1111111111111111";
+    radfmt::Header ff;
+    ff.command = "rad-ff a.mesh -o a.ff";
+    ff.provenance = {mesh.command};
+    ff.file_hash = "xxh64:2222222222222222";
+    const radfmt::Parent parents[] = {{"a.mesh", &mesh}, {"a.ff", &ff}};
+    const auto h = radfmt::derived_header("rad-solve 9", "rad-solve a.mesh a.ff -o a.rad", parents);
+    CHECK(h.tool == "rad-solve 9");
+    CHECK(h.provenance == std::vector<std::string>{mesh.command, ff.command});
+    REQUIRE(h.inputs.size() == 2);
+    CHECK(h.inputs[0].path == "a.mesh");
+    CHECK(h.inputs[0].hash == mesh.file_hash);
+    CHECK(h.inputs[1].hash == ff.file_hash);
+    const char* argv[] = {"/usr/bin/rad-ff", "in.mesh", "--threads", "8", "-q", "-o", "my file"};
+    CHECK(radfmt::command_line(7, argv) == "rad-ff in.mesh -o 'my file'");
+}
+
+TEST_CASE("a file made for other geometry is refused as stale, naming both files") {
+    const auto mesh = small_mesh();
+    radfmt::Header h;
+    h.set("mesh_geometry_hash", mesh.geometry_hash());
+    CHECK_NOTHROW(radfmt::require_same_geometry("a.ff", h, 2, "a.mesh", mesh, "run rad-ff"));
+    CHECK_THROWS_WITH(radfmt::require_same_geometry("a.ff", h, 3, "a.mesh", mesh, "run rad-ff"),
+                      Contains("a.ff is stale: it does not belong to a.mesh") &&
+                          Contains("run rad-ff"));
+    h.set("mesh_geometry_hash", "xxh64:0000000000000000");
+    CHECK_THROWS_AS(radfmt::require_same_geometry("a.ff", h, 2, "a.mesh", mesh, "x"),
+                    radfmt::FormatError);
+}
+
+TEST_CASE("the kind table names every kind once, with its CSV columns") {
+    std::vector<std::string> names;
+    for (const auto& k : radfmt::kind_table()) {
+        names.emplace_back(k.name);
+        CHECK(radfmt::kind_info(k.kind).name == k.name);
+        CHECK_FALSE(k.csv_columns.empty());
+    }
+    CHECK(names == std::vector<std::string>{"mesh", "formfactors", "radiosity"});
 }

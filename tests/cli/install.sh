@@ -8,6 +8,8 @@ cmake --install "$BUILD" --prefix "$TMP/prefix" >"$TMP/install.log" 2>&1 || { ca
 [ -f "$TMP/prefix/include/radiosity/formfactor.hpp" ] || fail "headers not installed"
 [ -f "$TMP/prefix/include/radiosity/version.hpp" ] || fail "generated version header not installed"
 grep -rl "CLI/CLI.hpp" "$TMP/prefix/include" && fail "an installed header includes CLI11"
+# The dependency direction: only tools/ may use CLI11.
+grep -rl "CLI/\|CLI11" "$SRC/libradiosity" "$SRC/formats" && fail "libradiosity or formats uses CLI11"
 mkdir "$TMP/consumer"
 cat > "$TMP/consumer/CMakeLists.txt" <<'CMAKE'
 cmake_minimum_required(VERSION 3.25)
