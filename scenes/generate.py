@@ -6,7 +6,8 @@
   generate.py room2  DIR   Scene 2: right part emitting, objects small relative to patches
   generate.py office DIR [--desks N]   a furnished open-plan office, to show scale
 
-Rooms face inwards (normals into the room); objects face outwards. Units: metres.
+Rooms face inwards (normals into the room); objects face outwards (counter-clockwise seen
+from the side that receives light), checked by tests/cli/scenes.sh. Units: metres.
 """
 import os
 import sys
@@ -32,16 +33,17 @@ class Obj:
         self.count += 4
 
     def box(self, group, material, lo, hi, floor_contact=True):
-        """An axis-aligned box with outward faces; the bottom is left out when it rests on
-        the floor (it is never seen and would only waste patches)."""
+        """An axis-aligned box with outward faces (counter-clockwise seen from outside); the
+        bottom is left out when it rests on the floor (it is never seen and would only waste
+        patches)."""
         (x0, y0, z0), (x1, y1, z1) = lo, hi
         self.quad(group, material, [(x0, y1, z0), (x0, y1, z1), (x1, y1, z1), (x1, y1, z0)])  # top +y
-        self.quad(group, material, [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0)])  # -z
-        self.quad(group, material, [(x1, y0, z1), (x0, y0, z1), (x0, y1, z1), (x1, y1, z1)])  # +z
-        self.quad(group, material, [(x0, y0, z1), (x0, y0, z0), (x0, y1, z0), (x0, y1, z1)])  # -x
-        self.quad(group, material, [(x1, y0, z0), (x1, y0, z1), (x1, y1, z1), (x1, y1, z0)])  # +x
+        self.quad(group, material, [(x0, y0, z0), (x0, y1, z0), (x1, y1, z0), (x1, y0, z0)])  # -z
+        self.quad(group, material, [(x1, y0, z1), (x1, y1, z1), (x0, y1, z1), (x0, y0, z1)])  # +z
+        self.quad(group, material, [(x0, y0, z1), (x0, y1, z1), (x0, y1, z0), (x0, y0, z0)])  # -x
+        self.quad(group, material, [(x1, y0, z0), (x1, y1, z0), (x1, y1, z1), (x1, y0, z1)])  # +x
         if not floor_contact:
-            self.quad(group, material, [(x0, y0, z0), (x0, y0, z1), (x1, y0, z1), (x1, y0, z0)])  # -y
+            self.quad(group, material, [(x0, y0, z0), (x1, y0, z0), (x1, y0, z1), (x0, y0, z1)])  # -y
 
     def room(self, w, h, d, materials, far_split=None):
         """Inward-facing room [0,w] x [0,h] x [0,d]; the far wall is z = d. far_split =
