@@ -3,6 +3,7 @@
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
+#include "radiosity/orientation.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
@@ -52,6 +53,15 @@ int main(int argc, char** argv) {
                    "face's size")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 1.0));
+    std::string orient = "warn";
+    std::vector<std::string> flip;
+    app.add_option("--orient", orient,
+                   "Faces that point the wrong way (against their vn, against their neighbours, "
+                   "closed objects inside out): warn about them, or fix them (consistent within "
+                   "each connected surface, closed objects outward)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"warn", "fix"}));
+    app.add_option("--flip", flip, "Reverse the faces of this group (repeatable)");
     app.add_flag("-q,--quiet", quiet, "Print no summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
@@ -60,7 +70,22 @@ int main(int argc, char** argv) {
         parse_limits(max_edge, "--max-edge", options.max_edge, options.max_edge_by_group);
         parse_limits(max_area, "--max-area", options.max_area, options.max_area_by_group);
         options.planarity_tolerance = planarity;
-        const auto scene = rad::load_obj(input);
+        auto scene = rad::load_obj(input);
+        if (!flip.empty()) {
+            const auto count = rad::flip_groups(scene, flip);
+            if (!quiet) std::cerr << "rad-mesh: --flip reversed " << count << " face(s)\n";
+        }
+        const auto findings = rad::check_orientation(scene);
+        for (const auto& finding : findings)
+            std::cerr << "rad-mesh: warning: " << input << ": " << rad::describe(finding, scene)
+                      << (orient == "fix" || finding.to_flip.empty()
+                              ? ""
+                              : "; --orient fix would flip them, or --flip the group")
+                      << '\n';
+        if (orient == "fix")
+            for (const auto& [group, count] : rad::fix_orientation(scene, findings))
+                std::cerr << "rad-mesh: --orient fix flipped " << count << " face(s) of group "
+                          << group << '\n';
         for (const auto* by_group : {&options.max_edge_by_group, &options.max_area_by_group})
             for (const auto& [group, value] : *by_group)
                 if (std::find(scene.groups.begin(), scene.groups.end(), group) ==

@@ -158,9 +158,19 @@ Scene load_obj(const fs::path& path) {
             poly.group = group;
             poly.line = lines_match ? lint.face_lines[face_number] : 0;
             const int count = shape.mesh.num_face_vertices[f];
-            for (int k = 0; k < count; ++k)
-                poly.vertices.push_back(
-                    static_cast<std::uint32_t>(shape.mesh.indices[offset + k].vertex_index));
+            bool all_normals = true;
+            Vec3 vn{0, 0, 0};
+            for (int k = 0; k < count; ++k) {
+                const auto& index = shape.mesh.indices[offset + k];
+                poly.vertices.push_back(static_cast<std::uint32_t>(index.vertex_index));
+                if (index.normal_index < 0 ||
+                    3 * std::size_t(index.normal_index) + 2 >= attrib.normals.size()) {
+                    all_normals = false;
+                    continue;
+                }
+                for (int c = 0; c < 3; ++c) vn[c] += attrib.normals[3 * index.normal_index + c];
+            }
+            if (all_normals) poly.vn_sum = vn;
             offset += count;
             const int material = shape.mesh.material_ids[f];
             if (material < 0 || material >= static_cast<int>(scene.materials.size()))

@@ -1,5 +1,6 @@
 # rad-mesh: subdivision of the Cornell box, bad inputs give file:line messages and no output.
 source "$(dirname "$0")/lib.sh"
+declare -A sums
 total=""
 for edge in 0.2 0.1 0.05 0.03; do
   err=$("$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/c.mesh" --max-edge $edge 2>&1) || fail "mesh at $edge"
@@ -29,4 +30,21 @@ expect_error "does not exist" "" "$BIN/rad-mesh" degen.obj -o nofolder/out.mesh
 expect_error "'floor=abc' is not a number or GROUP=number" out3.mesh "$BIN/rad-mesh" degen.obj -o out3.mesh --max-edge floor=abc
 expect_error "'-1' must be positive" out3.mesh "$BIN/rad-mesh" degen.obj -o out3.mesh --max-edge=-1
 "$BIN/rad-mesh" --help | grep -q -- "--max-edge" || fail "help"
+# Orientation: a Cornell box whose back wall is flipped is reported by name; --orient fix
+# restores the unflipped box's form factors (mean row sum, to 1%); --flip does it by hand.
+mkdir flip; cp "$SRC/scenes/cornell/cornell.obj" "$SRC/scenes/cornell/cornell.mtl" flip/
+sed -i 's/^f 21 22 23 24$/f 24 23 22 21/' flip/cornell.obj
+err=$("$BIN/rad-mesh" flip/cornell.obj -o flipped.mesh --max-edge 0.1 2>&1) || fail "flipped mesh"
+grep -q "group back: 1 face(s) wound against their neighbours.*cornell.obj:53" <<<"$err" || fail "flipped wall not reported: $err"
+"$BIN/rad-mesh" flip/cornell.obj -o fixed.mesh --max-edge 0.1 --orient fix -q 2>/dev/null || fail "--orient fix"
+"$BIN/rad-mesh" flip/cornell.obj -o byhand.mesh --max-edge 0.1 --flip back -q 2>/dev/null || fail "--flip"
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o orig.mesh --max-edge 0.1 -q
+err=$("$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o orig.mesh --max-edge 0.1 2>&1)
+grep -q "warning" <<<"$err" && fail "the correct Cornell box gets a warning: $err"
+for m in flipped fixed byhand orig; do
+  sums[$m]=$("$BIN/rad-ff" $m.mesh -o $m.ff --method hemisphere --rays 2000 2>&1 | sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p')
+done
+python3 -c "import sys; f,x,h,o=map(float,'${sums[flipped]} ${sums[fixed]} ${sums[byhand]} ${sums[orig]}'.split()); sys.exit(not (abs(x-o) < 0.01*o and abs(h-o) < 0.01*o and f < 0.9*o))" \
+  || fail "row sums flipped/fixed/by hand/original: ${sums[*]}"
+expect_error "no group 'bak'" out4.mesh "$BIN/rad-mesh" flip/cornell.obj -o out4.mesh --flip bak
 finish

@@ -15,6 +15,9 @@ struct Polygon {
     std::uint32_t group = 0;
     std::uint32_t material = 0;
     int line = 0; // line of the 'f' statement, for messages
+    // Sum of the face's `vn` normals when every corner has one (zero otherwise): what the
+    // file says the face's front is, to check the winding against.
+    radfmt::Vec3 vn_sum{0, 0, 0};
 };
 
 struct Scene {

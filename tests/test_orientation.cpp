@@ -1,0 +1,144 @@
+// orientation: the checks fire on wrong faces and stay silent on right ones; the fixes work.
+#include "helpers.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/orientation.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace testing_helpers;
+using Kind = rad::OrientationFinding::Kind;
+
+namespace {
+// A closed unit cube with outward faces, each face with its own vertices (as exporters
+// write them), offset by (x, y, z). `flip` reverses the faces whose index is in it.
+std::string cube(double x, double y, double z, const std::string& group, std::vector<int> flip = {},
+                 bool all_flipped = false, int* vertex_count = nullptr) {
+    static const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                    {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    std::string out = "g " + group + "\n";
+    int base = vertex_count ? *vertex_count : 0;
+    for (int f = 0; f < 6; ++f) {
+        for (int k = 0; k < 4; ++k) {
+            const int c = faces[f][k];
+            out += "v " + std::to_string(x + (c & 1)) + " " + std::to_string(y + ((c >> 1) & 1)) +
+                   " " + std::to_string(z + ((c >> 2) & 1)) + "\n";
+        }
+        const bool flipped = all_flipped != (std::find(flip.begin(), flip.end(), f) != flip.end());
+        out += "f";
+        for (int k = 0; k < 4; ++k) out += " " + std::to_string(base + 1 + (flipped ? 3 - k : k));
+        out += "\n";
+        base += 4;
+    }
+    if (vertex_count) *vertex_count = base;
+    return out;
+}
+
+std::vector<rad::OrientationFinding> of_kind(const std::vector<rad::OrientationFinding>& all,
+                                             Kind kind) {
+    std::vector<rad::OrientationFinding> out;
+    for (const auto& f : all)
+        if (f.kind == kind) out.push_back(f);
+    return out;
+}
+} // namespace
+
+TEST_CASE("an outward cube inside an inward room gives no finding") {
+    int count = 0;
+    std::string room = cube(-5, -5, -5, "room", {}, true, &count);
+    // Scale the room up: 10 x 10 x 10 around the unit cube.
+    std::string obj;
+    for (std::size_t pos = 0; pos < room.size();) {
+        auto end = room.find('\n', pos);
+        auto line = room.substr(pos, end - pos);
+        if (line.rfind("v ", 0) == 0) {
+            double a, b, c;
+            std::sscanf(line.c_str(), "v %lf %lf %lf", &a, &b, &c);
+            line = "v " + std::to_string(10 * (a + 5) - 5) + " " +
+                   std::to_string(10 * (b + 5) - 5) + " " + std::to_string(10 * (c + 5) - 5);
+        }
+        obj += line + "\n";
+        pos = end + 1;
+    }
+    obj += cube(0, 0, 0, "box", {}, false, &count);
+    const auto scene = scene_from_obj("usemtl grey\n" + obj);
+    CHECK(rad::check_orientation(scene).empty());
+}
+
+TEST_CASE("a face wound against its neighbours is found by group and line, and fixed") {
+    int count = 0;
+    auto scene = scene_from_obj("usemtl grey\n" + cube(0, 0, 0, "box", {2}, false, &count));
+    const auto findings = rad::check_orientation(scene);
+    const auto against = of_kind(findings, Kind::AgainstNeighbours);
+    REQUIRE(against.size() == 1);
+    CHECK(against[0].polygons == std::vector<std::size_t>{2});
+    CHECK_THAT(rad::describe(against[0], scene),
+               Catch::Contains("group box: 1 face(s) wound against their neighbours") &&
+                   Catch::Contains("scene.obj:"));
+    CHECK(of_kind(findings, Kind::InsideOut).empty());
+    const auto flipped = rad::fix_orientation(scene, findings);
+    REQUIRE(flipped.size() == 1);
+    CHECK(flipped[0].second == 1);
+    CHECK(rad::check_orientation(scene).empty());
+}
+
+TEST_CASE("a closed object turned inside out is found and turned outward") {
+    int count = 0;
+    // An inside-out cube next to a right one (so it is not the scene's enclosure).
+    const auto first = cube(0, 0, 0, "inside_out", {}, true, &count);
+    auto scene = scene_from_obj("usemtl grey\n" + first + cube(3, 0, 0, "fine", {}, false, &count));
+    const auto findings = rad::check_orientation(scene);
+    const auto inside_out = of_kind(findings, Kind::InsideOut);
+    REQUIRE(inside_out.size() == 1);
+    CHECK(scene.groups[inside_out[0].group] == "inside_out");
+    CHECK(inside_out[0].polygons.size() == 6);
+    rad::fix_orientation(scene, findings);
+    CHECK(rad::check_orientation(scene).empty());
+
+    SECTION("one face already outward in an inside-out cube: the other five turn") {
+        int c2 = 0;
+        const auto first2 = cube(0, 0, 0, "mixed", {1}, true, &c2);
+        auto mixed =
+            scene_from_obj("usemtl grey\n" + first2 + cube(3, 0, 0, "fine", {}, false, &c2));
+        const auto f2 = rad::check_orientation(mixed);
+        // The one face that disagrees with its neighbours is the right one: the five
+        // others are reported, as facing into their object.
+        CHECK(of_kind(f2, Kind::AgainstNeighbours).empty());
+        REQUIRE(of_kind(f2, Kind::InsideOut).size() == 1);
+        CHECK(of_kind(f2, Kind::InsideOut)[0].polygons.size() == 5);
+        const auto flipped = rad::fix_orientation(mixed, f2);
+        REQUIRE(flipped.size() == 1);
+        CHECK(flipped[0].second == 5);
+        CHECK(rad::check_orientation(mixed).empty());
+    }
+}
+
+TEST_CASE("faces wound against their own vn normals are reported, never flipped") {
+    auto scene = scene_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nvn 0 0 -1\nusemtl grey\ng sheet\n"
+                                "f 1//1 2//1 3//1\n");
+    const auto findings = rad::check_orientation(scene);
+    REQUIRE(findings.size() == 1);
+    CHECK(findings[0].kind == Kind::AgainstNormals);
+    CHECK(findings[0].to_flip.empty());
+    auto right = scene_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nvn 0 0 1\nusemtl grey\ng sheet\n"
+                                "f 1//1 2//1 3//1\n");
+    CHECK(rad::check_orientation(right).empty());
+}
+
+TEST_CASE("--flip reverses named groups and names the known ones for a typo") {
+    int count = 0;
+    const auto first = cube(0, 0, 0, "box", {}, true, &count);
+    auto scene = scene_from_obj("usemtl grey\n" + first + cube(3, 0, 0, "fine", {}, false, &count));
+    CHECK(rad::flip_groups(scene, {"box"}) == 6);
+    CHECK(rad::check_orientation(scene).empty());
+    CHECK_THROWS_WITH(rad::flip_groups(scene, {"bx"}),
+                      Catch::Contains("no group 'bx'") && Catch::Contains("box, fine"));
+}
+
+TEST_CASE("the project's scenes give no orientation finding") {
+    for (const char* name : {"cornell", "goral", "room1", "room2"}) {
+        CAPTURE(name);
+        const auto scene = rad::load_obj(std::string(RADIOSITY_SOURCE_DIR) + "/scenes/" + name +
+                                         "/" + name + ".obj");
+        for (const auto& f : rad::check_orientation(scene)) FAIL(rad::describe(f, scene));
+    }
+}
