@@ -25,7 +25,10 @@ std::string cube(double x, double y, double z, const std::string& group, std::ve
         }
         const bool flipped = all_flipped != (std::find(flip.begin(), flip.end(), f) != flip.end());
         out += "f";
-        for (int k = 0; k < 4; ++k) out += " " + std::to_string(base + 1 + (flipped ? 3 - k : k));
+        for (int k = 0; k < 4; ++k) {
+            out += ' ';
+            out += std::to_string(base + 1 + (flipped ? 3 - k : k));
+        }
         out += "\n";
         base += 4;
     }
