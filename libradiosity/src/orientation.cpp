@@ -2,6 +2,7 @@
 
 #include "radiosity/error.hpp"
 #include "radiosity/vec.hpp"
+#include "union_find.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,16 +14,6 @@
 namespace rad {
 
 namespace {
-
-struct UnionFind {
-    std::vector<std::size_t> parent;
-    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    std::size_t find(std::size_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    }
-    void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
-};
 
 // Vertices welded by position (to a grid far finer than any sensible feature), so faces
 // that were written with their own copies of shared corners still connect.

@@ -1,6 +1,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/vec.hpp"
+#include "union_find.hpp"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
@@ -80,16 +81,6 @@ std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec3>& p
         out.push_back({ids[remaining[0]], ids[remaining[i]], ids[remaining[i + 1]]});
     return out;
 }
-
-struct UnionFind {
-    std::vector<std::size_t> parent;
-    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    std::size_t find(std::size_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    }
-    void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
-};
 
 } // namespace
 
