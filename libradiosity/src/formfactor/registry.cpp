@@ -1,6 +1,6 @@
 // The form-factor methods, by name. Adding a method: one file under src/formfactor/ that
 // defines `const FormFactorMethod& NAME_method()`, plus one X(NAME) line here.
-#include "radiosity/error.hpp"
+#include "../named_registry.hpp"
 #include "radiosity/formfactor_method.hpp"
 
 // clang-format off
@@ -26,18 +26,11 @@ std::span<const FormFactorMethod* const> form_factor_methods() {
 }
 
 std::vector<std::string> form_factor_method_names() {
-    std::vector<std::string> names;
-    for (const auto* m : form_factor_methods()) names.emplace_back(m->name());
-    return names;
+    return names_of(form_factor_methods());
 }
 
 const FormFactorMethod& form_factor_method(std::string_view name) {
-    std::string known;
-    for (const auto* m : form_factor_methods()) {
-        if (m->name() == name) return *m;
-        known += (known.empty() ? "" : ", ") + std::string(m->name());
-    }
-    throw InputError("unknown form-factor method '" + std::string(name) + "' (use " + known + ")");
+    return find_named(form_factor_methods(), name, "form-factor method");
 }
 
 } // namespace rad

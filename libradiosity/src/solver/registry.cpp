@@ -1,6 +1,6 @@
 // The solvers, by name. Adding a solver: one file under src/solver/ that defines
 // `const Solver& NAME_solver()`, plus one X(NAME) line here.
-#include "radiosity/error.hpp"
+#include "../named_registry.hpp"
 #include "radiosity/solver.hpp"
 
 // clang-format off
@@ -27,18 +27,11 @@ std::span<const Solver* const> solvers() {
 }
 
 std::vector<std::string> solver_names() {
-    std::vector<std::string> names;
-    for (const auto* s : solvers()) names.emplace_back(s->name());
-    return names;
+    return names_of(solvers());
 }
 
 const Solver& solver(std::string_view name) {
-    std::string known;
-    for (const auto* s : solvers()) {
-        if (s->name() == name) return *s;
-        known += (known.empty() ? "" : ", ") + std::string(s->name());
-    }
-    throw InputError("unknown solver '" + std::string(name) + "' (use " + known + ")");
+    return find_named(solvers(), name, "solver");
 }
 
 } // namespace rad
