@@ -15,4 +15,23 @@ std::pair<double, double> sweep(const TransportOperator& op, const Channels& emi
 SolveResult solve_by_sweeps(const TransportOperator& op, const Channels& emission,
                             const SolveControl& control, bool in_place);
 
+// A sweep solver: Gauss-Seidel (in place) or Jacobi; they differ in that alone.
+class SweepSolver final : public Solver {
+  public:
+    SweepSolver(std::string_view name, std::string_view summary, bool in_place)
+        : name_(name), summary_(summary), in_place_(in_place) {}
+    std::string_view name() const override { return name_; }
+    std::string_view summary() const override { return summary_; }
+    bool shooting() const override { return false; }
+    long default_max_iterations(std::size_t) const override { return 100000; }
+    SolveResult solve(const TransportOperator& op, const Channels& emission,
+                      const SolveControl& control) const override {
+        return solve_by_sweeps(op, emission, control, in_place_);
+    }
+
+  private:
+    std::string_view name_, summary_;
+    bool in_place_;
+};
+
 } // namespace rad::solve_impl
