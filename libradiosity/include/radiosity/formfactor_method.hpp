@@ -59,9 +59,12 @@ class FormFactorMethod {
     // The fields recorded in the .ff header after `method` and before `seed`.
     virtual std::vector<std::pair<std::string, std::string>>
     header_fields(const FormFactorOptions& options) const = 0;
-    // The most entries one row can have: bounds the memory of the result.
+    // The most entries one row can have: bounds the memory of the result. Every patch
+    // unless the method knows a tighter bound.
     virtual std::uint64_t max_row_entries(const radfmt::MeshData& mesh,
-                                          const FormFactorOptions& options) const = 0;
+                                          const FormFactorOptions&) const {
+        return mesh.patches.size();
+    }
     // Per-mesh preparation (tables, per-thread scratch); the kernel may keep `context`.
     virtual std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
                                                const FormFactorOptions& options) const = 0;

@@ -86,10 +86,6 @@ class Analytic final : public FormFactorMethod {
         return {{"samples", std::to_string(options.samples)},
                 {"visibility_rays", std::to_string(options.visibility_rays)}};
     }
-    std::uint64_t max_row_entries(const radfmt::MeshData& mesh,
-                                  const FormFactorOptions&) const override {
-        return mesh.patches.size();
-    }
     std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
                                        const FormFactorOptions& options) const override {
         return std::make_unique<AnalyticKernel>(context, options);

@@ -82,9 +82,7 @@ class Hemisphere final : public FormFactorMethod {
     std::string_view summary() const override {
         return "cosine-weighted rays per patch, F_ij = hits/rays (scales to large scenes)";
     }
-    void apply_defaults(FormFactorOptions& options) const override {
-        if (options.samples == 0) options.samples = 16; // unused; kept for a stable record
-    }
+    void apply_defaults(FormFactorOptions&) const override {} // --rays has its default
     std::vector<std::pair<std::string, std::string>>
     header_fields(const FormFactorOptions& options) const override {
         return {{"rays", std::to_string(options.rays)}};

@@ -81,10 +81,6 @@ class Pairwise final : public FormFactorMethod {
     header_fields(const FormFactorOptions& options) const override {
         return {{"samples", std::to_string(options.samples)}};
     }
-    std::uint64_t max_row_entries(const radfmt::MeshData& mesh,
-                                  const FormFactorOptions&) const override {
-        return mesh.patches.size();
-    }
     std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
                                        const FormFactorOptions& options) const override {
         return std::make_unique<PairwiseKernel>(context, options);
