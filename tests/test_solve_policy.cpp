@@ -127,7 +127,7 @@ TEST_CASE("the header records the method, the input hashes, then the result") {
     rad::SolveRequest request;
     request.method = "apr";
     radfmt::Header header;
-    rad::record_solve_inputs(header, request, mesh, ff_header);
+    rad::record_solve_inputs(header, request, mesh.geometry_hash(), ff_header);
     rad::SolveResult result;
     result.iterations = 12;
     result.residual = 0.125;

@@ -106,8 +106,9 @@ int main(int argc, char** argv) {
         radfmt::Header mesh_header, ff_header;
         auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
         const auto ff = radfmt::read_form_factors(ff_path, &ff_header);
-        radfmt::require_same_geometry(ff_path, ff_header, ff.patch_count, mesh_path, mesh,
-                                      "run rad-ff on " + mesh_path + " again");
+        const auto geometry_hash =
+            radfmt::require_same_geometry(ff_path, ff_header, ff.patch_count, mesh_path, mesh,
+                                          "run rad-ff on " + mesh_path + " again");
 
         const radfmt::Parent parents[] = {{mesh_path, &mesh_header}, {ff_path, &ff_header}};
         auto header = radfmt::derived_header(rad::tool_version("rad-solve"),
@@ -125,7 +126,7 @@ int main(int argc, char** argv) {
         if (snapshot.empty() && (!snapshot_iterations.empty() || snapshot_every > 0))
             throw rad::InputError("--snapshot-at/--snapshot-every need --snapshot PATTERN");
         if (!snapshot.empty()) snapshot_path(snapshot, 0); // validates the pattern early
-        rad::record_solve_inputs(header, request, mesh, ff_header);
+        rad::record_solve_inputs(header, request, geometry_hash, ff_header);
 
         const auto op = rad::make_operator(mesh, ff);
         const auto emission = rad::emission_of(mesh);

@@ -45,12 +45,12 @@ Header derived_header(std::string tool, std::string command, std::span<const Par
     return h;
 }
 
-void require_same_geometry(const fs::path& file, const Header& header, std::uint64_t file_patches,
-                           const fs::path& mesh_path, const MeshData& mesh,
-                           std::string_view remedy) {
+std::string require_same_geometry(const fs::path& file, const Header& header,
+                                  std::uint64_t file_patches, const fs::path& mesh_path,
+                                  const MeshData& mesh, std::string_view remedy) {
     const auto* recorded = header.find("mesh_geometry_hash");
     const auto actual = mesh.geometry_hash();
-    if (recorded && *recorded == actual && file_patches == mesh.patches.size()) return;
+    if (recorded && *recorded == actual && file_patches == mesh.patches.size()) return actual;
     throw FormatError(file.string() + " is stale: it does not belong to " + mesh_path.string() +
                       ": it was computed for a mesh with geometry " +
                       (recorded ? *recorded : std::string("(unknown)")) + " and " +

@@ -28,9 +28,11 @@ Header derived_header(std::string tool, std::string command, std::span<const Par
 
 // Refuses `file` (a form-factor or radiosity file, recording the geometry it was computed
 // for in its `mesh_geometry_hash` field, with `file_patches` rows) unless it belongs to the
-// mesh at `mesh_path`. `remedy` tells the user what to run again.
-void require_same_geometry(const std::filesystem::path& file, const Header& header,
-                           std::uint64_t file_patches, const std::filesystem::path& mesh_path,
-                           const MeshData& mesh, std::string_view remedy);
+// mesh at `mesh_path`. `remedy` tells the user what to run again. Returns the mesh's
+// geometry hash (which the file records), so callers need not hash the mesh again.
+std::string require_same_geometry(const std::filesystem::path& file, const Header& header,
+                                  std::uint64_t file_patches,
+                                  const std::filesystem::path& mesh_path, const MeshData& mesh,
+                                  std::string_view remedy);
 
 } // namespace radfmt

@@ -63,7 +63,7 @@ SolveControl stop_rule(const Solver& solver, const SolveRequest& request, std::s
 // Header fields of a solution: method and the hashes tying it to its inputs (after any
 // override fields), then, once solved, iterations and the residual.
 void record_solve_inputs(radfmt::Header& header, const SolveRequest& request,
-                         const radfmt::MeshData& mesh, const radfmt::Header& ff_header);
+                         const std::string& mesh_geometry_hash, const radfmt::Header& ff_header);
 void record_solve_result(radfmt::Header& header, const Solver& solver, const SolveResult& result);
 
 } // namespace rad

@@ -145,9 +145,9 @@ SolveControl stop_rule(const Solver& solver, const SolveRequest& request, std::s
 }
 
 void record_solve_inputs(radfmt::Header& header, const SolveRequest& request,
-                         const radfmt::MeshData& mesh, const radfmt::Header& ff_header) {
+                         const std::string& mesh_geometry_hash, const radfmt::Header& ff_header) {
     header.set("method", request.method);
-    header.set("mesh_geometry_hash", mesh.geometry_hash());
+    header.set("mesh_geometry_hash", mesh_geometry_hash);
     header.set("form_factor_hash", ff_header.body_hash);
 }
 
