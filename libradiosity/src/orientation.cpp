@@ -58,12 +58,30 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
     std::vector<OrientationFinding> findings;
     const std::size_t n = scene.polygons.size();
 
+    // Each face's geometry, once: Newell normal (length twice the area), centroid, area; and
+    // the box around every face, to tell a room (a surface around all the rest) from objects.
+    struct FaceGeometry {
+        Vec3 normal2, centroid;
+        double area;
+    };
+    std::vector<FaceGeometry> face(n);
+    Vec3 scene_lo{1e300, 1e300, 1e300}, scene_hi{-1e300, -1e300, -1e300};
+    for (std::size_t f = 0; f < n; ++f) {
+        const auto pts = points_of(scene, scene.polygons[f]);
+        const Vec3 n2 = newell_normal(pts);
+        face[f] = {n2, polygon_centroid(pts), 0.5 * length(n2)};
+        for (const auto& p : pts)
+            for (int c = 0; c < 3; ++c)
+                scene_lo[c] = std::min(scene_lo[c], p[c]),
+                scene_hi[c] = std::max(scene_hi[c], p[c]);
+    }
+
     // 1. Faces wound against their own vn normals.
     std::vector<std::size_t> against_normals;
     for (std::size_t f = 0; f < n; ++f) {
         const auto& p = scene.polygons[f];
         if (length(p.vn_sum) == 0 || p.vertices.size() < 3) continue;
-        if (dot(newell_normal(points_of(scene, p)), p.vn_sum) < 0) against_normals.push_back(f);
+        if (dot(face[f].normal2, p.vn_sum) < 0) against_normals.push_back(f);
     }
     add_finding(findings, OrientationFinding::Kind::AgainstNormals, scene, against_normals,
                 std::vector<bool>(n, false)); // vn may be the wrong part: report, never fix
@@ -106,7 +124,7 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
     std::vector<std::size_t> against_neighbours, inside_out;
     std::vector<bool> flip(n, false);
     std::vector<int> parity(n, -1);
-    for (const auto& [root, faces] : members) {
+    for (const auto& [component, faces] : members) {
         if (faces.size() < 2) continue;
         // Breadth-first parity: 1 = flipped relative to the component's first face.
         bool orientable = true;
@@ -131,49 +149,36 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
         Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300}, centre{0, 0, 0};
         double total_area = 0;
         for (auto f : faces) {
-            const auto pts = points_of(scene, scene.polygons[f]);
-            const double a = 0.5 * length(newell_normal(pts));
-            area[parity[f]] += a;
-            centre = centre + polygon_centroid(pts) * a;
-            total_area += a;
-            for (const auto& p : pts)
+            area[parity[f]] += face[f].area;
+            centre = centre + face[f].centroid * face[f].area;
+            total_area += face[f].area;
+            for (auto v : scene.polygons[f].vertices)
                 for (int c = 0; c < 3; ++c)
-                    lo[c] = std::min(lo[c], p[c]), hi[c] = std::max(hi[c], p[c]);
+                    lo[c] = std::min(lo[c], scene.vertices[v][c]),
+                    hi[c] = std::max(hi[c], scene.vertices[v][c]);
         }
         if (total_area > 0) centre = centre * (1 / total_area);
         const int minority = area[1] <= area[0] ? 1 : 0;
 
-        // Facing inward is right for a room: a surface that encloses everything else. Any
-        // other surface is an object, which must face outward.
+        // Facing inward is right for a room: a surface that encloses everything else (its
+        // box holds the scene's box). Any other surface is an object, which must face outward.
         const double tol = 1e-9 * length(hi - lo);
         bool encloses_rest = true;
-        for (std::size_t f = 0; f < n && encloses_rest; ++f) {
-            if (components.find(f) == root) continue;
-            for (auto v : scene.polygons[f].vertices)
-                for (int c = 0; c < 3; ++c)
-                    if (scene.vertices[v][c] < lo[c] - tol || scene.vertices[v][c] > hi[c] + tol)
-                        encloses_rest = false;
-        }
-        // Which parity class faces the right way: for a room, the majority; for a closed
-        // object, the one that gives a positive volume; for an open object (a box without
-        // its bottom), the one whose faces point away from the surface's centre.
+        for (int c = 0; c < 3; ++c)
+            if (scene_lo[c] < lo[c] - tol || scene_hi[c] > hi[c] + tol) encloses_rest = false;
+        // Which parity class faces the right way: for a room, the majority; for an object,
+        // the one whose faces point away from the surface's centre. For a closed object the
+        // score below is six times its signed volume, so that class gives a positive volume.
         int right = 1 - minority;
         if (!encloses_rest) {
             const bool closed =
                 std::none_of(faces.begin(), faces.end(), [&](auto f) { return open_edge_of[f]; });
             double score = 0; // > 0: parity-0 faces as written face the right way
-            for (auto f : faces) {
-                const auto pts = points_of(scene, scene.polygons[f]);
-                const double sign = parity[f] == 0 ? 1 : -1;
-                if (closed) {
-                    for (std::size_t k = 1; k + 1 < pts.size(); ++k)
-                        score += sign *
-                                 dot(pts[0] - centre, cross(pts[k] - centre, pts[k + 1] - centre));
-                } else {
-                    score += sign * dot(newell_normal(pts), polygon_centroid(pts) - centre);
-                }
-            }
-            // A flat or nearly flat surface has no inside: keep its majority.
+            for (auto f : faces)
+                score +=
+                    (parity[f] == 0 ? 1 : -1) * dot(face[f].normal2, face[f].centroid - centre);
+            // A flat or nearly flat surface has no inside: keep its majority. A closed surface
+            // must show a volume of at least 1% of its area times its size.
             const double scale = (closed ? 6 : 1) * total_area * length(hi - lo);
             if (std::abs(score) > 0.01 * scale) right = score > 0 ? 0 : 1;
         }
