@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
                    "Largest distance of a face vertex from the face's plane, relative to the "
                    "face's size")
         ->capture_default_str()
-        ->check(CLI::Range(0.0, 1.0));
+        ->check(rad::tool::finite_range(0, 1));
     std::string orient = "warn";
     std::vector<std::string> flip;
     app.add_option("--orient", orient,

@@ -71,12 +71,12 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0L, 1000000000000L));
     app.add_option("--sweeps", request.sweeps,
                    "pr/apr: stop after this many sweeps-equivalent (x patches shots)")
-        ->check(CLI::Range(0.0, 1e6));
+        ->check(rad::tool::finite_range(0, 1e6));
     app.add_option("--tolerance", request.tolerance,
                    "Stop when the relative change of a sweep (gs/jacobi) or the unshot power "
                    "fraction (pr/apr) falls below this")
         ->capture_default_str()
-        ->check(CLI::Range(0.0, 1.0));
+        ->check(rad::tool::finite_range(0, 1));
     app.add_option("--log", log_path,
                    "Write iteration,residual,power_r,power_g,power_b,seconds as CSV");
     app.add_option("--snapshot", snapshot,

@@ -51,6 +51,23 @@ int run_tool(const char* tool, const std::function<int()>& body) {
     }
 }
 
+CLI::Validator finite_range(double lo, double hi) {
+    char description[96];
+    std::snprintf(description, sizeof description, "NUMBER in [%g, %g]", lo, hi);
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            double value = 0;
+            if (!parse_number(text, value) || value < lo || value > hi) {
+                char message[160];
+                std::snprintf(message, sizeof message, "'%s' is not a number in [%g, %g]",
+                              text.c_str(), lo, hi);
+                return message;
+            }
+            return {};
+        },
+        description);
+}
+
 std::string one_of(const std::vector<std::string>& names) {
     std::string out;
     for (std::size_t i = 0; i < names.size(); ++i)

@@ -18,6 +18,11 @@ int parse_arguments(CLI::App& app, int argc, char** argv);
 // a closed output pipe is not one: it ends the tool quietly with 0), 3 for anything else.
 int run_tool(const char* tool, const std::function<int()>& body);
 
+// A validator for real-valued options: the whole value is a finite decimal number (the
+// library's one grammar) within [lo, hi]. CLI::Range lets NaN through (every comparison
+// with NaN is false), so real-valued options use this instead.
+CLI::Validator finite_range(double lo, double hi);
+
 // "name1, name2 or name3" for help texts.
 std::string one_of(const std::vector<std::string>& names);
 

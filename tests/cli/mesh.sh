@@ -46,5 +46,6 @@ for m in flipped fixed byhand orig; do
 done
 python3 -c "import sys; f,x,h,o=map(float,'${sums[flipped]} ${sums[fixed]} ${sums[byhand]} ${sums[orig]}'.split()); sys.exit(not (abs(x-o) < 0.01*o and abs(h-o) < 0.01*o and f < 0.9*o))" \
   || fail "row sums flipped/fixed/by hand/original: ${sums[*]}"
+expect_error "not a number in [0, 1]" out4.mesh "$BIN/rad-mesh" flip/cornell.obj -o out4.mesh --planarity-tolerance nan
 expect_error "no group 'bak'" out4.mesh "$BIN/rad-mesh" flip/cornell.obj -o out4.mesh --flip bak
 finish

@@ -36,4 +36,10 @@ grep -q "no patch emits light" <<<"$err" || fail "black warning"
 expect_error "no material 'lamp'" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission lamp=1,1,1
 expect_error "is not MATERIAL=r,g,b" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission light
 expect_error "'x' in 'light=1,x,3' is not a number" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission light=1,x,3
+# Real-valued options reject NaN and out-of-range values; iteration lists are whole numbers.
+expect_error "not a number in [0, 1]" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --tolerance nan
+expect_error "not a number in [0, 1]" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --tolerance 2
+expect_error "not a number in [0, 1e+06]" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --method pr --sweeps nan
+expect_error "'1x' is not an iteration number" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --snapshot "$TMP/s-%d.rad" --snapshot-at 1x
+expect_error "--sweeps applies to shooting solvers" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --sweeps 2
 finish
