@@ -67,6 +67,29 @@ TEST_CASE("an outward cube inside an inward room gives no finding") {
     CHECK(rad::check_orientation(scene).empty());
 }
 
+TEST_CASE("a room stays a room when an object pokes a little through its wall") {
+    // As in McGuire's CornellBox-Water, whose water sticks 4 mm out of a 2 m box: the room's
+    // box no longer holds every vertex, but it is still the scene's enclosure.
+    int count = 0;
+    const std::string room = cube(-5, -5, -5, "room", {}, true, &count);
+    std::string obj;
+    for (std::size_t pos = 0; pos < room.size();) {
+        const auto end = room.find('\n', pos);
+        auto line = room.substr(pos, end - pos);
+        if (line.rfind("v ", 0) == 0) {
+            double a, b, c;
+            std::sscanf(line.c_str(), "v %lf %lf %lf", &a, &b, &c);
+            line = "v " + std::to_string(10 * (a + 5) - 5) + " " +
+                   std::to_string(10 * (b + 5) - 5) + " " + std::to_string(10 * (c + 5) - 5);
+        }
+        obj += line + "\n";
+        pos = end + 1;
+    }
+    obj += cube(4.05, 0, 0, "box", {}, false, &count); // 5 cm through the wall at x = 5
+    const auto scene = scene_from_obj("usemtl grey\n" + obj);
+    for (const auto& f : rad::check_orientation(scene)) FAIL(rad::describe(f, scene));
+}
+
 TEST_CASE("a face wound against its neighbours is found by group and line, and fixed") {
     int count = 0;
     auto scene = scene_from_obj("usemtl grey\n" + cube(0, 0, 0, "box", {2}, false, &count));

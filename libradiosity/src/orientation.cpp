@@ -161,8 +161,10 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
         const int minority = area[1] <= area[0] ? 1 : 0;
 
         // Facing inward is right for a room: a surface that encloses everything else (its
-        // box holds the scene's box). Any other surface is an object, which must face outward.
-        const double tol = 1e-9 * length(hi - lo);
+        // box holds the scene's box, give or take 1% of the scene's size: exporters let
+        // water or furniture poke a few millimetres through a wall). Any other surface is
+        // an object, which must face outward.
+        const double tol = 0.01 * length(scene_hi - scene_lo);
         bool encloses_rest = true;
         for (int c = 0; c < 3; ++c)
             if (scene_lo[c] < lo[c] - tol || scene_hi[c] > hi[c] + tol) encloses_rest = false;
