@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <limits>
+
 using namespace testing_helpers;
 using Catch::Matchers::Contains;
 
@@ -75,11 +77,45 @@ TEST_CASE("form-factor and radiosity files round-trip") {
     ff.row_start = {0, 2, 2, 3};
     ff.columns = {1, 2, 0};
     ff.values = {0.25f, 0.5f, 0.125f};
+    ff.back_fraction = {0.0f, 0.75f, 0.5f};
     radfmt::write_form_factors(dir / "a.ff", header_for("rad-ff"), ff);
     const auto ff2 = radfmt::read_form_factors(dir / "a.ff");
     CHECK(ff2.row_start == ff.row_start);
     CHECK(ff2.columns == ff.columns);
     CHECK(ff2.values == ff.values);
+    CHECK(ff2.back_fraction == ff.back_fraction);
+    radfmt::Header summary_header;
+    CHECK_THAT(radfmt::kind_info(radfmt::Kind::FormFactors).summary(dir / "a.ff", summary_header),
+               Contains("mean 41.67%, max 75.00%, 1 row(s) above 50%"));
+
+    // Version 1 files (no back-face fractions) are still read.
+    {
+        radfmt::BodyWriter w;
+        w.u64(ff.patch_count);
+        w.u64(ff.nonzeros());
+        w.array(ff.row_start);
+        w.array(ff.columns);
+        w.array(ff.values);
+        auto header = header_for("rad-ff");
+        header.kind = radfmt::Kind::FormFactors;
+        header.version = 1;
+        header.set("patches", "3");
+        radfmt::write_file(dir / "v1.ff", header, w);
+        const auto old = radfmt::read_form_factors(dir / "v1.ff");
+        CHECK(old.values == ff.values);
+        CHECK(old.back_fraction.empty());
+        CHECK_THAT(radfmt::kind_info(radfmt::Kind::FormFactors).summary(dir / "v1.ff",
+                                                                         summary_header),
+                   Contains("no back-face data"));
+    }
+    // A fraction outside [0, 1] is refused.
+    {
+        auto bad = ff;
+        bad.back_fraction[1] = std::numeric_limits<float>::quiet_NaN();
+        radfmt::write_form_factors(dir / "bad.ff", header_for("rad-ff"), bad);
+        REQUIRE_THROWS_WITH(radfmt::read_form_factors(dir / "bad.ff"),
+                            Contains("bad.ff") && Contains("back-face fraction of row 1"));
+    }
 
     radfmt::RadiosityData rad{{{1, 2, 3}, {0.5, 0.25, 0.125}}};
     radfmt::write_radiosity(dir / "a.rad", header_for("rad-solve"), rad);

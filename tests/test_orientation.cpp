@@ -5,6 +5,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <sstream>
+
 using namespace testing_helpers;
 using Kind = rad::OrientationFinding::Kind;
 
@@ -167,4 +170,93 @@ TEST_CASE("the project's scenes give no orientation finding") {
                                          "/" + name + ".obj");
         for (const auto& f : rad::check_orientation(scene)) FAIL(rad::describe(f, scene));
     }
+}
+
+TEST_CASE("a closed room facing outward around an object is found and turned inward") {
+    int count = 0;
+    std::string obj = "usemtl grey\n" + cube(-1, -1, -1, "room", {}, false, &count);
+    // Scale the room to 4 x 4 x 4 around a unit cube.
+    std::string scaled;
+    std::istringstream lines(obj);
+    for (std::string line; std::getline(lines, line);) {
+        double a, b, c;
+        if (std::sscanf(line.c_str(), "v %lf %lf %lf", &a, &b, &c) == 3)
+            line = "v " + std::to_string(4 * a + 2) + " " + std::to_string(4 * b + 2) + " " +
+                   std::to_string(4 * c + 2);
+        scaled += line + "\n";
+    }
+    auto scene = scene_from_obj(scaled + cube(0, 0, 0, "box", {}, false, &count));
+    const auto findings = rad::check_orientation(scene);
+    REQUIRE(findings.size() == 1);
+    CHECK(findings[0].kind == Kind::RoomOutward);
+    CHECK(scene.groups[findings[0].group] == "room");
+    CHECK(findings[0].to_flip.size() == 6);
+    CHECK_THAT(rad::describe(findings[0], scene), Catch::Contains("face out of their room"));
+    rad::fix_orientation(scene, findings);
+    CHECK(rad::check_orientation(scene).empty());
+    // Alone in its scene, a closed surface may be an empty room or an object: no opinion.
+    CHECK(rad::check_orientation(scene_from_obj(obj)).empty());
+}
+
+TEST_CASE("visibility voting turns a room modelled as seen from outside, and nothing else") {
+    // The project's Cornell box with every face of the room (floor, ceiling, light, walls)
+    // reversed: the walls are separate open pieces, so topology has nothing to say.
+    const std::string path = std::string(RADIOSITY_SOURCE_DIR) + "/scenes/cornell/cornell.obj";
+    auto scene = rad::load_obj(path);
+    std::vector<std::string> room_groups{"floor", "ceiling", "light", "back", "right", "left"};
+    for (const auto& g : room_groups) rad::flip_groups(scene, {g});
+    CHECK(rad::check_orientation(scene).empty());
+    const auto facing = rad::check_facing_by_visibility(scene);
+    std::vector<std::string> found;
+    for (const auto& f : facing) {
+        CHECK(f.kind == Kind::FacingAway);
+        found.push_back(scene.groups[f.group]);
+    }
+    std::sort(found.begin(), found.end());
+    std::sort(room_groups.begin(), room_groups.end());
+    CHECK(found == room_groups);
+    rad::fix_orientation(scene, facing);
+    CHECK(rad::check_facing_by_visibility(scene).empty());
+    // The result is the original file's orientation, face by face.
+    const auto original = rad::load_obj(path);
+    REQUIRE(original.polygons.size() == scene.polygons.size());
+    for (std::size_t f = 0; f < scene.polygons.size(); ++f)
+        CHECK(scene.polygons[f].vertices == original.polygons[f].vertices);
+}
+
+TEST_CASE("visibility voting stays silent on right scenes, a lamp under its ceiling included") {
+    const std::string src = RADIOSITY_SOURCE_DIR;
+    for (const auto& path :
+         {src + "/scenes/cornell/cornell.obj", src + "/scenes/goral/goral.obj",
+          src + "/scenes/room1/room1.obj", src + "/scenes/room2/room2.obj",
+          src + "/tests/data/cornell-original/CornellBox-Original.obj",
+          src + "/tests/data/embree-cornell/cornell_box.obj"}) {
+        CAPTURE(path);
+        auto scene = rad::load_obj(path);
+        rad::remove_duplicate_faces(scene);
+        rad::fix_orientation(scene, rad::check_orientation(scene));
+        for (const auto& f : rad::check_facing_by_visibility(scene)) FAIL(rad::describe(f, scene));
+    }
+}
+
+TEST_CASE("faces written twice are dropped and reported; a face and its reverse are kept") {
+    // A square, the same square from another corner, and its reverse (the other side).
+    auto scene = scene_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 0\nusemtl grey\n"
+                                "f 1 2 3 4\nf 3 4 1 5\nf 4 3 2 1\n");
+    const auto report = rad::remove_duplicate_faces(scene);
+    CHECK(report.removed == 1);
+    CHECK(report.first_line == 9);
+    CHECK(report.first_original_line == 8);
+    REQUIRE(scene.polygons.size() == 2);
+    CHECK(scene.polygons[1].line == 10);
+
+    // McGuire's CornellBox-Original: each box's "Bottom Face" repeats one of its sides.
+    auto cornell =
+        rad::load_obj(std::string(RADIOSITY_SOURCE_DIR) +
+                      "/tests/data/cornell-original/CornellBox-Original.obj");
+    const auto found = rad::remove_duplicate_faces(cornell);
+    CHECK(found.removed == 2);
+    CHECK(found.first_line == 107);
+    CHECK(found.first_original_line == 93);
+    CHECK(rad::check_orientation(cornell).size() == 0);
 }

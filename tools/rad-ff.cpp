@@ -75,6 +75,9 @@ int main(int argc, char** argv) {
             header.set(key, value);
         header.set("mesh_geometry_hash", mesh.geometry_hash());
         radfmt::write_form_factors(output, header, ff);
+        // Warnings go out even with --quiet: a wrong-facing surface spoils every solve.
+        for (const auto& line : rad::back_face_warnings(mesh, ff, stats))
+            std::fprintf(stderr, "rad-ff: warning: %s: %s\n", input.c_str(), line.c_str());
         if (!options.quiet) {
             std::fprintf(stderr,
                          "rad-ff: %llu patches, %llu non-zeros, %llu rays in %.3f s (%.3g rays/s "

@@ -58,7 +58,8 @@ int main(int argc, char** argv) {
     app.add_option("--orient", orient,
                    "Faces that point the wrong way (against their vn, against their neighbours, "
                    "closed objects inside out): warn about them, or fix them (consistent within "
-                   "each connected surface, closed objects outward)")
+                   "each connected surface, closed objects outward, then open surfaces whose "
+                   "back sees the front of others flipped by ray-cast voting)")
         ->capture_default_str()
         ->check(CLI::IsMember({"warn", "fix"}));
     app.add_option("--flip", flip, "Reverse the faces of this group (repeatable)");
@@ -71,6 +72,10 @@ int main(int argc, char** argv) {
         parse_limits(max_area, "--max-area", options.max_area, options.max_area_by_group);
         options.planarity_tolerance = planarity;
         auto scene = rad::load_obj(input);
+        if (const auto duplicates = rad::remove_duplicate_faces(scene); duplicates.removed)
+            std::cerr << "rad-mesh: warning: " << input << ": dropped " << duplicates.removed
+                      << " duplicate face(s) (first at line " << duplicates.first_line
+                      << ", a repeat of line " << duplicates.first_original_line << ")\n";
         if (!flip.empty()) {
             const auto count = rad::flip_groups(scene, flip);
             if (!quiet) std::cerr << "rad-mesh: --flip reversed " << count << " face(s)\n";
@@ -82,10 +87,19 @@ int main(int argc, char** argv) {
                               ? ""
                               : "; --orient fix would flip them, or --flip the group")
                       << '\n';
-        if (orient == "fix")
+        if (orient == "fix") {
             for (const auto& [group, count] : rad::fix_orientation(scene, findings))
                 std::cerr << "rad-mesh: --orient fix flipped " << count << " face(s) of group "
                           << group << '\n';
+            // With closed objects facing outward, rays tell which way open surfaces face.
+            const auto facing = rad::check_facing_by_visibility(scene);
+            for (const auto& finding : facing)
+                std::cerr << "rad-mesh: warning: " << input << ": "
+                          << rad::describe(finding, scene) << '\n';
+            for (const auto& [group, count] : rad::fix_orientation(scene, facing))
+                std::cerr << "rad-mesh: --orient fix flipped " << count << " face(s) of group "
+                          << group << " (visibility)\n";
+        }
         for (const auto* by_group : {&options.max_edge_by_group, &options.max_area_by_group})
             for (const auto& [group, value] : *by_group)
                 if (std::find(scene.groups.begin(), scene.groups.end(), group) ==

@@ -1,5 +1,6 @@
 #include "radfmt/kinds.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ostream>
@@ -138,6 +139,9 @@ void write_form_factors(const fs::path& path, Header header, const FormFactorDat
     w.array(ff.row_start);
     w.array(ff.columns);
     w.array(ff.values);
+    if (ff.back_fraction.size() != ff.patch_count)
+        throw std::logic_error("form factors written without one back-face fraction per row");
+    w.array(ff.back_fraction);
     write_file(path, std::move(header), w);
 }
 
@@ -151,6 +155,12 @@ FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
     ff.row_start = r.array<std::uint64_t>(ff.patch_count + 1, "row starts");
     ff.columns = r.array<std::uint32_t>(nnz, "columns");
     ff.values = r.array<float>(nnz, "values");
+    if (file.header.version >= 2) {
+        ff.back_fraction = r.array<float>(ff.patch_count, "back-face fractions");
+        for (std::uint64_t i = 0; i < ff.patch_count; ++i)
+            if (!(ff.back_fraction[i] >= 0 && ff.back_fraction[i] <= 1))
+                r.fail("back-face fraction of row " + std::to_string(i) + " is not in [0, 1]");
+    }
     r.expect_end();
     if (ff.row_start.front() != 0 || ff.row_start.back() != nnz)
         r.fail("row starts do not span the non-zeros");
@@ -242,7 +252,25 @@ std::string form_factor_summary(const fs::path& path, Header& header) {
                   static_cast<unsigned long long>(ff.patch_count),
                   static_cast<unsigned long long>(ff.nonzeros()),
                   n > 0 ? 100.0 * ff.nonzeros() / (n * n) : 0.0);
-    return text;
+    std::string out = text;
+    if (ff.back_fraction.empty()) {
+        out += "; no back-face data (version 1 file)";
+    } else {
+        std::uint64_t mostly_back = 0;
+        double sum = 0, max = 0;
+        for (const float f : ff.back_fraction) {
+            mostly_back += f > 0.5f;
+            sum += f;
+            max = std::max(max, double(f));
+        }
+        std::snprintf(text, sizeof text,
+                      "; rays arriving at back faces: mean %.2f%%, max %.2f%%, %llu row(s) "
+                      "above 50%%",
+                      n > 0 ? 100.0 * sum / n : 0.0, 100.0 * max,
+                      static_cast<unsigned long long>(mostly_back));
+        out += text;
+    }
+    return out;
 }
 
 void radiosity_csv(const fs::path& path, std::ostream& out) {
@@ -266,7 +294,7 @@ constexpr KindInfo kKinds[] = {
     {Kind::Mesh, "mesh", "patch mesh", 1, 1,
      "patch,group,material,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b", mesh_csv,
      mesh_summary},
-    {Kind::FormFactors, "formfactors", "form-factor matrix", 1, 1, "row,col,f", form_factor_csv,
+    {Kind::FormFactors, "formfactors", "form-factor matrix", 2, 1, "row,col,f", form_factor_csv,
      form_factor_summary},
     {Kind::Radiosity, "radiosity", "radiosity solution", 1, 1, "patch,b_r,b_g,b_b", radiosity_csv,
      radiosity_summary},

@@ -1,13 +1,19 @@
 #include "radiosity/orientation.hpp"
 
 #include "radiosity/error.hpp"
+#include "radiosity/random.hpp"
+#include "radiosity/rays.hpp"
 #include "radiosity/vec.hpp"
 #include "union_find.hpp"
+#include "weld.hpp"
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 #include <deque>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <unordered_map>
 
@@ -15,22 +21,12 @@ namespace rad {
 
 namespace {
 
-// Vertices welded by position (to a grid far finer than any sensible feature), so faces
-// that were written with their own copies of shared corners still connect.
-std::vector<std::uint32_t> weld(const Scene& scene) {
+struct Box {
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (const auto& v : scene.vertices)
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
-    const double cell = std::max(1e-300, 1e-9 * length(hi - lo));
-    std::map<std::array<long long, 3>, std::uint32_t> ids;
-    std::vector<std::uint32_t> out(scene.vertices.size());
-    for (std::size_t i = 0; i < scene.vertices.size(); ++i) {
-        std::array<long long, 3> key;
-        for (int k = 0; k < 3; ++k) key[k] = std::llround((scene.vertices[i][k] - lo[k]) / cell);
-        out[i] = ids.try_emplace(key, static_cast<std::uint32_t>(ids.size())).first->second;
+    void add(const Vec3& p) {
+        for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], p[c]), hi[c] = std::max(hi[c], p[c]);
     }
-    return out;
-}
+};
 
 std::vector<Vec3> points_of(const Scene& scene, const Polygon& p) {
     std::vector<Vec3> pts;
@@ -52,6 +48,66 @@ void add_finding(std::vector<OrientationFinding>& out, OrientationFinding::Kind 
     }
 }
 
+// Faces connected across welded edges (two faces per edge), whatever their winding.
+struct SurfaceGraph {
+    // Per face: (neighbour, whether the two run along the shared edge the same way, i.e.
+    // disagree in winding).
+    std::vector<std::vector<std::pair<std::size_t, bool>>> neighbours;
+    std::vector<bool> open_edge_of; // has an edge used by one face (or more than two)
+    std::vector<std::vector<std::size_t>> members; // the connected surfaces, faces ascending
+};
+
+SurfaceGraph connect_surfaces(const Scene& scene) {
+    const std::size_t n = scene.polygons.size();
+    const auto id = weld_by_position(scene.vertices);
+    struct Use {
+        std::size_t polygon;
+        bool forward; // runs from the smaller welded id to the larger
+    };
+    std::unordered_map<std::uint64_t, std::vector<Use>> edges;
+    for (std::size_t f = 0; f < n; ++f) {
+        const auto& vs = scene.polygons[f].vertices;
+        for (std::size_t k = 0; k < vs.size(); ++k) {
+            const auto a = id[vs[k]], b = id[vs[(k + 1) % vs.size()]];
+            if (a == b) continue;
+            const auto key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+            edges[key].push_back({f, a < b});
+        }
+    }
+    SurfaceGraph graph;
+    UnionFind components(n);
+    graph.neighbours.resize(n);
+    graph.open_edge_of.assign(n, false);
+    for (const auto& [key, uses] : edges) {
+        if (uses.size() != 2) {
+            for (const auto& u : uses) graph.open_edge_of[u.polygon] = true;
+            continue;
+        }
+        if (uses[0].polygon == uses[1].polygon) continue;
+        components.unite(uses[0].polygon, uses[1].polygon);
+        const bool same = uses[0].forward == uses[1].forward;
+        graph.neighbours[uses[0].polygon].push_back({uses[1].polygon, same});
+        graph.neighbours[uses[1].polygon].push_back({uses[0].polygon, same});
+    }
+    std::map<std::size_t, std::size_t> index_of_root;
+    for (std::size_t f = 0; f < n; ++f) {
+        const auto [it, added] = index_of_root.try_emplace(components.find(f), graph.members.size());
+        if (added) graph.members.emplace_back();
+        graph.members[it->second].push_back(f);
+    }
+    return graph;
+}
+
+// A surface encloses the rest of the scene (a room) when its box holds the scene's box, give
+// or take 1% of the scene's size: exporters let water or furniture poke a few millimetres
+// through a wall.
+bool encloses(const Box& surface, const Box& scene) {
+    const double tol = 0.01 * length(scene.hi - scene.lo);
+    for (int c = 0; c < 3; ++c)
+        if (scene.lo[c] < surface.lo[c] - tol || scene.hi[c] > surface.hi[c] + tol) return false;
+    return true;
+}
+
 } // namespace
 
 std::vector<OrientationFinding> check_orientation(const Scene& scene) {
@@ -65,15 +121,12 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
         double area;
     };
     std::vector<FaceGeometry> face(n);
-    Vec3 scene_lo{1e300, 1e300, 1e300}, scene_hi{-1e300, -1e300, -1e300};
+    Box scene_box;
     for (std::size_t f = 0; f < n; ++f) {
         const auto pts = points_of(scene, scene.polygons[f]);
         const Vec3 n2 = newell_normal(pts);
         face[f] = {n2, polygon_centroid(pts), 0.5 * length(n2)};
-        for (const auto& p : pts)
-            for (int c = 0; c < 3; ++c)
-                scene_lo[c] = std::min(scene_lo[c], p[c]),
-                scene_hi[c] = std::max(scene_hi[c], p[c]);
+        for (const auto& p : pts) scene_box.add(p);
     }
 
     // 1. Faces wound against their own vn normals.
@@ -89,42 +142,14 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
     // 2. Connected surfaces over welded edges, and each face's winding relative to its
     // neighbours: two faces agree when they run along their shared edge in opposite
     // directions.
-    const auto id = weld(scene);
-    struct Use {
-        std::size_t polygon;
-        bool forward; // runs from the smaller welded id to the larger
-    };
-    std::unordered_map<std::uint64_t, std::vector<Use>> edges;
-    for (std::size_t f = 0; f < n; ++f) {
-        const auto& vs = scene.polygons[f].vertices;
-        for (std::size_t k = 0; k < vs.size(); ++k) {
-            const auto a = id[vs[k]], b = id[vs[(k + 1) % vs.size()]];
-            if (a == b) continue;
-            const auto key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-            edges[key].push_back({f, a < b});
-        }
-    }
-    UnionFind components(n);
-    std::vector<std::vector<std::pair<std::size_t, bool>>> neighbours(n); // (face, same-direction)
-    std::vector<bool> open_edge_of(n, false);
-    for (const auto& [key, uses] : edges) {
-        if (uses.size() != 2) {
-            for (const auto& u : uses) open_edge_of[u.polygon] = true;
-            continue;
-        }
-        if (uses[0].polygon == uses[1].polygon) continue;
-        components.unite(uses[0].polygon, uses[1].polygon);
-        const bool same = uses[0].forward == uses[1].forward;
-        neighbours[uses[0].polygon].push_back({uses[1].polygon, same});
-        neighbours[uses[1].polygon].push_back({uses[0].polygon, same});
-    }
-    std::map<std::size_t, std::vector<std::size_t>> members;
-    for (std::size_t f = 0; f < n; ++f) members[components.find(f)].push_back(f);
+    const auto surfaces = connect_surfaces(scene);
+    const auto& neighbours = surfaces.neighbours;
+    const auto& open_edge_of = surfaces.open_edge_of;
 
-    std::vector<std::size_t> against_neighbours, inside_out;
+    std::vector<std::size_t> against_neighbours, inside_out, room_outward;
     std::vector<bool> flip(n, false);
     std::vector<int> parity(n, -1);
-    for (const auto& [component, faces] : members) {
+    for (const auto& faces : surfaces.members) {
         if (faces.size() < 2) continue;
         // Breadth-first parity: 1 = flipped relative to the component's first face.
         bool orientable = true;
@@ -146,53 +171,200 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
         if (!orientable) continue; // a Moebius-like tangle: no consistent answer to give
         // The minority (by area) disagrees with the rest.
         double area[2] = {0, 0};
-        Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300}, centre{0, 0, 0};
+        Box box;
+        Vec3 centre{0, 0, 0};
         double total_area = 0;
         for (auto f : faces) {
             area[parity[f]] += face[f].area;
             centre = centre + face[f].centroid * face[f].area;
             total_area += face[f].area;
-            for (auto v : scene.polygons[f].vertices)
-                for (int c = 0; c < 3; ++c)
-                    lo[c] = std::min(lo[c], scene.vertices[v][c]),
-                    hi[c] = std::max(hi[c], scene.vertices[v][c]);
+            for (auto v : scene.polygons[f].vertices) box.add(scene.vertices[v]);
         }
         if (total_area > 0) centre = centre * (1 / total_area);
         const int minority = area[1] <= area[0] ? 1 : 0;
 
-        // Facing inward is right for a room: a surface that encloses everything else (its
-        // box holds the scene's box, give or take 1% of the scene's size: exporters let
-        // water or furniture poke a few millimetres through a wall). Any other surface is
-        // an object, which must face outward.
-        const double tol = 0.01 * length(scene_hi - scene_lo);
-        bool encloses_rest = true;
-        for (int c = 0; c < 3; ++c)
-            if (scene_lo[c] < lo[c] - tol || scene_hi[c] > hi[c] + tol) encloses_rest = false;
-        // Which parity class faces the right way: for a room, the majority; for an object,
-        // the one whose faces point away from the surface's centre. For a closed object the
-        // score below is six times its signed volume, so that class gives a positive volume.
+        // Facing inward is right for a room, a surface that encloses everything else; any
+        // other surface is an object, which must face outward.
+        const bool closed =
+            std::none_of(faces.begin(), faces.end(), [&](auto f) { return open_edge_of[f]; });
+        const bool room = encloses(box, scene_box);
+        // Which parity class faces the right way: for an open room or a surface alone in
+        // its scene (an empty room or a lone object?), the majority; otherwise the one whose
+        // faces point away from the surface's centre (an object) or towards it (a closed room
+        // around other things). For a closed surface the score below is six times its
+        // signed volume.
         int right = 1 - minority;
-        if (!encloses_rest) {
-            const bool closed =
-                std::none_of(faces.begin(), faces.end(), [&](auto f) { return open_edge_of[f]; });
-            double score = 0; // > 0: parity-0 faces as written face the right way
+        if (!room || (closed && faces.size() < n)) {
+            double score = 0; // > 0: parity-0 faces as written point away from the centre
             for (auto f : faces)
                 score +=
                     (parity[f] == 0 ? 1 : -1) * dot(face[f].normal2, face[f].centroid - centre);
             // A flat or nearly flat surface has no inside: keep its majority. A closed surface
             // must show a volume of at least 1% of its area times its size.
-            const double scale = (closed ? 6 : 1) * total_area * length(hi - lo);
-            if (std::abs(score) > 0.01 * scale) right = score > 0 ? 0 : 1;
+            const double scale = (closed ? 6 : 1) * total_area * length(box.hi - box.lo);
+            if (std::abs(score) > 0.01 * scale) right = (score > 0) == !room ? 0 : 1;
         }
         for (auto f : faces) {
             if (parity[f] == right) continue;
             flip[f] = true;
-            (parity[f] == minority ? against_neighbours : inside_out).push_back(f);
+            (parity[f] == minority ? against_neighbours : room ? room_outward : inside_out)
+                .push_back(f);
         }
     }
     add_finding(findings, OrientationFinding::Kind::AgainstNeighbours, scene, against_neighbours,
                 flip);
     add_finding(findings, OrientationFinding::Kind::InsideOut, scene, inside_out, flip);
+    add_finding(findings, OrientationFinding::Kind::RoomOutward, scene, room_outward, flip);
+    return findings;
+}
+
+std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
+    const std::size_t n = scene.polygons.size();
+    const auto surfaces = connect_surfaces(scene);
+    std::vector<std::size_t> surface_of(n);
+    for (std::size_t c = 0; c < surfaces.members.size(); ++c)
+        for (auto f : surfaces.members[c]) surface_of[f] = c;
+
+    // The faces as a fan of triangles each, with the face's own normal, for Embree.
+    radfmt::MeshData rays_mesh;
+    rays_mesh.vertices = scene.vertices;
+    std::vector<std::size_t> face_of; // per triangle
+    std::vector<double> triangle_area;
+    Box scene_box;
+    for (std::size_t f = 0; f < n; ++f) {
+        const auto& vs = scene.polygons[f].vertices;
+        const auto pts = points_of(scene, scene.polygons[f]);
+        for (const auto& p : pts) scene_box.add(p);
+        const Vec3 n2 = newell_normal(pts);
+        if (vs.size() < 3 || length(n2) == 0) continue;
+        for (std::size_t k = 1; k + 1 < vs.size(); ++k) {
+            radfmt::Patch t;
+            t.corners = {vs[0], vs[k], vs[k + 1], radfmt::kNoVertex};
+            t.normal = normalized(n2);
+            rays_mesh.patches.push_back(t);
+            face_of.push_back(f);
+            triangle_area.push_back(
+                0.5 * length(cross(pts[k] - pts[0], pts[k + 1] - pts[0])));
+        }
+    }
+    if (rays_mesh.patches.empty()) return {};
+    const RayScene rays(rays_mesh);
+    std::vector<std::vector<std::size_t>> triangles_of(surfaces.members.size());
+    for (std::size_t t = 0; t < face_of.size(); ++t) triangles_of[surface_of[face_of[t]]].push_back(t);
+
+    // Rays from both sides of every surface, tallied by what they met: per (surface, side),
+    // escapes and hits on the front or back of each other surface.
+    const std::size_t surface_count = surfaces.members.size();
+    struct Link {
+        std::size_t target;
+        int facing; // 0: met the target's front, 1: its back (as the faces are now)
+        double rays;
+    };
+    struct Side {
+        std::vector<Link> links;
+        double escaped = 0;
+    };
+    std::vector<std::array<Side, 2>> sides(surface_count);
+    std::vector<double> rays_per_side(surface_count, 0);
+    std::vector<char> free(surface_count, 0); // may be flipped (not a closed object)
+    tbb::parallel_for(std::size_t(0), surface_count, [&](std::size_t c) {
+        const auto& faces = surfaces.members[c];
+        const auto& triangles = triangles_of[c];
+        if (triangles.empty()) return;
+        const bool closed = std::none_of(faces.begin(), faces.end(),
+                                         [&](auto f) { return surfaces.open_edge_of[f]; });
+        std::vector<double> cdf;
+        double total = 0;
+        for (auto t : triangles) cdf.push_back(total += triangle_area[t]);
+        if (!(total > 0)) return;
+        // Closed surfaces stay as their volume says, but cast rays too: others see them.
+        free[c] = !closed;
+        // A few rays per face, at least 64 and at most 1024 per side.
+        const int count = static_cast<int>(std::clamp<std::size_t>(64 * faces.size(), 64, 1024));
+        rays_per_side[c] = count;
+        Rng rng(0x0F1A, c);
+        for (int side = 0; side < 2; ++side) {
+            std::map<std::pair<std::size_t, int>, double> met;
+            for (int r = 0; r < count; ++r) {
+                const double pick = rng.uniform() * total;
+                const auto t = triangles[std::min<std::size_t>(
+                    std::lower_bound(cdf.begin(), cdf.end(), pick) - cdf.begin(),
+                    triangles.size() - 1)];
+                const auto& tri = rays_mesh.patches[t];
+                const Vec3 a = scene.vertices[tri.corners[0]], b = scene.vertices[tri.corners[1]],
+                           d = scene.vertices[tri.corners[2]];
+                double u = rng.uniform(), v = rng.uniform();
+                if (u + v > 1) u = 1 - u, v = 1 - v;
+                const Vec3 origin = a + (b - a) * u + (d - a) * v;
+                const Vec3 normal = side == 0 ? tri.normal : tri.normal * -1.0;
+                const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
+                const double u2 = rng.uniform(), phi = 2 * std::numbers::pi * rng.uniform();
+                const Vec3 dir = tu * (std::sqrt(u2) * std::cos(phi)) +
+                                 tv * (std::sqrt(u2) * std::sin(phi)) +
+                                 normal * std::sqrt(std::max(0.0, 1 - u2));
+                bool front = false;
+                const auto hit = rays.first_hit(origin, dir, front);
+                if (hit < 0) {
+                    sides[c][side].escaped += 1;
+                } else if (const auto target = surface_of[face_of[hit]]; target != c) {
+                    met[{target, front ? 0 : 1}] += 1; // its own surface turns with it
+                }
+            }
+            for (const auto& [key, rays_met] : met)
+                sides[c][side].links.push_back({key.first, key.second, rays_met});
+        }
+    });
+
+    // How well side `t` (0 front, 1 back, after the flips so far) of surface c faces what
+    // it sees: +1 per ray that meets a front, -1 per ray that meets a back or escapes. A
+    // surface faces the wrong way when its back does clearly better than its front. The
+    // evidence is mutual (a room split into separately modelled walls: each sees the
+    // others' backs until one turns), so the clearest case is flipped first, then the rest
+    // is weighed again.
+    std::vector<int> flipped(surface_count, 0);
+    auto quality = [&](std::size_t c, int t) {
+        const auto& side = sides[c][t ^ flipped[c]];
+        double sum = -side.escaped;
+        for (const auto& link : side.links)
+            sum += ((link.facing ^ flipped[link.target]) == 0 ? 1 : -1) * link.rays;
+        return sum / std::max(1.0, rays_per_side[c]);
+    };
+    std::vector<std::vector<std::size_t>> seen_by(surface_count);
+    for (std::size_t c = 0; c < surface_count; ++c)
+        for (int t = 0; t < 2; ++t)
+            for (const auto& link : sides[c][t].links) seen_by[link.target].push_back(c);
+    for (auto& list : seen_by) {
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+    // A surface is a candidate when its front does badly (meets mostly backs, or nothing)
+    // and its back clearly better; a lamp under a ceiling, whose back sees the ceiling's
+    // front, is not one: its front sees the room.
+    std::vector<double> advantage(surface_count, 0);
+    auto weigh = [&](std::size_t c) {
+        const double front = quality(c, 0);
+        advantage[c] = free[c] && front < 0 ? quality(c, 1) - front : 0;
+    };
+    for (std::size_t c = 0; c < surface_count; ++c) weigh(c);
+    constexpr double kClearly = 0.2; // a fifth of the rays, net
+    for (std::size_t step = 0; step < 2 * surface_count + 2; ++step) {
+        const auto best = std::max_element(advantage.begin(), advantage.end()) - advantage.begin();
+        if (advantage[best] <= kClearly) break;
+        flipped[best] ^= 1;
+        weigh(best);
+        for (auto c : seen_by[best]) weigh(c);
+    }
+    std::vector<std::size_t> facing_away;
+    std::vector<bool> flip(n, false);
+    for (std::size_t c = 0; c < surface_count; ++c)
+        if (flipped[c])
+            for (auto f : surfaces.members[c]) {
+                facing_away.push_back(f);
+                flip[f] = true;
+            }
+    std::sort(facing_away.begin(), facing_away.end());
+    std::vector<OrientationFinding> findings;
+    add_finding(findings, OrientationFinding::Kind::FacingAway, scene, facing_away, flip);
     return findings;
 }
 
@@ -207,6 +379,14 @@ std::string describe(const OrientationFinding& finding, const Scene& scene) {
         break;
     case OrientationFinding::Kind::InsideOut:
         what = "face into their object (inside out)";
+        break;
+    case OrientationFinding::Kind::RoomOutward:
+        what = "face out of their room (a closed surface around the rest of the scene must "
+               "face in)";
+        break;
+    case OrientationFinding::Kind::FacingAway:
+        what = "face away from what they see (their back sees the front of other surfaces, "
+               "their front does not)";
         break;
     }
     const auto& first = scene.polygons[finding.polygons.front()];

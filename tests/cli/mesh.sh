@@ -41,9 +41,45 @@ grep -q "group back: 1 face(s) wound against their neighbours.*cornell.obj:53" <
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o orig.mesh --max-edge 0.1 -q
 err=$("$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o orig.mesh --max-edge 0.1 2>&1)
 grep -q "warning" <<<"$err" && fail "the correct Cornell box gets a warning: $err"
+# rad-ff names the flipped wall (rays reach it from behind) and is silent on the right box.
 for m in flipped fixed byhand orig; do
-  sums[$m]=$("$BIN/rad-ff" $m.mesh -o $m.ff --method hemisphere --rays 2000 2>&1 | sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p')
+  ff_err=$("$BIN/rad-ff" $m.mesh -o $m.ff --method hemisphere --rays 2000 2>&1) || fail "rad-ff $m"
+  sums[$m]=$(sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p' <<<"$ff_err")
+  if [ $m = flipped ]; then
+    grep -q "warning: flipped.mesh: group back: 100% of the [0-9]* rays that reach it arrive at its back" <<<"$ff_err" || fail "rad-ff did not name the flipped wall: $ff_err"
+    [ "$(grep -c warning <<<"$ff_err")" -eq 1 ] || fail "rad-ff warns about more than the flipped wall: $ff_err"
+  else
+    grep -q "warning" <<<"$ff_err" && fail "rad-ff warns on $m: $ff_err"
+  fi
 done
+ff_err=$("$BIN/rad-ff" flipped.mesh -o flipped-a.ff --method analytic -q 2>&1) || fail "rad-ff analytic"
+grep -q "group back: 100% of the" <<<"$ff_err" || fail "analytic probe rays did not name the flipped wall: $ff_err"
+"$BIN/rad-info" flipped.ff | grep -q "rays arriving at back faces: mean" || fail "rad-info shows no back-face fractions"
+
+# A room modelled as seen from outside (every face of the Cornell room reversed): topology
+# cannot tell, rad-ff names the walls (reached from behind) and the blocks (looking at
+# backs), and --orient fix turns the room by visibility voting.
+awk '/^f / && NR <= 71 { printf "f"; for (i = NF; i > 1; --i) printf " %s", $i; print ""; next } { print }' \
+  "$SRC/scenes/cornell/cornell.obj" > flip/outside.obj
+err=$("$BIN/rad-mesh" flip/outside.obj -o outside.mesh --max-edge 0.1 2>&1) || fail "outside mesh"
+grep -q warning <<<"$err" && fail "topology should have nothing to say: $err"
+ff_err=$("$BIN/rad-ff" outside.mesh -o outside.ff --method hemisphere --rays 2000 -q 2>&1)
+for g in floor ceiling back left right; do
+  grep -q "group $g: 100% of the [0-9]* rays that reach it arrive at its back" <<<"$ff_err" || fail "rad-ff did not name $g: $ff_err"
+done
+grep -q "group tall_block: [0-9]* of 36 patches look at the back of other surfaces" <<<"$ff_err" || fail "rad-ff: blocks looking at backs: $ff_err"
+err=$("$BIN/rad-mesh" flip/outside.obj -o outside-fixed.mesh --max-edge 0.1 --orient fix 2>&1) || fail "outside fix"
+grep -q "flipped 1 face(s) of group back (visibility)" <<<"$err" || fail "voting message: $err"
+sums[outside]=$("$BIN/rad-ff" outside-fixed.mesh -o outside-fixed.ff --method hemisphere --rays 2000 2>&1 | sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p')
+[ "${sums[outside]}" = "${sums[orig]}" ] || fail "voting did not restore the room: ${sums[outside]} vs ${sums[orig]}"
+
+# McGuire's CornellBox-Original repeats a side of each box as its "bottom": dropped, named.
+err=$("$BIN/rad-mesh" "$SRC/tests/data/cornell-original/CornellBox-Original.obj" -o mcguire.mesh --planarity-tolerance 0.01 2>&1) || fail "McGuire box: $err"
+grep -q "dropped 2 duplicate face(s) (first at line 107, a repeat of line 93)" <<<"$err" || fail "duplicates: $err"
+grep -q "wound against" <<<"$err" && fail "duplicates were taken for flipped faces: $err"
+ff_err=$("$BIN/rad-ff" mcguire.mesh -o mcguire.ff --method hemisphere --rays 1000 -q 2>&1)
+grep -q warning <<<"$ff_err" && fail "rad-ff warns on McGuire's box: $ff_err"
+
 python3 -c "import sys; f,x,h,o=map(float,'${sums[flipped]} ${sums[fixed]} ${sums[byhand]} ${sums[orig]}'.split()); sys.exit(not (abs(x-o) < 0.01*o and abs(h-o) < 0.01*o and f < 0.9*o))" \
   || fail "row sums flipped/fixed/by hand/original: ${sums[*]}"
 expect_error "not a number in [0, 1]" out4.mesh "$BIN/rad-mesh" flip/cornell.obj -o out4.mesh --planarity-tolerance nan

@@ -67,6 +67,10 @@ struct FormFactorData {
     std::vector<std::uint64_t> row_start; // patch_count + 1 entries
     std::vector<std::uint32_t> columns;
     std::vector<float> values;
+    // Per row, the fraction of patch i's cosine-weighted rays that arrived at the back of a
+    // surface (version 2 on; empty when read from a version 1 file): rows near 1 belong to
+    // patches that probably face the wrong way.
+    std::vector<float> back_fraction;
     std::uint64_t nonzeros() const { return columns.size(); }
 };
 

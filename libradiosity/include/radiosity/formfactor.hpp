@@ -34,7 +34,14 @@ struct FormFactorStats {
     double trace_seconds = 0; // the parallel row phase alone (rays and integrals)
     double mean_row_sum = 0;
     double max_row_sum = 0;
+    // Per patch: cosine-weighted rays (the method's own or the probes) that reached its
+    // front and its back, for back_face_warnings.
+    std::vector<std::uint64_t> reached_front, reached_back;
 };
+
+// Rays per patch cast to check for back faces when the method casts no cosine-weighted
+// rays of its own (analytic, pairwise).
+inline constexpr int kBackFaceProbeRays = 64;
 
 // The options with the method's defaults filled in (e.g. `samples`); throws InputError for
 // an unknown method.
@@ -55,6 +62,14 @@ form_factor_header_fields(const FormFactorOptions& options);
 radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
                                             const FormFactorOptions& options,
                                             FormFactorStats* stats = nullptr, RowRange rows = {});
+
+// The back-face check of a computed matrix, one warning line per group found:
+//  - most of the group's patches send most of their rays to the back of other surfaces
+//    (they face the wrong way, or what they look at does);
+//  - most of the rays that reach the group arrive at its back (it faces the wrong way).
+std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
+                                            const radfmt::FormFactorData& ff,
+                                            const FormFactorStats& stats);
 
 // Exact form factor from a differential area at `point` with unit normal `normal` to a
 // planar polygon (contour integral, Lambert/Sparrow); the polygon must lie in front of the

@@ -39,13 +39,37 @@ struct FormFactorContext {
 // Row i of F: (column, F_ij) for the non-zero entries, columns ascending.
 using FormFactorRow = std::vector<std::pair<std::uint32_t, float>>;
 
+// What one row's cosine-weighted rays met, for the back-face check: a patch whose rays
+// mostly arrive at the back of other surfaces, or a surface mostly reached from behind,
+// probably faces the wrong way. Kernels that cast such rays record each one; for the others
+// compute_form_factors casts a few probe rays per row.
+struct RayLog {
+    std::uint32_t rays = 0;
+    std::uint32_t back_hits = 0;
+    // Per patch: rays that reached its front, its back (this thread's counters).
+    std::uint32_t* reached_front = nullptr;
+    std::uint32_t* reached_back = nullptr;
+    void record(std::int64_t hit, bool front) {
+        ++rays;
+        if (hit < 0) return;
+        if (front) {
+            ++reached_front[hit];
+        } else {
+            ++back_hits;
+            ++reached_back[hit];
+        }
+    }
+};
+
 // A method prepared for one mesh: computes rows, from many threads at once.
 class RowKernel {
   public:
     virtual ~RowKernel() = default;
     // Fills `row` (given empty) with row i, drawing every random number from `rng`, the
-    // row's own stream. Returns the number of rays cast.
-    virtual std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row) const = 0;
+    // row's own stream, and records its cosine-weighted rays (if it casts any) in `log`.
+    // Returns the number of rays cast.
+    virtual std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row,
+                                      RayLog& log) const = 0;
 };
 
 class FormFactorMethod {
@@ -65,6 +89,8 @@ class FormFactorMethod {
                                           const FormFactorOptions&) const {
         return mesh.patches.size();
     }
+    // Whether its kernel records cosine-weighted rays in the RayLog (else rows are probed).
+    virtual bool logs_rays() const { return false; }
     // Per-mesh preparation (tables, per-thread scratch); the kernel may keep `context`.
     virtual std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
                                                const FormFactorOptions& options) const = 0;

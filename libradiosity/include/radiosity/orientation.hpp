@@ -13,6 +13,8 @@ struct OrientationFinding {
         AgainstNormals,    // wound against the majority of the face's own `vn` normals
         AgainstNeighbours, // winding disagrees with the rest of its connected surface
         InsideOut,         // a closed object whose surface faces inward
+        RoomOutward,       // a closed room (around the rest of the scene) facing outward
+        FacingAway,        // an open surface whose back sees what its front should
     };
     Kind kind;
     std::uint32_t group = 0;           // the group of the faces found
@@ -24,6 +26,13 @@ struct OrientationFinding {
 // by position; a closed surface facing inward is a room (fine) when it encloses the rest
 // of the scene, and an object turned inside out otherwise.
 std::vector<OrientationFinding> check_orientation(const Scene& scene);
+
+// Visibility voting with rays, for what topology cannot tell (a room modelled as seen from
+// outside, a floor facing down): every connected surface except closed objects casts
+// cosine-weighted rays from both sides, and is reported when its back sees the fronts of
+// other surfaces clearly more than its front does. Run it after fix_orientation, so that
+// closed objects already face outward; deterministic for a given scene.
+std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene);
 
 // One warning line: "group pillar: 4 face(s) ... (first at scene.obj:12)".
 std::string describe(const OrientationFinding& finding, const Scene& scene);

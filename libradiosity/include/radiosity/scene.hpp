@@ -33,6 +33,15 @@ struct Scene {
 // file and line of every malformed vertex, face, index or material reference.
 Scene load_obj(const std::filesystem::path& path);
 
+struct DuplicateFaces {
+    std::size_t removed = 0;
+    int first_line = 0;          // the first face dropped
+    int first_original_line = 0; // the face it repeats
+};
+// Drops faces whose corners repeat an earlier face's (welded by position, same winding,
+// from any starting corner); a face and its reverse are both kept (two sides of a sheet).
+DuplicateFaces remove_duplicate_faces(Scene& scene);
+
 struct SubdivisionOptions {
     double max_edge = 0; // 0: no limit
     double max_area = 0; // 0: no limit

@@ -36,6 +36,11 @@ inline Vec3 normalized(const Vec3& a) {
 inline bool finite(const Vec3& a) {
     return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
 }
+// A unit vector orthogonal to the unit vector n.
+inline Vec3 orthogonal(const Vec3& n) {
+    return std::abs(n[0]) > 0.5 ? normalized(cross(n, Vec3{0, 1, 0}))
+                                : normalized(cross(n, Vec3{1, 0, 0}));
+}
 
 // Newell's method: a robust polygon normal whose length is twice the polygon's area.
 template <class Points> Vec3 newell_normal(const Points& pts) {

@@ -3,8 +3,10 @@
 #include "radiosity/formfactor.hpp"
 #include "radiosity/formfactor_method.hpp"
 #include "radiosity/progress.hpp"
+#include "sampling.hpp"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -48,7 +50,9 @@ std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
     const std::uint64_t per_row = form_factor_method(options.method).max_row_entries(mesh, options);
     // Rows are built then packed: entries (4 + 4 bytes) are held twice at the peak; Embree
     // and the mesh take a few hundred bytes per patch.
-    return 2 * n * per_row * 8 + n * 400 + mesh.vertices.size() * 64;
+    // The back-face tallies are two counters per patch and thread.
+    return 2 * n * per_row * 8 + n * 400 + mesh.vertices.size() * 64 +
+           n * 8 * ThreadLimit::max_threads();
 }
 
 std::vector<std::pair<std::string, std::string>>
@@ -56,6 +60,8 @@ form_factor_header_fields(const FormFactorOptions& options) {
     const auto& method = form_factor_method(options.method);
     std::vector<std::pair<std::string, std::string>> fields{{"method", options.method}};
     for (auto& field : method.header_fields(options)) fields.push_back(std::move(field));
+    if (!method.logs_rays())
+        fields.emplace_back("back_face_probe_rays", std::to_string(kBackFaceProbeRays));
     fields.emplace_back("seed", std::to_string(options.seed));
     return fields;
 }
@@ -76,14 +82,28 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
     const auto kernel = method.prepare(context, options);
 
     std::vector<FormFactorRow> rows(n);
+    std::vector<float> back_fraction(n, 0.0f);
+    // Per-thread tallies of the rays reaching each patch's front and back (integer sums:
+    // the totals do not depend on the threads).
+    tbb::enumerable_thread_specific<std::vector<std::uint32_t>> reached(
+        [n] { return std::vector<std::uint32_t>(2 * n, 0); });
     std::atomic<std::uint64_t> rays_cast{0};
     Progress progress("rad-ff " + options.method, last - first, options.quiet);
     const auto trace_start = std::chrono::steady_clock::now();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 1),
                       [&](const tbb::blocked_range<std::size_t>& block) {
+                          auto& tally = reached.local();
                           for (std::size_t i = block.begin(); i != block.end(); ++i) {
                               Rng rng(options.seed, i);
-                              rays_cast += kernel->compute_row(i, rng, rows[i]);
+                              RayLog log{0, 0, tally.data(), tally.data() + n};
+                              rays_cast += kernel->compute_row(i, rng, rows[i], log);
+                              if (log.rays == 0) {
+                                  rays_cast += kBackFaceProbeRays;
+                                  ff::probe_back_faces(context, i, options.seed,
+                                                       kBackFaceProbeRays, log);
+                              }
+                              back_fraction[i] = static_cast<float>(double(log.back_hits) /
+                                                                    std::max(1u, log.rays));
                               progress.advance(1);
                           }
                       });
@@ -93,6 +113,7 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
 
     radfmt::FormFactorData ff;
     ff.patch_count = n;
+    ff.back_fraction = std::move(back_fraction);
     ff.row_start.assign(n + 1, 0);
     for (std::size_t i = 0; i < n; ++i) ff.row_start[i + 1] = ff.row_start[i] + rows[i].size();
     ff.columns.reserve(ff.row_start[n]);
@@ -116,6 +137,13 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
         stats->trace_seconds = trace_seconds;
         stats->mean_row_sum = last > first ? sum_rows / double(last - first) : 0;
         stats->max_row_sum = max_row;
+        stats->reached_front.assign(n, 0);
+        stats->reached_back.assign(n, 0);
+        for (const auto& tally : reached)
+            for (std::size_t j = 0; j < n; ++j) {
+                stats->reached_front[j] += tally[j];
+                stats->reached_back[j] += tally[n + j];
+            }
     }
     return ff;
 }

@@ -21,7 +21,8 @@ class HemisphereKernel final : public RowKernel {
                        radical_inverse(r + 1, 5)};
     }
 
-    std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row) const override {
+    std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row,
+                              RayLog& log) const override {
         const auto& mesh = context_.mesh;
         const auto& pi = mesh.patches[i];
         const std::size_t n = mesh.patches.size();
@@ -53,6 +54,8 @@ class HemisphereKernel final : public RowKernel {
                              pi.normal * std::sqrt(std::max(0.0, 1 - u2));
             bool front = false;
             const auto hit = context_.scene.first_hit(origin, dir, front);
+            // A patch cannot see itself; a hit on itself (a warped quad) is no evidence.
+            log.record(static_cast<std::size_t>(hit) == i ? -1 : hit, front);
             if (hit >= 0 && front && static_cast<std::size_t>(hit) != i && tally.counts[hit]++ == 0)
                 hit_patches.push_back(static_cast<std::uint32_t>(hit));
         }
@@ -83,6 +86,7 @@ class Hemisphere final : public FormFactorMethod {
         return "cosine-weighted rays per patch, F_ij = hits/rays (scales to large scenes)";
     }
     void apply_defaults(FormFactorOptions&) const override {} // --rays has its default
+    bool logs_rays() const override { return true; }
     std::vector<std::pair<std::string, std::string>>
     header_fields(const FormFactorOptions& options) const override {
         return {{"rays", std::to_string(options.rays)}};

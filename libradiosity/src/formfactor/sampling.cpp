@@ -97,11 +97,6 @@ std::vector<Vec3> clip_to_front(std::span<const Vec3> poly, const Vec3& point, c
     return out;
 }
 
-Vec3 orthogonal(const Vec3& n) {
-    return std::abs(n[0]) > 0.5 ? normalized(cross(n, Vec3{0, 1, 0}))
-                                : normalized(cross(n, Vec3{1, 0, 0}));
-}
-
 double radical_inverse(std::uint64_t i, std::uint64_t base) {
     double inv = 1.0 / base, f = inv, r = 0;
     while (i) {

@@ -43,15 +43,17 @@ std::vector<double> fan_cdf(std::span<const Vec3> poly);
 // Keeps the part of `poly` on the positive side of the plane (point, normal).
 std::vector<Vec3> clip_to_front(std::span<const Vec3> poly, const Vec3& point, const Vec3& normal);
 
-// A unit vector orthogonal to n.
-Vec3 orthogonal(const Vec3& n);
-
 // Radical inverse in base b: the Halton sequence.
 double radical_inverse(std::uint64_t i, std::uint64_t base);
 
 inline double wrap(double x) {
     return x - std::floor(x);
 }
+
+// Casts `rays` cosine-weighted rays from area-uniform points of patch i (their own random
+// stream, so the form factors do not change) and records them in `log`.
+void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint64_t seed,
+                      int rays, RayLog& log);
 
 // Points per axis for `samples` points per patch (rounded to a square).
 int points_per_axis(int samples);

@@ -1,0 +1,91 @@
+// The back-face check of rad-ff: probe rays for methods that cast no cosine-weighted rays,
+// and the per-group report of patches that look at, or are reached at, their back.
+#include "radiosity/formfactor.hpp"
+#include "sampling.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace rad {
+
+namespace ff {
+
+void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint64_t seed,
+                      int rays, RayLog& log) {
+    // A stream of its own (the seed's complement), so probing leaves the form factors alone.
+    Rng rng(~seed, i);
+    const auto& pi = context.mesh.patches[i];
+    const auto poly = context.polygons[i].points();
+    const auto cdf = fan_cdf(poly);
+    const Vec3 tu = orthogonal(pi.normal), tv = cross(pi.normal, tu);
+    for (int r = 0; r < rays; ++r) {
+        const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        const double u3 = rng.uniform(), u4 = rng.uniform();
+        const Vec3 origin = uniform_point(poly, cdf, u0, u1, u2);
+        const double radius = std::sqrt(u3), phi = 2 * kPi * u4;
+        const Vec3 dir = tu * (radius * std::cos(phi)) + tv * (radius * std::sin(phi)) +
+                         pi.normal * std::sqrt(std::max(0.0, 1 - u3));
+        bool front = false;
+        const auto hit = context.scene.first_hit(origin, dir, front);
+        log.record(hit == static_cast<std::int64_t>(i) ? -1 : hit, front);
+    }
+}
+
+} // namespace ff
+
+std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
+                                            const radfmt::FormFactorData& ff,
+                                            const FormFactorStats& stats) {
+    struct GroupTally {
+        std::size_t patches = 0, looking_at_backs = 0;
+        std::uint64_t reached_front = 0, reached_back = 0;
+    };
+    std::vector<GroupTally> groups(mesh.groups.size());
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        auto& g = groups[mesh.patches[i].group];
+        ++g.patches;
+        if (i < ff.back_fraction.size() && ff.back_fraction[i] > 0.5f) ++g.looking_at_backs;
+        if (i < stats.reached_front.size()) {
+            g.reached_front += stats.reached_front[i];
+            g.reached_back += stats.reached_back[i];
+        }
+    }
+    std::vector<std::string> out;
+    char text[160];
+    for (std::size_t k = 0; k < groups.size(); ++k) {
+        const auto& g = groups[k];
+        // Patches of a correct scene may look at a back now and then (the top of a lamp
+        // under the ceiling): only a group where most patches do is reported.
+        if (2 * g.looking_at_backs > g.patches) {
+            std::snprintf(text, sizeof text,
+                          "%zu of %zu patches look at the back of other surfaces (most of their "
+                          "rays arrive at back faces): ",
+                          g.looking_at_backs, g.patches);
+            std::string line = "group ";
+            line += mesh.groups[k];
+            line += ": ";
+            line += text;
+            line += "they probably face the wrong way, or what they look at does";
+            out.push_back(std::move(line));
+        }
+        // Enough rays to tell (a few per patch), most of them at the back.
+        const auto reached = g.reached_front + g.reached_back;
+        if (reached >= 32 && 2 * g.reached_back > reached) {
+            std::snprintf(text, sizeof text,
+                          "%.0f%% of the %llu rays that reach it arrive at its back: ",
+                          100.0 * double(g.reached_back) / double(reached),
+                          static_cast<unsigned long long>(reached));
+            std::string line = "group ";
+            line += mesh.groups[k];
+            line += ": ";
+            line += text;
+            line += "it probably faces the wrong way (rad-mesh --orient fix, or --flip ";
+            line += mesh.groups[k];
+            line += ")";
+            out.push_back(std::move(line));
+        }
+    }
+    return out;
+}
+
+} // namespace rad
