@@ -7,6 +7,9 @@
 
 using namespace testing_helpers;
 using radfmt::Rgb;
+using rad::operator-;
+using rad::operator+;
+using rad::operator*;
 
 namespace {
 
@@ -16,7 +19,8 @@ radfmt::MeshData quad(const std::array<radfmt::Vec3, 4>& corners) {
     radfmt::Patch p;
     p.corners = {0, 1, 2, 3};
     p.area = 1;
-    p.normal = {0, 0, -1};
+    p.normal = rad::normalized(rad::cross(corners[1] - corners[0], corners[2] - corners[0]));
+    p.centroid = (corners[0] + corners[1] + corners[2] + corners[3]) * 0.25;
     m.patches = {p};
     m.groups = {"g"};
     m.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}}};
@@ -82,6 +86,47 @@ TEST_CASE("the z-buffer keeps the nearest surface and supersampling averages") {
     // The far quad ends at screen x = 0.625, halfway across pixel 6: half of its 4 x 4
     // subsamples see it.
     CHECK(pixel(image, 6, 4) == Approx(0.5));
+}
+
+TEST_CASE("back faces are counted and marked; a two-sided sheet shows the side facing the camera") {
+    // Facing the camera (wound counter-clockwise as seen from it): no back face.
+    const auto facing = quad({radfmt::Vec3{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}});
+    std::vector<std::array<Rgb, 4>> one{{Rgb{2, 2, 2}, Rgb{2, 2, 2}, Rgb{2, 2, 2}, Rgb{2, 2, 2}}};
+    const int n = 16;
+    CHECK(rad::render(facing, one, straight_view(), n, n, 2).back_face_pixels == 0);
+    // Wound the other way it faces away: every pixel shows its back, and marking paints them.
+    const auto away = quad({radfmt::Vec3{-1, 1, -1}, {1, 1, -1}, {1, -1, -1}, {-1, -1, -1}});
+    auto image = rad::render(away, one, straight_view(), n, n, 2);
+    CHECK(image.back_face_pixels == n * n);
+    CHECK(pixel(image, 3, 3) == Approx(2)); // shown as it is by default
+    rad::mark_back_faces(image, Rgb{1, 0, 1});
+    CHECK(pixel(image, 3, 3, 0) == 1);
+    CHECK(pixel(image, 3, 3, 1) == 0);
+
+    // A two-sided sheet: front (value 1) and back (value 7) on one spot, in either order.
+    for (bool back_first : {false, true}) {
+        CAPTURE(back_first);
+        auto sheet = facing;
+        radfmt::Patch back = sheet.patches[0];
+        back.corners = {3, 2, 1, 0};
+        back.normal = sheet.patches[0].normal * -1.0;
+        sheet.patches.push_back(back);
+        std::vector<Rgb> values{Rgb{1, 1, 1}, Rgb{7, 7, 7}};
+        if (back_first) {
+            std::swap(sheet.patches[0], sheet.patches[1]);
+            std::swap(values[0], values[1]);
+        }
+        // Smoothing never mixes the two sides.
+        const auto corners = rad::corner_colours(sheet, values, rad::Smoothing::Average);
+        const auto from_front = rad::render(sheet, corners, straight_view(), n, n, 1);
+        CHECK(from_front.back_face_pixels == 0);
+        CHECK(pixel(from_front, n / 2, n / 2) == Approx(1));
+        const auto behind =
+            rad::parse_view("-vp 0 0 -2 -vd 0 0 1 -vu 0 1 0 -vh 90 -vv 90", {"test"});
+        const auto from_behind = rad::render(sheet, corners, behind, n, n, 1);
+        CHECK(from_behind.back_face_pixels == 0);
+        CHECK(pixel(from_behind, n / 2, n / 2) == Approx(7));
+    }
 }
 
 TEST_CASE("smoothing: averages, area weights, creases and flat") {

@@ -5,6 +5,7 @@
 #include "radiosity/numbers.hpp"
 #include "radiosity/orientation.hpp"
 #include "radiosity/scene.hpp"
+#include "radiosity/two_sided.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
@@ -63,6 +64,15 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::IsMember({"warn", "fix"}));
     app.add_option("--flip", flip, "Reverse the faces of this group (repeatable)");
+    std::vector<std::string> two_sided;
+    bool two_sided_emission = false;
+    app.add_option("--two-sided", two_sided,
+                   "Give these surfaces a back patch per patch, with its own radiosity, for "
+                   "thin things modelled as one sheet (curtains, leaves, table tops as "
+                   "planes): a group name, a material name, or 'all' (repeatable)");
+    app.add_flag("--two-sided-emission", two_sided_emission,
+                 "Emitters among the --two-sided surfaces emit from both sides (default: the "
+                 "front only; the back gets the material's copy '<name>.back' without Ke)");
     app.add_flag("-q,--quiet", quiet, "Print no summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
@@ -94,8 +104,8 @@ int main(int argc, char** argv) {
             // With closed objects facing outward, rays tell which way open surfaces face.
             const auto facing = rad::check_facing_by_visibility(scene);
             for (const auto& finding : facing)
-                std::cerr << "rad-mesh: warning: " << input << ": "
-                          << rad::describe(finding, scene) << '\n';
+                std::cerr << "rad-mesh: warning: " << input << ": " << rad::describe(finding, scene)
+                          << '\n';
             for (const auto& [group, count] : rad::fix_orientation(scene, facing))
                 std::cerr << "rad-mesh: --orient fix flipped " << count << " face(s) of group "
                           << group << " (visibility)\n";
@@ -106,7 +116,20 @@ int main(int argc, char** argv) {
                     scene.groups.end())
                     throw rad::InputError("no group '" + group + "' in " + input);
         rad::SubdivisionReport report;
-        const auto mesh = rad::subdivide(scene, options, &report);
+        auto mesh = rad::subdivide(scene, options, &report);
+        if (two_sided_emission && two_sided.empty())
+            throw rad::InputError("--two-sided-emission needs --two-sided GROUP|MATERIAL|all");
+        if (!two_sided.empty()) {
+            const auto sides = rad::make_two_sided(mesh, two_sided, two_sided_emission);
+            if (!quiet)
+                std::cerr << "rad-mesh: --two-sided added " << sides.back_patches
+                          << " back patch(es)\n";
+            for (const auto& name : sides.unlit_back_materials)
+                if (!quiet)
+                    std::cerr << "rad-mesh: the back of emitting material " << name
+                              << " does not emit (material " << name
+                              << ".back; --two-sided-emission to change)\n";
+        }
         if (report.degenerate_dropped)
             std::cerr << "rad-mesh: warning: " << input << ": dropped " << report.degenerate_dropped
                       << " degenerate (zero-area) face(s)\n";

@@ -50,6 +50,12 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "Worker threads (0: all cores)")
         ->capture_default_str()
         ->check(CLI::Range(0, rad::ThreadLimit::max_threads()));
+    std::string backfaces = "show";
+    app.add_option("--backfaces", backfaces,
+                   "Faces seen from behind (the side of a one-sided patch that gets no light): "
+                   "show them as they are, or mark them in magenta (a face-orientation overlay)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"show", "mark"}));
     app.add_flag("-q,--quiet", quiet, "No summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
@@ -77,11 +83,24 @@ int main(int argc, char** argv) {
         }
         const auto mode = flat ? rad::Smoothing::Flat : rad::parse_smoothing(smooth);
         const auto corners = rad::corner_colours(mesh, values, mode, crease);
-        const auto image = rad::render(mesh, corners, view, width, height, aa);
+        auto image = rad::render(mesh, corners, view, width, height, aa);
         if (image.covered_pixels == 0)
             throw rad::InputError(
                 "the view sees no geometry of " + mesh_path +
                 " (camera outside looking away, or inside an object facing nothing)");
+
+        // Exposure from what is lit; then the overlay in full magenta at that exposure.
+        const double scale = exposure > 0 ? exposure : rad::auto_exposure(image);
+        if (backfaces == "mark") rad::mark_back_faces(image, {1 / scale, 0, 1 / scale});
+        const double back_share = double(image.back_face_pixels) / (double(width) * height);
+        if (back_share > 0.01)
+            std::fprintf(stderr,
+                         "rad-shade: warning: %.1f%% of the image shows the back of surfaces "
+                         "(they get no light from this side: they probably face the wrong way%s; "
+                         "see rad-mesh --orient fix, --flip, --two-sided)\n",
+                         100 * back_share,
+                         backfaces == "mark" ? ", marked in magenta"
+                                             : ", --backfaces mark shows where");
 
         std::map<std::string, std::string> attributes;
         std::string provenance;
@@ -95,7 +114,6 @@ int main(int argc, char** argv) {
         if (!albedo) attributes["radiosity:radiosity"] = rad_path + " " + rad_header.file_hash;
         attributes["radiosity:units"] = albedo ? "reflectance" : "radiosity W/m^2 (linear)";
         rad::write_exr(output, image, attributes);
-        const double scale = exposure > 0 ? exposure : rad::auto_exposure(image);
         if (!png.empty()) rad::write_png(png, image, scale);
         if (!ply.empty()) rad::write_ply(ply, mesh, corners, scale);
         if (!quiet)

@@ -1,6 +1,7 @@
 #include "radiosity/rays.hpp"
 
 #include "radiosity/error.hpp"
+#include "radiosity/two_sided.hpp"
 
 #include <embree3/rtcore.h>
 
@@ -13,7 +14,8 @@ namespace rad {
 struct RayScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
-    std::vector<Vec3> normals;
+    std::vector<Vec3> normals;                        // per patch
+    std::vector<std::vector<std::uint32_t>> patch_of; // per geometry: primitive -> patch
     // Embree reports errors through a callback; the first one is kept and raised after the
     // call that caused it, with Embree's own message.
     std::mutex error_mutex;
@@ -31,6 +33,21 @@ struct RayScene::Impl {
 };
 
 namespace {
+// The intersection filter of the two-sided geometry: a ray meets only the side of a sheet
+// that faces it (the other side is the twin patch on the same spot).
+extern "C" void keep_facing_side(const RTCFilterFunctionNArguments* args) {
+    const auto* impl = static_cast<const RayScene::Impl*>(args->geometryUserPtr);
+    const auto& patches = impl->patch_of.back();
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const auto& n = impl->normals[patches[RTCHitN_primID(args->hit, args->N, i)]];
+        const double facing = RTCRayN_dir_x(args->ray, args->N, i) * n[0] +
+                              RTCRayN_dir_y(args->ray, args->N, i) * n[1] +
+                              RTCRayN_dir_z(args->ray, args->N, i) * n[2];
+        if (facing >= 0) args->valid[i] = 0;
+    }
+}
+
 extern "C" void record_embree_error(void* user, RTCError code, const char* message) {
     auto* impl = static_cast<RayScene::Impl*>(user);
     std::lock_guard lock(impl->error_mutex);
@@ -51,31 +68,48 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
     rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
 
-    // One Embree quad per patch, so a hit's primitive ID is the patch index. Triangles are
-    // quads whose last vertex repeats the third (Embree's own encoding).
+    // One Embree quad per patch; triangles are quads whose last vertex repeats the third
+    // (Embree's own encoding). The two sides of a two-sided surface are two patches on one
+    // spot, facing away from each other: they go in a geometry of their own whose filter
+    // lets a ray meet only the side that faces it. Everything else needs no filter.
     const std::size_t count = mesh.patches.size();
-    RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
-    auto* vertices = static_cast<float*>(
-        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                3 * sizeof(float), mesh.vertices.size()));
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), count));
-    if (!vertices || !indices) impl_->raise_if_failed("allocating the ray scene's geometry");
+    const auto twins = find_twins(mesh);
+    std::vector<std::uint32_t> one_sided, two_sided;
+    for (std::size_t i = 0; i < count; ++i)
+        (twins[i] >= 0 ? two_sided : one_sided).push_back(static_cast<std::uint32_t>(i));
+    impl_->normals.reserve(count);
+    for (const auto& p : mesh.patches) impl_->normals.push_back(p.normal);
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
-        for (int k = 0; k < 3; ++k) {
-            vertices[3 * v + k] = static_cast<float>(mesh.vertices[v][k]);
-            lo[k] = std::min(lo[k], mesh.vertices[v][k]);
-            hi[k] = std::max(hi[k], mesh.vertices[v][k]);
+    for (const auto& v : mesh.vertices)
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
+    for (auto* patches : {&one_sided, &two_sided}) {
+        if (patches->empty()) continue;
+        RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
+        auto* vertices = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                    3 * sizeof(float), mesh.vertices.size()));
+        auto* indices = static_cast<unsigned*>(
+            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
+                                    4 * sizeof(unsigned), patches->size()));
+        if (!vertices || !indices) impl_->raise_if_failed("allocating the ray scene's geometry");
+        for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+            for (int k = 0; k < 3; ++k)
+                vertices[3 * v + k] = static_cast<float>(mesh.vertices[v][k]);
+        for (std::size_t q = 0; q < patches->size(); ++q) {
+            const auto& p = mesh.patches[(*patches)[q]];
+            for (int k = 0; k < 4; ++k)
+                indices[4 * q + k] = p.corners[k < p.corner_count() ? k : 2];
         }
-    for (std::size_t i = 0; i < count; ++i) {
-        const auto& p = mesh.patches[i];
-        for (int k = 0; k < 4; ++k) indices[4 * i + k] = p.corners[k < p.corner_count() ? k : 2];
-        impl_->normals.push_back(p.normal);
+        if (patches == &two_sided) {
+            rtcSetGeometryUserData(geometry, impl_.get());
+            rtcSetGeometryIntersectFilterFunction(geometry, keep_facing_side);
+        }
+        rtcCommitGeometry(geometry);
+        const unsigned id = rtcAttachGeometry(impl_->scene, geometry);
+        rtcReleaseGeometry(geometry);
+        if (impl_->patch_of.size() <= id) impl_->patch_of.resize(id + 1);
+        impl_->patch_of[id] = *patches;
     }
-    rtcCommitGeometry(geometry);
-    rtcAttachGeometry(impl_->scene, geometry);
-    rtcReleaseGeometry(geometry);
     rtcCommitScene(impl_->scene);
     impl_->raise_if_failed("building the ray scene");
     epsilon_ = std::max(1e-9, 1e-5 * length(hi - lo));
@@ -122,7 +156,7 @@ std::int64_t RayScene::first_hit(const Vec3& origin, const Vec3& direction, bool
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
-    const auto patch = rh.hit.primID;
+    const auto patch = impl_->patch_of[rh.hit.geomID][rh.hit.primID];
     front = dot(direction, impl_->normals[patch]) < 0;
     return patch;
 }

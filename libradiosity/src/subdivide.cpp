@@ -1,5 +1,6 @@
 #include "radiosity/error.hpp"
 #include "radiosity/scene.hpp"
+#include "radiosity/two_sided.hpp"
 #include "radiosity/vec.hpp"
 #include "union_find.hpp"
 
@@ -345,7 +346,11 @@ Topology analyze_topology(const radfmt::MeshData& mesh) {
         handles.push_back(om.add_vertex(OMesh::Point(v[0], v[1], v[2])));
     Topology topo;
     omerr().disable(); // OpenMesh reports each non-manifold face; we count them instead
-    for (const auto& p : mesh.patches) {
+    // The back of a two-sided surface repeats its front's corners: one side is the surface.
+    const auto twins = find_twins(mesh);
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        if (twins[i] >= 0 && static_cast<std::size_t>(twins[i]) < i) continue;
+        const auto& p = mesh.patches[i];
         std::vector<OMesh::VertexHandle> face;
         for (int k = 0; k < p.corner_count(); ++k) face.push_back(handles[p.corners[k]]);
         if (!om.add_face(face).is_valid()) ++topo.rejected_patches;

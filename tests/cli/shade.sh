@@ -19,4 +19,29 @@ expect_error "does not belong to" "$TMP/v.exr" "$BIN/rad-shade" "$TMP/other.mesh
 expect_error "does not exist" "" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/no/such/v.exr" --view-file "$VF"
 printf -- '-vp 0 0 0\n-vh banana\n' > "$TMP/bad.vf"
 expect_error "bad.vf:2:" "$TMP/v.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/v.exr" --view-file "$TMP/bad.vf"
+
+# A sheet lit from its back: one-sided, the view from below shows its back (warned, marked);
+# --two-sided gives it a lit back and the warning goes.
+SHEET="$SRC/tests/data/two-sided-sheet/sheet.obj"
+BELOW="-vp 1 0.3 3.5 -vd 0 0.25 -1 -vu 0 1 0 -vh 60 -vv 60"
+for sides in one two; do
+  extra=(); [ $sides = two ] && extra=(--two-sided sheet)
+  err=$("$BIN/rad-mesh" "$SHEET" -o "$TMP/$sides.mesh" --max-edge 0.2 "${extra[@]}" 2>&1) || fail "sheet mesh: $err"
+  [ $sides = two ] && { grep -q -- "--two-sided added 25 back patch(es)" <<<"$err" || fail "two-sided message: $err"; }
+  grep -q "non-manifold" <<<"$err" && fail "the two sides taken for a non-manifold mesh: $err"
+  "$BIN/rad-ff" "$TMP/$sides.mesh" -o "$TMP/$sides.ff" --method hemisphere --rays 1000 -q 2>/dev/null || fail "sheet ff"
+  "$BIN/rad-solve" "$TMP/$sides.mesh" "$TMP/$sides.ff" -o "$TMP/$sides.rad" -q || fail "sheet solve"
+  err=$("$BIN/rad-shade" "$TMP/$sides.mesh" "$TMP/$sides.rad" -o "$TMP/$sides.exr" --view "$BELOW" -x 64 -y 64 --backfaces mark -q 2>&1) || fail "sheet shade: $err"
+  if [ $sides = one ]; then
+    grep -q "warning: [0-9.]*% of the image shows the back of surfaces.*marked in magenta" <<<"$err" || fail "no back-face warning: $err"
+  else
+    grep -q warning <<<"$err" && fail "two-sided sheet still warned: $err"
+  fi
+done
+expect_error "'shet' is neither a group nor a material" "$TMP/x.mesh" "$BIN/rad-mesh" "$SHEET" -o "$TMP/x.mesh" --two-sided shet
+expect_error "--two-sided-emission needs --two-sided" "$TMP/x.mesh" "$BIN/rad-mesh" "$SHEET" -o "$TMP/x.mesh" --two-sided-emission
+expect_error "" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/one.mesh" "$TMP/one.rad" -o "$TMP/x.exr" --view "$BELOW" --backfaces paint
+# The right Cornell box shows no back face.
+err=$("$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/v.exr" --view-file "$VF" -x 64 -y 64 2>&1)
+grep -q "back of surfaces" <<<"$err" && fail "back faces on the right Cornell box: $err"
 finish

@@ -66,7 +66,8 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
 // The back-face check of a computed matrix, one warning line per group found:
 //  - most of the group's patches send most of their rays to the back of other surfaces
 //    (they face the wrong way, or what they look at does);
-//  - most of the rays that reach the group arrive at its back (it faces the wrong way).
+//  - more than 80% of the rays that reach the group arrive at its back (it faces the wrong
+//    way).
 std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
                                             const radfmt::FormFactorData& ff,
                                             const FormFactorStats& stats);

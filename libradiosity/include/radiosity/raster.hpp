@@ -13,10 +13,19 @@ struct Image {
     int width = 0, height = 0;
     std::vector<float> rgb; // row-major, top row first
     std::size_t covered_pixels = 0;
+    // Per pixel, the share of its samples that show the back of a one-sided patch (a face
+    // seen from the side that gets no light), and the pixels where that is at least half.
+    std::vector<float> back_coverage;
+    std::size_t back_face_pixels = 0;
 };
 
 // Perspective-correct interpolation of the corner colours, N x N supersampling per pixel.
+// Of a two-sided surface (two patches on one spot facing away from each other) each pixel
+// shows the side that faces the camera.
 Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners,
              const View& view, int width, int height, int supersampling);
+
+// Paints the pixels that mostly show back faces in `colour` (rad-shade --backfaces mark).
+void mark_back_faces(Image& image, const Rgb& colour);
 
 } // namespace rad

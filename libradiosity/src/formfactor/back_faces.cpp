@@ -10,8 +10,8 @@ namespace rad {
 
 namespace ff {
 
-void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint64_t seed,
-                      int rays, RayLog& log) {
+void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint64_t seed, int rays,
+                      RayLog& log) {
     // A stream of its own (the seed's complement), so probing leaves the form factors alone.
     Rng rng(~seed, i);
     const auto& pi = context.mesh.patches[i];
@@ -65,12 +65,16 @@ std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
             line += mesh.groups[k];
             line += ": ";
             line += text;
-            line += "they probably face the wrong way, or what they look at does";
+            line += "they probably face the wrong way, or what they look at does (a sheet seen "
+                    "from both sides needs rad-mesh --two-sided)";
             out.push_back(std::move(line));
         }
-        // Enough rays to tell (a few per patch), most of them at the back.
+        // Enough rays to tell (a few per patch), nearly all of them at the back: a right
+        // lamp just under a ceiling is reached at its back by the ceiling above it about as
+        // often as at its front by the room, but a wall facing out of its room only ever
+        // from behind.
         const auto reached = g.reached_front + g.reached_back;
-        if (reached >= 32 && 2 * g.reached_back > reached) {
+        if (reached >= 32 && 5 * g.reached_back > 4 * reached) {
             std::snprintf(text, sizeof text,
                           "%.0f%% of the %llu rays that reach it arrive at its back: ",
                           100.0 * double(g.reached_back) / double(reached),

@@ -2,6 +2,8 @@
 // supersampling, in parallel row bands.
 #include "radiosity/raster.hpp"
 
+#include "radiosity/two_sided.hpp"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -26,6 +28,7 @@ struct ScreenVertex {
 struct ScreenTriangle {
     std::array<ScreenVertex, 3> v;
     double min_y, max_y;
+    bool back; // the camera sees the back of a one-sided patch
 };
 
 } // namespace
@@ -47,9 +50,14 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
         Vec3 p; // camera space: x right, y up, z depth
         Rgb c;
     };
+    const auto twins = find_twins(mesh);
     std::vector<ScreenTriangle> triangles;
     for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
         const auto& patch = mesh.patches[i];
+        // The camera is behind the patch's plane: it sees the back. Of a two-sided pair only
+        // the side facing the camera is drawn.
+        const bool back = dot(patch.normal, patch.centroid - view.position) > 0;
+        if (back && twins[i] >= 0) continue;
         std::vector<CamPoint> poly;
         for (int k = 0; k < patch.corner_count(); ++k) {
             const Vec3 d = mesh.vertices[patch.corners[k]] - view.position;
@@ -81,7 +89,7 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
             screen.push_back(sv);
         }
         for (std::size_t k = 1; k + 1 < screen.size(); ++k) {
-            ScreenTriangle t{{screen[0], screen[k], screen[k + 1]}, 0, 0};
+            ScreenTriangle t{{screen[0], screen[k], screen[k + 1]}, 0, 0, back};
             t.min_y = std::min({t.v[0].y, t.v[1].y, t.v[2].y});
             t.max_y = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
             if (t.max_y < 0 || t.min_y > H) continue;
@@ -91,6 +99,7 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
 
     std::vector<float> hi(static_cast<std::size_t>(W) * H * 3, 0.0f);
     std::vector<double> depth(static_cast<std::size_t>(W) * H, 0.0); // stores 1/z; 0 = empty
+    std::vector<std::uint8_t> shows_back(static_cast<std::size_t>(W) * H, 0);
     const int band = 16;
     tbb::parallel_for(0, (H + band - 1) / band, [&](int b) {
         const int y0 = b * band, y1 = std::min(H, y0 + band);
@@ -116,6 +125,7 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
                     const std::size_t at = static_cast<std::size_t>(y) * W + x;
                     if (inv_z <= depth[at]) continue;
                     depth[at] = inv_z;
+                    shows_back[at] = t.back;
                     for (int ch = 0; ch < 3; ++ch)
                         hi[3 * at + ch] = static_cast<float>((w0 * a.colour_over_z[ch] +
                                                               w1 * bb.colour_over_z[ch] +
@@ -129,23 +139,35 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
     image.width = width;
     image.height = height;
     image.rgb.assign(static_cast<std::size_t>(width) * height * 3, 0.0f);
+    image.back_coverage.assign(static_cast<std::size_t>(width) * height, 0.0f);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             double sum[3] = {0, 0, 0};
             bool covered = false;
+            int back_samples = 0;
             for (int sy = 0; sy < ss; ++sy)
                 for (int sx = 0; sx < ss; ++sx) {
                     const std::size_t at =
                         static_cast<std::size_t>(y * ss + sy) * W + (x * ss + sx);
                     covered = covered || depth[at] > 0;
+                    back_samples += shows_back[at];
                     for (int c = 0; c < 3; ++c) sum[c] += hi[3 * at + c];
                 }
             image.covered_pixels += covered;
+            const float back_share = static_cast<float>(back_samples) / float(ss * ss);
+            image.back_coverage[static_cast<std::size_t>(y) * width + x] = back_share;
+            image.back_face_pixels += back_share >= 0.5f;
             for (int c = 0; c < 3; ++c)
                 image.rgb[3 * (static_cast<std::size_t>(y) * width + x) + c] =
                     static_cast<float>(sum[c] / (ss * ss));
         }
     return image;
+}
+
+void mark_back_faces(Image& image, const Rgb& colour) {
+    for (std::size_t p = 0; p < image.back_coverage.size(); ++p)
+        if (image.back_coverage[p] >= 0.5f)
+            for (int c = 0; c < 3; ++c) image.rgb[3 * p + c] = static_cast<float>(colour[c]);
 }
 
 } // namespace rad

@@ -43,6 +43,9 @@ std::vector<std::array<Rgb, 4>> corner_colours(const radfmt::MeshData& mesh,
             double weight = 0;
             for (auto q : around[p.corners[k]]) {
                 const auto& pq = mesh.patches[q];
+                // A patch facing the opposite way at the same corner is the other side of a
+                // sheet (a two-sided surface): its light is on the other side, never mixed.
+                if (dot(pq.normal, p.normal) < -0.999) continue;
                 if (mode == Smoothing::Crease &&
                     (pq.material != p.material || dot(pq.normal, p.normal) < cos_crease))
                     continue;

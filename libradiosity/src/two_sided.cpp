@@ -1,0 +1,92 @@
+#include "radiosity/two_sided.hpp"
+
+#include "radiosity/error.hpp"
+#include "radiosity/vec.hpp"
+
+#include <algorithm>
+#include <map>
+
+namespace rad {
+
+namespace {
+// The corner positions of a patch, sorted: the same for a patch and its reverse.
+std::vector<radfmt::Vec3> corner_key(const radfmt::MeshData& mesh, const radfmt::Patch& p) {
+    std::vector<radfmt::Vec3> key;
+    for (int k = 0; k < p.corner_count(); ++k) key.push_back(mesh.vertices[p.corners[k]]);
+    std::sort(key.begin(), key.end());
+    return key;
+}
+} // namespace
+
+std::vector<std::int64_t> find_twins(const radfmt::MeshData& mesh) {
+    std::vector<std::int64_t> twin(mesh.patches.size(), -1);
+    std::map<std::vector<radfmt::Vec3>, std::vector<std::size_t>> at;
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i)
+        at[corner_key(mesh, mesh.patches[i])].push_back(i);
+    for (const auto& [key, patches] : at) {
+        if (patches.size() != 2) continue; // more than two on one spot: no pairing to trust
+        const auto a = patches[0], b = patches[1];
+        if (dot(mesh.patches[a].normal, mesh.patches[b].normal) < 0) {
+            twin[a] = static_cast<std::int64_t>(b);
+            twin[b] = static_cast<std::int64_t>(a);
+        }
+    }
+    return twin;
+}
+
+TwoSidedReport make_two_sided(radfmt::MeshData& mesh, const std::vector<std::string>& selection,
+                              bool emission_on_both_sides) {
+    std::vector<bool> group_selected(mesh.groups.size(), false);
+    std::vector<bool> material_selected(mesh.materials.size(), false);
+    for (const auto& name : selection) {
+        bool found = false;
+        for (std::size_t g = 0; g < mesh.groups.size(); ++g)
+            if (name == "all" || mesh.groups[g] == name) group_selected[g] = found = true;
+        for (std::size_t m = 0; m < mesh.materials.size(); ++m)
+            if (name == "all" || mesh.materials[m].name == name)
+                material_selected[m] = found = true;
+        if (!found) {
+            std::string known = "groups:";
+            for (const auto& g : mesh.groups) known += " " + g;
+            known += "; materials:";
+            for (const auto& m : mesh.materials) known += " " + m.name;
+            throw InputError("--two-sided: '" + name +
+                             "' is neither a group nor a material of the scene (" + known +
+                             "; or 'all')");
+        }
+    }
+    TwoSidedReport report;
+    const auto twins = find_twins(mesh);
+    // Emitting materials get a non-emitting copy for their backs, made once.
+    std::map<std::uint32_t, std::uint32_t> back_material;
+    const std::size_t front_count = mesh.patches.size();
+    for (std::size_t i = 0; i < front_count; ++i) {
+        const auto front = mesh.patches[i];
+        if (twins[i] >= 0 || !(group_selected[front.group] || material_selected[front.material]))
+            continue;
+        radfmt::Patch back = front;
+        const int n = front.corner_count();
+        for (int k = 0; k < n; ++k) back.corners[k] = front.corners[n - 1 - k];
+        back.normal = front.normal * -1.0;
+        const auto& material = mesh.materials[front.material];
+        const bool emits =
+            material.emission[0] > 0 || material.emission[1] > 0 || material.emission[2] > 0;
+        if (emits && !emission_on_both_sides) {
+            auto [it, added] = back_material.try_emplace(
+                front.material, static_cast<std::uint32_t>(mesh.materials.size()));
+            if (added) {
+                radfmt::Material copy = material;
+                copy.name += ".back";
+                copy.emission = {};
+                report.unlit_back_materials.push_back(material.name);
+                mesh.materials.push_back(std::move(copy));
+            }
+            back.material = it->second;
+        }
+        mesh.patches.push_back(back);
+        ++report.back_patches;
+    }
+    return report;
+}
+
+} // namespace rad
