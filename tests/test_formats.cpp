@@ -104,9 +104,9 @@ TEST_CASE("form-factor and radiosity files round-trip") {
         const auto old = radfmt::read_form_factors(dir / "v1.ff");
         CHECK(old.values == ff.values);
         CHECK(old.back_fraction.empty());
-        CHECK_THAT(radfmt::kind_info(radfmt::Kind::FormFactors).summary(dir / "v1.ff",
-                                                                         summary_header),
-                   Contains("no back-face data"));
+        CHECK_THAT(
+            radfmt::kind_info(radfmt::Kind::FormFactors).summary(dir / "v1.ff", summary_header),
+            Contains("no back-face data"));
     }
     // A fraction outside [0, 1] is refused.
     {

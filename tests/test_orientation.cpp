@@ -226,11 +226,10 @@ TEST_CASE("visibility voting turns a room modelled as seen from outside, and not
 
 TEST_CASE("visibility voting stays silent on right scenes, a lamp under its ceiling included") {
     const std::string src = RADIOSITY_SOURCE_DIR;
-    for (const auto& path :
-         {src + "/scenes/cornell/cornell.obj", src + "/scenes/goral/goral.obj",
-          src + "/scenes/room1/room1.obj", src + "/scenes/room2/room2.obj",
-          src + "/tests/data/cornell-original/CornellBox-Original.obj",
-          src + "/tests/data/embree-cornell/cornell_box.obj"}) {
+    for (const auto& path : {src + "/scenes/cornell/cornell.obj", src + "/scenes/goral/goral.obj",
+                             src + "/scenes/room1/room1.obj", src + "/scenes/room2/room2.obj",
+                             src + "/tests/data/cornell-original/CornellBox-Original.obj",
+                             src + "/tests/data/embree-cornell/cornell_box.obj"}) {
         CAPTURE(path);
         auto scene = rad::load_obj(path);
         rad::remove_duplicate_faces(scene);
@@ -251,9 +250,8 @@ TEST_CASE("faces written twice are dropped and reported; a face and its reverse 
     CHECK(scene.polygons[1].line == 10);
 
     // McGuire's CornellBox-Original: each box's "Bottom Face" repeats one of its sides.
-    auto cornell =
-        rad::load_obj(std::string(RADIOSITY_SOURCE_DIR) +
-                      "/tests/data/cornell-original/CornellBox-Original.obj");
+    auto cornell = rad::load_obj(std::string(RADIOSITY_SOURCE_DIR) +
+                                 "/tests/data/cornell-original/CornellBox-Original.obj");
     const auto found = rad::remove_duplicate_faces(cornell);
     CHECK(found.removed == 2);
     CHECK(found.first_line == 107);

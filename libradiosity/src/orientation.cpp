@@ -91,7 +91,8 @@ SurfaceGraph connect_surfaces(const Scene& scene) {
     }
     std::map<std::size_t, std::size_t> index_of_root;
     for (std::size_t f = 0; f < n; ++f) {
-        const auto [it, added] = index_of_root.try_emplace(components.find(f), graph.members.size());
+        const auto [it, added] =
+            index_of_root.try_emplace(components.find(f), graph.members.size());
         if (added) graph.members.emplace_back();
         graph.members[it->second].push_back(f);
     }
@@ -207,7 +208,9 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
         for (auto f : faces) {
             if (parity[f] == right) continue;
             flip[f] = true;
-            (parity[f] == minority ? against_neighbours : room ? room_outward : inside_out)
+            (parity[f] == minority ? against_neighbours
+             : room                ? room_outward
+                                   : inside_out)
                 .push_back(f);
         }
     }
@@ -243,14 +246,14 @@ std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
             t.normal = normalized(n2);
             rays_mesh.patches.push_back(t);
             face_of.push_back(f);
-            triangle_area.push_back(
-                0.5 * length(cross(pts[k] - pts[0], pts[k + 1] - pts[0])));
+            triangle_area.push_back(0.5 * length(cross(pts[k] - pts[0], pts[k + 1] - pts[0])));
         }
     }
     if (rays_mesh.patches.empty()) return {};
     const RayScene rays(rays_mesh);
     std::vector<std::vector<std::size_t>> triangles_of(surfaces.members.size());
-    for (std::size_t t = 0; t < face_of.size(); ++t) triangles_of[surface_of[face_of[t]]].push_back(t);
+    for (std::size_t t = 0; t < face_of.size(); ++t)
+        triangles_of[surface_of[face_of[t]]].push_back(t);
 
     // Rays from both sides of every surface, tallied by what they met: per (surface, side),
     // escapes and hits on the front or back of each other surface.

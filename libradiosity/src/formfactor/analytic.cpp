@@ -16,8 +16,7 @@ class AnalyticKernel final : public RowKernel {
         gauss_legendre(2 * m, close_nodes_, close_weights_);
     }
 
-    std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row,
-                              RayLog&) const override {
+    std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row, RayLog&) const override {
         const auto& mesh = context_.mesh;
         const auto& pi = mesh.patches[i];
         const auto samples = gauss_samples(context_.polygons[i], pi.area, nodes_, weights_);

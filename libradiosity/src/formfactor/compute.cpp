@@ -90,23 +90,23 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
     std::atomic<std::uint64_t> rays_cast{0};
     Progress progress("rad-ff " + options.method, last - first, options.quiet);
     const auto trace_start = std::chrono::steady_clock::now();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 1),
-                      [&](const tbb::blocked_range<std::size_t>& block) {
-                          auto& tally = reached.local();
-                          for (std::size_t i = block.begin(); i != block.end(); ++i) {
-                              Rng rng(options.seed, i);
-                              RayLog log{0, 0, tally.data(), tally.data() + n};
-                              rays_cast += kernel->compute_row(i, rng, rows[i], log);
-                              if (log.rays == 0) {
-                                  rays_cast += kBackFaceProbeRays;
-                                  ff::probe_back_faces(context, i, options.seed,
-                                                       kBackFaceProbeRays, log);
-                              }
-                              back_fraction[i] = static_cast<float>(double(log.back_hits) /
-                                                                    std::max(1u, log.rays));
-                              progress.advance(1);
-                          }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(first, last, 1),
+        [&](const tbb::blocked_range<std::size_t>& block) {
+            auto& tally = reached.local();
+            for (std::size_t i = block.begin(); i != block.end(); ++i) {
+                Rng rng(options.seed, i);
+                RayLog log{0, 0, tally.data(), tally.data() + n};
+                rays_cast += kernel->compute_row(i, rng, rows[i], log);
+                if (log.rays == 0) {
+                    rays_cast += kBackFaceProbeRays;
+                    ff::probe_back_faces(context, i, options.seed, kBackFaceProbeRays, log);
+                }
+                back_fraction[i] =
+                    static_cast<float>(double(log.back_hits) / std::max(1u, log.rays));
+                progress.advance(1);
+            }
+        });
     const double trace_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - trace_start).count();
     progress.finish();

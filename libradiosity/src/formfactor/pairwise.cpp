@@ -18,8 +18,7 @@ class PairwiseKernel final : public RowKernel {
         gauss_legendre(m_far_, far_nodes_, far_weights_);
     }
 
-    std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row,
-                              RayLog&) const override {
+    std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row, RayLog&) const override {
         const auto& mesh = context_.mesh;
         const auto& pi = mesh.patches[i];
         const auto samples = gauss_samples(context_.polygons[i], pi.area, nodes_, weights_);

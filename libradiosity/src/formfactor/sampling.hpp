@@ -52,8 +52,8 @@ inline double wrap(double x) {
 
 // Casts `rays` cosine-weighted rays from area-uniform points of patch i (their own random
 // stream, so the form factors do not change) and records them in `log`.
-void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint64_t seed,
-                      int rays, RayLog& log);
+void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint64_t seed, int rays,
+                      RayLog& log);
 
 // Points per axis for `samples` points per patch (rounded to a square).
 int points_per_axis(int samples);

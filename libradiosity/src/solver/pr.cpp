@@ -4,7 +4,8 @@
 namespace rad::solve_impl {
 
 const Solver& pr_solver() {
-    static const ShootingSolver solver("pr", "progressive refinement (one iteration = one shot)", false);
+    static const ShootingSolver solver("pr", "progressive refinement (one iteration = one shot)",
+                                       false);
     return solver;
 }
 
