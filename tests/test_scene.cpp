@@ -1,8 +1,11 @@
 // rad-mesh: OBJ reading, subdivision, conformity and bad input.
 #include "helpers.hpp"
+#include "radiosity/vec.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <filesystem>
 #include <map>
 
 using namespace testing_helpers;
@@ -106,15 +109,32 @@ TEST_CASE("polygons with more than four vertices and concave quads are triangula
     CHECK(total == Approx(3 + 1.1).epsilon(1e-12)); // hexagon 3, concave quad 1.1 (shoelace)
 }
 
+namespace {
+// Loads `obj` (with `mtl` as scene.mtl beside it) with `options`; returns the error or
+// "no error", and the scene and report when it loads.
+std::string load_with(const std::string& obj, const rad::ObjOptions& options,
+                      rad::Scene* scene = nullptr, rad::ObjReport* report = nullptr,
+                      const std::string& mtl = kGreyMtl) {
+    const auto dir = temp_dir("load");
+    write_text(dir / "scene.mtl", mtl);
+    write_text(dir / "scene.obj", "mtllib scene.mtl\n" + obj);
+    try {
+        auto loaded = rad::load_obj(dir / "scene.obj", options, report);
+        if (scene) *scene = std::move(loaded);
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "no error";
+}
+rad::ObjOptions strict_options() {
+    rad::ObjOptions options;
+    options.strict = true;
+    return options;
+}
+} // namespace
+
 TEST_CASE("bad OBJ input names the file and line") {
-    auto error_of = [](const std::string& obj, const std::string& mtl = kGreyMtl) {
-        try {
-            scene_from_obj(obj, mtl, "bad");
-        } catch (const std::exception& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    auto error_of = [](const std::string& obj) { return load_with(obj, {}); };
     CHECK_THAT(error_of("v 0 0 nan\n"),
                Contains("scene.obj:2:") && Contains("not a finite number"));
     CHECK_THAT(error_of("v 0 0 inf\n"), Contains("scene.obj:2:"));
@@ -123,20 +143,114 @@ TEST_CASE("bad OBJ input names the file and line") {
                    Contains("refers to vertex 2, but only 1 vertices are defined"));
     CHECK_THAT(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf -4 1 2\n"),
                Contains("scene.obj:6:"));
-    CHECK_THAT(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
-               Contains("scene.obj:5:") && Contains("no material"));
-    CHECK_THAT(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl chrome\nf 1 2 3\n"),
-               Contains("scene.obj:5:") && Contains("unknown material 'chrome'"));
+    CHECK_THAT(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 0 1 2\n"),
+               Contains("scene.obj:6:") && Contains("refers to vertex 0"));
     CHECK_THAT(error_of("# nothing\n"), Contains("empty"));
-    CHECK_THAT(error_of("mtllib missing.mtl\n"),
-               Contains("scene.obj:2:") && Contains("missing.mtl"));
 }
 
-TEST_CASE("non-planar quads are refused, degenerate faces dropped and counted") {
+TEST_CASE("faces without a known material get the default one; --strict refuses them") {
+    const std::string no_usemtl = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl grey\nf 1 3 2\n";
+    rad::Scene scene;
+    rad::ObjReport report;
+    CHECK(load_with(no_usemtl, {}, &scene, &report) == "no error");
+    CHECK(report.faces_defaulted == 1);
+    CHECK(report.first_defaulted_line == 5);
+    CHECK(report.default_material == "default");
+    REQUIRE(scene.polygons.size() == 2);
+    const auto& fallback = scene.materials[scene.polygons[0].material];
+    CHECK(fallback.name == "default");
+    CHECK(fallback.reflectance == radfmt::Rgb{{0.5, 0.5, 0.5}});
+    CHECK(scene.materials[scene.polygons[1].material].name == "grey");
+    CHECK_THAT(load_with(no_usemtl, strict_options()),
+               Contains("scene.obj:5:") && Contains("no material"));
+
+    // A name no library defines: the same default, and the name reported with its line.
+    const std::string chrome = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl chrome\nf 1 2 3\n";
+    rad::ObjOptions options;
+    options.default_reflectance = {{0.2, 0.3, 0.4}};
+    rad::ObjReport chrome_report;
+    CHECK(load_with(chrome, options, &scene, &chrome_report) == "no error");
+    CHECK(chrome_report.unknown_materials == std::vector<std::string>{"chrome (line 5)"});
+    CHECK(scene.materials[scene.polygons[0].material].reflectance == radfmt::Rgb{{0.2, 0.3, 0.4}});
+    CHECK_THAT(load_with(chrome, strict_options()),
+               Contains("scene.obj:5:") && Contains("unknown material 'chrome'"));
+    // A scene that has a material called "default" keeps it; the fallback is another.
+    rad::ObjReport taken;
+    CHECK(load_with("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", {}, &scene, &taken,
+                    "newmtl default\nKd 0.9 0.1 0.1\n") == "no error");
+    CHECK(taken.default_material == "default_");
+}
+
+TEST_CASE("material libraries as found: missing, elsewhere, several per line, odd whitespace") {
+    // Missing: reported with where it was looked for; --strict refuses.
+    rad::Scene scene;
+    rad::ObjReport report;
+    const std::string obj = "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\n";
+    CHECK(load_with(obj, {}, &scene, &report) == "no error");
+    REQUIRE(report.missing_libraries.size() == 1);
+    CHECK_THAT(report.missing_libraries[0],
+               Contains("'missing.mtl' (line 2) not found; looked for") &&
+                   Contains("missing.mtl, "));
+    CHECK_THAT(load_with(obj, strict_options()),
+               Contains("scene.obj:2:") && Contains("material library 'missing.mtl' not found"));
+
+    // In another folder given with mtl_paths; two libraries on one line, one with an escaped
+    // space in its name; newmtl with repeated and trailing whitespace; usemtl likewise.
+    const auto dir = temp_dir("libraries");
+    std::filesystem::create_directories(dir / "materials");
+    write_text(dir / "materials" / "a b.mtl", "newmtl   red  \nKd 0.8 0.1 0.1\n");
+    write_text(dir / "materials" / "second.mtl", "newmtl blue\t\nKd 0.1 0.1 0.8\r\n");
+    write_text(dir / "scene.obj", "mtllib a\\ b.mtl   second.mtl  \nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                  "usemtl   red   \nf 1 2 3\nusemtl blue\r\nf 1 3 2\n");
+    rad::ObjOptions options;
+    REQUIRE_THROWS_WITH(rad::load_obj(dir / "scene.obj", strict_options()),
+                        Contains("material library 'a b.mtl' not found") && Contains("--mtl-path"));
+    options.mtl_paths = {dir / "materials"};
+    rad::ObjReport found;
+    const auto loaded = rad::load_obj(dir / "scene.obj", options, &found);
+    CHECK(found.missing_libraries.empty());
+    CHECK(found.unknown_materials.empty());
+    CHECK(found.faces_defaulted == 0);
+    REQUIRE(loaded.polygons.size() == 2);
+    CHECK(loaded.materials[loaded.polygons[0].material].name == "red");
+    CHECK(loaded.materials[loaded.polygons[0].material].reflectance[0] == Approx(0.8));
+    CHECK(loaded.materials[loaded.polygons[1].material].name == "blue");
+    CHECK(loaded.material_files.size() == 2);
+}
+
+TEST_CASE(
+    "non-planar faces are split into triangles (refused with strict); degenerate faces dropped") {
     const auto bent =
         scene_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0.2\nv 0 1 0\nusemtl grey\nf 1 2 3 4\n");
-    REQUIRE_THROWS_WITH(rad::subdivide(bent, {}),
-                        Contains("scene.obj:7:") && Contains("not planar"));
+    rad::SubdivisionReport split;
+    const auto mesh_bent = rad::subdivide(bent, {}, &split);
+    CHECK(split.nonplanar_split == 1);
+    CHECK(split.worst_nonplanar_line == 7);
+    CHECK(split.worst_nonplanar_offset > 0.04);
+    CHECK(split.worst_nonplanar_offset < 0.2);
+    REQUIRE(mesh_bent.patches.size() == 2);
+    // Each triangle has its own plane. The diagonal chosen is the one whose two triangles
+    // fold least: 2-4 (normals (-0.2,-0.2,1) and (0,0,1), cosine 0.962) rather than 1-3
+    // ((0,-0.2,1) and (-0.2,0,1), cosine 0.9615).
+    double area = 0;
+    for (const auto& p : mesh_bent.patches) {
+        CHECK(p.corner_count() == 3);
+        CHECK(rad::length(p.normal) == Approx(1));
+        area += p.area;
+    }
+    CHECK(area == Approx(0.5 * std::sqrt(1.08) + 0.5).epsilon(1e-12));
+    rad::SubdivisionOptions strict;
+    strict.strict = true;
+    REQUIRE_THROWS_WITH(rad::subdivide(bent, strict), Contains("scene.obj:7:") &&
+                                                          Contains("not planar") &&
+                                                          Contains("without --strict it is split"));
+    // Within the tolerance (relative to the face's size) a face stays one quad.
+    const auto slight =
+        scene_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0.0005\nv 0 1 0\nusemtl grey\nf 1 2 3 4\n");
+    rad::SubdivisionReport none;
+    CHECK(rad::subdivide(slight, {}, &none).patches.size() == 1);
+    CHECK(none.nonplanar_split == 0);
+
     const auto scene =
         scene_from_obj("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\nf 1 2 4\n");
     rad::SubdivisionReport report;

@@ -2,9 +2,11 @@
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/materials.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/orientation.hpp"
 #include "radiosity/scene.hpp"
+#include "radiosity/solve_policy.hpp"
 #include "radiosity/two_sided.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
@@ -54,6 +56,19 @@ int main(int argc, char** argv) {
                    "face's size")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 1));
+    bool strict = false;
+    std::string default_reflectance;
+    std::vector<std::string> mtl_paths;
+    app.add_flag("--strict", strict,
+                 "Refuse what is otherwise repaired with a warning: non-planar faces (split "
+                 "into triangles), faces without a known material (given a default one), "
+                 "missing material libraries");
+    app.add_option("--default-reflectance", default_reflectance,
+                   "Reflectance of the material given to faces without one: r,g,b or one value "
+                   "(default: 0.5)");
+    app.add_option("--mtl-path", mtl_paths,
+                   "Folder to look for material libraries in, after the OBJ's folder and the "
+                   "current directory (repeatable)");
     std::string orient = "warn";
     std::vector<std::string> flip;
     app.add_option("--orient", orient,
@@ -81,11 +96,67 @@ int main(int argc, char** argv) {
         parse_limits(max_edge, "--max-edge", options.max_edge, options.max_edge_by_group);
         parse_limits(max_area, "--max-area", options.max_area, options.max_area_by_group);
         options.planarity_tolerance = planarity;
-        auto scene = rad::load_obj(input);
-        if (const auto duplicates = rad::remove_duplicate_faces(scene); duplicates.removed)
-            std::cerr << "rad-mesh: warning: " << input << ": dropped " << duplicates.removed
-                      << " duplicate face(s) (first at line " << duplicates.first_line
-                      << ", a repeat of line " << duplicates.first_original_line << ")\n";
+        options.strict = strict;
+        rad::ObjOptions obj_options;
+        obj_options.strict = strict;
+        for (const auto& dir : mtl_paths) obj_options.mtl_paths.emplace_back(dir);
+        if (!default_reflectance.empty()) {
+            const auto value = rad::parse_material_override("default=" + default_reflectance,
+                                                            "--default-reflectance")
+                                   .value;
+            for (double v : value)
+                if (!(v < 1))
+                    throw rad::InputError("--default-reflectance: " + default_reflectance +
+                                          " has a channel >= 1 (a reflectance is below 1)");
+            obj_options.default_reflectance = value;
+        }
+        const auto warn = [&](const std::string& text) {
+            std::cerr << "rad-mesh: warning: " << input << ": " << text << '\n';
+        };
+        // What was repaired, one line per kind, printed after the summary (and even with
+        // --quiet: the mesh differs from the file).
+        std::vector<std::string> changes;
+        rad::ObjReport obj_report;
+        auto scene = rad::load_obj(input, obj_options, &obj_report);
+        for (const auto& lib : obj_report.missing_libraries)
+            warn("material library " + lib + " (--mtl-path DIR adds a folder)");
+        if (!obj_report.unknown_materials.empty()) {
+            std::string names;
+            for (const auto& m : obj_report.unknown_materials)
+                names += (names.empty() ? "" : ", ") + m;
+            warn("material(s) not defined in any material library: " + names);
+        }
+        for (const auto& problem : obj_report.texture_problems)
+            warn(problem + " (the material keeps its Kd)");
+        if (obj_report.faces_defaulted) {
+            std::string text = "defaulted: " + std::to_string(obj_report.faces_defaulted) +
+                               " face(s) without a known material (first at line " +
+                               std::to_string(obj_report.first_defaulted_line) +
+                               ") got material '" + obj_report.default_material +
+                               "', reflectance " + rad::rgb_text(obj_options.default_reflectance) +
+                               " (--default-reflectance changes it, --strict refuses)";
+            changes.push_back(std::move(text));
+        }
+        if (!obj_report.textures_averaged.empty()) {
+            std::string text =
+                "textures averaged: " + std::to_string(obj_report.textures_averaged.size()) +
+                " map_Kd texture(s) multiply their Kd by their mean linear colour";
+            if (!obj_report.textures_replacing_kd.empty()) {
+                text += "; replacing a Kd of 0 or none in";
+                for (const auto& m : obj_report.textures_replacing_kd) text += " " + m;
+            }
+            changes.push_back(std::move(text));
+        }
+        if (const auto duplicates = rad::remove_duplicate_faces(scene); duplicates.removed) {
+            std::string lines;
+            for (std::size_t k = 0; k < duplicates.lines.size() && k < 10; ++k)
+                lines += (k ? ", " : "") + std::to_string(duplicates.lines[k].first) +
+                         " (repeats " + std::to_string(duplicates.lines[k].second) + ")";
+            if (duplicates.lines.size() > 10) lines += ", ...";
+            std::string text = "deduplicated: dropped " + std::to_string(duplicates.removed) +
+                               " duplicate face(s), line " + lines;
+            changes.push_back(std::move(text));
+        }
         if (!flip.empty()) {
             const auto count = rad::flip_groups(scene, flip);
             if (!quiet) std::cerr << "rad-mesh: --flip reversed " << count << " face(s)\n";
@@ -117,6 +188,19 @@ int main(int argc, char** argv) {
                     throw rad::InputError("no group '" + group + "' in " + input);
         rad::SubdivisionReport report;
         auto mesh = rad::subdivide(scene, options, &report);
+        if (report.nonplanar_split) {
+            char text[256];
+            std::snprintf(text, sizeof text,
+                          "triangulated: %zu non-planar face(s) split into triangles (worst at "
+                          "line %d: %.3g off its plane, %.2g%% of its size; --strict refuses "
+                          "them)",
+                          report.nonplanar_split, report.worst_nonplanar_line,
+                          report.worst_nonplanar_offset, 100 * report.worst_nonplanar_relative);
+            changes.emplace_back(text);
+        }
+        if (report.degenerate_dropped)
+            changes.push_back("dropped: " + std::to_string(report.degenerate_dropped) +
+                              " degenerate (zero-area) face(s)");
         if (two_sided_emission && two_sided.empty())
             throw rad::InputError("--two-sided-emission needs --two-sided GROUP|MATERIAL|all");
         if (!two_sided.empty()) {
@@ -130,9 +214,12 @@ int main(int argc, char** argv) {
                               << " does not emit (material " << name
                               << ".back; --two-sided-emission to change)\n";
         }
-        if (report.degenerate_dropped)
-            std::cerr << "rad-mesh: warning: " << input << ": dropped " << report.degenerate_dropped
-                      << " degenerate (zero-area) face(s)\n";
+        if (const auto problems = rad::material_warnings(mesh, scene.material_sources);
+            !problems.empty()) {
+            std::string text = "materials to check before solving:";
+            for (const auto& line : problems) text += "\n  " + line;
+            warn(text);
+        }
 
         std::vector<radfmt::Parent> sources{{input, nullptr}};
         for (const auto& mtl : scene.material_files) sources.push_back({mtl, nullptr});
@@ -146,6 +233,7 @@ int main(int argc, char** argv) {
                 mesh.patches.size(), mesh.vertices.size(), mesh.total_area(), topo.boundary_edges,
                 topo.rejected_patches ? " (non-manifold parts present)" : "");
         }
+        for (const auto& change : changes) std::cerr << "rad-mesh: changed: " << change << '\n';
         return 0;
     });
 }

@@ -105,6 +105,13 @@ int main(int argc, char** argv) {
         const auto& solver = rad::solver(request.method);
         radfmt::Header mesh_header, ff_header;
         auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
+        {
+            // The materials first: a refusal comes before the (large) form factors are read.
+            auto overridden = mesh;
+            radfmt::Header scratch;
+            rad::apply_material_overrides(overridden, request, scratch);
+            rad::check_reflectances(overridden, request.force);
+        }
         const auto ff = radfmt::read_form_factors(ff_path, &ff_header);
         const auto geometry_hash =
             radfmt::require_same_geometry(ff_path, ff_header, ff.patch_count, mesh_path, mesh,

@@ -28,6 +28,7 @@ DuplicateFaces remove_duplicate_faces(Scene& scene) {
             kept.push_back(std::move(scene.polygons[f]));
             continue;
         }
+        report.lines.emplace_back(scene.polygons[f].line, scene.polygons[it->second].line);
         if (report.removed++ == 0) {
             report.first_line = scene.polygons[f].line;
             report.first_original_line = scene.polygons[it->second].line;

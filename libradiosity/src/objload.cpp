@@ -1,12 +1,17 @@
+// Reading OBJ + MTL as people export them: tinyobjloader parses, a line-by-line check names
+// the file and line of what is malformed, and what can be repaired (a missing material, a
+// material library elsewhere, whitespace, textures) is repaired and reported.
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
+#include "radiosity/texture.hpp"
 #include "radiosity/vec.hpp"
 
 #include <tiny_obj_loader.h>
 
 #include <charconv>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -15,15 +20,75 @@ namespace fs = std::filesystem;
 
 namespace {
 
+std::string trim(std::string text) {
+    const auto end = text.find_last_not_of(" \t\r\n");
+    text.erase(end == std::string::npos ? 0 : end + 1);
+    const auto begin = text.find_first_not_of(" \t");
+    return begin == std::string::npos ? std::string() : text.substr(begin);
+}
+
+// The file names of an `mtllib` line: separated by spaces or tabs, "\ " escapes a space.
+std::vector<std::string> library_names(const std::string& rest) {
+    std::vector<std::string> names;
+    std::string name;
+    bool escaped = false;
+    for (const char c : rest) {
+        if (escaped) {
+            name += c;
+            escaped = false;
+        } else if (c == '\\') {
+            escaped = true;
+        } else if (c == ' ' || c == '\t' || c == '\r') {
+            if (!name.empty()) names.push_back(std::move(name));
+            name.clear();
+        } else {
+            name += c;
+        }
+    }
+    if (!name.empty()) names.push_back(std::move(name));
+    return names;
+}
+
+struct Library {
+    int line;
+    std::string name;
+    fs::path found;                  // empty when not found
+    std::vector<std::string> looked; // where it was looked for
+};
+
 struct LintResult {
     std::vector<int> face_lines;
-    std::vector<std::pair<int, std::string>> usemtl; // line, material name
-    std::vector<int> faces_without_material;
+    std::vector<std::pair<int, std::string>> usemtl; // line, material name as tinyobj reads it
+    std::vector<int> faces_without_material;         // before any usemtl
+    std::vector<Library> libraries;
     std::size_t vertex_count = 0;
 };
 
+// Looks for a material library next to the OBJ, in the current directory, then in the
+// --mtl-path folders; an absolute name only where it says.
+Library find_library(const fs::path& obj, int line, const std::string& name,
+                     const ObjOptions& options) {
+    Library lib{line, name, {}, {}};
+    std::vector<fs::path> candidates;
+    if (fs::path(name).is_absolute()) {
+        candidates.push_back(name);
+    } else {
+        candidates.push_back(obj.parent_path() / name);
+        candidates.push_back(fs::current_path() / name);
+        for (const auto& dir : options.mtl_paths) candidates.push_back(dir / name);
+    }
+    for (const auto& candidate : candidates) {
+        lib.looked.push_back(candidate.lexically_normal().string());
+        if (fs::is_regular_file(candidate)) {
+            lib.found = candidate;
+            break;
+        }
+    }
+    return lib;
+}
+
 // Checks what tinyobjloader would accept silently or report without a line number.
-LintResult lint_obj(const fs::path& path) {
+LintResult lint_obj(const fs::path& path, const ObjOptions& options) {
     std::ifstream in(path);
     if (!in) throw InputError(path.string() + ": cannot open OBJ file");
     LintResult result;
@@ -75,56 +140,154 @@ LintResult lint_obj(const fs::path& path) {
                 throw InputError(FileLoc{path.string(), number},
                                  "face has " + std::to_string(corners) +
                                      " vertices; at least 3 are needed");
-            if (!have_material)
-                throw InputError(FileLoc{path.string(), number},
-                                 "face has no material (put 'usemtl NAME' before it)");
+            if (!have_material) {
+                if (options.strict)
+                    throw InputError(FileLoc{path.string(), number},
+                                     "face has no material (put 'usemtl NAME' before it, or "
+                                     "leave out --strict to give it a default material)");
+                result.faces_without_material.push_back(number);
+            }
             result.face_lines.push_back(number);
         } else if (keyword == "usemtl") {
+            // As tinyobjloader reads it: the first word, whatever whitespace surrounds it.
             std::string name;
-            std::getline(words >> std::ws, name);
+            words >> name;
             result.usemtl.emplace_back(number, name);
             have_material = true;
         } else if (keyword == "mtllib") {
-            std::string name;
-            std::getline(words >> std::ws, name);
-            const auto mtl = path.parent_path() / name;
-            if (!fs::is_regular_file(mtl))
-                throw InputError(FileLoc{path.string(), number}, "material library '" + name +
-                                                                     "' not found (looked for " +
-                                                                     mtl.string() + ")");
+            std::string rest;
+            std::getline(words, rest);
+            for (const auto& name : library_names(rest)) {
+                auto lib = find_library(path, number, name, options);
+                if (lib.found.empty() && options.strict) {
+                    std::string looked;
+                    for (const auto& l : lib.looked) looked += (looked.empty() ? "" : ", ") + l;
+                    throw InputError(FileLoc{path.string(), number},
+                                     "material library '" + name + "' not found (looked for " +
+                                         looked + "; --mtl-path DIR adds a folder)");
+                }
+                result.libraries.push_back(std::move(lib));
+            }
         }
     }
     return result;
 }
 
+// One MTL file as exporters write it, made safe for tinyobjloader: "newmtl  name  " with
+// repeated or trailing whitespace names "name". Also notes which materials state a Kd.
+std::string normalised_mtl(const fs::path& path, std::set<std::string>& states_kd) {
+    std::ifstream in(path);
+    std::ostringstream out;
+    std::string line, current;
+    while (std::getline(in, line)) {
+        const auto text = trim(line);
+        std::istringstream words(text);
+        std::string keyword;
+        words >> keyword;
+        if (keyword == "newmtl") {
+            std::string rest;
+            std::getline(words, rest);
+            current = trim(rest);
+            out << "newmtl " << current << '\n';
+            continue;
+        }
+        if (keyword == "Kd") states_kd.insert(current);
+        out << text << '\n';
+    }
+    return out.str();
+}
+
+// Hands tinyobjloader the materials of every library, read once before it starts: it
+// would otherwise stop at the first file of an `mtllib` line and search only one folder.
+class PreloadedMaterials : public tinyobj::MaterialReader {
+  public:
+    PreloadedMaterials(const std::vector<tinyobj::material_t>& materials,
+                       const std::map<std::string, int>& index)
+        : materials_(materials), index_(index) {}
+    bool operator()(const std::string&, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* index, std::string*, std::string*) override {
+        if (!given_) {
+            *materials = materials_;
+            *index = index_;
+            given_ = true;
+        }
+        return true;
+    }
+
+  private:
+    const std::vector<tinyobj::material_t>& materials_;
+    const std::map<std::string, int>& index_;
+    bool given_ = false;
+};
+
+std::string rgb_text(const radfmt::Rgb& c) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.4g %.4g %.4g", c[0], c[1], c[2]);
+    return text;
+}
+
 } // namespace
 
-Scene load_obj(const fs::path& path) {
+Scene load_obj(const fs::path& path, const ObjOptions& options, ObjReport* report_out) {
     if (!fs::is_regular_file(path)) throw InputError(path.string() + ": no such OBJ file");
-    const auto lint = lint_obj(path);
-
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = false;
-    config.vertex_color = false;
-    config.mtl_search_path = path.parent_path().string();
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(path.string(), config))
-        throw InputError(path.string() + ": " + reader.Error());
+    ObjReport local_report;
+    ObjReport& report = report_out ? *report_out : local_report;
+    const auto lint = lint_obj(path, options);
 
     Scene scene;
     scene.path = path.string();
-    const auto& attrib = reader.GetAttrib();
+
+    // Every library found, in order, once; each material remembers its library's folder
+    // (textures are named relative to it).
+    std::vector<tinyobj::material_t> materials;
+    std::map<std::string, int> material_index;
+    std::vector<fs::path> material_folder;
+    std::set<std::string> states_kd;
+    std::set<fs::path> loaded;
+    for (const auto& lib : lint.libraries) {
+        if (lib.found.empty()) {
+            std::string looked;
+            for (const auto& l : lib.looked) looked += (looked.empty() ? "" : ", ") + l;
+            report.missing_libraries.push_back("'" + lib.name + "' (line " +
+                                               std::to_string(lib.line) +
+                                               ") not found; looked for " + looked);
+            continue;
+        }
+        const auto canonical = fs::weakly_canonical(lib.found);
+        if (!loaded.insert(canonical).second) continue;
+        std::istringstream text(normalised_mtl(lib.found, states_kd));
+        std::string warn, err;
+        tinyobj::LoadMtl(&material_index, &materials, &text, &warn, &err);
+        material_folder.resize(materials.size(), lib.found.parent_path());
+        scene.material_files.push_back(lib.found.string());
+    }
+
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> used_materials;
+    std::string warn, err;
+    std::ifstream obj(path);
+    PreloadedMaterials reader(materials, material_index);
+    if (!tinyobj::LoadObj(&attrib, &shapes, &used_materials, &warn, &err, &obj, &reader,
+                          /*triangulate=*/false, /*default_vcols_fallback=*/false))
+        throw InputError(path.string() + ": " + err);
+
     for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
         scene.vertices.push_back(
             {attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]});
 
-    std::set<std::string> known;
-    for (const auto& m : reader.GetMaterials()) {
+    for (std::size_t index = 0; index < materials.size(); ++index) {
+        const auto& m = materials[index];
         radfmt::Material material;
         material.name = m.name;
+        MaterialSource source;
+        source.illum = m.illum;
         for (int k = 0; k < 3; ++k) {
             material.reflectance[k] = m.diffuse[k];
             material.emission[k] = m.emission[k];
+            source.ambient[k] = m.ambient[k];
+            source.specular[k] = m.specular[k];
+            source.transmittance[k] = m.transmittance[k];
         }
         for (int k = 0; k < 3; ++k) {
             if (!std::isfinite(material.reflectance[k]) || material.reflectance[k] < 0 ||
@@ -132,21 +295,63 @@ Scene load_obj(const fs::path& path) {
                 throw InputError(path.string() + ": material '" + m.name +
                                  "' has a negative or non-finite Kd or Ke");
         }
-        known.insert(m.name);
+        if (!m.diffuse_texname.empty()) {
+            const auto texture = material_folder[index] / m.diffuse_texname;
+            std::string problem;
+            if (!fs::is_regular_file(texture)) {
+                report.texture_problems.push_back(material.name + ": texture " + texture.string() +
+                                                  " not found");
+            } else if (const auto mean = mean_texture_colour(texture, problem)) {
+                const bool kd_black = !states_kd.count(m.name) ||
+                                      (m.diffuse[0] == 0 && m.diffuse[1] == 0 && m.diffuse[2] == 0);
+                for (int k = 0; k < 3; ++k)
+                    material.reflectance[k] = kd_black ? (*mean)[k] : (*mean)[k] * m.diffuse[k];
+                report.textures_averaged.push_back(material.name + ": " + texture.string() +
+                                                   ", mean " + rgb_text(*mean));
+                if (kd_black) report.textures_replacing_kd.push_back(material.name);
+                scene.material_files.push_back(texture.string());
+            } else {
+                report.texture_problems.push_back(material.name + ": texture " + texture.string() +
+                                                  " unreadable (" + problem + ")");
+            }
+        }
         scene.materials.push_back(material);
+        scene.material_sources.push_back(source);
     }
+
+    // Faces whose material is missing (no usemtl before them, or a name no library defines)
+    // share one default material, made when first needed.
+    std::set<std::string> known;
+    for (const auto& m : scene.materials) known.insert(m.name);
+    std::map<std::string, int> unknown_first_line;
     for (const auto& [line, name] : lint.usemtl)
-        if (!known.count(name))
-            throw InputError(FileLoc{path.string(), line},
-                             "unknown material '" + name + "' (not defined in any mtllib)");
+        if (!known.count(name) && !unknown_first_line.count(name)) {
+            if (options.strict)
+                throw InputError(FileLoc{path.string(), line},
+                                 "unknown material '" + name + "' (not defined in any mtllib)");
+            unknown_first_line[name] = line;
+            report.unknown_materials.push_back(name + " (line " + std::to_string(line) + ")");
+        }
+    auto default_material = [&]() -> std::uint32_t {
+        if (report.default_material.empty()) {
+            report.default_material = "default";
+            while (known.count(report.default_material)) report.default_material += "_";
+            scene.materials.push_back({report.default_material, options.default_reflectance, {}});
+            scene.material_sources.push_back({});
+        }
+        return static_cast<std::uint32_t>(
+            std::find_if(scene.materials.begin(), scene.materials.end(),
+                         [&](const auto& m) { return m.name == report.default_material; }) -
+            scene.materials.begin());
+    };
 
     std::size_t face_number = 0;
     const bool lines_match = [&] {
         std::size_t faces = 0;
-        for (const auto& s : reader.GetShapes()) faces += s.mesh.num_face_vertices.size();
+        for (const auto& s : shapes) faces += s.mesh.num_face_vertices.size();
         return faces == lint.face_lines.size();
     }();
-    for (const auto& shape : reader.GetShapes()) {
+    for (const auto& shape : shapes) {
         const std::string group_name = shape.name.empty() ? "default" : shape.name;
         std::uint32_t group = 0;
         for (; group < scene.groups.size(); ++group)
@@ -173,25 +378,19 @@ Scene load_obj(const fs::path& path) {
             if (all_normals) poly.vn_sum = vn;
             offset += count;
             const int material = shape.mesh.material_ids[f];
-            if (material < 0 || material >= static_cast<int>(scene.materials.size()))
-                throw InputError(FileLoc{path.string(), poly.line}, "face has no known material");
-            poly.material = static_cast<std::uint32_t>(material);
+            if (material < 0 || material >= static_cast<int>(materials.size())) {
+                if (options.strict)
+                    throw InputError(FileLoc{path.string(), poly.line},
+                                     "face has no known material");
+                poly.material = default_material();
+                if (report.faces_defaulted++ == 0) report.first_defaulted_line = poly.line;
+            } else {
+                poly.material = static_cast<std::uint32_t>(material);
+            }
             scene.polygons.push_back(std::move(poly));
         }
     }
     if (scene.polygons.empty()) throw InputError(path.string() + ": scene is empty (no faces)");
-    // Record the MTL files for the provenance hashes.
-    std::ifstream in(path);
-    std::string line;
-    while (std::getline(in, line)) {
-        std::istringstream words(line);
-        std::string keyword, name;
-        if (words >> keyword && keyword == "mtllib") {
-            std::getline(words >> std::ws, name);
-            while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
-            scene.material_files.push_back((path.parent_path() / name).string());
-        }
-    }
     return scene;
 }
 

@@ -28,12 +28,6 @@ struct Box {
     }
 };
 
-std::vector<Vec3> points_of(const Scene& scene, const Polygon& p) {
-    std::vector<Vec3> pts;
-    for (auto v : p.vertices) pts.push_back(scene.vertices[v]);
-    return pts;
-}
-
 void add_finding(std::vector<OrientationFinding>& out, OrientationFinding::Kind kind,
                  const Scene& scene, const std::vector<std::size_t>& polygons,
                  const std::vector<bool>& flip) {
@@ -46,6 +40,12 @@ void add_finding(std::vector<OrientationFinding>& out, OrientationFinding::Kind 
             if (flip[p]) to_flip.push_back(p);
         out.push_back({kind, group, std::move(list), std::move(to_flip)});
     }
+}
+
+std::vector<Vec3> points_of(const Scene& scene, const Polygon& p) {
+    std::vector<Vec3> pts;
+    for (auto v : p.vertices) pts.push_back(scene.vertices[v]);
+    return pts;
 }
 
 // Faces connected across welded edges (two faces per edge), whatever their winding.
@@ -67,6 +67,11 @@ SurfaceGraph connect_surfaces(const Scene& scene) {
     std::unordered_map<std::uint64_t, std::vector<Use>> edges;
     for (std::size_t f = 0; f < n; ++f) {
         const auto& vs = scene.polygons[f].vertices;
+        // A face without area (subdivision drops it) has no side to agree on.
+        const auto pts = points_of(scene, scene.polygons[f]);
+        double size = 0;
+        for (const auto& p : pts) size = std::max(size, length(p - pts.front()));
+        if (!(length(newell_normal(pts)) > 1e-12 * size * size)) continue;
         for (std::size_t k = 0; k < vs.size(); ++k) {
             const auto a = id[vs[k]], b = id[vs[(k + 1) % vs.size()]];
             if (a == b) continue;

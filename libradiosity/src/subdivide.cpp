@@ -122,41 +122,69 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
         const Vec3 normal = n2 * (0.5 / area);
         // Planarity: every vertex within a tolerance (relative to the face size) of the plane.
         const Vec3 centre = polygon_centroid(pts);
-        double size = 0;
+        double size = 0, worst = 0;
+        std::size_t worst_vertex = 0;
         for (const auto& p : pts) size = std::max(size, length(p - centre));
         for (std::size_t k = 0; k < pts.size(); ++k) {
             const double off = std::abs(dot(pts[k] - centre, normal));
-            if (off > options.planarity_tolerance * size)
-                throw InputError(where(scene, poly),
-                                 "face is not planar: vertex " + std::to_string(k + 1) + " lies " +
-                                     std::to_string(off) + " off the face's plane (tolerance " +
-                                     std::to_string(options.planarity_tolerance * size) + ")");
+            if (off > worst) worst = off, worst_vertex = k;
         }
+        const bool planar = worst <= options.planarity_tolerance * size;
+        if (!planar && options.strict)
+            throw InputError(where(scene, poly),
+                             "face is not planar: vertex " + std::to_string(worst_vertex + 1) +
+                                 " lies " + std::to_string(worst) +
+                                 " off the face's plane (tolerance " +
+                                 std::to_string(options.planarity_tolerance * size) +
+                                 "; without --strict it is split into triangles, or raise "
+                                 "--planarity-tolerance)");
         bool convex_quad = pts.size() == 4;
         for (std::size_t k = 0; k < 4 && convex_quad; ++k)
             convex_quad = dot(cross(pts[(k + 1) % 4] - pts[k], pts[(k + 2) % 4] - pts[(k + 1) % 4]),
                               normal) > 0;
+        // Each element takes its own plane: the face's, or for the triangles of a face that
+        // is not planar, each triangle's.
         auto add = [&](std::initializer_list<std::uint32_t> corners) {
             Element e;
             std::copy(corners.begin(), corners.end(), e.v.begin());
             e.corners = static_cast<int>(corners.size());
             e.group = poly.group;
             e.material = poly.material;
-            e.normal = normal;
             std::vector<Vec3> c;
             for (int k = 0; k < e.corners; ++k) c.push_back(scene.vertices[e.v[k]]);
-            e.area = 0.5 * length(newell_normal(c));
+            const Vec3 own = newell_normal(c);
+            e.area = 0.5 * length(own);
+            e.normal = planar ? normal : normalized(own);
             if (e.area > min_area)
                 elements.push_back(e);
             else
                 ++rep.degenerate_dropped;
         };
+        if (!planar) {
+            ++rep.nonplanar_split;
+            if (worst / size > rep.worst_nonplanar_relative) {
+                rep.worst_nonplanar_relative = worst / size;
+                rep.worst_nonplanar_offset = worst;
+                rep.worst_nonplanar_line = poly.line;
+            }
+        }
         if (pts.size() == 3) {
             add({ids[0], ids[1], ids[2]});
-        } else if (convex_quad) {
+        } else if (!planar && pts.size() == 4) {
+            // The diagonal whose two triangles fold least (their normals agree best).
+            auto fold = [&](int d) {
+                const Vec3 a = newell_normal(std::vector<Vec3>{pts[d], pts[d + 1], pts[d + 2]});
+                const Vec3 b =
+                    newell_normal(std::vector<Vec3>{pts[d], pts[d + 2], pts[(d + 3) % 4]});
+                return dot(normalized(a), normalized(b));
+            };
+            const int d = fold(1) > fold(0) ? 1 : 0;
+            add({ids[d], ids[d + 1], ids[d + 2]});
+            add({ids[d], ids[d + 2], ids[(d + 3) % 4]});
+        } else if (planar && convex_quad) {
             add({ids[0], ids[1], ids[2], ids[3]});
         } else {
-            ++rep.polygons_triangulated;
+            if (planar) ++rep.polygons_triangulated;
             for (const auto& t : triangulate(pts, ids, normal)) add({t[0], t[1], t[2]});
         }
     }

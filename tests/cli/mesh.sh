@@ -16,15 +16,29 @@ printf 'mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 7\n' > index
 expect_error "index.obj:6: face refers to vertex 7, but only 3 vertices are defined" out.mesh "$BIN/rad-mesh" index.obj -o out.mesh
 printf 'mtllib s.mtl\nv 0 0 0\nv 1 nan 0\n' > nan.obj
 expect_error "nan.obj:3:" out.mesh "$BIN/rad-mesh" nan.obj -o out.mesh
-printf 'mtllib none.mtl\nv 0 0 0\n' > nomtl.obj
-expect_error "nomtl.obj:1: material library 'none.mtl' not found" out.mesh "$BIN/rad-mesh" nomtl.obj -o out.mesh
+printf 'mtllib none.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\n' > nomtl.obj
+expect_error "nomtl.obj:1: material library 'none.mtl' not found" out.mesh "$BIN/rad-mesh" nomtl.obj -o out.mesh --strict
+err=$("$BIN/rad-mesh" nomtl.obj -o nomtl.mesh 2>&1) || fail "missing library should only warn: $err"
+grep -q "warning: nomtl.obj: material library 'none.mtl' (line 1) not found; looked for .*none.mtl" <<<"$err" || fail "missing library warning: $err"
+grep -q "material(s) not defined in any material library: grey (line 5)" <<<"$err" || fail "unknown material warning: $err"
+grep -q "changed: defaulted: 1 face(s) without a known material (first at line 6) got material 'default', reflectance 0.5,0.5,0.5" <<<"$err" || fail "defaulted: $err"
+mkdir -p elsewhere; cp s.mtl elsewhere/none.mtl
+err=$("$BIN/rad-mesh" nomtl.obj -o nomtl.mesh --mtl-path elsewhere 2>&1) || fail "--mtl-path: $err"
+grep -q "not found\|changed" <<<"$err" && fail "--mtl-path did not find the library: $err"
+"$BIN/rad-mesh" nomtl.obj -o grey.mesh --default-reflectance 0.2,0.3,0.4 -q 2>/dev/null || fail "--default-reflectance"
+"$BIN/rad-info" --csv grey.mesh | grep -q ",default,.*,0.2,0.3,0.4,0,0,0$" || fail "default reflectance not applied: $("$BIN/rad-info" --csv grey.mesh)"
+expect_error "--default-reflectance: 1,0.5,0.5 has a channel >= 1" out.mesh "$BIN/rad-mesh" nomtl.obj -o out.mesh --default-reflectance 1,0.5,0.5
 printf 'mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 1\nv 0 1 0\nusemtl grey\nf 1 2 3 4\n' > bent.obj
-expect_error "bent.obj:7: face is not planar" out.mesh "$BIN/rad-mesh" bent.obj -o out.mesh
+expect_error "bent.obj:7: face is not planar" out.mesh "$BIN/rad-mesh" bent.obj -o out.mesh --strict
+err=$("$BIN/rad-mesh" bent.obj -o bent.mesh 2>&1) || fail "a bent face should be split: $err"
+grep -q "rad-mesh: 2 patches" <<<"$err" || fail "bent face patches: $err"
+grep -q "changed: triangulated: 1 non-planar face(s) split into triangles (worst at line 7: " <<<"$err" || fail "split summary: $err"
 printf 'mtllib s.mtl\n' > empty.obj
 expect_error "empty" out.mesh "$BIN/rad-mesh" empty.obj -o out.mesh
 printf 'mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nusemtl grey\nf 1 2 3\nf 1 2 4\n' > degen.obj
 err=$("$BIN/rad-mesh" degen.obj -o out.mesh 2>&1) || fail "degenerate face should only warn"
-grep -q "dropped 1 degenerate" <<<"$err" || fail "degenerate warning: $err"
+grep -q "changed: dropped: 1 degenerate" <<<"$err" || fail "degenerate warning: $err"
+grep -q "wound against" <<<"$err" && fail "a degenerate face was judged for its winding: $err"
 expect_error "no group 'nothere'" out2.mesh "$BIN/rad-mesh" degen.obj -o out2.mesh --max-edge nothere=0.1
 expect_error "does not exist" "" "$BIN/rad-mesh" degen.obj -o nofolder/out.mesh
 expect_error "'floor=abc' is not a number or GROUP=number" out3.mesh "$BIN/rad-mesh" degen.obj -o out3.mesh --max-edge floor=abc
@@ -75,7 +89,12 @@ sums[outside]=$("$BIN/rad-ff" outside-fixed.mesh -o outside-fixed.ff --method he
 
 # McGuire's CornellBox-Original repeats a side of each box as its "bottom": dropped, named.
 err=$("$BIN/rad-mesh" "$SRC/tests/data/cornell-original/CornellBox-Original.obj" -o mcguire.mesh --planarity-tolerance 0.01 2>&1) || fail "McGuire box: $err"
-grep -q "dropped 2 duplicate face(s) (first at line 107, a repeat of line 93)" <<<"$err" || fail "duplicates: $err"
+grep -q "changed: deduplicated: dropped 2 duplicate face(s), line 107 (repeats 93), 155 (repeats 148)" <<<"$err" || fail "duplicates: $err"
+# ... and, with default options, the rest of what real files hold: its left wall is 3 mm off
+# its plane (split, with the worst deviation named), and no other complaint.
+err=$("$BIN/rad-mesh" "$SRC/tests/data/cornell-original/CornellBox-Original.obj" -o mcguire-default.mesh 2>&1) || fail "McGuire box with default options: $err"
+grep -q "changed: triangulated: 1 non-planar face(s) split into triangles (worst at line 62: 0.00667 off its plane" <<<"$err" || fail "McGuire non-planar: $err"
+grep -q "warning" <<<"$err" && fail "McGuire box warns: $err"
 grep -q "wound against" <<<"$err" && fail "duplicates were taken for flipped faces: $err"
 ff_err=$("$BIN/rad-ff" mcguire.mesh -o mcguire.ff --method hemisphere --rays 1000 -q 2>&1)
 grep -q warning <<<"$ff_err" && fail "rad-ff warns on McGuire's box: $ff_err"

@@ -1,6 +1,7 @@
 // Reading OBJ+MTL scenes and subdividing them into a conforming patch mesh (rad-mesh).
 #pragma once
 #include "radfmt/kinds.hpp"
+#include "radiosity/materials.hpp"
 
 #include <filesystem>
 #include <map>
@@ -26,17 +27,44 @@ struct Scene {
     std::vector<Polygon> polygons;
     std::vector<std::string> groups;
     std::vector<radfmt::Material> materials;
-    std::vector<std::string> material_files; // the MTL files read, for provenance hashes
+    // Per material, what the MTL says beyond Kd and Ke (Ka, Ks, Tf, illum), for the checks.
+    std::vector<MaterialSource> material_sources;
+    std::vector<std::string> material_files; // the MTL and texture files read, for provenance
+};
+
+struct ObjOptions {
+    // Refuse what is otherwise repaired with a warning: faces without a known material, a
+    // missing material library (and, in subdivide, non-planar faces).
+    bool strict = false;
+    radfmt::Rgb default_reflectance{{0.5, 0.5, 0.5}}; // of the material given to such faces
+    // Where `mtllib` files are looked for after the OBJ's folder and the current directory.
+    std::vector<std::filesystem::path> mtl_paths;
+};
+
+// What load_obj repaired or could not find, for its warnings and summary.
+struct ObjReport {
+    std::size_t faces_defaulted = 0; // faces given the default material
+    int first_defaulted_line = 0;
+    std::string default_material;               // its name ("default", unless the scene has one)
+    std::vector<std::string> unknown_materials; // usemtl names no MTL defines, "name (line N)"
+    std::vector<std::string> missing_libraries; // "'name' (line N) not found; looked for .."
+    std::vector<std::string> textures_averaged; // "material: file, mean r g b"
+    std::vector<std::string> textures_replacing_kd; // materials whose Kd was 0 or absent
+    std::vector<std::string> texture_problems;      // missing or unreadable textures
 };
 
 // Loads an OBJ with its MTL via tinyobjloader, after a line-by-line check that names the
-// file and line of every malformed vertex, face, index or material reference.
-Scene load_obj(const std::filesystem::path& path);
+// file and line of every malformed vertex, face or index. MTL files are found next to the
+// OBJ, in the current directory, then in `mtl_paths`; a diffuse texture (map_Kd) multiplies
+// Kd by its mean linear colour (replaces Kd when Kd is 0 or absent).
+Scene load_obj(const std::filesystem::path& path, const ObjOptions& options = {},
+               ObjReport* report = nullptr);
 
 struct DuplicateFaces {
     std::size_t removed = 0;
-    int first_line = 0;          // the first face dropped
-    int first_original_line = 0; // the face it repeats
+    int first_line = 0;                     // the first face dropped
+    int first_original_line = 0;            // the face it repeats
+    std::vector<std::pair<int, int>> lines; // every (dropped, repeated) pair of lines
 };
 // Drops faces whose corners repeat an earlier face's (welded by position, same winding,
 // from any starting corner); a face and its reverse are both kept (two sides of a sheet).
@@ -48,11 +76,17 @@ struct SubdivisionOptions {
     std::map<std::string, double> max_edge_by_group;
     std::map<std::string, double> max_area_by_group;
     double planarity_tolerance = 1e-3; // relative to the face's size
+    bool strict = false;               // refuse non-planar faces instead of splitting them
 };
 
 struct SubdivisionReport {
     std::size_t degenerate_dropped = 0;
-    std::size_t polygons_triangulated = 0;
+    std::size_t polygons_triangulated = 0; // more than 4 corners, or a concave quad
+    // Faces whose corners leave their plane by more than the tolerance, split into
+    // triangles; the worst one (distance from its plane, relative to its size) and its line.
+    std::size_t nonplanar_split = 0;
+    double worst_nonplanar_offset = 0, worst_nonplanar_relative = 0;
+    int worst_nonplanar_line = 0;
 };
 
 // Splits quads into regular grids of quads and triangles into triangles, with the number

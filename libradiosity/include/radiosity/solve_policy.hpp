@@ -45,6 +45,10 @@ void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& reques
 void check_reflectances(const radfmt::MeshData& mesh, bool force);
 bool any_emitter(const radfmt::MeshData& mesh);
 
+// One line per material used by a patch with a reflectance channel >= 1, with the
+// rad-solve override that fixes it.
+std::vector<std::string> reflectance_problems(const radfmt::MeshData& mesh);
+
 struct RowSumReport {
     std::size_t rows_above = 0; // rows summing above 1 + tolerance
     double largest = 0;

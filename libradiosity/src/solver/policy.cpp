@@ -73,20 +73,34 @@ void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& reques
     }
 }
 
-void check_reflectances(const radfmt::MeshData& mesh, bool force) {
-    if (force) return;
+std::vector<std::string> reflectance_problems(const radfmt::MeshData& mesh) {
     std::vector<bool> used(mesh.materials.size(), false);
     for (const auto& p : mesh.patches) used[p.material] = true;
-    std::string list;
+    std::vector<std::string> lines;
     for (std::size_t m = 0; m < mesh.materials.size(); ++m) {
         const auto& mat = mesh.materials[m];
         if (!used[m]) continue;
         if (mat.reflectance[0] < 1 && mat.reflectance[1] < 1 && mat.reflectance[2] < 1) continue;
         radfmt::Rgb fixed = mat.reflectance;
         for (auto& v : fixed) v = std::min(v, 0.95);
-        list += "\n  material '" + mat.name + "' has reflectance " + rgb_text(mat.reflectance) +
-                " (fix: --reflectance " + mat.name + "=" + rgb_text(fixed) + ")";
+        std::string line = "material '";
+        line += mat.name;
+        line += "' has reflectance ";
+        line += rgb_text(mat.reflectance);
+        line += " (fix: rad-solve --reflectance ";
+        line += mat.name;
+        line += "=";
+        line += rgb_text(fixed);
+        line += ")";
+        lines.push_back(std::move(line));
     }
+    return lines;
+}
+
+void check_reflectances(const radfmt::MeshData& mesh, bool force) {
+    if (force) return;
+    std::string list;
+    for (const auto& line : reflectance_problems(mesh)) list += "\n  " + line;
     if (!list.empty())
         throw InputError("a reflectance channel >= 1 may not converge (use --force to solve "
                          "anyway):" +

@@ -1,0 +1,27 @@
+// What a scene file says about its materials beyond what radiosity uses (Kd, Ke), kept for
+// the checks rad-mesh makes before anything is solved.
+#pragma once
+#include "radfmt/kinds.hpp"
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rad {
+
+struct MaterialSource {
+    radfmt::Rgb ambient{};       // Ka
+    radfmt::Rgb specular{};      // Ks
+    radfmt::Rgb transmittance{}; // Tf
+    int illum = -1;              // the MTL illumination model, -1 when not given
+};
+
+// Everything doubtful about the materials a mesh uses, one line each, all at once:
+// reflectances >= 1 (with the rad-solve override that fixes each), a Ka brighter than 1 with
+// no Ke ("did you mean Ke?"), mirrors and glass (a path tracer's specular or transparent
+// material, which radiosity sees only through its small Kd), and no emitter at all.
+// `sources` is per material of `mesh` (missing entries are not checked).
+std::vector<std::string> material_warnings(const radfmt::MeshData& mesh,
+                                           std::span<const MaterialSource> sources);
+
+} // namespace rad

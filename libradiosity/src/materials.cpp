@@ -1,0 +1,69 @@
+#include "radiosity/materials.hpp"
+
+#include "radiosity/solve_policy.hpp"
+
+#include <algorithm>
+
+namespace rad {
+
+namespace {
+double brightest(const radfmt::Rgb& c) {
+    return std::max({c[0], c[1], c[2]});
+}
+} // namespace
+
+std::vector<std::string> material_warnings(const radfmt::MeshData& mesh,
+                                           std::span<const MaterialSource> sources) {
+    auto lines = reflectance_problems(mesh);
+    for (auto& line : lines) line += ": a reflectance >= 1 does not converge";
+    std::vector<bool> used(mesh.materials.size(), false);
+    for (const auto& p : mesh.patches) used[p.material] = true;
+    for (std::size_t m = 0; m < mesh.materials.size() && m < sources.size(); ++m) {
+        const auto& mat = mesh.materials[m];
+        const auto& source = sources[m];
+        if (!used[m]) continue;
+        const bool emits = brightest(mat.emission) > 0;
+        if (!emits && brightest(source.ambient) > 1) {
+            std::string line = "material '";
+            line += mat.name;
+            line += "' has Ka ";
+            line += rgb_text(source.ambient);
+            line += " (brighter than 1) and no Ke: did you mean Ke? (rad-solve --emission ";
+            line += mat.name;
+            line += "=";
+            line += rgb_text(source.ambient);
+            line += ")";
+            lines.push_back(std::move(line));
+        }
+        // Illumination models 3 to 9 are reflection and refraction (MTL spec); a strong Ks
+        // or Tf over a weak Kd says the same: radiosity keeps only the diffuse part.
+        const bool specular =
+            (source.illum >= 3 && source.illum <= 9) ||
+            brightest(source.specular) > brightest(mat.reflectance) ||
+            brightest(source.transmittance) > 0.5 * (1 - brightest(mat.reflectance));
+        if (!emits && specular && brightest(mat.reflectance) < 0.1) {
+            std::string line = "material '";
+            line += mat.name;
+            line += "' is a mirror or glass in its MTL (";
+            if (source.illum >= 0) {
+                line += "illum ";
+                line += std::to_string(source.illum);
+                line += ", ";
+            }
+            line += "Ks ";
+            line += rgb_text(source.specular);
+            line += "): radiosity is diffuse only and sees its Kd ";
+            line += rgb_text(mat.reflectance);
+            line += ", nearly black (rad-solve --reflectance ";
+            line += mat.name;
+            line += "=r,g,b gives it a diffuse colour)";
+            lines.push_back(std::move(line));
+        }
+    }
+    if (!any_emitter(mesh))
+        lines.push_back("no material emits light (Ke > 0): every solve will be black "
+                        "(rad-solve --emission MATERIAL=r,g,b)");
+    return lines;
+}
+
+} // namespace rad
