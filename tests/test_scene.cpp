@@ -1,9 +1,11 @@
 // rad-mesh: OBJ reading, subdivision, conformity and bad input.
 #include "helpers.hpp"
+#include "radiosity/image_io.hpp"
 #include "radiosity/vec.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -259,4 +261,57 @@ TEST_CASE(
     CHECK(mesh.patches.size() == 1);
     const auto all_bad = scene_from_obj("v 0 0 0\nv 1 0 0\nv 2 0 0\nusemtl grey\nf 1 2 3\n");
     REQUIRE_THROWS_WITH(rad::subdivide(all_bad, {}), Contains("empty"));
+}
+
+TEST_CASE("map_Kd textures: their mean linear colour multiplies Kd, or replaces a Kd of 0") {
+    const auto dir = temp_dir("textures");
+    // A 4 x 2 texture, left half linear 0.2, right half 0.6 (written as 8-bit sRGB): the mean
+    // is 0.4 in linear light; averaging the encoded values would give 0.37.
+    rad::Image image;
+    image.width = 4;
+    image.height = 2;
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x)
+            for (int c = 0; c < 3; ++c) image.rgb.push_back(x < 2 ? 0.2f : 0.6f);
+    std::filesystem::create_directories(dir / "maps");
+    rad::write_png((dir / "maps" / "wood.png").string(), image, 1.0);
+    write_text(dir / "scene.mtl", "newmtl tinted\nKd 0.5 1 0.5\nmap_Kd maps/wood.png\n"
+                                  "newmtl black\nKd 0 0 0\nmap_Kd maps/wood.png\n"
+                                  "newmtl nokd\nmap_Kd maps/wood.png\n"
+                                  "newmtl lost\nKd 0.3 0.3 0.3\nmap_Kd maps/none.png\n");
+    std::string obj = "mtllib scene.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    for (const char* m : {"tinted", "black", "nokd", "lost"}) {
+        obj += "usemtl ";
+        obj += m;
+        obj += "\nf 1 2 3\n";
+    }
+    write_text(dir / "scene.obj", obj);
+    rad::ObjReport report;
+    const auto scene = rad::load_obj(dir / "scene.obj", {}, &report);
+    auto reflectance = [&](const std::string& name) {
+        for (const auto& m : scene.materials)
+            if (m.name == name) return m.reflectance;
+        FAIL("no material " << name);
+        return radfmt::Rgb{};
+    };
+    const double mean = 0.4, quantum = 0.004; // 8-bit rounding in sRGB
+    CHECK(reflectance("tinted")[0] == Approx(0.5 * mean).margin(quantum));
+    CHECK(reflectance("tinted")[1] == Approx(1.0 * mean).margin(quantum));
+    CHECK(reflectance("black")[2] == Approx(mean).margin(quantum));
+    CHECK(reflectance("nokd")[0] == Approx(mean).margin(quantum));
+    CHECK(reflectance("lost")[0] == Approx(0.3)); // keeps its Kd
+    CHECK(report.textures_averaged.size() == 3);
+    CHECK(report.textures_replacing_kd == std::vector<std::string>{"black", "nokd"});
+    REQUIRE(report.texture_problems.size() == 1);
+    CHECK_THAT(report.texture_problems[0], Contains("lost") && Contains("none.png not found"));
+    // The texture is recorded with the MTL for provenance.
+    CHECK(std::count_if(scene.material_files.begin(), scene.material_files.end(),
+                        [](const std::string& f) { return f.ends_with("wood.png"); }) == 1);
+
+    // An unreadable texture (not an image) is named with stb_image's reason.
+    write_text(dir / "maps" / "none.png", "not a png");
+    rad::ObjReport broken;
+    rad::load_obj(dir / "scene.obj", {}, &broken);
+    REQUIRE(broken.texture_problems.size() == 1);
+    CHECK_THAT(broken.texture_problems[0], Contains("unreadable"));
 }

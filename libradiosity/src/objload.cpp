@@ -9,6 +9,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <map>
@@ -309,7 +310,9 @@ Scene load_obj(const fs::path& path, const ObjOptions& options, ObjReport* repor
                 report.textures_averaged.push_back(material.name + ": " + texture.string() +
                                                    ", mean " + rgb_text(*mean));
                 if (kd_black) report.textures_replacing_kd.push_back(material.name);
-                scene.material_files.push_back(texture.string());
+                if (std::find(scene.material_files.begin(), scene.material_files.end(),
+                              texture.string()) == scene.material_files.end())
+                    scene.material_files.push_back(texture.string());
             } else {
                 report.texture_problems.push_back(material.name + ": texture " + texture.string() +
                                                   " unreadable (" + problem + ")");

@@ -44,4 +44,16 @@ expect_error "" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/one.mesh" "$TMP/one.rad" -o 
 # The right Cornell box shows no back face.
 err=$("$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/v.exr" --view-file "$VF" -x 64 -y 64 2>&1)
 grep -q "back of surfaces" <<<"$err" && fail "back faces on the right Cornell box: $err"
+# A rendered image used as a texture (map_Kd) by a material whose Kd is 0: rad-mesh says the
+# texture's mean replaced it, and the reflectance is that mean (not 0).
+mkdir -p "$TMP/tex"
+cp "$TMP/i.png" "$TMP/tex/render.png"
+printf 'newmtl painted\nKd 0 0 0\nmap_Kd render.png\nnewmtl lamp\nKe 1 1 1\n' > "$TMP/tex/t.mtl"
+printf 'mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl painted\nf 1 2 3\nusemtl lamp\nf 1 3 2\n' > "$TMP/tex/t.obj"
+err=$("$BIN/rad-mesh" "$TMP/tex/t.obj" -o "$TMP/tex/t.mesh" 2>&1) || fail "textured mesh: $err"
+grep -q "changed: textures averaged: 1 map_Kd texture(s) multiply their Kd by their mean linear colour; replacing a Kd of 0 or none in painted" <<<"$err" || fail "texture summary: $err"
+"$BIN/rad-info" --csv "$TMP/tex/t.mesh" | awk -F, '$3 == "painted" && $11 > 0.01 && $11 < 1 { ok = 1 } END { exit !ok }' || fail "texture mean not applied: $("$BIN/rad-info" --csv "$TMP/tex/t.mesh")"
+rm "$TMP/tex/render.png"
+err=$("$BIN/rad-mesh" "$TMP/tex/t.obj" -o "$TMP/tex/t.mesh" 2>&1) || fail "a missing texture must not fail: $err"
+grep -q "warning: .*painted: texture .*render.png not found (the material keeps its Kd)" <<<"$err" || fail "missing texture warning: $err"
 finish
