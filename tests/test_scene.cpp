@@ -1,6 +1,7 @@
 // rad-mesh: OBJ reading, subdivision, conformity and bad input.
 #include "helpers.hpp"
 #include "radiosity/image_io.hpp"
+#include "radiosity/random.hpp"
 #include "radiosity/vec.hpp"
 
 #include <catch2/catch.hpp>
@@ -11,6 +12,7 @@
 #include <map>
 
 using namespace testing_helpers;
+using rad::operator-;
 using Catch::Matchers::Contains;
 
 TEST_CASE("materials come from the MTL, Ke included, and groups are kept") {
@@ -314,4 +316,143 @@ TEST_CASE("map_Kd textures: their mean linear colour multiplies Kd, or replaces 
     rad::load_obj(dir / "scene.obj", {}, &broken);
     REQUIRE(broken.texture_problems.size() == 1);
     CHECK_THAT(broken.texture_problems[0], Contains("unreadable"));
+}
+
+namespace {
+// Longest edge squared over twice the area: 1.15 for an equilateral triangle, 1 for a
+// square; a patch of aspect ratio k has about k.
+double patch_elongation(const radfmt::MeshData& mesh, const radfmt::Patch& p) {
+    double longest = 0;
+    for (int k = 0; k < p.corner_count(); ++k) {
+        const auto d =
+            mesh.vertices[p.corners[(k + 1) % p.corner_count()]] - mesh.vertices[p.corners[k]];
+        longest = std::max(longest, rad::dot(d, d));
+    }
+    return longest / (2 * p.area);
+}
+} // namespace
+
+TEST_CASE("long thin triangles: patches grow with area and perimeter, conforming, not too thin") {
+    // The tunnel case: a 466 x 0.13 strip written as two triangles, at --max-edge 10. The
+    // regular n x n pattern gave 2 x 47^2 = 4418 patches.
+    auto strip = [](double length, double width) {
+        std::string obj;
+        obj += "v 0 0 0\nv " + std::to_string(length) + " 0 0\nv " + std::to_string(length) + " " +
+               std::to_string(width) + " 0\nv 0 " + std::to_string(width) + " 0\n";
+        obj += "usemtl grey\nf 1 2 3\nf 1 3 4\n";
+        return scene_from_obj(obj);
+    };
+    for (const auto& [length, width, edge] : {std::tuple{466.0, 0.13, 10.0},
+                                              {466.0, 0.13, 1.0},
+                                              {100.0, 10.0, 1.0},
+                                              {50.0, 5.0, 0.5}}) {
+        CAPTURE(length, width, edge);
+        rad::SubdivisionOptions options;
+        options.max_edge = edge;
+        const auto mesh = rad::subdivide(strip(length, width), options);
+        const double area = length * width, perimeter = 2 * (length + width);
+        // About one patch per half square of the edge, plus one or two per segment of the
+        // outline (the triangles' shared diagonal is outline to both): linear, not like
+        // (longest edge / max-edge)^2.
+        const double expected = area / (0.5 * edge * edge) + perimeter / edge;
+        CAPTURE(mesh.patches.size(), expected);
+        CHECK(double(mesh.patches.size()) <= 2.2 * expected);
+        CHECK(double(mesh.patches.size()) >= 0.5 * expected);
+        double total = 0;
+        std::vector<double> elongations;
+        for (const auto& p : mesh.patches) {
+            total += p.area;
+            CHECK(p.normal[2] == Approx(1));
+            // No patch edge much longer than the limit: rows and bands are about `edge`
+            // apart, and a zipper diagonal spans one band and a little along it.
+            for (int k = 0; k < 3; ++k)
+                CHECK(rad::length(mesh.vertices[p.corners[(k + 1) % 3]] -
+                                  mesh.vertices[p.corners[k]]) <= edge * 2.5);
+            if (width >= edge) elongations.push_back(patch_elongation(mesh, p));
+        }
+        CHECK(total == Approx(area).epsilon(1e-9));
+        // Conforming: the only open edges are the outline's segments, and every patch is
+        // accepted by OpenMesh (no T-vertices, no overlaps).
+        const auto topology = rad::analyze_topology(mesh);
+        CHECK(topology.rejected_patches == 0);
+        CHECK(topology.boundary_edges ==
+              2 * static_cast<std::size_t>(std::ceil(length / edge - 1e-9)) +
+                  2 * static_cast<std::size_t>(std::ceil(width / edge - 1e-9)));
+        // Where the strip is wide enough for it, patches are not slivers: 95% have an
+        // elongation below 4 (a right isosceles triangle has 2), and none is worse than the
+        // face's own triangles (10.1: the regular n x n pattern copies that shape into every
+        // patch); the worst sit in the 5.7 degree corners, which no patch can widen.
+        if (!elongations.empty()) {
+            std::sort(elongations.begin(), elongations.end());
+            CHECK(elongations[elongations.size() * 95 / 100] < 4);
+            CHECK(elongations.back() < 1.5 * (length * length + width * width) / (length * width));
+        }
+    }
+}
+
+TEST_CASE("mixed slivers and regular triangles with different limits stay conforming") {
+    // A strip between two wavy lines, triangulated into triangles of every shape (slivers
+    // next to fat ones), in two groups with different --max-edge: conforming means every
+    // patch has area, the areas add up, and the only edges used by one patch are the
+    // outline's (a T-vertex would leave an inner edge with one patch and lengthen it).
+    std::string obj;
+    const int n = 40;
+    rad::Rng rng(7, 0);
+    std::vector<rad::Vec3> bottom, top;
+    double x = 0;
+    for (int k = 0; k <= n; ++k) {
+        bottom.push_back({x, 0.3 * std::sin(0.7 * k), 0});
+        top.push_back({x + 3 * rng.uniform(), 2 + 0.5 * std::cos(1.3 * k) + rng.uniform(), 0});
+        x += 0.2 + 4 * rng.uniform() * rng.uniform();
+    }
+    for (const auto& v : bottom)
+        obj += "v " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " 0\n";
+    for (const auto& v : top)
+        obj += "v " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " 0\n";
+    obj += "usemtl grey\n";
+    for (int k = 0; k < n; ++k) {
+        const int b0 = k + 1, b1 = k + 2, t0 = n + 2 + k, t1 = n + 3 + k;
+        obj += k % 2 ? "g left\n" : "g right\n";
+        obj += "f " + std::to_string(b0) + " " + std::to_string(b1) + " " + std::to_string(t1) +
+               "\nf " + std::to_string(b0) + " " + std::to_string(t1) + " " + std::to_string(t0) +
+               "\n";
+    }
+    const auto scene = scene_from_obj(obj);
+    double area = 0;
+    for (const auto& p : scene.polygons) {
+        std::vector<rad::Vec3> pts;
+        for (auto v : p.vertices) pts.push_back(scene.vertices[v]);
+        area += 0.5 * rad::length(rad::newell_normal(pts));
+    }
+    for (const auto& [edge, left] : {std::pair{0.5, 0.5}, {0.3, 1.1}, {2.0, 0.25}}) {
+        CAPTURE(edge, left);
+        rad::SubdivisionOptions options;
+        options.max_edge = edge;
+        options.max_edge_by_group["left"] = left;
+        const auto mesh = rad::subdivide(scene, options);
+        double total = 0;
+        std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+        for (const auto& p : mesh.patches) {
+            CHECK(p.area > 1e-9);
+            total += p.area;
+            for (int k = 0; k < p.corner_count(); ++k) {
+                auto a = p.corners[k], b = p.corners[(k + 1) % p.corner_count()];
+                ++uses[{std::min(a, b), std::max(a, b)}];
+            }
+        }
+        CHECK(total == Approx(area).epsilon(1e-9));
+        double open_length = 0;
+        for (const auto& [e, count] : uses) {
+            CHECK(count <= 2);
+            if (count == 1)
+                open_length += rad::length(mesh.vertices[e.first] - mesh.vertices[e.second]);
+        }
+        // The outline as read (the OBJ holds 6 decimals).
+        const auto& v = scene.vertices;
+        double outline = rad::length(v[n + 1] - v[0]) + rad::length(v[2 * n + 1] - v[n]);
+        for (int k = 0; k < n; ++k)
+            outline += rad::length(v[k + 1] - v[k]) + rad::length(v[n + 2 + k] - v[n + 1 + k]);
+        CHECK(open_length == Approx(outline).epsilon(1e-9));
+        CHECK(rad::analyze_topology(mesh).rejected_patches == 0);
+    }
 }

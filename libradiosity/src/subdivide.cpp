@@ -30,7 +30,20 @@ struct Element { // a triangle or convex quad over scene vertices, ready to subd
     std::uint32_t group = 0, material = 0;
     Vec3 normal{};
     double area = 0;
+    // A long or thin triangle: subdivided in bands along its longest edge, each edge with
+    // its own segment count, instead of the regular n x n pattern (whose n^2 patches follow
+    // the longest edge: a 466 x 0.13 sliver at max-edge 10 would become 2209 patches).
+    bool banded = false;
 };
+
+// Longest edge squared over twice the area: 1.15 for an equilateral triangle, 2 for a
+// right isosceles one, thousands for a sliver.
+double elongation(const Vec3& a, const Vec3& b, const Vec3& c) {
+    const double longest = std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
+    const double twice_area = length(cross(b - a, c - a));
+    return twice_area > 0 ? longest / twice_area : 1e300;
+}
+constexpr double kBandedElongation = 4;
 
 FileLoc where(const Scene& scene, const Polygon& p) {
     return {scene.path, p.line};
@@ -155,6 +168,7 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
             const Vec3 own = newell_normal(c);
             e.area = 0.5 * length(own);
             e.normal = planar ? normal : normalized(own);
+            e.banded = e.corners == 3 && elongation(c[0], c[1], c[2]) > kBandedElongation;
             if (e.area > min_area)
                 elements.push_back(e);
             else
@@ -206,16 +220,29 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
             element_edges[f][k] = edge_of(e.v[k], e.v[(k + 1) % e.corners]);
     }
     std::vector<double> edge_limit(edges.size(), 0);
+    std::vector<double> element_limit(elements.size(), 0); // banded triangles' patch size
     UnionFind classes(edges.size());
     for (std::size_t f = 0; f < elements.size(); ++f) {
         const auto& e = elements[f];
         const auto& ee = element_edges[f];
         const auto& group = scene.groups[e.group];
-        const double limit = limit_for(options.max_edge_by_group, group, options.max_edge);
+        double limit = limit_for(options.max_edge_by_group, group, options.max_edge);
+        if (e.banded) {
+            // A banded triangle meets an area limit through its edge length: its patches
+            // are about as high as they are long, so about half a square.
+            const double area_limit = limit_for(options.max_area_by_group, group, options.max_area);
+            if (area_limit > 0) {
+                const double side = std::sqrt(2 * area_limit);
+                limit = limit > 0 ? std::min(limit, side) : side;
+            }
+            element_limit[f] = limit;
+        }
         for (int k = 0; k < e.corners; ++k)
             if (limit > 0 && (edge_limit[ee[k]] == 0 || limit < edge_limit[ee[k]]))
                 edge_limit[ee[k]] = limit;
-        if (e.corners == 4) {
+        if (e.banded) {
+            // Each edge keeps its own count: none is tied to the others.
+        } else if (e.corners == 4) {
             classes.unite(ee[0], ee[2]);
             classes.unite(ee[1], ee[3]);
         } else {
@@ -240,7 +267,7 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
             const auto& e = elements[f];
             const double limit =
                 limit_for(options.max_area_by_group, scene.groups[e.group], options.max_area);
-            if (limit <= 0) continue;
+            if (limit <= 0 || e.banded) continue;
             auto& a = segments[classes.find(element_edges[f][0])];
             auto& b = segments[classes.find(element_edges[f][1])];
             const double pieces = e.corners == 4 ? double(a) * double(b) : double(a) * double(a);
@@ -299,6 +326,134 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
         mesh.patches.push_back(p);
     };
 
+    // The points of edge (a, b) from a to b, its agreed count of segments.
+    auto edge_chain = [&](std::uint32_t a, std::uint32_t b, std::size_t edge) {
+        const std::size_t n = count_of(edge);
+        std::vector<std::uint32_t> chain;
+        for (std::size_t k = 0; k <= n; ++k) chain.push_back(edge_vertex(a, b, k, n));
+        return chain;
+    };
+    // A triangle as a patch, turned to face the element's way.
+    auto emit_triangle = [&](const Element& e, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        const Vec3 n =
+            cross(mesh.vertices[b] - mesh.vertices[a], mesh.vertices[c] - mesh.vertices[a]);
+        if (dot(n, e.normal) < 0) std::swap(b, c);
+        emit(e, {a, b, c});
+    };
+    // Twice the area of a triangle of mesh vertices, and whether it is too thin to keep.
+    auto flat = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        const Vec3 pa = mesh.vertices[a], pb = mesh.vertices[b], pc = mesh.vertices[c];
+        const double longest =
+            std::max({dot(pb - pa, pb - pa), dot(pc - pb, pc - pb), dot(pa - pc, pa - pc)});
+        return length(cross(pb - pa, pc - pa)) <= 1e-9 * longest;
+    };
+    // Triangulates a convex region bounded by two chains of points that start at the same
+    // point and end at the same point (the lower one straight, the upper one bending at
+    // corners; points may be collinear), without new points: a zipper that advances
+    // whichever chain lags along the lower one, never making a triangle of three collinear
+    // points, so every patch has area and the outline's points all stay (conforming).
+    auto zip = [&](const Element& e, const std::vector<std::uint32_t>& lower,
+                   const std::vector<std::uint32_t>& upper) {
+        const std::size_t n = lower.size(), m = upper.size();
+        if (n < 2 || m < 2 || n + m < 5) return;
+        if (n == 2) {
+            // No point between the lower chain's ends A and B: fan from B over the upper
+            // chain while its points are not in line with B, then from the last of them.
+            std::size_t j = 0;
+            while (j + 2 < m && !flat(upper[j + 1], upper[j + 2], lower[1])) {
+                emit_triangle(e, upper[j], upper[j + 1], lower[1]);
+                ++j;
+            }
+            for (std::size_t k = j + 1; k + 1 < m; ++k)
+                emit_triangle(e, upper[j], upper[k], upper[k + 1]);
+            emit_triangle(e, upper[j], upper[j + 1], lower[1]);
+            return;
+        }
+        // Each point's position along the lower chain (a straight row): both chains run
+        // monotonically along it, so pairing by it joins points across the band.
+        const Vec3 origin = mesh.vertices[lower.front()];
+        const Vec3 along = normalized(mesh.vertices[lower.back()] - origin);
+        auto positions = [&](const std::vector<std::uint32_t>& chain) {
+            std::vector<double> t;
+            for (auto v : chain) t.push_back(dot(mesh.vertices[v] - origin, along));
+            return t;
+        };
+        const auto tl = positions(lower), tu = positions(upper);
+        // The first triangle steps along both chains; the last closes on the shared end.
+        emit_triangle(e, lower[0], lower[1], upper[1]);
+        std::size_t i = 1, j = 1;
+        while (i + 2 < n || j + 2 < m) {
+            const bool can_lower = i + 2 < n && !flat(lower[i], lower[i + 1], upper[j]);
+            const bool can_upper = j + 2 < m && !flat(lower[i], upper[j + 1], upper[j]);
+            const bool lower_lags = tl[i + 1] <= tu[j + 1];
+            if (can_lower && (lower_lags || !can_upper)) {
+                emit_triangle(e, lower[i], lower[i + 1], upper[j]);
+                ++i;
+            } else if (can_upper) {
+                emit_triangle(e, lower[i], upper[j + 1], upper[j]);
+                ++j;
+            } else {
+                break; // cannot happen for a convex region; never loop forever
+            }
+        }
+        if (i + 2 == n && j + 2 == m) emit_triangle(e, lower[i], lower[i + 1], upper[j]);
+    };
+    // A long or thin triangle: bands parallel to its longest edge, about `size` apart, each
+    // zipped between its two rows. The edges keep the counts agreed with their neighbours,
+    // so the result conforms, and the patch count grows with area and perimeter.
+    auto emit_banded = [&](const Element& e, const std::array<std::size_t, 4>& ee, double size) {
+        // Rotate so that corner 0 -> 1 is the longest edge: base A B, apex C.
+        int base = 0;
+        double longest = -1;
+        for (int k = 0; k < 3; ++k) {
+            const double len = length(scene.vertices[e.v[(k + 1) % 3]] - scene.vertices[e.v[k]]);
+            if (len > longest) longest = len, base = k;
+        }
+        const auto A = e.v[base], B = e.v[(base + 1) % 3], C = e.v[(base + 2) % 3];
+        const auto bottom = edge_chain(A, B, ee[base]);
+        const auto right = edge_chain(B, C, ee[(base + 1) % 3]); // B ... C
+        const auto left = edge_chain(A, C, ee[(base + 2) % 3]);  // A ... C
+        const double height = 2 * e.area / std::max(1e-300, longest);
+        // Bands: as many as the height needs, at most what the sides' points allow.
+        std::size_t bands =
+            size > 0 ? static_cast<std::size_t>(std::ceil(height / size - 1e-9)) : 1;
+        bands = std::clamp<std::size_t>(bands, 1, std::min(left.size(), right.size()) - 1);
+        std::vector<std::uint32_t> previous = bottom;
+        std::size_t il_prev = 0, ir_prev = 0;
+        for (std::size_t k = 1; k <= bands; ++k) {
+            // Row k runs from left[il] to right[ir] (the apex C for the last).
+            const std::size_t il = k * (left.size() - 1) / bands;
+            const std::size_t ir = k * (right.size() - 1) / bands;
+            std::vector<std::uint32_t> row;
+            if (k == bands) {
+                row = {left.back()}; // the apex C, as a mesh vertex
+            } else {
+                const Vec3 from = mesh.vertices[left[il]], to = mesh.vertices[right[ir]];
+                const std::size_t pieces =
+                    size > 0 ? std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(
+                                                            length(to - from) / size - 1e-9)))
+                             : 1;
+                row.push_back(left[il]);
+                for (std::size_t q = 1; q < pieces; ++q) {
+                    row.push_back(static_cast<std::uint32_t>(mesh.vertices.size()));
+                    mesh.vertices.push_back(from + (to - from) * (double(q) / double(pieces)));
+                }
+                row.push_back(right[ir]);
+            }
+            // The band's outline as two chains from its lower left to its lower right
+            // corner: along the lower row; or up the left side, along the upper row and
+            // down the right side.
+            std::vector<std::uint32_t> upper(left.begin() + il_prev, left.begin() + il);
+            upper.insert(upper.end(), row.begin(), row.end());
+            for (std::size_t q = ir; q-- > ir_prev + 1;) upper.push_back(right[q]);
+            upper.push_back(right[ir_prev]);
+            zip(e, previous, upper);
+            previous = std::move(row);
+            il_prev = il;
+            ir_prev = ir;
+        }
+    };
+
     for (std::size_t f = 0; f < elements.size(); ++f) {
         const auto& e = elements[f];
         const auto& v = e.v;
@@ -331,6 +486,8 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
             for (std::size_t j = 0; j < nv; ++j)
                 for (std::size_t i = 0; i < nu; ++i)
                     emit(e, {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+        } else if (e.banded) {
+            emit_banded(e, element_edges[f], element_limit[f]);
         } else {
             const std::size_t n = count_of(element_edges[f][0]);
             std::vector<std::uint32_t> grid((n + 1) * (n + 1), radfmt::kNoVertex);
