@@ -424,7 +424,10 @@ TEST_CASE("mixed slivers and regular triangles with different limits stay confor
         for (auto v : p.vertices) pts.push_back(scene.vertices[v]);
         area += 0.5 * rad::length(rad::newell_normal(pts));
     }
-    for (const auto& [edge, left] : {std::pair{0.5, 0.5}, {0.3, 1.1}, {2.0, 0.25}}) {
+    // Large limits leave most edges whole (one segment) while a neighbour splits a side;
+    // no limit at all must give back the input triangles.
+    for (const auto& [edge, left] :
+         {std::pair{0.5, 0.5}, {0.3, 1.1}, {2.0, 0.25}, {100.0, 100.0}, {100.0, 0.5}, {0.0, 0.0}}) {
         CAPTURE(edge, left);
         rad::SubdivisionOptions options;
         options.max_edge = edge;
@@ -454,5 +457,6 @@ TEST_CASE("mixed slivers and regular triangles with different limits stay confor
             outline += rad::length(v[k + 1] - v[k]) + rad::length(v[n + 2 + k] - v[n + 1 + k]);
         CHECK(open_length == Approx(outline).epsilon(1e-9));
         CHECK(rad::analyze_topology(mesh).rejected_patches == 0);
+        if (edge == 0) CHECK(mesh.patches.size() == scene.polygons.size());
     }
 }

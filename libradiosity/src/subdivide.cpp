@@ -366,7 +366,6 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
             }
             for (std::size_t k = j + 1; k + 1 < m; ++k)
                 emit_triangle(e, upper[j], upper[k], upper[k + 1]);
-            emit_triangle(e, upper[j], upper[j + 1], lower[1]);
             return;
         }
         // Each point's position along the lower chain (a straight row): both chains run
