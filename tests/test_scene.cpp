@@ -116,8 +116,8 @@ TEST_CASE("polygons with more than four vertices and concave quads are triangula
 namespace {
 // Loads `obj` (with `mtl` as scene.mtl beside it) with `options`; returns the error or
 // "no error", and the scene and report when it loads.
-std::string load_with(const std::string& obj, const rad::ObjOptions& options,
-                      rad::Scene* scene = nullptr, rad::ObjReport* report = nullptr,
+std::string load_with(const std::string& obj, const rad::SceneOptions& options,
+                      rad::Scene* scene = nullptr, rad::SceneReport* report = nullptr,
                       const std::string& mtl = kGreyMtl) {
     const auto dir = temp_dir("load");
     write_text(dir / "scene.mtl", mtl);
@@ -130,8 +130,8 @@ std::string load_with(const std::string& obj, const rad::ObjOptions& options,
     }
     return "no error";
 }
-rad::ObjOptions strict_options() {
-    rad::ObjOptions options;
+rad::SceneOptions strict_options() {
+    rad::SceneOptions options;
     options.strict = true;
     return options;
 }
@@ -155,7 +155,7 @@ TEST_CASE("bad OBJ input names the file and line") {
 TEST_CASE("faces without a known material get the default one; --strict refuses them") {
     const std::string no_usemtl = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl grey\nf 1 3 2\n";
     rad::Scene scene;
-    rad::ObjReport report;
+    rad::SceneReport report;
     CHECK(load_with(no_usemtl, {}, &scene, &report) == "no error");
     CHECK(report.faces_defaulted == 1);
     CHECK(report.first_defaulted_line == 5);
@@ -170,16 +170,16 @@ TEST_CASE("faces without a known material get the default one; --strict refuses 
 
     // A name no library defines: the same default, and the name reported with its line.
     const std::string chrome = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl chrome\nf 1 2 3\n";
-    rad::ObjOptions options;
+    rad::SceneOptions options;
     options.default_reflectance = {{0.2, 0.3, 0.4}};
-    rad::ObjReport chrome_report;
+    rad::SceneReport chrome_report;
     CHECK(load_with(chrome, options, &scene, &chrome_report) == "no error");
     CHECK(chrome_report.unknown_materials == std::vector<std::string>{"chrome (line 5)"});
     CHECK(scene.materials[scene.polygons[0].material].reflectance == radfmt::Rgb{{0.2, 0.3, 0.4}});
     CHECK_THAT(load_with(chrome, strict_options()),
                Contains("scene.obj:5:") && Contains("unknown material 'chrome'"));
     // A scene that has a material called "default" keeps it; the fallback is another.
-    rad::ObjReport taken;
+    rad::SceneReport taken;
     CHECK(load_with("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", {}, &scene, &taken,
                     "newmtl default\nKd 0.9 0.1 0.1\n") == "no error");
     CHECK(taken.default_material == "default_");
@@ -188,7 +188,7 @@ TEST_CASE("faces without a known material get the default one; --strict refuses 
 TEST_CASE("material libraries as found: missing, elsewhere, several per line, odd whitespace") {
     // Missing: reported with where it was looked for; --strict refuses.
     rad::Scene scene;
-    rad::ObjReport report;
+    rad::SceneReport report;
     const std::string obj = "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\n";
     CHECK(load_with(obj, {}, &scene, &report) == "no error");
     REQUIRE(report.missing_libraries.size() == 1);
@@ -206,11 +206,11 @@ TEST_CASE("material libraries as found: missing, elsewhere, several per line, od
     write_text(dir / "materials" / "second.mtl", "newmtl blue\t\nKd 0.1 0.1 0.8\r\n");
     write_text(dir / "scene.obj", "mtllib a\\ b.mtl   second.mtl  \nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
                                   "usemtl   red   \nf 1 2 3\nusemtl blue\r\nf 1 3 2\n");
-    rad::ObjOptions options;
+    rad::SceneOptions options;
     REQUIRE_THROWS_WITH(rad::load_obj(dir / "scene.obj", strict_options()),
                         Contains("material library 'a b.mtl' not found") && Contains("--mtl-path"));
     options.mtl_paths = {dir / "materials"};
-    rad::ObjReport found;
+    rad::SceneReport found;
     const auto loaded = rad::load_obj(dir / "scene.obj", options, &found);
     CHECK(found.missing_libraries.empty());
     CHECK(found.unknown_materials.empty());
@@ -288,7 +288,7 @@ TEST_CASE("map_Kd textures: their mean linear colour multiplies Kd, or replaces 
         obj += "\nf 1 2 3\n";
     }
     write_text(dir / "scene.obj", obj);
-    rad::ObjReport report;
+    rad::SceneReport report;
     const auto scene = rad::load_obj(dir / "scene.obj", {}, &report);
     auto reflectance = [&](const std::string& name) {
         for (const auto& m : scene.materials)
@@ -312,7 +312,7 @@ TEST_CASE("map_Kd textures: their mean linear colour multiplies Kd, or replaces 
 
     // An unreadable texture (not an image) is named with stb_image's reason.
     write_text(dir / "maps" / "none.png", "not a png");
-    rad::ObjReport broken;
+    rad::SceneReport broken;
     rad::load_obj(dir / "scene.obj", {}, &broken);
     REQUIRE(broken.texture_problems.size() == 1);
     CHECK_THAT(broken.texture_problems[0], Contains("unreadable"));

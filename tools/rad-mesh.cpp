@@ -39,13 +39,17 @@ void parse_limits(const std::vector<std::string>& specs, const char* option, dou
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Read a Wavefront OBJ scene with its MTL materials (Kd = reflectance, Ke = "
-                 "emitted exitance in W/m^2)\nand write the conforming patch mesh of the chain."};
+    CLI::App app{"Read a scene (Wavefront OBJ with its MTL materials: Kd = reflectance, Ke = "
+                 "emitted exitance in W/m^2;\nor glTF, PLY, COLLADA, FBX) and write the conforming "
+                 "patch mesh of the chain."};
     std::string input, output;
     std::vector<std::string> max_edge, max_area;
     double planarity = 1e-3;
     bool quiet = false;
-    app.add_option("SCENE", input, "OBJ file")->required();
+    app.add_option("SCENE", input,
+                   "Scene file: OBJ (+ MTL), or glTF 2.0 (.gltf, .glb), PLY, COLLADA (.dae), "
+                   "FBX and the other formats assimp reads")
+        ->required();
     app.add_option("-o,--output", output, "Output mesh file")->required();
     app.add_option("--max-edge", max_edge,
                    "Longest patch edge; repeat as GROUP=L for a per-group limit (default: no "
@@ -57,6 +61,7 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 1));
     bool strict = false;
+    rad::SceneOptions obj_options;
     std::string default_reflectance;
     std::vector<std::string> mtl_paths;
     app.add_flag("--strict", strict,
@@ -66,6 +71,11 @@ int main(int argc, char** argv) {
     app.add_option("--default-reflectance", default_reflectance,
                    "Reflectance of the material given to faces without one: r,g,b or one value "
                    "(default: 0.5)");
+    app.add_option("--emission-scale", obj_options.emission_scale,
+                   "glTF, PLY, COLLADA, FBX: W/m^2 of emission per unit of emissive colour x "
+                   "emissiveStrength (their emission has no physical unit)")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(0, 1e30));
     app.add_option("--mtl-path", mtl_paths,
                    "Folder to look for material libraries in, after the OBJ's folder and the "
                    "current directory (repeatable)");
@@ -97,7 +107,6 @@ int main(int argc, char** argv) {
         parse_limits(max_area, "--max-area", options.max_area, options.max_area_by_group);
         options.planarity_tolerance = planarity;
         options.strict = strict;
-        rad::ObjOptions obj_options;
         obj_options.strict = strict;
         for (const auto& dir : mtl_paths) obj_options.mtl_paths.emplace_back(dir);
         if (!default_reflectance.empty()) {
@@ -116,8 +125,8 @@ int main(int argc, char** argv) {
         // What was repaired, one line per kind, printed after the summary (and even with
         // --quiet: the mesh differs from the file).
         std::vector<std::string> changes;
-        rad::ObjReport obj_report;
-        auto scene = rad::load_obj(input, obj_options, &obj_report);
+        rad::SceneReport obj_report;
+        auto scene = rad::load_scene(input, obj_options, &obj_report);
         for (const auto& lib : obj_report.missing_libraries)
             warn("material library " + lib + " (--mtl-path DIR adds a folder)");
         if (!obj_report.unknown_materials.empty()) {

@@ -68,7 +68,7 @@ struct LintResult {
 // Looks for a material library next to the OBJ, in the current directory, then in the
 // --mtl-path folders; an absolute name only where it says.
 Library find_library(const fs::path& obj, int line, const std::string& name,
-                     const ObjOptions& options) {
+                     const SceneOptions& options) {
     Library lib{line, name, {}, {}};
     std::vector<fs::path> candidates;
     if (fs::path(name).is_absolute()) {
@@ -89,7 +89,7 @@ Library find_library(const fs::path& obj, int line, const std::string& name,
 }
 
 // Checks what tinyobjloader would accept silently or report without a line number.
-LintResult lint_obj(const fs::path& path, const ObjOptions& options) {
+LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
     std::ifstream in(path);
     if (!in) throw InputError(path.string() + ": cannot open OBJ file");
     LintResult result;
@@ -229,10 +229,10 @@ std::string rgb_text(const radfmt::Rgb& c) {
 
 } // namespace
 
-Scene load_obj(const fs::path& path, const ObjOptions& options, ObjReport* report_out) {
+Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* report_out) {
     if (!fs::is_regular_file(path)) throw InputError(path.string() + ": no such OBJ file");
-    ObjReport local_report;
-    ObjReport& report = report_out ? *report_out : local_report;
+    SceneReport local_report;
+    SceneReport& report = report_out ? *report_out : local_report;
     const auto lint = lint_obj(path, options);
 
     Scene scene;

@@ -103,4 +103,20 @@ python3 -c "import sys; f,x,h,o=map(float,'${sums[flipped]} ${sums[fixed]} ${sum
   || fail "row sums flipped/fixed/by hand/original: ${sums[*]}"
 expect_error "not a number in [0, 1]" out4.mesh "$BIN/rad-mesh" flip/cornell.obj -o out4.mesh --planarity-tolerance nan
 expect_error "no group 'bak'" out4.mesh "$BIN/rad-mesh" flip/cornell.obj -o out4.mesh --flip bak
+# glTF through assimp: node transforms and names, emissive strength x --emission-scale, the
+# buffer among the mesh's inputs, and the chain runs on it.
+GLTF="$SRC/tests/data/gltf-square/square.gltf"
+err=$("$BIN/rad-mesh" "$GLTF" -o gltf.mesh --max-edge 0.5 --emission-scale 3 2>&1) || fail "glTF mesh: $err"
+# Floor: 4 m square (the node scales the unit square by 4) facing +z, base colour 0.6; lamp:
+# emissive 1 x strength 5 x --emission-scale 3, turned to face -z.
+"$BIN/rad-info" --csv gltf.mesh | awk -F, '
+  $2 == "floor" { floor += $4; if ($10 != 1 || $11 < 0.5999 || $11 > 0.6001 || $14 != 0) bad = 1 }
+  $2 == "lamp" { lamp += $4; if ($10 != -1 || $14 != 15) bad = 1 }
+  END { exit bad || floor < 15.999 || floor > 16.001 || lamp < 0.999 || lamp > 1.001 }' \
+  || fail "glTF groups, transforms or materials wrong"
+"$BIN/rad-info" gltf.mesh | grep -q "square.bin" || fail "the glTF buffer is not among the inputs"
+"$BIN/rad-ff" gltf.mesh -o gltf.ff --method hemisphere --rays 500 -q 2>/dev/null || fail "glTF ff"
+"$BIN/rad-solve" gltf.mesh gltf.ff -o gltf.rad -q --reflectance lamp=0.5 || fail "glTF solve"
+printf 'not a scene' > broken.glb
+expect_error "broken.glb: cannot read the scene" out5.mesh "$BIN/rad-mesh" broken.glb -o out5.mesh
 finish

@@ -32,17 +32,20 @@ struct Scene {
     std::vector<std::string> material_files; // the MTL and texture files read, for provenance
 };
 
-struct ObjOptions {
+struct SceneOptions {
     // Refuse what is otherwise repaired with a warning: faces without a known material, a
     // missing material library (and, in subdivide, non-planar faces).
     bool strict = false;
     radfmt::Rgb default_reflectance{{0.5, 0.5, 0.5}}; // of the material given to such faces
     // Where `mtllib` files are looked for after the OBJ's folder and the current directory.
     std::vector<std::filesystem::path> mtl_paths;
+    // Formats read through assimp (glTF, PLY, COLLADA, FBX): emission in W/m^2 is their
+    // emissive colour x glTF's emissiveStrength x this (their emission has no unit).
+    double emission_scale = 1;
 };
 
 // What load_obj repaired or could not find, for its warnings and summary.
-struct ObjReport {
+struct SceneReport {
     std::size_t faces_defaulted = 0; // faces given the default material
     int first_defaulted_line = 0;
     std::string default_material;               // its name ("default", unless the scene has one)
@@ -57,8 +60,19 @@ struct ObjReport {
 // file and line of every malformed vertex, face or index. MTL files are found next to the
 // OBJ, in the current directory, then in `mtl_paths`; a diffuse texture (map_Kd) multiplies
 // Kd by its mean linear colour (replaces Kd when Kd is 0 or absent).
-Scene load_obj(const std::filesystem::path& path, const ObjOptions& options = {},
-               ObjReport* report = nullptr);
+Scene load_obj(const std::filesystem::path& path, const SceneOptions& options = {},
+               SceneReport* report = nullptr);
+
+// glTF 2.0 (.gltf, .glb), PLY, COLLADA (.dae), FBX and the rest assimp reads: node transforms
+// applied (a mirroring one turns the winding back), group = node name, material = material
+// name, reflectance = base colour (or diffuse) x its texture's mean, emission = emissive
+// colour x emissiveStrength (KHR_materials_emissive_strength) x options.emission_scale.
+Scene load_with_assimp(const std::filesystem::path& path, const SceneOptions& options = {},
+                       SceneReport* report = nullptr);
+
+// By extension: .obj through load_obj, anything else through load_with_assimp.
+Scene load_scene(const std::filesystem::path& path, const SceneOptions& options = {},
+                 SceneReport* report = nullptr);
 
 struct DuplicateFaces {
     std::size_t removed = 0;

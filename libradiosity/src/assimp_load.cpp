@@ -1,0 +1,243 @@
+// Scenes in the formats assimp reads (glTF 2.0, PLY, COLLADA, FBX, ...): the same Scene as
+// an OBJ gives, so everything after reading (orientation, subdivision) is shared.
+#include "radiosity/error.hpp"
+#include "radiosity/scene.hpp"
+#include "radiosity/texture.hpp"
+#include "radiosity/vec.hpp"
+
+#include <assimp/Importer.hpp>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <map>
+
+namespace rad {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower_extension(const fs::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+// What assimp 5.2 does not give of a glTF file: each material's emissiveStrength
+// (KHR_materials_emissive_strength), and the files it refers to (buffers, images), which the
+// mesh's provenance must hash. From the JSON of a .gltf, or the first chunk of a .glb.
+struct GltfExtras {
+    std::vector<double> emissive_strength; // per glTF material
+    std::vector<std::string> files;        // relative to the scene's folder
+};
+GltfExtras gltf_extras(const fs::path& path) {
+    GltfExtras extras;
+    const auto ext = lower_extension(path);
+    if (ext != ".gltf" && ext != ".glb") return extras;
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string json_text;
+    if (ext == ".glb") {
+        // 12-byte header, then chunk 0: u32 length, u32 type "JSON", the text.
+        if (bytes.size() < 20 || bytes.compare(16, 4, "JSON") != 0) return extras;
+        std::uint32_t length = 0;
+        std::memcpy(&length, bytes.data() + 12, 4);
+        if (20 + std::size_t(length) > bytes.size()) return extras;
+        json_text = bytes.substr(20, length);
+    } else {
+        json_text = std::move(bytes);
+    }
+    const auto json = nlohmann::json::parse(json_text, nullptr, false);
+    if (json.is_discarded() || !json.is_object()) return extras;
+    if (json.contains("materials") && json["materials"].is_array())
+        for (const auto& material : json["materials"]) {
+            double strength = 1;
+            if (material.is_object() && material.contains("extensions")) {
+                const auto& extensions = material["extensions"];
+                if (extensions.is_object() &&
+                    extensions.contains("KHR_materials_emissive_strength")) {
+                    const auto& khr = extensions["KHR_materials_emissive_strength"];
+                    if (khr.is_object() && khr.contains("emissiveStrength") &&
+                        khr["emissiveStrength"].is_number())
+                        strength = khr["emissiveStrength"].get<double>();
+                }
+            }
+            extras.emissive_strength.push_back(strength);
+        }
+    for (const char* list : {"buffers", "images"})
+        if (json.contains(list) && json[list].is_array())
+            for (const auto& item : json[list])
+                if (item.is_object() && item.contains("uri") && item["uri"].is_string()) {
+                    const auto uri = item["uri"].get<std::string>();
+                    if (uri.rfind("data:", 0) != 0) extras.files.push_back(uri);
+                }
+    return extras;
+}
+
+Vec3 transform_point(const aiMatrix4x4& m, const aiVector3D& v) {
+    return {m.a1 * v.x + m.a2 * v.y + m.a3 * v.z + m.a4,
+            m.b1 * v.x + m.b2 * v.y + m.b3 * v.z + m.b4,
+            m.c1 * v.x + m.c2 * v.y + m.c3 * v.z + m.c4};
+}
+
+// The texture of `type` (or nothing), averaged: embedded ("*0", or a name an embedded
+// texture carries) or a file next to the scene.
+void apply_texture(const aiScene& scene, const aiMaterial& material, aiTextureType type,
+                   const fs::path& folder, radfmt::Material& out, SceneReport& report,
+                   std::vector<std::string>& files) {
+    aiString name;
+    if (material.GetTexture(type, 0, &name) != AI_SUCCESS || name.length == 0) return;
+    const std::string texture_name = name.C_Str();
+    std::string problem;
+    std::optional<radfmt::Rgb> mean;
+    if (const aiTexture* embedded = scene.GetEmbeddedTexture(name.C_Str())) {
+        if (embedded->mHeight == 0) {
+            mean = mean_texture_colour(
+                std::span<const unsigned char>(
+                    reinterpret_cast<const unsigned char*>(embedded->pcData), embedded->mWidth),
+                problem);
+        } else {
+            problem = "uncompressed embedded textures are not read";
+        }
+    } else {
+        const auto path = folder / texture_name;
+        if (!fs::is_regular_file(path)) {
+            report.texture_problems.push_back(out.name + ": texture " + path.string() +
+                                              " not found");
+            return;
+        }
+        mean = mean_texture_colour(path, problem);
+        if (mean) files.push_back(path.string());
+    }
+    if (!mean) {
+        report.texture_problems.push_back(out.name + ": texture " + texture_name + " unreadable (" +
+                                          problem + ")");
+        return;
+    }
+    for (int k = 0; k < 3; ++k) out.reflectance[k] *= (*mean)[k];
+    report.textures_averaged.push_back(out.name + ": " + texture_name);
+}
+
+} // namespace
+
+Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneReport* report_out) {
+    if (!fs::is_regular_file(path)) throw InputError(path.string() + ": no such scene file");
+    SceneReport local_report;
+    SceneReport& report = report_out ? *report_out : local_report;
+    Assimp::Importer importer;
+    // Vertices shared by position and attributes, as an OBJ's are; faces kept as written
+    // (quads stay quads); lines and points sorted out.
+    const aiScene* ai =
+        importer.ReadFile(path.string(), aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                                             aiProcess_ValidateDataStructure);
+    if (!ai || !ai->mRootNode || (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
+        throw InputError(path.string() + ": cannot read the scene (" + importer.GetErrorString() +
+                         ")");
+
+    Scene scene;
+    scene.path = path.string();
+    const auto extras = gltf_extras(path);
+    const auto& strengths = extras.emissive_strength;
+    for (const auto& file : extras.files)
+        if (fs::is_regular_file(path.parent_path() / file))
+            scene.material_files.push_back((path.parent_path() / file).string());
+    for (unsigned m = 0; m < ai->mNumMaterials; ++m) {
+        const aiMaterial& material = *ai->mMaterials[m];
+        radfmt::Material out;
+        aiString name;
+        out.name = material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS && name.length > 0
+                       ? name.C_Str()
+                       : "material" + std::to_string(m);
+        aiColor4D base(1, 1, 1, 1);
+        aiColor3D diffuse(1, 1, 1);
+        if (material.Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS) {
+            out.reflectance = {{base.r, base.g, base.b}};
+            apply_texture(*ai, material, aiTextureType_BASE_COLOR, path.parent_path(), out, report,
+                          scene.material_files);
+        } else {
+            if (material.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS)
+                out.reflectance = {{diffuse.r, diffuse.g, diffuse.b}};
+            apply_texture(*ai, material, aiTextureType_DIFFUSE, path.parent_path(), out, report,
+                          scene.material_files);
+        }
+        aiColor3D emissive(0, 0, 0);
+        material.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
+        float intensity = 1;
+        material.Get(AI_MATKEY_EMISSIVE_INTENSITY, intensity);
+        const double strength = m < strengths.size() ? strengths[m] : double(intensity);
+        out.emission = {{emissive.r * strength * options.emission_scale,
+                         emissive.g * strength * options.emission_scale,
+                         emissive.b * strength * options.emission_scale}};
+        for (int k = 0; k < 3; ++k)
+            if (!std::isfinite(out.reflectance[k]) || out.reflectance[k] < 0 ||
+                !std::isfinite(out.emission[k]) || out.emission[k] < 0)
+                throw InputError(path.string() + ": material '" + out.name +
+                                 "' has a negative or non-finite colour or emission");
+        scene.materials.push_back(out);
+        scene.material_sources.push_back({});
+    }
+    if (scene.materials.empty()) {
+        scene.materials.push_back({"default", options.default_reflectance, {}});
+        scene.material_sources.push_back({});
+        report.default_material = "default";
+    }
+
+    // Every node's meshes, placed by the product of the transforms down to it.
+    std::map<std::string, std::uint32_t> group_of;
+    const auto walk = [&](const auto& self, const aiNode& node, const aiMatrix4x4& parent,
+                          const std::string& parent_name) -> void {
+        const aiMatrix4x4 transform = parent * node.mTransformation;
+        std::string name = node.mName.length ? node.mName.C_Str() : parent_name;
+        if (name.empty()) name = "default";
+        // A mirroring transform (negative determinant) turns faces inside out: undo it.
+        const bool mirrored = transform.Determinant() < 0;
+        for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+            const aiMesh& mesh = *ai->mMeshes[node.mMeshes[k]];
+            if (!(mesh.mPrimitiveTypes & (aiPrimitiveType_TRIANGLE | aiPrimitiveType_POLYGON)))
+                continue;
+            const auto [it, added] =
+                group_of.try_emplace(name, static_cast<std::uint32_t>(scene.groups.size()));
+            if (added) scene.groups.push_back(name);
+            const auto base = static_cast<std::uint32_t>(scene.vertices.size());
+            for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+                const Vec3 p = transform_point(transform, mesh.mVertices[v]);
+                if (!finite(p))
+                    throw InputError(path.string() + ": mesh '" + mesh.mName.C_Str() +
+                                     "' has a vertex that is not a finite number");
+                scene.vertices.push_back(p);
+            }
+            for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+                const aiFace& face = mesh.mFaces[f];
+                if (face.mNumIndices < 3) continue;
+                Polygon polygon;
+                polygon.group = it->second;
+                polygon.material = std::min<std::uint32_t>(
+                    mesh.mMaterialIndex, static_cast<std::uint32_t>(scene.materials.size() - 1));
+                for (unsigned i = 0; i < face.mNumIndices; ++i)
+                    polygon.vertices.push_back(base + face.mIndices[i]);
+                if (mirrored) std::reverse(polygon.vertices.begin(), polygon.vertices.end());
+                scene.polygons.push_back(std::move(polygon));
+            }
+        }
+        for (unsigned c = 0; c < node.mNumChildren; ++c)
+            self(self, *node.mChildren[c], transform, name);
+    };
+    walk(walk, *ai->mRootNode, aiMatrix4x4(), "");
+    if (scene.polygons.empty())
+        throw InputError(path.string() + ": scene is empty (no faces; points and lines are not "
+                                         "surfaces)");
+    return scene;
+}
+
+Scene load_scene(const fs::path& path, const SceneOptions& options, SceneReport* report) {
+    if (lower_extension(path) == ".obj") return load_obj(path, options, report);
+    return load_with_assimp(path, options, report);
+}
+
+} // namespace rad
