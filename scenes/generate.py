@@ -4,6 +4,8 @@
   generate.py goral  DIR   the paper's Figure 1 box (Goral et al. 1984)
   generate.py room1  DIR   Scene 1: pillars, left part of the far wall open to daylight
   generate.py room2  DIR   Scene 2: right part emitting, objects small relative to patches
+  generate.py room1 DIR --lamp   room1 with a ceiling lamp too (material "lamp"): two
+                           light groups for relighting (Makefile.examples relight)
   generate.py office DIR [--desks N]   a furnished open-plan office, to show scale
 
 Rooms face inwards (normals into the room); objects face outwards (counter-clockwise seen
@@ -102,8 +104,8 @@ def goral():
     return o
 
 
-def room(which):
-    o = Obj(which)
+def room(which, lamp=False):
+    o = Obj(which + ("-lamp" if lamp else ""))
     o.material("wall", (0.75, 0.72, 0.65))
     o.material("floor", (0.45, 0.4, 0.35))
     o.material("ceiling", (0.8, 0.8, 0.8))
@@ -118,6 +120,11 @@ def room(which):
         # Two grey pillars between the open part of the wall and the room.
         o.box("pillar_a", "pillar", (2.6, 0, 3.2), (3.1, h, 3.7))
         o.box("pillar_b", "pillar", (4.2, 0, 1.6), (4.7, h, 2.1))
+        if lamp:
+            # A warm-white panel just under the ceiling, facing down, near the room's front.
+            o.material("lamp", (0.8, 0.8, 0.8), (40, 36, 30))
+            y = h - 0.01
+            o.quad("lamp", "lamp", [(2.5, y, 0.8), (3.5, y, 0.8), (3.5, y, 1.6), (2.5, y, 1.6)])
     else:
         o.room(w, h, d, mats, far_split=(3.5, "wall", "daylight"))
         # Objects small relative to the patches: their shadows need finer patches.
@@ -165,7 +172,7 @@ def main(argv):
         desks = int(argv[argv.index("--desks") + 1]) if "--desks" in argv else 100
         scene = office(desks)
     else:
-        scene = room(which)
+        scene = room(which, lamp="--lamp" in argv)
     scene.write(folder)
 
 

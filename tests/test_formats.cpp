@@ -120,6 +120,40 @@ TEST_CASE("form-factor and radiosity files round-trip") {
     radfmt::RadiosityData rad{{{1, 2, 3}, {0.5, 0.25, 0.125}}};
     radfmt::write_radiosity(dir / "a.rad", header_for("rad-solve"), rad);
     CHECK(radfmt::read_radiosity(dir / "a.rad").radiosity == rad.radiosity);
+    CHECK(radfmt::read_radiosity(dir / "a.rad").group_count() == 0);
+
+    // With light groups: names, per-group values and their sum, and a CSV row per group.
+    radfmt::RadiosityData grouped;
+    grouped.radiosity = {{{3, 3, 3}}, {{1, 0, 0}}};
+    grouped.group_names = {"lamp", "sun"};
+    grouped.group_radiosity = {{{1, 1, 1}}, {{2, 2, 2}}, {{1, 0, 0}}, {{0, 0, 0}}};
+    radfmt::Header grouped_header;
+    radfmt::write_radiosity(dir / "g.rad", header_for("rad-solve"), grouped);
+    const auto back = radfmt::read_radiosity(dir / "g.rad", &grouped_header);
+    CHECK(back.group_names == grouped.group_names);
+    CHECK(back.group_radiosity == grouped.group_radiosity);
+    CHECK(back.of_group(0, 1) == radfmt::Rgb{{2, 2, 2}});
+    CHECK(grouped_header.get("light_groups", "") == "lamp,sun");
+    std::ostringstream grouped_csv;
+    radfmt::write_csv(dir / "g.rad", grouped_csv);
+    CHECK(grouped_csv.str() == "patch,group,b_r,b_g,b_b\n0,lamp,1,1,1\n0,sun,2,2,2\n"
+                               "1,lamp,1,0,0\n1,sun,0,0,0\n");
+    radfmt::Header info;
+    CHECK_THAT(radfmt::kind_info(radfmt::Kind::Radiosity).summary(dir / "g.rad", info),
+               Contains("2 light group(s): lamp sun"));
+    // A version 1 radiosity file (no group section) is still read.
+    {
+        radfmt::BodyWriter w;
+        w.u64(rad.radiosity.size());
+        w.array(rad.radiosity);
+        auto header = header_for("rad-solve");
+        header.kind = radfmt::Kind::Radiosity;
+        header.version = 1;
+        radfmt::write_file(dir / "v1.rad", header, w);
+        const auto old = radfmt::read_radiosity(dir / "v1.rad");
+        CHECK(old.radiosity == rad.radiosity);
+        CHECK(old.group_count() == 0);
+    }
 
     std::ostringstream csv;
     radfmt::write_csv(dir / "a.ff", csv);

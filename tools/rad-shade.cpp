@@ -2,6 +2,7 @@
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/light_groups.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/shade.hpp"
 #include "radiosity/version.hpp"
@@ -50,6 +51,15 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "Worker threads (0: all cores)")
         ->capture_default_str()
         ->check(CLI::Range(0, rad::ThreadLimit::max_threads()));
+    std::vector<std::string> mix;
+    bool mix_only = false, layers = false;
+    app.add_option("--mix", mix,
+                   "Weight a light group (rad-solve --light-groups): NAME=s, or NAME=r,g,b to "
+                   "recolour it (repeatable; groups not named keep weight 1)");
+    app.add_flag("--mix-only", mix_only, "Groups not named in --mix are off (weight 0)");
+    app.add_flag("--layers", layers,
+                 "Also write one EXR layer per light group (<group>.R/G/B, each at weight 1, "
+                 "for relighting in a compositor) next to the mixed image");
     std::string backfaces = "show";
     app.add_option("--backfaces", backfaces,
                    "Faces seen from behind (the side of a one-sided patch that gets no light): "
@@ -69,14 +79,22 @@ int main(int argc, char** argv) {
         radfmt::Header mesh_header, rad_header;
         const auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
         std::vector<radfmt::Rgb> values;
+        radfmt::RadiosityData radiosity;
         std::vector<std::string> chain = mesh_header.chain();
+        if (albedo && (!mix.empty() || mix_only || layers))
+            throw rad::InputError("--mix, --mix-only and --layers need a radiosity file, not "
+                                  "--albedo");
         if (albedo) {
             for (const auto& p : mesh.patches)
                 values.push_back(mesh.materials[p.material].reflectance);
             flat = true;
         } else {
             if (rad_path.empty()) throw rad::InputError("give a radiosity file (or use --albedo)");
-            values = radfmt::read_radiosity(rad_path, &rad_header).radiosity;
+            radiosity = radfmt::read_radiosity(rad_path, &rad_header);
+            values = rad::mix_light_groups(radiosity, mix, mix_only, rad_path);
+            if (layers && radiosity.group_count() == 0)
+                throw rad::InputError(rad_path + " has no light groups for --layers (solve with "
+                                                 "rad-solve --light-groups)");
             radfmt::require_same_geometry(rad_path, rad_header, values.size(), mesh_path, mesh,
                                           "run rad-ff and rad-solve on " + mesh_path + " again");
             chain = rad_header.chain();
@@ -113,7 +131,28 @@ int main(int argc, char** argv) {
         attributes["radiosity:mesh"] = mesh_path + " " + mesh_header.file_hash;
         if (!albedo) attributes["radiosity:radiosity"] = rad_path + " " + rad_header.file_hash;
         attributes["radiosity:units"] = albedo ? "reflectance" : "radiosity W/m^2 (linear)";
-        rad::write_exr(output, image, attributes);
+        // One image per light group for --layers, each at weight 1.
+        std::vector<rad::Image> group_images;
+        std::vector<rad::ImageLayer> exr_layers;
+        if (layers) {
+            group_images.reserve(radiosity.group_count());
+            for (std::size_t g = 0; g < radiosity.group_count(); ++g) {
+                std::vector<radfmt::Rgb> group_values(radiosity.radiosity.size());
+                for (std::size_t i = 0; i < group_values.size(); ++i)
+                    group_values[i] = radiosity.of_group(i, g);
+                group_images.push_back(rad::render(
+                    mesh, rad::corner_colours(mesh, group_values, mode, crease), view, width,
+                    height, aa));
+            }
+            for (std::size_t g = 0; g < group_images.size(); ++g)
+                exr_layers.push_back({radiosity.group_names[g], &group_images[g]});
+        }
+        if (!mix.empty() || mix_only) {
+            std::string text;
+            for (const auto& m : mix) text += (text.empty() ? "" : " ") + m;
+            attributes["radiosity:mix"] = (mix_only ? "only " : "") + text;
+        }
+        rad::write_exr(output, image, attributes, exr_layers);
         if (!png.empty()) rad::write_png(png, image, scale);
         if (!ply.empty()) rad::write_ply(ply, mesh, corners, scale);
         if (!quiet)

@@ -2,11 +2,13 @@
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/light_groups.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/solver.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -94,6 +96,16 @@ int main(int argc, char** argv) {
     app.add_option("--row-sum-tolerance", request.row_sum_tolerance,
                    "Warn when a form-factor row sums above 1 + this")
         ->capture_default_str();
+    bool light_groups = false;
+    std::vector<std::string> group_specs;
+    app.add_flag("--light-groups", light_groups,
+                 "Solve each light group on its own, in one run (a multi-channel solve that "
+                 "reads each row of F once), and store every group's radiosity, so that "
+                 "rad-shade --mix can switch, dim and recolour them without another solve. A "
+                 "group is each emitting material unless --group says otherwise");
+    app.add_option("--group", group_specs,
+                   "Define a light group: NAME=MATERIAL[,MATERIAL...] (repeatable; implies "
+                   "--light-groups; emitting materials in no group get one each)");
     app.add_flag("--force", request.force,
                  "Solve even with a reflectance >= 1 (convergence not guaranteed)");
     app.add_flag("-q,--quiet", quiet, "No summary");
@@ -136,7 +148,19 @@ int main(int argc, char** argv) {
         rad::record_solve_inputs(header, request, geometry_hash, ff_header);
 
         const auto op = rad::make_operator(mesh, ff);
-        const auto emission = rad::emission_of(mesh);
+        std::vector<rad::LightGroup> groups;
+        if (light_groups || !group_specs.empty()) {
+            groups = rad::light_groups(mesh, group_specs);
+            rad::record_light_groups(header, mesh, groups);
+        }
+        const auto emission =
+            groups.empty() ? rad::emission_of(mesh) : rad::grouped_emission(mesh, groups);
+        // The power of a state as RGB: with groups, their sum.
+        auto rgb_power = [](const std::vector<double>& power) {
+            std::array<double, 3> sum{0, 0, 0};
+            for (std::size_t c = 0; c < power.size(); ++c) sum[c % 3] += power[c];
+            return sum;
+        };
         std::ostringstream log;
         log << "iteration,residual,power_r,power_g,power_b,seconds\n";
         // Only observe iterations when asked to: for pr/apr the callback costs a copy of the
@@ -144,8 +168,9 @@ int main(int argc, char** argv) {
         if (!log_path.empty() || verbose || !snapshot.empty())
             control.on_iteration = [&](const rad::IterationRecord& r, const rad::Channels& b) {
                 char line[200];
+                const auto power = rgb_power(r.power);
                 std::snprintf(line, sizeof line, "%ld,%.9g,%.9g,%.9g,%.9g,%.6f\n", r.iteration,
-                              r.residual, r.power[0], r.power[1], r.power[2], r.seconds);
+                              r.residual, power[0], power[1], power[2], r.seconds);
                 if (!log_path.empty()) log << line;
                 if (verbose) std::cerr << "rad-solve: " << line;
                 if (!snapshot.empty() &&
@@ -155,12 +180,12 @@ int main(int argc, char** argv) {
                     snap.set("iterations", std::to_string(r.iteration));
                     snap.set("snapshot", "yes");
                     radfmt::write_radiosity(snapshot_path(snapshot, r.iteration), snap,
-                                            {rad::to_rgb(b)});
+                                            rad::radiosity_data(b, groups));
                 }
             };
         const auto result = solver.solve(op, emission, control);
         rad::record_solve_result(header, solver, result);
-        radfmt::write_radiosity(output, header, {rad::to_rgb(result.radiosity)});
+        radfmt::write_radiosity(output, header, rad::radiosity_data(result.radiosity, groups));
         if (!log_path.empty()) {
             const auto text = log.str();
             radfmt::write_atomically(log_path, [&](const std::filesystem::path& temp) {
@@ -170,7 +195,7 @@ int main(int argc, char** argv) {
             });
         }
         if (!quiet) {
-            const auto power = rad::total_power(op.area, result.radiosity);
+            const auto power = rgb_power(rad::total_power(op.area, result.radiosity));
             std::fprintf(
                 stderr, "rad-solve: %s, %ld %s, %s %.3g%s, power %.6g %.6g %.6g W\n",
                 request.method.c_str(), result.iterations, solver.shooting() ? "shots" : "sweeps",
@@ -178,6 +203,12 @@ int main(int argc, char** argv) {
                 control.tolerance > 0 && !result.converged ? " (not converged: iteration limit)"
                                                            : "",
                 power[0], power[1], power[2]);
+            if (!groups.empty()) {
+                std::string names;
+                for (const auto& g : groups) names += " " + g.name;
+                std::fprintf(stderr, "rad-solve: %zu light group(s):%s\n", groups.size(),
+                             names.c_str());
+            }
         }
         return 0;
     });

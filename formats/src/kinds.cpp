@@ -179,9 +179,19 @@ FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
 void write_radiosity(const fs::path& path, Header header, const RadiosityData& rad) {
     header.kind = Kind::Radiosity;
     header.set("patches", std::to_string(rad.radiosity.size()));
+    if (rad.group_radiosity.size() != rad.radiosity.size() * rad.group_names.size())
+        throw std::logic_error("radiosity written with a group array of the wrong size");
+    if (!rad.group_names.empty()) {
+        std::string names;
+        for (const auto& g : rad.group_names) names += (names.empty() ? "" : ",") + g;
+        header.set("light_groups", names);
+    }
     BodyWriter w;
     w.u64(rad.radiosity.size());
     w.array(rad.radiosity);
+    w.u64(rad.group_names.size());
+    for (const auto& g : rad.group_names) w.string(g);
+    w.array(rad.group_radiosity);
     write_file(path, std::move(header), w);
 }
 
@@ -192,6 +202,13 @@ RadiosityData read_radiosity(const fs::path& path, Header* header_out) {
     RadiosityData rad;
     const auto n = r.count(24, "patches");
     rad.radiosity = r.array<Rgb>(n, "radiosity");
+    if (file.header.version >= 2) {
+        const auto groups = r.count(8, "light groups");
+        for (std::uint64_t g = 0; g < groups; ++g) rad.group_names.push_back(r.string());
+        if (groups > 0 && n > (std::uint64_t(1) << 40) / groups)
+            r.fail("too many light groups for the patches");
+        rad.group_radiosity = r.array<Rgb>(n * groups, "light group radiosity");
+    }
     r.expect_end();
     if (header_out) *header_out = std::move(file.header);
     return rad;
@@ -275,19 +292,39 @@ std::string form_factor_summary(const fs::path& path, Header& header) {
 
 void radiosity_csv(const fs::path& path, std::ostream& out) {
     const auto rad = read_radiosity(path);
-    char line[128];
-    out << kind_info(Kind::Radiosity).csv_columns << '\n';
+    char line[160];
+    if (rad.group_count() == 0) {
+        out << "patch,b_r,b_g,b_b\n";
+        for (std::size_t i = 0; i < rad.radiosity.size(); ++i) {
+            const auto& b = rad.radiosity[i];
+            std::snprintf(line, sizeof line, "%zu,%.10g,%.10g,%.10g\n", i, b[0], b[1], b[2]);
+            out << line;
+            if (!out) return;
+        }
+        return;
+    }
+    // With light groups: one row per patch and group.
+    out << "patch,group,b_r,b_g,b_b\n";
     for (std::size_t i = 0; i < rad.radiosity.size(); ++i) {
-        const auto& b = rad.radiosity[i];
-        std::snprintf(line, sizeof line, "%zu,%.10g,%.10g,%.10g\n", i, b[0], b[1], b[2]);
-        out << line;
+        for (std::size_t g = 0; g < rad.group_count(); ++g) {
+            const auto& b = rad.of_group(i, g);
+            std::snprintf(line, sizeof line, "%zu,", i);
+            out << line << rad.group_names[g];
+            std::snprintf(line, sizeof line, ",%.10g,%.10g,%.10g\n", b[0], b[1], b[2]);
+            out << line;
+        }
         if (!out) return;
     }
 }
 
 std::string radiosity_summary(const fs::path& path, Header& header) {
     const auto rad = read_radiosity(path, &header);
-    return std::to_string(rad.radiosity.size()) + " patches";
+    std::string text = std::to_string(rad.radiosity.size()) + " patches";
+    if (rad.group_count()) {
+        text += ", " + std::to_string(rad.group_count()) + " light group(s):";
+        for (const auto& g : rad.group_names) text += " " + g;
+    }
+    return text;
 }
 
 constexpr KindInfo kKinds[] = {
@@ -296,7 +333,8 @@ constexpr KindInfo kKinds[] = {
      mesh_summary},
     {Kind::FormFactors, "formfactors", "form-factor matrix", 2, 1, "row,col,f", form_factor_csv,
      form_factor_summary},
-    {Kind::Radiosity, "radiosity", "radiosity solution", 1, 1, "patch,b_r,b_g,b_b", radiosity_csv,
+    {Kind::Radiosity, "radiosity", "radiosity solution", 2, 1,
+     "patch,b_r,b_g,b_b (with light groups: patch,group,b_r,b_g,b_b)", radiosity_csv,
      radiosity_summary},
 };
 

@@ -16,4 +16,13 @@ dry=$(eval $MK -n cornell LIGHT=10,20,40)
 grep -q "rad-solve" <<<"$dry" || fail "a new light colour must re-run rad-solve"
 grep -q "rad-shade" <<<"$dry" || fail "a new light colour must re-run rad-shade"
 grep -q "rad-ff\|rad-mesh" <<<"$dry" && fail "a new light colour must not re-run rad-ff: $dry"
+# Relighting: one solve with light groups, three lighting states by rad-shade --mix.
+eval $MK relight >"$TMP/relight.log" 2>&1 || { cat "$TMP/relight.log"; fail "make relight"; }
+[ "$(grep -c "rad-solve" "$TMP/relight.log")" -eq 1 ] || fail "relight must solve once: $(cat "$TMP/relight.log")"
+[ "$(grep -c "rad-shade" "$TMP/relight.log")" -eq 3 ] || fail "relight must render three states"
+for f in relight-daylight.png relight-lamp.png relight-both-warm.png relight-both-warm.exr; do
+  [ -s "$TMP/out/$f" ] || fail "missing $f"
+done
+exrheader "$TMP/out/relight-both-warm.exr" | grep -q "lamp.R" || fail "relight layers"
 finish
+

@@ -56,4 +56,21 @@ grep -q "changed: textures averaged: 1 map_Kd texture(s) multiply their Kd by th
 rm "$TMP/tex/render.png"
 err=$("$BIN/rad-mesh" "$TMP/tex/t.obj" -o "$TMP/tex/t.mesh" 2>&1) || fail "a missing texture must not fail: $err"
 grep -q "warning: .*painted: texture .*render.png not found (the material keeps its Kd)" <<<"$err" || fail "missing texture warning: $err"
+
+# Mixing light groups at shade time (a room1 with daylight and lamp, solved once).
+python3 "$SRC/scenes/generate.py" room1 "$TMP/relight" --lamp || fail "generate room1 --lamp"
+"$BIN/rad-mesh" "$TMP/relight/room1-lamp.obj" -o "$TMP/g.mesh" --max-edge 1 -q 2>/dev/null || fail "lamp mesh"
+"$BIN/rad-ff" "$TMP/g.mesh" -o "$TMP/g.ff" --method hemisphere --rays 300 -q || fail "lamp ff"
+"$BIN/rad-solve" "$TMP/g.mesh" "$TMP/g.ff" -o "$TMP/g.rad" --light-groups -q || fail "grouped solve"
+RV="$SRC/scenes/room1/room1.vf"
+"$BIN/rad-shade" "$TMP/g.mesh" "$TMP/g.rad" -o "$TMP/mix.exr" --view-file "$RV" -x 32 -y 32 --mix lamp=0.5,0.4,0.2 --layers -q || fail "--mix --layers"
+channels=$(exrheader "$TMP/mix.exr")
+for ch in R G B daylight.R daylight.G daylight.B lamp.R lamp.G lamp.B; do
+  grep -q "^ *$ch, 32-bit floating-point" <<<"$channels" || fail "EXR lacks channel $ch: $channels"
+done
+"$BIN/rad-shade" "$TMP/g.mesh" "$TMP/g.rad" -o "$TMP/off.exr" --view-file "$RV" -x 32 -y 32 --mix-only --mix lamp=1 -q || fail "--mix-only"
+expect_error "--mix: no light group 'sun'" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/g.mesh" "$TMP/g.rad" -o "$TMP/x.exr" --view-file "$RV" --mix sun=1
+expect_error "daylight, lamp" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/g.mesh" "$TMP/g.rad" -o "$TMP/x.exr" --view-file "$RV" --mix sun=1
+expect_error "has no light groups to mix" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.exr" --view-file "$VF" --mix light=2
 finish
+

@@ -42,4 +42,21 @@ expect_error "not a number in [0, 1]" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh
 expect_error "not a number in [0, 1e+06]" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --method pr --sweeps nan
 expect_error "'1x' is not an iteration number" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --snapshot "$TMP/s-%d.rad" --snapshot-at 1x
 expect_error "--sweeps applies to shooting solvers" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --sweeps 2
+
+# Light groups: room1 with its daylight and a ceiling lamp, one run, a group per emitter.
+python3 "$SRC/scenes/generate.py" room1 "$TMP/relight" --lamp || fail "generate room1 --lamp"
+"$BIN/rad-mesh" "$TMP/relight/room1-lamp.obj" -o "$TMP/g.mesh" --max-edge 1 -q 2>/dev/null || fail "lamp mesh"
+"$BIN/rad-ff" "$TMP/g.mesh" -o "$TMP/g.ff" --method hemisphere --rays 500 -q || fail "lamp ff"
+err=$("$BIN/rad-solve" "$TMP/g.mesh" "$TMP/g.ff" -o "$TMP/g.rad" --light-groups 2>&1) || fail "--light-groups: $err"
+grep -q "2 light group(s): daylight lamp" <<<"$err" || fail "solve summary: $err"
+info=$("$BIN/rad-info" "$TMP/g.rad")
+grep -q "2 light group(s): daylight lamp" <<<"$info" || fail "rad-info: $info"
+grep -q "light_group.lamp = lamp=40,36,30" <<<"$info" || fail "group emission in the header: $info"
+[ "$("$BIN/rad-info" --csv "$TMP/g.rad" | head -1)" = "patch,group,b_r,b_g,b_b" ] || fail "grouped CSV header"
+[ "$("$BIN/rad-info" --csv "$TMP/g.rad" | grep -c ",lamp,")" -eq "$("$BIN/rad-info" --csv "$TMP/g.mesh" | tail -n +2 | wc -l)" ] || fail "one CSV row per patch and group"
+err=$("$BIN/rad-solve" "$TMP/g.mesh" "$TMP/g.ff" -o "$TMP/g1.rad" --group all=daylight,lamp 2>&1) || fail "--group: $err"
+grep -q "1 light group(s): all" <<<"$err" || fail "--group summary: $err"
+expect_error "--group x: no material 'lamb'" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/g.mesh" "$TMP/g.ff" -o "$TMP/x.rad" --group x=lamb
+expect_error "no material emits light" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/g.mesh" "$TMP/g.ff" -o "$TMP/x.rad" --light-groups --emission lamp=0 --emission daylight=0
 finish
+

@@ -75,7 +75,16 @@ struct FormFactorData {
 };
 
 struct RadiosityData {
-    std::vector<Rgb> radiosity; // B per patch, W/m^2
+    std::vector<Rgb> radiosity; // B per patch, W/m^2 (every light group at its own emission)
+    // Light groups (version 2 on, may be none): each group's own radiosity, as if only its
+    // emitters shone, so that any mix of them is a weighted sum. Patch-major:
+    // group_radiosity[i * groups + g] is patch i's radiosity from group g.
+    std::vector<std::string> group_names = {};
+    std::vector<Rgb> group_radiosity = {};
+    std::size_t group_count() const { return group_names.size(); }
+    const Rgb& of_group(std::size_t patch, std::size_t group) const {
+        return group_radiosity[patch * group_names.size() + group];
+    }
 };
 
 // Each writer fills in the kind-specific header fields (counts, hashes) itself.

@@ -5,11 +5,22 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace rad {
 
+// Extra layers (same size as the image) are written as channels "<name>.R/G/B" next to the
+// main R, G, B: the multi-layer convention compositing tools read.
+struct ImageLayer {
+    std::string name;
+    const Image* image;
+};
 void write_exr(const std::string& path, const Image& image,
-               const std::map<std::string, std::string>& attributes);
+               const std::map<std::string, std::string>& attributes,
+               const std::vector<ImageLayer>& layers = {});
+// Reads a layer's channels ("" for the main R, G, B).
+Image read_exr_layer(const std::string& path, const std::string& layer,
+                     std::map<std::string, std::string>* attributes = nullptr);
 Image read_exr(const std::string& path, std::map<std::string, std::string>* attributes = nullptr);
 // Multiplier that maps the 95th-percentile luminance of covered pixels to 0.8.
 double auto_exposure(const Image& image);

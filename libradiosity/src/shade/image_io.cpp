@@ -20,21 +20,30 @@
 namespace rad {
 
 void write_exr(const std::string& path, const Image& image,
-               const std::map<std::string, std::string>& attributes) {
+               const std::map<std::string, std::string>& attributes,
+               const std::vector<ImageLayer>& layers) {
+    for (const auto& layer : layers)
+        if (layer.image->width != image.width || layer.image->height != image.height)
+            throw InternalError("EXR layer " + layer.name + " differs in size from the image");
     radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
         try {
             Imf::Header header(image.width, image.height);
-            for (const char* name : {"R", "G", "B"})
-                header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            std::vector<std::pair<std::string, const Image*>> all{{"", &image}};
+            for (const auto& layer : layers) all.emplace_back(layer.name + ".", layer.image);
+            for (const auto& [prefix, img] : all)
+                for (const char* name : {"R", "G", "B"})
+                    header.channels().insert(prefix + name, Imf::Channel(Imf::FLOAT));
             for (const auto& [key, value] : attributes)
                 header.insert(key, Imf::StringAttribute(value));
             Imf::OutputFile file(temp.c_str(), header);
             Imf::FrameBuffer fb;
-            char* base = reinterpret_cast<char*>(const_cast<float*>(image.rgb.data()));
             const std::size_t xs = 3 * sizeof(float), ys = xs * image.width;
-            fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
-            fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
-            fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+            for (const auto& [prefix, img] : all) {
+                char* base = reinterpret_cast<char*>(const_cast<float*>(img->rgb.data()));
+                fb.insert(prefix + "R", Imf::Slice(Imf::FLOAT, base, xs, ys));
+                fb.insert(prefix + "G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
+                fb.insert(prefix + "B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+            }
             file.setFrameBuffer(fb);
             file.writePixels(image.height);
         } catch (const std::exception& e) {
@@ -44,8 +53,16 @@ void write_exr(const std::string& path, const Image& image,
 }
 
 Image read_exr(const std::string& path, std::map<std::string, std::string>* attributes) {
+    return read_exr_layer(path, "", attributes);
+}
+
+Image read_exr_layer(const std::string& path, const std::string& layer,
+                     std::map<std::string, std::string>* attributes) {
     try {
         Imf::InputFile file(path.c_str());
+        const std::string prefix = layer.empty() ? "" : layer + ".";
+        if (!file.header().channels().findChannel(prefix + "R"))
+            throw InputError(path + ": no layer '" + layer + "' in the image");
         const auto dw = file.header().dataWindow();
         Image image;
         image.width = dw.max.x - dw.min.x + 1;
@@ -55,9 +72,9 @@ Image read_exr(const std::string& path, std::map<std::string, std::string>* attr
         char* base = reinterpret_cast<char*>(image.rgb.data());
         const std::size_t xs = 3 * sizeof(float), ys = xs * image.width;
         base -= (dw.min.x * xs + dw.min.y * ys);
-        fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
-        fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
-        fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+        fb.insert(prefix + "R", Imf::Slice(Imf::FLOAT, base, xs, ys));
+        fb.insert(prefix + "G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
+        fb.insert(prefix + "B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);
         if (attributes)
@@ -65,6 +82,8 @@ Image read_exr(const std::string& path, std::map<std::string, std::string>* attr
                 if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
                     (*attributes)[it.name()] = s->value();
         return image;
+    } catch (const InputError&) {
+        throw;
     } catch (const std::exception& e) {
         throw InputError(path + ": cannot read EXR: " + e.what());
     }
