@@ -42,8 +42,20 @@ std::pair<double, double> sweep(const TransportOperator& op, const Channels& emi
                                 Channels& scratch, bool in_place) {
     if (!in_place) scratch = b;
     const Channels& source = in_place ? b : scratch;
-    return b.channels == 3 ? sweep_rows<3>(op, emission, b, source)
-                           : sweep_rows<0>(op, emission, b, source);
+    // RGB, and light groups of 2 to 4 (6 to 12 channels), with the count known to the
+    // compiler so the channel loops unroll; any other count reads it at run time.
+    switch (b.channels) {
+    case 3:
+        return sweep_rows<3>(op, emission, b, source);
+    case 6:
+        return sweep_rows<6>(op, emission, b, source);
+    case 9:
+        return sweep_rows<9>(op, emission, b, source);
+    case 12:
+        return sweep_rows<12>(op, emission, b, source);
+    default:
+        return sweep_rows<0>(op, emission, b, source);
+    }
 }
 
 SolveResult solve_by_sweeps(const TransportOperator& op, const Channels& emission,
