@@ -460,3 +460,34 @@ TEST_CASE("mixed slivers and regular triangles with different limits stay confor
         if (edge == 0) CHECK(mesh.patches.size() == scene.polygons.size());
     }
 }
+
+TEST_CASE("MTL colours: refused with file:line when not numbers, one value means grey") {
+    auto error_of = [](const std::string& mtl) {
+        return load_with("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\n", {}, nullptr, nullptr,
+                         mtl);
+    };
+    CHECK_THAT(error_of("newmtl grey\nKd abc 0.5 0.5\n"),
+               Contains("scene.mtl:2:") && Contains("Kd value 'abc' is not a finite"));
+    CHECK_THAT(error_of("newmtl grey\nKd nan nan nan\n"), Contains("scene.mtl:2:"));
+    CHECK_THAT(error_of("newmtl grey\nKd 0.5 0.5 0.5\nKe inf 1 1\n"),
+               Contains("scene.mtl:3:") && Contains("Ke value 'inf'"));
+    CHECK_THAT(error_of("newmtl grey\nKe ten\n"), Contains("scene.mtl:2:"));
+    CHECK_THAT(error_of("newmtl grey\nKd 0.5 0.5\n"), Contains("needs 1 value (grey) or 3"));
+    CHECK_THAT(error_of("newmtl grey\nKd -0.5 0.5 0.5\n"), Contains("is negative"));
+    rad::Scene scene;
+    CHECK(load_with("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\n", {}, &scene, nullptr,
+                    "newmtl grey\nKd 0.9\nKa 0.1 0.2 0.3 # a comment\n") == "no error");
+    CHECK(scene.materials[0].reflectance == radfmt::Rgb{{0.9, 0.9, 0.9}});
+}
+
+TEST_CASE("an OBJ starting with a UTF-8 byte-order mark keeps its first vertex") {
+    const auto dir = temp_dir("bom");
+    write_text(dir / "scene.mtl", kGreyMtl);
+    write_text(dir / "scene.obj", "\xEF\xBB\xBFv 0 0 0\nv 2 0 0\nv 0 2 0\nv 9 9 9\nmtllib "
+                                  "scene.mtl\nusemtl grey\nf 1 2 3\n");
+    const auto scene = rad::load_obj(dir / "scene.obj");
+    REQUIRE(scene.vertices.size() == 4);
+    REQUIRE(scene.polygons.size() == 1);
+    const auto mesh = rad::subdivide(scene, {});
+    CHECK(mesh.total_area() == Approx(2)); // vertices 1 2 3, not 2 3 4
+}

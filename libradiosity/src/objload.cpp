@@ -11,7 +11,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -98,6 +100,7 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
     bool have_material = false;
     while (std::getline(in, line)) {
         ++number;
+        if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3); // UTF-8 BOM
         while (!line.empty() && (line.back() == '\r' || line.back() == '\\')) line.pop_back();
         std::istringstream words(line);
         std::string keyword;
@@ -175,12 +178,18 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
 }
 
 // One MTL file as exporters write it, made safe for tinyobjloader: "newmtl  name  " with
-// repeated or trailing whitespace names "name". Also notes which materials state a Kd.
+// repeated or trailing whitespace names "name"; colours (Ka, Kd, Ks, Ke, Tf) are checked with
+// the chain's number grammar (tinyobjloader reads "abc" or "nan" as 0, and a light silently
+// goes out) and a single value means grey ("Kd 0.9" is 0.9 0.9 0.9, the MTL convention, not
+// 0.9 0 0). Also notes which materials state a Kd.
 std::string normalised_mtl(const fs::path& path, std::set<std::string>& states_kd) {
     std::ifstream in(path);
     std::ostringstream out;
     std::string line, current;
+    int number = 0;
     while (std::getline(in, line)) {
+        ++number;
+        if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3); // UTF-8 BOM
         const auto text = trim(line);
         std::istringstream words(text);
         std::string keyword;
@@ -192,7 +201,33 @@ std::string normalised_mtl(const fs::path& path, std::set<std::string>& states_k
             out << "newmtl " << current << '\n';
             continue;
         }
-        if (keyword == "Kd") states_kd.insert(current);
+        if (keyword == "Ka" || keyword == "Kd" || keyword == "Ks" || keyword == "Ke" ||
+            keyword == "Tf") {
+            std::vector<double> values;
+            for (std::string token; words >> token;) {
+                if (token[0] == '#') break; // a comment after the values
+                double value = 0;
+                if (spells_non_finite(token) || !parse_number(token, value))
+                    throw InputError(FileLoc{path.string(), number},
+                                     keyword + " value '" + token +
+                                         "' is not a finite decimal number (spectral and xyz "
+                                         "colours are not read)");
+                if (value < 0)
+                    throw InputError(FileLoc{path.string(), number},
+                                     keyword + " value " + token + " is negative");
+                values.push_back(value);
+            }
+            if (values.size() != 1 && values.size() != 3)
+                throw InputError(FileLoc{path.string(), number},
+                                 keyword + " needs 1 value (grey) or 3 (r g b), not " +
+                                     std::to_string(values.size()));
+            if (values.size() == 1) values.assign(3, values[0]);
+            if (keyword == "Kd") states_kd.insert(current);
+            char rgb[128];
+            std::snprintf(rgb, sizeof rgb, " %.17g %.17g %.17g", values[0], values[1], values[2]);
+            out << keyword << rgb << '\n';
+            continue;
+        }
         out << text << '\n';
     }
     return out.str();
@@ -267,7 +302,12 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> used_materials;
     std::string warn, err;
-    std::ifstream obj(path);
+    // The OBJ as text, without a UTF-8 byte-order mark (which would hide the first line's
+    // keyword from tinyobjloader, drop a vertex and shift every index after it).
+    std::ifstream file(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+    std::istringstream obj(std::move(text));
     PreloadedMaterials reader(materials, material_index);
     if (!tinyobj::LoadObj(&attrib, &shapes, &used_materials, &warn, &err, &obj, &reader,
                           /*triangulate=*/false, /*default_vcols_fallback=*/false))
