@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <functional>
 #include <limits>
 
 using namespace testing_helpers;
@@ -267,4 +268,64 @@ TEST_CASE("the kind table names every kind once, with its CSV columns") {
         CHECK_FALSE(k.csv_columns.empty());
     }
     CHECK(names == std::vector<std::string>{"mesh", "formfactors", "radiosity"});
+}
+
+TEST_CASE("checksum-valid files with nonsense values are refused by the readers") {
+    const auto dir = temp_dir("hostile");
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    auto mesh_error = [&](const std::function<void(radfmt::MeshData&)>& spoil) {
+        auto mesh = small_mesh();
+        spoil(mesh);
+        radfmt::write_mesh(dir / "h.mesh", header_for("rad-mesh"), mesh);
+        try {
+            radfmt::read_mesh(dir / "h.mesh");
+        } catch (const radfmt::FormatError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    CHECK_THAT(mesh_error([&](auto& m) { m.vertices[1][2] = nan; }),
+               Contains("h.mesh") && Contains("vertex 1 is not a finite point"));
+    CHECK_THAT(mesh_error([&](auto& m) { m.patches[1].area = 0; }),
+               Contains("patch 1 has a non-positive area"));
+    CHECK_THAT(mesh_error([&](auto& m) {
+                   m.patches[0].normal = {0, 0, 2};
+               }),
+               Contains("patch 0") && Contains("unit length"));
+    CHECK_THAT(mesh_error([&](auto& m) { m.materials[1].emission[0] = -1; }),
+               Contains("material 'lamp' has a negative or non-finite"));
+    CHECK_THAT(mesh_error([&](auto& m) { m.materials[0].reflectance[2] = nan; }),
+               Contains("material 'grey'"));
+    CHECK(mesh_error([](auto&) {}) == "no error");
+
+    radfmt::FormFactorData ff;
+    ff.patch_count = 2;
+    ff.row_start = {0, 1, 2};
+    ff.columns = {1, 0};
+    ff.back_fraction = {0, 0};
+    for (float bad : {std::numeric_limits<float>::quiet_NaN(), -0.25f,
+                      std::numeric_limits<float>::infinity(), 7.0f}) {
+        ff.values = {0.5f, bad};
+        radfmt::write_form_factors(dir / "h.ff", header_for("rad-ff"), ff);
+        CHECK_THROWS_WITH(radfmt::read_form_factors(dir / "h.ff"),
+                          Contains("h.ff") && Contains("form factor 1") && Contains("[0, 1]"));
+    }
+    for (double bad : {nan, -1.0, std::numeric_limits<double>::infinity()}) {
+        radfmt::RadiosityData rad{{{{1, 1, 1}}, {{bad, 0, 0}}}};
+        radfmt::write_radiosity(dir / "h.rad", header_for("rad-solve"), rad);
+        CHECK_THROWS_WITH(radfmt::read_radiosity(dir / "h.rad"),
+                          Contains("h.rad") && Contains("radiosity value 1"));
+    }
+    // A header whose counts disagree with its body.
+    auto header = header_for("rad-solve");
+    header.set("patches", "5"); // the writer sets the real count: write the body by hand
+    radfmt::BodyWriter w;
+    const std::vector<radfmt::Rgb> one{{{1, 1, 1}}};
+    w.u64(1);
+    w.array(one);
+    w.u64(0);
+    header.kind = radfmt::Kind::Radiosity;
+    radfmt::write_file(dir / "count.rad", header, w);
+    CHECK_THROWS_WITH(radfmt::read_radiosity(dir / "count.rad"),
+                      Contains("the header says patches=5 but the body holds 1"));
 }

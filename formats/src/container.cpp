@@ -117,7 +117,12 @@ void BodyReader::fail(const std::string& message) const {
 }
 
 void BodyReader::align() {
-    pos_ = std::min(body_.size(), (pos_ + 7) / 8 * 8);
+    const auto next = std::min(body_.size(), (pos_ + 7) / 8 * 8);
+    // Padding is zero: a writer never leaves anything else there.
+    for (auto at = pos_; at < next; ++at)
+        if (body_[at] != std::byte{0})
+            fail("non-zero padding at body offset " + std::to_string(at));
+    pos_ = next;
 }
 
 void BodyReader::need(std::uint64_t bytes, const char* what) {

@@ -23,6 +23,20 @@ std::string MeshData::geometry_hash() const {
     return "xxh64:" + hash_hex(w.hash());
 }
 
+namespace {
+bool finite(const Vec3& p) {
+    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
+// The header's count of `key` must be what the body holds.
+void require_count(const Header& header, const char* key, std::uint64_t count,
+                   const BodyReader& r) {
+    const auto* value = header.find(key);
+    if (value && *value != std::to_string(count))
+        r.fail(std::string("the header says ") + key + "=" + *value + " but the body holds " +
+               std::to_string(count));
+}
+} // namespace
+
 static std::string number(double value) {
     char text[64];
     std::snprintf(text, sizeof text, "%.17g", value);
@@ -104,6 +118,18 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
         mesh.materials.push_back(std::move(m));
     }
     r.expect_end();
+    // Values a checksum cannot vouch for: a file can be valid and still hold nonsense.
+    require_count(file.header, "patches", n, r);
+    require_count(file.header, "vertices", nv, r);
+    for (std::uint64_t v = 0; v < nv; ++v)
+        if (!finite(mesh.vertices[v]))
+            r.fail("vertex " + std::to_string(v) + " is not a finite point");
+    for (auto& m : mesh.materials)
+        for (int k = 0; k < 3; ++k)
+            if (!(m.reflectance[k] >= 0 && std::isfinite(m.reflectance[k]) && m.emission[k] >= 0 &&
+                  std::isfinite(m.emission[k])))
+                r.fail("material '" + m.name +
+                       "' has a negative or non-finite reflectance or emission");
     mesh.patches.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         auto& p = mesh.patches[i];
@@ -122,6 +148,13 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
             p.centroid[k] = centroid[3 * i + k];
             p.normal[k] = normal[3 * i + k];
         }
+        const double norm2 =
+            p.normal[0] * p.normal[0] + p.normal[1] * p.normal[1] + p.normal[2] * p.normal[2];
+        if (!(p.area > 0 && std::isfinite(p.area)) || !finite(p.centroid) ||
+            !(std::abs(norm2 - 1) < 1e-6))
+            r.fail("patch " + std::to_string(i) +
+                   " has a non-positive area, a non-finite centroid or a normal that is not "
+                   "unit length");
     }
     if (header_out) *header_out = std::move(file.header);
     return mesh;
@@ -170,6 +203,14 @@ FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
     }
     for (auto c : ff.columns)
         if (c >= ff.patch_count) r.fail("column " + std::to_string(c) + " out of range");
+    // A form factor is a fraction of what leaves a patch: finite, in [0, 1] (a little over
+    // for estimator noise).
+    for (std::uint64_t k = 0; k < ff.values.size(); ++k)
+        if (!(ff.values[k] >= 0 && ff.values[k] <= 1.5f))
+            r.fail("form factor " + std::to_string(k) + " (" + std::to_string(ff.values[k]) +
+                   ") is not in [0, 1]");
+    require_count(file.header, "patches", ff.patch_count, r);
+    require_count(file.header, "nonzeros", nnz, r);
     if (header_out) *header_out = std::move(file.header);
     return ff;
 }
@@ -210,6 +251,12 @@ RadiosityData read_radiosity(const fs::path& path, Header* header_out) {
         rad.group_radiosity = r.array<Rgb>(n * groups, "light group radiosity");
     }
     r.expect_end();
+    require_count(file.header, "patches", n, r);
+    for (const auto* values : {&rad.radiosity, &rad.group_radiosity})
+        for (std::size_t i = 0; i < values->size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                if (!((*values)[i][c] >= 0 && std::isfinite((*values)[i][c])))
+                    r.fail("radiosity value " + std::to_string(i) + " is negative or not finite");
     if (header_out) *header_out = std::move(file.header);
     return rad;
 }
