@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <limits>
+#include <unistd.h>
 
 using namespace testing_helpers;
 using Catch::Matchers::Contains;
@@ -328,4 +329,17 @@ TEST_CASE("checksum-valid files with nonsense values are refused by the readers"
     radfmt::write_file(dir / "count.rad", header, w);
     CHECK_THROWS_WITH(radfmt::read_radiosity(dir / "count.rad"),
                       Contains("the header says patches=5 but the body holds 1"));
+}
+
+TEST_CASE("a symlink planted at the temporary name does not redirect the write") {
+    const auto dir = temp_dir("symlink");
+    const auto victim = dir / "victim.txt";
+    write_text(victim, "precious");
+    // The writer's temporary name is predictable: ".NAME.tmp.PID" beside the output.
+    const auto temp = dir / (".out.mesh.tmp." + std::to_string(::getpid()));
+    fs::create_symlink(victim, temp);
+    radfmt::write_mesh(dir / "out.mesh", header_for("rad-mesh"), small_mesh());
+    CHECK(read_all(victim) == "precious");
+    CHECK(radfmt::read_mesh(dir / "out.mesh").patches.size() == 2);
+    CHECK_FALSE(fs::exists(fs::symlink_status(temp)));
 }

@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
@@ -253,6 +256,21 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
         g_temp_active = true;
     }
     try {
+        // Create the temporary file ourselves, exclusively and without following a symlink:
+        // its name is predictable, and a link planted there must not send our bytes (root's,
+        // perhaps) into someone else's file. Whatever is there (a stale file, a planted link)
+        // is removed first; the link's target is never touched.
+        int fd =
+            ::open(temp_text.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (fd < 0 && errno == EEXIST) {
+            ::unlink(temp_text.c_str());
+            fd = ::open(temp_text.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
+                        0666);
+        }
+        if (fd < 0)
+            throw WriteError(path.string() + ": cannot create the temporary file " + temp_text +
+                             ": " + std::strerror(errno));
+        ::close(fd);
         fill(temp);
         std::error_code ec;
         fs::rename(temp, target, ec);
