@@ -55,6 +55,12 @@ int main(int argc, char** argv) {
                    "Longest patch edge; repeat as GROUP=L for a per-group limit (default: no "
                    "subdivision)");
     app.add_option("--max-area", max_area, "Largest patch area; repeat as GROUP=A per group");
+    double max_patches = 2e7;
+    app.add_option("--max-patches", max_patches,
+                   "Refuse (before subdividing) when the limits would make more patches than "
+                   "this")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(1, 4e9));
     app.add_option("--planarity-tolerance", planarity,
                    "Largest distance of a face vertex from the face's plane, relative to the "
                    "face's size")
@@ -107,6 +113,7 @@ int main(int argc, char** argv) {
         parse_limits(max_area, "--max-area", options.max_area, options.max_area_by_group);
         options.planarity_tolerance = planarity;
         options.strict = strict;
+        options.max_patches = max_patches;
         obj_options.strict = strict;
         for (const auto& dir : mtl_paths) obj_options.mtl_paths.emplace_back(dir);
         if (!default_reflectance.empty()) {

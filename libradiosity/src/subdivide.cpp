@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <unordered_map>
 
@@ -250,6 +251,29 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
             classes.unite(ee[1], ee[2]);
         }
     }
+    // What the limits will cost, estimated before anything is made: about one patch per
+    // half square of the edge limit (or per area limit) plus one per edge segment of the
+    // outline. Counts are computed in double, so absurd limits cannot overflow.
+    double estimate = 0;
+    for (const auto& e : elements) {
+        const auto& group = scene.groups[e.group];
+        const double edge = limit_for(options.max_edge_by_group, group, options.max_edge);
+        const double area = limit_for(options.max_area_by_group, group, options.max_area);
+        double perimeter = 0;
+        for (int k = 0; k < e.corners; ++k)
+            perimeter += length(scene.vertices[e.v[(k + 1) % e.corners]] - scene.vertices[e.v[k]]);
+        double pieces = 1;
+        if (edge > 0) pieces = std::max(pieces, e.area / (0.5 * edge * edge) + perimeter / edge);
+        if (area > 0) pieces = std::max(pieces, e.area / area);
+        estimate += pieces;
+    }
+    if (!(estimate <= options.max_patches)) {
+        char text[160];
+        std::snprintf(text, sizeof text, "about %.3g patches, more than --max-patches %.3g",
+                      estimate, options.max_patches);
+        throw InputError(scene.path + ": these limits (--max-edge, --max-area) would make " + text +
+                         " (use larger limits, or raise --max-patches)");
+    }
     std::vector<std::size_t> segments(edges.size(), 1);
     for (std::size_t i = 0; i < edges.size(); ++i) {
         if (edge_limit[i] <= 0) continue;
@@ -272,12 +296,23 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
             auto& b = segments[classes.find(element_edges[f][1])];
             const double pieces = e.corners == 4 ? double(a) * double(b) : double(a) * double(a);
             if (e.area / pieces <= limit * (1 + 1e-9)) continue;
+            const double needed = e.area / limit;
             if (e.corners == 3 || &a == &b) {
-                a = static_cast<std::size_t>(std::ceil(std::sqrt(e.area / limit) - 1e-9));
-            } else if (a <= b) {
-                ++a;
+                a = static_cast<std::size_t>(std::ceil(std::sqrt(needed) - 1e-9));
             } else {
-                ++b;
+                // Jump to just under square patches of the limit's area, then add one piece
+                // at a time along the direction whose patches are longest: the fewest patches
+                // that meet the limit, in passes that do not grow with how many are needed.
+                const auto& p = scene.vertices;
+                const double u =
+                    0.5 * (length(p[e.v[1]] - p[e.v[0]]) + length(p[e.v[2]] - p[e.v[3]]));
+                const double v =
+                    0.5 * (length(p[e.v[3]] - p[e.v[0]]) + length(p[e.v[2]] - p[e.v[1]]));
+                const double side = std::sqrt(limit);
+                const auto a0 = a, b0 = b;
+                a = std::max(a, static_cast<std::size_t>(std::floor(u / side)));
+                b = std::max(b, static_cast<std::size_t>(std::floor(v / side)));
+                if (a == a0 && b == b0) (u / double(a) >= v / double(b) ? a : b) += 1;
             }
             changed = true;
         }

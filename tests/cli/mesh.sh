@@ -119,4 +119,17 @@ err=$("$BIN/rad-mesh" "$GLTF" -o gltf.mesh --max-edge 0.5 --emission-scale 3 2>&
 "$BIN/rad-solve" gltf.mesh gltf.ff -o gltf.rad -q --reflectance lamp=0.5 || fail "glTF solve"
 printf 'not a scene' > broken.glb
 expect_error "broken.glb: cannot read the scene" out5.mesh "$BIN/rad-mesh" broken.glb -o out5.mesh
+# Absurd limits are refused up front with the estimate, not after filling the memory (or
+# overflowing a count, or looping): --max-patches bounds them.
+for limit in "--max-edge 1e-21" "--max-edge 1e-4" "--max-area 1e-20"; do
+  # shellcheck disable=SC2086
+  err=$(timeout 20 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o huge.mesh $limit 2>&1); rc=$?
+  [ $rc -eq 1 ] || fail "$limit: exit $rc (wanted 1): $err"
+  grep -q "would make about .* patches, more than --max-patches 2e+07" <<<"$err" || fail "$limit: $err"
+  [ ! -e huge.mesh ] || fail "$limit left an output"
+done
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o ok.mesh --max-edge 0.05 --max-patches 1000000 -q 2>/dev/null || fail "a sane limit refused"
+err=$("$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o few.mesh --max-edge 0.05 --max-patches 100 2>&1) && fail "--max-patches 100 accepted ~800 patches"
+grep -q "more than --max-patches 100" <<<"$err" || fail "--max-patches message: $err"
 finish
+

@@ -91,6 +91,9 @@ struct SubdivisionOptions {
     std::map<std::string, double> max_area_by_group;
     double planarity_tolerance = 1e-3; // relative to the face's size
     bool strict = false;               // refuse non-planar faces instead of splitting them
+    // Refuse before subdividing when the limits would make more patches than this (a typo
+    // such as --max-edge 1e-4 would otherwise take all memory).
+    double max_patches = 2e7;
 };
 
 struct SubdivisionReport {
