@@ -112,7 +112,9 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
     }
     rtcCommitScene(impl_->scene);
     impl_->raise_if_failed("building the ray scene");
-    epsilon_ = std::max(1e-9, 1e-5 * length(hi - lo));
+    // Relative to the scene: a fixed floor would swallow a scene measured in nanometres.
+    const double size = length(hi - lo);
+    epsilon_ = size > 0 ? 1e-5 * size : 1e-9;
 }
 
 RayScene::~RayScene() {

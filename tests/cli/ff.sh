@@ -28,4 +28,17 @@ help=$("$BIN/rad-ff" --help)
 for m in analytic pairwise hemisphere; do grep -q "$m:" <<<"$help" || fail "--help lacks $m"; done
 expect_error "" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --method radiance
 expect_error "" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --threads -1
+# Scale: the same box in nanometres and in gigametres has the same form factors (ray offsets
+# are relative to the scene; a fixed 1e-9 offset gave a nanometre box none at all).
+declare -A sum
+for scale in 1e-9 1 1e9; do
+  mkdir -p "$TMP/s$scale"
+  awk -v s=$scale '/^v / { printf "v %.17g %.17g %.17g\n", $2 * s, $3 * s, $4 * s; next } { print }' \
+    "$SRC/scenes/cornell/cornell.obj" > "$TMP/s$scale/cornell.obj"
+  cp "$SRC/scenes/cornell/cornell.mtl" "$TMP/s$scale/"
+  "$BIN/rad-mesh" "$TMP/s$scale/cornell.obj" -o "$TMP/s$scale.mesh" -q 2>/dev/null || fail "mesh at scale $scale"
+  sum[$scale]=$("$BIN/rad-ff" "$TMP/s$scale.mesh" -o "$TMP/s$scale.ff" --method hemisphere --rays 500 2>&1 | sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p')
+done
+[ "${sum[1e-9]}" = "${sum[1]}" ] && [ "${sum[1e9]}" = "${sum[1]}" ] || fail "row sums change with scale: ${sum[1e-9]} ${sum[1]} ${sum[1e9]}"
 finish
+
