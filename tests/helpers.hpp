@@ -2,6 +2,7 @@
 #pragma once
 #include "radfmt/kinds.hpp"
 #include "radiosity/scene.hpp"
+#include "radiosity/vec.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -54,6 +55,35 @@ inline radfmt::MeshData mesh_from_obj(const std::string& obj, double max_edge = 
     rad::SubdivisionOptions options;
     options.max_edge = max_edge;
     return rad::subdivide(scene_from_obj(obj), options);
+}
+
+// Appends one face to OBJ text: "g GROUP" (when given), "usemtl MATERIAL", its vertices and
+// an 'f' line over them; `count` is the number of vertices written so far. Appended piece by
+// piece (GCC 12 warns falsely about "literal" + string&&).
+inline void append_obj_face(std::string& obj, int& count, const std::vector<rad::Vec3>& corners,
+                            const std::string& material, const std::string& group = "") {
+    if (!group.empty()) {
+        obj += "g ";
+        obj += group;
+        obj += '\n';
+    }
+    obj += "usemtl ";
+    obj += material;
+    obj += '\n';
+    for (const auto& c : corners) {
+        obj += 'v';
+        for (double x : c) {
+            obj += ' ';
+            obj += std::to_string(x);
+        }
+        obj += '\n';
+    }
+    obj += 'f';
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+        obj += ' ';
+        obj += std::to_string(++count);
+    }
+    obj += '\n';
 }
 
 } // namespace testing_helpers

@@ -21,32 +21,16 @@ const std::string kMaterials = "newmtl wall\nKd 0.6 0.55 0.5\nnewmtl lamp\nKd 0.
 radfmt::MeshData room() {
     std::string obj;
     int count = 0;
-    auto quad = [&](std::array<rad::Vec3, 4> c, const char* material) {
-        obj += "usemtl ";
-        obj += material;
-        obj += '\n';
-        for (const auto& p : c) {
-            obj += 'v';
-            for (double x : p) {
-                obj += ' ';
-                obj += std::to_string(x);
-            }
-            obj += '\n';
-        }
-        obj += 'f';
-        for (int k = 0; k < 4; ++k) {
-            obj += ' ';
-            obj += std::to_string(++count);
-        }
-        obj += '\n';
+    auto quad = [&](std::vector<rad::Vec3> c, const char* material) {
+        append_obj_face(obj, count, c, material);
     };
-    quad({{{0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0}}}, "wall");        // floor, up
-    quad({{{0, 2, 0}, {2, 2, 0}, {2, 2, 2}, {0, 2, 2}}}, "wall");        // ceiling, down
-    quad({{{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}}}, "window");      // back, +z
-    quad({{{0, 0, 2}, {0, 2, 2}, {2, 2, 2}, {2, 0, 2}}}, "wall");        // front, -z
-    quad({{{0, 0, 0}, {0, 2, 0}, {0, 2, 2}, {0, 0, 2}}}, "dark");        // left, +x
-    quad({{{2, 0, 0}, {2, 0, 2}, {2, 2, 2}, {2, 2, 0}}}, "wall");        // right, -x
-    quad({{{0.7, 1.99, 0.7}, {1.3, 1.99, 0.7}, {1.3, 1.99, 1.3}, {0.7, 1.99, 1.3}}}, "lamp");
+    quad({{0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0}}, "wall");   // floor, up
+    quad({{0, 2, 0}, {2, 2, 0}, {2, 2, 2}, {0, 2, 2}}, "wall");   // ceiling, down
+    quad({{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}}, "window"); // back, +z
+    quad({{0, 0, 2}, {0, 2, 2}, {2, 2, 2}, {2, 0, 2}}, "wall");   // front, -z
+    quad({{0, 0, 0}, {0, 2, 0}, {0, 2, 2}, {0, 0, 2}}, "dark");   // left, +x
+    quad({{2, 0, 0}, {2, 0, 2}, {2, 2, 2}, {2, 2, 0}}, "wall");   // right, -x
+    quad({{0.7, 1.99, 0.7}, {1.3, 1.99, 0.7}, {1.3, 1.99, 1.3}, {0.7, 1.99, 1.3}}, "lamp");
     rad::SubdivisionOptions options;
     options.max_edge = 0.5;
     return rad::subdivide(scene_from_obj(obj, kMaterials), options);
@@ -124,7 +108,8 @@ TEST_CASE("light groups: --group definitions, errors, and mixing errors") {
                       Contains("already in group 'a'"));
     CHECK_THROWS_WITH(rad::light_groups(mesh, {"a=lamp", "a=window"}),
                       Contains("'a' is defined twice"));
-    CHECK_THROWS_WITH(rad::light_groups(mesh, {"walls=wall"}), Contains("none of its materials emits"));
+    CHECK_THROWS_WITH(rad::light_groups(mesh, {"walls=wall"}),
+                      Contains("none of its materials emits"));
     CHECK_THROWS_WITH(rad::light_groups(mesh, {"nothing"}), Contains("NAME=MATERIAL"));
 
     radfmt::RadiosityData plain{{{{1, 1, 1}}}};

@@ -32,26 +32,7 @@ std::string room_with_sheet(bool mirrored) {
             for (auto& c : corners) c[1] = 2 - c[1];
             std::reverse(corners.begin(), corners.end()); // a mirror turns the winding
         }
-        // Appended piece by piece (GCC 12 warns falsely about "literal" + string&&).
-        obj += "g ";
-        obj += group;
-        obj += "\nusemtl ";
-        obj += material;
-        obj += '\n';
-        for (const auto& c : corners) {
-            obj += 'v';
-            for (double x : c) {
-                obj += ' ';
-                obj += std::to_string(x);
-            }
-            obj += '\n';
-        }
-        obj += 'f';
-        for (std::size_t k = 0; k < corners.size(); ++k) {
-            obj += ' ';
-            obj += std::to_string(++count);
-        }
-        obj += '\n';
+        append_obj_face(obj, count, corners, material, group);
     };
     const bool m = mirrored;
     face({{0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0}}, "floor", "grey", m);   // up

@@ -140,9 +140,9 @@ int main(int argc, char** argv) {
                 std::vector<radfmt::Rgb> group_values(radiosity.radiosity.size());
                 for (std::size_t i = 0; i < group_values.size(); ++i)
                     group_values[i] = radiosity.of_group(i, g);
-                group_images.push_back(rad::render(
-                    mesh, rad::corner_colours(mesh, group_values, mode, crease), view, width,
-                    height, aa));
+                group_images.push_back(
+                    rad::render(mesh, rad::corner_colours(mesh, group_values, mode, crease), view,
+                                width, height, aa));
             }
             for (std::size_t g = 0; g < group_images.size(); ++g)
                 exr_layers.push_back({radiosity.group_names[g], &group_images[g]});

@@ -24,16 +24,10 @@ std::vector<std::string> material_warnings(const radfmt::MeshData& mesh,
         if (!used[m]) continue;
         const bool emits = brightest(mat.emission) > 0;
         if (!emits && brightest(source.ambient) > 1) {
-            std::string line = "material '";
-            line += mat.name;
-            line += "' has Ka ";
-            line += rgb_text(source.ambient);
-            line += " (brighter than 1) and no Ke: did you mean Ke? (rad-solve --emission ";
-            line += mat.name;
-            line += "=";
-            line += rgb_text(source.ambient);
-            line += ")";
-            lines.push_back(std::move(line));
+            lines.push_back(material_hint(mat.name,
+                                          "has Ka " + rgb_text(source.ambient) +
+                                              " (brighter than 1) and no Ke: did you mean Ke?",
+                                          "", "emission", source.ambient));
         }
         // Illumination models 3 to 9 are reflection and refraction (MTL spec); a strong Ks
         // or Tf over a weak Kd says the same: radiosity keeps only the diffuse part.

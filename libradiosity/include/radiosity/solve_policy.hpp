@@ -21,6 +21,12 @@ MaterialOverride parse_material_override(const std::string& spec, const std::str
 // "0.5,0.25,1" as the header records colours.
 std::string rgb_text(const radfmt::Rgb& value);
 
+// A line about a material with the rad-solve option that would change it:
+// "material 'NAME' <what> (<lead> rad-solve --OPTION NAME=r,g,b)".
+std::string material_hint(const std::string& material, const std::string& what,
+                          const std::string& lead, const std::string& option,
+                          const radfmt::Rgb& value);
+
 struct SolveRequest {
     std::string method = "gs";
     std::vector<std::string> emission_overrides;    // MATERIAL=r,g,b

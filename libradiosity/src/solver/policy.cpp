@@ -73,6 +73,28 @@ void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& reques
     }
 }
 
+std::string material_hint(const std::string& material, const std::string& what,
+                          const std::string& lead, const std::string& option,
+                          const radfmt::Rgb& value) {
+    std::string line = "material '";
+    line += material;
+    line += "' ";
+    line += what;
+    line += " (";
+    if (!lead.empty()) {
+        line += lead;
+        line += ' ';
+    }
+    line += "rad-solve --";
+    line += option;
+    line += ' ';
+    line += material;
+    line += '=';
+    line += rgb_text(value);
+    line += ')';
+    return line;
+}
+
 std::vector<std::string> reflectance_problems(const radfmt::MeshData& mesh) {
     std::vector<bool> used(mesh.materials.size(), false);
     for (const auto& p : mesh.patches) used[p.material] = true;
@@ -83,16 +105,8 @@ std::vector<std::string> reflectance_problems(const radfmt::MeshData& mesh) {
         if (mat.reflectance[0] < 1 && mat.reflectance[1] < 1 && mat.reflectance[2] < 1) continue;
         radfmt::Rgb fixed = mat.reflectance;
         for (auto& v : fixed) v = std::min(v, 0.95);
-        std::string line = "material '";
-        line += mat.name;
-        line += "' has reflectance ";
-        line += rgb_text(mat.reflectance);
-        line += " (fix: rad-solve --reflectance ";
-        line += mat.name;
-        line += "=";
-        line += rgb_text(fixed);
-        line += ")";
-        lines.push_back(std::move(line));
+        lines.push_back(material_hint(mat.name, "has reflectance " + rgb_text(mat.reflectance),
+                                      "fix:", "reflectance", fixed));
     }
     return lines;
 }
