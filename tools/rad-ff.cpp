@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-ff", [&] {
+        rad::tool::check_outputs({input}, {{"-o", output}});
         options = rad::resolve_form_factor_options(options);
         const std::uint64_t limit =
             max_memory.empty() ? static_cast<std::uint64_t>(0.8 * rad::physical_memory_bytes())

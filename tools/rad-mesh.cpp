@@ -108,6 +108,7 @@ int main(int argc, char** argv) {
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-mesh", [&] {
+        rad::tool::check_outputs({input}, {{"-o", output}});
         rad::SubdivisionOptions options;
         parse_limits(max_edge, "--max-edge", options.max_edge, options.max_edge_by_group);
         parse_limits(max_area, "--max-area", options.max_area, options.max_area_by_group);

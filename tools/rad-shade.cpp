@@ -70,6 +70,8 @@ int main(int argc, char** argv) {
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-shade", [&] {
+        rad::tool::check_outputs({mesh_path, rad_path},
+                                 {{"-o", output}, {"--png", png}, {"--ply", ply}});
         rad::ThreadLimit thread_limit(threads);
         if (view_text.empty() && view_file.empty())
             throw rad::InputError("give a camera with --view or --view-file");

@@ -113,6 +113,7 @@ int main(int argc, char** argv) {
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-solve", [&] {
+        rad::tool::check_outputs({mesh_path, ff_path}, {{"-o", output}, {"--log", log_path}});
         request.tolerance_given = app.count("--tolerance") > 0;
         const auto& solver = rad::solver(request.method);
         radfmt::Header mesh_header, ff_header;

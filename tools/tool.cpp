@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 namespace rad::tool {
@@ -100,6 +101,34 @@ std::uint64_t parse_size(const std::string& text, const std::string& option) {
     if (!(bytes >= 1) || bytes > 1e18)
         throw InputError(option + ": '" + text + "' must be between 1 B and 1e18 B");
     return static_cast<std::uint64_t>(bytes);
+}
+
+void check_outputs(const std::vector<std::string>& inputs,
+                   const std::vector<std::pair<std::string, std::string>>& outputs) {
+    namespace fs = std::filesystem;
+    // The same file, whether or not it exists yet, however it is spelled.
+    auto same = [](const std::string& a, const std::string& b) {
+        std::error_code ec;
+        if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+        return fs::weakly_canonical(fs::absolute(a), ec) ==
+               fs::weakly_canonical(fs::absolute(b), ec);
+    };
+    for (std::size_t k = 0; k < outputs.size(); ++k) {
+        const auto& [option, path] = outputs[k];
+        if (path.empty()) continue;
+        const fs::path target(path);
+        const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+        if (!fs::is_directory(folder))
+            throw InputError(option + " " + path + ": the folder '" + folder.string() +
+                             "' does not exist (nothing was computed)");
+        for (const auto& input : inputs)
+            if (!input.empty() && same(input, path))
+                throw InputError(option + " " + path +
+                                 " is also an input of this run: it would be overwritten");
+        for (std::size_t j = 0; j < k; ++j)
+            if (!outputs[j].second.empty() && same(outputs[j].second, path))
+                throw InputError(option + " and " + outputs[j].first + " both write " + path);
+    }
 }
 
 } // namespace rad::tool

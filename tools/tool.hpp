@@ -23,6 +23,12 @@ int run_tool(const char* tool, const std::function<int()>& body);
 // with NaN is false), so real-valued options use this instead.
 CLI::Validator finite_range(double lo, double hi);
 
+// Checks, before any work, that every output can be written where it is going and does not
+// overwrite an input or another output of the same run. `inputs` are paths; `outputs` are
+// (option, path) pairs, empty paths skipped. Throws InputError naming the options.
+void check_outputs(const std::vector<std::string>& inputs,
+                   const std::vector<std::pair<std::string, std::string>>& outputs);
+
 // "name1, name2 or name3" for help texts.
 std::string one_of(const std::vector<std::string>& names);
 

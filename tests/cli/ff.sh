@@ -40,5 +40,12 @@ for scale in 1e-9 1 1e9; do
   sum[$scale]=$("$BIN/rad-ff" "$TMP/s$scale.mesh" -o "$TMP/s$scale.ff" --method hemisphere --rays 500 2>&1 | sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p')
 done
 [ "${sum[1e-9]}" = "${sum[1]}" ] && [ "${sum[1e9]}" = "${sum[1]}" ] || fail "row sums change with scale: ${sum[1e-9]} ${sum[1]} ${sum[1e9]}"
+# Outputs checked before any work: a missing folder, an input as output.
+err=$("$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/nofolder/x.ff" --method pairwise 2>&1); rc=$?
+[ $rc -eq 1 ] || fail "missing folder: exit $rc"
+grep -q "the folder '$TMP/nofolder' does not exist (nothing was computed)" <<<"$err" || fail "missing folder message: $err"
+cp "$TMP/c.mesh" "$TMP/keep.mesh"
+expect_error "is also an input of this run" "" "$BIN/rad-ff" "$TMP/keep.mesh" -o "$TMP/../$(basename "$TMP")/keep.mesh"
+cmp -s "$TMP/c.mesh" "$TMP/keep.mesh" || fail "the input was overwritten"
 finish
 

@@ -72,5 +72,6 @@ done
 expect_error "--mix: no light group 'sun'" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/g.mesh" "$TMP/g.rad" -o "$TMP/x.exr" --view-file "$RV" --mix sun=1
 expect_error "daylight, lamp" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/g.mesh" "$TMP/g.rad" -o "$TMP/x.exr" --view-file "$RV" --mix sun=1
 expect_error "has no light groups to mix" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.exr" --view-file "$VF" --mix light=2
+expect_error "--png and -o both write" "$TMP/both.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/both.exr" --png "$TMP/./both.exr" --view-file "$VF"
 finish
 

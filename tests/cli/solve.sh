@@ -58,5 +58,7 @@ err=$("$BIN/rad-solve" "$TMP/g.mesh" "$TMP/g.ff" -o "$TMP/g1.rad" --group all=da
 grep -q "1 light group(s): all" <<<"$err" || fail "--group summary: $err"
 expect_error "--group x: no material 'lamb'" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/g.mesh" "$TMP/g.ff" -o "$TMP/x.rad" --group x=lamb
 expect_error "no material emits light" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/g.mesh" "$TMP/g.ff" -o "$TMP/x.rad" --light-groups --emission lamp=0 --emission daylight=0
+expect_error "--log and -o both write" "$TMP/same.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/same.rad" --log "$TMP/same.rad"
+expect_error "is also an input of this run" "" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/c.ff"
 finish
 
