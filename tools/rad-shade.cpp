@@ -42,12 +42,15 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"average", "area", "crease", "flat"}));
     app.add_option("--crease-angle", crease,
                    "crease: largest normal angle smoothed across (degrees)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(0, 180));
     app.add_flag("--albedo", albedo,
                  "Show reflectance colours only, flat (the paper's Figure 1(a) and 4)");
     app.add_option("--png", png, "Also write an sRGB tone-mapped PNG preview");
     app.add_option("--ply", ply, "Also write the smoothed mesh with vertex colours as PLY");
-    app.add_option("--exposure", exposure, "Linear multiplier for PNG/PLY (default: automatic)");
+    app.add_option("--exposure", exposure,
+                   "Linear multiplier for PNG/PLY (default, or 0: automatic)")
+        ->check(rad::tool::finite_range(0, 1e30));
     app.add_option("--threads", threads, "Worker threads (0: all cores)")
         ->capture_default_str()
         ->check(CLI::Range(0, rad::ThreadLimit::max_threads()));

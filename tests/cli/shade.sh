@@ -73,5 +73,9 @@ expect_error "--mix: no light group 'sun'" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/g
 expect_error "daylight, lamp" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/g.mesh" "$TMP/g.rad" -o "$TMP/x.exr" --view-file "$RV" --mix sun=1
 expect_error "has no light groups to mix" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.exr" --view-file "$VF" --mix light=2
 expect_error "--png and -o both write" "$TMP/both.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/both.exr" --png "$TMP/./both.exr" --view-file "$VF"
+# Nonsense option values are refused with the allowed range.
+expect_error "--crease-angle: 'nan' is not a number in [0, 180]" "$TMP/n.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/n.exr" --view-file "$VF" --crease-angle nan
+expect_error "--exposure: 'nan' is not a number in [0, 1e+30]" "$TMP/n.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/n.exr" --view-file "$VF" --exposure nan
+expect_error "--exposure: '-1'" "$TMP/n.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/n.exr" --view-file "$VF" --exposure -1
 finish
 

@@ -66,7 +66,13 @@ void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& reques
         throw InputError("--emission-scale must be finite and non-negative");
     if (request.emission_scale != 1) {
         for (auto& m : mesh.materials)
-            for (auto& e : m.emission) e *= request.emission_scale;
+            for (auto& e : m.emission) {
+                e *= request.emission_scale;
+                if (!std::isfinite(e))
+                    throw InputError("--emission-scale " + std::to_string(request.emission_scale) +
+                                     " makes the emission of material '" + m.name +
+                                     "' overflow (a scale of at most about 1e300 / Ke is usable)");
+            }
         char scale[32];
         std::snprintf(scale, sizeof scale, "%.9g", request.emission_scale);
         header.set("override.emission_scale", scale);
