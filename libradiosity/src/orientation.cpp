@@ -13,7 +13,6 @@
 #include <cmath>
 #include <deque>
 #include <map>
-#include <numbers>
 #include <numeric>
 #include <unordered_map>
 
@@ -238,11 +237,9 @@ std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
     rays_mesh.vertices = scene.vertices;
     std::vector<std::size_t> face_of; // per triangle
     std::vector<double> triangle_area;
-    Box scene_box;
     for (std::size_t f = 0; f < n; ++f) {
         const auto& vs = scene.polygons[f].vertices;
         const auto pts = points_of(scene, scene.polygons[f]);
-        for (const auto& p : pts) scene_box.add(p);
         const Vec3 n2 = newell_normal(pts);
         if (vs.size() < 3 || length(n2) == 0) continue;
         for (std::size_t k = 1; k + 1 < vs.size(); ++k) {
@@ -306,10 +303,8 @@ std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
                 const Vec3 origin = a + (b - a) * u + (d - a) * v;
                 const Vec3 normal = side == 0 ? tri.normal : tri.normal * -1.0;
                 const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
-                const double u2 = rng.uniform(), phi = 2 * std::numbers::pi * rng.uniform();
-                const Vec3 dir = tu * (std::sqrt(u2) * std::cos(phi)) +
-                                 tv * (std::sqrt(u2) * std::sin(phi)) +
-                                 normal * std::sqrt(std::max(0.0, 1 - u2));
+                const double u2 = rng.uniform(), u3 = rng.uniform();
+                const Vec3 dir = cosine_direction(normal, tu, tv, u2, u3);
                 bool front = false;
                 const auto hit = rays.first_hit(origin, dir, front);
                 if (hit < 0) {

@@ -2,7 +2,9 @@
 #pragma once
 #include "radfmt/kinds.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace rad {
 using radfmt::Rgb;
@@ -40,6 +42,14 @@ inline bool finite(const Vec3& a) {
 inline Vec3 orthogonal(const Vec3& n) {
     return std::abs(n[0]) > 0.5 ? normalized(cross(n, Vec3{0, 1, 0}))
                                 : normalized(cross(n, Vec3{1, 0, 0}));
+}
+
+// A cosine-weighted direction about the unit normal n, whose frame tu, tv completes, for
+// u, v in [0, 1): Malley's method (a uniform point of the unit disc lifted to the sphere).
+inline Vec3 cosine_direction(const Vec3& n, const Vec3& tu, const Vec3& tv, double u, double v) {
+    const double radius = std::sqrt(u), phi = 2 * std::numbers::pi * v;
+    return tu * (radius * std::cos(phi)) + tv * (radius * std::sin(phi)) +
+           n * std::sqrt(std::max(0.0, 1 - u));
 }
 
 // Newell's method: a robust polygon normal whose length is twice the polygon's area.

@@ -22,9 +22,7 @@ void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint
         const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
         const double u3 = rng.uniform(), u4 = rng.uniform();
         const Vec3 origin = uniform_point(poly, cdf, u0, u1, u2);
-        const double radius = std::sqrt(u3), phi = 2 * kPi * u4;
-        const Vec3 dir = tu * (radius * std::cos(phi)) + tv * (radius * std::sin(phi)) +
-                         pi.normal * std::sqrt(std::max(0.0, 1 - u3));
+        const Vec3 dir = cosine_direction(pi.normal, tu, tv, u3, u4);
         bool front = false;
         const auto hit = context.scene.first_hit(origin, dir, front);
         log.record(hit == static_cast<std::int64_t>(i) ? -1 : hit, front);

@@ -48,10 +48,7 @@ class HemisphereKernel final : public RowKernel {
             double within = 0;
             const std::size_t tri = pick_fan_triangle(cdf, u0, &within);
             const Vec3 origin = fan_triangle_point(poly, tri, within, u1);
-            // Cosine-weighted direction: Malley's method.
-            const double radius = std::sqrt(u2), phi = 2 * kPi * u3;
-            const Vec3 dir = tu * (radius * std::cos(phi)) + tv * (radius * std::sin(phi)) +
-                             pi.normal * std::sqrt(std::max(0.0, 1 - u2));
+            const Vec3 dir = cosine_direction(pi.normal, tu, tv, u2, u3);
             bool front = false;
             const auto hit = context_.scene.first_hit(origin, dir, front);
             // A patch cannot see itself; a hit on itself (a warped quad) is no evidence.
