@@ -22,7 +22,7 @@ std::vector<std::string> material_warnings(const radfmt::MeshData& mesh,
         const auto& mat = mesh.materials[m];
         const auto& source = sources[m];
         if (!used[m]) continue;
-        const bool emits = brightest(mat.emission) > 0;
+        const bool emits = mat.emits();
         if (!emits && brightest(source.ambient) > 1) {
             lines.push_back(material_hint(mat.name,
                                           "has Ka " + rgb_text(source.ambient) +

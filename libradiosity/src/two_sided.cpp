@@ -69,9 +69,7 @@ TwoSidedReport make_two_sided(radfmt::MeshData& mesh, const std::vector<std::str
         for (int k = 0; k < n; ++k) back.corners[k] = front.corners[n - 1 - k];
         back.normal = front.normal * -1.0;
         const auto& material = mesh.materials[front.material];
-        const bool emits =
-            material.emission[0] > 0 || material.emission[1] > 0 || material.emission[2] > 0;
-        if (emits && !emission_on_both_sides) {
+        if (material.emits() && !emission_on_both_sides) {
             auto [it, added] = back_material.try_emplace(
                 front.material, static_cast<std::uint32_t>(mesh.materials.size()));
             if (added) {

@@ -34,6 +34,7 @@ struct Material {
     std::string name;
     Rgb reflectance{}; // rho, diffuse reflectance per channel
     Rgb emission{};    // E, emitted exitance in W/m^2
+    bool emits() const { return emission[0] > 0 || emission[1] > 0 || emission[2] > 0; }
 };
 
 // A patch is a planar triangle or quad over shared vertices (corner 3 is kNoVertex for

@@ -18,6 +18,9 @@ struct MaterialOverride {
 // option in messages.
 MaterialOverride parse_material_override(const std::string& spec, const std::string& option);
 
+// "grey, lamp, white": the mesh's material names, for messages.
+std::string material_names(const radfmt::MeshData& mesh);
+
 // "0.5,0.25,1" as the header records colours.
 std::string rgb_text(const radfmt::Rgb& value);
 

@@ -9,17 +9,6 @@
 
 namespace rad {
 
-namespace {
-bool emits(const radfmt::Material& m) {
-    return m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0;
-}
-std::string known_materials(const radfmt::MeshData& mesh) {
-    std::string list;
-    for (const auto& m : mesh.materials) list += (list.empty() ? "" : ", ") + m.name;
-    return list;
-}
-} // namespace
-
 std::vector<LightGroup> light_groups(const radfmt::MeshData& mesh,
                                      const std::vector<std::string>& specs) {
     std::vector<LightGroup> groups;
@@ -40,7 +29,7 @@ std::vector<LightGroup> light_groups(const radfmt::MeshData& mesh,
                                          [&](const auto& m) { return m.name == name; });
             if (it == mesh.materials.end())
                 throw InputError("--group " + group.name + ": no material '" + name +
-                                 "' (the mesh has: " + known_materials(mesh) + ")");
+                                 "' (the mesh has: " + material_names(mesh) + ")");
             const auto index = static_cast<std::uint32_t>(it - mesh.materials.begin());
             if (const auto t = taken.find(index); t != taken.end())
                 throw InputError("--group " + group.name + ": material '" + name +
@@ -49,13 +38,13 @@ std::vector<LightGroup> light_groups(const radfmt::MeshData& mesh,
             group.materials.push_back(index);
         }
         if (std::none_of(group.materials.begin(), group.materials.end(),
-                         [&](auto m) { return emits(mesh.materials[m]); }))
+                         [&](auto m) { return mesh.materials[m].emits(); }))
             throw InputError("--group " + group.name +
                              ": none of its materials emits (give one Ke, or --emission)");
         groups.push_back(std::move(group));
     }
     for (std::uint32_t m = 0; m < mesh.materials.size(); ++m) {
-        if (!used[m] || !emits(mesh.materials[m]) || taken.count(m)) continue;
+        if (!used[m] || !mesh.materials[m].emits() || taken.count(m)) continue;
         const auto& name = mesh.materials[m].name;
         for (const auto& g : groups)
             if (g.name == name)

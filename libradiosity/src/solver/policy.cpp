@@ -40,13 +40,18 @@ std::string rgb_text(const radfmt::Rgb& v) {
     return text;
 }
 
+std::string material_names(const radfmt::MeshData& mesh) {
+    std::string list;
+    for (const auto& m : mesh.materials) list += (list.empty() ? "" : ", ") + m.name;
+    return list;
+}
+
 namespace {
 radfmt::Material& find_material(radfmt::MeshData& mesh, const std::string& name) {
     for (auto& m : mesh.materials)
         if (m.name == name) return m;
-    std::string known;
-    for (const auto& m : mesh.materials) known += (known.empty() ? "" : ", ") + m.name;
-    throw InputError("no material '" + name + "' in the mesh (it has: " + known + ")");
+    throw InputError("no material '" + name + "' in the mesh (it has: " + material_names(mesh) +
+                     ")");
 }
 } // namespace
 
@@ -129,8 +134,7 @@ void check_reflectances(const radfmt::MeshData& mesh, bool force) {
 
 bool any_emitter(const radfmt::MeshData& mesh) {
     for (const auto& p : mesh.patches)
-        for (double e : mesh.materials[p.material].emission)
-            if (e > 0) return true;
+        if (mesh.materials[p.material].emits()) return true;
     return false;
 }
 
