@@ -118,13 +118,11 @@ int main(int argc, char** argv) {
         const auto& solver = rad::solver(request.method);
         radfmt::Header mesh_header, ff_header;
         auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
-        {
-            // The materials first: a refusal comes before the (large) form factors are read.
-            auto overridden = mesh;
-            radfmt::Header scratch;
-            rad::apply_material_overrides(overridden, request, scratch);
-            rad::check_reflectances(overridden, request.force);
-        }
+        // The materials first: a refusal comes before the (large) form factors are read. The
+        // override fields are kept to go into the header once it exists.
+        radfmt::Header overrides;
+        rad::apply_material_overrides(mesh, request, overrides);
+        rad::check_reflectances(mesh, request.force);
         const auto ff = radfmt::read_form_factors(ff_path, &ff_header);
         const auto geometry_hash =
             radfmt::require_same_geometry(ff_path, ff_header, ff.patch_count, mesh_path, mesh,
@@ -133,8 +131,7 @@ int main(int argc, char** argv) {
         const radfmt::Parent parents[] = {{mesh_path, &mesh_header}, {ff_path, &ff_header}};
         auto header = radfmt::derived_header(rad::tool_version("rad-solve"),
                                              radfmt::command_line(argc, argv), parents);
-        rad::apply_material_overrides(mesh, request, header);
-        rad::check_reflectances(mesh, request.force);
+        for (const auto& [key, value] : overrides.fields) header.set(key, value);
         for (const auto& warning :
              rad::solve_warnings(mesh, ff, ff_path, request.row_sum_tolerance))
             std::cerr << "rad-solve: warning: " << warning << '\n';
