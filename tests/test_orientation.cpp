@@ -39,6 +39,20 @@ std::string cube(double x, double y, double z, const std::string& group, std::ve
     return out;
 }
 
+// `obj` with every vertex coordinate x replaced by scale * x + shift.
+std::string scaled(const std::string& obj, double scale, double shift) {
+    std::string out;
+    std::istringstream lines(obj);
+    for (std::string line; std::getline(lines, line);) {
+        double a, b, c;
+        if (std::sscanf(line.c_str(), "v %lf %lf %lf", &a, &b, &c) == 3)
+            line = "v " + std::to_string(scale * a + shift) + " " +
+                   std::to_string(scale * b + shift) + " " + std::to_string(scale * c + shift);
+        out += line + "\n";
+    }
+    return out;
+}
+
 std::vector<rad::OrientationFinding> of_kind(const std::vector<rad::OrientationFinding>& all,
                                              Kind kind) {
     std::vector<rad::OrientationFinding> out;
@@ -52,19 +66,7 @@ TEST_CASE("an outward cube inside an inward room gives no finding") {
     int count = 0;
     std::string room = cube(-5, -5, -5, "room", {}, true, &count);
     // Scale the room up: 10 x 10 x 10 around the unit cube.
-    std::string obj;
-    for (std::size_t pos = 0; pos < room.size();) {
-        auto end = room.find('\n', pos);
-        auto line = room.substr(pos, end - pos);
-        if (line.rfind("v ", 0) == 0) {
-            double a, b, c;
-            std::sscanf(line.c_str(), "v %lf %lf %lf", &a, &b, &c);
-            line = "v " + std::to_string(10 * (a + 5) - 5) + " " +
-                   std::to_string(10 * (b + 5) - 5) + " " + std::to_string(10 * (c + 5) - 5);
-        }
-        obj += line + "\n";
-        pos = end + 1;
-    }
+    std::string obj = scaled(room, 10, 45);
     obj += cube(0, 0, 0, "box", {}, false, &count);
     const auto scene = scene_from_obj("usemtl grey\n" + obj);
     CHECK(rad::check_orientation(scene).empty());
@@ -75,19 +77,7 @@ TEST_CASE("a room stays a room when an object pokes a little through its wall") 
     // box no longer holds every vertex, but it is still the scene's enclosure.
     int count = 0;
     const std::string room = cube(-5, -5, -5, "room", {}, true, &count);
-    std::string obj;
-    for (std::size_t pos = 0; pos < room.size();) {
-        const auto end = room.find('\n', pos);
-        auto line = room.substr(pos, end - pos);
-        if (line.rfind("v ", 0) == 0) {
-            double a, b, c;
-            std::sscanf(line.c_str(), "v %lf %lf %lf", &a, &b, &c);
-            line = "v " + std::to_string(10 * (a + 5) - 5) + " " +
-                   std::to_string(10 * (b + 5) - 5) + " " + std::to_string(10 * (c + 5) - 5);
-        }
-        obj += line + "\n";
-        pos = end + 1;
-    }
+    std::string obj = scaled(room, 10, 45);            // 10 x 10 x 10 around the unit cube
     obj += cube(4.05, 0, 0, "box", {}, false, &count); // 5 cm through the wall at x = 5
     const auto scene = scene_from_obj("usemtl grey\n" + obj);
     for (const auto& f : rad::check_orientation(scene)) FAIL(rad::describe(f, scene));
@@ -176,16 +166,7 @@ TEST_CASE("a closed room facing outward around an object is found and turned inw
     int count = 0;
     std::string obj = "usemtl grey\n" + cube(-1, -1, -1, "room", {}, false, &count);
     // Scale the room to 4 x 4 x 4 around a unit cube.
-    std::string scaled;
-    std::istringstream lines(obj);
-    for (std::string line; std::getline(lines, line);) {
-        double a, b, c;
-        if (std::sscanf(line.c_str(), "v %lf %lf %lf", &a, &b, &c) == 3)
-            line = "v " + std::to_string(4 * a + 2) + " " + std::to_string(4 * b + 2) + " " +
-                   std::to_string(4 * c + 2);
-        scaled += line + "\n";
-    }
-    auto scene = scene_from_obj(scaled + cube(0, 0, 0, "box", {}, false, &count));
+    auto scene = scene_from_obj(scaled(obj, 4, 2) + cube(0, 0, 0, "box", {}, false, &count));
     const auto findings = rad::check_orientation(scene);
     REQUIRE(findings.size() == 1);
     CHECK(findings[0].kind == Kind::RoomOutward);
