@@ -343,3 +343,15 @@ TEST_CASE("a symlink planted at the temporary name does not redirect the write")
     CHECK(radfmt::read_mesh(dir / "out.mesh").patches.size() == 2);
     CHECK_FALSE(fs::exists(fs::symlink_status(temp)));
 }
+
+TEST_CASE("a header larger than readers accept is refused by the writer") {
+    const auto dir = temp_dir("bigheader");
+    auto header = header_for("rad-mesh");
+    header.provenance.assign(2000, std::string(1000, 'x')); // 2 MB of history
+    REQUIRE_THROWS_WITH(radfmt::write_mesh(dir / "big.mesh", header, small_mesh()),
+                        Contains("readers accept"));
+    CHECK_FALSE(fs::exists(dir / "big.mesh"));
+    header.provenance.resize(100); // 100 kB is fine
+    radfmt::write_mesh(dir / "ok.mesh", header, small_mesh());
+    CHECK(radfmt::read_mesh(dir / "ok.mesh").patches.size() == 2);
+}

@@ -6,6 +6,7 @@
 #include "radiosity/formfactor_method.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
+#include "radiosity/rays.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
@@ -58,13 +59,16 @@ int main(int argc, char** argv) {
         radfmt::Header mesh_header;
         const auto mesh = radfmt::read_mesh(input, &mesh_header);
         if (mesh.patches.empty()) throw rad::InputError(input + ": mesh has no patches");
+        rad::check_ray_precision(mesh.vertices, input);
         const auto need = rad::estimate_form_factor_memory(mesh, options);
         if (need > limit)
             throw rad::InputError(input + ": " + options.method + " form factors for " +
                                   std::to_string(mesh.patches.size()) + " patches need up to " +
                                   rad::human_bytes(double(need)) + ", more than --max-memory " +
                                   rad::human_bytes(double(limit)) +
-                                  " (use --method hemisphere, fewer --rays, or a coarser mesh)");
+                                  (options.method == "hemisphere"
+                                       ? " (use fewer --rays or a coarser mesh)"
+                                       : " (use --method hemisphere or a coarser mesh)"));
 
         rad::FormFactorStats stats;
         const auto ff = rad::compute_form_factors(mesh, options, &stats);

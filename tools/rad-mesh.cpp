@@ -5,6 +5,7 @@
 #include "radiosity/materials.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/orientation.hpp"
+#include "radiosity/rays.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/two_sided.hpp"
@@ -135,6 +136,12 @@ int main(int argc, char** argv) {
         std::vector<std::string> changes;
         rad::SceneReport obj_report;
         auto scene = rad::load_scene(input, obj_options, &obj_report);
+        {
+            std::vector<radfmt::Vec3> used; // unused vertices do not count
+            for (const auto& polygon : scene.polygons)
+                for (const auto v : polygon.vertices) used.push_back(scene.vertices[v]);
+            rad::check_ray_precision(used, input);
+        }
         for (const auto& lib : obj_report.missing_libraries)
             warn("material library " + lib + " (--mtl-path DIR adds a folder)");
         if (!obj_report.unknown_materials.empty()) {

@@ -1,8 +1,10 @@
 // rad-shade: mesh + radiosity + view -> linear OpenEXR image (+ PNG preview, PLY mesh).
 #include "radfmt/chain.hpp"
+#include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/light_groups.hpp"
+#include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/shade.hpp"
 #include "radiosity/version.hpp"
@@ -69,12 +71,18 @@ int main(int argc, char** argv) {
                    "show them as they are, or mark them in magenta (a face-orientation overlay)")
         ->capture_default_str()
         ->check(CLI::IsMember({"show", "mark"}));
+    std::string max_memory;
+    app.add_option("--max-memory", max_memory,
+                   "Refuse to start when the images would need more memory than this (e.g. 4G; "
+                   "default: 80% of physical memory)");
     app.add_flag("-q,--quiet", quiet, "No summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-shade", [&] {
         rad::tool::check_outputs({mesh_path, rad_path},
                                  {{"-o", output}, {"--png", png}, {"--ply", ply}});
+        // The image, its preview and the PLY land together or not at all.
+        radfmt::OutputBatch outputs;
         rad::ThreadLimit thread_limit(threads);
         if (view_text.empty() && view_file.empty())
             throw rad::InputError("give a camera with --view or --view-file");
@@ -103,6 +111,29 @@ int main(int argc, char** argv) {
             radfmt::require_same_geometry(rad_path, rad_header, values.size(), mesh_path, mesh,
                                           "run rad-ff and rad-solve on " + mesh_path + " again");
             chain = rad_header.chain();
+        }
+        // Checked before rendering: a huge -x/-y/--aa must not eat the machine first.
+        const std::uint64_t limit =
+            max_memory.empty() ? static_cast<std::uint64_t>(0.8 * rad::physical_memory_bytes())
+                               : rad::tool::parse_size(max_memory, "--max-memory");
+        const int images = 1 + (layers ? static_cast<int>(radiosity.group_count()) : 0);
+        const auto need = rad::estimate_render_memory(width, height, aa, images);
+        if (need > limit) {
+            std::string message = "a ";
+            message += std::to_string(width);
+            message += "x";
+            message += std::to_string(height);
+            message += " image at --aa ";
+            message += std::to_string(aa);
+            if (images > 1) {
+                message += " with ";
+                message += std::to_string(images - 1);
+                message += " layers";
+            }
+            message += " needs about " + rad::human_bytes(double(need)) +
+                       ", more than --max-memory " + rad::human_bytes(double(limit)) +
+                       " (use a smaller -x/-y or --aa)";
+            throw rad::InputError(message);
         }
         const auto mode = flat ? rad::Smoothing::Flat : rad::parse_smoothing(smooth);
         const auto corners = rad::corner_colours(mesh, values, mode, crease);
@@ -160,6 +191,7 @@ int main(int argc, char** argv) {
         rad::write_exr(output, image, attributes, exr_layers);
         if (!png.empty()) rad::write_png(png, image, scale);
         if (!ply.empty()) rad::write_ply(ply, mesh, corners, scale);
+        outputs.commit();
         if (!quiet)
             std::fprintf(stderr, "rad-shade: wrote %s (%dx%d, %s%s), exposure %.4g\n",
                          output.c_str(), width, height,

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <set>
@@ -113,7 +114,16 @@ int main(int argc, char** argv) {
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-solve", [&] {
-        rad::tool::check_outputs({mesh_path, ff_path}, {{"-o", output}, {"--log", log_path}});
+        if (!snapshot.empty()) snapshot_path(snapshot, 0); // validates the pattern first
+        const auto snapshot_iterations = parse_iteration_list(snapshot_at);
+        rad::tool::check_outputs({mesh_path, ff_path}, {{"-o", output}, {"--log", log_path}},
+                                 {{"--snapshot", snapshot, [&](long iteration) {
+                                       return snapshot_iterations.count(iteration) > 0 ||
+                                              (snapshot_every > 0 &&
+                                               iteration % snapshot_every == 0);
+                                   }}});
+        // All outputs (the result, the log, every snapshot) land together or not at all.
+        radfmt::OutputBatch outputs;
         request.tolerance_given = app.count("--tolerance") > 0;
         const auto& solver = rad::solver(request.method);
         radfmt::Header mesh_header, ff_header;
@@ -137,12 +147,10 @@ int main(int argc, char** argv) {
             std::cerr << "rad-solve: warning: " << warning << '\n';
 
         auto control = rad::stop_rule(solver, request, mesh.patches.size());
-        const auto snapshot_iterations = parse_iteration_list(snapshot_at);
         if (!snapshot.empty() && snapshot_iterations.empty() && snapshot_every <= 0)
             throw rad::InputError("--snapshot needs --snapshot-at or --snapshot-every");
         if (snapshot.empty() && (!snapshot_iterations.empty() || snapshot_every > 0))
             throw rad::InputError("--snapshot-at/--snapshot-every need --snapshot PATTERN");
-        if (!snapshot.empty()) snapshot_path(snapshot, 0); // validates the pattern early
         rad::record_solve_inputs(header, request, geometry_hash, ff_header);
 
         const auto op = rad::make_operator(mesh, ff);
@@ -189,9 +197,12 @@ int main(int argc, char** argv) {
             radfmt::write_atomically(log_path, [&](const std::filesystem::path& temp) {
                 std::ofstream out(temp);
                 out << text;
-                if (!(out.flush())) throw rad::SystemError(log_path + ": cannot write");
+                out.close(); // a full disk may only show when the last bytes go out
+                if (out.fail())
+                    throw rad::SystemError(log_path + ": cannot write: " + std::strerror(errno));
             });
         }
+        outputs.commit();
         if (!quiet) {
             const auto power = rgb_power(rad::total_power(op.area, result.radiosity));
             std::fprintf(

@@ -1,5 +1,6 @@
 #include "tool.hpp"
 
+#include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
@@ -7,8 +8,10 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <unistd.h>
 
 namespace rad::tool {
 
@@ -17,6 +20,18 @@ int parse_arguments(CLI::App& app, int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : 1;
+    }
+    // Outputs record the command line in their header (twice: as the command and in the
+    // provenance chain), and readers accept at most kMaxHeaderBytes: refuse before any work
+    // rather than after it, when the writer would.
+    const auto command = radfmt::command_line(argc, argv);
+    if (command.size() > radfmt::kMaxHeaderBytes / 2) {
+        std::cerr << std::filesystem::path(argc > 0 ? argv[0] : "radiosity").filename().string()
+                  << ": error: the command line is " << command.size()
+                  << " bytes; outputs record it in a header that readers "
+                  << "accept up to " << radfmt::kMaxHeaderBytes
+                  << " bytes: pass fewer or shorter arguments\n";
+        return 1;
     }
     return -1;
 }
@@ -103,31 +118,87 @@ std::uint64_t parse_size(const std::string& text, const std::string& option) {
     return static_cast<std::uint64_t>(bytes);
 }
 
-void check_outputs(const std::vector<std::string>& inputs,
-                   const std::vector<std::pair<std::string, std::string>>& outputs) {
-    namespace fs = std::filesystem;
-    // The same file, whether or not it exists yet, however it is spelled.
-    auto same = [](const std::string& a, const std::string& b) {
-        std::error_code ec;
-        if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
-        return fs::weakly_canonical(fs::absolute(a), ec) ==
-               fs::weakly_canonical(fs::absolute(b), ec);
+namespace {
+namespace fs = std::filesystem;
+
+// The same file, whether or not it exists yet, however it is spelled.
+bool same_file(const std::string& a, const std::string& b) {
+    std::error_code ec;
+    if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+    return fs::weakly_canonical(fs::absolute(a), ec) == fs::weakly_canonical(fs::absolute(b), ec);
+}
+
+// Whether `path` is a name `pattern` (with one %d) expands to for a number it writes.
+bool matches_pattern(const NumberedOutput& output, const std::string& path) {
+    const auto& pattern = output.pattern;
+    const auto at = pattern.find("%d");
+    if (at == std::string::npos) return same_file(pattern, path);
+    std::error_code ec;
+    const auto canonical = [&](const std::string& p) {
+        return fs::weakly_canonical(fs::absolute(p), ec).string();
     };
+    // Expand with a marker that survives canonicalisation, then match digits in its place.
+    const std::string marker = "\x01radiosity-iteration\x01";
+    const auto expanded = canonical(pattern.substr(0, at) + marker + pattern.substr(at + 2));
+    const auto where = expanded.find(marker);
+    if (where == std::string::npos) return false;
+    const auto prefix = expanded.substr(0, where), suffix = expanded.substr(where + marker.size());
+    const auto candidate = canonical(path);
+    if (candidate.size() <= prefix.size() + suffix.size()) return false;
+    if (candidate.compare(0, prefix.size(), prefix) != 0) return false;
+    if (candidate.compare(candidate.size() - suffix.size(), suffix.size(), suffix) != 0)
+        return false;
+    const auto digits =
+        candidate.substr(prefix.size(), candidate.size() - prefix.size() - suffix.size());
+    if (digits.size() > 18 || digits.find_first_not_of("0123456789") != std::string::npos ||
+        (digits.size() > 1 && digits[0] == '0'))
+        return false;
+    return !output.writes || output.writes(std::stol(digits));
+}
+} // namespace
+
+void check_outputs(const std::vector<std::string>& inputs,
+                   const std::vector<std::pair<std::string, std::string>>& outputs,
+                   const std::vector<NumberedOutput>& patterns) {
     for (std::size_t k = 0; k < outputs.size(); ++k) {
         const auto& [option, path] = outputs[k];
         if (path.empty()) continue;
         const fs::path target(path);
+        std::error_code ec;
+        const auto status = fs::status(target, ec);
+        if (fs::is_directory(status))
+            throw InputError(option + " " + path + " is a folder: give a file name in it");
+        const bool special = fs::exists(status) && !fs::is_regular_file(status);
         const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-        if (!fs::is_directory(folder))
+        if (!special && !fs::is_directory(folder))
             throw InputError(option + " " + path + ": the folder '" + folder.string() +
                              "' does not exist (nothing was computed)");
+        if (!special && ::access(folder.c_str(), W_OK | X_OK) != 0)
+            throw SystemError(option + " " + path + ": cannot write in the folder '" +
+                              folder.string() + "': " + std::strerror(errno) +
+                              " (nothing was computed)");
         for (const auto& input : inputs)
-            if (!input.empty() && same(input, path))
+            if (!input.empty() && same_file(input, path))
                 throw InputError(option + " " + path +
                                  " is also an input of this run: it would be overwritten");
         for (std::size_t j = 0; j < k; ++j)
-            if (!outputs[j].second.empty() && same(outputs[j].second, path))
+            if (!outputs[j].second.empty() && same_file(outputs[j].second, path))
                 throw InputError(option + " and " + outputs[j].first + " both write " + path);
+    }
+    for (const auto& numbered : patterns) {
+        const auto& [option, pattern, writes] = numbered;
+        if (pattern.empty()) continue;
+        const fs::path folder =
+            fs::path(pattern).has_parent_path() ? fs::path(pattern).parent_path() : fs::path(".");
+        if (!fs::is_directory(folder))
+            throw InputError(option + " " + pattern + ": the folder '" + folder.string() +
+                             "' does not exist (nothing was computed)");
+        for (const auto& input : inputs)
+            if (!input.empty() && matches_pattern(numbered, input))
+                throw InputError(option + " " + pattern + " would overwrite the input " + input);
+        for (const auto& [other, path] : outputs)
+            if (!path.empty() && matches_pattern(numbered, path))
+                throw InputError(option + " " + pattern + " would overwrite " + other + " " + path);
     }
 }
 

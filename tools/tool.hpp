@@ -23,11 +23,21 @@ int run_tool(const char* tool, const std::function<int()>& body);
 // with NaN is false), so real-valued options use this instead.
 CLI::Validator finite_range(double lo, double hi);
 
+// Outputs named by a pattern with one %d (snapshots): the option, the pattern, and which
+// numbers it will write (empty: any).
+struct NumberedOutput {
+    std::string option, pattern;
+    std::function<bool(long)> writes;
+};
+
 // Checks, before any work, that every output can be written where it is going and does not
 // overwrite an input or another output of the same run. `inputs` are paths; `outputs` are
-// (option, path) pairs, empty paths skipped. Throws InputError naming the options.
+// (option, path) pairs, empty paths skipped; numbered outputs (snapshots) must not expand
+// to an input or an output for a number they write.
+// Throws InputError naming the options (SystemError for a folder we may not write in).
 void check_outputs(const std::vector<std::string>& inputs,
-                   const std::vector<std::pair<std::string, std::string>>& outputs);
+                   const std::vector<std::pair<std::string, std::string>>& outputs,
+                   const std::vector<NumberedOutput>& patterns = {});
 
 // "name1, name2 or name3" for help texts.
 std::string one_of(const std::vector<std::string>& names);

@@ -8,10 +8,14 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace radfmt {
@@ -223,14 +227,84 @@ static std::string serialise_header(const Header& h) {
 // ---- atomic writes ----
 
 namespace {
-// Signal handlers may only touch plain memory: keep the temporary path in a fixed buffer.
-char g_temp_path[4096];
-std::atomic<bool> g_temp_active{false};
+// Signal handlers may only touch plain memory: the temporary paths being written (one, or
+// every pending output of an OutputBatch) are kept as C strings in fixed slots.
+constexpr std::size_t kTempSlots = 4096;
+std::atomic<char*> g_temp_paths[kTempSlots];
 
 extern "C" void remove_temp_and_exit(int signal_number) {
-    if (g_temp_active.load()) ::unlink(g_temp_path);
+    for (auto& slot : g_temp_paths)
+        if (char* path = slot.load()) ::unlink(path);
     std::signal(signal_number, SIG_DFL);
     std::raise(signal_number);
+}
+
+// Registers a temporary path for removal on a signal; returns its slot (or kTempSlots when
+// all are taken: that file is then only removed by the next run, as a stale one).
+std::size_t register_temp(const std::string& path) {
+    for (std::size_t i = 0; i < kTempSlots; ++i) {
+        if (g_temp_paths[i].load()) continue;
+        char* copy = ::strdup(path.c_str());
+        char* expected = nullptr;
+        if (copy && g_temp_paths[i].compare_exchange_strong(expected, copy)) return i;
+        std::free(copy);
+    }
+    return kTempSlots;
+}
+
+void unregister_temp(std::size_t slot) {
+    if (slot < kTempSlots) std::free(g_temp_paths[slot].exchange(nullptr));
+}
+
+// Outputs filled but not yet renamed into place while an OutputBatch is alive.
+using detail::PendingOutput;
+std::vector<PendingOutput>* g_pending = nullptr;
+
+void discard(const PendingOutput& p) {
+    std::error_code ignored;
+    fs::remove(p.temp, ignored);
+    unregister_temp(p.slot);
+}
+
+void rename_into_place(const PendingOutput& p) {
+    std::error_code ec;
+    fs::rename(p.temp, p.target, ec);
+    if (ec) {
+        discard(p);
+        throw WriteError(p.target.string() + ": cannot rename into place: " + ec.message());
+    }
+    unregister_temp(p.slot);
+}
+
+// ".NAME.tmp.PID" files beside `target` left by a run that was killed (SIGKILL cannot be
+// caught): removed when that PID is gone and nobody holds the file's lock (a writer on
+// another machine sharing the folder has a PID we cannot see, but holds its lock).
+void remove_stale_temps(const fs::path& dir, const std::string& prefix) {
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const auto name = it->path().filename().string();
+        if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+        const auto digits = name.substr(prefix.size());
+        if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+            continue;
+        const auto pid = static_cast<pid_t>(std::stol(digits));
+        if (pid == ::getpid() || pid <= 0 || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+        const int fd = ::open(it->path().c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+        if (fd >= 0 && ::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+            ::close(fd);
+            continue;
+        }
+        ::unlink(it->path().c_str()); // a regular file, or a link planted there (not followed)
+        if (fd >= 0) ::close(fd);
+    }
+}
+
+// Devices, FIFOs and the like (/dev/null, /dev/stdout on a pipe) are written in place:
+// renaming a file over them would replace the device node.
+bool is_special_target(const fs::path& path) {
+    std::error_code ec;
+    const auto st = fs::status(path, ec);
+    return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
 }
 } // namespace
 
@@ -239,29 +313,67 @@ void install_cleanup_handlers() {
         std::signal(s, remove_temp_and_exit);
 }
 
+OutputBatch::OutputBatch() {
+    if (g_pending) throw std::logic_error("OutputBatch: batches do not nest");
+    g_pending = &pending_;
+}
+
+OutputBatch::~OutputBatch() {
+    for (const auto& p : pending_) discard(p);
+    g_pending = nullptr;
+}
+
+void OutputBatch::commit() {
+    g_pending = nullptr;
+    // Everything was written; only renames are left, the step that cannot run out of space.
+    try {
+        for (std::size_t i = 0; i < pending_.size(); ++i) {
+            rename_into_place(pending_[i]);
+            pending_[i].slot = kTempSlots; // done: nothing to discard
+            pending_[i].temp.clear();
+        }
+    } catch (...) {
+        std::erase_if(pending_, [](const PendingOutput& p) { return p.temp.empty(); });
+        throw;
+    }
+    pending_.clear();
+}
+
 void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& fill) {
     fs::path target = path;
+    // An output given as a symlink is written where the link points (the link stays).
+    std::error_code link_ec;
+    if (fs::is_symlink(fs::symlink_status(target, link_ec))) {
+        const auto resolved = fs::weakly_canonical(target, link_ec);
+        if (!link_ec) target = resolved;
+    }
+    if (is_special_target(target)) {
+        fill(target);
+        return;
+    }
     fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
     if (!fs::is_directory(dir))
         throw FormatError(path.string() + ": cannot write: folder '" + dir.string() +
                           "' does not exist");
-    std::string temp_name = "."; // built by appending: GCC 12 warns falsely on "x" + string&&
-    temp_name += target.filename().string();
-    temp_name += ".tmp.";
-    temp_name += std::to_string(::getpid());
-    fs::path temp = dir / temp_name;
+    std::string prefix = "."; // built by appending: GCC 12 warns falsely on "x" + string&&
+    prefix += target.filename().string();
+    prefix += ".tmp.";
+    remove_stale_temps(dir, prefix);
+    fs::path temp = dir / (prefix + std::to_string(::getpid()));
     const auto temp_text = temp.string();
-    if (temp_text.size() < sizeof g_temp_path) {
-        std::memcpy(g_temp_path, temp_text.c_str(), temp_text.size() + 1);
-        g_temp_active = true;
-    }
+    // Two outputs of one batch never share a temporary: the first is still pending.
+    if (g_pending)
+        for (const auto& p : *g_pending)
+            if (p.temp == temp) throw FormatError(path.string() + ": written twice in one run");
+    const std::size_t slot = register_temp(temp_text);
+    int fd = -1;
     try {
         // Create the temporary file ourselves, exclusively and without following a symlink:
         // its name is predictable, and a link planted there must not send our bytes (root's,
         // perhaps) into someone else's file. Whatever is there (a stale file, a planted link)
-        // is removed first; the link's target is never touched.
-        int fd =
-            ::open(temp_text.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        // is removed first; the link's target is never touched. The lock tells other runs
+        // that the file is being written.
+        fd = ::open(temp_text.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
         if (fd < 0 && errno == EEXIST) {
             ::unlink(temp_text.c_str());
             fd = ::open(temp_text.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
@@ -270,18 +382,26 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
         if (fd < 0)
             throw WriteError(path.string() + ": cannot create the temporary file " + temp_text +
                              ": " + std::strerror(errno));
-        ::close(fd);
+        ::flock(fd, LOCK_EX | LOCK_NB);
         fill(temp);
-        std::error_code ec;
-        fs::rename(temp, target, ec);
-        if (ec) throw WriteError(path.string() + ": cannot rename into place: " + ec.message());
+        ::close(fd);
+        fd = -1;
+        PendingOutput pending{temp, target, slot};
+        if (g_pending)
+            g_pending->push_back(std::move(pending));
+        else
+            rename_into_place(pending);
     } catch (...) {
-        std::error_code ignored;
-        fs::remove(temp, ignored);
-        g_temp_active = false;
+        if (fd >= 0) ::close(fd);
+        discard(PendingOutput{temp, target, slot});
         throw;
     }
-    g_temp_active = false;
+}
+
+// fsync makes a regular file durable before the rename; devices (/dev/null) refuse it.
+static bool sync_if_regular(int fd) {
+    struct stat st {};
+    return ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || ::fsync(fd) == 0;
 }
 
 void write_file(const fs::path& path, Header header, const BodyWriter& body) {
@@ -289,6 +409,14 @@ void write_file(const fs::path& path, Header header, const BodyWriter& body) {
     header.body_size = body.size();
     header.body_hash = "xxh64:" + hash_hex(body.hash());
     const auto head = serialise_header(header);
+    // Readers refuse a header above kMaxHeaderBytes: writing one would make a file that no
+    // tool can open.
+    if (head.size() > kMaxHeaderBytes)
+        throw FormatError(path.string() + ": not written: its header would be " +
+                          std::to_string(head.size()) + " bytes, more than the " +
+                          std::to_string(kMaxHeaderBytes) +
+                          " readers accept (the command line and provenance are recorded "
+                          "there: pass fewer or shorter arguments)");
     write_atomically(path, [&](const fs::path& temp) {
         std::FILE* f = std::fopen(temp.c_str(), "wb");
         if (!f)
@@ -297,7 +425,7 @@ void write_file(const fs::path& path, Header header, const BodyWriter& body) {
         body.for_each_piece([&](const std::byte* data, std::size_t size) {
             ok = ok && std::fwrite(data, 1, size, f) == size;
         });
-        ok = ok && std::fflush(f) == 0 && ::fsync(fileno(f)) == 0;
+        ok = ok && std::fflush(f) == 0 && sync_if_regular(fileno(f));
         ok = (std::fclose(f) == 0) && ok;
         if (!ok) throw WriteError(path.string() + ": write failed: " + std::strerror(errno));
     });

@@ -5,6 +5,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <cmath>
+#include <cstdio>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -57,7 +59,37 @@ extern "C" void record_embree_error(void* user, RTCError code, const char* messa
 }
 } // namespace
 
+void check_ray_precision(std::span<const radfmt::Vec3> points, const std::string& source) {
+    if (points.empty()) return;
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    double farthest = 0;
+    for (const auto& v : points)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
+            farthest = std::max(farthest, std::abs(v[k]));
+        }
+    const double size = length(hi - lo);
+    char text[400];
+    if (size < kMinRaySceneSize || size > kMaxRaySceneSize) {
+        std::snprintf(text, sizeof text,
+                      ": the scene is %.3g units across; the ray tracer (Embree, single "
+                      "precision) resolves scenes from %.0e to %.0e units across: scale it "
+                      "(another unit) before meshing",
+                      size, kMinRaySceneSize, kMaxRaySceneSize);
+        throw InputError(source + text);
+    }
+    if (farthest > kMaxRaySceneOffset * size) {
+        std::snprintf(text, sizeof text,
+                      ": the scene is %.3g units across but lies %.3g units from the origin; "
+                      "double precision cannot keep its detail more than %.0e times its size "
+                      "away: move it towards the origin",
+                      size, farthest, kMaxRaySceneOffset);
+        throw InputError(source + text);
+    }
+}
+
 RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>()) {
+    check_ray_precision(mesh.vertices, "mesh");
     impl_->device = rtcNewDevice(nullptr);
     if (!impl_->device)
         throw SystemError("Embree device creation failed (error " +
@@ -82,6 +114,7 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (const auto& v : mesh.vertices)
         for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
+    if (!mesh.vertices.empty()) centre_ = 0.5 * (lo + hi);
     for (auto* patches : {&one_sided, &two_sided}) {
         if (patches->empty()) continue;
         RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
@@ -94,7 +127,7 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
         if (!vertices || !indices) impl_->raise_if_failed("allocating the ray scene's geometry");
         for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
             for (int k = 0; k < 3; ++k)
-                vertices[3 * v + k] = static_cast<float>(mesh.vertices[v][k]);
+                vertices[3 * v + k] = static_cast<float>(mesh.vertices[v][k] - centre_[k]);
         for (std::size_t q = 0; q < patches->size(); ++q) {
             const auto& p = mesh.patches[(*patches)[q]];
             for (int k = 0; k < 4; ++k)
@@ -129,9 +162,9 @@ bool RayScene::visible(const Vec3& from, const Vec3& to) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};
-    ray.org_x = static_cast<float>(from[0]);
-    ray.org_y = static_cast<float>(from[1]);
-    ray.org_z = static_cast<float>(from[2]);
+    ray.org_x = static_cast<float>(from[0] - centre_[0]);
+    ray.org_y = static_cast<float>(from[1] - centre_[1]);
+    ray.org_z = static_cast<float>(from[2] - centre_[2]);
     ray.dir_x = static_cast<float>(d[0] / distance);
     ray.dir_y = static_cast<float>(d[1] / distance);
     ray.dir_z = static_cast<float>(d[2] / distance);
@@ -146,9 +179,9 @@ std::int64_t RayScene::first_hit(const Vec3& origin, const Vec3& direction, bool
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
-    rh.ray.org_x = static_cast<float>(origin[0]);
-    rh.ray.org_y = static_cast<float>(origin[1]);
-    rh.ray.org_z = static_cast<float>(origin[2]);
+    rh.ray.org_x = static_cast<float>(origin[0] - centre_[0]);
+    rh.ray.org_y = static_cast<float>(origin[1] - centre_[1]);
+    rh.ray.org_z = static_cast<float>(origin[2] - centre_[2]);
     rh.ray.dir_x = static_cast<float>(direction[0]);
     rh.ray.dir_y = static_cast<float>(direction[1]);
     rh.ray.dir_z = static_cast<float>(direction[2]);

@@ -13,6 +13,10 @@ done
 err=$("$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/s.ff" 2>&1) || fail "summary run"
 grep -q "non-zeros.*rays.*rays/s.*row sums mean" <<<"$err" || fail "summary: $err"
 expect_error "more than --max-memory" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --max-memory 10K
+# The estimate counts what grows with the options (hemisphere's per-ray table), so a huge
+# --rays is refused at once instead of allocating gigabytes.
+expect_error "need up to 3.0 GiB, more than --max-memory 100.0 MiB (use fewer --rays" "$TMP/m.ff" \
+  "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --method hemisphere --rays 100000000 --max-memory 100M
 expect_error "not a size" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --max-memory lots
 # Interrupted: no output file and no temporary left behind.
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/big.mesh" --max-edge 0.02 -q
@@ -40,6 +44,22 @@ for scale in 1e-9 1 1e9; do
   sum[$scale]=$("$BIN/rad-ff" "$TMP/s$scale.mesh" -o "$TMP/s$scale.ff" --method hemisphere --rays 500 2>&1 | sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p')
 done
 [ "${sum[1e-9]}" = "${sum[1]}" ] && [ "${sum[1e9]}" = "${sum[1]}" ] || fail "row sums change with scale: ${sum[1e-9]} ${sum[1]} ${sum[1e9]}"
+# Far from the origin (georeferenced): the ray scene is recentred, so float keeps its detail.
+mkdir -p "$TMP/far"
+awk '/^v / { printf "v %.17g %.17g %.17g\n", $2 + 1e7, $3, $4 - 3e6; next } { print }' \
+  "$SRC/scenes/cornell/cornell.obj" > "$TMP/far/cornell.obj"
+cp "$SRC/scenes/cornell/cornell.mtl" "$TMP/far/"
+"$BIN/rad-mesh" "$TMP/far/cornell.obj" -o "$TMP/far.mesh" -q 2>/dev/null || fail "mesh far away"
+far=$("$BIN/rad-ff" "$TMP/far.mesh" -o "$TMP/far.ff" --method hemisphere --rays 500 2>&1 | sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p')
+[ "$far" = "${sum[1]}" ] || fail "row sums change far from the origin: $far vs ${sum[1]}"
+# Beyond what float and double resolve: refused with the accepted range, not solved wrongly.
+awk '/^v / { printf "v %.17g %.17g %.17g\n", $2 * 1e30, $3 * 1e30, $4 * 1e30; next } { print }' \
+  "$SRC/scenes/cornell/cornell.obj" > "$TMP/far/huge.obj"
+expect_error "units across; the ray tracer (Embree, single precision) resolves scenes from 1e-11 to 1e+13" \
+  "$TMP/huge.mesh" "$BIN/rad-mesh" "$TMP/far/huge.obj" -o "$TMP/huge.mesh"
+awk '/^v / { printf "v %.17g %.17g %.17g\n", $2 + 1e10, $3, $4; next } { print }' \
+  "$SRC/scenes/cornell/cornell.obj" > "$TMP/far/off.obj"
+expect_error "lies 1e+10 units from the origin" "$TMP/off.mesh" "$BIN/rad-mesh" "$TMP/far/off.obj" -o "$TMP/off.mesh"
 # Outputs checked before any work: a missing folder, an input as output.
 err=$("$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/nofolder/x.ff" --method pairwise 2>&1); rc=$?
 [ $rc -eq 1 ] || fail "missing folder: exit $rc"

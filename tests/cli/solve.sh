@@ -60,6 +60,10 @@ expect_error "--group x: no material 'lamb'" "$TMP/x.rad" "$BIN/rad-solve" "$TMP
 expect_error "no material emits light" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/g.mesh" "$TMP/g.ff" -o "$TMP/x.rad" --light-groups --emission lamp=0 --emission daylight=0
 expect_error "--log and -o both write" "$TMP/same.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/same.rad" --log "$TMP/same.rad"
 expect_error "is also an input of this run" "" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/c.ff"
+expect_error "--tolerance 0 is never reached" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --tolerance 0
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --tolerance 0 --iterations 3 -q || fail "--tolerance 0 with --iterations"
+rm -f "$TMP/x.rad"
+expect_error "--emission-scale 1e+308 makes the emission of material 'light' overflow (a scale of at most 4.49e+306 is usable)" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission-scale 1e308
 expect_error "makes the emission of material 'light' overflow" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission-scale 1e308
 finish
 

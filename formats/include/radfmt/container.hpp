@@ -152,6 +152,29 @@ Header read_header(const std::filesystem::path& path);
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path&)>& fill);
 
+// While an OutputBatch is alive, write_atomically fills each output's temporary file but
+// renames none into place; commit() renames them all. Destroyed without commit (a later
+// output failed, an exception), it removes them: a run leaves all its outputs or none.
+// Outputs that are devices (/dev/null) are written at once and are not part of it.
+namespace detail {
+struct PendingOutput {
+    std::filesystem::path temp, target;
+    std::size_t slot; // in the signal handler's table
+};
+} // namespace detail
+
+class OutputBatch {
+  public:
+    OutputBatch();
+    ~OutputBatch();
+    OutputBatch(const OutputBatch&) = delete;
+    OutputBatch& operator=(const OutputBatch&) = delete;
+    void commit();
+
+  private:
+    std::vector<detail::PendingOutput> pending_;
+};
+
 // The temporary path currently being written, removed by signal handlers (see
 // install_cleanup_handlers) so Ctrl-C never leaves a partial file behind.
 void install_cleanup_handlers();

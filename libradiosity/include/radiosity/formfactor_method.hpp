@@ -89,6 +89,12 @@ class FormFactorMethod {
                                           const FormFactorOptions&) const {
         return mesh.patches.size();
     }
+    // Memory the method's tables and per-thread scratch take, beyond the rows: whatever
+    // grows with the options must be counted, or --max-memory guards nothing.
+    virtual std::uint64_t working_memory(const radfmt::MeshData&, const FormFactorOptions&,
+                                         unsigned /*threads*/) const {
+        return 0;
+    }
     // Whether its kernel records cosine-weighted rays in the RayLog (else rows are probed).
     virtual bool logs_rays() const { return false; }
     // Per-mesh preparation (tables, per-thread scratch); the kernel may keep `context`.

@@ -22,6 +22,12 @@ struct Image {
 // Perspective-correct interpolation of the corner colours, N x N supersampling per pixel.
 // Of a two-sided surface (two patches on one spot facing away from each other) each pixel
 // shows the side that faces the camera.
+// The most memory one run of rad-shade takes for images of this size: the supersampled
+// buffers of one render (colour, depth, back-face mark: 21 bytes a sample), and per
+// finished image (the main one and one per layer) its RGB and back coverage plus the
+// writers' copies (EXR, PNG).
+std::uint64_t estimate_render_memory(int width, int height, int supersampling, int images);
+
 Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners,
              const View& view, int width, int height, int supersampling);
 

@@ -5,8 +5,19 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
+#include <string>
 
 namespace rad {
+
+// Refuses (InputError naming `source`) points that rays cannot resolve: Embree computes in
+// single precision, with products of three coordinates, so a scene must be between
+// kMinRaySceneSize and kMaxRaySceneSize across; and it must sit within kMaxRaySceneOffset
+// of its own size from the origin, or double precision loses its detail before the ray
+// scene (which recentres it) sees it.
+inline constexpr double kMinRaySceneSize = 1e-11, kMaxRaySceneSize = 1e13;
+inline constexpr double kMaxRaySceneOffset = 1e9;
+void check_ray_precision(std::span<const radfmt::Vec3> points, const std::string& source);
 
 class RayScene {
   public:
@@ -27,6 +38,9 @@ class RayScene {
   private:
     std::unique_ptr<Impl> impl_;
     double epsilon_ = 1e-6;
+    // Embree works in float: coordinates are stored relative to the scene's centre, so a
+    // scene far from the origin (georeferenced, say) keeps float's resolution where it is.
+    Vec3 centre_{0, 0, 0};
 };
 
 } // namespace rad

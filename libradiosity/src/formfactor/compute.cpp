@@ -7,6 +7,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -47,12 +48,16 @@ FormFactorOptions resolve_form_factor_options(FormFactorOptions options) {
 std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
                                           const FormFactorOptions& options) {
     const std::uint64_t n = mesh.patches.size();
-    const std::uint64_t per_row = form_factor_method(options.method).max_row_entries(mesh, options);
+    const auto& method = form_factor_method(options.method);
+    const std::uint64_t per_row = method.max_row_entries(mesh, options);
+    // The threads this run will use (a ThreadLimit in force, else every core).
+    const auto threads = static_cast<unsigned>(
+        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
     // Rows are built then packed: entries (4 + 4 bytes) are held twice at the peak; Embree
     // and the mesh take a few hundred bytes per patch.
     // The back-face tallies are two counters per patch and thread.
-    return 2 * n * per_row * 8 + n * 400 + mesh.vertices.size() * 64 +
-           n * 8 * ThreadLimit::max_threads();
+    return 2 * n * per_row * 8 + n * 400 + mesh.vertices.size() * 64 + n * 8 * threads +
+           method.working_memory(mesh, options, threads);
 }
 
 std::vector<std::pair<std::string, std::string>>

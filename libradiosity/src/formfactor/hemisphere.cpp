@@ -93,6 +93,15 @@ class Hemisphere final : public FormFactorMethod {
         return std::min<std::uint64_t>(mesh.patches.size(),
                                        static_cast<std::uint64_t>(std::max(1, options.rays)));
     }
+    std::uint64_t working_memory(const radfmt::MeshData& mesh, const FormFactorOptions& options,
+                                 unsigned threads) const override {
+        // The shared low-discrepancy table (four doubles per ray), and per thread a hit
+        // counter per patch plus the list of patches hit.
+        const std::uint64_t rays = static_cast<std::uint64_t>(std::max(1, options.rays));
+        return rays * sizeof(std::array<double, 4>) +
+               std::uint64_t(threads) * (mesh.patches.size() + max_row_entries(mesh, options)) *
+                   sizeof(std::uint32_t);
+    }
     std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
                                        const FormFactorOptions& options) const override {
         return std::make_unique<HemisphereKernel>(context, options);

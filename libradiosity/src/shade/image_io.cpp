@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 namespace rad {
@@ -118,8 +119,16 @@ void write_png(const std::string& path, const Image& image, double exposure) {
         png.width = static_cast<png_uint_32>(image.width);
         png.height = static_cast<png_uint_32>(image.height);
         png.format = PNG_FORMAT_RGB;
-        if (!png_image_write_to_file(&png, temp.c_str(), 0, pixels.data(), 0, nullptr))
-            throw SystemError(path + ": cannot write PNG: " + png.message);
+        // Through our own FILE: libpng's write_to_file removes the file when a write fails,
+        // and the file may be a device (/dev/full) written in place.
+        std::FILE* file = std::fopen(temp.c_str(), "wb");
+        if (!file) throw SystemError(path + ": cannot open for writing: " + std::strerror(errno));
+        const bool encoded = png_image_write_to_stdio(&png, file, 0, pixels.data(), 0, nullptr);
+        bool written = std::fflush(file) == 0;
+        int error = errno;
+        if (std::fclose(file) != 0 && written) written = false, error = errno;
+        if (!encoded) throw SystemError(path + ": cannot write PNG: " + png.message);
+        if (!written) throw SystemError(path + ": cannot write PNG: " + std::strerror(error));
     });
 }
 
@@ -158,7 +167,8 @@ void write_ply(const std::string& path, const radfmt::MeshData& mesh,
             for (int k = 0; k < p.corner_count(); ++k) out << ' ' << next++;
             out << '\n';
         }
-        if (!out.flush()) throw SystemError(path + ": cannot write PLY");
+        out.close(); // a full disk may only show when the last bytes go out
+        if (out.fail()) throw SystemError(path + ": cannot write PLY: " + std::strerror(errno));
     });
 }
 

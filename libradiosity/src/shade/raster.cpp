@@ -33,6 +33,12 @@ struct ScreenTriangle {
 
 } // namespace
 
+std::uint64_t estimate_render_memory(int width, int height, int supersampling, int images) {
+    const std::uint64_t pixels = std::uint64_t(std::max(0, width)) * std::max(0, height);
+    const std::uint64_t ss = std::max(1, supersampling);
+    return pixels * ss * ss * 21 + pixels * std::max(1, images) * (16 + 16);
+}
+
 Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners,
              const View& view, int width, int height, int supersampling) {
     const int ss = std::max(1, supersampling);

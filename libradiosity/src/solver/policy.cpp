@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 namespace rad {
@@ -70,16 +71,23 @@ void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& reques
     if (!(request.emission_scale >= 0) || !std::isfinite(request.emission_scale))
         throw InputError("--emission-scale must be finite and non-negative");
     if (request.emission_scale != 1) {
-        for (auto& m : mesh.materials)
-            for (auto& e : m.emission) {
-                e *= request.emission_scale;
-                if (!std::isfinite(e))
-                    throw InputError("--emission-scale " + std::to_string(request.emission_scale) +
-                                     " makes the emission of material '" + m.name +
-                                     "' overflow (a scale of at most about 1e300 / Ke is usable)");
-            }
         char scale[32];
         std::snprintf(scale, sizeof scale, "%.9g", request.emission_scale);
+        for (auto& m : mesh.materials)
+            for (auto& e : m.emission) {
+                const double original = e;
+                e *= request.emission_scale;
+                if (!std::isfinite(e)) {
+                    char usable[32];
+                    std::snprintf(usable, sizeof usable, "%.3g",
+                                  std::numeric_limits<double>::max() / original);
+                    std::string message = "--emission-scale ";
+                    message += scale;
+                    message += " makes the emission of material '" + m.name +
+                               "' overflow (a scale of at most " + usable + " is usable)";
+                    throw InputError(message);
+                }
+            }
         header.set("override.emission_scale", scale);
     }
 }
@@ -175,6 +183,11 @@ SolveControl stop_rule(const Solver& solver, const SolveRequest& request, std::s
                              std::string(solver.name()));
         iterations = static_cast<long>(std::ceil(request.sweeps * double(patches)));
     }
+    // Rounding keeps the change of a sweep above 0 forever: a zero tolerance alone would
+    // only stop at the solver's safety cap, after hours on a large scene.
+    if (request.tolerance_given && !(request.tolerance > 0) && iterations == 0)
+        throw InputError("--tolerance 0 is never reached; give a tolerance in (0, 1] (e.g. "
+                         "1e-6), or bound the run with --iterations N or --sweeps S");
     control.max_iterations = iterations;
     control.tolerance = (iterations > 0 && !request.tolerance_given) ? 0 : request.tolerance;
     if (control.max_iterations == 0)
