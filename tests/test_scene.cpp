@@ -150,6 +150,15 @@ TEST_CASE("bad OBJ input names the file and line") {
     CHECK_THAT(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 0 1 2\n"),
                Contains("scene.obj:6:") && Contains("refers to vertex 0"));
     CHECK_THAT(error_of("# nothing\n"), Contains("empty"));
+    // One number grammar with tinyobjloader: what it would read as something else is refused.
+    CHECK_THAT(error_of("v 0x2 2 0\n"), Contains("scene.obj:2:") && Contains("'0x2'"));
+    CHECK_THAT(error_of("v 1e400 2 0\n"), Contains("scene.obj:2:") && Contains("double range"));
+    CHECK_THAT(error_of("v 1 2 0 junk\n"), Contains("scene.obj:2:") && Contains("'junk'"));
+    CHECK_THAT(error_of("v 1 2 0 1 1 1 1\n"), Contains("scene.obj:2:"));
+    // A weight, an r g b colour and a trailing comment are fine.
+    const std::string face = "usemtl grey\nf 1 2 3\n";
+    CHECK(error_of("v 0 0 0 1\nv 1 0 0\nv 0 1 0\n" + face) == "no error");
+    CHECK(error_of("v 0 0 0 0.5 0.2 0.1\nv 1 0 0 # x\nv 0 1 0\n" + face) == "no error");
 }
 
 TEST_CASE("faces without a known material get the default one; --strict refuses them") {

@@ -117,7 +117,19 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
                 if (!parse_number(token, xyz[k]))
                     throw InputError(FileLoc{path.string(), number},
                                      "vertex coordinate '" + token +
-                                         "' is not a decimal number (such as 1.5 or -2e-3)");
+                                         "' is not a decimal number within double range (such "
+                                         "as 1.5 or -2e-3)");
+            }
+            // What may follow: a weight w, or an r g b vertex colour (a common extension);
+            // numbers, in the same grammar, and nothing else.
+            std::string extra;
+            for (int k = 0; words >> extra && extra[0] != '#'; ++k) {
+                double ignored = 0;
+                if (k >= 3 || !parse_number(extra, ignored))
+                    throw InputError(FileLoc{path.string(), number},
+                                     "unexpected '" + extra +
+                                         "' after the vertex's x y z (only a weight or an r g b "
+                                         "colour may follow, as decimal numbers)");
             }
             ++result.vertex_count;
         } else if (keyword == "f") {

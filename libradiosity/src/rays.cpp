@@ -65,6 +65,7 @@ void check_ray_precision(std::span<const radfmt::Vec3> points, const std::string
     double farthest = 0;
     for (const auto& v : points)
         for (int k = 0; k < 3; ++k) {
+            if (!std::isfinite(v[k])) throw InputError(source + ": a point is not finite");
             lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
             farthest = std::max(farthest, std::abs(v[k]));
         }

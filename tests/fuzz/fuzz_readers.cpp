@@ -1,0 +1,394 @@
+// A mutation fuzzer over every reader: chain files (mesh, form factors, radiosity) mutated
+// inside their body and header fields and then given correct checksums again, so the
+// mutations reach the value checks behind the checksums; and OBJ/MTL text mutated with the
+// tokens readers get wrong (nan, 0x, huge exponents, stray slashes). Every read must end in
+// a result or a clear refusal (FormatError, InputError); what is read is then used (ray
+// scene, form factors, a solve, smoothing) to show that a refusal-free read is safe to use.
+// Built with ASan+UBSan (RADIOSITY_SANITIZE) it runs in CI; deterministic for a seed.
+//
+//   fuzz_readers DATA_DIR [--iterations N] [--seconds S] [--seed K] [--kind NAME]
+#include "radfmt/container.hpp"
+#include "radfmt/kinds.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/formfactor.hpp"
+#include "radiosity/light_groups.hpp"
+#include "radiosity/rays.hpp"
+#include "radiosity/scene.hpp"
+#include "radiosity/smoothing.hpp"
+#include "radiosity/solver.hpp"
+#include "radiosity/transport.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <random>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Bytes = std::string;
+
+Bytes read_bytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return Bytes(std::istreambuf_iterator<char>(in), {});
+}
+
+void write_bytes(const fs::path& path, const Bytes& bytes) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// A chain file split into its header lines (without the checksum line) and its body.
+struct Container {
+    std::vector<std::string> lines;
+    Bytes body;
+};
+
+Container split(const Bytes& file) {
+    Container c;
+    const auto hash_line = file.find("\nheader_hash=");
+    const auto blank = file.find("\n\n", hash_line + 1);
+    std::size_t start = 0;
+    while (start <= hash_line) {
+        const auto end = file.find('\n', start);
+        c.lines.push_back(file.substr(start, end - start));
+        start = end + 1;
+    }
+    const auto offset =
+        (blank + 2 + radfmt::kBodyAlignment - 1) / radfmt::kBodyAlignment * radfmt::kBodyAlignment;
+    c.body = file.substr(std::min(offset, file.size()));
+    return c;
+}
+
+// Serialises with a correct body size, body hash and header hash: only the values are off.
+Bytes join(Container c) {
+    std::string text;
+    for (auto& line : c.lines) {
+        if (line.rfind("body_size=", 0) == 0) line = "body_size=" + std::to_string(c.body.size());
+        if (line.rfind("body_hash=", 0) == 0)
+            line = "body_hash=xxh64:" +
+                   radfmt::hash_hex(radfmt::hash_bytes(c.body.data(), c.body.size()));
+        text += line + "\n";
+    }
+    text += "header_hash=xxh64:" + radfmt::hash_hex(radfmt::hash_bytes(text.data(), text.size())) +
+            "\n\n";
+    text.resize((text.size() + radfmt::kBodyAlignment - 1) / radfmt::kBodyAlignment *
+                    radfmt::kBodyAlignment,
+                '\0');
+    return text + c.body;
+}
+
+class Mutator {
+  public:
+    explicit Mutator(std::uint64_t seed) : rng_(seed) {}
+    std::size_t below(std::size_t n) {
+        return n ? std::uniform_int_distribution<std::size_t>(0, n - 1)(rng_) : 0;
+    }
+    bool chance(double p) { return std::uniform_real_distribution<double>(0, 1)(rng_) < p; }
+
+    template <class T> void put(Bytes& body, std::size_t align, T value) {
+        if (body.size() < sizeof(T)) return;
+        const auto at = below((body.size() - sizeof(T)) / align + 1) * align;
+        std::memcpy(body.data() + at, &value, sizeof(T));
+    }
+
+    void mutate_body(Bytes& body) {
+        static const double doubles[] = {std::numeric_limits<double>::quiet_NaN(),
+                                         std::numeric_limits<double>::infinity(),
+                                         -std::numeric_limits<double>::infinity(),
+                                         -1.0,
+                                         0.0,
+                                         -0.0,
+                                         1e308,
+                                         1e-310,
+                                         2.0,
+                                         1e30};
+        static const float floats[] = {std::numeric_limits<float>::quiet_NaN(),
+                                       std::numeric_limits<float>::infinity(),
+                                       -1.0f,
+                                       0.0f,
+                                       1.5f,
+                                       3.0e38f,
+                                       1e-45f};
+        static const std::uint32_t words[] = {0,          1,          2,      3,      0xFFFFFFFF,
+                                              0x7FFFFFFF, 0x80000000, 0xFFFF, 1000000};
+        static const std::uint64_t longs[] = {0, 1, 0xFFFFFFFFFFFFFFFFull, 0x100000000ull,
+                                              1ull << 62};
+        switch (below(7)) {
+        case 0:
+            if (!body.empty()) body[below(body.size())] ^= static_cast<char>(1u << below(8));
+            break;
+        case 1:
+            put(body, 8, doubles[below(std::size(doubles))]);
+            break;
+        case 2:
+            put(body, 4, floats[below(std::size(floats))]);
+            break;
+        case 3:
+            put(body, 4, words[below(std::size(words))]);
+            break;
+        case 4:
+            put(body, 8, longs[below(std::size(longs))]);
+            break;
+        case 5:
+            body.resize(below(body.size() + 1)); // truncated
+            break;
+        default:
+            body.append(1 + below(64), static_cast<char>(below(256))); // extended
+        }
+    }
+
+    void mutate_header(std::vector<std::string>& lines) {
+        static const char* values[] = {"",  "-1", "nan", "1e999", "18446744073709551616",
+                                       "0", "1",  "2",   "inf",   "99999999999999999999",
+                                       "x", "-0", " 3",  "0x10",  "1e-400"};
+        std::vector<std::size_t> editable;
+        for (std::size_t i = 0; i < lines.size(); ++i)
+            if (lines[i].rfind("field.", 0) == 0 || lines[i].rfind("version=", 0) == 0)
+                editable.push_back(i);
+        if (editable.empty()) return;
+        auto& line = lines[editable[below(editable.size())]];
+        const auto eq = line.find('=');
+        line = line.substr(0, eq + 1) + values[below(std::size(values))];
+    }
+
+    void mutate_text(std::string& text) {
+        static const char* tokens[] = {
+            "nan",          "inf", "-",   "0x2",         "1e999", "/", "//", " ",
+            "\n",           "#",   "v ",  "f ",          "-1",    "0", "\t", "1e-320",
+            "\xEF\xBB\xBF", "Kd ", "Ke ", "99999999999", ".",     "e", "\0"};
+        const auto edits = 1 + below(4);
+        for (std::size_t k = 0; k < edits; ++k) {
+            const char* chosen = tokens[below(std::size(tokens))];
+            const std::string insert = *chosen ? std::string(chosen) : std::string(1, '\0');
+            const auto at = below(text.size() + 1);
+            switch (below(3)) {
+            case 0:
+                text.insert(at, insert);
+                break;
+            case 1:
+                text.replace(at, std::min<std::size_t>(1 + below(6), text.size() - at), insert);
+                break;
+            default:
+                text.erase(at, std::min<std::size_t>(1 + below(8), text.size() - at));
+            }
+        }
+    }
+
+  private:
+    std::mt19937_64 rng_;
+};
+
+// Outcomes: a clean read, a clear refusal, or a failure (anything else) that stops the run.
+struct Tally {
+    std::size_t read = 0, refused = 0;
+};
+
+bool expected_refusal(const std::function<void()>& body, Tally& tally, std::string& failure) {
+    try {
+        body();
+        ++tally.read;
+    } catch (const radfmt::FormatError&) {
+        ++tally.refused;
+    } catch (const rad::InputError&) {
+        ++tally.refused;
+    } catch (const std::exception& e) {
+        failure = std::string("unexpected exception: ") + e.what();
+        return false;
+    }
+    return true;
+}
+
+// Uses what a reader accepted, as the tools would.
+void use_mesh(const radfmt::MeshData& mesh) {
+    if (mesh.patches.empty()) return;
+    rad::check_ray_precision(mesh.vertices, "mesh");
+    rad::FormFactorOptions options;
+    options.method = "hemisphere";
+    options.rays = 16;
+    options.quiet = true;
+    rad::compute_form_factors(mesh, options);
+    rad::corner_colours(mesh, std::vector<radfmt::Rgb>(mesh.patches.size(), {0.5, 0.5, 0.5}),
+                        rad::Smoothing::Crease);
+}
+
+void use_form_factors(const radfmt::MeshData& mesh, const radfmt::FormFactorData& ff) {
+    if (ff.patch_count != mesh.patches.size()) return;
+    const auto op = rad::make_operator(mesh, ff);
+    rad::SolveControl control;
+    control.max_iterations = 3;
+    for (const char* method : {"gs", "pr"})
+        rad::solver(method).solve(op, rad::emission_of(mesh), control);
+}
+
+void use_radiosity(const radfmt::MeshData& mesh, const radfmt::RadiosityData& rad_data) {
+    const auto values = rad_data.group_count() ? rad::mix_light_groups(rad_data, {}, false, "rad")
+                                               : rad_data.radiosity;
+    if (values.size() == mesh.patches.size())
+        rad::corner_colours(mesh, values, rad::Smoothing::Average);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::cerr << "usage: fuzz_readers DATA_DIR [--iterations N] [--seconds S] [--seed K] "
+                     "[--kind mesh|formfactors|radiosity|obj|mtl]\n";
+        return 1;
+    }
+    const fs::path data = argv[1];
+    long iterations = 2000;
+    double seconds = 30;
+    std::uint64_t seed = 1;
+    std::string only;
+    for (int i = 2; i + 1 < argc; i += 2) {
+        const std::string option = argv[i];
+        if (option == "--iterations")
+            iterations = std::stol(argv[i + 1]);
+        else if (option == "--seconds")
+            seconds = std::stod(argv[i + 1]);
+        else if (option == "--seed")
+            seed = std::stoull(argv[i + 1]);
+        else if (option == "--kind")
+            only = argv[i + 1];
+        else {
+            std::cerr << "fuzz_readers: unknown option " << option << "\n";
+            return 1;
+        }
+    }
+    const auto dir = fs::temp_directory_path() / ("radiosity-fuzz-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+
+    // Seeds: a real public scene through the real chain, kept small.
+    const fs::path obj = data / "cornell-original" / "CornellBox-Original.obj";
+    const fs::path mtl = data / "cornell-original" / "CornellBox-Original.mtl";
+    auto scene = rad::load_scene(obj);
+    rad::remove_duplicate_faces(scene);
+    rad::SubdivisionOptions subdivision;
+    subdivision.max_edge = 0.6;
+    const auto mesh = rad::subdivide(scene, subdivision);
+    rad::FormFactorOptions ff_options;
+    ff_options.method = "hemisphere";
+    ff_options.rays = 64;
+    ff_options.quiet = true;
+    const auto ff = rad::compute_form_factors(mesh, ff_options);
+    const auto op = rad::make_operator(mesh, ff);
+    rad::SolveControl control;
+    control.max_iterations = 5;
+    const auto solution = rad::solver("gs").solve(op, rad::emission_of(mesh), control).radiosity;
+    radfmt::Header header;
+    header.tool = "fuzz_readers";
+    header.command = "fuzz_readers";
+    radfmt::write_mesh(dir / "seed.mesh", header, mesh);
+    radfmt::write_form_factors(dir / "seed.ff", header, ff);
+    radfmt::write_radiosity(dir / "seed.rad", header, rad::radiosity_data(solution, {}));
+    // A second radiosity seed with light groups (version 2's extra arrays).
+    rad::Channels grouped(mesh.patches.size(), 6);
+    for (auto& v : grouped.values) v = 0.25;
+    radfmt::write_radiosity(dir / "seed-groups.rad", header,
+                            rad::radiosity_data(grouped, {{"a", {}}, {"b", {}}}));
+
+    struct Kind {
+        std::string name;
+        std::vector<Bytes> seeds;
+        bool text;
+        std::function<void(const fs::path&)> read_and_use;
+    };
+    const auto mesh_copy = mesh;
+    const std::vector<Kind> kinds{
+        {"mesh",
+         {read_bytes(dir / "seed.mesh")},
+         false,
+         [](const fs::path& p) { use_mesh(radfmt::read_mesh(p)); }},
+        {"formfactors",
+         {read_bytes(dir / "seed.ff")},
+         false,
+         [&](const fs::path& p) { use_form_factors(mesh_copy, radfmt::read_form_factors(p)); }},
+        {"radiosity",
+         {read_bytes(dir / "seed.rad"), read_bytes(dir / "seed-groups.rad")},
+         false,
+         [&](const fs::path& p) { use_radiosity(mesh_copy, radfmt::read_radiosity(p)); }},
+        {"obj",
+         {read_bytes(obj)},
+         true,
+         [&](const fs::path& p) {
+             fs::copy_file(mtl, p.parent_path() / mtl.filename(),
+                           fs::copy_options::overwrite_existing);
+             auto s = rad::load_scene(p);
+             rad::remove_duplicate_faces(s);
+             rad::SubdivisionOptions o;
+             o.max_edge = 0.6;
+             o.max_patches = 1e5;
+             use_mesh(rad::subdivide(s, o));
+         }},
+        {"mtl",
+         {read_bytes(mtl)},
+         true,
+         [&](const fs::path& p) {
+             fs::copy_file(obj, p.parent_path() / obj.filename(),
+                           fs::copy_options::overwrite_existing);
+             fs::rename(p, p.parent_path() / mtl.filename());
+             auto s = rad::load_scene(p.parent_path() / obj.filename());
+             rad::SubdivisionOptions o;
+             o.max_edge = 0.6;
+             use_mesh(rad::subdivide(s, o));
+         }},
+    };
+
+    int status = 0;
+    for (const auto& kind : kinds) {
+        if (!only.empty() && kind.name != only) continue;
+        Mutator mutator(seed ^ std::hash<std::string>{}(kind.name));
+        Tally tally;
+        const auto start = std::chrono::steady_clock::now();
+        const auto work = dir / kind.name;
+        long done = 0;
+        for (; done < iterations; ++done) {
+            if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+                seconds)
+                break;
+            Bytes bytes = kind.seeds[mutator.below(kind.seeds.size())];
+            if (kind.text) {
+                mutator.mutate_text(bytes);
+            } else {
+                auto c = split(bytes);
+                const auto edits = 1 + mutator.below(3);
+                for (std::size_t k = 0; k < edits; ++k) {
+                    if (mutator.chance(0.2))
+                        mutator.mutate_header(c.lines);
+                    else
+                        mutator.mutate_body(c.body);
+                }
+                bytes = join(std::move(c));
+            }
+            fs::remove_all(work);
+            fs::create_directories(work);
+            const auto input = work / ("input." + kind.name);
+            write_bytes(input, bytes);
+            std::string failure;
+            if (!expected_refusal([&] { kind.read_and_use(input); }, tally, failure)) {
+                const auto keep =
+                    fs::path("fuzz-failure-" + kind.name + "-" + std::to_string(done));
+                write_bytes(keep, bytes);
+                std::cerr << "fuzz_readers: " << kind.name << " case " << done << ": " << failure
+                          << " (input kept in " << keep.string() << ")\n";
+                status = 1;
+                break;
+            }
+        }
+        std::cerr << "fuzz_readers: " << kind.name << ": " << done << " cases, " << tally.read
+                  << " read, " << tally.refused << " refused\n";
+    }
+    fs::remove_all(dir);
+    return status;
+}
