@@ -55,6 +55,12 @@ void Progress::print(std::uint64_t done, bool final) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double rate = elapsed > 0 ? done / elapsed : 0;
+    if (total_ == 0) { // an unknown total (a stream): the count and the rate
+        std::fprintf(stderr, "\r%s: %llu (%.0f/s)%s", label_.c_str(),
+                     static_cast<unsigned long long>(done), rate, final ? "\n" : "   ");
+        std::fflush(stderr);
+        return;
+    }
     const double eta = rate > 0 ? (total_ - done) / rate : 0;
     std::fprintf(stderr, "\r%s: %llu/%llu (%.0f/s, ETA %.1f s)%s", label_.c_str(),
                  static_cast<unsigned long long>(done), static_cast<unsigned long long>(total_),

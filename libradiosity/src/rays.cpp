@@ -177,6 +177,12 @@ bool RayScene::visible(const Vec3& from, const Vec3& to) const {
 }
 
 std::int64_t RayScene::first_hit(const Vec3& origin, const Vec3& direction, bool& front) const {
+    const auto hit = trace(origin, direction);
+    front = hit.front;
+    return hit.patch;
+}
+
+RayScene::Hit RayScene::trace(const Vec3& origin, const Vec3& direction) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -191,10 +197,14 @@ std::int64_t RayScene::first_hit(const Vec3& origin, const Vec3& direction, bool
     rh.ray.mask = 0xFFFFFFFFu;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
-    const auto patch = impl_->patch_of[rh.hit.geomID][rh.hit.primID];
-    front = dot(direction, impl_->normals[patch]) < 0;
-    return patch;
+    Hit hit;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    hit.patch = impl_->patch_of[rh.hit.geomID][rh.hit.primID];
+    hit.front = dot(direction, impl_->normals[hit.patch]) < 0;
+    hit.u = rh.hit.u;
+    hit.v = rh.hit.v;
+    hit.distance = rh.ray.tfar;
+    return hit;
 }
 
 } // namespace rad

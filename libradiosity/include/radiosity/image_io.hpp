@@ -25,6 +25,9 @@ Image read_exr(const std::string& path, std::map<std::string, std::string>* attr
 // Multiplier that maps the 95th-percentile luminance of covered pixels to 0.8.
 double auto_exposure(const Image& image);
 void write_png(const std::string& path, const Image& image, double exposure);
+// 8-bit sRGB pixels, row-major, top row first, 3 bytes each.
+void write_png_rgb8(const std::string& path, int width, int height,
+                    const std::vector<std::uint8_t>& pixels);
 void write_ply(const std::string& path, const radfmt::MeshData& mesh,
                const std::vector<std::array<Rgb, 4>>& corners, double exposure);
 std::uint8_t to_srgb8(double linear);

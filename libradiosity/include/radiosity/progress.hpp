@@ -23,8 +23,8 @@ class ThreadLimit {
 // Items-done progress with rate and ETA, printed to stderr only when it is a terminal.
 class Progress {
   public:
-    Progress(std::string label, std::uint64_t total, bool quiet);
-    void advance(std::uint64_t done_now); // thread-safe
+    Progress(std::string label, std::uint64_t total, bool quiet); // total 0: unknown
+    void advance(std::uint64_t done_now);                         // thread-safe
     void finish();
 
   private:

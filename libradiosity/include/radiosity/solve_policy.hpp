@@ -49,6 +49,11 @@ struct SolveRequest {
 void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& request,
                               radfmt::Header& header);
 
+// Applies to `mesh` the overrides a radiosity file's header records (what rad-solve used),
+// so that what reads the solution (rad-gather, rad-shade --gather) splits it into E and
+// rho with the values it was solved with.
+void apply_recorded_overrides(radfmt::MeshData& mesh, const radfmt::Header& solution_header);
+
 // Throws InputError listing every material (used by a patch) with a reflectance channel >= 1
 // at once, with the override that would fix each, unless `force`.
 void check_reflectances(const radfmt::MeshData& mesh, bool force);

@@ -113,11 +113,16 @@ std::uint8_t to_srgb8(double linear) {
 void write_png(const std::string& path, const Image& image, double exposure) {
     std::vector<std::uint8_t> pixels(image.rgb.size());
     for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = to_srgb8(image.rgb[i] * exposure);
+    write_png_rgb8(path, image.width, image.height, pixels);
+}
+
+void write_png_rgb8(const std::string& path, int width, int height,
+                    const std::vector<std::uint8_t>& pixels) {
     radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
         png_image png{};
         png.version = PNG_IMAGE_VERSION;
-        png.width = static_cast<png_uint_32>(image.width);
-        png.height = static_cast<png_uint_32>(image.height);
+        png.width = static_cast<png_uint_32>(width);
+        png.height = static_cast<png_uint_32>(height);
         png.format = PNG_FORMAT_RGB;
         // Through our own FILE: libpng's write_to_file removes the file when a write fails,
         // and the file may be a device (/dev/full) written in place.

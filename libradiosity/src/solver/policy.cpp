@@ -92,6 +92,21 @@ void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& reques
     }
 }
 
+void apply_recorded_overrides(radfmt::MeshData& mesh, const radfmt::Header& solution_header) {
+    SolveRequest request;
+    const std::string emission = "override.emission.", reflectance = "override.reflectance.";
+    for (const auto& [key, value] : solution_header.fields) {
+        if (key.rfind(emission, 0) == 0)
+            request.emission_overrides.push_back(key.substr(emission.size()) + "=" + value);
+        else if (key.rfind(reflectance, 0) == 0)
+            request.reflectance_overrides.push_back(key.substr(reflectance.size()) + "=" + value);
+        else if (key == "override.emission_scale" && !parse_number(value, request.emission_scale))
+            throw InputError("recorded emission scale '" + value + "' is not a number");
+    }
+    radfmt::Header ignored;
+    apply_material_overrides(mesh, request, ignored);
+}
+
 std::string material_hint(const std::string& material, const std::string& what,
                           const std::string& lead, const std::string& option,
                           const radfmt::Rgb& value) {

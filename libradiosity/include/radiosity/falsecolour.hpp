@@ -1,0 +1,20 @@
+// False-colour maps of values on a regular grid (a work plane's illuminance), the picture
+// lighting designers read: one colour per cell, a legend bar with labelled ticks.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace rad {
+
+// The colour for t in [0, 1] (dark blue - blue - cyan - green - yellow - red), sRGB bytes.
+std::array<std::uint8_t, 3> false_colour(double t);
+
+// Writes a PNG of `values` (row-major, `columns` x `rows`, row 0 at the top; NaN cells
+// grey), scaled from 0 to a round number at or above the largest value, with a legend
+// labelled in `unit` and a `title` line (min, mean, max are added below it).
+void write_false_colour_png(const std::string& path, std::span<const double> values, int columns,
+                            int rows, const std::string& unit, const std::string& title);
+
+} // namespace rad

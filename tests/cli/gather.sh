@@ -1,0 +1,67 @@
+# rad-gather: streaming points in order, lux, header, errors naming the line, --keep-going,
+# the work-plane grid and its false-colour map, determinism at any thread count.
+source "$(dirname "$0")/lib.sh"
+cornell_mesh 0.1
+"$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/c.ff" -q || fail "rad-ff"
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/c.rad" -q || fail "rad-solve"
+M="$TMP/c.mesh"; R="$TMP/c.rad"
+printf '0.278 0.01 0.28 0 1 0\n# a comment\n\n0.1 0.3 0.3 1 0 0\n0.5 0.3 0.3 -1 0 0\n' > "$TMP/p.txt"
+out=$("$BIN/rad-gather" "$M" "$R" --points "$TMP/p.txt" -q) || fail "gather"
+[ "$(wc -l <<<"$out")" -eq 3 ] || fail "one line per point: $out"
+# Red wall on the left (x = 0.556 side faces -x): the sensor facing it gets redder light.
+python3 - "$out" <<'PY' || fail "values: $out"
+import sys
+rows = [list(map(float, l.split())) for l in sys.argv[1].splitlines()]
+assert all(len(r) == 3 and all(v > 0 for v in r) for r in rows), rows
+PY
+# Same input from stdin and from a file, 1 and 2 threads: byte-identical.
+a=$("$BIN/rad-gather" "$M" "$R" -q --threads 1 < "$TMP/p.txt")
+b=$("$BIN/rad-gather" "$M" "$R" -q --threads 2 --points "$TMP/p.txt")
+[ "$a" = "$out" ] && [ "$b" = "$out" ] || fail "stdin/file/threads differ"
+# Lux: 179 x (0.265 R + 0.670 G + 0.065 B) of the same irradiance.
+lux=$("$BIN/rad-gather" "$M" "$R" --points "$TMP/p.txt" --lux -q | head -1)
+python3 -c "
+r,g,b = map(float, '''$(head -1 <<<"$out")'''.split())
+assert abs(179*(0.265*r+0.670*g+0.065*b) - $lux) < 1e-3 * $lux" || fail "lux $lux"
+head=$("$BIN/rad-gather" "$M" "$R" --points "$TMP/p.txt" --header -q | head -1)
+grep -q "^# rad-gather .*mesh $M xxh64:.*radiosity $R xxh64:.*columns: irradiance r g b" <<<"$head" || fail "header: $head"
+# Errors name the line; lines before it are written; nothing after.
+printf '0.278 0.01 0.28 0 1 0\n0.2 0.2 0.2 0 0 0\n0.3 0.3 0.3 0 1 0\n' > "$TMP/bad.txt"
+err=$("$BIN/rad-gather" "$M" "$R" --points "$TMP/bad.txt" -q 2>&1 >"$TMP/bad.out"); rc=$?
+[ $rc -eq 1 ] || fail "zero direction: exit $rc"
+grep -q "$TMP/bad.txt:2: the direction dx dy dz is zero" <<<"$err" || fail "zero direction message: $err"
+[ "$(wc -l < "$TMP/bad.out")" -eq 1 ] || fail "lines before the bad one: $(cat "$TMP/bad.out")"
+err=$(printf '0.278 0.01 0.28 0 1\n' | "$BIN/rad-gather" "$M" "$R" -q 2>&1)
+grep -q "<stdin>:1: expected six numbers" <<<"$err" || fail "five numbers: $err"
+err=$(printf '0.278 -0.3 0.28 0 1 0\n' | "$BIN/rad-gather" "$M" "$R" -q 2>&1)
+grep -q "<stdin>:1: 100% of the surfaces the point sees show their back" <<<"$err" || fail "below the floor: $err"
+# A point under a block (inside it): refused; --keep-going writes nan and goes on.
+printf '0.278 0.01 0.28 0 1 0\n0.18 0.05 0.16 0 1 0\n0.278 0.01 0.28 0 1 0\n' > "$TMP/inside.txt"
+kept=$("$BIN/rad-gather" "$M" "$R" --points "$TMP/inside.txt" --keep-going -q 2>"$TMP/kept.err") || fail "--keep-going"
+[ "$(sed -n 2p <<<"$kept")" = "nan nan nan" ] || fail "--keep-going line 2: $kept"
+[ "$(sed -n 1p <<<"$kept")" = "$(sed -n 1p <<<"$out")" ] || fail "--keep-going changed line 1"
+grep -q "1 point(s) could not be gathered.*inside.txt:2" "$TMP/kept.err" || fail "--keep-going warning: $(cat "$TMP/kept.err")"
+# -o: written atomically; a failure leaves nothing.
+"$BIN/rad-gather" "$M" "$R" --points "$TMP/p.txt" -o "$TMP/g.txt" -q || fail "-o"
+[ "$(cat "$TMP/g.txt")" = "$out" ] || fail "-o differs from stdout"
+expect_error "inside.txt:2:" "$TMP/g2.txt" "$BIN/rad-gather" "$M" "$R" --points "$TMP/inside.txt" -o "$TMP/g2.txt"
+# Work plane: a grid of upward sensors at 0.1 m, in lux, with a false-colour map.
+"$BIN/rad-gather" "$M" "$R" --grid "0.02 0.02 0.54 0.54 0.1 13 13" --lux --png "$TMP/plane.png" \
+  --keep-going -o "$TMP/plane.txt" -q 2>/dev/null || fail "--grid"
+[ "$(wc -l < "$TMP/plane.txt")" -eq 169 ] || fail "grid lines: $(wc -l < "$TMP/plane.txt")"
+python3 - "$TMP/plane.png" <<'PY' || fail "png"
+import struct, sys
+data = open(sys.argv[1], 'rb').read()
+assert data[:8] == b'\x89PNG\r\n\x1a\n'
+w, h = struct.unpack('>II', data[16:24])
+assert w > 400 and h > 300, (w, h)
+PY
+expect_error "--png draws a --grid" "$TMP/x.png" "$BIN/rad-gather" "$M" "$R" --png "$TMP/x.png"
+expect_error "--grid takes seven numbers" "" "$BIN/rad-gather" "$M" "$R" --grid "0 0 1 1 0.1 4"
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/other.mesh" --max-edge 0.2 -q
+expect_error "does not belong to" "" "$BIN/rad-gather" "$TMP/other.mesh" "$R"
+# Streaming: 20,000 points through a pipe, one line each, in order.
+python3 -c "
+for k in range(20000): print(0.05 + 0.45 * (k % 100) / 100, 0.4, 0.05 + 0.45 * (k // 100) / 200, 0, 1, 0)" |
+  "$BIN/rad-gather" "$M" "$R" --rays 8 --shadow-rays 2 -q | wc -l | grep -qx 20000 || fail "streaming 20000 points"
+finish

@@ -1,0 +1,352 @@
+// rad-gather: mesh + solved radiosity + points -> irradiance (or illuminance) at each point.
+#include "radfmt/chain.hpp"
+#include "radfmt/container.hpp"
+#include "radfmt/kinds.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/falsecolour.hpp"
+#include "radiosity/gather.hpp"
+#include "radiosity/numbers.hpp"
+#include "radiosity/progress.hpp"
+#include "radiosity/solve_policy.hpp"
+#include "radiosity/version.hpp"
+#include "tool.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+namespace {
+
+// One sensor: where it is, which way it faces, and where it came from (for messages).
+struct Sensor {
+    long line = 0;
+    rad::Vec3 position{0, 0, 0}, direction{0, 0, 0};
+    std::string problem; // why it cannot be gathered
+    rad::Irradiance result;
+};
+
+// Parses "x y z dx dy dz" (rtrace -I); fills `problem` instead of throwing, so that the
+// lines before a bad one are still written, in order.
+void parse_sensor(const std::string& text, Sensor& sensor) {
+    std::istringstream words(text);
+    std::string token;
+    double v[6];
+    int count = 0;
+    while (words >> token) {
+        if (count == 6 || !rad::parse_number(token, v[count])) {
+            sensor.problem = "expected six numbers 'x y z dx dy dz', found '" + text + "'";
+            return;
+        }
+        ++count;
+    }
+    if (count != 6) {
+        sensor.problem = "expected six numbers 'x y z dx dy dz', found '" + text + "'";
+        return;
+    }
+    sensor.position = {v[0], v[1], v[2]};
+    const rad::Vec3 d{v[3], v[4], v[5]};
+    const double len = rad::length(d);
+    if (!(len > 0) || !std::isfinite(len)) {
+        sensor.problem = "the direction dx dy dz is zero: give the way the sensor faces";
+        return;
+    }
+    sensor.direction = {d[0] / len, d[1] / len, d[2] / len};
+}
+
+// Where sensors come from: lines of a stream, or a generated grid.
+class SensorSource {
+  public:
+    virtual ~SensorSource() = default;
+    // Appends up to `count` sensors; false when there are no more.
+    virtual bool next(std::vector<Sensor>& out, std::size_t count) = 0;
+};
+
+class LineSource final : public SensorSource {
+  public:
+    explicit LineSource(std::istream& in) : in_(in) {}
+    bool next(std::vector<Sensor>& out, std::size_t count) override {
+        std::string text;
+        while (out.size() < count && std::getline(in_, text)) {
+            ++line_;
+            if (!text.empty() && text.back() == '\r') text.pop_back();
+            const auto first = text.find_first_not_of(" \t");
+            if (first == std::string::npos || text[first] == '#') continue; // blank, comment
+            Sensor s;
+            s.line = line_;
+            parse_sensor(text, s);
+            out.push_back(std::move(s));
+        }
+        return !out.empty();
+    }
+
+  private:
+    std::istream& in_;
+    long line_ = 0;
+};
+
+// "x0 z0 x1 z1 y nx nz": upward sensors at height y at the centres of nx x nz cells, rows
+// of constant z from z0, x varying fastest.
+struct Grid {
+    double x0, z0, x1, z1, y;
+    long nx, nz;
+};
+
+Grid parse_grid(const std::string& text) {
+    std::istringstream words(text);
+    std::string token;
+    std::vector<double> v;
+    while (words >> token) {
+        double value = 0;
+        if (!rad::parse_number(token, value))
+            throw rad::InputError("--grid: '" + token + "' is not a number");
+        v.push_back(value);
+    }
+    if (v.size() != 7)
+        throw rad::InputError("--grid takes seven numbers \"x0 z0 x1 z1 y nx nz\", got " +
+                              std::to_string(v.size()));
+    const auto whole = [](double x) { return x >= 1 && x <= 100000 && x == std::floor(x); };
+    if (!whole(v[5]) || !whole(v[6]) || v[5] * v[6] > 1e8)
+        throw rad::InputError("--grid: nx and nz are whole numbers from 1 to 100000 (at most "
+                              "1e8 points)");
+    if (v[0] == v[2] || v[1] == v[3])
+        throw rad::InputError("--grid: x0 x1 and z0 z1 must differ (the grid has no area)");
+    return {v[0], v[1], v[2], v[3], v[4], static_cast<long>(v[5]), static_cast<long>(v[6])};
+}
+
+class GridSource final : public SensorSource {
+  public:
+    explicit GridSource(const Grid& grid) : grid_(grid) {}
+    bool next(std::vector<Sensor>& out, std::size_t count) override {
+        const long total = grid_.nx * grid_.nz;
+        while (out.size() < count && index_ < total) {
+            const long row = index_ / grid_.nx, column = index_ % grid_.nx;
+            Sensor s;
+            s.line = index_ + 1;
+            s.position = {grid_.x0 + (column + 0.5) * (grid_.x1 - grid_.x0) / grid_.nx, grid_.y,
+                          grid_.z0 + (row + 0.5) * (grid_.z1 - grid_.z0) / grid_.nz};
+            s.direction = {0, 1, 0};
+            out.push_back(s);
+            ++index_;
+        }
+        return !out.empty();
+    }
+
+  private:
+    Grid grid_;
+    long index_ = 0;
+};
+
+std::string number_text(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", v);
+    return text;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "Final gather: the irradiance (W/m^2, the units of radiosity) arriving at points of a\n"
+        "solved scene, or their illuminance in lux. Reads 'x y z dx dy dz' lines (position\n"
+        "and the direction the sensor faces; the input of Radiance's rtrace -I) from standard\n"
+        "input or --points, and writes one 'r g b' line per point line, in order, streaming.\n"
+        "Blank lines and # comments are skipped. Direct light is sampled on the emitters\n"
+        "(exact point-to-polygon form factor x the fraction shadow rays see), indirect light\n"
+        "with cosine-weighted rays taking the smoothed reflected radiosity where they land."};
+    std::string mesh_path, rad_path, points_path, output, grid_text, png, smooth = "crease";
+    rad::GatherOptions options;
+    bool lux = false, header = false, keep_going = false, quiet = false;
+    int threads = 0;
+    app.add_option("MESH", mesh_path, "Patch mesh from rad-mesh")->required();
+    app.add_option("RADIOSITY", rad_path, "Radiosity from rad-solve for this mesh")->required();
+    app.add_option("--points", points_path, "Read the points from this file (default: stdin)");
+    app.add_option("-o,--output", output, "Write to this file (default: stdout)");
+    app.add_option("--rays", options.rays,
+                   "Indirect light: cosine-weighted rays per point (0: direct light only)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000000));
+    app.add_option("--shadow-rays", options.shadow_rays,
+                   "Direct light: shadow rays per emitting patch for its visible fraction (0: "
+                   "no shadows)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100000));
+    app.add_flag("--exact", options.exact,
+                 "Indirect light as the exact point-to-polygon sum over every patch (with "
+                 "shadow rays for visibility) instead of rays: no ray noise, cost grows with "
+                 "the patches; for small scenes");
+    app.add_flag("--lux", lux,
+                 "Write illuminance in lux, one number per line: 179 lm/W x (0.265 R + 0.670 G "
+                 "+ 0.065 B), Radiance's convention");
+    app.add_flag("--header", header, "Start the output with a '#' provenance line");
+    app.add_flag("--keep-going", keep_going,
+                 "Write 'nan nan nan' for a point that cannot be gathered (bad line, zero "
+                 "direction, inside an object) and go on, instead of stopping there");
+    app.add_option("--smooth", smooth,
+                   "How the radiosity where a ray lands is interpolated: crease, area, average "
+                   "or flat (as rad-shade)")
+        ->capture_default_str();
+    app.add_option("--crease-angle", options.crease_deg, "crease: largest angle smoothed over")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(0, 180));
+    app.add_option("--grid", grid_text,
+                   "Instead of reading points: upward sensors on a work plane, \"x0 z0 x1 z1 y "
+                   "nx nz\" (cell centres, height y, rows of constant z from z0, x fastest)");
+    app.add_option("--png", png,
+                   "With --grid: also write a false-colour PNG of the illuminance (lux) with a "
+                   "legend");
+    app.add_option("--seed", options.seed, "Seed; each point has its own stream (seed, index)")
+        ->capture_default_str();
+    app.add_option("--threads", threads, "Worker threads (0: all cores)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, rad::ThreadLimit::max_threads()));
+    app.add_flag("-q,--quiet", quiet, "No progress and no summary");
+    if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
+
+    return rad::tool::run_tool("rad-gather", [&] {
+        rad::tool::check_outputs({mesh_path, rad_path, points_path},
+                                 {{"-o", output}, {"--png", png}});
+        if (!png.empty() && grid_text.empty())
+            throw rad::InputError("--png draws a --grid: give --grid \"x0 z0 x1 z1 y nx nz\"");
+        if (!grid_text.empty() && !points_path.empty())
+            throw rad::InputError("give --grid or --points, not both");
+        const auto grid = grid_text.empty() ? Grid{} : parse_grid(grid_text);
+        options.smoothing = rad::parse_smoothing(smooth);
+        rad::ThreadLimit thread_limit(threads);
+        radfmt::OutputBatch outputs;
+
+        radfmt::Header mesh_header, rad_header;
+        auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
+        const auto solution = radfmt::read_radiosity(rad_path, &rad_header);
+        radfmt::require_same_geometry(rad_path, rad_header, solution.radiosity.size(), mesh_path,
+                                      mesh, "run rad-ff and rad-solve on " + mesh_path + " again");
+        // E and rho as solved (rad-solve --emission/--reflectance overrides included).
+        rad::apply_recorded_overrides(mesh, rad_header);
+        const rad::Gatherer gatherer(mesh, solution.radiosity, options);
+
+        std::ifstream points_file;
+        if (!points_path.empty()) {
+            points_file.open(points_path);
+            if (!points_file) throw rad::InputError(points_path + ": cannot open the points file");
+        }
+        const std::string source_name = !grid_text.empty()    ? "--grid"
+                                        : points_path.empty() ? "<stdin>"
+                                                              : points_path;
+        std::unique_ptr<SensorSource> source;
+        if (!grid_text.empty())
+            source = std::make_unique<GridSource>(grid);
+        else
+            source = std::make_unique<LineSource>(points_path.empty() ? std::cin : points_file);
+
+        std::vector<double> grid_lux; // for --png
+        long written = 0, problems = 0;
+        std::string first_problem;
+        const auto start = std::chrono::steady_clock::now();
+        rad::Progress progress("rad-gather",
+                               grid_text.empty() ? 0 : std::uint64_t(grid.nx) * grid.nz, quiet);
+        // Streams blocks of points: parsed, gathered in parallel, written in order.
+        auto run = [&](std::FILE* out) {
+            if (header) {
+                std::string line = "# " + rad::tool_version("rad-gather") + ": " +
+                                   radfmt::command_line(argc, argv) + "; mesh " + mesh_path + " " +
+                                   mesh_header.file_hash + "; radiosity " + rad_path + " " +
+                                   rad_header.file_hash + "; columns: ";
+                line += lux ? "illuminance (lux)" : "irradiance r g b (W/m^2)";
+                std::fprintf(out, "%s\n", line.c_str());
+            }
+            std::vector<Sensor> block;
+            constexpr std::size_t kBlock = 4096;
+            while (block.clear(), source->next(block, kBlock)) {
+                tbb::parallel_for(std::size_t(0), block.size(), [&](std::size_t k) {
+                    auto& s = block[k];
+                    if (!s.problem.empty()) return;
+                    s.result = gatherer.gather(s.position, s.direction,
+                                               static_cast<std::uint64_t>(written + k));
+                    if (s.result.sees_backs(options.max_back_fraction)) {
+                        char text[200];
+                        std::snprintf(text, sizeof text,
+                                      "%.0f%% of the surfaces the point sees show their back: "
+                                      "it is inside an object, behind a surface, or faces into "
+                                      "one (move it off the surface, or turn it)",
+                                      100 * s.result.back_fraction);
+                        s.problem = text;
+                    }
+                    progress.advance(1);
+                });
+                for (const auto& s : block) {
+                    if (!s.problem.empty()) {
+                        const std::string where = source_name + ":" + std::to_string(s.line);
+                        if (!keep_going)
+                            throw rad::InputError(where + ": " + s.problem +
+                                                  " (--keep-going writes nan and goes on)");
+                        if (problems++ == 0) first_problem = where + ": " + s.problem;
+                        std::fputs(lux ? "nan\n" : "nan nan nan\n", out);
+                        if (!grid_text.empty()) grid_lux.push_back(std::nan(""));
+                        continue;
+                    }
+                    const auto h = s.result.total();
+                    const double value = rad::lux(h);
+                    if (!grid_text.empty()) grid_lux.push_back(value);
+                    if (lux)
+                        std::fprintf(out, "%.6g\n", value);
+                    else
+                        std::fprintf(out, "%.6g %.6g %.6g\n", h[0], h[1], h[2]);
+                }
+                written += static_cast<long>(block.size());
+                if (std::ferror(out))
+                    throw rad::SystemError("cannot write the output: " +
+                                           std::string(std::strerror(errno)));
+            }
+        };
+        if (output.empty()) {
+            run(stdout);
+            if (std::fflush(stdout) != 0 && errno != EPIPE)
+                throw rad::SystemError("cannot write to stdout: " +
+                                       std::string(std::strerror(errno)));
+        } else {
+            radfmt::write_atomically(output, [&](const std::filesystem::path& temp) {
+                std::FILE* out = std::fopen(temp.c_str(), "w");
+                if (!out)
+                    throw rad::SystemError(output +
+                                           ": cannot open for writing: " + std::strerror(errno));
+                try {
+                    run(out);
+                } catch (...) {
+                    std::fclose(out);
+                    throw;
+                }
+                if (std::fclose(out) != 0)
+                    throw rad::SystemError(output + ": cannot write: " + std::strerror(errno));
+            });
+        }
+        progress.finish();
+        if (!png.empty())
+            rad::write_false_colour_png(png, grid_lux, static_cast<int>(grid.nx),
+                                        static_cast<int>(grid.nz), "lux",
+                                        "illuminance (lux) at y = " + number_text(grid.y));
+        outputs.commit();
+        if (problems)
+            std::fprintf(stderr,
+                         "rad-gather: warning: %ld point(s) could not be gathered and were "
+                         "written as nan; the first: %s\n",
+                         problems, first_problem.c_str());
+        if (!quiet) {
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            std::fprintf(stderr,
+                         "rad-gather: %ld point(s) in %.3f s (%.0f/s), %s indirect, %d shadow "
+                         "ray(s) per emitting patch\n",
+                         written, seconds, seconds > 0 ? written / seconds : 0.0,
+                         options.exact ? "exact" : (std::to_string(options.rays) + " rays").c_str(),
+                         options.shadow_rays);
+        }
+        return 0;
+    });
+}
