@@ -2,6 +2,8 @@
 #include "helpers.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
+#include "radiosity/gathered.hpp"
+#include "radiosity/progress.hpp"
 #include "radiosity/solver.hpp"
 #include "radiosity/transport.hpp"
 
@@ -225,4 +227,31 @@ TEST_CASE("at patch centres of the Cornell box the gather agrees with the solved
     // estimates: measured median 0.8%, mean 2.2%.
     CHECK(median < 0.02);
     CHECK(mean < 0.04);
+}
+
+TEST_CASE("a gathered image of a furnace is uniform, and at any thread count the same") {
+    // Every face emits 0.5 and reflects half: B = 0.5 / (1 - 0.5) = 1 everywhere, so every
+    // pixel is E + rho x H = 0.5 + 0.5 x 1 = 1 (direct exact, every ray finds B - E = 0.5).
+    const auto mesh =
+        mesh_of(cube_obj(1, "glow"), "newmtl glow\nKd 0.5 0.5 0.5\nKe 0.5 0.5 0.5\n", 0.25);
+    std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
+    rad::GatherOptions options;
+    options.rays = 16;
+    const rad::Gatherer gatherer(mesh, b, options);
+    rad::View view;
+    view.position = {0.5, 0.5, 0.1};
+    view.direction = {0.2, 0.1, 1};
+    view.horizontal_deg = view.vertical_deg = 100;
+    const auto image = rad::render_gathered(gatherer, view, 24, 24, 2, true);
+    CHECK(image.covered_pixels == 24 * 24);
+    const auto [lo, hi] = std::minmax_element(image.rgb.begin(), image.rgb.end());
+    INFO("pixels from " << *lo << " to " << *hi);
+    CHECK(*lo > 0.995f);
+    CHECK(*hi < 1.005f);
+    rad::Image again;
+    {
+        rad::ThreadLimit one(1);
+        again = rad::render_gathered(gatherer, view, 24, 24, 2, true);
+    }
+    CHECK(again.rgb == image.rgb);
 }

@@ -174,8 +174,9 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(0, 1000000));
     app.add_option("--shadow-rays", options.shadow_rays,
-                   "Direct light: shadow rays per emitting patch for its visible fraction (0: "
-                   "no shadows)")
+                   "Direct light: shadow rays per point for the emitters' visible fractions, "
+                   "shared among the emitting patches by what each contributes, at least one "
+                   "each (--exact: per patch); 0: no shadows")
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
     app.add_flag("--exact", options.exact,
@@ -342,7 +343,7 @@ int main(int argc, char** argv) {
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             std::fprintf(stderr,
                          "rad-gather: %ld point(s) in %.3f s (%.0f/s), %s indirect, %d shadow "
-                         "ray(s) per emitting patch\n",
+                         "ray(s) per point\n",
                          written, seconds, seconds > 0 ? written / seconds : 0.0,
                          options.exact ? "exact" : (std::to_string(options.rays) + " rays").c_str(),
                          options.shadow_rays);

@@ -80,5 +80,9 @@ expect_error "--png and -o both write" "$TMP/both.exr" "$BIN/rad-shade" "$TMP/c.
 expect_error "--crease-angle: 'nan' is not a number in [0, 180]" "$TMP/n.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/n.exr" --view-file "$VF" --crease-angle nan
 expect_error "--exposure: 'nan' is not a number in [0, 1e+30]" "$TMP/n.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/n.exr" --view-file "$VF" --exposure nan
 expect_error "--exposure: '-1'" "$TMP/n.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/n.exr" --view-file "$VF" --exposure -1
+# --gather: the same PNG at 1 and 2 threads (samples seeded by index); refused with --albedo.
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/g1.exr" --png "$TMP/g1.png" --view-file "$VF" -x 48 -y 48 --gather 8 --exposure 1 --threads 1 -q || fail "--gather"
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/g2.exr" --png "$TMP/g2.png" --view-file "$VF" -x 48 -y 48 --gather 8 --exposure 1 --threads 2 -q || fail "--gather 2 threads"
+cmp -s "$TMP/g1.png" "$TMP/g2.png" || fail "--gather differs between 1 and 2 threads"
+expect_error "--gather shades a solution as solved" "$TMP/ga.exr" "$BIN/rad-shade" "$TMP/c.mesh" -o "$TMP/ga.exr" --view-file "$VF" --albedo --gather 8
 finish
-

@@ -22,8 +22,10 @@
 namespace rad {
 
 struct GatherOptions {
-    int rays = 256;         // indirect: cosine-weighted rays per point
-    int shadow_rays = 16;   // direct: per emitting patch, for its visible fraction
+    int rays = 256; // indirect: cosine-weighted rays per point
+    // Direct: shadow rays per point for the emitters' visible fractions, shared among the
+    // emitting patches by what each contributes (at least one each); --exact: per patch.
+    int shadow_rays = 32;
     bool exact = false;     // indirect as the point-to-polygon sum over every patch
     std::uint64_t seed = 1; // each point has its own stream: (seed, point index)
     Smoothing smoothing = Smoothing::Crease;
@@ -59,6 +61,13 @@ class Gatherer {
     // point's random stream. When the result sees_backs(options.max_back_fraction), the
     // point is inside an object or behind a surface: the caller refuses it.
     Irradiance gather(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    // On a surface shaded with an interpolated normal: rays below the surface's own plane
+    // (`surface`, its geometric normal) go into it, and count as nothing.
+    Irradiance gather(const Vec3& point, const Vec3& normal, const Vec3& surface,
+                      std::uint64_t index) const;
+    // The normal at (u, v) of a patch interpolated from its corners (smoothed over
+    // neighbours of its material within the crease angle; the patch's own when flat).
+    Vec3 shading_normal(std::size_t patch, double u, double v) const;
 
     const radfmt::MeshData& mesh() const { return mesh_; }
     const RayScene& scene() const { return *scene_; }
@@ -70,7 +79,10 @@ class Gatherer {
   private:
     Rgb direct(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
     Rgb exact_indirect(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
-    Rgb visible_sum(const Vec3& point, const Vec3& normal, std::size_t patch, Rng& rng) const;
+    double form_factor_to(const Vec3& point, const Vec3& normal, std::size_t patch,
+                          std::vector<Vec3>& clipped) const;
+    double visible_fraction(const Vec3& point, const Vec3& normal, std::size_t patch,
+                            const std::vector<Vec3>& clipped, int rays, Rng& rng) const;
 
     const radfmt::MeshData& mesh_;
     GatherOptions options_;
@@ -80,6 +92,7 @@ class Gatherer {
     std::vector<std::array<Rgb, 4>> reflected_corners_; // B - E at the corners
     std::vector<Rgb> reflected_flat_;                   // B - E per patch
     std::vector<std::uint32_t> emitters_;               // patches with E > 0
+    std::vector<std::array<Rgb, 4>> corner_normals_;    // smoothed normals at the corners
 };
 
 // Luminous efficacy of Radiance's white (lm/W) and its RGB luminance weights: illuminance

@@ -104,7 +104,7 @@ void write_false_colour_png(const std::string& path, std::span<const double> val
     const int cell = std::max(2, 480 / std::max(columns, rows));
     const int map_w = columns * cell, map_h = rows * cell;
     const int margin = 12, header = 56, legend_w = 150;
-    Canvas canvas(margin + map_w + margin + legend_w, header + std::max(map_h, 260) + margin);
+    Canvas canvas(margin + map_w + margin + legend_w, header + std::max(map_h, 310) + margin);
     canvas.text(margin, 8, title);
     canvas.text(margin, 30,
                 finite ? "min " + number(lo) + "  mean " + number(sum / finite) + "  max " +
@@ -129,6 +129,10 @@ void write_false_colour_png(const std::string& path, std::span<const double> val
         canvas.text(bar_x + 36, y - 6, number(top * t / 5));
     }
     canvas.text(bar_x, bar_y + bar_h + 8, unit);
+    if (finite < values.size()) {
+        canvas.fill(bar_x, bar_y + bar_h + 34, bar_x + 24, bar_y + bar_h + 46, {128, 128, 128});
+        canvas.text(bar_x + 30, bar_y + bar_h + 34, "no value");
+    }
     write_png_rgb8(path, canvas.width, canvas.height, canvas.pixels);
 }
 

@@ -1,0 +1,16 @@
+// rad-shade --gather: images whose every sample is a final gather at the visible point,
+// E + rho x (irradiance gathered there), instead of the patches' interpolated radiosity:
+// shadows as sharp as the geometry, no blotches from noisy form factors.
+#pragma once
+#include "radiosity/gather.hpp"
+#include "radiosity/raster.hpp"
+#include "radiosity/view.hpp"
+
+namespace rad {
+
+// Same camera and pixel convention as render(); N x N samples per pixel, each seeded by
+// its index, so the image is the same at any thread count.
+Image render_gathered(const Gatherer& gatherer, const View& view, int width, int height,
+                      int supersampling, bool quiet);
+
+} // namespace rad

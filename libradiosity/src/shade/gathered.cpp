@@ -1,0 +1,74 @@
+// Images by final gather: each pixel's visible point lit by rays cast from that point.
+#include "radiosity/gathered.hpp"
+
+#include "radiosity/progress.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace rad {
+
+Image render_gathered(const Gatherer& gatherer, const View& view, int width, int height,
+                      int supersampling, bool quiet) {
+    const int ss = std::max(1, supersampling);
+    const int W = width * ss, H = height * ss;
+    const Vec3 dir = normalized(view.direction);
+    const Vec3 right = normalized(cross(dir, view.up));
+    const Vec3 up = cross(right, dir);
+    constexpr double kDeg = std::numbers::pi / 180;
+    const double tan_h = std::tan(0.5 * view.horizontal_deg * kDeg),
+                 tan_v = std::tan(0.5 * view.vertical_deg * kDeg);
+    const auto& mesh = gatherer.mesh();
+
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.rgb.assign(std::size_t(width) * height * 3, 0.0f);
+    image.back_coverage.assign(std::size_t(width) * height, 0.0f);
+    std::vector<std::uint8_t> covered(std::size_t(width) * height, 0);
+    Progress progress("rad-shade gather", std::uint64_t(height), quiet);
+    tbb::parallel_for(0, height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            double sum[3] = {0, 0, 0};
+            int backs = 0;
+            for (int sy = 0; sy < ss; ++sy)
+                for (int sx = 0; sx < ss; ++sx) {
+                    // The sample's centre, in the rasteriser's screen convention.
+                    const double px = x * ss + sx + 0.5, py = y * ss + sy + 0.5;
+                    const double cx = (2 * px / W - 1) * tan_h, cy = (1 - 2 * py / H) * tan_v;
+                    const Vec3 ray = normalized(dir + right * cx + up * cy);
+                    const auto hit = gatherer.scene().trace(view.position, ray);
+                    if (hit.patch < 0) continue;
+                    covered[std::size_t(y) * width + x] = 1;
+                    if (!hit.front) {
+                        ++backs;
+                        continue;
+                    }
+                    const auto& patch = mesh.patches[static_cast<std::size_t>(hit.patch)];
+                    const auto& material = mesh.materials[patch.material];
+                    const Vec3 point = view.position + ray * hit.distance;
+                    const std::uint64_t index = std::uint64_t(y * ss + sy) * W + (x * ss + sx);
+                    const auto normal =
+                        gatherer.shading_normal(static_cast<std::size_t>(hit.patch), hit.u, hit.v);
+                    const auto h = gatherer.gather(point, normal, patch.normal, index).total();
+                    for (int c = 0; c < 3; ++c)
+                        sum[c] += material.emission[c] + material.reflectance[c] * h[c];
+                }
+            const std::size_t at = std::size_t(y) * width + x;
+            for (int c = 0; c < 3; ++c)
+                image.rgb[3 * at + c] = static_cast<float>(sum[c] / (ss * ss));
+            image.back_coverage[at] = float(backs) / float(ss * ss);
+        }
+        progress.advance(1);
+    });
+    progress.finish();
+    for (std::size_t p = 0; p < covered.size(); ++p) {
+        image.covered_pixels += covered[p];
+        image.back_face_pixels += image.back_coverage[p] >= 0.5f;
+    }
+    return image;
+}
+
+} // namespace rad
