@@ -105,6 +105,11 @@ int main(int argc, char** argv) {
     app.add_flag("--two-sided-emission", two_sided_emission,
                  "Emitters among the --two-sided surfaces emit from both sides (default: the "
                  "front only; the back gets the material's copy '<name>.back' without Ke)");
+    bool no_imprint = false;
+    app.add_flag("--no-imprint", no_imprint,
+                 "Do not imprint contacts (by default, where another object touches or crosses "
+                 "a face, the contact lines are cut into it before subdividing, so no patch "
+                 "straddles a contact, and regions hidden inside other geometry are removed)");
     app.add_flag("-q,--quiet", quiet, "Print no summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
@@ -210,6 +215,26 @@ int main(int argc, char** argv) {
                 if (std::find(scene.groups.begin(), scene.groups.end(), group) ==
                     scene.groups.end())
                     throw rad::InputError("no group '" + group + "' in " + input);
+        if (!no_imprint) {
+            const auto imprint = rad::imprint_contacts(scene);
+            if (imprint.faces_imprinted) {
+                char text[300];
+                std::snprintf(text, sizeof text,
+                              "imprinted: contacts cut into %zu face(s) (area %.6g); %zu hidden "
+                              "region(s) removed (area %.6g)",
+                              imprint.faces_imprinted, imprint.area_imprinted,
+                              imprint.regions_removed, imprint.area_removed);
+                std::string line = text;
+                if (!imprint.removed_lines.empty()) {
+                    line += ", from the face(s) at line";
+                    for (std::size_t k = 0; k < imprint.removed_lines.size() && k < 8; ++k)
+                        line += " " + std::to_string(imprint.removed_lines[k]);
+                    if (imprint.removed_lines.size() > 8) line += " ...";
+                }
+                line += " (--no-imprint keeps the faces whole)";
+                changes.push_back(std::move(line));
+            }
+        }
         rad::SubdivisionReport report;
         auto mesh = rad::subdivide(scene, options, &report);
         if (report.nonplanar_split) {

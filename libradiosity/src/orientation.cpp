@@ -225,19 +225,11 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
     return findings;
 }
 
-std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
-    const std::size_t n = scene.polygons.size();
-    const auto surfaces = connect_surfaces(scene);
-    std::vector<std::size_t> surface_of(n);
-    for (std::size_t c = 0; c < surfaces.members.size(); ++c)
-        for (auto f : surfaces.members[c]) surface_of[f] = c;
-
-    // The faces as a fan of triangles each, with the face's own normal, for Embree.
-    radfmt::MeshData rays_mesh;
-    rays_mesh.vertices = scene.vertices;
-    std::vector<std::size_t> face_of; // per triangle
-    std::vector<double> triangle_area;
-    for (std::size_t f = 0; f < n; ++f) {
+radfmt::MeshData face_triangles(const Scene& scene, std::vector<std::size_t>* face_of,
+                                std::vector<double>* triangle_area) {
+    radfmt::MeshData mesh;
+    mesh.vertices = scene.vertices;
+    for (std::size_t f = 0; f < scene.polygons.size(); ++f) {
         const auto& vs = scene.polygons[f].vertices;
         const auto pts = points_of(scene, scene.polygons[f]);
         const Vec3 n2 = newell_normal(pts);
@@ -246,11 +238,25 @@ std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
             radfmt::Patch t;
             t.corners = {vs[0], vs[k], vs[k + 1], radfmt::kNoVertex};
             t.normal = normalized(n2);
-            rays_mesh.patches.push_back(t);
-            face_of.push_back(f);
-            triangle_area.push_back(0.5 * length(cross(pts[k] - pts[0], pts[k + 1] - pts[0])));
+            mesh.patches.push_back(t);
+            if (face_of) face_of->push_back(f);
+            if (triangle_area)
+                triangle_area->push_back(0.5 * length(cross(pts[k] - pts[0], pts[k + 1] - pts[0])));
         }
     }
+    return mesh;
+}
+
+std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
+    const std::size_t n = scene.polygons.size();
+    const auto surfaces = connect_surfaces(scene);
+    std::vector<std::size_t> surface_of(n);
+    for (std::size_t c = 0; c < surfaces.members.size(); ++c)
+        for (auto f : surfaces.members[c]) surface_of[f] = c;
+
+    std::vector<std::size_t> face_of; // per triangle
+    std::vector<double> triangle_area;
+    const auto rays_mesh = face_triangles(scene, &face_of, &triangle_area);
     if (rays_mesh.patches.empty()) return {};
     const RayScene rays(rays_mesh);
     std::vector<std::vector<std::size_t>> triangles_of(surfaces.members.size());

@@ -112,6 +112,27 @@ struct SubdivisionReport {
 radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options,
                            SubdivisionReport* report = nullptr);
 
+// The faces as fans of triangles, each with its face's own (Newell) normal: a mesh for a
+// RayScene over the scene as written. `face_of` and `triangle_area` get one entry per
+// triangle when given.
+radfmt::MeshData face_triangles(const Scene& scene, std::vector<std::size_t>* face_of = nullptr,
+                                std::vector<double>* triangle_area = nullptr);
+
+// Contacts imprinted (rad-mesh's default): where a face of another object touches or crosses
+// a face (coplanar and facing it, an edge lying in it, or going through it), the contact
+// lines are cut into the face, which is replaced by the triangles of the regions they bound;
+// regions enclosed by other geometry (the floor under a block, a beam's end inside a wall:
+// seen from there, most surfaces show their back) are removed. Faces of one object (sharing
+// a vertex position) do not imprint each other. Points closer than `tolerance` (relative to
+// the scene's size) are one point, so near-coincident input makes no slivers. Vertices added
+// on a face's edge are added to the other faces along that edge, so edges stay conforming.
+struct ImprintReport {
+    std::size_t faces_imprinted = 0, regions_removed = 0;
+    double area_imprinted = 0, area_removed = 0;
+    std::vector<int> removed_lines; // OBJ lines of faces that lost a region
+};
+ImprintReport imprint_contacts(Scene& scene, double tolerance = 1e-7);
+
 struct Topology {
     std::size_t edges = 0;
     std::size_t boundary_edges = 0;   // edges with one patch: light can leak there
