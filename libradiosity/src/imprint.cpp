@@ -3,6 +3,7 @@
 // other geometry, and keep the edges conforming.
 #include "radiosity/rays.hpp"
 #include "radiosity/scene.hpp"
+#include "union_find.hpp"
 #include "weld.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -216,53 +217,98 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
     }
 
     // The cut lines of every face.
+    // The cut lines of every face. A cut parallel to a side of a convex face runs on to its
+    // outline, and on across the coplanar faces it continues into (the tiles of one floor):
+    // a rectangle cut by lines parallel to its sides stays rectangles, so regular grids.
+    // Other cuts stay as they are (slanted lines run on would make thin cells); the regions
+    // they bound are triangulated.
     std::vector<std::vector<Segment>> cuts(n);
+    std::vector<std::vector<std::array<Vec3, 2>>> chords(n); // the run-on lines, in 3D
+    std::vector<std::vector<std::array<double, 2>>> outlines(n);
+    std::vector<char> is_convex(n, 0);
     for (std::size_t f = 0; f < n; ++f) {
-        const auto& p = faces[f];
-        if (!p.planar) continue;
-        std::vector<std::array<double, 2>> outline2d;
-        for (const auto& x : p.points) outline2d.push_back(p.frame.to2d(x));
-        const bool is_convex = convex(outline2d);
+        if (!faces[f].planar) continue;
+        for (const auto& x : faces[f].points) outlines[f].push_back(faces[f].frame.to2d(x));
+        is_convex[f] = convex(outlines[f]);
+    }
+    // `run_on`: a line run on from a coplanar neighbour (it need not reach in by itself).
+    auto add_cut = [&](std::size_t f, Segment c, bool run_on) {
+        const auto& outline2d = outlines[f];
+        const double dx = c.b[0] - c.a[0], dy = c.b[1] - c.a[1];
+        const double len = std::hypot(dx, dy);
+        if (len <= tol) return;
+        bool parallel = false;
+        for (std::size_t k = 0; k < outline2d.size() && !parallel; ++k) {
+            const auto& e0 = outline2d[k];
+            const auto& e1 = outline2d[(k + 1) % outline2d.size()];
+            const double ex = e1[0] - e0[0], ey = e1[1] - e0[1];
+            parallel = std::abs(dx * ey - dy * ex) <= 1e-9 * len * std::hypot(ex, ey);
+        }
+        if (run_on && !(is_convex[f] && parallel)) return;
+        // Only a contact that reaches into the face (by more than the tolerance) cuts it.
+        if (!run_on) {
+            if (is_convex[f] && !clip_to_convex(c, outline2d)) return;
+            if (std::hypot(c.b[0] - c.a[0], c.b[1] - c.a[1]) <= tol) return;
+        }
+        if (is_convex[f] && parallel) {
+            const double reach = 4 * size / len;
+            c = {{c.a[0] - reach * dx, c.a[1] - reach * dy},
+                 {c.b[0] + reach * dx, c.b[1] + reach * dy}};
+            if (!clip_to_convex(c, outline2d)) return;
+        }
+        if (std::hypot(c.b[0] - c.a[0], c.b[1] - c.a[1]) <= tol) return;
+        // Along the outline already: nothing to cut.
+        for (std::size_t k = 0; k < outline2d.size(); ++k) {
+            const auto& e0 = outline2d[k];
+            const auto& e1 = outline2d[(k + 1) % outline2d.size()];
+            const double edge = std::hypot(e1[0] - e0[0], e1[1] - e0[1]);
+            if (std::abs(cross2(e0, e1, c.a)) <= tol * edge &&
+                std::abs(cross2(e0, e1, c.b)) <= tol * edge)
+                return;
+        }
+        cuts[f].push_back(c);
+        if (is_convex[f] && parallel)
+            chords[f].push_back(
+                {faces[f].frame.to3d(c.a[0], c.a[1]), faces[f].frame.to3d(c.b[0], c.b[1])});
+    };
+    for (std::size_t f = 0; f < n; ++f) {
+        if (!faces[f].planar) continue;
         for (const auto q : touching[f]) {
             if (faces[q].area == 0) continue;
             Segment s;
             std::vector<Segment> found;
-            if (contact(p, faces[q], tol, s, found)) found.push_back(s);
-            for (auto& c : found) {
-                // A cut parallel to a side of a convex face runs on to its outline: a
-                // rectangle cut by lines parallel to its sides stays rectangles, so regular
-                // grids. Other cuts stay as they are (extended, slanted cuts would make thin
-                // cells); the regions they bound are triangulated.
-                const double dx = c.b[0] - c.a[0], dy = c.b[1] - c.a[1];
-                const double len = std::hypot(dx, dy);
-                if (len <= tol) continue;
-                bool parallel = false;
-                for (std::size_t k = 0; k < outline2d.size() && !parallel; ++k) {
-                    const auto& e0 = outline2d[k];
-                    const auto& e1 = outline2d[(k + 1) % outline2d.size()];
-                    const double ex = e1[0] - e0[0], ey = e1[1] - e0[1];
-                    parallel = std::abs(dx * ey - dy * ex) <= 1e-9 * len * std::hypot(ex, ey);
-                }
-                if (is_convex && parallel) {
-                    const double reach = 4 * size / len;
-                    c = {{c.a[0] - reach * dx, c.a[1] - reach * dy},
-                         {c.b[0] + reach * dx, c.b[1] + reach * dy}};
-                    if (!clip_to_convex(c, outline2d)) continue;
-                } else if (is_convex && !clip_to_convex(c, outline2d)) {
-                    continue;
-                }
-                if (std::hypot(c.b[0] - c.a[0], c.b[1] - c.a[1]) <= tol) continue;
-                // Along the outline already: nothing to cut.
-                bool on_outline = false;
-                for (std::size_t k = 0; k < outline2d.size() && !on_outline; ++k) {
-                    const auto& e0 = outline2d[k];
-                    const auto& e1 = outline2d[(k + 1) % outline2d.size()];
-                    const double edge = std::hypot(e1[0] - e0[0], e1[1] - e0[1]);
-                    on_outline = std::abs(cross2(e0, e1, c.a)) <= tol * edge &&
-                                 std::abs(cross2(e0, e1, c.b)) <= tol * edge;
-                }
-                if (!on_outline) cuts[f].push_back(c);
+            if (contact(faces[f], faces[q], tol, s, found)) found.push_back(s);
+            for (const auto& c : found) add_cut(f, c, false);
+        }
+    }
+    // Coplanar faces sharing an edge (welded) form one surface; its run-on lines cross all.
+    {
+        UnionFind surfaces(n);
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> first_with_edge;
+        for (std::size_t f = 0; f < n; ++f) {
+            if (!faces[f].planar) continue;
+            const auto& vs = scene.polygons[f].vertices;
+            for (std::size_t k = 0; k < vs.size(); ++k) {
+                auto a = welded[vs[k]], b = welded[vs[(k + 1) % vs.size()]];
+                const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+                const auto [it, fresh] = first_with_edge.emplace(key, f);
+                if (fresh) continue;
+                const auto& g = faces[it->second];
+                if (dot(g.frame.normal, faces[f].frame.normal) > 1 - 1e-9 &&
+                    std::abs(g.frame.offset - faces[f].frame.offset) <= tol)
+                    surfaces.unite(f, it->second);
             }
+        }
+        std::map<std::size_t, std::vector<std::size_t>> members;
+        for (std::size_t f = 0; f < n; ++f)
+            if (faces[f].planar) members[surfaces.find(f)].push_back(f);
+        for (const auto& [root, list] : members) {
+            if (list.size() < 2) continue;
+            std::vector<std::array<Vec3, 2>> lines;
+            for (const auto f : list) lines.insert(lines.end(), chords[f].begin(), chords[f].end());
+            for (const auto& line : lines)
+                for (const auto f : list)
+                    add_cut(f, {faces[f].frame.to2d(line[0]), faces[f].frame.to2d(line[1])}, true);
         }
     }
 
@@ -309,21 +355,50 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
             corner.push_back(cdt.insert(Point2(xy[0], xy[1])));
             corner.back()->info().index = poly.vertices[k];
         }
-        for (std::size_t k = 0; k < corner.size(); ++k)
-            if (corner[k] != corner[(k + 1) % corner.size()])
-                cdt.insert_constraint(corner[k], corner[(k + 1) % corner.size()]);
-        // Cut points closer than the tolerance to a corner or an earlier point are that point.
+        // Cut points closer than the tolerance to a corner or an earlier point are that point;
+        // those on the outline are put exactly on it, and the outline is constrained through
+        // them (a point a hair inside would leave a sliver between it and the outline).
         std::vector<CDT::Vertex_handle> known(corner);
-        auto snap = [&](const std::array<double, 2>& xy) {
+        std::vector<std::vector<std::pair<double, CDT::Vertex_handle>>> on_edge(corner.size());
+        auto snap = [&](std::array<double, 2> xy) {
             for (const auto& h : known)
                 if (std::hypot(h->point().x() - xy[0], h->point().y() - xy[1]) <= tol) return h;
+            std::size_t edge = corner.size();
+            double t = 0;
+            for (std::size_t k = 0; k < outline2d.size() && edge == corner.size(); ++k) {
+                const auto& e0 = outline2d[k];
+                const auto& e1 = outline2d[(k + 1) % outline2d.size()];
+                const double ex = e1[0] - e0[0], ey = e1[1] - e0[1];
+                const double len2 = ex * ex + ey * ey;
+                if (!(len2 > 0)) continue;
+                t = ((xy[0] - e0[0]) * ex + (xy[1] - e0[1]) * ey) / len2;
+                if (t <= 0 || t >= 1 || std::abs(cross2(e0, e1, xy)) > tol * std::sqrt(len2))
+                    continue;
+                xy = {e0[0] + t * ex, e0[1] + t * ey};
+                edge = k;
+            }
             known.push_back(cdt.insert(Point2(xy[0], xy[1])));
+            if (edge < corner.size()) on_edge[edge].emplace_back(t, known.back());
             return known.back();
         };
+        std::vector<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>> cut_edges;
         for (const auto& c : cuts[f]) {
             const auto a = snap(c.a), b = snap(c.b);
-            if (a != b) cdt.insert_constraint(a, b);
+            if (a != b) cut_edges.emplace_back(a, b);
         }
+        for (std::size_t k = 0; k < corner.size(); ++k) {
+            auto& points = on_edge[k];
+            std::sort(points.begin(), points.end(),
+                      [](const auto& x, const auto& y) { return x.first < y.first; });
+            auto from = corner[k];
+            for (const auto& [t, h] : points) {
+                if (h != from) cdt.insert_constraint(from, h);
+                from = h;
+            }
+            if (from != corner[(k + 1) % corner.size()])
+                cdt.insert_constraint(from, corner[(k + 1) % corner.size()]);
+        }
+        for (const auto& [a, b] : cut_edges) cdt.insert_constraint(a, b);
         for (auto fh = cdt.finite_faces_begin(); fh != cdt.finite_faces_end(); ++fh) {
             const auto c = CGAL::centroid(fh->vertex(0)->point(), fh->vertex(1)->point(),
                                           fh->vertex(2)->point());
