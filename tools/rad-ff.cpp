@@ -79,8 +79,18 @@ int main(int argc, char** argv) {
         for (const auto& [key, value] : rad::form_factor_header_fields(options))
             header.set(key, value);
         header.set("mesh_geometry_hash", mesh.geometry_hash());
+        header.set("rays_started_inside", std::to_string(stats.rays_started_inside));
         radfmt::write_form_factors(output, header, ff);
         // Warnings go out even with --quiet: a wrong-facing surface spoils every solve.
+        if (stats.rays_started_inside)
+            std::fprintf(stderr,
+                         "rad-ff: warning: %s: %llu ray(s) from %zu patch(es) met a back face "
+                         "within their own patch's size: those patches are partly under or "
+                         "inside other geometry (a contact not imprinted: rad-mesh imprints "
+                         "unless --no-imprint; a lamp's back a hair below a ceiling), or beside a "
+                         "surface facing away; that part of them sees nothing\n",
+                         input.c_str(), static_cast<unsigned long long>(stats.rays_started_inside),
+                         stats.patches_started_inside);
         for (const auto& line : rad::back_face_warnings(mesh, ff, stats))
             std::fprintf(stderr, "rad-ff: warning: %s: %s\n", input.c_str(), line.c_str());
         if (!options.quiet) {

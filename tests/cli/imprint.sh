@@ -37,6 +37,18 @@ for mode in imprint no-imprint; do
   fi
 done
 
+# rad-ff counts the rays that start under or inside other geometry (a back face met within
+# the patch's own size): none with imprinting, many without (the straddling floor patches).
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/ri.mesh" --max-edge 0.05 -q 2>/dev/null
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/rn.mesh" --max-edge 0.05 --no-imprint -q
+"$BIN/rad-ff" "$TMP/ri.mesh" -o "$TMP/ri.ff" -q 2>"$TMP/ri.err" || fail "ff imprinted"
+"$BIN/rad-ff" "$TMP/rn.mesh" -o "$TMP/rn.ff" -q 2>"$TMP/rn.err" || fail "ff not imprinted"
+[ "$("$BIN/rad-info" "$TMP/ri.ff" | sed -n 's/^  rays_started_inside = //p')" = 0 ] || fail "rays started inside with imprinting"
+[ ! -s "$TMP/ri.err" ] || fail "rad-ff warned on the imprinted box: $(cat "$TMP/ri.err")"
+inside=$("$BIN/rad-info" "$TMP/rn.ff" | sed -n 's/^  rays_started_inside = //p')
+[ "${inside:-0}" -gt 100 ] || fail "rays started inside without imprinting: '$inside'"
+grep -q "ray(s) from .* patch(es) met a back face within their own patch's size: those patches are partly under or inside other geometry" "$TMP/rn.err" || fail "rad-ff warning: $(cat "$TMP/rn.err")"
+
 # Cornell box: the floor loses exactly the blocks' footprints (shoelace over each block's
 # corners at y = 0, from the OBJ itself), and the walls are the same grids as without.
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/ci.mesh" --max-edge 0.05 -q 2>/dev/null || fail "mesh cornell"

@@ -61,7 +61,8 @@ for m in flipped fixed byhand orig; do
   sums[$m]=$(sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p' <<<"$ff_err")
   if [ $m = flipped ]; then
     grep -q "warning: flipped.mesh: group back: 100% of the [0-9]* rays that reach it arrive at its back" <<<"$ff_err" || fail "rad-ff did not name the flipped wall: $ff_err"
-    [ "$(grep -c warning <<<"$ff_err")" -eq 1 ] || fail "rad-ff warns about more than the flipped wall: $ff_err"
+    # (and about the patches beside it, whose rays meet its back at once)
+    [ "$(grep warning <<<"$ff_err" | grep -vc "met a back face within their own patch's size")" -eq 1 ] || fail "rad-ff warns about more than the flipped wall: $ff_err"
   else
     grep -q "warning" <<<"$ff_err" && fail "rad-ff warns on $m: $ff_err"
   fi

@@ -326,6 +326,7 @@ int main(int argc, char** argv) {
                            fs::copy_options::overwrite_existing);
              auto s = rad::load_scene(p);
              rad::remove_duplicate_faces(s);
+             rad::imprint_contacts(s); // rad-mesh's default path
              rad::SubdivisionOptions o;
              o.max_edge = 0.6;
              o.max_patches = 1e5;

@@ -37,6 +37,12 @@ struct FormFactorStats {
     // Per patch: cosine-weighted rays (the method's own or the probes) that reached its
     // front and its back, for back_face_warnings.
     std::vector<std::uint64_t> reached_front, reached_back;
+    // Rays (cosine-weighted: the method's own or the probes) that met a back face within
+    // their patch's own size, from patches where that is at least 3 rays and a tenth of
+    // theirs: they started under or inside other geometry. None when contacts are imprinted
+    // (rad-mesh's default) and nothing hangs a hair in front of a surface.
+    std::uint64_t rays_started_inside = 0;
+    std::size_t patches_started_inside = 0;
 };
 
 // Rays per patch cast to check for back faces when the method casts no cosine-weighted

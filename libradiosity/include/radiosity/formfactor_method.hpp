@@ -49,7 +49,11 @@ struct RayLog {
     // Per patch: rays that reached its front, its back (this thread's counters).
     std::uint32_t* reached_front = nullptr;
     std::uint32_t* reached_back = nullptr;
-    void record(std::int64_t hit, bool front) {
+    // Rays that met a back face closer than `near` (the patch's own size): they started
+    // under or inside other geometry (a contact not imprinted, surfaces crossing).
+    double near = 0;
+    std::uint32_t started_inside = 0;
+    void record(std::int64_t hit, bool front, double distance = 1e300) {
         ++rays;
         if (hit < 0) return;
         if (front) {
@@ -57,6 +61,7 @@ struct RayLog {
         } else {
             ++back_hits;
             ++reached_back[hit];
+            if (distance < near) ++started_inside;
         }
     }
 };

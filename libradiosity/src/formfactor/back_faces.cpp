@@ -23,9 +23,9 @@ void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint
         const double u3 = rng.uniform(), u4 = rng.uniform();
         const Vec3 origin = uniform_point(poly, cdf, u0, u1, u2);
         const Vec3 dir = cosine_direction(pi.normal, tu, tv, u3, u4);
-        bool front = false;
-        const auto hit = context.scene.first_hit(origin, dir, front);
-        log.record(hit == static_cast<std::int64_t>(i) ? -1 : hit, front);
+        const auto hit = context.scene.trace(origin, dir);
+        log.record(hit.patch == static_cast<std::int64_t>(i) ? -1 : hit.patch, hit.front,
+                   hit.distance);
     }
 }
 

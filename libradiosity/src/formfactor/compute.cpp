@@ -92,7 +92,8 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
     // the totals do not depend on the threads).
     tbb::enumerable_thread_specific<std::vector<std::uint32_t>> reached(
         [n] { return std::vector<std::uint32_t>(2 * n, 0); });
-    std::atomic<std::uint64_t> rays_cast{0};
+    std::atomic<std::uint64_t> rays_cast{0}, started_inside{0};
+    std::atomic<std::size_t> patches_started_inside{0};
     Progress progress("rad-ff " + options.method, last - first, options.quiet);
     const auto trace_start = std::chrono::steady_clock::now();
     tbb::parallel_for(
@@ -102,10 +103,17 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
             for (std::size_t i = block.begin(); i != block.end(); ++i) {
                 Rng rng(options.seed, i);
                 RayLog log{0, 0, tally.data(), tally.data() + n};
+                log.near = context.diameter[i];
                 rays_cast += kernel->compute_row(i, rng, rows[i], log);
                 if (log.rays == 0) {
                     rays_cast += kBackFaceProbeRays;
                     ff::probe_back_faces(context, i, options.seed, kBackFaceProbeRays, log);
+                }
+                // A stray ray from a point a rounding error off a contact line is not a
+                // patch under something: a patch counts from 3 rays and a tenth of its own.
+                if (log.started_inside >= 3 && 10 * log.started_inside >= log.rays) {
+                    started_inside += log.started_inside;
+                    ++patches_started_inside;
                 }
                 back_fraction[i] =
                     static_cast<float>(double(log.back_hits) / std::max(1u, log.rays));
@@ -142,6 +150,8 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
         stats->trace_seconds = trace_seconds;
         stats->mean_row_sum = last > first ? sum_rows / double(last - first) : 0;
         stats->max_row_sum = max_row;
+        stats->rays_started_inside = started_inside;
+        stats->patches_started_inside = patches_started_inside;
         stats->reached_front.assign(n, 0);
         stats->reached_back.assign(n, 0);
         for (const auto& tally : reached)

@@ -49,10 +49,11 @@ class HemisphereKernel final : public RowKernel {
             const std::size_t tri = pick_fan_triangle(cdf, u0, &within);
             const Vec3 origin = fan_triangle_point(poly, tri, within, u1);
             const Vec3 dir = cosine_direction(pi.normal, tu, tv, u2, u3);
-            bool front = false;
-            const auto hit = context_.scene.first_hit(origin, dir, front);
+            const auto traced = context_.scene.trace(origin, dir);
+            const auto hit = traced.patch;
+            const bool front = traced.front;
             // A patch cannot see itself; a hit on itself (a warped quad) is no evidence.
-            log.record(static_cast<std::size_t>(hit) == i ? -1 : hit, front);
+            log.record(static_cast<std::size_t>(hit) == i ? -1 : hit, front, traced.distance);
             if (hit >= 0 && front && static_cast<std::size_t>(hit) != i && tally.counts[hit]++ == 0)
                 hit_patches.push_back(static_cast<std::uint32_t>(hit));
         }
