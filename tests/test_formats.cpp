@@ -268,7 +268,7 @@ TEST_CASE("the kind table names every kind once, with its CSV columns") {
         CHECK(radfmt::kind_info(k.kind).name == k.name);
         CHECK_FALSE(k.csv_columns.empty());
     }
-    CHECK(names == std::vector<std::string>{"mesh", "formfactors", "radiosity"});
+    CHECK(names == std::vector<std::string>{"mesh", "formfactors", "formfactor-part", "radiosity"});
 }
 
 TEST_CASE("checksum-valid files with nonsense values are refused by the readers") {
@@ -354,4 +354,28 @@ TEST_CASE("a header larger than readers accept is refused by the writer") {
     header.provenance.resize(100); // 100 kB is fine
     radfmt::write_mesh(dir / "ok.mesh", header, small_mesh());
     CHECK(radfmt::read_mesh(dir / "ok.mesh").patches.size() == 2);
+}
+
+TEST_CASE("form-factor parts round-trip, and are refused when they fill rows not theirs") {
+    const auto dir = temp_dir("part");
+    radfmt::FormFactorData ff;
+    ff.patch_count = 3;
+    ff.row_start = {0, 0, 2, 2}; // only row 1 filled
+    ff.columns = {0, 2};
+    ff.values = {0.25f, 0.5f};
+    ff.back_fraction = {0, 0.5f, 0};
+    radfmt::write_form_factor_part(dir / "p.part", header_for("rad-ff"), ff, 1, 2);
+    radfmt::Header header;
+    const auto back = radfmt::read_form_factor_part(dir / "p.part", &header);
+    CHECK(back.values == ff.values);
+    CHECK(*header.find("rows_begin") == "1");
+    // The same rows claimed as 2..3: row 1 is filled outside them.
+    radfmt::write_form_factor_part(dir / "q.part", header_for("rad-ff"), ff, 2, 3);
+    REQUIRE_THROWS_WITH(radfmt::read_form_factor_part(dir / "q.part"),
+                        Contains("row 1 is filled but outside its rows"));
+    radfmt::write_form_factor_part(dir / "r.part", header_for("rad-ff"), ff, 1, 4);
+    REQUIRE_THROWS_WITH(radfmt::read_form_factor_part(dir / "r.part"),
+                        Contains("are not a range of the 3 rows"));
+    // A part is not a matrix, nor a matrix a part.
+    REQUIRE_THROWS_WITH(radfmt::read_form_factors(dir / "p.part"), Contains("was expected"));
 }

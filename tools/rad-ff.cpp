@@ -16,14 +16,26 @@ int main(int argc, char** argv) {
     CLI::App app{
         "Compute the form factors F_ij between every pair of patches of a mesh (ray-cast\n"
         "visibility with Embree, rows in parallel) and write the sparse form-factor file."};
-    std::string input, output, max_memory;
+    std::string output, max_memory;
     rad::FormFactorOptions options;
     int threads = 0;
     std::string method_help;
     for (const auto* m : rad::form_factor_methods())
         method_help += std::string(method_help.empty() ? "" : "; ") + std::string(m->name()) +
                        ": " + std::string(m->summary());
-    app.add_option("MESH", input, "Patch mesh from rad-mesh")->required();
+    std::vector<std::string> inputs;
+    std::string rows;
+    bool merge = false;
+    app.add_option("MESH", inputs,
+                   "Patch mesh from rad-mesh (with --merge: the part files to join)")
+        ->required();
+    app.add_option("--rows", rows,
+                   "Compute only these rows and write a part file: A:B (rows A to B, B "
+                   "excluded) or K/N (shard K of N, from 0, e.g. $SLURM_ARRAY_TASK_ID/16); "
+                   "rad-ff --merge joins the parts");
+    app.add_flag("--merge", merge,
+                 "Join part files (rad-ff --rows) of one mesh and options into the form-factor "
+                 "file one run would have written, byte for byte; every row exactly once");
     app.add_option("-o,--output", output, "Output form-factor file")->required();
     app.add_option("--method", options.method, method_help)
         ->capture_default_str()
@@ -50,7 +62,30 @@ int main(int argc, char** argv) {
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-ff", [&] {
-        rad::tool::check_outputs({input}, {{"-o", output}});
+        rad::tool::check_outputs(inputs, {{"-o", output}});
+        if (merge) {
+            if (!rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
+            std::vector<rad::FormFactorPart> parts;
+            for (const auto& path : inputs) {
+                rad::FormFactorPart part;
+                part.path = path;
+                part.form_factors = radfmt::read_form_factor_part(path, &part.header);
+                part.begin = std::stoull(part.header.get("rows_begin", path));
+                part.end = std::stoull(part.header.get("rows_end", path));
+                parts.push_back(std::move(part));
+            }
+            const auto merged = rad::merge_form_factor_parts(std::move(parts), output);
+            radfmt::write_form_factors(output, merged.header, merged.form_factors);
+            if (!options.quiet)
+                std::fprintf(stderr, "rad-ff: merged %zu part(s): %llu rows, %llu non-zeros\n",
+                             inputs.size(),
+                             static_cast<unsigned long long>(merged.form_factors.patch_count),
+                             static_cast<unsigned long long>(merged.form_factors.nonzeros()));
+            return 0;
+        }
+        if (inputs.size() != 1)
+            throw rad::InputError("give one mesh (several inputs are for --merge)");
+        const auto& input = inputs.front();
         options = rad::resolve_form_factor_options(options);
         const std::uint64_t limit =
             max_memory.empty() ? static_cast<std::uint64_t>(0.8 * rad::physical_memory_bytes())
@@ -70,8 +105,10 @@ int main(int argc, char** argv) {
                                        ? " (use fewer --rays or a coarser mesh)"
                                        : " (use --method hemisphere or a coarser mesh)"));
 
+        const auto range =
+            rows.empty() ? rad::RowRange{} : rad::parse_rows(rows, mesh.patches.size());
         rad::FormFactorStats stats;
-        const auto ff = rad::compute_form_factors(mesh, options, &stats);
+        const auto ff = rad::compute_form_factors(mesh, options, &stats, range);
 
         const radfmt::Parent parents[] = {{input, &mesh_header}};
         auto header = radfmt::derived_header(rad::tool_version("rad-ff"),
@@ -80,7 +117,14 @@ int main(int argc, char** argv) {
             header.set(key, value);
         header.set("mesh_geometry_hash", mesh.geometry_hash());
         header.set("rays_started_inside", std::to_string(stats.rays_started_inside));
-        radfmt::write_form_factors(output, header, ff);
+        if (!rows.empty()) {
+            // A part: the merge checks the parts against each other and writes the command
+            // one run would have had.
+            header.set("unsharded_command", rad::unsharded_command(argc, argv));
+            radfmt::write_form_factor_part(output, header, ff, range.begin, range.end);
+        } else {
+            radfmt::write_form_factors(output, header, ff);
+        }
         // Warnings go out even with --quiet: a wrong-facing surface spoils every solve.
         if (stats.rays_started_inside)
             std::fprintf(stderr,
@@ -91,8 +135,10 @@ int main(int argc, char** argv) {
                          "surface facing away; that part of them sees nothing\n",
                          input.c_str(), static_cast<unsigned long long>(stats.rays_started_inside),
                          stats.patches_started_inside);
-        for (const auto& line : rad::back_face_warnings(mesh, ff, stats))
-            std::fprintf(stderr, "rad-ff: warning: %s: %s\n", input.c_str(), line.c_str());
+        // (A part sees its own rows only: the groups' warnings need them all.)
+        if (rows.empty())
+            for (const auto& line : rad::back_face_warnings(mesh, ff, stats))
+                std::fprintf(stderr, "rad-ff: warning: %s: %s\n", input.c_str(), line.c_str());
         if (!options.quiet) {
             std::fprintf(stderr,
                          "rad-ff: %llu patches, %llu non-zeros, %llu rays in %.3f s (%.3g rays/s "

@@ -162,8 +162,10 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
 
 // ---- form factors ----
 
-void write_form_factors(const fs::path& path, Header header, const FormFactorData& ff) {
-    header.kind = Kind::FormFactors;
+namespace {
+void write_form_factor_body(const fs::path& path, Header header, const FormFactorData& ff,
+                            Kind kind) {
+    header.kind = kind;
     header.set("patches", std::to_string(ff.patch_count));
     header.set("nonzeros", std::to_string(ff.nonzeros()));
     BodyWriter w;
@@ -178,8 +180,7 @@ void write_form_factors(const fs::path& path, Header header, const FormFactorDat
     write_file(path, std::move(header), w);
 }
 
-FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
-    const Kind kind = Kind::FormFactors;
+FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, Kind kind) {
     auto file = read_file(path, &kind);
     BodyReader r(file.body, path.string());
     FormFactorData ff;
@@ -188,7 +189,8 @@ FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
     ff.row_start = r.array<std::uint64_t>(ff.patch_count + 1, "row starts");
     ff.columns = r.array<std::uint32_t>(nnz, "columns");
     ff.values = r.array<float>(nnz, "values");
-    if (file.header.version >= 2) {
+    // Parts have them from their version 1 on.
+    if (file.header.version >= 2 || kind == Kind::FormFactorPart) {
         ff.back_fraction = r.array<float>(ff.patch_count, "back-face fractions");
         for (std::uint64_t i = 0; i < ff.patch_count; ++i)
             if (!(ff.back_fraction[i] >= 0 && ff.back_fraction[i] <= 1))
@@ -211,8 +213,43 @@ FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
                    ") is not in [0, 1]");
     require_count(file.header, "patches", ff.patch_count, r);
     require_count(file.header, "nonzeros", nnz, r);
+    if (kind == Kind::FormFactorPart) {
+        // Its rows, [rows_begin, rows_end): within the matrix, and the only ones filled.
+        std::uint64_t begin = 0, end = 0;
+        try {
+            begin = std::stoull(file.header.get("rows_begin", path.string()));
+            end = std::stoull(file.header.get("rows_end", path.string()));
+        } catch (const FormatError&) {
+            throw;
+        } catch (...) {
+            r.fail("rows_begin or rows_end is not a row number");
+        }
+        if (!(begin < end && end <= ff.patch_count))
+            r.fail("its rows " + std::to_string(begin) + ".." + std::to_string(end) +
+                   " are not a range of the " + std::to_string(ff.patch_count) + " rows");
+        for (std::uint64_t i = 0; i < ff.patch_count; ++i)
+            if ((i < begin || i >= end) && ff.row_start[i] != ff.row_start[i + 1])
+                r.fail("row " + std::to_string(i) + " is filled but outside its rows");
+    }
     if (header_out) *header_out = std::move(file.header);
     return ff;
+}
+} // namespace
+
+void write_form_factors(const fs::path& path, Header header, const FormFactorData& ff) {
+    write_form_factor_body(path, std::move(header), ff, Kind::FormFactors);
+}
+FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
+    return read_form_factor_body(path, header_out, Kind::FormFactors);
+}
+void write_form_factor_part(const fs::path& path, Header header, const FormFactorData& ff,
+                            std::uint64_t rows_begin, std::uint64_t rows_end) {
+    header.set("rows_begin", std::to_string(rows_begin));
+    header.set("rows_end", std::to_string(rows_end));
+    write_form_factor_body(path, std::move(header), ff, Kind::FormFactorPart);
+}
+FormFactorData read_form_factor_part(const fs::path& path, Header* header_out) {
+    return read_form_factor_body(path, header_out, Kind::FormFactorPart);
 }
 
 // ---- radiosity ----
@@ -293,8 +330,25 @@ std::string mesh_summary(const fs::path& path, Header& header) {
            std::to_string(mesh.vertices.size()) + " vertices";
 }
 
+void form_factor_rows_csv(const FormFactorData& ff, std::ostream& out);
+
 void form_factor_csv(const fs::path& path, std::ostream& out) {
-    const auto ff = read_form_factors(path);
+    form_factor_rows_csv(read_form_factors(path), out);
+}
+
+void form_factor_part_csv(const fs::path& path, std::ostream& out) {
+    form_factor_rows_csv(read_form_factor_part(path), out);
+}
+
+std::string form_factor_part_summary(const fs::path& path, Header& header) {
+    const auto ff = read_form_factor_part(path, &header);
+    return "rows " + header.get("rows_begin", path.string()) + " to " +
+           header.get("rows_end", path.string()) + " (end excluded) of " +
+           std::to_string(ff.patch_count) + ", " + std::to_string(ff.nonzeros()) +
+           " non-zeros; rad-ff --merge joins the parts into the matrix";
+}
+
+void form_factor_rows_csv(const FormFactorData& ff, std::ostream& out) {
     char line[128];
     out << kind_info(Kind::FormFactors).csv_columns << '\n';
     for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
@@ -380,6 +434,8 @@ constexpr KindInfo kKinds[] = {
      mesh_summary},
     {Kind::FormFactors, "formfactors", "form-factor matrix", 2, 1, "row,col,f", form_factor_csv,
      form_factor_summary},
+    {Kind::FormFactorPart, "formfactor-part", "form-factor rows (a shard of rad-ff --rows)", 1, 1,
+     "row,col,f", form_factor_part_csv, form_factor_part_summary},
     {Kind::Radiosity, "radiosity", "radiosity solution", 2, 1,
      "patch,b_r,b_g,b_b (with light groups: patch,group,b_r,b_g,b_b)", radiosity_csv,
      radiosity_summary},

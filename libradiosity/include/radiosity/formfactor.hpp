@@ -28,6 +28,28 @@ struct RowRange {
     std::uint64_t end = std::numeric_limits<std::uint64_t>::max(); // clamped to the patch count
 };
 
+// Shards (rad-ff --rows, --merge). "A:B" (rows A to B, B excluded) or "K/N" (shard K of N,
+// from 0: rows [K p / N, (K + 1) p / N) of p patches); throws InputError otherwise.
+RowRange parse_rows(const std::string& text, std::uint64_t patches);
+// The command line without --rows and with -o's value replaced by a placeholder, recorded in
+// every part, so the merge can write the command one run would have.
+std::string unsharded_command(int argc, const char* const* argv);
+struct FormFactorPart {
+    std::string path;
+    radfmt::Header header;
+    radfmt::FormFactorData form_factors;
+    std::uint64_t begin = 0, end = 0;
+};
+struct MergedFormFactors {
+    radfmt::Header header; // as one run writing `output` would have made it
+    radfmt::FormFactorData form_factors;
+};
+// Checks that the parts come from one mesh, method, options, seed and tool, and cover every
+// row exactly once (InputError naming the gap, the overlap or the difference), and joins
+// them: the result is byte for byte what one run would have written to `output`.
+MergedFormFactors merge_form_factor_parts(std::vector<FormFactorPart> parts,
+                                          const std::string& output);
+
 struct FormFactorStats {
     std::uint64_t rays_cast = 0;
     double seconds = 0;       // all of compute_form_factors

@@ -1,0 +1,161 @@
+// Shards of the form-factor matrix: rows computed apart (rad-ff --rows, on many machines)
+// and merged into the file one run would have written, byte for byte.
+#include "radfmt/chain.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/formfactor.hpp"
+#include "radiosity/numbers.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rad {
+
+namespace {
+constexpr const char* kOutputPlaceholder = "@@RAD_FF_MERGED_OUTPUT@@";
+// Header fields only a part has; the rest must agree between parts and go into the merge.
+bool part_only(const std::string& key) {
+    return key == "rows_begin" || key == "rows_end" || key == "unsharded_command";
+}
+
+std::uint64_t whole_number(const std::string& text, const std::string& what) {
+    double value = 0;
+    if (!parse_number(text, value) || value < 0 || value != std::floor(value) || value > 1e15)
+        throw InputError("--rows: " + what + " '" + text + "' is not a row number");
+    return static_cast<std::uint64_t>(value);
+}
+} // namespace
+
+RowRange parse_rows(const std::string& text, std::uint64_t patches) {
+    const auto colon = text.find(':'), slash = text.find('/');
+    RowRange range;
+    if (colon != std::string::npos && slash == std::string::npos) {
+        range.begin = whole_number(text.substr(0, colon), "first row");
+        range.end = whole_number(text.substr(colon + 1), "end row");
+        if (!(range.begin < range.end) || range.end > patches)
+            throw InputError("--rows " + text + ": rows A:B need 0 <= A < B <= " +
+                             std::to_string(patches) + " (the mesh's patches; B is excluded)");
+        return range;
+    }
+    if (slash != std::string::npos && colon == std::string::npos) {
+        const auto shard = whole_number(text.substr(0, slash), "shard");
+        const auto shards = whole_number(text.substr(slash + 1), "shard count");
+        if (shards == 0 || shard >= shards || shards > patches)
+            throw InputError("--rows " + text + ": shard K/N needs 0 <= K < N <= " +
+                             std::to_string(patches) + " (the mesh's patches)");
+        // Shard k of n: rows [k p / n, (k + 1) p / n), so the shards cover every row once.
+        range.begin = shard * patches / shards;
+        range.end = (shard + 1) * patches / shards;
+        return range;
+    }
+    throw InputError("--rows '" + text +
+                     "' is neither A:B (rows A to B, B excluded) nor K/N "
+                     "(shard K of N, from 0)");
+}
+
+std::string unsharded_command(int argc, const char* const* argv) {
+    std::vector<const char*> kept;
+    for (int i = 0; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--rows") {
+            ++i;
+            continue;
+        }
+        if (arg.rfind("--rows=", 0) == 0) continue;
+        if ((arg == "-o" || arg == "--output") && i + 1 < argc) {
+            kept.push_back(argv[i]);
+            kept.push_back(kOutputPlaceholder);
+            ++i;
+            continue;
+        }
+        if (arg.rfind("--output=", 0) == 0 || (arg.rfind("-o", 0) == 0 && arg.size() > 2)) {
+            kept.push_back("-o");
+            kept.push_back(kOutputPlaceholder);
+            continue;
+        }
+        kept.push_back(argv[i]);
+    }
+    return radfmt::command_line(static_cast<int>(kept.size()), kept.data());
+}
+
+MergedFormFactors merge_form_factor_parts(std::vector<FormFactorPart> parts,
+                                          const std::string& output) {
+    if (parts.empty()) throw InputError("--merge needs the part files to merge");
+    const auto& first = parts.front();
+    // The same matrix: same mesh, method, options, seed and tool, field for field.
+    for (const auto& p : parts) {
+        auto differs = [&](const std::string& what, const std::string& a, const std::string& b) {
+            if (a != b)
+                throw InputError(p.path + " and " + first.path + " are parts of different " +
+                                 "form factors: " + what + " " + b + " against " + a +
+                                 " (compute every part with the same mesh and options)");
+        };
+        differs("tool", first.header.tool, p.header.tool);
+        differs("mesh", first.header.inputs.empty() ? "" : first.header.inputs[0].hash,
+                p.header.inputs.empty() ? "" : p.header.inputs[0].hash);
+        for (const auto& [key, value] : first.header.fields)
+            if (!part_only(key) && key != "nonzeros" && key != "rays_started_inside")
+                differs(key, value, p.header.get(key, p.path));
+        for (const auto& [key, value] : p.header.fields)
+            if (!first.header.find(key)) differs(key, "(none)", value);
+        differs("command (without --rows and -o)",
+                first.header.get("unsharded_command", first.path),
+                p.header.get("unsharded_command", p.path));
+    }
+    // Every row exactly once.
+    std::sort(parts.begin(), parts.end(),
+              [](const auto& a, const auto& b) { return a.begin < b.begin; });
+    const std::uint64_t n = first.form_factors.patch_count;
+    std::uint64_t next = 0;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        const auto& p = parts[k];
+        if (p.begin > next)
+            throw InputError("rows " + std::to_string(next) + " to " + std::to_string(p.begin - 1) +
+                             " are in no part (compute them with --rows " + std::to_string(next) +
+                             ":" + std::to_string(p.begin) + ")");
+        if (p.begin < next)
+            throw InputError("rows " + std::to_string(p.begin) + " to " +
+                             std::to_string(std::min(next, p.end) - 1) +
+                             " are in two parts: " + parts[k - 1].path + " and " + p.path);
+        next = p.end;
+    }
+    if (next < n)
+        throw InputError("rows " + std::to_string(next) + " to " + std::to_string(n - 1) +
+                         " are in no part (compute them with --rows " + std::to_string(next) + ":" +
+                         std::to_string(n) + ")");
+
+    MergedFormFactors out;
+    auto& ff = out.form_factors;
+    ff.patch_count = n;
+    ff.row_start.assign(1, 0);
+    ff.back_fraction.assign(n, 0.0f);
+    std::uint64_t started_inside = 0;
+    for (const auto& p : parts) {
+        for (std::uint64_t i = p.begin; i < p.end; ++i) {
+            for (auto k = p.form_factors.row_start[i]; k < p.form_factors.row_start[i + 1]; ++k) {
+                ff.columns.push_back(p.form_factors.columns[k]);
+                ff.values.push_back(p.form_factors.values[k]);
+            }
+            ff.row_start.push_back(ff.columns.size());
+            ff.back_fraction[i] = p.form_factors.back_fraction[i];
+        }
+        if (const auto* v = p.header.find("rays_started_inside"))
+            started_inside += whole_number(*v, "rays_started_inside");
+    }
+    // The header one run would have written: its command, its fields in its order.
+    out.header = first.header;
+    out.header.kind = radfmt::Kind::FormFactors;
+    out.header.version = 0;
+    std::erase_if(out.header.fields, [](const auto& f) { return part_only(f.first); });
+    out.header.set("rays_started_inside", std::to_string(started_inside));
+    const char* quoted[] = {"x", output.c_str()};
+    const auto output_text = radfmt::command_line(2, quoted).substr(2);
+    auto command = first.header.get("unsharded_command", first.path);
+    const auto at = command.find(kOutputPlaceholder);
+    if (at == std::string::npos)
+        throw InputError(first.path + ": its recorded command has no output to replace");
+    command.replace(at, std::string(kOutputPlaceholder).size(), output_text);
+    out.header.command = command;
+    return out;
+}
+
+} // namespace rad
