@@ -255,3 +255,47 @@ TEST_CASE("the solver registry lists every solver and names them in errors") {
     CHECK_THROWS_AS(rad::solver("sor"), rad::InputError);
     CHECK_THROWS_WITH(rad::solver("sor"), Catch::Contains("use gs, jacobi, pr, apr"));
 }
+
+TEST_CASE(
+    "progressive refinement shoots in the order of a full scan (heap = argmax, lowest index)") {
+    // The reference: the patch with the most unshot power, found by scanning every patch,
+    // the first of equals (what PR did before its heap). Same shots, same order: the same
+    // radiosity, bit for bit.
+    const auto scene = rad::load_obj(fs::path(RADIOSITY_SOURCE_DIR) / "scenes/cornell/cornell.obj");
+    rad::SubdivisionOptions subdivision;
+    subdivision.max_edge = 0.1;
+    const auto mesh = rad::subdivide(scene, subdivision);
+    const auto ff = analytic(mesh);
+    const auto op = rad::make_operator(mesh, ff);
+    const auto emission = rad::emission_of(mesh);
+    const std::size_t n = op.patch_count();
+    const long shots = static_cast<long>(3 * n);
+    rad::Channels b = emission, unshot = emission;
+    for (long s = 0; s < shots; ++s) {
+        std::size_t shooter = 0;
+        double best = -1;
+        for (std::size_t i = 0; i < n; ++i) {
+            double u = 0;
+            for (std::size_t c = 0; c < 3; ++c) u += unshot.at(i, c);
+            if (u * op.area[i] > best) best = u * op.area[i], shooter = i;
+        }
+        if (best <= 0) break;
+        double shot[3];
+        for (std::size_t c = 0; c < 3; ++c)
+            shot[c] = unshot.at(shooter, c), unshot.at(shooter, c) = 0;
+        for (auto k = ff.row_start[shooter]; k < ff.row_start[shooter + 1]; ++k) {
+            const auto j = ff.columns[k];
+            const double f_ji = ff.values[k] * op.area[shooter] / op.area[j];
+            for (std::size_t c = 0; c < 3; ++c) {
+                const double received = op.rho(j, c) * shot[c] * f_ji;
+                b.at(j, c) += received;
+                unshot.at(j, c) += received;
+            }
+        }
+    }
+    rad::SolveControl control;
+    control.max_iterations = shots;
+    const auto result = rad::solver("pr").solve(op, emission, control);
+    CHECK(result.iterations == shots);
+    CHECK(result.radiosity.values == b.values);
+}

@@ -51,32 +51,63 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
         return true;
     };
 
+    // The next shooter is the patch with the most unshot power, the lowest index among
+    // equals: a max-heap of (power, patch) with stale entries skipped (an entry is current
+    // while its power equals the patch's, computed the same way), instead of a scan of every
+    // patch per shot. The order of shots is the scan's, exactly.
+    auto power_of = [&](std::size_t i) {
+        double u = 0;
+        for (std::size_t c = 0; c < channels; ++c) u += unshot.at(i, c);
+        return u * op.area[i];
+    };
+    struct Entry {
+        double power;
+        std::uint32_t patch;
+    };
+    // "Less" for std::push_heap: lower power, or equal power and a higher index.
+    const auto below = [](const Entry& x, const Entry& y) {
+        return x.power < y.power || (x.power == y.power && x.patch > y.patch);
+    };
+    std::vector<Entry> heap;
+    double unshot_power = 0;
+    auto rebuild = [&] {
+        heap.clear();
+        unshot_power = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double p = power_of(i);
+            unshot_power += p;
+            if (p > 0) heap.push_back({p, static_cast<std::uint32_t>(i)});
+        }
+        std::make_heap(heap.begin(), heap.end(), below);
+    };
+    rebuild();
+
     std::vector<double> shot(channels);
     long done = 0;
     double residual = 1;
     while (keep_going(done, residual)) {
-        std::size_t shooter = 0;
-        double best = -1, unshot_power = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            double u = 0;
-            for (std::size_t c = 0; c < channels; ++c) u += unshot.at(i, c);
-            const double power = u * op.area[i];
-            unshot_power += power;
-            if (power > best) {
-                best = power;
-                shooter = i;
-            }
+        // Stale entries pile up (one per reception): start afresh past a few per patch. The
+        // unshot total is summed afresh then too, so its rounding does not drift.
+        if (heap.size() > 4 * n + 64) rebuild();
+        while (!heap.empty() && heap.front().power != power_of(heap.front().patch)) {
+            std::pop_heap(heap.begin(), heap.end(), below);
+            heap.pop_back();
         }
-        if (best <= 0) {
+        if (heap.empty()) {
             residual = 0;
             break;
         }
+        const std::size_t shooter = heap.front().patch;
+        const double best = heap.front().power;
+        std::pop_heap(heap.begin(), heap.end(), below);
+        heap.pop_back();
         for (std::size_t c = 0; c < channels; ++c) {
             shot[c] = unshot.at(shooter, c);
             unshot.at(shooter, c) = 0;
         }
         unshot_power -= best;
         const double a_i = op.area[shooter];
+        // (each receiver's new power goes on the heap below, once its channels are all in)
         for (auto k = ff.row_start[shooter]; k < ff.row_start[shooter + 1]; ++k) {
             const auto j = ff.columns[k];
             const double f_ji = ff.values[k] * a_i / op.area[j];
@@ -85,6 +116,10 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
                 b.at(j, c) += received;
                 unshot.at(j, c) += received;
                 unshot_power += received * op.area[j];
+            }
+            if (const double p = power_of(j); p > 0) {
+                heap.push_back({p, j});
+                std::push_heap(heap.begin(), heap.end(), below);
             }
         }
         residual = unshot_fraction(std::max(0.0, unshot_power));
