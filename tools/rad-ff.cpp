@@ -52,9 +52,7 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(1, 100000000));
     app.add_option("--seed", options.seed, "Seed for every random choice")->capture_default_str();
-    app.add_option("--threads", threads, "Worker threads (0: all cores)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, rad::ThreadLimit::max_threads()));
+    rad::tool::add_threads_option(app, threads);
     app.add_option("--max-memory", max_memory,
                    "Refuse to start when the estimated memory exceeds this (e.g. 4G; default: "
                    "80% of physical memory)");
@@ -69,9 +67,8 @@ int main(int argc, char** argv) {
             for (const auto& path : inputs) {
                 rad::FormFactorPart part;
                 part.path = path;
-                part.form_factors = radfmt::read_form_factor_part(path, &part.header);
-                part.begin = std::stoull(part.header.get("rows_begin", path));
-                part.end = std::stoull(part.header.get("rows_end", path));
+                part.form_factors =
+                    radfmt::read_form_factor_part(path, &part.header, &part.begin, &part.end);
                 parts.push_back(std::move(part));
             }
             const auto merged = rad::merge_form_factor_parts(std::move(parts), output);
@@ -87,9 +84,7 @@ int main(int argc, char** argv) {
             throw rad::InputError("give one mesh (several inputs are for --merge)");
         const auto& input = inputs.front();
         options = rad::resolve_form_factor_options(options);
-        const std::uint64_t limit =
-            max_memory.empty() ? static_cast<std::uint64_t>(0.8 * rad::physical_memory_bytes())
-                               : rad::tool::parse_size(max_memory, "--max-memory");
+        const std::uint64_t limit = rad::tool::memory_limit(max_memory);
         rad::ThreadLimit thread_limit(threads);
         radfmt::Header mesh_header;
         const auto mesh = radfmt::read_mesh(input, &mesh_header);

@@ -205,9 +205,7 @@ int main(int argc, char** argv) {
                    "legend");
     app.add_option("--seed", options.seed, "Seed; each point has its own stream (seed, index)")
         ->capture_default_str();
-    app.add_option("--threads", threads, "Worker threads (0: all cores)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, rad::ThreadLimit::max_threads()));
+    rad::tool::add_threads_option(app, threads);
     app.add_flag("-q,--quiet", quiet, "No progress and no summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 

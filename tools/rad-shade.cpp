@@ -55,9 +55,7 @@ int main(int argc, char** argv) {
     app.add_option("--exposure", exposure,
                    "Linear multiplier for PNG/PLY (default, or 0: automatic)")
         ->check(rad::tool::finite_range(0, 1e30));
-    app.add_option("--threads", threads, "Worker threads (0: all cores)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, rad::ThreadLimit::max_threads()));
+    rad::tool::add_threads_option(app, threads);
     std::vector<std::string> mix;
     bool mix_only = false, layers = false;
     app.add_option("--mix", mix,
@@ -126,9 +124,7 @@ int main(int argc, char** argv) {
             chain = rad_header.chain();
         }
         // Checked before rendering: a huge -x/-y/--aa must not eat the machine first.
-        const std::uint64_t limit =
-            max_memory.empty() ? static_cast<std::uint64_t>(0.8 * rad::physical_memory_bytes())
-                               : rad::tool::parse_size(max_memory, "--max-memory");
+        const std::uint64_t limit = rad::tool::memory_limit(max_memory);
         const int images = 1 + (layers ? static_cast<int>(radiosity.group_count()) : 0);
         const auto need = rad::estimate_render_memory(width, height, aa, images);
         if (need > limit) {

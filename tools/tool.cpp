@@ -4,6 +4,7 @@
 #include "radfmt/container.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
+#include "radiosity/progress.hpp"
 
 #include <cerrno>
 #include <csignal>
@@ -156,6 +157,17 @@ bool matches_pattern(const NumberedOutput& output, const std::string& path) {
     return !output.writes || output.writes(std::stol(digits));
 }
 } // namespace
+
+void add_threads_option(CLI::App& app, int& threads) {
+    app.add_option("--threads", threads, "Worker threads (0: all cores)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, ThreadLimit::max_threads()));
+}
+
+std::uint64_t memory_limit(const std::string& max_memory) {
+    return max_memory.empty() ? static_cast<std::uint64_t>(0.8 * physical_memory_bytes())
+                              : parse_size(max_memory, "--max-memory");
+}
 
 void check_outputs(const std::vector<std::string>& inputs,
                    const std::vector<std::pair<std::string, std::string>>& outputs,

@@ -39,6 +39,12 @@ void check_outputs(const std::vector<std::string>& inputs,
                    const std::vector<std::pair<std::string, std::string>>& outputs,
                    const std::vector<NumberedOutput>& patterns = {});
 
+// --threads N (0: all cores), with the bound every tool uses.
+void add_threads_option(CLI::App& app, int& threads);
+
+// The limit --max-memory gives (parse_size), or 80% of physical memory when it is empty.
+std::uint64_t memory_limit(const std::string& max_memory);
+
 // "name1, name2 or name3" for help texts.
 std::string one_of(const std::vector<std::string>& names);
 

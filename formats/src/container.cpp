@@ -326,14 +326,13 @@ OutputBatch::~OutputBatch() {
 void OutputBatch::commit() {
     g_pending = nullptr;
     // Everything was written; only renames are left, the step that cannot run out of space.
+    // A failed rename discards its own temporary; the ones not yet renamed stay for the
+    // destructor to remove.
+    std::size_t done = 0;
     try {
-        for (std::size_t i = 0; i < pending_.size(); ++i) {
-            rename_into_place(pending_[i]);
-            pending_[i].slot = kTempSlots; // done: nothing to discard
-            pending_[i].temp.clear();
-        }
+        for (; done < pending_.size(); ++done) rename_into_place(pending_[done]);
     } catch (...) {
-        std::erase_if(pending_, [](const PendingOutput& p) { return p.temp.empty(); });
+        pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(done) + 1);
         throw;
     }
     pending_.clear();

@@ -180,7 +180,9 @@ void write_form_factor_body(const fs::path& path, Header header, const FormFacto
     write_file(path, std::move(header), w);
 }
 
-FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, Kind kind) {
+FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, Kind kind,
+                                     std::uint64_t* rows_begin = nullptr,
+                                     std::uint64_t* rows_end = nullptr) {
     auto file = read_file(path, &kind);
     BodyReader r(file.body, path.string());
     FormFactorData ff;
@@ -230,6 +232,8 @@ FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, K
         for (std::uint64_t i = 0; i < ff.patch_count; ++i)
             if ((i < begin || i >= end) && ff.row_start[i] != ff.row_start[i + 1])
                 r.fail("row " + std::to_string(i) + " is filled but outside its rows");
+        if (rows_begin) *rows_begin = begin;
+        if (rows_end) *rows_end = end;
     }
     if (header_out) *header_out = std::move(file.header);
     return ff;
@@ -248,8 +252,9 @@ void write_form_factor_part(const fs::path& path, Header header, const FormFacto
     header.set("rows_end", std::to_string(rows_end));
     write_form_factor_body(path, std::move(header), ff, Kind::FormFactorPart);
 }
-FormFactorData read_form_factor_part(const fs::path& path, Header* header_out) {
-    return read_form_factor_body(path, header_out, Kind::FormFactorPart);
+FormFactorData read_form_factor_part(const fs::path& path, Header* header_out,
+                                     std::uint64_t* rows_begin, std::uint64_t* rows_end) {
+    return read_form_factor_body(path, header_out, Kind::FormFactorPart, rows_begin, rows_end);
 }
 
 // ---- radiosity ----

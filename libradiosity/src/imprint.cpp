@@ -10,7 +10,6 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -52,7 +51,7 @@ struct Frame {
 struct Face {
     std::vector<Vec3> points;
     Frame frame;
-    Vec3 lo, hi;                       // bounding box
+    Box box;
     std::vector<std::uint32_t> welded; // sorted welded ids of its corners
     bool planar = false;
     double area = 0;
@@ -157,11 +156,7 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
     ImprintReport report;
     const std::size_t n = scene.polygons.size();
     if (n < 2) return report;
-    Vec3 slo{1e300, 1e300, 1e300}, shi{-1e300, -1e300, -1e300};
-    for (const auto& v : scene.vertices)
-        for (int k = 0; k < 3; ++k)
-            slo[k] = std::min(slo[k], v[k]), shi[k] = std::max(shi[k], v[k]);
-    const double size = length(shi - slo);
+    const double size = bounds(scene.vertices).diagonal();
     if (!(size > 0)) return report;
     const double tol = tolerance * size;
     const auto welded = weld_by_position(scene.vertices);
@@ -186,26 +181,25 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
         face.planar = true;
         for (const auto& x : face.points)
             if (std::abs(dot(x - face.frame.origin, face.frame.normal)) > tol) face.planar = false;
-        face.lo = face.hi = face.points[0];
-        for (const auto& x : face.points)
-            for (int k = 0; k < 3; ++k)
-                face.lo[k] = std::min(face.lo[k], x[k]), face.hi[k] = std::max(face.hi[k], x[k]);
+        face.box = bounds(face.points);
     }
 
     // Candidate pairs: overlapping boxes (a sweep along x), not of one object.
     std::vector<std::size_t> order(n);
     for (std::size_t f = 0; f < n; ++f) order[f] = f;
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return faces[a].lo[0] < faces[b].lo[0]; });
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return faces[a].box.lo[0] < faces[b].box.lo[0];
+    });
     std::vector<std::vector<std::uint32_t>> touching(n);
     for (std::size_t i = 0; i < n; ++i) {
         const auto& a = faces[order[i]];
         if (!a.planar && a.points.size() < 3) continue;
-        for (std::size_t j = i + 1; j < n && faces[order[j]].lo[0] <= a.hi[0] + tol; ++j) {
+        for (std::size_t j = i + 1; j < n && faces[order[j]].box.lo[0] <= a.box.hi[0] + tol; ++j) {
             const auto& b = faces[order[j]];
             bool overlap = true;
             for (int k = 1; k < 3; ++k)
-                overlap = overlap && b.lo[k] <= a.hi[k] + tol && a.lo[k] <= b.hi[k] + tol;
+                overlap =
+                    overlap && b.box.lo[k] <= a.box.hi[k] + tol && a.box.lo[k] <= b.box.hi[k] + tol;
             if (!overlap) continue;
             std::vector<std::uint32_t> shared;
             std::set_intersection(a.welded.begin(), a.welded.end(), b.welded.begin(),
@@ -216,7 +210,6 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
         }
     }
 
-    // The cut lines of every face.
     // The cut lines of every face. A cut parallel to a side of a convex face runs on to its
     // outline, and on across the coplanar faces it continues into (the tiles of one floor):
     // a rectangle cut by lines parallel to its sides stays rectangles, so regular grids.
@@ -313,10 +306,9 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
     }
 
     // Rays over the scene as written decide which regions are hidden.
-    const auto ray_mesh = face_triangles(scene);
-    std::unique_ptr<RayScene> rays;
-    if (std::any_of(cuts.begin(), cuts.end(), [](const auto& c) { return !c.empty(); }))
-        rays = std::make_unique<RayScene>(ray_mesh);
+    if (std::all_of(cuts.begin(), cuts.end(), [](const auto& c) { return c.empty(); }))
+        return report;
+    const RayScene rays(face_triangles(scene));
 
     // Points added on an original edge are shared by every face along that edge.
     struct EdgePoint {
@@ -437,7 +429,7 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
         // A region is hidden when, from just above its largest triangle, most of what the
         // rays meet are backs (inside an object, under a block, behind a wall).
         std::vector<char> hidden(regions, 0);
-        const double lift = std::max(2 * rays->epsilon(), 100 * tol);
+        const double lift = std::max(2 * rays.epsilon(), 100 * tol);
         for (int r = 0; r < regions; ++r) {
             const auto g = region_seed[r];
             const auto c =
@@ -448,12 +440,12 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
             const int count = 64;
             for (int k = 0; k < count; ++k) {
                 const double u = (k + 0.5) / count, w = std::fmod(k * 0.6180339887498949, 1.0);
-                const auto hit = rays->trace(from, cosine_direction(p.frame.normal, tu, tv, u, w));
+                const auto hit = rays.trace(from, cosine_direction(p.frame.normal, tu, tv, u, w));
                 if (hit.patch < 0) continue;
                 ++hits;
                 backs += !hit.front;
             }
-            hidden[r] = hits > 0 && backs > hits / 2 && backs * 10 >= count;
+            hidden[r] = hits > 0 && sees_mostly_backs(double(hits) / count, double(backs) / hits);
         }
         // The new vertices: corners keep theirs; points on the outline are shared along its
         // edges; the rest are new.

@@ -20,13 +20,6 @@ namespace rad {
 
 namespace {
 
-struct Box {
-    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    void add(const Vec3& p) {
-        for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], p[c]), hi[c] = std::max(hi[c], p[c]);
-    }
-};
-
 void add_finding(std::vector<OrientationFinding>& out, OrientationFinding::Kind kind,
                  const Scene& scene, const std::vector<std::size_t>& polygons,
                  const std::vector<bool>& flip) {

@@ -61,15 +61,13 @@ extern "C" void record_embree_error(void* user, RTCError code, const char* messa
 
 void check_ray_precision(std::span<const radfmt::Vec3> points, const std::string& source) {
     if (points.empty()) return;
-    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     double farthest = 0;
     for (const auto& v : points)
         for (int k = 0; k < 3; ++k) {
             if (!std::isfinite(v[k])) throw InputError(source + ": a point is not finite");
-            lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
             farthest = std::max(farthest, std::abs(v[k]));
         }
-    const double size = length(hi - lo);
+    const double size = bounds(points).diagonal();
     char text[400];
     if (size < kMinRaySceneSize || size > kMaxRaySceneSize) {
         std::snprintf(text, sizeof text,
@@ -112,10 +110,8 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
         (twins[i] >= 0 ? two_sided : one_sided).push_back(static_cast<std::uint32_t>(i));
     impl_->normals.reserve(count);
     for (const auto& p : mesh.patches) impl_->normals.push_back(p.normal);
-    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (const auto& v : mesh.vertices)
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
-    if (!mesh.vertices.empty()) centre_ = 0.5 * (lo + hi);
+    const auto box = bounds(mesh.vertices);
+    if (!mesh.vertices.empty()) centre_ = box.centre();
     for (auto* patches : {&one_sided, &two_sided}) {
         if (patches->empty()) continue;
         RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
@@ -147,7 +143,7 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
     rtcCommitScene(impl_->scene);
     impl_->raise_if_failed("building the ray scene");
     // Relative to the scene: a fixed floor would swallow a scene measured in nanometres.
-    const double size = length(hi - lo);
+    const double size = box.diagonal();
     epsilon_ = size > 0 ? 1e-5 * size : 1e-9;
 }
 

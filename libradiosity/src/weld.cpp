@@ -8,10 +8,9 @@
 namespace rad {
 
 std::vector<std::uint32_t> weld_by_position(const std::vector<Vec3>& vertices) {
-    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (const auto& v : vertices)
-        for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], v[c]), hi[c] = std::max(hi[c], v[c]);
-    const double cell = std::max(1e-300, 1e-9 * length(hi - lo));
+    const auto box = bounds(vertices);
+    const Vec3& lo = box.lo;
+    const double cell = std::max(1e-300, 1e-9 * box.diagonal());
     std::map<std::array<long long, 3>, std::uint32_t> ids;
     std::vector<std::uint32_t> out(vertices.size());
     for (std::size_t i = 0; i < vertices.size(); ++i) {

@@ -95,12 +95,14 @@ MeshData read_mesh(const std::filesystem::path& path, Header* header_out = nullp
 void write_form_factors(const std::filesystem::path& path, Header header, const FormFactorData& ff);
 FormFactorData read_form_factors(const std::filesystem::path& path, Header* header_out = nullptr);
 // A shard of the matrix (rad-ff --rows): every row is present, only [rows_begin, rows_end)
-// filled; the range is recorded in the header and checked on reading.
+// filled; the range is recorded in the header, checked on reading and returned.
 void write_form_factor_part(const std::filesystem::path& path, Header header,
                             const FormFactorData& ff, std::uint64_t rows_begin,
                             std::uint64_t rows_end);
 FormFactorData read_form_factor_part(const std::filesystem::path& path,
-                                     Header* header_out = nullptr);
+                                     Header* header_out = nullptr,
+                                     std::uint64_t* rows_begin = nullptr,
+                                     std::uint64_t* rows_end = nullptr);
 
 void write_radiosity(const std::filesystem::path& path, Header header, const RadiosityData& rad);
 RadiosityData read_radiosity(const std::filesystem::path& path, Header* header_out = nullptr);

@@ -43,7 +43,7 @@ struct Irradiance {
     // The point is inside an object or behind a surface: most of what it sees are backs
     // (and they are not a sliver of an otherwise open view).
     bool sees_backs(double max_back_fraction) const {
-        return back_fraction > max_back_fraction && back_fraction * hit_fraction >= 0.1;
+        return sees_mostly_backs(hit_fraction, back_fraction, max_back_fraction);
     }
     Rgb total() const {
         return {direct[0] + indirect[0], direct[1] + indirect[1], direct[2] + indirect[2]};

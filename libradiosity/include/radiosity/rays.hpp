@@ -19,6 +19,15 @@ inline constexpr double kMinRaySceneSize = 1e-11, kMaxRaySceneSize = 1e13;
 inline constexpr double kMaxRaySceneOffset = 1e9;
 void check_ray_precision(std::span<const radfmt::Vec3> points, const std::string& source);
 
+// What rays cast from a point say of where it is: inside an object, under something or
+// behind a surface when more than `max_back_fraction` of the surfaces they meet show their
+// back, and those backs are not a sliver of an open view (at least a tenth of all the rays).
+// `hit_fraction`: of the rays, those that met a surface; `back_fraction`: of those, backs.
+inline bool sees_mostly_backs(double hit_fraction, double back_fraction,
+                              double max_back_fraction = 0.5) {
+    return back_fraction > max_back_fraction && back_fraction * hit_fraction >= 0.1;
+}
+
 class RayScene {
   public:
     explicit RayScene(const radfmt::MeshData& mesh);

@@ -35,6 +35,21 @@ inline Vec3 normalized(const Vec3& a) {
     const double l = length(a);
     return l > 0 ? a * (1.0 / l) : Vec3{0, 0, 0};
 }
+// An axis-aligned bounding box, empty until a point is added.
+struct Box {
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    void add(const Vec3& p) {
+        for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], p[c]), hi[c] = std::max(hi[c], p[c]);
+    }
+    double diagonal() const { return length(hi - lo); }
+    Vec3 centre() const { return (lo + hi) * 0.5; }
+};
+template <class Points> Box bounds(const Points& points) {
+    Box box;
+    for (const auto& p : points) box.add(p);
+    return box;
+}
+
 inline bool finite(const Vec3& a) {
     return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
 }
