@@ -63,21 +63,11 @@ int main(int argc, char** argv) {
         rad::tool::check_outputs(inputs, {{"-o", output}});
         if (merge) {
             if (!rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
-            std::vector<rad::FormFactorPart> parts;
-            for (const auto& path : inputs) {
-                rad::FormFactorPart part;
-                part.path = path;
-                part.form_factors =
-                    radfmt::read_form_factor_part(path, &part.header, &part.begin, &part.end);
-                parts.push_back(std::move(part));
-            }
-            const auto merged = rad::merge_form_factor_parts(std::move(parts), output);
-            radfmt::write_form_factors(output, merged.header, merged.form_factors);
+            const auto merged = rad::merge_form_factor_parts(inputs, output);
             if (!options.quiet)
                 std::fprintf(stderr, "rad-ff: merged %zu part(s): %llu rows, %llu non-zeros\n",
-                             inputs.size(),
-                             static_cast<unsigned long long>(merged.form_factors.patch_count),
-                             static_cast<unsigned long long>(merged.form_factors.nonzeros()));
+                             inputs.size(), static_cast<unsigned long long>(merged.rows),
+                             static_cast<unsigned long long>(merged.nonzeros));
             return 0;
         }
         if (inputs.size() != 1)
@@ -103,7 +93,15 @@ int main(int argc, char** argv) {
         const auto range =
             rows.empty() ? rad::RowRange{} : rad::parse_rows(rows, mesh.patches.size());
         rad::FormFactorStats stats;
-        const auto ff = rad::compute_form_factors(mesh, options, &stats, range);
+        // The rows go to disk as they are computed, so memory holds a block of them.
+        radfmt::FormFactorSpool ff(mesh.patches.size(),
+                                   radfmt::FormFactorSpool::folder_for(output));
+        rad::compute_form_factor_rows(
+            mesh, options,
+            [&](std::size_t, rad::FormFactorEntries row, float back_fraction) {
+                ff.add_row(row, back_fraction);
+            },
+            &stats, range);
 
         const radfmt::Parent parents[] = {{input, &mesh_header}};
         auto header = radfmt::derived_header(rad::tool_version("rad-ff"),
@@ -132,13 +130,13 @@ int main(int argc, char** argv) {
                          stats.patches_started_inside);
         // (A part sees its own rows only: the groups' warnings need them all.)
         if (rows.empty())
-            for (const auto& line : rad::back_face_warnings(mesh, ff, stats))
+            for (const auto& line : rad::back_face_warnings(mesh, ff.back_fraction(), stats))
                 std::fprintf(stderr, "rad-ff: warning: %s: %s\n", input.c_str(), line.c_str());
         if (!options.quiet) {
             std::fprintf(stderr,
                          "rad-ff: %llu patches, %llu non-zeros, %llu rays in %.3f s (%.3g rays/s "
                          "while tracing, %d threads), row sums mean %.5f max %.5f\n",
-                         static_cast<unsigned long long>(ff.patch_count),
+                         static_cast<unsigned long long>(ff.patch_count()),
                          static_cast<unsigned long long>(ff.nonzeros()),
                          static_cast<unsigned long long>(stats.rays_cast), stats.seconds,
                          stats.trace_seconds > 0 ? stats.rays_cast / stats.trace_seconds : 0.0,

@@ -105,10 +105,34 @@ void BodyWriter::align() {
     if (size_ % 8) add(zeros, 8 - size_ % 8, true);
 }
 
+void BodyWriter::file_array(int fd, std::uint64_t size) {
+    align();
+    if (size) {
+        pieces_.push_back({nullptr, 0, static_cast<std::size_t>(size), fd});
+        size_ += size;
+    }
+    align();
+}
+
 void BodyWriter::for_each_piece(
     const std::function<void(const std::byte*, std::size_t)>& sink) const {
-    for (const auto& piece : pieces_)
-        sink(piece.external ? piece.external : owned_.data() + piece.offset, piece.size);
+    std::vector<std::byte> block;
+    for (const auto& piece : pieces_) {
+        if (piece.fd < 0) {
+            sink(piece.external ? piece.external : owned_.data() + piece.offset, piece.size);
+            continue;
+        }
+        block.resize(std::min<std::size_t>(piece.size, std::size_t(8) << 20));
+        for (std::size_t at = 0; at < piece.size;) {
+            const auto want = std::min(block.size(), piece.size - at);
+            const auto got = ::pread(piece.fd, block.data(), want, static_cast<off_t>(at));
+            if (got <= 0)
+                throw WriteError(std::string("cannot read back a spooled array: ") +
+                                 (got < 0 ? std::strerror(errno) : "it is shorter than written"));
+            sink(block.data(), static_cast<std::size_t>(got));
+            at += static_cast<std::size_t>(got);
+        }
+    }
 }
 
 std::uint64_t BodyWriter::hash() const {
@@ -117,58 +141,6 @@ std::uint64_t BodyWriter::hash() const {
     for_each_piece(
         [&](const std::byte* data, std::size_t size) { XXH64_update(state.get(), data, size); });
     return XXH64_digest(state.get());
-}
-
-void BodyReader::fail(const std::string& message) const {
-    throw FormatError(path_ + ": corrupt body: " + message);
-}
-
-void BodyReader::align() {
-    const auto next = std::min(body_.size(), (pos_ + 7) / 8 * 8);
-    // Padding is zero: a writer never leaves anything else there.
-    for (auto at = pos_; at < next; ++at)
-        if (body_[at] != std::byte{0})
-            fail("non-zero padding at body offset " + std::to_string(at));
-    pos_ = next;
-}
-
-void BodyReader::need(std::uint64_t bytes, const char* what) {
-    if (bytes > body_.size() - pos_)
-        fail(std::string(what) + " needs " + std::to_string(bytes) + " bytes but only " +
-             std::to_string(body_.size() - pos_) + " remain");
-}
-
-std::uint64_t BodyReader::u64() {
-    align();
-    need(8, "an integer");
-    std::uint64_t value = 0;
-    for (int i = 0; i < 8; ++i)
-        value |= std::uint64_t(std::to_integer<unsigned>(body_[pos_ + i])) << (8 * i);
-    pos_ += 8;
-    return value;
-}
-
-std::string BodyReader::string() {
-    const auto size = count(1, "a string");
-    std::string text(reinterpret_cast<const char*>(body_.data() + pos_), size);
-    pos_ += size;
-    align();
-    return text;
-}
-
-std::uint64_t BodyReader::count(std::size_t element_size, const char* what) {
-    const auto value = u64();
-    const auto remaining = body_.size() - pos_;
-    if (element_size && value > remaining / element_size)
-        fail(std::string("count of ") + what + " (" + std::to_string(value) +
-             ") exceeds the body size");
-    return value;
-}
-
-void BodyReader::expect_end() {
-    align();
-    if (pos_ != body_.size())
-        fail(std::to_string(body_.size() - pos_) + " unexpected bytes after the data");
 }
 
 // ---- header text ----
@@ -556,46 +528,145 @@ static std::uint64_t open_sized(std::ifstream& in, const fs::path& path) {
     return size;
 }
 
-Header read_header(const fs::path& path) {
+Header read_header(const fs::path& path, const Kind* expected) {
     std::ifstream in;
     const auto size = open_sized(in, path);
-    return parse_header(read_prefix(in, size), path.string(), size).header;
+    auto header = parse_header(read_prefix(in, size), path.string(), size).header;
+    check_kind(header, path.string(), expected);
+    return header;
 }
 
-LoadedFile read_file(const fs::path& path, const Kind* expected) {
+// ---- streaming body reader ----
+
+namespace {
+XXH64_state_t* new_hash_state() {
+    auto* state = XXH64_createState();
+    if (!state) throw std::bad_alloc();
+    XXH64_reset(state, 0);
+    return state;
+}
+} // namespace
+
+BodyReader::BodyReader(const fs::path& path, const Kind* expected) : path_(path.string()) {
     std::ifstream in;
     const auto size = open_sized(in, path);
     const auto prefix = read_prefix(in, size);
-    auto parsed = parse_header(prefix, path.string(), size);
-    check_kind(parsed.header, path.string(), expected);
-    // Hash the whole file while it is read: header and padding, then the body.
-    const HashState state(XXH64_createState(), XXH64_freeState);
-    XXH64_reset(state.get(), 0);
+    auto parsed = parse_header(prefix, path_, size);
+    check_kind(parsed.header, path_, expected);
+    header_ = std::move(parsed.header);
+    in.close();
+    file_ = std::fopen(path_.c_str(), "rb");
+    if (!file_)
+        throw FormatError(path_ + ": cannot open for reading (" + std::strerror(errno) + ")");
+    body_state_ = new_hash_state();
+    file_state_ = new_hash_state();
+    // The whole file's hash covers the header and its padding, then the body.
+    auto* file_state = static_cast<XXH64_state_t*>(file_state_);
     const std::size_t head = std::min<std::size_t>(parsed.body_offset, prefix.size());
-    XXH64_update(state.get(), prefix.data(), head);
-    if (parsed.body_offset > head) { // a header at the 1 MiB limit: read the rest of its padding
+    XXH64_update(file_state, prefix.data(), head);
+    if (parsed.body_offset > head) { // a header at the 1 MiB limit: the rest of its padding
         std::string gap(parsed.body_offset - head, '\0');
-        in.clear();
-        in.seekg(static_cast<std::streamoff>(head));
-        in.read(gap.data(), static_cast<std::streamsize>(gap.size()));
-        XXH64_update(state.get(), gap.data(), gap.size());
+        if (std::fseek(file_, static_cast<long>(head), SEEK_SET) != 0 ||
+            std::fread(gap.data(), 1, gap.size(), file_) != gap.size())
+            throw FormatError(path_ + ": truncated header padding");
+        XXH64_update(file_state, gap.data(), gap.size());
     }
-    LoadedFile file;
-    file.header = std::move(parsed.header);
-    file.body.resize(file.header.body_size);
-    in.clear();
-    in.seekg(static_cast<std::streamoff>(parsed.body_offset));
-    in.read(reinterpret_cast<char*>(file.body.data()),
-            static_cast<std::streamsize>(file.body.size()));
-    if (static_cast<std::uint64_t>(in.gcount()) != file.body.size())
-        throw FormatError(path.string() + ": truncated body");
-    XXH64_update(state.get(), file.body.data(), file.body.size());
-    file.header.file_hash = "xxh64:" + hash_hex(XXH64_digest(state.get()));
-    const auto hash = "xxh64:" + hash_hex(hash_bytes(file.body.data(), file.body.size()));
-    if (hash != file.header.body_hash)
-        throw FormatError(path.string() +
+    if (std::fseek(file_, static_cast<long>(parsed.body_offset), SEEK_SET) != 0)
+        throw FormatError(path_ + ": cannot seek to the body (" + std::strerror(errno) + ")");
+}
+
+BodyReader::~BodyReader() {
+    if (file_) std::fclose(file_);
+    XXH64_freeState(static_cast<XXH64_state_t*>(body_state_));
+    XXH64_freeState(static_cast<XXH64_state_t*>(file_state_));
+}
+
+void BodyReader::read(void* into, std::uint64_t bytes) {
+    // In blocks, each hashed while it is still in the cache.
+    auto* out = static_cast<unsigned char*>(into);
+    constexpr std::uint64_t kBlock = std::uint64_t(4) << 20;
+    for (std::uint64_t done = 0; done < bytes;) {
+        const auto want = static_cast<std::size_t>(std::min(kBlock, bytes - done));
+        if (std::fread(out + done, 1, want, file_) != want)
+            throw FormatError(path_ + ": truncated body (the file shrank while it was read)");
+        XXH64_update(static_cast<XXH64_state_t*>(body_state_), out + done, want);
+        XXH64_update(static_cast<XXH64_state_t*>(file_state_), out + done, want);
+        done += want;
+    }
+    pos_ += bytes;
+}
+
+void BodyReader::check_checksum() {
+    checked_ = true;
+    const auto hash = "xxh64:" + hash_hex(XXH64_digest(static_cast<XXH64_state_t*>(body_state_)));
+    if (hash != header_.body_hash)
+        throw FormatError(path_ +
                           ": corrupt body: checksum mismatch (the file was modified or damaged)");
-    return file;
+    header_.file_hash = "xxh64:" + hash_hex(XXH64_digest(static_cast<XXH64_state_t*>(file_state_)));
+}
+
+void BodyReader::fail(const std::string& message) {
+    // A value found wrong before the checksum was checked may be damage: read the rest, and
+    // report the mismatch if there is one.
+    if (!checked_) {
+        std::vector<unsigned char> rest(
+            static_cast<std::size_t>(std::min<std::uint64_t>(header_.body_size - pos_, 4 << 20)));
+        while (pos_ < header_.body_size)
+            read(rest.data(), std::min<std::uint64_t>(rest.size(), header_.body_size - pos_));
+        check_checksum();
+    }
+    throw FormatError(path_ + ": corrupt body: " + message);
+}
+
+void BodyReader::align() {
+    const auto next = std::min(header_.body_size, (pos_ + 7) / 8 * 8);
+    if (next == pos_) return;
+    unsigned char pad[8];
+    const auto size = next - pos_;
+    read(pad, size);
+    // Padding is zero: a writer never leaves anything else there.
+    for (std::uint64_t k = 0; k < size; ++k)
+        if (pad[k] != 0) fail("non-zero padding at body offset " + std::to_string(next - size + k));
+}
+
+void BodyReader::need(std::uint64_t bytes, const char* what) {
+    if (bytes > header_.body_size - pos_)
+        fail(std::string(what) + " needs " + std::to_string(bytes) + " bytes but only " +
+             std::to_string(header_.body_size - pos_) + " remain");
+}
+
+std::uint64_t BodyReader::u64() {
+    align();
+    need(8, "an integer");
+    unsigned char raw[8];
+    read(raw, 8);
+    std::uint64_t value = 0;
+    for (int i = 0; i < 8; ++i) value |= std::uint64_t(raw[i]) << (8 * i);
+    return value;
+}
+
+std::string BodyReader::string() {
+    const auto size = count(1, "a string");
+    std::string text(size, '\0');
+    read(text.data(), size);
+    align();
+    return text;
+}
+
+std::uint64_t BodyReader::count(std::size_t element_size, const char* what) {
+    const auto value = u64();
+    const auto remaining = header_.body_size - pos_;
+    if (element_size && value > remaining / element_size)
+        fail(std::string("count of ") + what + " (" + std::to_string(value) +
+             ") exceeds the body size");
+    return value;
+}
+
+void BodyReader::expect_end() {
+    align();
+    if (pos_ != header_.body_size)
+        fail(std::to_string(header_.body_size - pos_) + " unexpected bytes after the data");
+    if (!checked_) check_checksum();
 }
 
 } // namespace radfmt

@@ -28,8 +28,7 @@ bool finite(const Vec3& p) {
     return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
 // The header's count of `key` must be what the body holds.
-void require_count(const Header& header, const char* key, std::uint64_t count,
-                   const BodyReader& r) {
+void require_count(const Header& header, const char* key, std::uint64_t count, BodyReader& r) {
     const auto* value = header.find(key);
     if (value && *value != std::to_string(count))
         r.fail(std::string("the header says ") + key + "=" + *value + " but the body holds " +
@@ -91,8 +90,7 @@ void write_mesh(const fs::path& path, Header header, const MeshData& mesh) {
 
 MeshData read_mesh(const fs::path& path, Header* header_out) {
     const Kind kind = Kind::Mesh;
-    auto file = read_file(path, &kind);
-    BodyReader r(file.body, path.string());
+    BodyReader r(path, &kind);
     MeshData mesh;
     const auto nv = r.count(24, "vertices");
     mesh.vertices = r.array<Vec3>(nv, "vertices");
@@ -119,8 +117,8 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
     }
     r.expect_end();
     // Values a checksum cannot vouch for: a file can be valid and still hold nonsense.
-    require_count(file.header, "patches", n, r);
-    require_count(file.header, "vertices", nv, r);
+    require_count(r.header(), "patches", n, r);
+    require_count(r.header(), "vertices", nv, r);
     for (std::uint64_t v = 0; v < nv; ++v)
         if (!finite(mesh.vertices[v]))
             r.fail("vertex " + std::to_string(v) + " is not a finite point");
@@ -156,7 +154,7 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
                    " has a non-positive area, a non-finite centroid or a normal that is not "
                    "unit length");
     }
-    if (header_out) *header_out = std::move(file.header);
+    if (header_out) *header_out = r.take_header();
     return mesh;
 }
 
@@ -180,11 +178,20 @@ void write_form_factor_body(const fs::path& path, Header header, const FormFacto
     write_file(path, std::move(header), w);
 }
 
+// The same bytes from a spool (FormFactorSpool::fill_body lays out the body as above).
+void write_form_factor_body(const fs::path& path, Header header, FormFactorSpool& ff, Kind kind) {
+    header.kind = kind;
+    header.set("patches", std::to_string(ff.patch_count()));
+    header.set("nonzeros", std::to_string(ff.nonzeros()));
+    BodyWriter w;
+    ff.fill_body(w);
+    write_file(path, std::move(header), w);
+}
+
 FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, Kind kind,
                                      std::uint64_t* rows_begin = nullptr,
                                      std::uint64_t* rows_end = nullptr) {
-    auto file = read_file(path, &kind);
-    BodyReader r(file.body, path.string());
+    BodyReader r(path, &kind);
     FormFactorData ff;
     ff.patch_count = r.count(8, "rows");
     const auto nnz = r.count(8, "non-zeros");
@@ -192,7 +199,7 @@ FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, K
     ff.columns = r.array<std::uint32_t>(nnz, "columns");
     ff.values = r.array<float>(nnz, "values");
     // Parts have them from their version 1 on.
-    if (file.header.version >= 2 || kind == Kind::FormFactorPart) {
+    if (r.header().version >= 2 || kind == Kind::FormFactorPart) {
         ff.back_fraction = r.array<float>(ff.patch_count, "back-face fractions");
         for (std::uint64_t i = 0; i < ff.patch_count; ++i)
             if (!(ff.back_fraction[i] >= 0 && ff.back_fraction[i] <= 1))
@@ -213,14 +220,14 @@ FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, K
         if (!(ff.values[k] >= 0 && ff.values[k] <= 1.5f))
             r.fail("form factor " + std::to_string(k) + " (" + std::to_string(ff.values[k]) +
                    ") is not in [0, 1]");
-    require_count(file.header, "patches", ff.patch_count, r);
-    require_count(file.header, "nonzeros", nnz, r);
+    require_count(r.header(), "patches", ff.patch_count, r);
+    require_count(r.header(), "nonzeros", nnz, r);
     if (kind == Kind::FormFactorPart) {
         // Its rows, [rows_begin, rows_end): within the matrix, and the only ones filled.
         std::uint64_t begin = 0, end = 0;
         try {
-            begin = std::stoull(file.header.get("rows_begin", path.string()));
-            end = std::stoull(file.header.get("rows_end", path.string()));
+            begin = std::stoull(r.header().get("rows_begin", path.string()));
+            end = std::stoull(r.header().get("rows_end", path.string()));
         } catch (const FormatError&) {
             throw;
         } catch (...) {
@@ -235,7 +242,7 @@ FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, K
         if (rows_begin) *rows_begin = begin;
         if (rows_end) *rows_end = end;
     }
-    if (header_out) *header_out = std::move(file.header);
+    if (header_out) *header_out = r.take_header();
     return ff;
 }
 } // namespace
@@ -247,6 +254,15 @@ FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
     return read_form_factor_body(path, header_out, Kind::FormFactors);
 }
 void write_form_factor_part(const fs::path& path, Header header, const FormFactorData& ff,
+                            std::uint64_t rows_begin, std::uint64_t rows_end) {
+    header.set("rows_begin", std::to_string(rows_begin));
+    header.set("rows_end", std::to_string(rows_end));
+    write_form_factor_body(path, std::move(header), ff, Kind::FormFactorPart);
+}
+void write_form_factors(const fs::path& path, Header header, FormFactorSpool& ff) {
+    write_form_factor_body(path, std::move(header), ff, Kind::FormFactors);
+}
+void write_form_factor_part(const fs::path& path, Header header, FormFactorSpool& ff,
                             std::uint64_t rows_begin, std::uint64_t rows_end) {
     header.set("rows_begin", std::to_string(rows_begin));
     header.set("rows_end", std::to_string(rows_end));
@@ -280,12 +296,11 @@ void write_radiosity(const fs::path& path, Header header, const RadiosityData& r
 
 RadiosityData read_radiosity(const fs::path& path, Header* header_out) {
     const Kind kind = Kind::Radiosity;
-    auto file = read_file(path, &kind);
-    BodyReader r(file.body, path.string());
+    BodyReader r(path, &kind);
     RadiosityData rad;
     const auto n = r.count(24, "patches");
     rad.radiosity = r.array<Rgb>(n, "radiosity");
-    if (file.header.version >= 2) {
+    if (r.header().version >= 2) {
         const auto groups = r.count(8, "light groups");
         for (std::uint64_t g = 0; g < groups; ++g) rad.group_names.push_back(r.string());
         if (groups > 0 && n > (std::uint64_t(1) << 40) / groups)
@@ -293,13 +308,13 @@ RadiosityData read_radiosity(const fs::path& path, Header* header_out) {
         rad.group_radiosity = r.array<Rgb>(n * groups, "light group radiosity");
     }
     r.expect_end();
-    require_count(file.header, "patches", n, r);
+    require_count(r.header(), "patches", n, r);
     for (const auto* values : {&rad.radiosity, &rad.group_radiosity})
         for (std::size_t i = 0; i < values->size(); ++i)
             for (int c = 0; c < 3; ++c)
                 if (!((*values)[i][c] >= 0 && std::isfinite((*values)[i][c])))
                     r.fail("radiosity value " + std::to_string(i) + " is negative or not finite");
-    if (header_out) *header_out = std::move(file.header);
+    if (header_out) *header_out = r.take_header();
     return rad;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -54,8 +55,8 @@ struct Header {
     std::vector<std::pair<std::string, std::string>> fields; // kind-specific facts
     std::uint64_t body_size = 0;
     std::string body_hash;
-    // Set by read_file (not stored): xxh64 of the whole file as read, for the input records
-    // of files derived from it, so no tool reads a large input twice to hash it.
+    // Set by BodyReader::expect_end (not stored): xxh64 of the whole file as read, for the input
+    // records of files derived from it, so no tool reads a large input twice to hash it.
     std::string file_hash;
 
     void set(const std::string& key, const std::string& value);
@@ -72,7 +73,8 @@ std::uint64_t hash_bytes(const void* data, std::size_t size);
 std::string hash_file(const std::filesystem::path& path);
 
 // Lays out a body, keeping every value and array aligned to 8 bytes. Arrays are referenced,
-// not copied (a form-factor body can be gigabytes): they must outlive the writer's use.
+// not copied (a form-factor body can be gigabytes): they must outlive the writer's use. So
+// must the files that file_array pieces come from.
 class BodyWriter {
   public:
     void u64(std::uint64_t value);
@@ -86,8 +88,11 @@ class BodyWriter {
     template <class T> void array(const std::vector<T>& values) {
         array(std::span<const T>(values.data(), values.size()));
     }
+    // An array already written to an open file (bytes [0, size) of `fd`): a body larger
+    // than memory is read from there block by block when hashed and when written.
+    void file_array(int fd, std::uint64_t size);
     std::uint64_t size() const { return size_; }
-    // Hands the body's bytes to `sink` piece by piece, in order.
+    // Hands the body's bytes to `sink` piece by piece, in order (file pieces in blocks).
     void for_each_piece(const std::function<void(const std::byte*, std::size_t)>& sink) const;
     std::uint64_t hash() const; // xxh64 of the body
 
@@ -97,56 +102,68 @@ class BodyWriter {
     struct Piece {
         const std::byte* external; // nullptr: the bytes are owned_[offset, offset + size)
         std::size_t offset, size;
+        int fd = -1; // >= 0: the bytes are [0, size) of this file
     };
     std::vector<Piece> pieces_;
     std::vector<std::byte> owned_; // scalars, strings and padding
     std::uint64_t size_ = 0;
 };
 
-// Reads a body with bounds checks; every failure names the file.
+// Reads a file of the chain: the header is checked when the reader is made; the body is
+// read in order, straight into the arrays that keep it, and hashed on the way, so a large
+// body is never held twice. expect_end() checks the body's checksum. Every failure names
+// the file; a wrong value in a body whose checksum is wrong too is reported as the
+// checksum mismatch (the rest of the body is read to tell).
 class BodyReader {
   public:
-    BodyReader(std::span<const std::byte> body, std::string path)
-        : body_(body), path_(std::move(path)) {}
+    // Refuses a file of another kind than `expected`, when given.
+    explicit BodyReader(const std::filesystem::path& path, const Kind* expected = nullptr);
+    ~BodyReader();
+    BodyReader(const BodyReader&) = delete;
+    BodyReader& operator=(const BodyReader&) = delete;
+
+    const Header& header() const { return header_; }
+    // The header, with file_hash set once expect_end() has run.
+    Header take_header() { return std::move(header_); }
+
     std::uint64_t u64();
     std::string string();
     // Reads a count that will size an array of `element_size` bytes: refuses counts that
     // cannot fit in the rest of the body, so corrupt counts never drive huge allocations.
     std::uint64_t count(std::size_t element_size, const char* what);
     template <class T> std::vector<T> array(std::uint64_t count, const char* what) {
+        static_assert(std::is_trivially_copyable_v<T>);
         align();
         need(count * sizeof(T), what);
         std::vector<T> out(count);
-        if (count) std::memcpy(out.data(), body_.data() + pos_, count * sizeof(T));
-        pos_ += count * sizeof(T);
+        read(out.data(), count * sizeof(T));
         align();
         return out;
     }
+    // Requires the end of the body and checks its checksum: call it before trusting values.
     void expect_end();
-    [[noreturn]] void fail(const std::string& message) const;
+    [[noreturn]] void fail(const std::string& message);
 
   private:
     void align();
     void need(std::uint64_t bytes, const char* what);
-    std::span<const std::byte> body_;
+    void read(void* into, std::uint64_t bytes);
+    void check_checksum();
     std::string path_;
-    std::size_t pos_ = 0;
-};
-
-struct LoadedFile {
-    Header header;
-    std::vector<std::byte> body;
+    Header header_;
+    std::FILE* file_ = nullptr;
+    std::uint64_t pos_ = 0;      // within the body
+    void* body_state_ = nullptr; // XXH64_state_t of the body so far
+    void* file_state_ = nullptr; // XXH64_state_t of the whole file so far
+    bool checked_ = false;
 };
 
 // Serialises header and body to `path` atomically: a temporary file in the same folder is
 // written, flushed and renamed into place, so no reader ever sees a half-written file.
 void write_file(const std::filesystem::path& path, Header header, const BodyWriter& body);
 
-// Reads and validates magic, versions, header and body checksums, and size. When
-// `expected` is given, a file of another kind is refused.
-LoadedFile read_file(const std::filesystem::path& path, const Kind* expected = nullptr);
 // Reads only the header (still validating its checksum); fast for large files.
-Header read_header(const std::filesystem::path& path);
+Header read_header(const std::filesystem::path& path, const Kind* expected = nullptr);
 
 // Writes a file atomically through a callback that fills a temporary path.
 void write_atomically(const std::filesystem::path& path,

@@ -8,6 +8,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace radfmt {
@@ -103,6 +104,45 @@ FormFactorData read_form_factor_part(const std::filesystem::path& path,
                                      Header* header_out = nullptr,
                                      std::uint64_t* rows_begin = nullptr,
                                      std::uint64_t* rows_end = nullptr);
+
+// A form-factor matrix written row by row, without holding it: each row's columns and
+// values go to two unnamed temporary files (in `spill_folder`, gone when the spool is, even
+// after a crash); row starts and back-face fractions stay in memory, 12 bytes a row. The
+// file written from a spool is byte-identical to the one from a FormFactorData of the same
+// rows. Rows are added in order, every row of the matrix (empty ones too).
+class FormFactorSpool {
+  public:
+    FormFactorSpool(std::uint64_t patch_count, const std::filesystem::path& spill_folder);
+    ~FormFactorSpool();
+    FormFactorSpool(const FormFactorSpool&) = delete;
+    FormFactorSpool& operator=(const FormFactorSpool&) = delete;
+
+    void add_row(std::span<const std::uint32_t> columns, std::span<const float> values,
+                 float back_fraction);
+    void add_row(std::span<const std::pair<std::uint32_t, float>> entries, float back_fraction);
+    // Where to spool the rows of `output`: beside it (it will need the room anyway), or the
+    // temporary folder when the output is a device or pipe.
+    static std::filesystem::path folder_for(const std::filesystem::path& output);
+    std::uint64_t patch_count() const { return patch_count_; }
+    std::uint64_t rows() const { return row_start_.size() - 1; }
+    std::uint64_t nonzeros() const { return row_start_.back(); }
+    const std::vector<float>& back_fraction() const { return back_fraction_; }
+    // Flushes the buffers and lays out the body (rows must all be in).
+    void fill_body(BodyWriter& body);
+
+  private:
+    void flush();
+    std::uint64_t patch_count_;
+    std::string folder_; // for messages
+    std::vector<std::uint64_t> row_start_{0};
+    std::vector<float> back_fraction_;
+    std::vector<std::uint32_t> column_buffer_;
+    std::vector<float> value_buffer_;
+    int columns_fd_ = -1, values_fd_ = -1;
+};
+void write_form_factors(const std::filesystem::path& path, Header header, FormFactorSpool& ff);
+void write_form_factor_part(const std::filesystem::path& path, Header header, FormFactorSpool& ff,
+                            std::uint64_t rows_begin, std::uint64_t rows_end);
 
 void write_radiosity(const std::filesystem::path& path, Header header, const RadiosityData& rad);
 RadiosityData read_radiosity(const std::filesystem::path& path, Header* header_out = nullptr);

@@ -5,6 +5,7 @@
 #include "radiosity/vec.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <span>
 #include <string>
@@ -37,17 +38,17 @@ std::string unsharded_command(int argc, const char* const* argv);
 struct FormFactorPart {
     std::string path;
     radfmt::Header header;
-    radfmt::FormFactorData form_factors;
     std::uint64_t begin = 0, end = 0;
 };
 struct MergedFormFactors {
     radfmt::Header header; // as one run writing `output` would have made it
-    radfmt::FormFactorData form_factors;
+    std::uint64_t rows = 0, nonzeros = 0;
 };
-// Checks that the parts come from one mesh, method, options, seed and tool, and cover every
-// row exactly once (InputError naming the gap, the overlap or the difference), and joins
-// them: the result is byte for byte what one run would have written to `output`.
-MergedFormFactors merge_form_factor_parts(std::vector<FormFactorPart> parts,
+// Checks from their headers that the parts come from one mesh, method, options, seed and
+// tool, and cover every row exactly once (InputError naming the gap, the overlap or the
+// difference), then writes `output` from their bodies, one part in memory at a time: byte
+// for byte what one run would have written there.
+MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
                                           const std::string& output);
 
 struct FormFactorStats {
@@ -84,9 +85,20 @@ std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
 std::vector<std::pair<std::string, std::string>>
 form_factor_header_fields(const FormFactorOptions& options);
 
-// Rows are computed in parallel (TBB); each row draws its random numbers from (seed, row)
-// alone, so the result is identical for any number of threads. Rows outside `rows` are
-// left empty (patch_count is still the mesh's).
+// Row i of the matrix as the sink receives it: (column, F_ij), columns ascending.
+using FormFactorEntries = std::span<const std::pair<std::uint32_t, float>>;
+using FormFactorRowSink =
+    std::function<void(std::size_t row, FormFactorEntries entries, float back_fraction)>;
+
+// Computes the rows a block at a time and hands every row of the matrix to `sink`, in
+// order from 0 (those outside `rows` empty), without holding the matrix: rad-ff spools them
+// to disk. Rows are computed in parallel (TBB); each row draws its random numbers from
+// (seed, row) alone, so the result is identical for any number of threads.
+void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOptions& options,
+                              const FormFactorRowSink& sink, FormFactorStats* stats = nullptr,
+                              RowRange rows = {});
+
+// The same rows, held in memory (patch_count is the mesh's, rows outside `rows` empty).
 radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
                                             const FormFactorOptions& options,
                                             FormFactorStats* stats = nullptr, RowRange rows = {});
@@ -97,7 +109,7 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
 //  - more than 80% of the rays that reach the group arrive at its back (it faces the wrong
 //    way).
 std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
-                                            const radfmt::FormFactorData& ff,
+                                            std::span<const float> back_fraction,
                                             const FormFactorStats& stats);
 
 // Exact form factor from a differential area at `point` with unit normal `normal` to a

@@ -32,7 +32,7 @@ void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint
 } // namespace ff
 
 std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
-                                            const radfmt::FormFactorData& ff,
+                                            std::span<const float> back_fraction,
                                             const FormFactorStats& stats) {
     struct GroupTally {
         std::size_t patches = 0, looking_at_backs = 0;
@@ -42,7 +42,7 @@ std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
     for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
         auto& g = groups[mesh.patches[i].group];
         ++g.patches;
-        if (i < ff.back_fraction.size() && ff.back_fraction[i] > 0.5f) ++g.looking_at_backs;
+        if (i < back_fraction.size() && back_fraction[i] > 0.5f) ++g.looking_at_backs;
         if (i < stats.reached_front.size()) {
             g.reached_front += stats.reached_front[i];
             g.reached_back += stats.reached_back[i];

@@ -45,18 +45,32 @@ FormFactorOptions resolve_form_factor_options(FormFactorOptions options) {
     return options;
 }
 
+namespace {
+// Rows are computed a block at a time and handed on in order: a block holds about this many
+// entries, whatever the row length, and enough rows to keep every thread busy.
+constexpr std::uint64_t kBlockEntries = std::uint64_t(1) << 22;
+std::size_t block_rows(std::uint64_t max_row_entries, unsigned threads) {
+    const auto rows = kBlockEntries / std::max<std::uint64_t>(1, max_row_entries);
+    return static_cast<std::size_t>(std::clamp<std::uint64_t>(rows, 16 * threads, 8192));
+}
+unsigned active_threads() {
+    return static_cast<unsigned>(
+        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+}
+} // namespace
+
 std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
                                           const FormFactorOptions& options) {
     const std::uint64_t n = mesh.patches.size();
     const auto& method = form_factor_method(options.method);
     const std::uint64_t per_row = method.max_row_entries(mesh, options);
-    // The threads this run will use (a ThreadLimit in force, else every core).
-    const auto threads = static_cast<unsigned>(
-        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-    // Rows are built then packed: entries (4 + 4 bytes) are held twice at the peak; Embree
-    // and the mesh take a few hundred bytes per patch.
+    const auto threads = active_threads();
+    // The rows are spooled to disk a block at a time (rad-ff): a block of rows (4 + 4 bytes
+    // an entry, held as rows and once more in the spool's buffers), row starts and
+    // fractions (12 bytes a row); Embree and the mesh take a few hundred bytes per patch.
     // The back-face tallies are two counters per patch and thread.
-    return 2 * n * per_row * 8 + n * 400 + mesh.vertices.size() * 64 + n * 8 * threads +
+    const std::uint64_t block = std::min<std::uint64_t>(n, block_rows(per_row, threads));
+    return 2 * block * per_row * 8 + n * 412 + mesh.vertices.size() * 64 + n * 8 * threads +
            method.working_memory(mesh, options, threads);
 }
 
@@ -71,9 +85,9 @@ form_factor_header_fields(const FormFactorOptions& options) {
     return fields;
 }
 
-radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
-                                            const FormFactorOptions& options_in,
-                                            FormFactorStats* stats, RowRange range) {
+void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOptions& options_in,
+                              const FormFactorRowSink& sink, FormFactorStats* stats,
+                              RowRange range) {
     const auto start = std::chrono::steady_clock::now();
     const auto options = resolve_form_factor_options(options_in);
     const auto& method = form_factor_method(options.method);
@@ -86,63 +100,68 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
     const FormFactorContext context(mesh, scene);
     const auto kernel = method.prepare(context, options);
 
-    std::vector<FormFactorRow> rows(n);
-    std::vector<float> back_fraction(n, 0.0f);
     // Per-thread tallies of the rays reaching each patch's front and back (integer sums:
     // the totals do not depend on the threads).
     tbb::enumerable_thread_specific<std::vector<std::uint32_t>> reached(
         [n] { return std::vector<std::uint32_t>(2 * n, 0); });
     std::atomic<std::uint64_t> rays_cast{0}, started_inside{0};
     std::atomic<std::size_t> patches_started_inside{0};
-    Progress progress("rad-ff " + options.method, last - first, options.quiet);
-    const auto trace_start = std::chrono::steady_clock::now();
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(first, last, 1),
-        [&](const tbb::blocked_range<std::size_t>& block) {
-            auto& tally = reached.local();
-            for (std::size_t i = block.begin(); i != block.end(); ++i) {
-                Rng rng(options.seed, i);
-                RayLog log{0, 0, tally.data(), tally.data() + n};
-                log.near = context.diameter[i];
-                rays_cast += kernel->compute_row(i, rng, rows[i], log);
-                if (log.rays == 0) {
-                    rays_cast += kBackFaceProbeRays;
-                    ff::probe_back_faces(context, i, options.seed, kBackFaceProbeRays, log);
-                }
-                // A stray ray from a point a rounding error off a contact line is not a
-                // patch under something: a patch counts from 3 rays and a tenth of its own.
-                if (log.started_inside >= 3 && 10 * log.started_inside >= log.rays) {
-                    started_inside += log.started_inside;
-                    ++patches_started_inside;
-                }
-                back_fraction[i] =
-                    static_cast<float>(double(log.back_hits) / std::max(1u, log.rays));
-                progress.advance(1);
-            }
-        });
-    const double trace_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - trace_start).count();
-    progress.finish();
+    double sum_rows = 0, max_row = 0, trace_seconds = 0;
+    const FormFactorEntries empty_row;
+    for (std::size_t i = 0; i < first; ++i) sink(i, empty_row, 0.0f);
 
-    radfmt::FormFactorData ff;
-    ff.patch_count = n;
-    ff.back_fraction = std::move(back_fraction);
-    ff.row_start.assign(n + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) ff.row_start[i + 1] = ff.row_start[i] + rows[i].size();
-    ff.columns.reserve(ff.row_start[n]);
-    ff.values.reserve(ff.row_start[n]);
-    double sum_rows = 0, max_row = 0;
-    for (auto& row : rows) {
-        double sum = 0;
-        for (const auto& [col, value] : row) {
-            ff.columns.push_back(col);
-            ff.values.push_back(value);
-            sum += value;
+    Progress progress("rad-ff " + options.method, last - first, options.quiet);
+    const std::size_t block_size =
+        block_rows(method.max_row_entries(mesh, options), active_threads());
+    std::vector<FormFactorRow> rows(std::min(block_size, last - first));
+    std::vector<float> back_fraction(rows.size());
+    for (std::size_t block_begin = first; block_begin < last; block_begin += block_size) {
+        const std::size_t block_end = std::min(last, block_begin + block_size);
+        const auto trace_start = std::chrono::steady_clock::now();
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(block_begin, block_end, 1),
+            [&](const tbb::blocked_range<std::size_t>& part) {
+                auto& tally = reached.local();
+                for (std::size_t i = part.begin(); i != part.end(); ++i) {
+                    Rng rng(options.seed, i);
+                    RayLog log{0, 0, tally.data(), tally.data() + n};
+                    log.near = context.diameter[i];
+                    auto& row = rows[i - block_begin];
+                    row.clear();
+                    rays_cast += kernel->compute_row(i, rng, row, log);
+                    if (log.rays == 0) {
+                        rays_cast += kBackFaceProbeRays;
+                        ff::probe_back_faces(context, i, options.seed, kBackFaceProbeRays, log);
+                    }
+                    // A stray ray from a point a rounding error off a contact line is not a
+                    // patch under something: a patch counts from 3 rays and a tenth of its
+                    // own.
+                    if (log.started_inside >= 3 && 10 * log.started_inside >= log.rays) {
+                        started_inside += log.started_inside;
+                        ++patches_started_inside;
+                    }
+                    back_fraction[i - block_begin] =
+                        static_cast<float>(double(log.back_hits) / std::max(1u, log.rays));
+                    progress.advance(1);
+                }
+            });
+        trace_seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - trace_start).count();
+        for (std::size_t i = block_begin; i < block_end; ++i) {
+            auto& row = rows[i - block_begin];
+            double sum = 0;
+            for (const auto& entry : row) sum += entry.second;
+            sum_rows += sum;
+            max_row = std::max(max_row, sum);
+            sink(i, row, back_fraction[i - block_begin]);
+            // A long row of one block must not keep its memory through the rest.
+            if (row.capacity() > 4 * method.max_row_entries(mesh, options) / 3 + 64)
+                FormFactorRow().swap(row);
         }
-        sum_rows += sum;
-        max_row = std::max(max_row, sum);
-        FormFactorRow().swap(row);
     }
+    progress.finish();
+    for (std::size_t i = last; i < n; ++i) sink(i, empty_row, 0.0f);
+
     if (stats) {
         stats->rays_cast = rays_cast;
         stats->seconds =
@@ -160,6 +179,26 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
                 stats->reached_back[j] += tally[n + j];
             }
     }
+}
+
+radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
+                                            const FormFactorOptions& options,
+                                            FormFactorStats* stats, RowRange range) {
+    radfmt::FormFactorData ff;
+    ff.patch_count = mesh.patches.size();
+    ff.row_start.assign(1, 0);
+    ff.back_fraction.reserve(ff.patch_count);
+    compute_form_factor_rows(
+        mesh, options,
+        [&](std::size_t, FormFactorEntries row, float back_fraction) {
+            for (const auto& [column, value] : row) {
+                ff.columns.push_back(column);
+                ff.values.push_back(value);
+            }
+            ff.row_start.push_back(ff.columns.size());
+            ff.back_fraction.push_back(back_fraction);
+        },
+        stats, range);
     return ff;
 }
 

@@ -23,6 +23,17 @@ std::uint64_t whole_number(const std::string& text, const std::string& what) {
         throw InputError("--rows: " + what + " '" + text + "' is not a row number");
     return static_cast<std::uint64_t>(value);
 }
+
+// A count recorded in a part's header (checked against its body when the body is read).
+std::uint64_t header_number(const radfmt::Header& header, const std::string& key,
+                            const std::string& path) {
+    const auto& text = header.get(key, path);
+    double value = 0;
+    if (!parse_number(text, value) || value < 0 || value != std::floor(value) || value > 1e15)
+        throw radfmt::FormatError(path + ": corrupt header: " + key + " '" + text +
+                                  "' is not a whole number");
+    return static_cast<std::uint64_t>(value);
+}
 } // namespace
 
 RowRange parse_rows(const std::string& text, std::uint64_t patches) {
@@ -77,9 +88,18 @@ std::string unsharded_command(int argc, const char* const* argv) {
     return radfmt::command_line(static_cast<int>(kept.size()), kept.data());
 }
 
-MergedFormFactors merge_form_factor_parts(std::vector<FormFactorPart> parts,
+MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
                                           const std::string& output) {
-    if (parts.empty()) throw InputError("--merge needs the part files to merge");
+    if (paths.empty()) throw InputError("--merge needs the part files to merge");
+    // The headers say what each part is; the bodies are read one at a time, at the end.
+    std::vector<FormFactorPart> parts;
+    for (const auto& path : paths) {
+        const auto kind = radfmt::Kind::FormFactorPart;
+        FormFactorPart part{path, radfmt::read_header(path, &kind)};
+        part.begin = header_number(part.header, "rows_begin", path);
+        part.end = header_number(part.header, "rows_end", path);
+        parts.push_back(std::move(part));
+    }
     const auto& first = parts.front();
     // The same matrix: same mesh, method, options, seed and tool, field for field.
     for (const auto& p : parts) {
@@ -104,7 +124,7 @@ MergedFormFactors merge_form_factor_parts(std::vector<FormFactorPart> parts,
     // Every row exactly once.
     std::sort(parts.begin(), parts.end(),
               [](const auto& a, const auto& b) { return a.begin < b.begin; });
-    const std::uint64_t n = first.form_factors.patch_count;
+    const std::uint64_t n = header_number(first.header, "patches", first.path);
     std::uint64_t next = 0;
     for (std::size_t k = 0; k < parts.size(); ++k) {
         const auto& p = parts[k];
@@ -123,25 +143,12 @@ MergedFormFactors merge_form_factor_parts(std::vector<FormFactorPart> parts,
                          " are in no part (compute them with --rows " + std::to_string(next) + ":" +
                          std::to_string(n) + ")");
 
-    MergedFormFactors out;
-    auto& ff = out.form_factors;
-    ff.patch_count = n;
-    ff.row_start.assign(1, 0);
-    ff.back_fraction.assign(n, 0.0f);
     std::uint64_t started_inside = 0;
-    for (const auto& p : parts) {
-        for (std::uint64_t i = p.begin; i < p.end; ++i) {
-            for (auto k = p.form_factors.row_start[i]; k < p.form_factors.row_start[i + 1]; ++k) {
-                ff.columns.push_back(p.form_factors.columns[k]);
-                ff.values.push_back(p.form_factors.values[k]);
-            }
-            ff.row_start.push_back(ff.columns.size());
-            ff.back_fraction[i] = p.form_factors.back_fraction[i];
-        }
+    for (const auto& p : parts)
         if (const auto* v = p.header.find("rays_started_inside"))
-            started_inside += whole_number(*v, "rays_started_inside");
-    }
+            started_inside += header_number(p.header, "rays_started_inside", p.path);
     // The header one run would have written: its command, its fields in its order.
+    MergedFormFactors out;
     out.header = first.header;
     out.header.kind = radfmt::Kind::FormFactors;
     out.header.version = 0;
@@ -155,6 +162,23 @@ MergedFormFactors merge_form_factor_parts(std::vector<FormFactorPart> parts,
         throw InputError(first.path + ": its recorded command has no output to replace");
     command.replace(at, std::string(kOutputPlaceholder).size(), output_text);
     out.header.command = command;
+
+    // The rows, part after part, through a spool: memory holds one part at a time.
+    radfmt::FormFactorSpool spool(n, radfmt::FormFactorSpool::folder_for(output));
+    for (const auto& p : parts) {
+        std::uint64_t begin = 0, end = 0;
+        const auto ff = radfmt::read_form_factor_part(p.path, nullptr, &begin, &end);
+        if (begin != p.begin || end != p.end || ff.patch_count != n)
+            throw InputError(p.path + ": changed while it was merged");
+        for (std::uint64_t i = begin; i < end; ++i) {
+            const auto from = ff.row_start[i], count = ff.row_start[i + 1] - from;
+            spool.add_row(std::span(ff.columns).subspan(from, count),
+                          std::span(ff.values).subspan(from, count), ff.back_fraction[i]);
+        }
+    }
+    out.rows = spool.rows();
+    out.nonzeros = spool.nonzeros();
+    radfmt::write_form_factors(output, out.header, spool);
     return out;
 }
 
