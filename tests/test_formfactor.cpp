@@ -82,7 +82,9 @@ TEST_CASE("every method matches the closed forms for parallel and perpendicular 
     }
     for (const auto& method : rad::form_factor_method_names()) {
         for (std::size_t c = 0; c < cases.size(); ++c) {
-            const auto ff = compute(cases[c].mesh, method);
+            // Hemisphere at 65536 rays: its rms error on these pairs is 0.2% (1.2% at the
+            // default 8192, measured over 20 seeds), so 2% is far outside its noise.
+            const auto ff = compute(cases[c].mesh, method, 0, method == "hemisphere" ? 65536 : 0);
             CAPTURE(method, c);
             CHECK(entry(ff, 0, 1) == Approx(cases[c].f01).epsilon(tolerance_of(method)));
             CHECK(entry(ff, 1, 0) == Approx(cases[c].f10).epsilon(tolerance_of(method)));

@@ -500,3 +500,72 @@ TEST_CASE("an OBJ starting with a UTF-8 byte-order mark keeps its first vertex")
     const auto mesh = rad::subdivide(scene, {});
     CHECK(mesh.total_area() == Approx(2)); // vertices 1 2 3, not 2 3 4
 }
+
+TEST_CASE("patches are numbered along a Morton curve, each patch unchanged") {
+    // A room of six walls, cut fine: the faces' own order runs wall by wall.
+    const std::string obj =
+        "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nv 0 0 3\nv 2 0 3\nv 2 1 3\nv 0 1 3\n"
+        "usemtl grey\nf 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n";
+    rad::SubdivisionOptions options;
+    options.max_edge = 0.1;
+    const auto before = rad::subdivide(scene_from_obj(obj), options);
+    auto after = before;
+    rad::order_patches_by_locality(after);
+    REQUIRE(after.patches.size() == before.patches.size());
+    CHECK(after.vertices.size() == before.vertices.size());
+    // The same patches (corner points, group, area), each once.
+    auto points_of = [](const radfmt::MeshData& m, const radfmt::Patch& p) {
+        std::vector<radfmt::Vec3> points;
+        for (int k = 0; k < p.corner_count(); ++k) points.push_back(m.vertices[p.corners[k]]);
+        return points;
+    };
+    std::map<std::vector<radfmt::Vec3>, double> area_of;
+    for (const auto& p : before.patches) area_of[points_of(before, p)] = p.area;
+    REQUIRE(area_of.size() == before.patches.size());
+    for (const auto& p : after.patches) {
+        const auto it = area_of.find(points_of(after, p));
+        REQUIRE(it != area_of.end());
+        CHECK(it->second == p.area);
+        area_of.erase(it);
+    }
+    // Morton codes of the centroids never decrease, and the order is not the faces' order.
+    rad::Box box;
+    for (const auto& p : after.patches) box.add(p.centroid);
+    // The centroids' bounding cube: its side is their longest extent.
+    const double side =
+        std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
+    const double cell = side / double(rad::kMortonSteps);
+    std::uint64_t previous = 0, descents_before = 0;
+    for (const auto& p : after.patches) {
+        const auto code = rad::morton_code(p.centroid, box.lo, cell);
+        CHECK(code >= previous);
+        previous = code;
+    }
+    previous = 0;
+    for (const auto& p : before.patches) {
+        const auto code = rad::morton_code(p.centroid, box.lo, cell);
+        descents_before += code < previous;
+        previous = code;
+    }
+    CHECK(descents_before > 0);
+    // Vertices are numbered in order of first use.
+    std::uint32_t next = 0;
+    for (const auto& p : after.patches)
+        for (int k = 0; k < p.corner_count(); ++k) {
+            CHECK(p.corners[k] <= next);
+            if (p.corners[k] == next) ++next;
+        }
+    // Neighbours in memory are neighbours in space: consecutive patches are close.
+    auto mean_step = [](const radfmt::MeshData& m) {
+        double sum = 0;
+        for (std::size_t i = 1; i < m.patches.size(); ++i)
+            sum += rad::length(m.patches[i].centroid - m.patches[i - 1].centroid);
+        return sum / double(m.patches.size() - 1);
+    };
+    CHECK(mean_step(after) < 0.2);
+    // Quantised codes: the spread bits land on every third bit.
+    CHECK(rad::morton_code({1, 0, 0}, {0, 0, 0}, 1) == 1);
+    CHECK(rad::morton_code({0, 1, 0}, {0, 0, 0}, 1) == 2);
+    CHECK(rad::morton_code({0, 0, 1}, {0, 0, 0}, 1) == 4);
+    CHECK(rad::morton_code({3, 0, 0}, {0, 0, 0}, 1) == 9);
+}

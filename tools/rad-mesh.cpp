@@ -67,6 +67,13 @@ int main(int argc, char** argv) {
                    "face's size")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 1));
+    std::string patch_order = "morton";
+    app.add_option("--patch-order", patch_order,
+                   "How patches are numbered: morton (along a Z-order curve of their centroids, "
+                   "so that neighbours in space are neighbours in memory: faster solves) or "
+                   "faces (in the order of the scene's faces, each face's patches row by row)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"morton", "faces"}));
     bool strict = false;
     rad::SceneOptions obj_options;
     std::string default_reflectance;
@@ -269,6 +276,8 @@ int main(int argc, char** argv) {
             for (const auto& line : problems) text += "\n  " + line;
             warn(text);
         }
+
+        if (patch_order == "morton") rad::order_patches_by_locality(mesh);
 
         std::vector<radfmt::Parent> sources{{input, nullptr}};
         for (const auto& mtl : scene.material_files) sources.push_back({mtl, nullptr});

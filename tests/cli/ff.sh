@@ -51,7 +51,11 @@ awk '/^v / { printf "v %.17g %.17g %.17g\n", $2 + 1e7, $3, $4 - 3e6; next } { pr
 cp "$SRC/scenes/cornell/cornell.mtl" "$TMP/far/"
 "$BIN/rad-mesh" "$TMP/far/cornell.obj" -o "$TMP/far.mesh" -q 2>/dev/null || fail "mesh far away"
 far=$("$BIN/rad-ff" "$TMP/far.mesh" -o "$TMP/far.ff" --method hemisphere --rays 500 2>&1 | sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p')
-[ "$far" = "${sum[1]}" ] || fail "row sums change far from the origin: $far vs ${sum[1]}"
+# Moved by 2e7 times its size, the corners lose digits, and a few patches draw other random
+# numbers (their streams are keyed by their quantised corners): the same to noise, 1e-3.
+# Before the recentring, float rays gave 0.9973 here.
+awk -v a="$far" -v b="${sum[1]}" 'BEGIN { d = a - b; exit !(d < 1e-3 && d > -1e-3) }' ||
+  fail "row sums change far from the origin: $far vs ${sum[1]}"
 # Beyond what float and double resolve: refused with the accepted range, not solved wrongly.
 awk '/^v / { printf "v %.17g %.17g %.17g\n", $2 * 1e30, $3 * 1e30, $4 * 1e30; next } { print }' \
   "$SRC/scenes/cornell/cornell.obj" > "$TMP/far/huge.obj"

@@ -30,6 +30,9 @@ struct FormFactorContext {
     std::vector<PatchPolygon> polygons; // per patch
     std::vector<double> diameter;       // per patch: its longest corner-to-corner distance
     double epsilon;                     // the ray scene's offset, relative to the scene size
+    // Per patch, the key of its random streams: a hash of its corners, so a patch gets the
+    // same samples whatever its number (the patch order is free to change).
+    std::vector<std::uint64_t> stream_key;
 
     FormFactorContext(const radfmt::MeshData& mesh, const RayScene& scene);
     // Does any corner of patch j lie strictly in front of patch i's plane?

@@ -2,6 +2,7 @@
 #pragma once
 #include "radfmt/kinds.hpp"
 #include "radiosity/materials.hpp"
+#include "radiosity/vec.hpp"
 
 #include <filesystem>
 #include <map>
@@ -111,6 +112,16 @@ struct SubdivisionReport {
 // T-vertices. Polygons with more than 4 vertices (or concave quads) are triangulated first.
 radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options,
                            SubdivisionReport* report = nullptr);
+
+// Renumbers the patches along a Morton (Z-order) curve of their centroids, quantised to
+// kMortonSteps steps a side of the centroids' bounding cube, patches in one step in their
+// previous order; vertices are renumbered in order of first use. Patches near each other in
+// space get numbers near each other, so the columns of a form-factor row, and the radiosity
+// a solver gathers through them, sit close in memory. rad-mesh's default patch order.
+inline constexpr std::uint64_t kMortonSteps = std::uint64_t(1) << 21;
+void order_patches_by_locality(radfmt::MeshData& mesh);
+// The Morton code of `point` in cells of size `cell` from `origin` (clamped to the grid).
+std::uint64_t morton_code(const Vec3& point, const Vec3& origin, double cell);
 
 // The faces as fans of triangles, each with its face's own (Newell) normal: a mesh for a
 // RayScene over the scene as written. `face_of` and `triangle_area` get one entry per

@@ -16,7 +16,8 @@ class AnalyticKernel final : public RowKernel {
         gauss_legendre(2 * m, close_nodes_, close_weights_);
     }
 
-    std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row, RayLog&) const override {
+    std::uint64_t compute_row(std::size_t i, Rng& row_rng, FormFactorRow& row,
+                              RayLog&) const override {
         const auto& mesh = context_.mesh;
         const auto& pi = mesh.patches[i];
         const auto samples = gauss_samples(context_.polygons[i], pi.area, nodes_, weights_);
@@ -25,10 +26,14 @@ class AnalyticKernel final : public RowKernel {
         const auto samples_close =
             gauss_samples(context_.polygons[i], pi.area, close_nodes_, close_weights_);
         std::uint64_t rays = 0;
+        // Each pair draws from a stream of its own: F_ij does not depend on which other
+        // patches come before j.
+        const std::uint64_t row_seed = row_rng.next();
         const std::size_t n = mesh.patches.size();
         for (std::size_t j = 0; j < n; ++j) {
             if (j == i || !context_.in_front(i, j) || !context_.in_front(j, i)) continue;
             const auto& pj = mesh.patches[j];
+            Rng rng(row_seed, context_.stream_key[j]);
             // Patch i is planar: clipping j to i's front half-space is the same for every
             // sample point of i, so it is done once per pair.
             const auto clipped =

@@ -13,7 +13,7 @@ namespace ff {
 void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint64_t seed, int rays,
                       RayLog& log) {
     // A stream of its own (the seed's complement), so probing leaves the form factors alone.
-    Rng rng(~seed, i);
+    Rng rng(~seed, context.stream_key[i]);
     const auto& pi = context.mesh.patches[i];
     const auto poly = context.polygons[i].points();
     const auto cdf = fan_cdf(poly);

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 
 namespace rad {
 
@@ -21,6 +22,14 @@ FormFactorContext::FormFactorContext(const radfmt::MeshData& mesh_, const RaySce
     const std::size_t n = mesh.patches.size();
     polygons.reserve(n);
     diameter.assign(n, 0);
+    // The stream key hashes the corners quantised to 2^-20 of the scene's size from its
+    // lowest corner: the same for the scene scaled, and for nearly every patch of the scene
+    // moved far away (where coordinates lose digits and some land across a step).
+    const Box box = bounds(mesh.vertices);
+    double size = 0;
+    for (int c = 0; c < 3; ++c) size = std::max(size, box.hi[c] - box.lo[c]);
+    const double steps = size > 0 ? 0x1.0p20 / size : 1.0;
+    stream_key.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         const auto& p = mesh.patches[i];
         PatchPolygon g{};
@@ -29,6 +38,12 @@ FormFactorContext::FormFactorContext(const radfmt::MeshData& mesh_, const RaySce
         for (int a = 0; a < g.count; ++a)
             for (int b = a + 1; b < g.count; ++b)
                 diameter[i] = std::max(diameter[i], length(g.corners[a] - g.corners[b]));
+        std::uint64_t cells[12] = {};
+        for (int k = 0; k < g.count; ++k)
+            for (int c = 0; c < 3; ++c)
+                cells[3 * k + c] =
+                    static_cast<std::uint64_t>(std::llround((g.corners[k][c] - box.lo[c]) * steps));
+        stream_key[i] = radfmt::hash_bytes(cells, sizeof cells);
         polygons.push_back(g);
     }
 }
@@ -123,7 +138,7 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
             [&](const tbb::blocked_range<std::size_t>& part) {
                 auto& tally = reached.local();
                 for (std::size_t i = part.begin(); i != part.end(); ++i) {
-                    Rng rng(options.seed, i);
+                    Rng rng(options.seed, context.stream_key[i]);
                     RayLog log{0, 0, tally.data(), tally.data() + n};
                     log.near = context.diameter[i];
                     auto& row = rows[i - block_begin];

@@ -18,17 +18,22 @@ class PairwiseKernel final : public RowKernel {
         gauss_legendre(m_far_, far_nodes_, far_weights_);
     }
 
-    std::uint64_t compute_row(std::size_t i, Rng& rng, FormFactorRow& row, RayLog&) const override {
+    std::uint64_t compute_row(std::size_t i, Rng& row_rng, FormFactorRow& row,
+                              RayLog&) const override {
         const auto& mesh = context_.mesh;
         const auto& pi = mesh.patches[i];
         const auto samples = gauss_samples(context_.polygons[i], pi.area, nodes_, weights_);
         const auto samples_far =
             gauss_samples(context_.polygons[i], pi.area, far_nodes_, far_weights_);
         std::uint64_t rays = 0;
+        // Each pair draws from a stream of its own: F_ij does not depend on which other
+        // patches come before j.
+        const std::uint64_t row_seed = row_rng.next();
         const std::size_t n = mesh.patches.size();
         for (std::size_t j = 0; j < n; ++j) {
             if (j == i || !context_.in_front(i, j) || !context_.in_front(j, i)) continue;
             const auto& pj = mesh.patches[j];
+            Rng rng(row_seed, context_.stream_key[j]);
             const auto& gj = context_.polygons[j];
             // Each sample of j stands for its cell of j's m x m grid; the cell's form factor
             // from the point of i is taken in closed form, which keeps adjacent pairs finite
