@@ -173,7 +173,9 @@ TEST_CASE("a spooled form-factor file is byte-identical to one written from memo
     ff.patch_count = 5000;
     ff.row_start = {0};
     std::uint32_t state = 12345;
+    // In memory, and spilled to disk past a budget of 8 MiB (one chunk).
     radfmt::FormFactorSpool spool(ff.patch_count, dir);
+    radfmt::FormFactorSpool spilled(ff.patch_count, dir, std::uint64_t(8) << 20);
     for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
         const std::size_t length = (i < 3 || i % 97 == 0 || i + 2 >= ff.patch_count) ? 0 : 700;
         std::vector<std::uint32_t> columns;
@@ -188,22 +190,28 @@ TEST_CASE("a spooled form-factor file is byte-identical to one written from memo
         ff.values.insert(ff.values.end(), values.begin(), values.end());
         ff.row_start.push_back(ff.columns.size());
         ff.back_fraction.push_back(back);
-        if (i % 2)
+        if (i % 2) {
             spool.add_row(columns, values, back);
-        else { // the other overload, as rad-ff uses it
+            spilled.add_row(columns, values, back);
+        } else { // the other overload, as rad-ff uses it
             std::vector<std::pair<std::uint32_t, float>> entries;
             for (std::size_t k = 0; k < length; ++k) entries.emplace_back(columns[k], values[k]);
             spool.add_row(entries, back);
+            spilled.add_row(entries, back);
         }
     }
     REQUIRE(spool.nonzeros() > 3 * (std::size_t(1) << 20));
     radfmt::write_form_factors(dir / "memory.ff", header_for("rad-ff"), ff);
     radfmt::write_form_factors(dir / "spool.ff", header_for("rad-ff"), spool);
+    radfmt::write_form_factors(dir / "spilled.ff", header_for("rad-ff"), spilled);
+    CHECK_FALSE(spool.spilled());
+    CHECK(spilled.spilled());
     CHECK(read_all(dir / "memory.ff") == read_all(dir / "spool.ff"));
+    CHECK(read_all(dir / "memory.ff") == read_all(dir / "spilled.ff"));
     const auto back = radfmt::read_form_factors(dir / "spool.ff");
     CHECK(back.values == ff.values);
-    // The spool's files are unnamed: nothing is left in the folder but the two outputs.
-    CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 2);
+    // The spilled files are unnamed: nothing is left in the folder but the outputs.
+    CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 3);
     CHECK(radfmt::FormFactorSpool::folder_for("/dev/null") == fs::temp_directory_path());
     CHECK(radfmt::FormFactorSpool::folder_for("x.ff") == fs::path("."));
 }

@@ -63,7 +63,8 @@ int main(int argc, char** argv) {
         rad::tool::check_outputs(inputs, {{"-o", output}});
         if (merge) {
             if (!rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
-            const auto merged = rad::merge_form_factor_parts(inputs, output);
+            const auto merged =
+                rad::merge_form_factor_parts(inputs, output, rad::tool::memory_limit(max_memory));
             if (!options.quiet)
                 std::fprintf(stderr, "rad-ff: merged %zu part(s): %llu rows, %llu non-zeros\n",
                              inputs.size(), static_cast<unsigned long long>(merged.rows),
@@ -93,9 +94,10 @@ int main(int argc, char** argv) {
         const auto range =
             rows.empty() ? rad::RowRange{} : rad::parse_rows(rows, mesh.patches.size());
         rad::FormFactorStats stats;
-        // The rows go to disk as they are computed, so memory holds a block of them.
-        radfmt::FormFactorSpool ff(mesh.patches.size(),
-                                   radfmt::FormFactorSpool::folder_for(output));
+        // The rows are packed into the file's arrays as they are computed; what would not
+        // fit within --max-memory waits on disk beside the output.
+        radfmt::FormFactorSpool ff(mesh.patches.size(), radfmt::FormFactorSpool::folder_for(output),
+                                   limit - need);
         rad::compute_form_factor_rows(
             mesh, options,
             [&](std::size_t, rad::FormFactorEntries row, float back_fraction) {
@@ -132,6 +134,10 @@ int main(int argc, char** argv) {
         if (rows.empty())
             for (const auto& line : rad::back_face_warnings(mesh, ff.back_fraction(), stats))
                 std::fprintf(stderr, "rad-ff: warning: %s: %s\n", input.c_str(), line.c_str());
+        if (!options.quiet && ff.spilled())
+            std::fprintf(stderr, "rad-ff: the rows beyond --max-memory (%s) waited on disk in %s\n",
+                         rad::human_bytes(double(limit)).c_str(),
+                         radfmt::FormFactorSpool::folder_for(output).c_str());
         if (!options.quiet) {
             std::fprintf(stderr,
                          "rad-ff: %llu patches, %llu non-zeros, %llu rays in %.3f s (%.3g rays/s "

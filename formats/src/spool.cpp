@@ -1,5 +1,5 @@
-// FormFactorSpool: rows of a form-factor matrix kept on disk until the file is written, so
-// that writing a matrix larger than memory costs O(rows) memory.
+// FormFactorSpool: rows of a form-factor matrix kept in chunks until the file is written,
+// spilled to disk past a memory budget.
 #include "radfmt/kinds.hpp"
 
 #include <cerrno>
@@ -12,51 +12,45 @@ namespace radfmt {
 namespace fs = std::filesystem;
 
 namespace {
-constexpr std::size_t kBufferEntries = std::size_t(1) << 20; // 4 MiB per array
+// Entries per chunk (4 MiB per array). A multiple of two, so chunk boundaries fall on the
+// 8-byte alignment of the body and the chunks lay out as one contiguous array.
+constexpr std::size_t kChunkEntries = std::size_t(1) << 20;
 
 // An unnamed file: nothing to clean up, whatever ends the run.
 int open_unnamed_file(const fs::path& folder) {
-    const auto where = folder.empty() ? fs::path(".") : folder;
-    int fd = ::open(where.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+    int fd = ::open(folder.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
     if (fd >= 0) return fd;
     // A file system without O_TMPFILE: a named file, unlinked at once.
-    std::string name = (where / ".rad-spool.XXXXXX").string();
+    std::string name = (folder / ".rad-spool.XXXXXX").string();
     fd = ::mkstemp(name.data());
     if (fd < 0) return -1;
     ::unlink(name.c_str());
     return fd;
 }
 
-void write_all(int fd, const void* data, std::size_t size, const std::string& folder) {
+void write_all(int fd, const void* data, std::size_t size, const fs::path& folder) {
     const auto* bytes = static_cast<const char*>(data);
     while (size > 0) {
         const auto done = ::write(fd, bytes, size);
         if (done < 0 && errno == EINTR) continue;
         if (done <= 0)
-            throw WriteError(folder + ": cannot keep the form factors being computed there (" +
+            throw WriteError(folder.string() +
+                             ": cannot keep the form factors being computed there (" +
                              std::strerror(done < 0 ? errno : ENOSPC) +
-                             "): the rows wait on disk until the file is written, and need "
-                             "about as much room as it will take");
+                             "): rows beyond the memory limit wait on disk until the file is "
+                             "written, and need about as much room as it will take");
         bytes += done;
         size -= static_cast<std::size_t>(done);
     }
 }
 } // namespace
 
-FormFactorSpool::FormFactorSpool(std::uint64_t patch_count, const fs::path& spill_folder)
-    : patch_count_(patch_count), folder_(spill_folder.empty() ? "." : spill_folder.string()) {
+FormFactorSpool::FormFactorSpool(std::uint64_t patch_count, const fs::path& spill_folder,
+                                 std::uint64_t memory_budget)
+    : patch_count_(patch_count), folder_(spill_folder.empty() ? fs::path(".") : spill_folder),
+      memory_budget_(memory_budget) {
     back_fraction_.reserve(patch_count);
     row_start_.reserve(patch_count + 1);
-    column_buffer_.reserve(kBufferEntries);
-    value_buffer_.reserve(kBufferEntries);
-    columns_fd_ = open_unnamed_file(spill_folder);
-    values_fd_ = columns_fd_ < 0 ? -1 : open_unnamed_file(spill_folder);
-    if (columns_fd_ < 0 || values_fd_ < 0) {
-        const int error = errno;
-        if (columns_fd_ >= 0) ::close(columns_fd_);
-        throw WriteError(folder_ + ": cannot create a temporary file for the rows (" +
-                         std::strerror(error) + ")");
-    }
 }
 
 FormFactorSpool::~FormFactorSpool() {
@@ -64,15 +58,54 @@ FormFactorSpool::~FormFactorSpool() {
     if (values_fd_ >= 0) ::close(values_fd_);
 }
 
+void FormFactorSpool::add_entry(std::uint32_t column, float value) {
+    if (column_chunks_.empty() || column_chunks_.back().size() == kChunkEntries) chunk_full();
+    column_chunks_.back().push_back(column);
+    value_chunks_.back().push_back(value);
+}
+
+// A new chunk in memory while the budget allows, else the entries so far go to disk and
+// the chunk is reused.
+void FormFactorSpool::chunk_full() {
+    const std::uint64_t chunk_bytes = kChunkEntries * (sizeof(std::uint32_t) + sizeof(float));
+    if (!spilled() && (column_chunks_.size() + 1) * chunk_bytes > memory_budget_) spill();
+    if (spilled() && !column_chunks_.empty()) {
+        write_all(columns_fd_, column_chunks_.back().data(),
+                  column_chunks_.back().size() * sizeof(std::uint32_t), folder_);
+        write_all(values_fd_, value_chunks_.back().data(),
+                  value_chunks_.back().size() * sizeof(float), folder_);
+        column_chunks_.back().clear();
+        value_chunks_.back().clear();
+        return;
+    }
+    column_chunks_.emplace_back().reserve(kChunkEntries);
+    value_chunks_.emplace_back().reserve(kChunkEntries);
+}
+
+void FormFactorSpool::spill() {
+    columns_fd_ = open_unnamed_file(folder_);
+    values_fd_ = columns_fd_ < 0 ? -1 : open_unnamed_file(folder_);
+    if (columns_fd_ < 0 || values_fd_ < 0) {
+        const int error = errno;
+        throw WriteError(folder_.string() + ": cannot create a temporary file for the rows (" +
+                         std::strerror(error) + ")");
+    }
+    // Every chunk but the last goes to disk now; the last is written when full.
+    while (column_chunks_.size() > 1) {
+        write_all(columns_fd_, column_chunks_.front().data(),
+                  column_chunks_.front().size() * sizeof(std::uint32_t), folder_);
+        write_all(values_fd_, value_chunks_.front().data(),
+                  value_chunks_.front().size() * sizeof(float), folder_);
+        column_chunks_.erase(column_chunks_.begin());
+        value_chunks_.erase(value_chunks_.begin());
+    }
+}
+
 void FormFactorSpool::add_row(std::span<const std::uint32_t> columns, std::span<const float> values,
                               float back_fraction) {
     if (columns.size() != values.size() || rows() >= patch_count_)
         throw std::logic_error("FormFactorSpool: a row with unequal arrays, or too many rows");
-    for (std::size_t k = 0; k < columns.size(); ++k) {
-        column_buffer_.push_back(columns[k]);
-        value_buffer_.push_back(values[k]);
-        if (column_buffer_.size() == kBufferEntries) flush();
-    }
+    for (std::size_t k = 0; k < columns.size(); ++k) add_entry(columns[k], values[k]);
     row_start_.push_back(row_start_.back() + columns.size());
     back_fraction_.push_back(back_fraction);
 }
@@ -80,11 +113,7 @@ void FormFactorSpool::add_row(std::span<const std::uint32_t> columns, std::span<
 void FormFactorSpool::add_row(std::span<const std::pair<std::uint32_t, float>> entries,
                               float back_fraction) {
     if (rows() >= patch_count_) throw std::logic_error("FormFactorSpool: too many rows");
-    for (const auto& [column, value] : entries) {
-        column_buffer_.push_back(column);
-        value_buffer_.push_back(value);
-        if (column_buffer_.size() == kBufferEntries) flush();
-    }
+    for (const auto& [column, value] : entries) add_entry(column, value);
     row_start_.push_back(row_start_.back() + entries.size());
     back_fraction_.push_back(back_fraction);
 }
@@ -96,23 +125,21 @@ fs::path FormFactorSpool::folder_for(const fs::path& output) {
     return output.has_parent_path() ? output.parent_path() : fs::path(".");
 }
 
-void FormFactorSpool::flush() {
-    write_all(columns_fd_, column_buffer_.data(), column_buffer_.size() * sizeof(std::uint32_t),
-              folder_);
-    write_all(values_fd_, value_buffer_.data(), value_buffer_.size() * sizeof(float), folder_);
-    column_buffer_.clear();
-    value_buffer_.clear();
-}
-
 void FormFactorSpool::fill_body(BodyWriter& body) {
     if (rows() != patch_count_)
         throw std::logic_error("FormFactorSpool: written before every row was added");
-    flush();
     body.u64(patch_count_);
     body.u64(nonzeros());
     body.array(row_start_);
-    body.file_array(columns_fd_, nonzeros() * sizeof(std::uint32_t));
-    body.file_array(values_fd_, nonzeros() * sizeof(float));
+    if (spilled()) {
+        chunk_full(); // the last chunk to disk
+        body.file_array(columns_fd_, nonzeros() * sizeof(std::uint32_t));
+        body.file_array(values_fd_, nonzeros() * sizeof(float));
+    } else {
+        // Chunks of an even number of 4-byte entries: no padding between them.
+        for (const auto& chunk : column_chunks_) body.array(chunk);
+        for (const auto& chunk : value_chunks_) body.array(chunk);
+    }
     body.array(back_fraction_);
 }
 

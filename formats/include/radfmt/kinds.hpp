@@ -105,14 +105,17 @@ FormFactorData read_form_factor_part(const std::filesystem::path& path,
                                      std::uint64_t* rows_begin = nullptr,
                                      std::uint64_t* rows_end = nullptr);
 
-// A form-factor matrix written row by row, without holding it: each row's columns and
-// values go to two unnamed temporary files (in `spill_folder`, gone when the spool is, even
-// after a crash); row starts and back-face fractions stay in memory, 12 bytes a row. The
-// file written from a spool is byte-identical to the one from a FormFactorData of the same
-// rows. Rows are added in order, every row of the matrix (empty ones too).
+// A form-factor matrix gathered row by row into the arrays of its file, without a second
+// copy: columns and values go into chunks in memory while they fit in `memory_budget`
+// bytes, and past it to two unnamed temporary files (in `spill_folder`, gone when the spool
+// is, even after a crash), so a matrix larger than memory costs O(rows) of it. Row starts
+// and back-face fractions stay in memory, 12 bytes a row. The file written from a spool is
+// byte-identical to the one from a FormFactorData of the same rows. Rows are added in
+// order, every row of the matrix (empty ones too).
 class FormFactorSpool {
   public:
-    FormFactorSpool(std::uint64_t patch_count, const std::filesystem::path& spill_folder);
+    FormFactorSpool(std::uint64_t patch_count, const std::filesystem::path& spill_folder,
+                    std::uint64_t memory_budget = std::numeric_limits<std::uint64_t>::max());
     ~FormFactorSpool();
     FormFactorSpool(const FormFactorSpool&) = delete;
     FormFactorSpool& operator=(const FormFactorSpool&) = delete;
@@ -120,24 +123,29 @@ class FormFactorSpool {
     void add_row(std::span<const std::uint32_t> columns, std::span<const float> values,
                  float back_fraction);
     void add_row(std::span<const std::pair<std::uint32_t, float>> entries, float back_fraction);
-    // Where to spool the rows of `output`: beside it (it will need the room anyway), or the
+    // Where to spill the rows of `output`: beside it (it will need the room anyway), or the
     // temporary folder when the output is a device or pipe.
     static std::filesystem::path folder_for(const std::filesystem::path& output);
     std::uint64_t patch_count() const { return patch_count_; }
     std::uint64_t rows() const { return row_start_.size() - 1; }
     std::uint64_t nonzeros() const { return row_start_.back(); }
+    bool spilled() const { return columns_fd_ >= 0; }
     const std::vector<float>& back_fraction() const { return back_fraction_; }
-    // Flushes the buffers and lays out the body (rows must all be in).
+    // Lays out the body (rows must all be in; spilled entries are flushed first).
     void fill_body(BodyWriter& body);
 
   private:
-    void flush();
+    void add_entry(std::uint32_t column, float value);
+    void chunk_full();
+    void spill();
     std::uint64_t patch_count_;
-    std::string folder_; // for messages
+    std::filesystem::path folder_;
+    std::uint64_t memory_budget_;
     std::vector<std::uint64_t> row_start_{0};
     std::vector<float> back_fraction_;
-    std::vector<std::uint32_t> column_buffer_;
-    std::vector<float> value_buffer_;
+    // In memory: every chunk; spilled: the one being filled.
+    std::vector<std::vector<std::uint32_t>> column_chunks_;
+    std::vector<std::vector<float>> value_chunks_;
     int columns_fd_ = -1, values_fd_ = -1;
 };
 void write_form_factors(const std::filesystem::path& path, Header header, FormFactorSpool& ff);

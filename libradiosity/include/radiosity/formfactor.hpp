@@ -46,10 +46,12 @@ struct MergedFormFactors {
 };
 // Checks from their headers that the parts come from one mesh, method, options, seed and
 // tool, and cover every row exactly once (InputError naming the gap, the overlap or the
-// difference), then writes `output` from their bodies, one part in memory at a time: byte
-// for byte what one run would have written there.
-MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
-                                          const std::string& output);
+// difference), then writes `output` from their bodies, one part read at a time (the merged
+// rows beyond `memory_budget` bytes wait on disk): byte for byte what one run would have
+// written there.
+MergedFormFactors
+merge_form_factor_parts(const std::vector<std::string>& paths, const std::string& output,
+                        std::uint64_t memory_budget = std::numeric_limits<std::uint64_t>::max());
 
 struct FormFactorStats {
     std::uint64_t rays_cast = 0;

@@ -49,9 +49,12 @@ using FormFactorRow = std::vector<std::pair<std::uint32_t, float>>;
 struct RayLog {
     std::uint32_t rays = 0;
     std::uint32_t back_hits = 0;
-    // Per patch: rays that reached its front, its back (this thread's counters).
-    std::uint32_t* reached_front = nullptr;
-    std::uint32_t* reached_back = nullptr;
+    // This thread's counters, three per patch: rays that reached its front, its back, and a
+    // scratch count a kernel may use within one row (kept zero between rows). One patch's
+    // three share a cache line: a ray's hit costs one memory access, not one per array.
+    std::uint32_t* counters = nullptr;
+    static constexpr std::size_t kCountersPerPatch = 3;
+    std::uint32_t& row_count(std::size_t patch) { return counters[3 * patch + 2]; }
     // Rays that met a back face closer than `near` (the patch's own size): they started
     // under or inside other geometry (a contact not imprinted, surfaces crossing).
     double near = 0;
@@ -60,10 +63,10 @@ struct RayLog {
         ++rays;
         if (hit < 0) return;
         if (front) {
-            ++reached_front[hit];
+            ++counters[3 * hit];
         } else {
             ++back_hits;
-            ++reached_back[hit];
+            ++counters[3 * hit + 1];
             if (distance < near) ++started_inside;
         }
     }

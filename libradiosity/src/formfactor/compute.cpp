@@ -9,6 +9,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <atomic>
@@ -80,12 +81,13 @@ std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
     const auto& method = form_factor_method(options.method);
     const std::uint64_t per_row = method.max_row_entries(mesh, options);
     const auto threads = active_threads();
-    // The rows are spooled to disk a block at a time (rad-ff): a block of rows (4 + 4 bytes
-    // an entry, held as rows and once more in the spool's buffers), row starts and
-    // fractions (12 bytes a row); Embree and the mesh take a few hundred bytes per patch.
-    // The back-face tallies are two counters per patch and thread.
+    // The rows are spooled to disk a block at a time (rad-ff): two blocks of rows (4 + 4
+    // bytes an entry: one computed while the other is written) and the spool's buffers,
+    // row starts and fractions (12 bytes a row); Embree and the mesh take a few hundred
+    // bytes per patch.
+    // The ray tallies are three counters per patch and thread.
     const std::uint64_t block = std::min<std::uint64_t>(n, block_rows(per_row, threads));
-    return 2 * block * per_row * 8 + n * 412 + mesh.vertices.size() * 64 + n * 8 * threads +
+    return 3 * block * per_row * 8 + n * 412 + mesh.vertices.size() * 64 + n * 12 * threads +
            method.working_memory(mesh, options, threads);
 }
 
@@ -118,7 +120,7 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
     // Per-thread tallies of the rays reaching each patch's front and back (integer sums:
     // the totals do not depend on the threads).
     tbb::enumerable_thread_specific<std::vector<std::uint32_t>> reached(
-        [n] { return std::vector<std::uint32_t>(2 * n, 0); });
+        [n] { return std::vector<std::uint32_t>(RayLog::kCountersPerPatch * n, 0); });
     std::atomic<std::uint64_t> rays_cast{0}, started_inside{0};
     std::atomic<std::size_t> patches_started_inside{0};
     double sum_rows = 0, max_row = 0, trace_seconds = 0;
@@ -128,10 +130,34 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
     Progress progress("rad-ff " + options.method, last - first, options.quiet);
     const std::size_t block_size =
         block_rows(method.max_row_entries(mesh, options), active_threads());
-    std::vector<FormFactorRow> rows(std::min(block_size, last - first));
-    std::vector<float> back_fraction(rows.size());
-    for (std::size_t block_begin = first; block_begin < last; block_begin += block_size) {
+    // Two blocks: while one is handed to the sink (written to disk, in rad-ff), the next is
+    // computed.
+    std::vector<FormFactorRow> block_rows_of[2];
+    std::vector<float> block_back_of[2];
+    for (int b = 0; b < 2; ++b) {
+        block_rows_of[b].resize(std::min(block_size, last - first));
+        block_back_of[b].resize(block_rows_of[b].size());
+    }
+    const auto max_entries = method.max_row_entries(mesh, options);
+    auto hand_on = [&, max_entries](std::size_t block_begin, std::size_t block_end, int b) {
+        auto& rows = block_rows_of[b];
+        for (std::size_t i = block_begin; i < block_end; ++i) {
+            auto& row = rows[i - block_begin];
+            double sum = 0;
+            for (const auto& entry : row) sum += entry.second;
+            sum_rows += sum;
+            max_row = std::max(max_row, sum);
+            sink(i, row, block_back_of[b][i - block_begin]);
+            // A long row of one block must not keep its memory through the rest.
+            if (row.capacity() > 4 * max_entries / 3 + 64) FormFactorRow().swap(row);
+        }
+    };
+    tbb::task_group handing_on;
+    int b = 0;
+    for (std::size_t block_begin = first; block_begin < last; block_begin += block_size, b ^= 1) {
         const std::size_t block_end = std::min(last, block_begin + block_size);
+        auto& rows = block_rows_of[b];
+        auto& back_fraction = block_back_of[b];
         const auto trace_start = std::chrono::steady_clock::now();
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(block_begin, block_end, 1),
@@ -139,7 +165,7 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
                 auto& tally = reached.local();
                 for (std::size_t i = part.begin(); i != part.end(); ++i) {
                     Rng rng(options.seed, context.stream_key[i]);
-                    RayLog log{0, 0, tally.data(), tally.data() + n};
+                    RayLog log{0, 0, tally.data()};
                     log.near = context.diameter[i];
                     auto& row = rows[i - block_begin];
                     row.clear();
@@ -162,18 +188,11 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
             });
         trace_seconds +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - trace_start).count();
-        for (std::size_t i = block_begin; i < block_end; ++i) {
-            auto& row = rows[i - block_begin];
-            double sum = 0;
-            for (const auto& entry : row) sum += entry.second;
-            sum_rows += sum;
-            max_row = std::max(max_row, sum);
-            sink(i, row, back_fraction[i - block_begin]);
-            // A long row of one block must not keep its memory through the rest.
-            if (row.capacity() > 4 * method.max_row_entries(mesh, options) / 3 + 64)
-                FormFactorRow().swap(row);
-        }
+        handing_on.wait(); // the previous block is in: rows reach the sink in order
+        handing_on.run(
+            [&hand_on, block_begin, block_end, b] { hand_on(block_begin, block_end, b); });
     }
+    handing_on.wait();
     progress.finish();
     for (std::size_t i = last; i < n; ++i) sink(i, empty_row, 0.0f);
 
@@ -190,8 +209,8 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
         stats->reached_back.assign(n, 0);
         for (const auto& tally : reached)
             for (std::size_t j = 0; j < n; ++j) {
-                stats->reached_front[j] += tally[j];
-                stats->reached_back[j] += tally[n + j];
+                stats->reached_front[j] += tally[RayLog::kCountersPerPatch * j];
+                stats->reached_back[j] += tally[RayLog::kCountersPerPatch * j + 1];
             }
     }
 }

@@ -5,6 +5,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
+#include <bit>
 
 namespace rad::ff {
 namespace {
@@ -33,12 +34,14 @@ class HemisphereKernel final : public RowKernel {
         // origin, Halton bases 3 and 5 for the direction), rotated per patch by seeded
         // offsets (Cranley-Patterson), so the estimate is unbiased and stratified jointly.
         const double rot[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-        // Hits are tallied in a per-thread counter over all patches; only the distinct
-        // patches hit are sorted (fewer than the rays), and the counter is reset after.
+        // Hits are tallied in the log's row counter of each patch (beside its front and back
+        // counters); the patches hit are marked in a two-level bitmap, read back in column
+        // order (no sort), and their counters reset after.
         auto& tally = tally_.local();
-        if (tally.counts.size() != n) tally.counts.assign(n, 0);
-        auto& hit_patches = tally.touched;
-        hit_patches.clear();
+        if (tally.hit_words.size() != (n + 63) / 64) {
+            tally.hit_words.assign((n + 63) / 64, 0);
+            tally.hit_summary.assign((n + 4095) / 4096, 0);
+        }
         for (int r = 0; r < rays_; ++r) {
             const double u0 = wrap(qmc_[r][0] + rot[0]);
             const double u1 = wrap(qmc_[r][1] + rot[1]);
@@ -54,22 +57,35 @@ class HemisphereKernel final : public RowKernel {
             const bool front = traced.front;
             // A patch cannot see itself; a hit on itself (a warped quad) is no evidence.
             log.record(static_cast<std::size_t>(hit) == i ? -1 : hit, front, traced.distance);
-            if (hit >= 0 && front && static_cast<std::size_t>(hit) != i && tally.counts[hit]++ == 0)
-                hit_patches.push_back(static_cast<std::uint32_t>(hit));
+            if (hit >= 0 && front && static_cast<std::size_t>(hit) != i &&
+                log.row_count(static_cast<std::size_t>(hit))++ == 0) {
+                const auto j = static_cast<std::size_t>(hit);
+                tally.hit_words[j / 64] |= std::uint64_t(1) << (j % 64);
+                tally.hit_summary[j / 4096] |= std::uint64_t(1) << (j / 64 % 64);
+            }
         }
-        std::sort(hit_patches.begin(), hit_patches.end());
-        row.reserve(hit_patches.size());
-        for (const auto j : hit_patches) {
-            row.emplace_back(j, static_cast<float>(double(tally.counts[j]) / rays_));
-            tally.counts[j] = 0;
+        for (std::size_t s = 0; s < tally.hit_summary.size(); ++s) {
+            for (auto summary = tally.hit_summary[s]; summary; summary &= summary - 1) {
+                const std::size_t w = 64 * s + static_cast<std::size_t>(std::countr_zero(summary));
+                for (auto bits = tally.hit_words[w]; bits; bits &= bits - 1) {
+                    const std::size_t j = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
+                    auto& count = log.row_count(j);
+                    row.emplace_back(static_cast<std::uint32_t>(j),
+                                     static_cast<float>(double(count) / rays_));
+                    count = 0;
+                }
+                tally.hit_words[w] = 0;
+            }
+            tally.hit_summary[s] = 0;
         }
         return static_cast<std::uint64_t>(rays_);
     }
 
   private:
     struct HitTally {
-        std::vector<std::uint32_t> counts; // hits per patch, all zero between rows
-        std::vector<std::uint32_t> touched;
+        std::vector<std::uint32_t> counts;      // hits per patch, all zero between rows
+        std::vector<std::uint64_t> hit_words;   // a bit per patch: hit in this row
+        std::vector<std::uint64_t> hit_summary; // a bit per word of hit_words: not zero
     };
     const FormFactorContext& context_;
     int rays_;
@@ -96,12 +112,11 @@ class Hemisphere final : public FormFactorMethod {
     }
     std::uint64_t working_memory(const radfmt::MeshData& mesh, const FormFactorOptions& options,
                                  unsigned threads) const override {
-        // The shared low-discrepancy table (four doubles per ray), and per thread a hit
-        // counter per patch plus the list of patches hit.
+        // The shared low-discrepancy table (four doubles per ray), and per thread the
+        // bitmaps of the patches hit (the counters are the log's).
         const std::uint64_t rays = static_cast<std::uint64_t>(std::max(1, options.rays));
         return rays * sizeof(std::array<double, 4>) +
-               std::uint64_t(threads) * (mesh.patches.size() + max_row_entries(mesh, options)) *
-                   sizeof(std::uint32_t);
+               std::uint64_t(threads) * (mesh.patches.size() / 8 + 1);
     }
     std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
                                        const FormFactorOptions& options) const override {

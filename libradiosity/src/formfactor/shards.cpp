@@ -89,7 +89,7 @@ std::string unsharded_command(int argc, const char* const* argv) {
 }
 
 MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
-                                          const std::string& output) {
+                                          const std::string& output, std::uint64_t memory_budget) {
     if (paths.empty()) throw InputError("--merge needs the part files to merge");
     // The headers say what each part is; the bodies are read one at a time, at the end.
     std::vector<FormFactorPart> parts;
@@ -163,8 +163,9 @@ MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
     command.replace(at, std::string(kOutputPlaceholder).size(), output_text);
     out.header.command = command;
 
-    // The rows, part after part, through a spool: memory holds one part at a time.
-    radfmt::FormFactorSpool spool(n, radfmt::FormFactorSpool::folder_for(output));
+    // The rows, part after part, through a spool: one part is read at a time, and what does
+    // not fit in the budget beside it waits on disk.
+    radfmt::FormFactorSpool spool(n, radfmt::FormFactorSpool::folder_for(output), memory_budget);
     for (const auto& p : parts) {
         std::uint64_t begin = 0, end = 0;
         const auto ff = radfmt::read_form_factor_part(p.path, nullptr, &begin, &end);
