@@ -101,9 +101,8 @@ rad::SolveResult run(const Problem& p, const std::string& method, double toleran
     control.tolerance = tolerance;
     control.max_iterations = iterations ? iterations : 10000000;
     if (log)
-        control.on_iteration = [&](const rad::IterationRecord& r, const rad::Channels&) {
-            log->push_back(r);
-        };
+        control.on_iteration = [&](const rad::IterationRecord& r,
+                                   const std::function<rad::Channels()>&) { log->push_back(r); };
     return rad::solver(method).solve(p.op(), rad::to_channels(p.emission), control);
 }
 
@@ -181,6 +180,19 @@ TEST_CASE("every method agrees with a direct dense solve on an occluded scene") 
         for (std::size_t k = 1; k < log.size(); ++k)
             for (int c = 0; c < 3; ++c) CHECK(log[k].power[c] >= log[k - 1].power[c]);
         CHECK(log[3].power[0] > log[0].power[0]); // iteration 4 is brighter than iteration 1
+    }
+    SECTION("a shot's logged power, kept up to date, is the displayed state's power") {
+        for (const char* method : {"pr", "apr"}) {
+            for (long shots : {1L, 7L, 200L}) {
+                std::vector<rad::IterationRecord> log;
+                const auto result = run(p, method, 0, shots, &log);
+                REQUIRE(log.size() == std::size_t(shots));
+                const auto power = rad::total_power(p.op().area, result.radiosity);
+                CAPTURE(method, shots);
+                for (int c = 0; c < 3; ++c)
+                    CHECK(log.back().power[c] == Approx(power[c]).epsilon(1e-12));
+            }
+        }
     }
     SECTION(
         "APR's first shot lights every patch; PR's leaves some black; the ambient term decays") {

@@ -169,10 +169,11 @@ int main(int argc, char** argv) {
         };
         std::ostringstream log;
         log << "iteration,residual,power_r,power_g,power_b,seconds\n";
-        // Only observe iterations when asked to: for pr/apr the callback costs a copy of the
-        // displayed state and a power sum per shot.
+        // Only observe iterations when asked to (a line per shot for pr/apr); the displayed
+        // state is made only for a snapshot.
         if (!log_path.empty() || verbose || !snapshot.empty())
-            control.on_iteration = [&](const rad::IterationRecord& r, const rad::Channels& b) {
+            control.on_iteration = [&](const rad::IterationRecord& r,
+                                       const std::function<rad::Channels()>& displayed) {
                 char line[200];
                 const auto power = rgb_power(r.power);
                 std::snprintf(line, sizeof line, "%ld,%.9g,%.9g,%.9g,%.9g,%.6f\n", r.iteration,
@@ -186,7 +187,7 @@ int main(int argc, char** argv) {
                     snap.set("iterations", std::to_string(r.iteration));
                     snap.set("snapshot", "yes");
                     radfmt::write_radiosity(snapshot_path(snapshot, r.iteration), snap,
-                                            rad::radiosity_data(b, groups));
+                                            rad::radiosity_data(displayed(), groups));
                 }
             };
         const auto result = solver.solve(op, emission, control);

@@ -21,8 +21,11 @@ struct IterationRecord {
 struct SolveControl {
     long max_iterations = 0; // 0: no limit besides the tolerance
     double tolerance = 0;    // 0: run max_iterations exactly
-    // Called after every iteration with the displayed state (APR includes its ambient term).
-    std::function<void(const IterationRecord&, const Channels&)> on_iteration;
+    // Called after every iteration. `displayed` makes the displayed state (APR includes its
+    // ambient term) when called: for a shooting solver that is O(patches) a shot, so only
+    // when it is needed (a snapshot), not for the record's power, which is kept up to date.
+    std::function<void(const IterationRecord&, const std::function<Channels()>& displayed)>
+        on_iteration;
 };
 
 struct SolveResult {

@@ -26,6 +26,22 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
         for (std::size_t c = 0; c < channels; ++c) mean_reflectance[c] += op.rho(i, c) * op.area[i];
     }
     for (auto& r : mean_reflectance) r = total_area > 0 ? r / total_area : 0;
+    // The power of B and of the unshot radiosity per channel, kept up to date shot by shot,
+    // so the record of a shot costs O(channels), not a sum over every patch.
+    std::vector<double> b_power(channels, 0.0), unshot_total(channels, 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t c = 0; c < channels; ++c) b_power[c] += emission.at(i, c) * op.area[i];
+    unshot_total = b_power;
+    // APR's ambient term adds sum_i A_i rho_i x ambient = mean rho x unshot power / (1 - mean
+    // rho) per channel.
+    auto displayed_power = [&] {
+        auto power = b_power;
+        if (ambient)
+            for (std::size_t c = 0; c < channels; ++c)
+                power[c] += mean_reflectance[c] * unshot_total[c] /
+                            (1 - std::min(mean_reflectance[c], 0.999999));
+        return power;
+    };
 
     auto unshot_fraction = [&](double unshot_power) {
         return emitted > 0 ? unshot_power / emitted : 0;
@@ -104,6 +120,7 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
         for (std::size_t c = 0; c < channels; ++c) {
             shot[c] = unshot.at(shooter, c);
             unshot.at(shooter, c) = 0;
+            unshot_total[c] -= shot[c] * op.area[shooter];
         }
         unshot_power -= best;
         const double a_i = op.area[shooter];
@@ -116,6 +133,8 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
                 b.at(j, c) += received;
                 unshot.at(j, c) += received;
                 unshot_power += received * op.area[j];
+                b_power[c] += received * op.area[j];
+                unshot_total[c] += received * op.area[j];
             }
             if (const double p = power_of(j); p > 0) {
                 heap.push_back({p, j});
@@ -125,10 +144,9 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
         residual = unshot_fraction(std::max(0.0, unshot_power));
         ++done;
         if (control.on_iteration) {
-            const auto shown = displayed();
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            control.on_iteration({done, residual, total_power(op.area, shown), seconds}, shown);
+            control.on_iteration({done, residual, displayed_power(), seconds}, displayed);
         }
     }
     SolveResult result;

@@ -137,7 +137,8 @@ SolveResult solve_by_sweeps(const TransportOperator& op, const Channels& emissio
         if (control.on_iteration) {
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            control.on_iteration({done, residual, total_power(op.area, b), seconds}, b);
+            control.on_iteration({done, residual, total_power(op.area, b), seconds},
+                                 [&b] { return b; });
         }
         if (magnitude == 0) break; // nothing emits: the black solution is exact
     }
