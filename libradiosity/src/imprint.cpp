@@ -297,11 +297,17 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
             if (faces[f].planar) members[surfaces.find(f)].push_back(f);
         for (const auto& [root, list] : members) {
             if (list.size() < 2) continue;
-            std::vector<std::array<Vec3, 2>> lines;
-            for (const auto f : list) lines.insert(lines.end(), chords[f].begin(), chords[f].end());
-            for (const auto& line : lines)
+            // Each line runs on into the others, not back into its own face: cut there
+            // already, run on again it would be re-clipped a rounding error away (a second,
+            // near-duplicate point on the outline).
+            std::vector<std::pair<std::array<Vec3, 2>, std::size_t>> lines;
+            for (const auto f : list)
+                for (const auto& chord : chords[f]) lines.emplace_back(chord, f);
+            for (const auto& [line, from] : lines)
                 for (const auto f : list)
-                    add_cut(f, {faces[f].frame.to2d(line[0]), faces[f].frame.to2d(line[1])}, true);
+                    if (f != from)
+                        add_cut(f, {faces[f].frame.to2d(line[0]), faces[f].frame.to2d(line[1])},
+                                true);
         }
     }
 
