@@ -1,5 +1,4 @@
 #include "shooting.hpp"
-#include "power_queue.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -69,19 +68,34 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
     };
 
     // The next shooter is the patch with the most unshot power, the lowest index among
-    // equals, found by a PowerQueue instead of a scan of every patch per shot: the order of
-    // shots is the scan's, exactly.
+    // equals: a max-heap of (power, patch) with stale entries skipped (an entry is current
+    // while its power equals the patch's, computed the same way), instead of a scan of every
+    // patch per shot. The order of shots is the scan's, exactly.
     auto power_of = [&](std::size_t i) {
         double u = 0;
         for (std::size_t c = 0; c < channels; ++c) u += unshot.at(i, c);
         return u * op.area[i];
     };
-    PowerQueue queue(n);
+    struct Entry {
+        double power;
+        std::uint32_t patch;
+    };
+    // "Less" for std::push_heap: lower power, or equal power and a higher index.
+    const auto below = [](const Entry& x, const Entry& y) {
+        return x.power < y.power || (x.power == y.power && x.patch > y.patch);
+    };
+    std::vector<Entry> heap;
     double unshot_power = 0;
-    // The running totals are summed afresh every n shots, so their rounding does not drift.
-    auto sum_unshot_power = [&] {
+    auto rebuild = [&] {
+        heap.clear();
         unshot_power = 0;
-        for (std::size_t i = 0; i < n; ++i) unshot_power += power_of(i);
+        for (std::size_t i = 0; i < n; ++i) {
+            const double p = power_of(i);
+            unshot_power += p;
+            if (p > 0) heap.push_back({p, static_cast<std::uint32_t>(i)});
+        }
+        std::make_heap(heap.begin(), heap.end(), below);
+        // The logged powers too.
         std::fill(b_power.begin(), b_power.end(), 0.0);
         std::fill(unshot_total.begin(), unshot_total.end(), 0.0);
         for (std::size_t i = 0; i < n; ++i)
@@ -90,23 +104,27 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
                 unshot_total[c] += unshot.at(i, c) * op.area[i];
             }
     };
-    for (std::size_t i = 0; i < n; ++i) queue.set(i, power_of(i));
-    sum_unshot_power();
+    rebuild();
 
     std::vector<double> shot(channels);
     long done = 0;
     double residual = 1;
     while (keep_going(done, residual)) {
-        if (done > 0 && done % static_cast<long>(std::max<std::size_t>(n, 1)) == 0)
-            sum_unshot_power();
-        const auto top = queue.top();
-        if (top < 0) {
+        // Stale entries pile up (one per reception): start afresh past a few per patch. The
+        // running totals are summed afresh then too, so their rounding does not drift.
+        if (heap.size() > 4 * n + 64) rebuild();
+        while (!heap.empty() && heap.front().power != power_of(heap.front().patch)) {
+            std::pop_heap(heap.begin(), heap.end(), below);
+            heap.pop_back();
+        }
+        if (heap.empty()) {
             residual = 0;
             break;
         }
-        const auto shooter = static_cast<std::size_t>(top);
-        const double best = power_of(shooter);
-        queue.set(shooter, 0);
+        const std::size_t shooter = heap.front().patch;
+        const double best = heap.front().power;
+        std::pop_heap(heap.begin(), heap.end(), below);
+        heap.pop_back();
         for (std::size_t c = 0; c < channels; ++c) {
             shot[c] = unshot.at(shooter, c);
             unshot.at(shooter, c) = 0;
@@ -114,7 +132,7 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
         }
         unshot_power -= best;
         const double a_i = op.area[shooter];
-        // (each receiver's new power goes to the queue once its channels are all in)
+        // (each receiver's new power goes on the heap below, once its channels are all in)
         for (auto k = ff.row_start[shooter]; k < ff.row_start[shooter + 1]; ++k) {
             const auto j = ff.columns[k];
             const double f_ji = ff.values[k] * a_i / op.area[j];
@@ -126,7 +144,10 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
                 b_power[c] += received * op.area[j];
                 unshot_total[c] += received * op.area[j];
             }
-            queue.set(j, power_of(j));
+            if (const double p = power_of(j); p > 0) {
+                heap.push_back({p, j});
+                std::push_heap(heap.begin(), heap.end(), below);
+            }
         }
         residual = unshot_fraction(std::max(0.0, unshot_power));
         ++done;

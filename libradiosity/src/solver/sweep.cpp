@@ -35,37 +35,25 @@ inline void gather_rgb(const radfmt::FormFactorData& ff, std::size_t i, const fl
     const auto end = ff.row_start[i + 1];
     const std::uint32_t* columns = ff.columns.data();
     const float* values = ff.values.data();
+    // Entry k into one accumulator pair: B's RGB (four float lanes) times F, in double.
+    auto add = [&](std::uint64_t k_, __m128d& rg, __m128d& bx) {
+        const __m128 bj = _mm_loadu_ps(from + 4 * std::size_t(columns[k_]));
+        const __m128d f = _mm_set1_pd(values[k_]);
+        rg = _mm_add_pd(rg, _mm_mul_pd(f, _mm_cvtps_pd(bj)));
+        bx = _mm_add_pd(bx, _mm_mul_pd(f, _mm_cvtps_pd(_mm_movehl_ps(bj, bj))));
+    };
     // The columns of a large scene's rows are scattered (each a cache miss): fetch B a few
     // entries ahead, so the misses overlap.
     constexpr std::uint64_t kAhead = 16;
-    for (; k + 1 + kAhead < end; k += 2) {
-        _mm_prefetch(reinterpret_cast<const char*>(from + 4 * std::size_t(columns[k + kAhead])),
-                     _MM_HINT_T0);
-        _mm_prefetch(reinterpret_cast<const char*>(from + 4 * std::size_t(columns[k + kAhead + 1])),
-                     _MM_HINT_T0);
-        const __m128 b0 = _mm_loadu_ps(from + 4 * std::size_t(columns[k]));
-        const __m128 b1 = _mm_loadu_ps(from + 4 * std::size_t(columns[k + 1]));
-        const __m128d f0 = _mm_set1_pd(values[k]), f1 = _mm_set1_pd(values[k + 1]);
-        rg0 = _mm_add_pd(rg0, _mm_mul_pd(f0, _mm_cvtps_pd(b0)));
-        bx0 = _mm_add_pd(bx0, _mm_mul_pd(f0, _mm_cvtps_pd(_mm_movehl_ps(b0, b0))));
-        rg1 = _mm_add_pd(rg1, _mm_mul_pd(f1, _mm_cvtps_pd(b1)));
-        bx1 = _mm_add_pd(bx1, _mm_mul_pd(f1, _mm_cvtps_pd(_mm_movehl_ps(b1, b1))));
-    }
     for (; k + 1 < end; k += 2) {
-        const __m128 b0 = _mm_loadu_ps(from + 4 * std::size_t(columns[k]));
-        const __m128 b1 = _mm_loadu_ps(from + 4 * std::size_t(columns[k + 1]));
-        const __m128d f0 = _mm_set1_pd(values[k]), f1 = _mm_set1_pd(values[k + 1]);
-        rg0 = _mm_add_pd(rg0, _mm_mul_pd(f0, _mm_cvtps_pd(b0)));
-        bx0 = _mm_add_pd(bx0, _mm_mul_pd(f0, _mm_cvtps_pd(_mm_movehl_ps(b0, b0))));
-        rg1 = _mm_add_pd(rg1, _mm_mul_pd(f1, _mm_cvtps_pd(b1)));
-        bx1 = _mm_add_pd(bx1, _mm_mul_pd(f1, _mm_cvtps_pd(_mm_movehl_ps(b1, b1))));
+        if (k + 1 + kAhead < end)
+            for (std::uint64_t a = kAhead; a < kAhead + 2; ++a)
+                _mm_prefetch(reinterpret_cast<const char*>(from + 4 * std::size_t(columns[k + a])),
+                             _MM_HINT_T0);
+        add(k, rg0, bx0);
+        add(k + 1, rg1, bx1);
     }
-    if (k < end) {
-        const __m128 b0 = _mm_loadu_ps(from + 4 * std::size_t(columns[k]));
-        const __m128d f0 = _mm_set1_pd(values[k]);
-        rg0 = _mm_add_pd(rg0, _mm_mul_pd(f0, _mm_cvtps_pd(b0)));
-        bx0 = _mm_add_pd(bx0, _mm_mul_pd(f0, _mm_cvtps_pd(_mm_movehl_ps(b0, b0))));
-    }
+    if (k < end) add(k, rg0, bx0);
     double rg[2], bx[2];
     _mm_storeu_pd(rg, _mm_add_pd(rg0, rg1));
     _mm_storeu_pd(bx, _mm_add_pd(bx0, bx1));
