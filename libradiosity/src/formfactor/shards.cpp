@@ -145,7 +145,7 @@ MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
 
     std::uint64_t started_inside = 0;
     for (const auto& p : parts)
-        if (const auto* v = p.header.find("rays_started_inside"))
+        if (p.header.find("rays_started_inside"))
             started_inside += header_number(p.header, "rays_started_inside", p.path);
     // The header one run would have written: its command, its fields in its order.
     MergedFormFactors out;
