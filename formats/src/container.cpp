@@ -273,12 +273,13 @@ void remove_stale_temps(const fs::path& dir, const std::string& prefix) {
 
 // Devices, FIFOs and the like (/dev/null, /dev/stdout on a pipe) are written in place:
 // renaming a file over them would replace the device node.
+} // namespace
+
 bool is_special_target(const fs::path& path) {
     std::error_code ec;
     const auto st = fs::status(path, ec);
     return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
 }
-} // namespace
 
 void install_cleanup_handlers() {
     for (int s : {SIGINT, SIGTERM, SIGHUP, SIGSEGV, SIGABRT, SIGBUS, SIGFPE})

@@ -119,9 +119,7 @@ void FormFactorSpool::add_row(std::span<const std::pair<std::uint32_t, float>> e
 }
 
 fs::path FormFactorSpool::folder_for(const fs::path& output) {
-    std::error_code ec;
-    const auto status = fs::status(output, ec);
-    if (fs::exists(status) && !fs::is_regular_file(status)) return fs::temp_directory_path();
+    if (is_special_target(output)) return fs::temp_directory_path();
     return output.has_parent_path() ? output.parent_path() : fs::path(".");
 }
 

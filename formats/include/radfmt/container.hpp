@@ -165,6 +165,10 @@ void write_file(const std::filesystem::path& path, Header header, const BodyWrit
 // Reads only the header (still validating its checksum); fast for large files.
 Header read_header(const std::filesystem::path& path, const Kind* expected = nullptr);
 
+// An existing output that is neither a regular file nor a folder (a device, a FIFO): it is
+// written in place, not through a temporary file beside it.
+bool is_special_target(const std::filesystem::path& path);
+
 // Writes a file atomically through a callback that fills a temporary path.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path&)>& fill);

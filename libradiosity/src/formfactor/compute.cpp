@@ -128,8 +128,8 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
     for (std::size_t i = 0; i < first; ++i) sink(i, empty_row, 0.0f);
 
     Progress progress("rad-ff " + options.method, last - first, options.quiet);
-    const std::size_t block_size =
-        block_rows(method.max_row_entries(mesh, options), active_threads());
+    const auto max_entries = method.max_row_entries(mesh, options);
+    const std::size_t block_size = block_rows(max_entries, active_threads());
     // Two blocks: while one is handed to the sink (written to disk, in rad-ff), the next is
     // computed.
     std::vector<FormFactorRow> block_rows_of[2];
@@ -138,7 +138,6 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
         block_rows_of[b].resize(std::min(block_size, last - first));
         block_back_of[b].resize(block_rows_of[b].size());
     }
-    const auto max_entries = method.max_row_entries(mesh, options);
     auto hand_on = [&, max_entries](std::size_t block_begin, std::size_t block_end, int b) {
         auto& rows = block_rows_of[b];
         for (std::size_t i = block_begin; i < block_end; ++i) {

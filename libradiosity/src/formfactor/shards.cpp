@@ -17,22 +17,31 @@ bool part_only(const std::string& key) {
     return key == "rows_begin" || key == "rows_end" || key == "unsharded_command";
 }
 
-std::uint64_t whole_number(const std::string& text, const std::string& what) {
+// A row number or count: a whole number from 0 to 1e15.
+bool parse_whole_number(const std::string& text, std::uint64_t& out) {
     double value = 0;
     if (!parse_number(text, value) || value < 0 || value != std::floor(value) || value > 1e15)
+        return false;
+    out = static_cast<std::uint64_t>(value);
+    return true;
+}
+
+std::uint64_t whole_number(const std::string& text, const std::string& what) {
+    std::uint64_t value = 0;
+    if (!parse_whole_number(text, value))
         throw InputError("--rows: " + what + " '" + text + "' is not a row number");
-    return static_cast<std::uint64_t>(value);
+    return value;
 }
 
 // A count recorded in a part's header (checked against its body when the body is read).
 std::uint64_t header_number(const radfmt::Header& header, const std::string& key,
                             const std::string& path) {
     const auto& text = header.get(key, path);
-    double value = 0;
-    if (!parse_number(text, value) || value < 0 || value != std::floor(value) || value > 1e15)
+    std::uint64_t value = 0;
+    if (!parse_whole_number(text, value))
         throw radfmt::FormatError(path + ": corrupt header: " + key + " '" + text +
                                   "' is not a whole number");
-    return static_cast<std::uint64_t>(value);
+    return value;
 }
 } // namespace
 

@@ -28,10 +28,8 @@ SolveResult shoot(const TransportOperator& op, const Channels& emission,
     for (auto& r : mean_reflectance) r = total_area > 0 ? r / total_area : 0;
     // The power of B and of the unshot radiosity per channel, kept up to date shot by shot,
     // so the record of a shot costs O(channels), not a sum over every patch.
+    // (Summed by rebuild() below, first at the start.)
     std::vector<double> b_power(channels, 0.0), unshot_total(channels, 0.0);
-    for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t c = 0; c < channels; ++c) b_power[c] += emission.at(i, c) * op.area[i];
-    unshot_total = b_power;
     // APR's ambient term adds sum_i A_i rho_i x ambient = mean rho x unshot power / (1 - mean
     // rho) per channel.
     auto displayed_power = [&] {
