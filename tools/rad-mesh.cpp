@@ -8,6 +8,7 @@
 #include "radiosity/rays.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/solve_policy.hpp"
+#include "radiosity/surfaces.hpp"
 #include "radiosity/two_sided.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
@@ -117,6 +118,14 @@ int main(int argc, char** argv) {
                  "Do not imprint contacts (by default, where another object touches or crosses "
                  "a face, the contact lines are cut into it before subdividing, so no patch "
                  "straddles a contact, and regions hidden inside other geometry are removed)");
+    std::string surfaces = "regions";
+    app.add_option("--surfaces", surfaces,
+                   "What is gridded into patches: regions (connected faces in one plane with one "
+                   "material and group are merged into one surface, gridded into near-square "
+                   "patches along its own axes, whatever the input's triangulation) or faces "
+                   "(each input face subdivided on its own: the input's triangulation shows)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"regions", "faces"}));
     app.add_flag("-q,--quiet", quiet, "Print no summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
@@ -168,9 +177,11 @@ int main(int argc, char** argv) {
             std::string text = "defaulted: " + std::to_string(obj_report.faces_defaulted) +
                                " face(s) without a known material (first at line " +
                                std::to_string(obj_report.first_defaulted_line) +
-                               ") got material '" + obj_report.default_material +
-                               "', reflectance " + rad::rgb_text(obj_options.default_reflectance) +
-                               " (--default-reflectance changes it, --strict refuses)";
+                               ") got the default reflectance " + rad::rgb_text(obj_options.default_reflectance) +
+                               ", each under its own usemtl name where it has one (material '" +
+                               (obj_report.default_material.empty() ? std::string("default")
+                                                                    : obj_report.default_material) +
+                               "' otherwise; --default-reflectance changes it, --strict refuses)";
             changes.push_back(std::move(text));
         }
         if (!obj_report.textures_averaged.empty()) {
@@ -243,7 +254,25 @@ int main(int argc, char** argv) {
             }
         }
         rad::SubdivisionReport report;
-        auto mesh = rad::subdivide(scene, options, &report);
+        rad::SurfaceReport surface_report;
+        radfmt::MeshData mesh;
+        if (surfaces == "regions") {
+            rad::SubdivisionOptions whole = options; // clean faces first, gridded as regions
+            whole.max_edge = whole.max_area = 0;
+            whole.max_edge_by_group.clear();
+            whole.max_area_by_group.clear();
+            rad::SurfaceOptions surface_options;
+            surface_options.max_edge = options.max_edge;
+            surface_options.max_area = options.max_area;
+            surface_options.max_edge_by_group = options.max_edge_by_group;
+            surface_options.max_area_by_group = options.max_area_by_group;
+            surface_options.max_patches = options.max_patches;
+            surface_options.source = input;
+            mesh = rad::mesh_surfaces(rad::subdivide(scene, whole, &report), surface_options,
+                                      &surface_report);
+        } else {
+            mesh = rad::subdivide(scene, options, &report);
+        }
         if (report.nonplanar_split) {
             char text[256];
             std::snprintf(text, sizeof text,
@@ -290,6 +319,17 @@ int main(int argc, char** argv) {
                 stderr, "rad-mesh: %zu patches, %zu vertices, total area %.9g, %zu open edges%s\n",
                 mesh.patches.size(), mesh.vertices.size(), mesh.total_area(), topo.boundary_edges,
                 topo.rejected_patches ? " (non-manifold parts present)" : "");
+            if (surfaces == "regions") {
+                const auto& shape = surface_report.shape;
+                std::fprintf(stderr,
+                             "rad-mesh: %zu face(s) as %zu planar region(s): %zu grid cell(s), "
+                             "%zu triangle(s) along outlines; aspect <= 3: %.1f%% of the patches "
+                             "of regions a cell wide or more (worst %.3g), %zu patch(es) in "
+                             "thinner regions\n",
+                             surface_report.faces, surface_report.regions, surface_report.cells,
+                             surface_report.band_triangles, 100 * shape.fraction_aspect_at_most_3,
+                             shape.worst_aspect, shape.excused);
+            }
         }
         for (const auto& change : changes) std::cerr << "rad-mesh: changed: " << change << '\n';
         return 0;

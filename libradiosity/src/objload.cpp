@@ -400,6 +400,28 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
             scene.materials.begin());
     };
 
+    // A `usemtl` name no library defines keeps its name, with the default reflectance, so
+    // that rad-solve's --emission NAME= and --reflectance NAME= still find it.
+    std::map<std::string, std::uint32_t> named_defaults;
+    auto named_default = [&](const std::string& name) -> std::uint32_t {
+        const auto it = named_defaults.find(name);
+        if (it != named_defaults.end()) return it->second;
+        const auto id = static_cast<std::uint32_t>(scene.materials.size());
+        scene.materials.push_back({name, options.default_reflectance, {}});
+        scene.material_sources.push_back({});
+        named_defaults[name] = id;
+        return id;
+    };
+    // The name of the last `usemtl` before `line` that no library defines ("" if none).
+    auto usemtl_at = [&](int line) -> std::string {
+        std::string name;
+        for (const auto& [at, used] : lint.usemtl) {
+            if (at > line) break;
+            name = used;
+        }
+        return known.count(name) ? std::string() : name;
+    };
+
     std::size_t face_number = 0;
     const bool lines_match = [&] {
         std::size_t faces = 0;
@@ -437,7 +459,8 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
                 if (options.strict)
                     throw InputError(FileLoc{path.string(), poly.line},
                                      "face has no known material");
-                poly.material = default_material();
+                const auto name = lines_match ? usemtl_at(poly.line) : std::string();
+                poly.material = name.empty() ? default_material() : named_default(name);
                 if (report.faces_defaulted++ == 0) report.first_defaulted_line = poly.line;
             } else {
                 poly.material = static_cast<std::uint32_t>(material);

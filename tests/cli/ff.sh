@@ -72,7 +72,7 @@ cp "$TMP/c.mesh" "$TMP/keep.mesh"
 expect_error "is also an input of this run" "" "$BIN/rad-ff" "$TMP/keep.mesh" -o "$TMP/../$(basename "$TMP")/keep.mesh"
 cmp -s "$TMP/c.mesh" "$TMP/keep.mesh" || fail "the input was overwritten"
 # Rows that do not fit in --max-memory wait on disk beside the output: the same bytes.
-"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/fine.mesh" --max-edge 0.02 -q 2>/dev/null
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/fine.mesh" --max-edge 0.016 -q 2>/dev/null
 "$BIN/rad-ff" "$TMP/fine.mesh" -o "$TMP/fine.ff" --method hemisphere --rays 300 -q || fail "fine mesh"
 mv "$TMP/fine.ff" "$TMP/fine-memory.ff"
 spilled=$("$BIN/rad-ff" "$TMP/fine.mesh" -o "$TMP/fine.ff" --method hemisphere --rays 300 --max-memory 60M 2>&1) || fail "spilled run: $spilled"

@@ -21,12 +21,13 @@ expect_error "nomtl.obj:1: material library 'none.mtl' not found" out.mesh "$BIN
 err=$("$BIN/rad-mesh" nomtl.obj -o nomtl.mesh 2>&1) || fail "missing library should only warn: $err"
 grep -q "warning: nomtl.obj: material library 'none.mtl' (line 1) not found; looked for .*none.mtl" <<<"$err" || fail "missing library warning: $err"
 grep -q "material(s) not defined in any material library: grey (line 5)" <<<"$err" || fail "unknown material warning: $err"
-grep -q "changed: defaulted: 1 face(s) without a known material (first at line 6) got material 'default', reflectance 0.5,0.5,0.5" <<<"$err" || fail "defaulted: $err"
+grep -q "changed: defaulted: 1 face(s) without a known material (first at line 6) got the default reflectance 0.5,0.5,0.5, each under its own usemtl name" <<<"$err" || fail "defaulted: $err"
 mkdir -p elsewhere; cp s.mtl elsewhere/none.mtl
 err=$("$BIN/rad-mesh" nomtl.obj -o nomtl.mesh --mtl-path elsewhere 2>&1) || fail "--mtl-path: $err"
 grep -q "not found\|changed" <<<"$err" && fail "--mtl-path did not find the library: $err"
 "$BIN/rad-mesh" nomtl.obj -o grey.mesh --default-reflectance 0.2,0.3,0.4 -q 2>/dev/null || fail "--default-reflectance"
-"$BIN/rad-info" --csv grey.mesh | grep -q ",default,.*,0.2,0.3,0.4,0,0,0$" || fail "default reflectance not applied: $("$BIN/rad-info" --csv grey.mesh)"
+# The usemtl name survives the missing library, so --emission grey= and --reflectance grey= work.
+"$BIN/rad-info" --csv grey.mesh | grep -q ",grey,.*,0.2,0.3,0.4,0,0,0$" || fail "default reflectance not applied: $("$BIN/rad-info" --csv grey.mesh)"
 expect_error "--default-reflectance: 1,0.5,0.5 has a channel >= 1" out.mesh "$BIN/rad-mesh" nomtl.obj -o out.mesh --default-reflectance 1,0.5,0.5
 printf 'mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 1\nv 0 1 0\nusemtl grey\nf 1 2 3 4\n' > bent.obj
 expect_error "bent.obj:7: face is not planar" out.mesh "$BIN/rad-mesh" bent.obj -o out.mesh --strict

@@ -1,0 +1,60 @@
+// Patches from surfaces, not from the input's triangles (rad-mesh's default): connected faces
+// that lie in one plane and share material and group are merged into one planar region (a
+// polygon with holes), and each region is gridded into near-square patches aligned with its
+// own minimum-area bounding rectangle. A wall drawn as one quad, as two triangles or as a fan
+// of slivers meshes to the same grid.
+#pragma once
+#include "radfmt/kinds.hpp"
+
+#include <map>
+#include <vector>
+#include <string>
+
+namespace rad {
+
+struct SurfaceOptions {
+    double max_edge = 0; // a full cell's side; 0: each region as few patches as its shape allows
+    double max_area = 0; // a full cell's area at most (0: no limit)
+    std::map<std::string, double> max_edge_by_group;
+    std::map<std::string, double> max_area_by_group;
+    // Faces belong to one region when their normals agree within this angle (degrees) and
+    // their corners lie within `plane_tolerance` x the scene's size of the region's plane.
+    double angle_tolerance = 0.5;
+    double plane_tolerance = 1e-5;
+    double max_patches = 2e7; // refused before gridding when the cells would be more
+    std::string source;       // the scene file, for messages
+};
+
+// Shape of a patch mesh, for rad-mesh's summary and the tests: a patch's aspect is its longest
+// edge over its shortest height (longest^2 / (2 area) for a triangle: 1.15 equilateral; for a
+// quad, the longest edge over its area / the mean length of each pair of opposite sides: 1 for
+// a square).
+struct ShapeStats {
+    double fraction_aspect_at_most_3 = 1; // of the patches counted
+    double worst_aspect = 1;
+    std::size_t excused = 0; // patches not counted
+};
+double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
+// Over every patch, or those whose `excused` entry is false (e.g. patches of regions thinner
+// than a cell, which cannot be near-square).
+ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<bool>* excused = nullptr);
+
+struct SurfaceReport {
+    std::size_t faces = 0, regions = 0;
+    std::size_t cells = 0;          // full grid cells: quads
+    std::size_t band_triangles = 0; // triangles between the cells and a region's outline
+    std::size_t dropped_vertices = 0; // collinear outline points no other region needs
+    ShapeStats shape;                 // over the patches of regions at least a cell wide
+};
+
+// The faces (triangles and planar convex quads, as `subdivide` makes them with no limits) as
+// the patches of gridded planar regions. Outline points are shared between the regions along
+// an edge (no T-vertices: each straight run of outline between two corners is split once, for
+// every region on it, into pieces of at most the smallest cell size of those regions). Inside,
+// a cell whose corners are at least a third of a cell from the outline (or on an outline
+// point) is a quad; the band between those cells and the outline is a constrained Delaunay
+// triangulation (CGAL) of their corners and the outline points.
+radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptions& options,
+                               SurfaceReport* report = nullptr);
+
+} // namespace rad

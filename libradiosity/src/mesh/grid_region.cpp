@@ -1,0 +1,361 @@
+// Pass 4 of mesh_surfaces: a region's grid of quads, and the triangles of the band between the
+// grid and the outline.
+#include "regions.hpp"
+
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesher_no_edge_refinement_2.h>
+#include <CGAL/convex_hull_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
+namespace rad::surfaces {
+
+namespace {
+
+using XY = std::array<double, 2>;
+// The band's triangulation, refined for shape (CGAL's Delaunay mesher) without splitting its
+// constrained edges: those are shared with the grid's quads and with other regions.
+using BandFb = CGAL::Delaunay_mesh_face_base_2<K, CGAL::Constrained_triangulation_face_base_2<K>>;
+using BandCDT = CGAL::Constrained_Delaunay_triangulation_2<
+    K, CGAL::Triangulation_data_structure_2<Vb, BandFb>, CGAL::Exact_predicates_tag>;
+using BandCriteria = CGAL::Delaunay_mesh_size_criteria_2<BandCDT>;
+
+// The region's own axes: the minimum-area rectangle around its outline (one side of it lies
+// along a side of the convex hull: rotating calipers, each side tried).
+struct GridFrame {
+    XY origin{}, e1{}, e2{}; // e2 is e1 turned a quarter counter-clockwise
+    double length1 = 0, length2 = 0;
+};
+
+bool minimum_rectangle(const std::vector<Point2>& outline_points, GridFrame& frame) {
+    std::vector<Point2> hull;
+    CGAL::convex_hull_2(outline_points.begin(), outline_points.end(), std::back_inserter(hull));
+    if (hull.size() < 3) return false;
+    double best = 1e300;
+    for (std::size_t k = 0; k < hull.size(); ++k) {
+        const auto& a = hull[k];
+        const auto& b = hull[(k + 1) % hull.size()];
+        const double len = std::hypot(b.x() - a.x(), b.y() - a.y());
+        if (!(len > 0)) continue;
+        const XY e1{(b.x() - a.x()) / len, (b.y() - a.y()) / len}, e2{-e1[1], e1[0]};
+        double lo1 = 1e300, hi1 = -1e300, lo2 = 1e300, hi2 = -1e300;
+        for (const auto& p : hull) {
+            const double s = p.x() * e1[0] + p.y() * e1[1], t = p.x() * e2[0] + p.y() * e2[1];
+            lo1 = std::min(lo1, s), hi1 = std::max(hi1, s), lo2 = std::min(lo2, t), hi2 = std::max(hi2, t);
+        }
+        const double area = (hi1 - lo1) * (hi2 - lo2);
+        if (area < best * (1 - 1e-12)) {
+            best = area;
+            frame.e1 = e1;
+            frame.e2 = e2;
+            frame.origin = {e1[0] * lo1 + e2[0] * lo2, e1[1] * lo1 + e2[1] * lo2};
+            frame.length1 = hi1 - lo1;
+            frame.length2 = hi2 - lo2;
+        }
+    }
+    return best < 1e300 && frame.length1 > 0 && frame.length2 > 0;
+}
+
+double segment_distance(const XY& p, const XY& a, const XY& b) {
+    const double dx = b[0] - a[0], dy = b[1] - a[1];
+    const double len2 = dx * dx + dy * dy;
+    double t = len2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2 : 0;
+    t = std::clamp(t, 0.0, 1.0);
+    return std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
+}
+
+// The grid over one region: which nodes lie on outline points, which are well inside, which
+// cells are whole quads.
+class RegionGrid {
+  public:
+    RegionGrid(const Region& region, const GridFrame& frame, const std::vector<XY>& outline_xy,
+               const std::vector<std::uint32_t>& outline_ids, double tolerance)
+        : region_(region), frame_(frame), outline_xy_(outline_xy) {
+        const double h = region.cell;
+        nu_ = h > 0 ? std::max<std::size_t>(1, std::size_t(std::ceil(frame.length1 / h - 1e-9))) : 1;
+        nv_ = h > 0 ? std::max<std::size_t>(1, std::size_t(std::ceil(frame.length2 / h - 1e-9))) : 1;
+        du_ = frame.length1 / double(nu_);
+        dv_ = frame.length2 / double(nv_);
+        node_id_.assign((nu_ + 1) * (nv_ + 1), kNone);
+        node_ok_.assign(node_id_.size(), false);
+        blocked_.assign(nu_ * nv_, false);
+        full_.assign(nu_ * nv_, false);
+        const double snap = tolerance + 1e-6 * std::min(du_, dv_);
+        for (std::size_t k = 0; k < outline_ids.size(); ++k) place_outline_point(outline_xy[k], outline_ids[k], snap);
+    }
+    std::size_t nu() const { return nu_; }
+    std::size_t nv() const { return nv_; }
+    XY node_xy(std::size_t i, std::size_t j) const {
+        const double s = double(i) * du_, t = double(j) * dv_;
+        return {frame_.origin[0] + frame_.e1[0] * s + frame_.e2[0] * t,
+                frame_.origin[1] + frame_.e1[1] * s + frame_.e2[1] * t};
+    }
+    std::size_t node(std::size_t i, std::size_t j) const { return j * (nu_ + 1) + i; }
+    std::size_t cell(std::size_t i, std::size_t j) const { return j * nu_ + i; }
+    std::uint32_t& id(std::size_t i, std::size_t j) { return node_id_[node(i, j)]; }
+    bool full(std::size_t i, std::size_t j) const { return full_[cell(i, j)]; }
+    bool full_at(const XY& p) const {
+        const double s = (p[0] - frame_.origin[0]) * frame_.e1[0] + (p[1] - frame_.origin[1]) * frame_.e1[1];
+        const double t = (p[0] - frame_.origin[0]) * frame_.e2[0] + (p[1] - frame_.origin[1]) * frame_.e2[1];
+        const auto i = static_cast<long long>(std::floor(s / du_)), j = static_cast<long long>(std::floor(t / dv_));
+        if (i < 0 || j < 0 || i >= (long long)nu_ || j >= (long long)nv_) return false;
+        return full_[cell(std::size_t(i), std::size_t(j))];
+    }
+    bool node_ok(std::size_t i, std::size_t j) const { return node_ok_[node(i, j)]; }
+    bool matched(std::size_t i, std::size_t j) const { return matched_.count(node(i, j)) > 0; }
+
+    // Nodes off the outline are usable when inside and a third of a cell from the outline.
+    void classify_nodes(const std::unordered_set<EdgeKey>& pieces) {
+        const double margin = 0.3 * std::min(du_, dv_);
+        for (std::size_t j = 0; j <= nv_; ++j)
+            for (std::size_t i = 0; i <= nu_; ++i)
+                node_ok_[node(i, j)] = matched(i, j) || well_inside(node_xy(i, j), margin);
+        for (std::size_t j = 0; j < nv_; ++j)
+            for (std::size_t i = 0; i < nu_; ++i) full_[cell(i, j)] = cell_is_whole(i, j, pieces, margin);
+    }
+
+  private:
+    void place_outline_point(const XY& p, std::uint32_t id, double snap) {
+        const double s = (p[0] - frame_.origin[0]) * frame_.e1[0] + (p[1] - frame_.origin[1]) * frame_.e1[1];
+        const double t = (p[0] - frame_.origin[0]) * frame_.e2[0] + (p[1] - frame_.origin[1]) * frame_.e2[1];
+        const double fi = s / du_, fj = t / dv_;
+        const double ri = std::round(fi), rj = std::round(fj);
+        const bool on_i = std::abs(fi - ri) * du_ < snap, on_j = std::abs(fj - rj) * dv_ < snap;
+        auto block = [&](long long i, long long j) {
+            if (i >= 0 && j >= 0 && i < (long long)nu_ && j < (long long)nv_) blocked_[cell(std::size_t(i), std::size_t(j))] = true;
+        };
+        const auto ii = static_cast<long long>(ri), jj = static_cast<long long>(rj);
+        const auto fli = static_cast<long long>(std::floor(fi)), flj = static_cast<long long>(std::floor(fj));
+        if (on_i && on_j) {
+            if (ii >= 0 && jj >= 0 && ii <= (long long)nu_ && jj <= (long long)nv_ && !matched(std::size_t(ii), std::size_t(jj))) {
+                node_id_[node(std::size_t(ii), std::size_t(jj))] = id;
+                matched_.insert(node(std::size_t(ii), std::size_t(jj)));
+            }
+        } else if (on_i) {
+            block(ii - 1, flj), block(ii, flj);
+        } else if (on_j) {
+            block(fli, jj - 1), block(fli, jj);
+        } else {
+            block(fli, flj);
+        }
+    }
+    bool well_inside(const XY& p, double margin) const {
+        if (!region_.contains(Point2(p[0], p[1]))) return false;
+        for (std::size_t k = 0; k < region_.pieces.size(); ++k)
+            if (segment_distance(p, piece_xy_[k][0], piece_xy_[k][1]) < margin) return false;
+        return true;
+    }
+    bool cell_is_whole(std::size_t i, std::size_t j, const std::unordered_set<EdgeKey>& pieces,
+                       double margin) const {
+        if (blocked_[cell(i, j)]) return false;
+        const std::array<std::array<std::size_t, 2>, 4> c{{{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
+        for (const auto& [a, b] : c)
+            if (!node_ok(a, b)) return false;
+        const XY mid = node_xy(i, j), far = node_xy(i + 1, j + 1);
+        if (!region_.contains(Point2((mid[0] + far[0]) / 2, (mid[1] + far[1]) / 2))) return false;
+        for (int k = 0; k < 4; ++k) { // a side between two outline points lies on the outline
+            const auto& p = c[k];
+            const auto& q = c[(k + 1) % 4];
+            if (!matched(p[0], p[1]) || !matched(q[0], q[1])) continue;
+            if (pieces.count(edge_key(node_id_[node(p[0], p[1])], node_id_[node(q[0], q[1])])))
+                continue;
+            const XY a = node_xy(p[0], p[1]), b = node_xy(q[0], q[1]);
+            if (!well_inside({(a[0] + b[0]) / 2, (a[1] + b[1]) / 2}, margin)) return false;
+        }
+        return true;
+    }
+
+  public:
+    std::vector<std::array<XY, 2>> piece_xy_;
+
+  private:
+    const Region& region_;
+    GridFrame frame_;
+    const std::vector<XY>& outline_xy_;
+    std::size_t nu_ = 1, nv_ = 1;
+    double du_ = 1, dv_ = 1;
+    std::vector<std::uint32_t> node_id_;
+    std::vector<bool> node_ok_, blocked_, full_;
+    std::unordered_set<std::size_t> matched_;
+};
+
+void emit(const Region& region, const Points& points, radfmt::MeshData& mesh,
+          std::initializer_list<std::uint32_t> corners) {
+    radfmt::Patch p;
+    std::copy(corners.begin(), corners.end(), p.corners.begin());
+    std::vector<Vec3> pts;
+    for (const auto c : corners) pts.push_back(points.position[c]);
+    p.group = region.group;
+    p.material = region.material;
+    p.normal = region.plane.normal;
+    p.area = 0.5 * length(newell_normal(pts));
+    p.centroid = polygon_centroid(pts);
+    mesh.patches.push_back(p);
+}
+
+// The band: a constrained Delaunay triangulation of the region minus its whole cells, with the
+// grid nodes well inside it as extra points (so a wide band is not all long triangles).
+// Points of one straight run of outline, off their line by rounding alone, make slivers of no
+// area outside the pieces: not part of the region.
+bool has_area(const Point2& a, const Point2& b, const Point2& c) {
+    const double twice_area = std::abs(CGAL::area(a, b, c)) * 2;
+    const double longest = std::max({CGAL::squared_distance(a, b), CGAL::squared_distance(b, c),
+                                     CGAL::squared_distance(c, a)});
+    return twice_area > 1e-9 * longest;
+}
+
+// The band: a constrained Delaunay triangulation of the region minus its whole cells, with the
+// grid nodes well inside it as extra points, refined until no triangle has an angle under
+// about 20 degrees or an edge over a cell, where that needs no point on the band's outline.
+void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<EdgeKey>& band,
+                      Points& points, radfmt::MeshData& mesh, SurfaceReport& report) {
+    BandCDT cdt;
+    auto insert = [&](std::uint32_t id, const XY& xy) {
+        const auto v = cdt.insert(Point2(xy[0], xy[1]));
+        if (v->info().id == kNone) v->info().id = id;
+        return v;
+    };
+    std::unordered_map<std::uint32_t, XY> node_xy; // grid nodes keep their exact grid position
+    for (std::size_t j = 0; j <= grid.nv(); ++j)
+        for (std::size_t i = 0; i <= grid.nu(); ++i)
+            if (grid.id(i, j) != kNone) node_xy[grid.id(i, j)] = grid.node_xy(i, j);
+    auto xy_of = [&](std::uint32_t id) {
+        const auto it = node_xy.find(id);
+        return it != node_xy.end() ? it->second : region.plane.to_2d(points.position[id]);
+    };
+    for (const auto e : band) {
+        const auto a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
+        const auto va = insert(a, xy_of(a)), vb = insert(b, xy_of(b));
+        if (va != vb) cdt.insert_constraint(va, vb);
+    }
+    for (std::size_t j = 0; j <= grid.nv(); ++j)
+        for (std::size_t i = 0; i <= grid.nu(); ++i)
+            if (grid.node_ok(i, j) && grid.id(i, j) == kNone) {
+                const auto xy = grid.node_xy(i, j);
+                if (grid.full_at(xy)) continue;
+                grid.id(i, j) = points.add(region.plane.to_3d(xy[0], xy[1]));
+                insert(grid.id(i, j), xy);
+            }
+    for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
+        bool in = !cdt.is_infinite(f);
+        if (in) {
+            const auto &a = f->vertex(0)->point(), &b = f->vertex(1)->point(), &d = f->vertex(2)->point();
+            const auto c = CGAL::centroid(a, b, d);
+            in = region.contains(c) && !grid.full_at({c.x(), c.y()}) && has_area(a, b, d);
+        }
+        f->set_in_domain(in);
+    }
+    if (region.cell > 0) {
+        CGAL::Delaunay_mesher_no_edge_refinement_2<BandCDT, BandCriteria> mesher(
+            cdt, BandCriteria(0.125, region.cell));
+        mesher.init(true);
+        mesher.refine_mesh();
+    }
+    for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
+        if (v->info().id == kNone)
+            v->info().id = points.add(region.plane.to_3d(v->point().x(), v->point().y()));
+    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+        if (!f->is_in_domain() ||
+            !has_area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()))
+            continue;
+        emit(region, points, mesh, {f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id});
+        ++report.band_triangles;
+    }
+}
+
+// A quadrilateral region's bilinear grid: its sides' points are the grid's outer nodes.
+void grid_quadrilateral(const Region& region, Points& points, radfmt::MeshData& mesh,
+                        SurfaceReport& report) {
+    const auto& s = region.quad_sides;
+    const std::size_t nu = s[0].size() - 1, nv = s[1].size() - 1;
+    const Vec3 p00 = points.position[s[0].front()], p10 = points.position[s[1].front()],
+               p11 = points.position[s[2].front()], p01 = points.position[s[3].front()];
+    std::vector<std::uint32_t> id((nu + 1) * (nv + 1));
+    auto at = [&](std::size_t i, std::size_t j) -> std::uint32_t& { return id[j * (nu + 1) + i]; };
+    for (std::size_t j = 0; j <= nv; ++j)
+        for (std::size_t i = 0; i <= nu; ++i) {
+            if (j == 0)
+                at(i, j) = s[0][i];
+            else if (i == nu)
+                at(i, j) = s[1][j];
+            else if (j == nv)
+                at(i, j) = s[2][nu - i];
+            else if (i == 0)
+                at(i, j) = s[3][nv - j];
+            else {
+                const double a = double(i) / double(nu), b = double(j) / double(nv);
+                at(i, j) = points.add(p00 * ((1 - a) * (1 - b)) + p10 * (a * (1 - b)) +
+                                      p11 * (a * b) + p01 * ((1 - a) * b));
+            }
+        }
+    for (std::size_t j = 0; j < nv; ++j)
+        for (std::size_t i = 0; i < nu; ++i) {
+            emit(region, points, mesh, {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+            ++report.cells;
+        }
+}
+
+} // namespace
+
+double grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
+                   SurfaceReport& report, double tolerance) {
+    if (!region.quad_sides.empty()) {
+        grid_quadrilateral(region, points, mesh, report);
+        const auto& s = region.quad_sides;
+        double longest = 0, area = 0;
+        for (const auto& side : s)
+            longest = std::max(longest, length(points.position[side.back()] - points.position[side.front()]));
+        const Vec3 a = points.position[s[0].front()], b = points.position[s[1].front()],
+                   c = points.position[s[2].front()], d = points.position[s[3].front()];
+        area = 0.5 * length(cross(c - a, d - b));
+        return longest > 0 ? area / longest : 0;
+    }
+    std::vector<std::uint32_t> ids;
+    for (const auto& [a, b] : region.pieces) ids.push_back(a), ids.push_back(b);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    std::vector<XY> xy;
+    std::vector<Point2> pts;
+    for (const auto id : ids) {
+        xy.push_back(region.plane.to_2d(points.position[id]));
+        pts.emplace_back(xy.back()[0], xy.back()[1]);
+    }
+    GridFrame frame;
+    if (!minimum_rectangle(pts, frame)) return 0; // no area
+    RegionGrid grid(region, frame, xy, ids, tolerance);
+    std::unordered_set<EdgeKey> pieces;
+    for (const auto& [a, b] : region.pieces) {
+        pieces.insert(edge_key(a, b));
+        grid.piece_xy_.push_back({region.plane.to_2d(points.position[a]), region.plane.to_2d(points.position[b])});
+    }
+    grid.classify_nodes(pieces);
+    std::unordered_set<EdgeKey> band(pieces.begin(), pieces.end());
+    auto toggle = [&](EdgeKey e) {
+        if (!band.erase(e)) band.insert(e);
+    };
+    for (std::size_t j = 0; j < grid.nv(); ++j)
+        for (std::size_t i = 0; i < grid.nu(); ++i) {
+            if (!grid.full(i, j)) continue;
+            const std::array<std::array<std::size_t, 2>, 4> c{{{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
+            for (const auto& [a, b] : c)
+                if (grid.id(a, b) == kNone) {
+                    const auto p = grid.node_xy(a, b);
+                    grid.id(a, b) = points.add(region.plane.to_3d(p[0], p[1]));
+                }
+            emit(region, points, mesh, {grid.id(i, j), grid.id(i + 1, j), grid.id(i + 1, j + 1), grid.id(i, j + 1)});
+            ++report.cells;
+            for (int k = 0; k < 4; ++k)
+                toggle(edge_key(grid.id(c[k][0], c[k][1]), grid.id(c[(k + 1) % 4][0], c[(k + 1) % 4][1])));
+        }
+    const double width = std::min(frame.length1, frame.length2);
+    if (band.empty()) return width;
+    std::vector<EdgeKey> ordered(band.begin(), band.end());
+    std::sort(ordered.begin(), ordered.end()); // the same triangulation whatever the hash order
+    triangulate_band(region, grid, ordered, points, mesh, report);
+    return width;
+}
+
+} // namespace rad::surfaces

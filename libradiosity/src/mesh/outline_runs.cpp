@@ -1,0 +1,280 @@
+// Pass 3 of mesh_surfaces: the regions' outlines made to agree, then split into pieces.
+#include "regions.hpp"
+
+#include "../union_find.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace rad::surfaces {
+
+namespace {
+
+// Outline points in buckets of a uniform grid, to find those lying on an edge.
+class PointBuckets {
+  public:
+    PointBuckets(const std::vector<std::uint32_t>& ids, const Points& points) : points_(points) {
+        for (const auto id : ids) box_.add(points.position[id]);
+        cell_ = std::max(1e-300, box_.diagonal() / 256);
+        for (const auto id : ids) buckets_[key(points.position[id])].push_back(id);
+    }
+    // Points strictly inside segment ab (within `tolerance` of it), ordered from a to b.
+    std::vector<std::uint32_t> on_segment(std::uint32_t a, std::uint32_t b, double tolerance) const {
+        const Vec3 pa = points_.position[a], pb = points_.position[b];
+        const Vec3 d = pb - pa;
+        const double len2 = dot(d, d);
+        std::vector<std::pair<double, std::uint32_t>> found;
+        Box box;
+        box.add(pa);
+        box.add(pb);
+        const auto lo = key(box.lo - Vec3{tolerance, tolerance, tolerance});
+        const auto hi = key(box.hi + Vec3{tolerance, tolerance, tolerance});
+        for (auto i = lo[0]; i <= hi[0]; ++i)
+            for (auto j = lo[1]; j <= hi[1]; ++j)
+                for (auto k = lo[2]; k <= hi[2]; ++k) {
+                    const auto it = buckets_.find({i, j, k});
+                    if (it == buckets_.end()) continue;
+                    for (const auto c : it->second) {
+                        if (c == a || c == b) continue;
+                        const Vec3 pc = points_.position[c];
+                        const double t = len2 > 0 ? dot(pc - pa, d) / len2 : 0;
+                        if (t <= 0 || t >= 1) continue;
+                        if (length(pa + d * t - pc) < tolerance &&
+                            length(pc - pa) > tolerance && length(pc - pb) > tolerance)
+                            found.emplace_back(t, c);
+                    }
+                }
+        std::sort(found.begin(), found.end());
+        std::vector<std::uint32_t> out;
+        for (const auto& [t, c] : found) out.push_back(c);
+        return out;
+    }
+
+  private:
+    using Key = std::array<long long, 3>;
+    Key key(const Vec3& p) const {
+        Key k;
+        for (int c = 0; c < 3; ++c) k[c] = static_cast<long long>(std::floor((p[c] - box_.lo[c]) / cell_));
+        return k;
+    }
+    const Points& points_;
+    Box box_;
+    double cell_ = 1;
+    std::map<Key, std::vector<std::uint32_t>> buckets_;
+};
+
+// Each region's outline edges, split at the other regions' outline points lying on them.
+std::vector<std::vector<std::array<std::uint32_t, 2>>>
+split_at_foreign_points(const std::vector<Region>& regions, const Points& points,
+                        double tolerance) {
+    std::vector<std::uint32_t> ids;
+    for (const auto& r : regions)
+        for (const auto& e : r.outline) ids.insert(ids.end(), e.begin(), e.end());
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    const PointBuckets buckets(ids, points);
+    std::vector<std::vector<std::array<std::uint32_t, 2>>> split(regions.size());
+    for (std::size_t r = 0; r < regions.size(); ++r)
+        for (const auto& [a, b] : regions[r].outline) {
+            auto previous = a;
+            for (const auto c : buckets.on_segment(a, b, tolerance)) {
+                split[r].push_back({previous, c});
+                previous = c;
+            }
+            split[r].push_back({previous, b});
+        }
+    return split;
+}
+
+struct Runs {
+    std::unordered_map<EdgeKey, std::vector<std::uint32_t>> regions_of; // sorted, unique
+    std::unordered_map<std::uint32_t, std::vector<EdgeKey>> edges_at;
+    // A point no region needs: two outline edges meet there in a straight line, with the same
+    // regions on both.
+    bool droppable(std::uint32_t v, const Points& points, double tolerance) const {
+        const auto& at = edges_at.at(v);
+        if (at.size() != 2 || regions_of.at(at[0]) != regions_of.at(at[1])) return false;
+        const auto p = other_end(at[0], v), q = other_end(at[1], v);
+        const Vec3 pv = points.position[v], pp = points.position[p], pq = points.position[q];
+        const Vec3 d = normalized(pq - pp);
+        const Vec3 off = (pv - pp) - d * dot(pv - pp, d);
+        return length(off) < tolerance && dot(pp - pv, pq - pv) < 0;
+    }
+    static std::uint32_t other_end(EdgeKey e, std::uint32_t v) {
+        const auto a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
+        return a == v ? b : a;
+    }
+};
+
+// The straight run through edge e: points from one kept end to the other.
+std::vector<std::uint32_t> walk_run(EdgeKey e, const Runs& runs, const Points& points,
+                                    double tolerance, std::unordered_set<EdgeKey>& seen) {
+    const auto a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
+    seen.insert(e);
+    auto extend = [&](std::uint32_t from, std::uint32_t at) {
+        std::vector<std::uint32_t> chain{at};
+        while (runs.droppable(at, points, tolerance)) {
+            const auto& two = runs.edges_at.at(at);
+            const auto next_edge = Runs::other_end(two[0], at) == from ? two[1] : two[0];
+            if (!seen.insert(next_edge).second) break;
+            from = at;
+            at = Runs::other_end(next_edge, at);
+            chain.push_back(at);
+        }
+        return chain;
+    };
+    auto back = extend(b, a), front = extend(a, b);
+    std::reverse(back.begin(), back.end());
+    back.insert(back.end(), front.begin(), front.end());
+    return back;
+}
+
+struct Run {
+    std::vector<std::uint32_t> chain;  // the points from one kept end to the other
+    std::vector<std::uint32_t> regions; // on either side
+    double cell = 0;                    // the smallest cell of those regions
+    std::vector<std::uint32_t> points;  // after splitting, from chain.front() to chain.back()
+};
+
+// The four runs of a region around a convex quadrilateral, counter-clockwise in its plane,
+// each with whether it is walked from its front; empty when the outline is anything else.
+std::vector<std::pair<std::size_t, bool>> quad_loop(const Region& region,
+                                                    const std::vector<std::size_t>& mine,
+                                                    const std::vector<Run>& runs,
+                                                    const Points& points) {
+    if (mine.size() != 4) return {};
+    std::vector<std::pair<std::size_t, bool>> loop{{mine[0], true}};
+    std::vector<bool> used(4, false);
+    used[0] = true;
+    auto end_of = [&](const std::pair<std::size_t, bool>& r) {
+        return r.second ? runs[r.first].chain.back() : runs[r.first].chain.front();
+    };
+    for (int step = 1; step < 4; ++step) {
+        const auto at = end_of(loop.back());
+        bool found = false;
+        for (std::size_t k = 0; k < 4 && !found; ++k) {
+            if (used[k]) continue;
+            const auto& chain = runs[mine[k]].chain;
+            if (chain.front() == at || chain.back() == at) {
+                loop.emplace_back(mine[k], chain.front() == at);
+                used[k] = found = true;
+            }
+        }
+        if (!found) return {};
+    }
+    if (end_of(loop.back()) != runs[loop.front().first].chain.front()) return {};
+    std::array<std::array<double, 2>, 4> c;
+    for (int k = 0; k < 4; ++k) {
+        const auto& r = loop[k];
+        c[k] = region.plane.to_2d(points.position[r.second ? runs[r.first].chain.front()
+                                                           : runs[r.first].chain.back()]);
+    }
+    double turns[4];
+    for (int k = 0; k < 4; ++k) {
+        const auto &a = c[k], &b = c[(k + 1) % 4], &d = c[(k + 2) % 4];
+        turns[k] = (b[0] - a[0]) * (d[1] - b[1]) - (b[1] - a[1]) * (d[0] - b[0]);
+    }
+    const bool ccw = turns[0] > 0 && turns[1] > 0 && turns[2] > 0 && turns[3] > 0;
+    const bool cw = turns[0] < 0 && turns[1] < 0 && turns[2] < 0 && turns[3] < 0;
+    if (!ccw && !cw) return {};
+    if (cw) {
+        std::reverse(loop.begin(), loop.end());
+        for (auto& r : loop) r.second = !r.second;
+    }
+    return loop;
+}
+
+// Every straight run of outline once, and for each region the runs on its outline.
+std::vector<Run> find_runs(const std::vector<std::vector<std::array<std::uint32_t, 2>>>& split,
+                           const std::vector<Region>& regions, const Points& points,
+                           double tolerance, std::vector<std::vector<std::size_t>>& runs_of_region,
+                           std::size_t& dropped) {
+    Runs incidence;
+    for (std::uint32_t r = 0; r < split.size(); ++r)
+        for (const auto& [a, b] : split[r]) {
+            if (a == b) continue;
+            auto& on = incidence.regions_of[edge_key(a, b)];
+            if (on.empty() || on.back() != r) on.push_back(r);
+            for (const auto v : {a, b}) {
+                auto& at = incidence.edges_at[v];
+                if (std::find(at.begin(), at.end(), edge_key(a, b)) == at.end())
+                    at.push_back(edge_key(a, b));
+            }
+        }
+    std::unordered_set<EdgeKey> seen;
+    std::unordered_map<EdgeKey, std::size_t> run_of;
+    std::vector<Run> runs;
+    for (std::uint32_t r = 0; r < split.size(); ++r)
+        for (const auto& [a, b] : split[r]) {
+            if (a == b || seen.count(edge_key(a, b))) continue;
+            Run run;
+            run.chain = walk_run(edge_key(a, b), incidence, points, tolerance, seen);
+            for (std::size_t k = 0; k + 1 < run.chain.size(); ++k)
+                run_of[edge_key(run.chain[k], run.chain[k + 1])] = runs.size();
+            dropped += run.chain.size() - 2;
+            run.regions = incidence.regions_of.at(edge_key(a, b));
+            for (const auto on : run.regions)
+                if (regions[on].cell > 0)
+                    run.cell = run.cell > 0 ? std::min(run.cell, regions[on].cell) : regions[on].cell;
+            runs.push_back(std::move(run));
+        }
+    runs_of_region.assign(split.size(), {});
+    for (std::uint32_t r = 0; r < split.size(); ++r) {
+        auto& mine = runs_of_region[r];
+        for (const auto& [a, b] : split[r])
+            if (a != b) mine.push_back(run_of.at(edge_key(a, b)));
+        std::sort(mine.begin(), mine.end());
+        mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+    }
+    return runs;
+}
+
+} // namespace
+
+std::size_t split_outline_runs(std::vector<Region>& regions, Points& points, double tolerance) {
+    const auto split = split_at_foreign_points(regions, points, tolerance);
+    std::vector<std::vector<std::size_t>> runs_of_region;
+    std::size_t dropped = 0;
+    auto runs = find_runs(split, regions, points, tolerance, runs_of_region, dropped);
+    // Opposite sides of a quadrilateral region get one piece count, so its grid is regular.
+    UnionFind same_count(runs.size());
+    std::vector<std::vector<std::pair<std::size_t, bool>>> loops(regions.size());
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        loops[r] = quad_loop(regions[r], runs_of_region[r], runs, points);
+        if (loops[r].empty()) continue;
+        same_count.unite(loops[r][0].first, loops[r][2].first);
+        same_count.unite(loops[r][1].first, loops[r][3].first);
+    }
+    std::vector<std::size_t> count(runs.size(), 1);
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        const auto& run = runs[k];
+        const double len = length(points.position[run.chain.back()] - points.position[run.chain.front()]);
+        const auto n = run.cell > 0 ? std::max<std::size_t>(1, std::size_t(std::ceil(len / run.cell - 1e-9))) : 1;
+        auto& c = count[same_count.find(k)];
+        c = std::max(c, n);
+    }
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        auto& run = runs[k];
+        const auto n = count[same_count.find(k)];
+        const Vec3 p0 = points.position[run.chain.front()], p1 = points.position[run.chain.back()];
+        run.points = {run.chain.front()};
+        for (std::size_t q = 1; q < n; ++q) run.points.push_back(points.add(p0 + (p1 - p0) * (double(q) / double(n))));
+        run.points.push_back(run.chain.back());
+    }
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        for (const auto k : runs_of_region[r])
+            for (std::size_t q = 0; q + 1 < runs[k].points.size(); ++q)
+                regions[r].pieces.push_back({runs[k].points[q], runs[k].points[q + 1]});
+        for (const auto& [k, forward] : loops[r]) {
+            auto side = runs[k].points;
+            if (!forward) std::reverse(side.begin(), side.end());
+            regions[r].quad_sides.push_back(std::move(side));
+        }
+    }
+    return dropped;
+}
+
+} // namespace rad::surfaces

@@ -1,0 +1,101 @@
+// The passes of mesh_surfaces (internal header): planar regions, their outlines, the outline
+// runs shared between regions, and the grid of each region.
+#pragma once
+#include "radfmt/kinds.hpp"
+#include "radiosity/surfaces.hpp"
+#include "radiosity/vec.hpp"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace rad::surfaces {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point2 = K::Point_2;
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+struct VertexInfo {
+    std::uint32_t id = kNone; // the point, once known
+};
+struct FaceInfo {
+    bool inside = false;
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexInfo, K>;
+using Fb = CGAL::Constrained_triangulation_face_base_2<
+    K, CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>>;
+using CDT =
+    CGAL::Constrained_Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb, Fb>,
+                                               CGAL::Exact_predicates_tag>;
+
+using EdgeKey = std::uint64_t; // two point ids, smaller first
+inline EdgeKey edge_key(std::uint32_t a, std::uint32_t b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t(a) << 32) | b;
+}
+
+// Every point of the pass, by id: the faces' welded corners first, then points made on the way.
+struct Points {
+    std::vector<Vec3> position;
+    std::uint32_t add(const Vec3& p) {
+        position.push_back(p);
+        return static_cast<std::uint32_t>(position.size() - 1);
+    }
+};
+
+// A plane with its own 2D axes (u x v = normal).
+struct Plane {
+    Vec3 origin{}, normal{}, u{}, v{};
+    std::array<double, 2> to_2d(const Vec3& p) const {
+        const Vec3 d = p - origin;
+        return {dot(d, u), dot(d, v)};
+    }
+    Vec3 to_3d(double x, double y) const { return origin + u * x + v * y; }
+};
+
+struct Region {
+    std::vector<std::uint32_t> faces; // patches of the input mesh
+    std::uint32_t group = 0, material = 0;
+    Plane plane;
+    double cell = 0; // the full cell's side (0: no limit)
+    // The region's faces triangulated with their edges as constraints, faces marked inside:
+    // tells whether a point of the plane is in the region.
+    std::unique_ptr<CDT> cdt;
+    std::vector<std::array<std::uint32_t, 2>> outline; // boundary edges, before the runs
+    std::vector<std::array<std::uint32_t, 2>> pieces;  // boundary pieces, after the runs
+    // A region whose outline is four straight runs around a convex quadrilateral, with equal
+    // piece counts on opposite sides: its sides' points counter-clockwise (side k from corner
+    // k to corner k+1), gridded bilinearly into quads.
+    std::vector<std::vector<std::uint32_t>> quad_sides;
+    bool contains(const Point2& p) const;
+};
+
+// Pass 1: faces connected across welded edges, with the same group and material, whose
+// normals agree and whose corners lie in the seed face's plane, are one region.
+std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
+                                        const std::vector<std::uint32_t>& weld,
+                                        const Points& points, const SurfaceOptions& options,
+                                        double scene_size);
+
+// Pass 2: the region's outline (edges between its inside and outside, holes included), from a
+// constrained triangulation of its faces' edges; crossings of overlapping faces become points.
+void trace_outline(Region& region, const radfmt::MeshData& faces,
+                   const std::vector<std::uint32_t>& weld, Points& points);
+
+// Pass 3: outline edges split where another region's outline point lies on them, collinear
+// points that no region needs dropped, and each straight run split into equal pieces no longer
+// than the smallest cell of the regions along it. Returns the points dropped.
+std::size_t split_outline_runs(std::vector<Region>& regions, Points& points, double tolerance);
+
+// Pass 4: the region's grid cells as quads and the band between them and its outline as
+// triangles, appended to `mesh` (whose vertices are `points`, patches facing the region's way).
+// Returns the region's width (the shorter side of its bounding rectangle).
+double grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
+                 SurfaceReport& report, double tolerance);
+
+} // namespace rad::surfaces

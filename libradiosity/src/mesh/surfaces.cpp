@@ -1,0 +1,138 @@
+// mesh_surfaces: the passes of planar regions in order, and the shape statistics.
+#include "radiosity/surfaces.hpp"
+
+#include "../weld.hpp"
+#include "radiosity/error.hpp"
+#include "regions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace rad {
+
+namespace {
+
+double limit_for(const std::map<std::string, double>& by_group, const std::string& group,
+                 double fallback) {
+    const auto it = by_group.find(group);
+    return it != by_group.end() ? it->second : fallback;
+}
+
+// A region's cell side from --max-edge and --max-area (the smaller wins).
+double cell_side(const radfmt::MeshData& faces, std::uint32_t group, const SurfaceOptions& o) {
+    const auto& name = group < faces.groups.size() ? faces.groups[group] : std::string();
+    const double edge = limit_for(o.max_edge_by_group, name, o.max_edge);
+    const double area = limit_for(o.max_area_by_group, name, o.max_area);
+    double side = edge;
+    if (area > 0) side = side > 0 ? std::min(side, std::sqrt(area)) : std::sqrt(area);
+    return side;
+}
+
+// Vertices renumbered to those the patches use, in order of first use.
+void drop_unused_vertices(radfmt::MeshData& mesh) {
+    std::vector<std::uint32_t> new_id(mesh.vertices.size(), surfaces::kNone);
+    std::vector<Vec3> kept;
+    for (auto& p : mesh.patches)
+        for (int k = 0; k < p.corner_count(); ++k) {
+            auto& c = p.corners[k];
+            if (new_id[c] == surfaces::kNone) {
+                new_id[c] = static_cast<std::uint32_t>(kept.size());
+                kept.push_back(mesh.vertices[c]);
+            }
+            c = new_id[c];
+        }
+    mesh.vertices = std::move(kept);
+}
+
+} // namespace
+
+radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptions& options,
+                               SurfaceReport* report) {
+    SurfaceReport local;
+    SurfaceReport& rep = report ? *report : local;
+    rep.faces = faces.patches.size();
+    const auto weld = weld_by_position(faces.vertices);
+    surfaces::Points points;
+    const std::uint32_t count = weld.empty() ? 0 : *std::max_element(weld.begin(), weld.end()) + 1;
+    points.position.assign(count, Vec3{});
+    std::vector<bool> placed(count, false);
+    for (std::size_t v = 0; v < faces.vertices.size(); ++v)
+        if (!placed[weld[v]]) placed[weld[v]] = true, points.position[weld[v]] = faces.vertices[v];
+    const double size = bounds(faces.vertices).diagonal();
+    const double tolerance = 1e-7 * size;
+
+    auto regions = surfaces::find_planar_regions(faces, weld, points, options, size);
+    double cells = 0;
+    for (auto& region : regions) {
+        region.cell = cell_side(faces, region.group, options);
+        double area = 0;
+        for (const auto f : region.faces) area += faces.patches[f].area;
+        // Whole cells, and about one triangle per face along the outline.
+        if (region.cell > 0) cells += area / (region.cell * region.cell);
+        cells += double(region.faces.size());
+    }
+    if (!(cells <= options.max_patches)) {
+        char text[160];
+        std::snprintf(text, sizeof text, "about %.3g patches, more than --max-patches %.3g",
+                      cells, options.max_patches);
+        throw InputError(options.source + ": these limits (--max-edge, --max-area) would make " +
+                         text + " (use larger limits, or raise --max-patches)");
+    }
+    for (auto& region : regions) surfaces::trace_outline(region, faces, weld, points);
+    rep.regions = regions.size();
+    rep.dropped_vertices = surfaces::split_outline_runs(regions, points, tolerance);
+
+    radfmt::MeshData mesh;
+    mesh.groups = faces.groups;
+    mesh.materials = faces.materials;
+    std::vector<bool> in_thin_region;
+    for (const auto& region : regions) {
+        const double width = surfaces::grid_region(region, points, mesh, rep, tolerance);
+        in_thin_region.resize(mesh.patches.size(), region.cell > 0 && width < region.cell);
+    }
+    mesh.vertices = points.position;
+    rep.shape = shape_stats(mesh, &in_thin_region);
+    drop_unused_vertices(mesh);
+    if (mesh.patches.size() >= radfmt::kNoVertex)
+        throw InputError("too many patches for 32-bit indices");
+    return mesh;
+}
+
+double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
+    const int n = patch.corner_count();
+    std::array<Vec3, 4> c;
+    for (int k = 0; k < n; ++k) c[k] = mesh.vertices[patch.corners[k]];
+    double longest = 0;
+    std::array<double, 4> side{};
+    for (int k = 0; k < n; ++k) {
+        side[k] = length(c[(k + 1) % n] - c[k]);
+        longest = std::max(longest, side[k]);
+    }
+    if (!(patch.area > 0)) return 1e300;
+    if (n == 3) return longest * longest / (2 * patch.area);
+    // A quad's heights: its area over the mean length of each pair of opposite sides.
+    const double h1 = patch.area / std::max(1e-300, 0.5 * (side[0] + side[2]));
+    const double h2 = patch.area / std::max(1e-300, 0.5 * (side[1] + side[3]));
+    return longest / std::min(h1, h2);
+}
+
+ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<bool>* excused) {
+    ShapeStats stats;
+    std::size_t good = 0, counted = 0;
+    stats.worst_aspect = 0;
+    for (std::size_t k = 0; k < mesh.patches.size(); ++k) {
+        if (excused && (*excused)[k]) {
+            ++stats.excused;
+            continue;
+        }
+        const double a = patch_aspect(mesh, mesh.patches[k]);
+        ++counted;
+        if (a <= 3) ++good;
+        stats.worst_aspect = std::max(stats.worst_aspect, a);
+    }
+    stats.fraction_aspect_at_most_3 = counted ? double(good) / double(counted) : 1;
+    return stats;
+}
+
+} // namespace rad
