@@ -1,6 +1,7 @@
 // rad-mesh: OBJ+MTL scene -> conforming patch mesh.
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
+#include "radiosity/coincident.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/materials.hpp"
 #include "radiosity/numbers.hpp"
@@ -17,6 +18,7 @@
 #include <cmath>
 
 #include <cstdio>
+#include <functional>
 #include <iostream>
 
 namespace {
@@ -36,6 +38,50 @@ void parse_limits(const std::vector<std::string>& specs, const char* option, dou
             fallback = value;
         else
             by_group[spec.substr(0, eq)] = value;
+    }
+}
+// One line per kind of coincident faces: how many, their area and the first lines.
+void report_coincident(const rad::CoincidentReport& report, std::vector<std::string>& changes,
+                       const std::function<void(const std::string&)>& warn) {
+    using Case = rad::CoincidentCase;
+    for (const auto kind : {Case::kMerged, Case::kWrongCopy, Case::kTwins, Case::kUndecided}) {
+        std::size_t count = 0;
+        double area = 0;
+        std::string lines;
+        for (const auto& c : report.cases) {
+            if (c.kind != kind) continue;
+            if (count < 6)
+                lines += (count ? ", " : "") + std::to_string(c.other_line) +
+                         (kind == Case::kMerged || kind == Case::kWrongCopy ? " (copy of " : " (twin of ") +
+                         std::to_string(c.kept_line) + ")";
+            ++count;
+            area += c.area;
+        }
+        if (!count) continue;
+        if (count > 6) lines += ", ...";
+        char head[200];
+        std::snprintf(head, sizeof head, "%zu face(s) of area %.6g ", count, area);
+        switch (kind) {
+        case Case::kMerged:
+            changes.push_back(std::string("coincident: dropped ") + head +
+                              "lying within a face of the same plane and winding, line " + lines);
+            break;
+        case Case::kWrongCopy:
+            changes.push_back(std::string("coincident: dropped ") + head +
+                              "drawn again facing the other way whose side sees backs or nothing "
+                              "(the copy facing the scene is kept), line " + lines);
+            break;
+        case Case::kTwins:
+            changes.push_back(std::string("coincident: kept ") + head +
+                              "drawn both ways, both sides facing the scene, as the two sides of "
+                              "a sheet, line " + lines);
+            break;
+        case Case::kUndecided:
+            warn(std::string("coincident: ") + head +
+                 "drawn both ways; their rays do not tell which side faces the scene, both are "
+                 "kept (--flip GROUP, or delete one copy), line " + lines);
+            break;
+        }
     }
 }
 } // namespace
@@ -163,6 +209,8 @@ int main(int argc, char** argv) {
                 for (const auto v : polygon.vertices) used.push_back(scene.vertices[v]);
             rad::check_ray_precision(used, input);
         }
+        for (const auto& lib : obj_report.libraries_found_by_name)
+            changes.push_back("material library " + lib + " (found by its file name; its folders do not exist here)");
         for (const auto& lib : obj_report.missing_libraries)
             warn("material library " + lib + " (--mtl-path DIR adds a folder)");
         if (!obj_report.unknown_materials.empty()) {
@@ -228,13 +276,43 @@ int main(int argc, char** argv) {
                 std::cerr << "rad-mesh: --orient fix flipped " << count << " face(s) of group "
                           << group << " (visibility)\n";
         }
+        report_coincident(rad::resolve_coincident_faces(scene), changes, warn);
         for (const auto* by_group : {&options.max_edge_by_group, &options.max_area_by_group})
             for (const auto& [group, value] : *by_group)
                 if (std::find(scene.groups.begin(), scene.groups.end(), group) ==
                     scene.groups.end())
                     throw rad::InputError("no group '" + group + "' in " + input);
         if (!no_imprint) {
-            const auto imprint = rad::imprint_contacts(scene);
+            // Hidden regions are judged with the faces turned as --orient fix would turn them.
+            std::vector<bool> turned(scene.polygons.size(), false);
+            // Only the findings that are safe to act on: a closed room facing out, and faces
+            // wound against the rest of their surface ("inside out" can be a room that does
+            // not enclose everything: a beam sticking out through its wall).
+            using Kind = rad::OrientationFinding::Kind;
+            if (orient != "fix")
+                for (const auto& finding : findings)
+                    if (finding.kind == Kind::RoomOutward || finding.kind == Kind::AgainstNeighbours)
+                        for (const auto f : finding.to_flip) turned[f] = !turned[f];
+            std::map<std::uint32_t, double> group_area;
+            for (const auto& polygon : scene.polygons) {
+                std::vector<radfmt::Vec3> pts;
+                for (const auto v : polygon.vertices) pts.push_back(scene.vertices[v]);
+                group_area[polygon.group] += 0.5 * rad::length(rad::newell_normal(pts));
+            }
+            const auto imprint = rad::imprint_contacts(scene, 1e-7, turned);
+            for (const auto& [group, area] : imprint.removed_by_group)
+                if (area > 0.01 * group_area[group]) {
+                    char text[300];
+                    std::snprintf(text, sizeof text,
+                                  "imprinting removed %.6g of group %s's area %.6g (%.1f%%), "
+                                  "reaching the faces' own outlines, as hidden inside or "
+                                  "behind other geometry; if that is wrong, "
+                                  "check which way the surfaces around it face (--orient fix) "
+                                  "or use --no-imprint",
+                                  area, scene.groups[group].c_str(), group_area[group],
+                                  100 * area / group_area[group]);
+                    warn(text);
+                }
             if (imprint.faces_imprinted) {
                 char text[300];
                 std::snprintf(text, sizeof text,

@@ -152,7 +152,7 @@ bool contact(const Face& p, const Face& q, double tol, Segment& segment,
 
 } // namespace
 
-ImprintReport imprint_contacts(Scene& scene, double tolerance) {
+ImprintReport imprint_contacts(Scene& scene, double tolerance, const std::vector<bool>& turned) {
     ImprintReport report;
     const std::size_t n = scene.polygons.size();
     if (n < 2) return report;
@@ -314,7 +314,15 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
     // Rays over the scene as written decide which regions are hidden.
     if (std::all_of(cuts.begin(), cuts.end(), [](const auto& c) { return c.empty(); }))
         return report;
-    const RayScene rays(face_triangles(scene));
+    // Which way a face points counts as the orientation checks would fix it, so that a scene
+    // whose walls face out does not make everything inside it look hidden.
+    auto facing = [&] {
+        Scene fixed = scene;
+        for (std::size_t f = 0; f < n && f < turned.size(); ++f)
+            if (turned[f]) std::reverse(fixed.polygons[f].vertices.begin(), fixed.polygons[f].vertices.end());
+        return face_triangles(fixed);
+    };
+    const RayScene rays(facing());
 
     // Points added on an original edge are shared by every face along that edge.
     struct EdgePoint {
@@ -440,13 +448,14 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
             const auto g = region_seed[r];
             const auto c =
                 CGAL::centroid(g->vertex(0)->point(), g->vertex(1)->point(), g->vertex(2)->point());
-            const Vec3 from = p.frame.to3d(c.x(), c.y()) + p.frame.normal * lift;
+            const Vec3 front = f < turned.size() && turned[f] ? p.frame.normal * -1.0 : p.frame.normal;
+            const Vec3 from = p.frame.to3d(c.x(), c.y()) + front * lift;
             const Vec3 tu = p.frame.u, tv = p.frame.v;
             int hits = 0, backs = 0;
             const int count = 64;
             for (int k = 0; k < count; ++k) {
                 const double u = (k + 0.5) / count, w = std::fmod(k * 0.6180339887498949, 1.0);
-                const auto hit = rays.trace(from, cosine_direction(p.frame.normal, tu, tv, u, w));
+                const auto hit = rays.trace(from, cosine_direction(front, tu, tv, u, w));
                 if (hit.patch < 0) continue;
                 ++hits;
                 backs += !hit.front;
@@ -524,10 +533,21 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance) {
             piece({fh->vertex(0)->info().index, fh->vertex(1)->info().index,
                    fh->vertex(2)->info().index});
         }
+        // A hidden region wholly bounded by contact lines is a footprint (under a block, a
+        // beam's end in a wall); one that reaches the face's own outline hides part of it.
+        std::vector<char> reaches_outline(regions, 0);
+        for (auto fh = cdt.finite_faces_begin(); fh != cdt.finite_faces_end(); ++fh) {
+            if (!fh->info().inside) continue;
+            for (int e = 0; e < 3; ++e) {
+                const auto h = fh->neighbor(e);
+                if (cdt.is_infinite(h) || !h->info().inside) reaches_outline[fh->info().region] = 1;
+            }
+        }
         for (int r = 0; r < regions; ++r)
             if (hidden[r]) {
                 ++report.regions_removed;
                 report.area_removed += region_area[r];
+                if (reaches_outline[r]) report.removed_by_group[poly.group] += region_area[r];
                 removed = true;
             }
         if (removed) report.removed_lines.push_back(poly.line);

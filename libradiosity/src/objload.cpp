@@ -68,7 +68,8 @@ struct LintResult {
 };
 
 // Looks for a material library next to the OBJ, in the current directory, then in the
-// --mtl-path folders; an absolute name only where it says.
+// --mtl-path folders (a name with folders also by its file name alone, next to the OBJ and in
+// those folders); an absolute name only where it says.
 Library find_library(const fs::path& obj, int line, const std::string& name,
                      const SceneOptions& options) {
     Library lib{line, name, {}, {}};
@@ -79,6 +80,13 @@ Library find_library(const fs::path& obj, int line, const std::string& name,
         candidates.push_back(obj.parent_path() / name);
         candidates.push_back(fs::current_path() / name);
         for (const auto& dir : options.mtl_paths) candidates.push_back(dir / name);
+        // A library named with folders of another tree (sub/dir/x.mtl) is also looked for by
+        // its file name, next to the OBJ and in each --mtl-path folder.
+        if (fs::path(name).has_parent_path()) {
+            const auto file = fs::path(name).filename();
+            candidates.push_back(obj.parent_path() / file);
+            for (const auto& dir : options.mtl_paths) candidates.push_back(dir / file);
+        }
     }
     for (const auto& candidate : candidates) {
         lib.looked.push_back(candidate.lexically_normal().string());
@@ -301,6 +309,11 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
                                                ") not found; looked for " + looked);
             continue;
         }
+        if (fs::path(lib.name).has_parent_path() && lib.found.filename() == fs::path(lib.name).filename() &&
+            fs::weakly_canonical(lib.found) != fs::weakly_canonical(path.parent_path() / lib.name))
+            report.libraries_found_by_name.push_back("'" + lib.name + "' (line " +
+                                                     std::to_string(lib.line) + ") as " +
+                                                     lib.found.lexically_normal().string());
         const auto canonical = fs::weakly_canonical(lib.found);
         if (!loaded.insert(canonical).second) continue;
         std::istringstream text(normalised_mtl(lib.found, states_kd));

@@ -52,6 +52,8 @@ struct SceneReport {
     std::string default_material;               // its name ("default", unless the scene has one)
     std::vector<std::string> unknown_materials; // usemtl names no MTL defines, "name (line N)"
     std::vector<std::string> missing_libraries; // "'name' (line N) not found; looked for .."
+    // Libraries named with folders (sub/x.mtl) found by file name alone: "'name' (line N) as P"
+    std::vector<std::string> libraries_found_by_name;
     std::vector<std::string> textures_averaged; // "material: file, mean r g b"
     std::vector<std::string> textures_replacing_kd; // materials whose Kd was 0 or absent
     std::vector<std::string> texture_problems;      // missing or unreadable textures
@@ -141,8 +143,14 @@ struct ImprintReport {
     std::size_t faces_imprinted = 0, regions_removed = 0;
     double area_imprinted = 0, area_removed = 0;
     std::vector<int> removed_lines; // OBJ lines of faces that lost a region
+    // Area removed by group, of regions reaching the face's outline (not footprints bounded
+    // by contact lines alone): what may be a mistake.
+    std::map<std::uint32_t, double> removed_by_group;
 };
-ImprintReport imprint_contacts(Scene& scene, double tolerance = 1e-7);
+// `turned[f]`: face f faces the other way for the hidden-region test (what --orient fix would
+// flip), so that whether a region is enclosed does not depend on wrongly facing walls.
+ImprintReport imprint_contacts(Scene& scene, double tolerance = 1e-7,
+                               const std::vector<bool>& turned = {});
 
 struct Topology {
     std::size_t edges = 0;

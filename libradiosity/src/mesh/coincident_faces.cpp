@@ -1,0 +1,204 @@
+// Faces in one plane that overlap: a copy inside another face with the same winding is one
+// surface (dropped); with opposite windings, a sheet drawn from both sides (kept as twins) or a
+// surface with a wrongly facing copy (the copy dropped, by what each side's rays meet).
+#include "radiosity/coincident.hpp"
+
+#include "radiosity/random.hpp"
+#include "radiosity/rays.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace rad {
+
+namespace {
+
+struct FacePlane {
+    Vec3 normal{}, centroid{}, u{}, v{};
+    double area = 0, offset = 0;
+    std::vector<std::array<double, 2>> outline; // corners in the plane's (u, v)
+    std::array<double, 4> box{1e300, 1e300, -1e300, -1e300};
+};
+
+// The plane of each face, with axes shared by every face of that plane (up to the normal's
+// sign), so that outlines of faces drawn both ways can be compared.
+std::vector<FacePlane> face_planes(const Scene& scene) {
+    std::vector<FacePlane> planes(scene.polygons.size());
+    for (std::size_t f = 0; f < scene.polygons.size(); ++f) {
+        std::vector<Vec3> pts;
+        for (const auto v : scene.polygons[f].vertices) pts.push_back(scene.vertices[v]);
+        auto& p = planes[f];
+        const Vec3 n2 = pts.size() >= 3 ? newell_normal(pts) : Vec3{0, 0, 0};
+        p.area = 0.5 * length(n2);
+        if (!(p.area > 0)) continue;
+        p.normal = normalized(n2);
+        p.centroid = polygon_centroid(pts);
+        p.offset = dot(p.normal, p.centroid);
+        Vec3 axis = p.normal;
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(axis[c]) > 1e-9) {
+                if (axis[c] < 0) axis = axis * -1.0;
+                break;
+            }
+        p.u = orthogonal(axis);
+        p.v = cross(axis, p.u);
+        for (const auto& q : pts) {
+            const std::array<double, 2> xy{dot(q, p.u), dot(q, p.v)};
+            p.outline.push_back(xy);
+            p.box = {std::min(p.box[0], xy[0]), std::min(p.box[1], xy[1]),
+                     std::max(p.box[2], xy[0]), std::max(p.box[3], xy[1])};
+        }
+    }
+    return planes;
+}
+
+// Winding number test in 2D; points within `tolerance` of the outline count as inside when
+// `boundary_inside`.
+bool inside(const std::vector<std::array<double, 2>>& poly, const std::array<double, 2>& p,
+            double tolerance, bool boundary_inside) {
+    const std::size_t n = poly.size();
+    bool in = false;
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto& a = poly[k];
+        const auto& b = poly[(k + 1) % n];
+        const double dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
+        const double t = len2 > 0 ? std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0;
+        if (std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy) <= tolerance) return boundary_inside;
+        if ((a[1] > p[1]) != (b[1] > p[1]) &&
+            p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]))
+            in = !in;
+    }
+    return in;
+}
+
+// The share of rays from the front of these faces that meet the front of another surface.
+double front_hits(const Scene& scene, const std::vector<FacePlane>& planes,
+                  const std::vector<std::size_t>& faces, const RayScene& rays) {
+    constexpr int kRays = 64;
+    double fronts = 0, cast = 0;
+    for (const auto f : faces) {
+        const auto& p = planes[f];
+        const Vec3 origin = p.centroid + p.normal * (4 * rays.epsilon());
+        Rng rng(0x636f696e, f);
+        for (int k = 0; k < kRays; ++k) {
+            const Vec3 d = cosine_direction(p.normal, p.u, p.v, rng.uniform(), rng.uniform());
+            bool front = false;
+            if (rays.first_hit(origin, d, front) >= 0 && front) ++fronts;
+            ++cast;
+        }
+        (void)scene;
+    }
+    return cast > 0 ? fronts / cast : 0;
+}
+
+using SideKey = std::array<long long, 3>; // facing sign, group, material
+using Pairs = std::map<std::array<long long, 4>, std::set<std::pair<std::size_t, std::size_t>>>;
+
+// Per plane, the two sides of each copied surface vote by their rays: a side whose rays meet
+// fronts faces the rest of the scene; one that sees backs or nothing is a wrongly facing copy.
+void decide_opposite_copies(const Scene& scene, const std::vector<FacePlane>& planes,
+                            const Pairs& opposite, std::vector<bool>& drop,
+                            CoincidentReport& report) {
+    if (opposite.empty()) return;
+    const RayScene rays(face_triangles(scene));
+    for (const auto& [plane, pairs] : opposite) {
+        auto side_of = [&](std::size_t f) -> SideKey {
+            const auto& p = planes[f];
+            return {dot(p.normal, cross(p.u, p.v)) > 0 ? 1 : -1, scene.polygons[f].group,
+                    scene.polygons[f].material};
+        };
+        std::map<std::pair<SideKey, SideKey>, std::vector<std::pair<std::size_t, std::size_t>>> sets;
+        for (auto [a, b] : pairs) {
+            if (side_of(a) > side_of(b)) std::swap(a, b);
+            sets[{side_of(a), side_of(b)}].push_back({a, b});
+        }
+        for (const auto& [sides, members] : sets) {
+            std::vector<std::size_t> first, second;
+            for (const auto& [a, b] : members) first.push_back(a), second.push_back(b);
+            for (auto* list : {&first, &second}) {
+                std::sort(list->begin(), list->end());
+                list->erase(std::unique(list->begin(), list->end()), list->end());
+            }
+            const double f1 = front_hits(scene, planes, first, rays);
+            const double f2 = front_hits(scene, planes, second, rays);
+            CoincidentCase::Kind kind = CoincidentCase::kUndecided;
+            if (f1 > 0.5 && f2 > 0.5)
+                kind = CoincidentCase::kTwins;
+            else if (f1 >= 2 * f2 + 0.1 || f2 >= 2 * f1 + 0.1)
+                kind = CoincidentCase::kWrongCopy;
+            const bool drop_second = f1 > f2;
+            for (const auto& [a, b] : members) {
+                const auto kept = drop_second ? a : b, gone = drop_second ? b : a;
+                const double area = std::min(planes[a].area, planes[b].area);
+                if (kind == CoincidentCase::kWrongCopy) {
+                    if (drop[gone]) continue;
+                    drop[gone] = true;
+                }
+                report.cases.push_back({kind, scene.polygons[kept].line, scene.polygons[gone].line, area});
+            }
+        }
+    }
+}
+
+} // namespace
+
+CoincidentReport resolve_coincident_faces(Scene& scene) {
+    CoincidentReport report;
+    const auto planes = face_planes(scene);
+    const double size = bounds(scene.vertices).diagonal();
+    const double tolerance = 1e-6 * size;
+    // Faces by plane (normal up to sign, offset), quantised to the tolerance.
+    std::map<std::array<long long, 4>, std::vector<std::size_t>> by_plane;
+    for (std::size_t f = 0; f < planes.size(); ++f) {
+        const auto& p = planes[f];
+        if (!(p.area > 0)) continue;
+        const double sign = dot(p.normal, cross(p.u, p.v)) > 0 ? 1 : -1;
+        std::array<long long, 4> key;
+        for (int c = 0; c < 3; ++c) key[c] = std::llround(sign * p.normal[c] * 1e6);
+        key[3] = std::llround(sign * p.offset / std::max(1e-300, 1e-6 * size));
+        by_plane[key].push_back(f);
+    }
+    std::vector<bool> drop(scene.polygons.size(), false);
+    // Opposite copies, by the side sets they belong to: (plane, facing, group, material).
+    std::map<std::array<long long, 4>, std::set<std::pair<std::size_t, std::size_t>>> opposite;
+    for (auto& [key, faces] : by_plane) {
+        if (faces.size() < 2) continue;
+        std::sort(faces.begin(), faces.end(), [&](auto a, auto b) { return planes[a].box[0] < planes[b].box[0]; });
+        for (std::size_t i = 0; i < faces.size(); ++i)
+            for (std::size_t j = i + 1; j < faces.size(); ++j) {
+                const auto &a = planes[faces[i]], &b = planes[faces[j]];
+                if (b.box[0] > a.box[2] - tolerance) break;
+                if (b.box[1] > a.box[3] - tolerance || a.box[1] > b.box[3] - tolerance) continue;
+                const bool same = dot(a.normal, b.normal) > 0;
+                const auto ca = std::array<double, 2>{dot(a.centroid, a.u), dot(a.centroid, a.v)};
+                const auto cb = std::array<double, 2>{dot(b.centroid, b.u), dot(b.centroid, b.v)};
+                if (!inside(b.outline, ca, tolerance, false) && !inside(a.outline, cb, tolerance, false))
+                    continue;
+                auto fa = faces[i], fb = faces[j];
+                if (same) { // the smaller one, when it lies wholly in the other, is a copy
+                    if (planes[fa].area > planes[fb].area) std::swap(fa, fb);
+                    const auto& small = planes[fa];
+                    if (!std::all_of(small.outline.begin(), small.outline.end(), [&](const auto& q) {
+                            return inside(planes[fb].outline, q, tolerance, true);
+                        }))
+                        continue;
+                    if (drop[fa]) continue;
+                    drop[fa] = true;
+                    report.cases.push_back({CoincidentCase::kMerged, scene.polygons[fa].line,
+                                            scene.polygons[fb].line, small.area});
+                } else {
+                    opposite[{key[0], key[1], key[2], key[3]}].insert({fa, fb});
+                }
+            }
+    }
+    decide_opposite_copies(scene, planes, opposite, drop, report);
+    std::vector<Polygon> kept;
+    for (std::size_t f = 0; f < scene.polygons.size(); ++f)
+        if (!drop[f]) kept.push_back(std::move(scene.polygons[f]));
+    scene.polygons = std::move(kept);
+    return report;
+}
+
+} // namespace rad

@@ -1,0 +1,91 @@
+# Patches from surfaces (issue #24): planar regions gridded whatever the input's triangulation,
+# coincident faces, imprinting that does not depend on which way walls face, names that
+# survive a missing MTL, glTF triangles meshed like the OBJ's quads.
+source "$(dirname "$0")/lib.sh"
+GEN="$SRC/tests/cli/surface_scenes.py"
+cd "$TMP" || exit 1
+summary() { grep "rad-mesh: [0-9]* patches" "$1" | head -1; }
+patches() { summary "$1" | sed 's/rad-mesh: \([0-9]*\) patches.*/\1/'; }
+total_area() { summary "$1" | sed 's/.*total area \([0-9.e+-]*\),.*/\1/'; }
+# Area-weighted mean red radiosity of the patches of one group.
+group_mean() { # MESH RAD GROUP
+  "$BIN/rad-info" --csv "$1" > m.csv && "$BIN/rad-info" --csv "$2" > r.csv &&
+  python3 - "$3" m.csv r.csv <<'PY'
+import csv, sys
+rows = [(p, r) for p, r in zip(csv.DictReader(open(sys.argv[2])), csv.DictReader(open(sys.argv[3])))
+        if p['group'] == sys.argv[1]]
+area = sum(float(p['area']) for p, _ in rows)
+print(sum(float(p['area']) * float(r['b_r']) for p, r in rows) / area)
+PY
+}
+
+# 1. The back wall as one quad, two triangles or a fan of 64 slivers: the same grid, the same light.
+for kind in quad two fan; do
+  python3 "$GEN" $kind $kind.obj || fail "generate $kind"
+  "$BIN/rad-mesh" $kind.obj -o $kind.mesh --max-edge 0.25 2> $kind.err || fail "mesh $kind: $(cat $kind.err)"
+  "$BIN/rad-ff" $kind.mesh -o $kind.ff --method hemisphere --rays 2000 -q || fail "ff $kind"
+  "$BIN/rad-solve" $kind.mesh $kind.ff -o $kind.rad -q || fail "solve $kind"
+done
+quad=$(patches quad.err)
+for kind in two fan; do
+  n=$(patches $kind.err)
+  echo "back wall as $kind: $n patches (quad: $quad)"
+  python3 -c "import sys; sys.exit(not abs($n - $quad) <= 0.05 * $quad)" || fail "$kind: $n patches against the quad's $quad"
+  a=$(group_mean quad.mesh quad.rad back); b=$(group_mean $kind.mesh $kind.rad back)
+  echo "back wall mean radiosity: quad $a, $kind $b"
+  python3 -c "import sys; sys.exit(not abs($a - $b) <= 0.01 * $a)" || fail "$kind: back wall radiosity $b against $a"
+done
+grep -q "aspect <= 3: 100.0%" fan.err || fail "fan wall patches not all well shaped: $(cat fan.err)"
+# The old way shows the fan: slivers.
+"$BIN/rad-mesh" fan.obj -o fan-faces.mesh --max-edge 0.25 --surfaces faces 2> fan-faces.err || fail "faces mode"
+[ "$(patches fan-faces.err)" -gt $((quad + quad / 10)) ] || fail "--surfaces faces should keep the fan's triangles: $(cat fan-faces.err)"
+
+# 2. A wall drawn twice, facing each way: the copy facing out (seeing nothing) is dropped.
+python3 "$GEN" twice twice.obj
+"$BIN/rad-mesh" twice.obj -o twice.mesh --max-edge 0.25 2> twice.err || fail "mesh twice"
+grep -q "changed: coincident: dropped 1 face(s) of area 10 drawn again facing the other way" twice.err || fail "wrong copy not reported: $(cat twice.err)"
+[ "$(patches twice.err)" = "$quad" ] || fail "the wall drawn twice makes $(patches twice.err) patches, not $quad"
+[ "$(total_area twice.err)" = "$(total_area quad.err)" ] || fail "area $(total_area twice.err) against $(total_area quad.err)"
+# A sheet in the middle of the room drawn once each way: both sides face the scene, both kept.
+python3 "$GEN" sheet sheet.obj
+"$BIN/rad-mesh" sheet.obj -o sheet.mesh --max-edge 0.25 2> sheet.err || fail "mesh sheet"
+grep -q "changed: coincident: kept 1 face(s) of area 2 drawn both ways, both sides facing the scene" sheet.err || fail "twins not reported: $(cat sheet.err)"
+[ "$(total_area sheet.err)" = 64 ] || fail "the sheet's two sides are not both kept: $(cat sheet.err)"
+
+# 3. Imprinting judges hidden regions as if the walls faced the right way: a room whose walls
+# all face out loses only what the same room facing in loses (the boxes' footprints).
+for kind in inward outward; do
+  python3 "$GEN" $kind $kind.obj
+  "$BIN/rad-mesh" $kind.obj -o $kind.mesh --max-edge 0.25 2> $kind.err || fail "mesh $kind"
+done
+[ "$(total_area outward.err)" = "$(total_area inward.err)" ] || fail "outward room: area $(total_area outward.err), inward $(total_area inward.err)"
+[ "$(total_area inward.err)" = 64 ] || fail "inward room: area $(total_area inward.err) (60 + 5.25 boxes - 1.25 footprints)"
+grep -q "imprinting removed" inward.err outward.err && fail "footprints reported as suspicious: $(cat inward.err outward.err)"
+# A beam through the room's wall: the part outside (x 4 to 5) is hidden behind the wall and
+# removed, with a warning (it reaches the beam's own outline: not a footprint). (Its end cap, a
+# face with no contact, is not looked at.)
+python3 "$GEN" beam beam.obj
+"$BIN/rad-mesh" beam.obj -o beam.mesh --max-edge 0.25 2> beam.err || fail "mesh beam"
+grep -q "warning: beam.obj: imprinting removed 1.6 of group beam's area 3.52 (45.5%)" beam.err || fail "removed area warning: $(cat beam.err)"
+"$BIN/rad-info" --csv beam.mesh | awk -F, '$2 == "beam" && $5 > 4 && $5 < 5 {outside++} $2 == "beam" && $5 < 4 {inside++} END {exit !(inside > 0 && outside == 0)}' ||
+  fail "the beam's part inside the room was removed instead of the part outside"
+
+# 4. A Cornell box whose MTL is missing keeps its usemtl names: --emission light= works.
+mkdir -p nomtl && cp "$SRC/tests/data/cornell-original/variant-pathed/CornellBox-Original.obj" nomtl/
+"$BIN/rad-mesh" nomtl/CornellBox-Original.obj -o nomtl.mesh --max-edge 0.2 2> nomtl.err || fail "mesh without its MTL: $(cat nomtl.err)"
+"$BIN/rad-ff" nomtl.mesh -o nomtl.ff --method hemisphere --rays 500 -q || fail "ff nomtl"
+"$BIN/rad-solve" nomtl.mesh nomtl.ff -o nomtl.rad --emission light=17,12,4 -q || fail "--emission light= refused without the MTL"
+"$BIN/rad-info" --csv nomtl.rad | awk -F, 'NR > 1 && $2 > 0 {lit++} END {exit !(lit > 10)}' || fail "nothing lit without the MTL"
+# The library named as sub/dir/x.mtl is found by its file name next to the OBJ or in --mtl-path.
+mkdir -p lib && cp "$SRC/tests/data/cornell-original/variant-pathed/CornellBox-Original.mtl" lib/
+err=$("$BIN/rad-mesh" nomtl/CornellBox-Original.obj -o found.mesh --mtl-path lib 2>&1) || fail "--mtl-path: $err"
+grep -q "not found" <<<"$err" && fail "--mtl-path did not find scenes/CornellBox-Original.mtl as lib/CornellBox-Original.mtl: $err"
+
+# 5. The Cornell box as glTF triangles meshes to about the OBJ's patch count.
+python3 "$GEN" gltf "$SRC/scenes/cornell/cornell.obj" cornell.gltf || fail "gltf"
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o obj.mesh --max-edge 0.05 2> obj.err || fail "mesh obj"
+"$BIN/rad-mesh" cornell.gltf -o gltf.mesh --max-edge 0.05 2> gltf.err || fail "mesh gltf: $(cat gltf.err)"
+o=$(patches obj.err); g=$(patches gltf.err)
+echo "Cornell box: OBJ $o patches, glTF triangles $g"
+python3 -c "import sys; sys.exit(not $g <= 1.1 * $o)" || fail "glTF $g patches against the OBJ's $o"
+finish
