@@ -50,7 +50,7 @@ void report_coincident(const rad::CoincidentReport& report, std::vector<std::str
         std::string lines;
         for (const auto& c : report.cases) {
             if (c.kind != kind) continue;
-            if (count < 6)
+            if (count < 6 && c.other_line > 0)
                 lines += (count ? ", " : "") + std::to_string(c.other_line) +
                          (kind == Case::kMerged || kind == Case::kWrongCopy ? " (copy of " : " (twin of ") +
                          std::to_string(c.kept_line) + ")";
@@ -58,28 +58,29 @@ void report_coincident(const rad::CoincidentReport& report, std::vector<std::str
             area += c.area;
         }
         if (!count) continue;
-        if (count > 6) lines += ", ...";
+        if (count > 6 && !lines.empty()) lines += ", ...";
+        lines = lines.empty() ? "" : ", line " + lines;
         char head[200];
         std::snprintf(head, sizeof head, "%zu face(s) of area %.6g ", count, area);
         switch (kind) {
         case Case::kMerged:
             changes.push_back(std::string("coincident: dropped ") + head +
-                              "lying within a face of the same plane and winding, line " + lines);
+                              "lying within a face of the same plane and winding" + lines);
             break;
         case Case::kWrongCopy:
             changes.push_back(std::string("coincident: dropped ") + head +
                               "drawn again facing the other way whose side sees backs or nothing "
-                              "(the copy facing the scene is kept), line " + lines);
+                              "(the copy facing the scene is kept)" + lines);
             break;
         case Case::kTwins:
             changes.push_back(std::string("coincident: kept ") + head +
                               "drawn both ways, both sides facing the scene, as the two sides of "
-                              "a sheet, line " + lines);
+                              "a sheet" + lines);
             break;
         case Case::kUndecided:
             warn(std::string("coincident: ") + head +
                  "drawn both ways; their rays do not tell which side faces the scene, both are "
-                 "kept (--flip GROUP, or delete one copy), line " + lines);
+                 "kept (--flip GROUP, or delete one copy)" + lines);
             break;
         }
     }

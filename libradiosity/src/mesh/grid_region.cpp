@@ -261,6 +261,11 @@ void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<
         if (!f->is_in_domain() ||
             !has_area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()))
             continue;
+        // The same in space (a point of a run that leaves the region's plane by its tolerance).
+        const Vec3 &p0 = points.position[f->vertex(0)->info().id], &p1 = points.position[f->vertex(1)->info().id],
+                   &p2 = points.position[f->vertex(2)->info().id];
+        const double longest = std::max({dot(p1 - p0, p1 - p0), dot(p2 - p1, p2 - p1), dot(p0 - p2, p0 - p2)});
+        if (!(length(cross(p1 - p0, p2 - p0)) > 1e-9 * longest)) continue;
         emit(region, points, mesh, {f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id});
         ++report.band_triangles;
     }
