@@ -52,7 +52,8 @@ void report_coincident(const rad::CoincidentReport& report, std::vector<std::str
             if (c.kind != kind) continue;
             if (count < 6 && c.other_line > 0)
                 lines += (count ? ", " : "") + std::to_string(c.other_line) +
-                         (kind == Case::kMerged || kind == Case::kWrongCopy ? " (copy of " : " (twin of ") +
+                         (kind == Case::kMerged || kind == Case::kWrongCopy ? " (copy of "
+                                                                            : " (twin of ") +
                          std::to_string(c.kept_line) + ")";
             ++count;
             area += c.area;
@@ -70,17 +71,20 @@ void report_coincident(const rad::CoincidentReport& report, std::vector<std::str
         case Case::kWrongCopy:
             changes.push_back(std::string("coincident: dropped ") + head +
                               "drawn again facing the other way whose side sees backs or nothing "
-                              "(the copy facing the scene is kept)" + lines);
+                              "(the copy facing the scene is kept)" +
+                              lines);
             break;
         case Case::kTwins:
             changes.push_back(std::string("coincident: kept ") + head +
                               "drawn both ways, both sides facing the scene, as the two sides of "
-                              "a sheet" + lines);
+                              "a sheet" +
+                              lines);
             break;
         case Case::kUndecided:
             warn(std::string("coincident: ") + head +
                  "drawn both ways; their rays do not tell which side faces the scene, both are "
-                 "kept (--flip GROUP, or delete one copy)" + lines);
+                 "kept (--flip GROUP, or delete one copy)" +
+                 lines);
             break;
         }
     }
@@ -211,7 +215,8 @@ int main(int argc, char** argv) {
             rad::check_ray_precision(used, input);
         }
         for (const auto& lib : obj_report.libraries_found_by_name)
-            changes.push_back("material library " + lib + " (found by its file name; its folders do not exist here)");
+            changes.push_back("material library " + lib +
+                              " (found by its file name; its folders do not exist here)");
         for (const auto& lib : obj_report.missing_libraries)
             warn("material library " + lib + " (--mtl-path DIR adds a folder)");
         if (!obj_report.unknown_materials.empty()) {
@@ -226,7 +231,8 @@ int main(int argc, char** argv) {
             std::string text = "defaulted: " + std::to_string(obj_report.faces_defaulted) +
                                " face(s) without a known material (first at line " +
                                std::to_string(obj_report.first_defaulted_line) +
-                               ") got the default reflectance " + rad::rgb_text(obj_options.default_reflectance) +
+                               ") got the default reflectance " +
+                               rad::rgb_text(obj_options.default_reflectance) +
                                ", each under its own usemtl name where it has one (material '" +
                                (obj_report.default_material.empty() ? std::string("default")
                                                                     : obj_report.default_material) +
@@ -292,7 +298,8 @@ int main(int argc, char** argv) {
             using Kind = rad::OrientationFinding::Kind;
             if (orient != "fix")
                 for (const auto& finding : findings)
-                    if (finding.kind == Kind::RoomOutward || finding.kind == Kind::AgainstNeighbours)
+                    if (finding.kind == Kind::RoomOutward ||
+                        finding.kind == Kind::AgainstNeighbours)
                         for (const auto f : finding.to_flip) turned[f] = !turned[f];
             std::map<std::uint32_t, double> group_area;
             for (const auto& polygon : scene.polygons) {

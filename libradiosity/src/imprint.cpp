@@ -319,7 +319,8 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance, const std::vector
     auto facing = [&] {
         Scene fixed = scene;
         for (std::size_t f = 0; f < n && f < turned.size(); ++f)
-            if (turned[f]) std::reverse(fixed.polygons[f].vertices.begin(), fixed.polygons[f].vertices.end());
+            if (turned[f])
+                std::reverse(fixed.polygons[f].vertices.begin(), fixed.polygons[f].vertices.end());
         return face_triangles(fixed);
     };
     const RayScene rays(facing());
@@ -448,7 +449,8 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance, const std::vector
             const auto g = region_seed[r];
             const auto c =
                 CGAL::centroid(g->vertex(0)->point(), g->vertex(1)->point(), g->vertex(2)->point());
-            const Vec3 front = f < turned.size() && turned[f] ? p.frame.normal * -1.0 : p.frame.normal;
+            const Vec3 front =
+                f < turned.size() && turned[f] ? p.frame.normal * -1.0 : p.frame.normal;
             const Vec3 from = p.frame.to3d(c.x(), c.y()) + front * lift;
             const Vec3 tu = p.frame.u, tv = p.frame.v;
             int hits = 0, backs = 0;

@@ -309,7 +309,8 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
                                                ") not found; looked for " + looked);
             continue;
         }
-        if (fs::path(lib.name).has_parent_path() && lib.found.filename() == fs::path(lib.name).filename() &&
+        if (fs::path(lib.name).has_parent_path() &&
+            lib.found.filename() == fs::path(lib.name).filename() &&
             fs::weakly_canonical(lib.found) != fs::weakly_canonical(path.parent_path() / lib.name))
             report.libraries_found_by_name.push_back("'" + lib.name + "' (line " +
                                                      std::to_string(lib.line) + ") as " +

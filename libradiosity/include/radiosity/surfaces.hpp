@@ -7,8 +7,8 @@
 #include "radfmt/kinds.hpp"
 
 #include <map>
-#include <vector>
 #include <string>
+#include <vector>
 
 namespace rad {
 
@@ -41,8 +41,8 @@ ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<bool>* ex
 
 struct SurfaceReport {
     std::size_t faces = 0, regions = 0;
-    std::size_t cells = 0;          // full grid cells: quads
-    std::size_t band_triangles = 0; // triangles between the cells and a region's outline
+    std::size_t cells = 0;            // full grid cells: quads
+    std::size_t band_triangles = 0;   // triangles between the cells and a region's outline
     std::size_t dropped_vertices = 0; // collinear outline points no other region needs
     ShapeStats shape;                 // over the patches of regions at least a cell wide
 };

@@ -64,8 +64,10 @@ bool inside(const std::vector<std::array<double, 2>>& poly, const std::array<dou
         const auto& a = poly[k];
         const auto& b = poly[(k + 1) % n];
         const double dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
-        const double t = len2 > 0 ? std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0;
-        if (std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy) <= tolerance) return boundary_inside;
+        const double t =
+            len2 > 0 ? std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0;
+        if (std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy) <= tolerance)
+            return boundary_inside;
         if ((a[1] > p[1]) != (b[1] > p[1]) &&
             p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]))
             in = !in;
@@ -109,7 +111,8 @@ void decide_opposite_copies(const Scene& scene, const std::vector<FacePlane>& pl
             return {dot(p.normal, cross(p.u, p.v)) > 0 ? 1 : -1, scene.polygons[f].group,
                     scene.polygons[f].material};
         };
-        std::map<std::pair<SideKey, SideKey>, std::vector<std::pair<std::size_t, std::size_t>>> sets;
+        std::map<std::pair<SideKey, SideKey>, std::vector<std::pair<std::size_t, std::size_t>>>
+            sets;
         for (auto [a, b] : pairs) {
             if (side_of(a) > side_of(b)) std::swap(a, b);
             sets[{side_of(a), side_of(b)}].push_back({a, b});
@@ -136,7 +139,8 @@ void decide_opposite_copies(const Scene& scene, const std::vector<FacePlane>& pl
                     if (drop[gone]) continue;
                     drop[gone] = true;
                 }
-                report.cases.push_back({kind, scene.polygons[kept].line, scene.polygons[gone].line, area});
+                report.cases.push_back(
+                    {kind, scene.polygons[kept].line, scene.polygons[gone].line, area});
             }
         }
     }
@@ -165,7 +169,8 @@ CoincidentReport resolve_coincident_faces(Scene& scene) {
     std::map<std::array<long long, 4>, std::set<std::pair<std::size_t, std::size_t>>> opposite;
     for (auto& [key, faces] : by_plane) {
         if (faces.size() < 2) continue;
-        std::sort(faces.begin(), faces.end(), [&](auto a, auto b) { return planes[a].box[0] < planes[b].box[0]; });
+        std::sort(faces.begin(), faces.end(),
+                  [&](auto a, auto b) { return planes[a].box[0] < planes[b].box[0]; });
         for (std::size_t i = 0; i < faces.size(); ++i)
             for (std::size_t j = i + 1; j < faces.size(); ++j) {
                 const auto &a = planes[faces[i]], &b = planes[faces[j]];
@@ -174,15 +179,17 @@ CoincidentReport resolve_coincident_faces(Scene& scene) {
                 const bool same = dot(a.normal, b.normal) > 0;
                 const auto ca = std::array<double, 2>{dot(a.centroid, a.u), dot(a.centroid, a.v)};
                 const auto cb = std::array<double, 2>{dot(b.centroid, b.u), dot(b.centroid, b.v)};
-                if (!inside(b.outline, ca, tolerance, false) && !inside(a.outline, cb, tolerance, false))
+                if (!inside(b.outline, ca, tolerance, false) &&
+                    !inside(a.outline, cb, tolerance, false))
                     continue;
                 auto fa = faces[i], fb = faces[j];
                 if (same) { // the smaller one, when it lies wholly in the other, is a copy
                     if (planes[fa].area > planes[fb].area) std::swap(fa, fb);
                     const auto& small = planes[fa];
-                    if (!std::all_of(small.outline.begin(), small.outline.end(), [&](const auto& q) {
-                            return inside(planes[fb].outline, q, tolerance, true);
-                        }))
+                    if (!std::all_of(small.outline.begin(), small.outline.end(),
+                                     [&](const auto& q) {
+                                         return inside(planes[fb].outline, q, tolerance, true);
+                                     }))
                         continue;
                     if (drop[fa]) continue;
                     drop[fa] = true;

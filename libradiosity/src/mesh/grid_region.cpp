@@ -19,8 +19,9 @@ using XY = std::array<double, 2>;
 // The band's triangulation, refined for shape (CGAL's Delaunay mesher) without splitting its
 // constrained edges: those are shared with the grid's quads and with other regions.
 using BandFb = CGAL::Delaunay_mesh_face_base_2<K, CGAL::Constrained_triangulation_face_base_2<K>>;
-using BandCDT = CGAL::Constrained_Delaunay_triangulation_2<
-    K, CGAL::Triangulation_data_structure_2<Vb, BandFb>, CGAL::Exact_predicates_tag>;
+using BandCDT =
+    CGAL::Constrained_Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb, BandFb>,
+                                               CGAL::Exact_predicates_tag>;
 using BandCriteria = CGAL::Delaunay_mesh_size_criteria_2<BandCDT>;
 
 // The region's own axes: the minimum-area rectangle around its outline (one side of it lies
@@ -44,7 +45,8 @@ bool minimum_rectangle(const std::vector<Point2>& outline_points, GridFrame& fra
         double lo1 = 1e300, hi1 = -1e300, lo2 = 1e300, hi2 = -1e300;
         for (const auto& p : hull) {
             const double s = p.x() * e1[0] + p.y() * e1[1], t = p.x() * e2[0] + p.y() * e2[1];
-            lo1 = std::min(lo1, s), hi1 = std::max(hi1, s), lo2 = std::min(lo2, t), hi2 = std::max(hi2, t);
+            lo1 = std::min(lo1, s), hi1 = std::max(hi1, s), lo2 = std::min(lo2, t),
+            hi2 = std::max(hi2, t);
         }
         const double area = (hi1 - lo1) * (hi2 - lo2);
         if (area < best * (1 - 1e-12)) {
@@ -75,8 +77,10 @@ class RegionGrid {
                const std::vector<std::uint32_t>& outline_ids, double tolerance)
         : region_(region), frame_(frame), outline_xy_(outline_xy) {
         const double h = region.cell;
-        nu_ = h > 0 ? std::max<std::size_t>(1, std::size_t(std::ceil(frame.length1 / h - 1e-9))) : 1;
-        nv_ = h > 0 ? std::max<std::size_t>(1, std::size_t(std::ceil(frame.length2 / h - 1e-9))) : 1;
+        nu_ =
+            h > 0 ? std::max<std::size_t>(1, std::size_t(std::ceil(frame.length1 / h - 1e-9))) : 1;
+        nv_ =
+            h > 0 ? std::max<std::size_t>(1, std::size_t(std::ceil(frame.length2 / h - 1e-9))) : 1;
         du_ = frame.length1 / double(nu_);
         dv_ = frame.length2 / double(nv_);
         node_id_.assign((nu_ + 1) * (nv_ + 1), kNone);
@@ -84,7 +88,8 @@ class RegionGrid {
         blocked_.assign(nu_ * nv_, false);
         full_.assign(nu_ * nv_, false);
         const double snap = tolerance + 1e-6 * std::min(du_, dv_);
-        for (std::size_t k = 0; k < outline_ids.size(); ++k) place_outline_point(outline_xy[k], outline_ids[k], snap);
+        for (std::size_t k = 0; k < outline_ids.size(); ++k)
+            place_outline_point(outline_xy[k], outline_ids[k], snap);
     }
     std::size_t nu() const { return nu_; }
     std::size_t nv() const { return nv_; }
@@ -98,9 +103,12 @@ class RegionGrid {
     std::uint32_t& id(std::size_t i, std::size_t j) { return node_id_[node(i, j)]; }
     bool full(std::size_t i, std::size_t j) const { return full_[cell(i, j)]; }
     bool full_at(const XY& p) const {
-        const double s = (p[0] - frame_.origin[0]) * frame_.e1[0] + (p[1] - frame_.origin[1]) * frame_.e1[1];
-        const double t = (p[0] - frame_.origin[0]) * frame_.e2[0] + (p[1] - frame_.origin[1]) * frame_.e2[1];
-        const auto i = static_cast<long long>(std::floor(s / du_)), j = static_cast<long long>(std::floor(t / dv_));
+        const double s =
+            (p[0] - frame_.origin[0]) * frame_.e1[0] + (p[1] - frame_.origin[1]) * frame_.e1[1];
+        const double t =
+            (p[0] - frame_.origin[0]) * frame_.e2[0] + (p[1] - frame_.origin[1]) * frame_.e2[1];
+        const auto i = static_cast<long long>(std::floor(s / du_)),
+                   j = static_cast<long long>(std::floor(t / dv_));
         if (i < 0 || j < 0 || i >= (long long)nu_ || j >= (long long)nv_) return false;
         return full_[cell(std::size_t(i), std::size_t(j))];
     }
@@ -114,23 +122,29 @@ class RegionGrid {
             for (std::size_t i = 0; i <= nu_; ++i)
                 node_ok_[node(i, j)] = matched(i, j) || well_inside(node_xy(i, j), margin);
         for (std::size_t j = 0; j < nv_; ++j)
-            for (std::size_t i = 0; i < nu_; ++i) full_[cell(i, j)] = cell_is_whole(i, j, pieces, margin);
+            for (std::size_t i = 0; i < nu_; ++i)
+                full_[cell(i, j)] = cell_is_whole(i, j, pieces, margin);
     }
 
   private:
     void place_outline_point(const XY& p, std::uint32_t id, double snap) {
-        const double s = (p[0] - frame_.origin[0]) * frame_.e1[0] + (p[1] - frame_.origin[1]) * frame_.e1[1];
-        const double t = (p[0] - frame_.origin[0]) * frame_.e2[0] + (p[1] - frame_.origin[1]) * frame_.e2[1];
+        const double s =
+            (p[0] - frame_.origin[0]) * frame_.e1[0] + (p[1] - frame_.origin[1]) * frame_.e1[1];
+        const double t =
+            (p[0] - frame_.origin[0]) * frame_.e2[0] + (p[1] - frame_.origin[1]) * frame_.e2[1];
         const double fi = s / du_, fj = t / dv_;
         const double ri = std::round(fi), rj = std::round(fj);
         const bool on_i = std::abs(fi - ri) * du_ < snap, on_j = std::abs(fj - rj) * dv_ < snap;
         auto block = [&](long long i, long long j) {
-            if (i >= 0 && j >= 0 && i < (long long)nu_ && j < (long long)nv_) blocked_[cell(std::size_t(i), std::size_t(j))] = true;
+            if (i >= 0 && j >= 0 && i < (long long)nu_ && j < (long long)nv_)
+                blocked_[cell(std::size_t(i), std::size_t(j))] = true;
         };
         const auto ii = static_cast<long long>(ri), jj = static_cast<long long>(rj);
-        const auto fli = static_cast<long long>(std::floor(fi)), flj = static_cast<long long>(std::floor(fj));
+        const auto fli = static_cast<long long>(std::floor(fi)),
+                   flj = static_cast<long long>(std::floor(fj));
         if (on_i && on_j) {
-            if (ii >= 0 && jj >= 0 && ii <= (long long)nu_ && jj <= (long long)nv_ && !matched(std::size_t(ii), std::size_t(jj))) {
+            if (ii >= 0 && jj >= 0 && ii <= (long long)nu_ && jj <= (long long)nv_ &&
+                !matched(std::size_t(ii), std::size_t(jj))) {
                 node_id_[node(std::size_t(ii), std::size_t(jj))] = id;
                 matched_.insert(node(std::size_t(ii), std::size_t(jj)));
             }
@@ -151,7 +165,8 @@ class RegionGrid {
     bool cell_is_whole(std::size_t i, std::size_t j, const std::unordered_set<EdgeKey>& pieces,
                        double margin) const {
         if (blocked_[cell(i, j)]) return false;
-        const std::array<std::array<std::size_t, 2>, 4> c{{{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
+        const std::array<std::array<std::size_t, 2>, 4> c{
+            {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
         for (const auto& [a, b] : c)
             if (!node_ok(a, b)) return false;
         const XY mid = node_xy(i, j), far = node_xy(i + 1, j + 1);
@@ -202,8 +217,8 @@ void emit(const Region& region, const Points& points, radfmt::MeshData& mesh,
 // area outside the pieces: not part of the region.
 bool has_area(const Point2& a, const Point2& b, const Point2& c) {
     const double twice_area = std::abs(CGAL::area(a, b, c)) * 2;
-    const double longest = std::max({CGAL::squared_distance(a, b), CGAL::squared_distance(b, c),
-                                     CGAL::squared_distance(c, a)});
+    const double longest = std::max(
+        {CGAL::squared_distance(a, b), CGAL::squared_distance(b, c), CGAL::squared_distance(c, a)});
     return twice_area > 1e-9 * longest;
 }
 
@@ -242,7 +257,8 @@ void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<
     for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
         bool in = !cdt.is_infinite(f);
         if (in) {
-            const auto &a = f->vertex(0)->point(), &b = f->vertex(1)->point(), &d = f->vertex(2)->point();
+            const auto &a = f->vertex(0)->point(), &b = f->vertex(1)->point(),
+                       &d = f->vertex(2)->point();
             const auto c = CGAL::centroid(a, b, d);
             in = region.contains(c) && !grid.full_at({c.x(), c.y()}) && has_area(a, b, d);
         }
@@ -262,11 +278,14 @@ void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<
             !has_area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()))
             continue;
         // The same in space (a point of a run that leaves the region's plane by its tolerance).
-        const Vec3 &p0 = points.position[f->vertex(0)->info().id], &p1 = points.position[f->vertex(1)->info().id],
+        const Vec3 &p0 = points.position[f->vertex(0)->info().id],
+                   &p1 = points.position[f->vertex(1)->info().id],
                    &p2 = points.position[f->vertex(2)->info().id];
-        const double longest = std::max({dot(p1 - p0, p1 - p0), dot(p2 - p1, p2 - p1), dot(p0 - p2, p0 - p2)});
+        const double longest =
+            std::max({dot(p1 - p0, p1 - p0), dot(p2 - p1, p2 - p1), dot(p0 - p2, p0 - p2)});
         if (!(length(cross(p1 - p0, p2 - p0)) > 1e-9 * longest)) continue;
-        emit(region, points, mesh, {f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id});
+        emit(region, points, mesh,
+             {f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id});
         ++report.band_triangles;
     }
 }
@@ -312,7 +331,8 @@ double grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
         const auto& s = region.quad_sides;
         double longest = 0, area = 0;
         for (const auto& side : s)
-            longest = std::max(longest, length(points.position[side.back()] - points.position[side.front()]));
+            longest = std::max(
+                longest, length(points.position[side.back()] - points.position[side.front()]));
         const Vec3 a = points.position[s[0].front()], b = points.position[s[1].front()],
                    c = points.position[s[2].front()], d = points.position[s[3].front()];
         area = 0.5 * length(cross(c - a, d - b));
@@ -334,7 +354,8 @@ double grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
     std::unordered_set<EdgeKey> pieces;
     for (const auto& [a, b] : region.pieces) {
         pieces.insert(edge_key(a, b));
-        grid.piece_xy_.push_back({region.plane.to_2d(points.position[a]), region.plane.to_2d(points.position[b])});
+        grid.piece_xy_.push_back(
+            {region.plane.to_2d(points.position[a]), region.plane.to_2d(points.position[b])});
     }
     grid.classify_nodes(pieces);
     std::unordered_set<EdgeKey> band(pieces.begin(), pieces.end());
@@ -344,16 +365,19 @@ double grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
     for (std::size_t j = 0; j < grid.nv(); ++j)
         for (std::size_t i = 0; i < grid.nu(); ++i) {
             if (!grid.full(i, j)) continue;
-            const std::array<std::array<std::size_t, 2>, 4> c{{{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
+            const std::array<std::array<std::size_t, 2>, 4> c{
+                {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
             for (const auto& [a, b] : c)
                 if (grid.id(a, b) == kNone) {
                     const auto p = grid.node_xy(a, b);
                     grid.id(a, b) = points.add(region.plane.to_3d(p[0], p[1]));
                 }
-            emit(region, points, mesh, {grid.id(i, j), grid.id(i + 1, j), grid.id(i + 1, j + 1), grid.id(i, j + 1)});
+            emit(region, points, mesh,
+                 {grid.id(i, j), grid.id(i + 1, j), grid.id(i + 1, j + 1), grid.id(i, j + 1)});
             ++report.cells;
             for (int k = 0; k < 4; ++k)
-                toggle(edge_key(grid.id(c[k][0], c[k][1]), grid.id(c[(k + 1) % 4][0], c[(k + 1) % 4][1])));
+                toggle(edge_key(grid.id(c[k][0], c[k][1]),
+                                grid.id(c[(k + 1) % 4][0], c[(k + 1) % 4][1])));
         }
     const double width = std::min(frame.length1, frame.length2);
     if (band.empty()) return width;

@@ -22,7 +22,8 @@ class PointBuckets {
         for (const auto id : ids) buckets_[key(points.position[id])].push_back(id);
     }
     // Points strictly inside segment ab (within `tolerance` of it), ordered from a to b.
-    std::vector<std::uint32_t> on_segment(std::uint32_t a, std::uint32_t b, double tolerance) const {
+    std::vector<std::uint32_t> on_segment(std::uint32_t a, std::uint32_t b,
+                                          double tolerance) const {
         const Vec3 pa = points_.position[a], pb = points_.position[b];
         const Vec3 d = pb - pa;
         const double len2 = dot(d, d);
@@ -42,8 +43,8 @@ class PointBuckets {
                         const Vec3 pc = points_.position[c];
                         const double t = len2 > 0 ? dot(pc - pa, d) / len2 : 0;
                         if (t <= 0 || t >= 1) continue;
-                        if (length(pa + d * t - pc) < tolerance &&
-                            length(pc - pa) > tolerance && length(pc - pb) > tolerance)
+                        if (length(pa + d * t - pc) < tolerance && length(pc - pa) > tolerance &&
+                            length(pc - pb) > tolerance)
                             found.emplace_back(t, c);
                     }
                 }
@@ -57,7 +58,8 @@ class PointBuckets {
     using Key = std::array<long long, 3>;
     Key key(const Vec3& p) const {
         Key k;
-        for (int c = 0; c < 3; ++c) k[c] = static_cast<long long>(std::floor((p[c] - box_.lo[c]) / cell_));
+        for (int c = 0; c < 3; ++c)
+            k[c] = static_cast<long long>(std::floor((p[c] - box_.lo[c]) / cell_));
         return k;
     }
     const Points& points_;
@@ -133,7 +135,7 @@ std::vector<std::uint32_t> walk_run(EdgeKey e, const Runs& runs, const Points& p
 }
 
 struct Run {
-    std::vector<std::uint32_t> chain;  // the points from one kept end to the other
+    std::vector<std::uint32_t> chain;   // the points from one kept end to the other
     std::vector<std::uint32_t> regions; // on either side
     double cell = 0;                    // the smallest cell of those regions
     std::vector<std::uint32_t> points;  // after splitting, from chain.front() to chain.back()
@@ -169,8 +171,8 @@ std::vector<std::pair<std::size_t, bool>> quad_loop(const Region& region,
     std::array<std::array<double, 2>, 4> c;
     for (int k = 0; k < 4; ++k) {
         const auto& r = loop[k];
-        c[k] = region.plane.to_2d(points.position[r.second ? runs[r.first].chain.front()
-                                                           : runs[r.first].chain.back()]);
+        c[k] = region.plane.to_2d(
+            points.position[r.second ? runs[r.first].chain.front() : runs[r.first].chain.back()]);
     }
     double turns[4];
     for (int k = 0; k < 4; ++k) {
@@ -218,7 +220,8 @@ std::vector<Run> find_runs(const std::vector<std::vector<std::array<std::uint32_
             run.regions = incidence.regions_of.at(edge_key(a, b));
             for (const auto on : run.regions)
                 if (regions[on].cell > 0)
-                    run.cell = run.cell > 0 ? std::min(run.cell, regions[on].cell) : regions[on].cell;
+                    run.cell =
+                        run.cell > 0 ? std::min(run.cell, regions[on].cell) : regions[on].cell;
             runs.push_back(std::move(run));
         }
     runs_of_region.assign(split.size(), {});
@@ -251,8 +254,11 @@ std::size_t split_outline_runs(std::vector<Region>& regions, Points& points, dou
     std::vector<std::size_t> count(runs.size(), 1);
     for (std::size_t k = 0; k < runs.size(); ++k) {
         const auto& run = runs[k];
-        const double len = length(points.position[run.chain.back()] - points.position[run.chain.front()]);
-        const auto n = run.cell > 0 ? std::max<std::size_t>(1, std::size_t(std::ceil(len / run.cell - 1e-9))) : 1;
+        const double len =
+            length(points.position[run.chain.back()] - points.position[run.chain.front()]);
+        const auto n = run.cell > 0
+                           ? std::max<std::size_t>(1, std::size_t(std::ceil(len / run.cell - 1e-9)))
+                           : 1;
         auto& c = count[same_count.find(k)];
         c = std::max(c, n);
     }
@@ -261,7 +267,8 @@ std::size_t split_outline_runs(std::vector<Region>& regions, Points& points, dou
         const auto n = count[same_count.find(k)];
         const Vec3 p0 = points.position[run.chain.front()], p1 = points.position[run.chain.back()];
         run.points = {run.chain.front()};
-        for (std::size_t q = 1; q < n; ++q) run.points.push_back(points.add(p0 + (p1 - p0) * (double(q) / double(n))));
+        for (std::size_t q = 1; q < n; ++q)
+            run.points.push_back(points.add(p0 + (p1 - p0) * (double(q) / double(n))));
         run.points.push_back(run.chain.back());
     }
     for (std::size_t r = 0; r < regions.size(); ++r) {

@@ -23,8 +23,10 @@ class TriangleBuckets {
         for (std::uint32_t k = 0; k < triangles_.size(); ++k) {
             std::array<double, 2> a{1e300, 1e300}, b{-1e300, -1e300};
             for (const auto& p : triangles_[k])
-                for (int c = 0; c < 2; ++c) a[c] = std::min(a[c], p[c]), b[c] = std::max(b[c], p[c]);
-            const auto i0 = cell(a[0], 0), i1 = cell(b[0], 0), j0 = cell(a[1], 1), j1 = cell(b[1], 1);
+                for (int c = 0; c < 2; ++c)
+                    a[c] = std::min(a[c], p[c]), b[c] = std::max(b[c], p[c]);
+            const auto i0 = cell(a[0], 0), i1 = cell(b[0], 0), j0 = cell(a[1], 1),
+                       j1 = cell(b[1], 1);
             for (auto j = j0; j <= j1; ++j)
                 for (auto i = i0; i <= i1; ++i) buckets_[j * side_ + i].push_back(k);
         }
@@ -40,7 +42,8 @@ class TriangleBuckets {
     std::size_t cell(double x, int axis) const {
         const double span = std::max(1e-300, hi_[axis] - lo_[axis]);
         const auto i = static_cast<long long>((x - lo_[axis]) / span * double(side_));
-        return static_cast<std::size_t>(std::clamp<long long>(i, 0, static_cast<long long>(side_) - 1));
+        return static_cast<std::size_t>(
+            std::clamp<long long>(i, 0, static_cast<long long>(side_) - 1));
     }
     static bool inside(const Triangle2& t, double x, double y) {
         double s[3];
@@ -81,7 +84,8 @@ void trace_outline(Region& region, const radfmt::MeshData& faces,
             if (handle[k]->info().id == kNone) handle[k]->info().id = id;
         }
         for (int k = 0; k < n; ++k)
-            if (handle[k] != handle[(k + 1) % n]) cdt.insert_constraint(handle[k], handle[(k + 1) % n]);
+            if (handle[k] != handle[(k + 1) % n])
+                cdt.insert_constraint(handle[k], handle[(k + 1) % n]);
         triangles.push_back({xy[0], xy[1], xy[2]});
         if (n == 4) triangles.push_back({xy[0], xy[2], xy[3]});
     }
@@ -102,8 +106,8 @@ void trace_outline(Region& region, const radfmt::MeshData& faces,
         const bool in = !cdt.is_infinite(face) && face->info().inside;
         const bool out_in = !cdt.is_infinite(other) && other->info().inside;
         if (in == out_in) continue;
-        region.outline.push_back({face->vertex(cdt.cw(k))->info().id,
-                                  face->vertex(cdt.ccw(k))->info().id});
+        region.outline.push_back(
+            {face->vertex(cdt.cw(k))->info().id, face->vertex(cdt.ccw(k))->info().id});
     }
 }
 

@@ -96,6 +96,6 @@ std::size_t split_outline_runs(std::vector<Region>& regions, Points& points, dou
 // triangles, appended to `mesh` (whose vertices are `points`, patches facing the region's way).
 // Returns the region's width (the shorter side of its bounding rectangle).
 double grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
-                 SurfaceReport& report, double tolerance);
+                   SurfaceReport& report, double tolerance);
 
 } // namespace rad::surfaces

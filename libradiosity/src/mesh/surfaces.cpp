@@ -74,8 +74,8 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     }
     if (!(cells <= options.max_patches)) {
         char text[160];
-        std::snprintf(text, sizeof text, "about %.3g patches, more than --max-patches %.3g",
-                      cells, options.max_patches);
+        std::snprintf(text, sizeof text, "about %.3g patches, more than --max-patches %.3g", cells,
+                      options.max_patches);
         throw InputError(options.source + ": these limits (--max-edge, --max-area) would make " +
                          text + " (use larger limits, or raise --max-patches)");
     }
