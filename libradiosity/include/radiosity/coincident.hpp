@@ -19,6 +19,7 @@ struct CoincidentCase {
 };
 struct CoincidentReport {
     std::vector<CoincidentCase> cases;
+    std::vector<std::size_t> kept; // the index before the pass of each face kept, in order
 };
 
 // Finds faces whose planes agree (within 1e-6 of the scene's size) and whose outlines overlap

@@ -203,7 +203,10 @@ CoincidentReport resolve_coincident_faces(Scene& scene) {
     decide_opposite_copies(scene, planes, opposite, drop, report);
     std::vector<Polygon> kept;
     for (std::size_t f = 0; f < scene.polygons.size(); ++f)
-        if (!drop[f]) kept.push_back(std::move(scene.polygons[f]));
+        if (!drop[f]) {
+            kept.push_back(std::move(scene.polygons[f]));
+            report.kept.push_back(f);
+        }
     scene.polygons = std::move(kept);
     return report;
 }

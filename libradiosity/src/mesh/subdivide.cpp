@@ -2,7 +2,7 @@
 #include "radiosity/scene.hpp"
 #include "radiosity/two_sided.hpp"
 #include "radiosity/vec.hpp"
-#include "union_find.hpp"
+#include "../union_find.hpp"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>

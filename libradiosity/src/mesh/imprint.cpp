@@ -3,7 +3,7 @@
 // other geometry, and keep the edges conforming.
 #include "radiosity/rays.hpp"
 #include "radiosity/scene.hpp"
-#include "union_find.hpp"
+#include "../union_find.hpp"
 #include "weld.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>

@@ -4,7 +4,7 @@
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/vec.hpp"
-#include "union_find.hpp"
+#include "../union_find.hpp"
 #include "weld.hpp"
 
 #include <tbb/parallel_for.h>

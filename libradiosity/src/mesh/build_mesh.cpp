@@ -1,0 +1,33 @@
+// build_mesh: the passes of rad-mesh in order.
+#include "radiosity/build_mesh.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/materials.hpp"
+
+namespace rad {
+
+radfmt::MeshData build_mesh(const std::filesystem::path& input, const MeshOptions& options,
+                            MeshReport& report, Scene* scene_out) {
+    if (options.two_sided_emission && options.two_sided.empty())
+        throw InputError("--two-sided-emission needs --two-sided GROUP|MATERIAL|all");
+    auto scene = load_pass(input, options.scene, report);
+    duplicates_pass(scene, report);
+    const auto turned = orientation_pass(scene, options, report);
+    const auto kept = coincident_pass(scene, report);
+    if (options.imprint) {
+        std::vector<bool> kept_turned; // `turned` was for the faces before coincident ones went
+        for (const auto f : kept) kept_turned.push_back(turned[f]);
+        imprint_pass(scene, kept_turned, report);
+    }
+    auto mesh = patch_pass(scene, options, report);
+    two_sided_pass(mesh, options, report);
+    if (const auto problems = material_warnings(mesh, scene.material_sources); !problems.empty()) {
+        std::string text = "materials to check before solving:";
+        for (const auto& line : problems) text += "\n  " + line;
+        report.add(MeshReport::Kind::Warning, text);
+    }
+    if (options.morton_order) order_patches_by_locality(mesh);
+    if (scene_out) *scene_out = std::move(scene);
+    return mesh;
+}
+
+} // namespace rad

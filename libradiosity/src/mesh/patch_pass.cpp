@@ -1,0 +1,65 @@
+// The patch pass: the scene's faces cleaned (planar triangles and quads), then gridded as
+// planar regions (or, --surfaces faces, each face subdivided on its own).
+#include "radiosity/build_mesh.hpp"
+#include "radiosity/error.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace rad {
+
+namespace {
+
+SurfaceOptions surface_options(const SubdivisionOptions& limits, const std::string& source) {
+    SurfaceOptions options;
+    options.max_edge = limits.max_edge;
+    options.max_area = limits.max_area;
+    options.max_edge_by_group = limits.max_edge_by_group;
+    options.max_area_by_group = limits.max_area_by_group;
+    options.max_patches = limits.max_patches;
+    options.source = source;
+    return options;
+}
+
+void report_faces(const SubdivisionReport& faces, MeshReport& report) {
+    if (faces.nonplanar_split) {
+        char text[256];
+        std::snprintf(text, sizeof text,
+                      "triangulated: %zu non-planar face(s) split into triangles (worst at line "
+                      "%d: %.3g off its plane, %.2g%% of its size; --strict refuses them)",
+                      faces.nonplanar_split, faces.worst_nonplanar_line,
+                      faces.worst_nonplanar_offset, 100 * faces.worst_nonplanar_relative);
+        report.add(MeshReport::Kind::Change, text);
+    }
+    if (faces.degenerate_dropped)
+        report.add(MeshReport::Kind::Change,
+                   "dropped: " + std::to_string(faces.degenerate_dropped) +
+                       " degenerate (zero-area) face(s)");
+}
+
+} // namespace
+
+radfmt::MeshData patch_pass(const Scene& scene, const MeshOptions& options, MeshReport& report) {
+    const auto& limits = options.subdivision;
+    for (const auto* by_group : {&limits.max_edge_by_group, &limits.max_area_by_group})
+        for (const auto& [group, value] : *by_group)
+            if (std::find(scene.groups.begin(), scene.groups.end(), group) == scene.groups.end())
+                throw InputError("no group '" + group + "' in " + scene.path);
+    SubdivisionReport faces;
+    radfmt::MeshData mesh;
+    report.regions = options.regions;
+    if (options.regions) {
+        SubdivisionOptions whole = limits; // clean faces first, gridded as regions
+        whole.max_edge = whole.max_area = 0;
+        whole.max_edge_by_group.clear();
+        whole.max_area_by_group.clear();
+        mesh = mesh_surfaces(subdivide(scene, whole, &faces), surface_options(limits, scene.path),
+                             &report.surfaces);
+    } else {
+        mesh = subdivide(scene, limits, &faces);
+    }
+    report_faces(faces, report);
+    return mesh;
+}
+
+} // namespace rad
