@@ -169,6 +169,13 @@ TEST_CASE("smoothing: averages, area weights, creases and flat") {
     const auto material = rad::corner_colours(m, values, rad::Smoothing::Crease, 30);
     CHECK(material[0][1][0] == 1);
     CHECK(rad::corner_colours(m, values, rad::Smoothing::Average)[0][1][0] == 2);
+    // ... and at a group boundary with the same material (two walls of one paint).
+    m.patches[1].material = 0;
+    m.groups.push_back("h");
+    m.patches[1].group = 1;
+    const auto group = rad::corner_colours(m, values, rad::Smoothing::Crease, 30);
+    CHECK(group[0][1][0] == 1);
+    CHECK(group[1][0][0] == 3);
 }
 
 TEST_CASE("EXR, PNG and PLY outputs read back with the expected values") {

@@ -23,6 +23,13 @@ void parse_limits(const std::vector<std::string>& specs, const char* option, dou
     for (const auto& spec : specs) {
         const auto eq = spec.rfind('=');
         const std::string number = eq == std::string::npos ? spec : spec.substr(eq + 1);
+        if (number == "none") { // no limit (surfaces whole), for the scene or one group
+            if (eq == std::string::npos)
+                fallback = 0;
+            else
+                by_group[spec.substr(0, eq)] = 0;
+            continue;
+        }
         double value = 0;
         if (!rad::parse_number(number, value))
             throw rad::InputError(std::string(option) + ": '" + spec +
@@ -65,8 +72,9 @@ int main(int argc, char** argv) {
         ->required();
     app.add_option("-o,--output", output, "Output mesh file")->required();
     app.add_option("--max-edge", max_edge,
-                   "Longest patch edge; repeat as GROUP=L for a per-group limit (default: no "
-                   "subdivision)");
+                   "Longest patch edge, or none (surfaces as few patches as their shape "
+                   "allows); repeat as GROUP=L for a per-group limit (default: the scene's "
+                   "size, its bounding box's diagonal, over 20)");
     app.add_option("--max-area", max_area, "Largest patch area; repeat as GROUP=A per group");
     double max_patches = 2e7;
     app.add_option("--max-patches", max_patches,
@@ -143,6 +151,8 @@ int main(int argc, char** argv) {
     return rad::tool::run_tool("rad-mesh", [&] {
         rad::tool::check_outputs({input}, {{"-o", output}});
         rad::SubdivisionOptions options;
+        // No limit given at all: one from the scene's size, chosen by the patch pass.
+        if (max_edge.empty() && max_area.empty()) options.max_edge = rad::kMaxEdgeFromScene;
         parse_limits(max_edge, "--max-edge", options.max_edge, options.max_edge_by_group);
         parse_limits(max_area, "--max-area", options.max_area, options.max_area_by_group);
         options.planarity_tolerance = planarity;

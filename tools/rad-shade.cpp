@@ -18,7 +18,7 @@
 int main(int argc, char** argv) {
     CLI::App app{"Render per-patch radiosity from a camera (Radiance view options) to a linear\n"
                  "float OpenEXR image, with optional sRGB PNG preview and vertex-coloured PLY."};
-    std::string mesh_path, rad_path, output, view_text, view_file, smooth = "average", png, ply;
+    std::string mesh_path, rad_path, output, view_text, view_file, smooth = "crease", png, ply;
     int width = 512, height = 512, aa = 2, threads = 0;
     double exposure = 0, crease = 30;
     bool flat = false, albedo = false, quiet = false;
@@ -40,8 +40,10 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 8));
     app.add_flag("--flat", flat, "One colour per patch (same as --smooth flat)");
     app.add_option("--smooth", smooth,
-                   "average: vertex = mean of adjacent patches (the paper's); area: area-weighted; "
-                   "crease: area-weighted, not across material boundaries or sharp edges; flat")
+                   "crease: area-weighted, not across material or group boundaries or sharp "
+                   "edges (each surface keeps its own colour); average: vertex = mean of "
+                   "adjacent patches (the paper's, which mixes colours where surfaces meet); "
+                   "area: area-weighted; flat")
         ->capture_default_str()
         ->check(CLI::IsMember({"average", "area", "crease", "flat"}));
     app.add_option("--crease-angle", crease,

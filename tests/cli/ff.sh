@@ -40,7 +40,7 @@ for scale in 1e-9 1 1e9; do
   awk -v s=$scale '/^v / { printf "v %.17g %.17g %.17g\n", $2 * s, $3 * s, $4 * s; next } { print }' \
     "$SRC/scenes/cornell/cornell.obj" > "$TMP/s$scale/cornell.obj"
   cp "$SRC/scenes/cornell/cornell.mtl" "$TMP/s$scale/"
-  "$BIN/rad-mesh" "$TMP/s$scale/cornell.obj" -o "$TMP/s$scale.mesh" -q 2>/dev/null || fail "mesh at scale $scale"
+  "$BIN/rad-mesh" "$TMP/s$scale/cornell.obj" -o "$TMP/s$scale.mesh" --max-edge none -q 2>/dev/null || fail "mesh at scale $scale"
   sum[$scale]=$("$BIN/rad-ff" "$TMP/s$scale.mesh" -o "$TMP/s$scale.ff" --method hemisphere --rays 500 2>&1 | sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p')
 done
 [ "${sum[1e-9]}" = "${sum[1]}" ] && [ "${sum[1e9]}" = "${sum[1]}" ] || fail "row sums change with scale: ${sum[1e-9]} ${sum[1]} ${sum[1e9]}"
@@ -49,7 +49,7 @@ mkdir -p "$TMP/far"
 awk '/^v / { printf "v %.17g %.17g %.17g\n", $2 + 1e7, $3, $4 - 3e6; next } { print }' \
   "$SRC/scenes/cornell/cornell.obj" > "$TMP/far/cornell.obj"
 cp "$SRC/scenes/cornell/cornell.mtl" "$TMP/far/"
-"$BIN/rad-mesh" "$TMP/far/cornell.obj" -o "$TMP/far.mesh" -q 2>/dev/null || fail "mesh far away"
+"$BIN/rad-mesh" "$TMP/far/cornell.obj" -o "$TMP/far.mesh" --max-edge none -q 2>/dev/null || fail "mesh far away"
 far=$("$BIN/rad-ff" "$TMP/far.mesh" -o "$TMP/far.ff" --method hemisphere --rays 500 2>&1 | sed -n 's/.*row sums mean \([0-9.]*\).*/\1/p')
 # Moved by 2e7 times its size, the corners lose digits, and a few patches draw other random
 # numbers (their streams are keyed by their quantised corners): the same to noise, 1e-3.

@@ -31,7 +31,7 @@ grep -q "not found\|changed" <<<"$err" && fail "--mtl-path did not find the libr
 expect_error "--default-reflectance: 1,0.5,0.5 has a channel >= 1" out.mesh "$BIN/rad-mesh" nomtl.obj -o out.mesh --default-reflectance 1,0.5,0.5
 printf 'mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 1\nv 0 1 0\nusemtl grey\nf 1 2 3 4\n' > bent.obj
 expect_error "bent.obj:7: face is not planar" out.mesh "$BIN/rad-mesh" bent.obj -o out.mesh --strict
-err=$("$BIN/rad-mesh" bent.obj -o bent.mesh 2>&1) || fail "a bent face should be split: $err"
+err=$("$BIN/rad-mesh" bent.obj -o bent.mesh --max-edge none 2>&1) || fail "a bent face should be split: $err"
 grep -q "rad-mesh: 2 patches" <<<"$err" || fail "bent face patches: $err"
 grep -q "changed: triangulated: 1 non-planar face(s) split into triangles (worst at line 7: " <<<"$err" || fail "split summary: $err"
 printf 'mtllib s.mtl\n' > empty.obj
@@ -90,7 +90,9 @@ sums[outside]=$("$BIN/rad-ff" outside-fixed.mesh -o outside-fixed.ff --method he
 [ "${sums[outside]}" = "${sums[orig]}" ] || fail "voting did not restore the room: ${sums[outside]} vs ${sums[orig]}"
 
 # McGuire's CornellBox-Original repeats a side of each box as its "bottom": dropped, named.
-err=$("$BIN/rad-mesh" "$SRC/tests/data/cornell-original/CornellBox-Original.obj" -o mcguire.mesh --planarity-tolerance 0.01 2>&1) || fail "McGuire box: $err"
+# (Surfaces whole: subdivided, the ceiling's patches right above the lamp, which hangs 1 cm below
+# it, see only the lamp's back, and rad-ff says so.)
+err=$("$BIN/rad-mesh" "$SRC/tests/data/cornell-original/CornellBox-Original.obj" -o mcguire.mesh --planarity-tolerance 0.01 --max-edge none 2>&1) || fail "McGuire box: $err"
 grep -q "changed: deduplicated: dropped 2 duplicate face(s), line 107 (repeats 93), 155 (repeats 148)" <<<"$err" || fail "duplicates: $err"
 # ... and, with default options, the rest of what real files hold: its left wall is 3 mm off
 # its plane (split, with the worst deviation named), and no other complaint.

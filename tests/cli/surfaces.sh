@@ -88,4 +88,45 @@ python3 "$GEN" gltf "$SRC/scenes/cornell/cornell.obj" cornell.gltf || fail "gltf
 o=$(patches obj.err); g=$(patches gltf.err)
 echo "Cornell box: OBJ $o patches, glTF triangles $g"
 python3 -c "import sys; sys.exit(not $g <= 1.1 * $o)" || fail "glTF $g patches against the OBJ's $o"
+
+# 6. Smoothing by default stops where surfaces of other materials meet: at the corner line
+# x = 0, z = 0 of the room the red left wall and the blue-grey back wall share vertices; each
+# keeps its own colour there (the paper's --smooth average gives both the same mix).
+corner_colours() { # PLY: "same" when both walls have one colour at their shared corners
+  python3 - "$1" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+n = next(int(l.split()[2]) for l in lines if l.startswith("element vertex"))
+start = lines.index("end_header") + 1
+verts = [list(map(float, l.split())) for l in lines[start:start + n]]
+faces = [list(map(int, l.split()))[1:] for l in lines[start + n:] if l.strip()]
+at = {}
+for f in faces:
+    pts = [verts[i] for i in f]
+    wall = "left" if all(abs(p[0]) < 1e-9 for p in pts) else "back" if all(abs(p[2]) < 1e-9 for p in pts) else None
+    if not wall:
+        continue
+    for p in pts:
+        if abs(p[0]) < 1e-9 and abs(p[2]) < 1e-9 and 0.3 < p[1] < 2.2:
+            at.setdefault(round(p[1], 6), {})[wall] = (p[6], p[8])  # red, blue radiosity
+same = all(abs(v["left"][0] - v["back"][0]) < 1e-6 for v in at.values() if len(v) == 2)
+redder = all(v["left"][0] / v["left"][1] > 1.5 * v["back"][0] / v["back"][1] for v in at.values() if len(v) == 2)
+print("same" if same else "redder" if redder else "mixed", len(at))
+PY
+}
+view="-vp 2 1.25 2.9 -vd 0 0 -1 -vu 0 1 0 -vh 80 -vv 60"
+"$BIN/rad-shade" quad.mesh quad.rad -o default.exr --view "$view" -x 64 -y 48 --ply default.ply -q || fail "shade default"
+"$BIN/rad-shade" quad.mesh quad.rad -o average.exr --view "$view" -x 64 -y 48 --ply average.ply --smooth average -q || fail "shade average"
+read -r verdict count < <(corner_colours default.ply)
+[ "$verdict" = redder ] && [ "$count" -gt 3 ] || fail "default smoothing mixes the walls' colours at their corner: $verdict ($count points)"
+read -r verdict count < <(corner_colours average.ply)
+[ "$verdict" = same ] || fail "--smooth average should give both walls one colour at the corner: $verdict"
+
+# 7. With no limit given, rad-mesh grids at the scene's size / 20 and says so; none keeps
+# surfaces whole.
+err=$("$BIN/rad-mesh" quad.obj -o auto.mesh 2>&1) || fail "default limit: $err"
+grep -q "rad-mesh: --max-edge 0.2795 (the scene's size 5.59 / 20" <<<"$err" || fail "default limit not said: $err"
+[ "$(patches <(echo "$err"))" -gt 500 ] || fail "the default limit did not subdivide: $err"
+err=$("$BIN/rad-mesh" quad.obj -o whole.mesh --max-edge none 2>&1) || fail "--max-edge none: $err"
+[ "$(patches <(echo "$err"))" = 7 ] || fail "--max-edge none should keep the 7 surfaces whole: $err"
 finish

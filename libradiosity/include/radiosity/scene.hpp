@@ -87,8 +87,13 @@ struct DuplicateFaces {
 // from any starting corner); a face and its reverse are both kept (two sides of a sheet).
 DuplicateFaces remove_duplicate_faces(Scene& scene);
 
+// rad-mesh's default limit: the longest patch edge is the scene's size (its bounding box's
+// diagonal) over kSceneCells, about 20 patches across the scene's longest extent.
+inline constexpr double kMaxEdgeFromScene = -1;
+inline constexpr double kSceneCells = 20;
+
 struct SubdivisionOptions {
-    double max_edge = 0; // 0: no limit
+    double max_edge = 0; // 0: no limit; kMaxEdgeFromScene: the scene's size / kSceneCells
     double max_area = 0; // 0: no limit
     std::map<std::string, double> max_edge_by_group;
     std::map<std::string, double> max_area_by_group;

@@ -37,10 +37,26 @@ void report_faces(const SubdivisionReport& faces, MeshReport& report) {
                        " degenerate (zero-area) face(s)");
 }
 
+// The default limit from the scene's size: the diagonal of the used vertices' bounding box.
+SubdivisionOptions resolve_limits(const Scene& scene, SubdivisionOptions limits, MeshReport& report) {
+    if (limits.max_edge != kMaxEdgeFromScene) return limits;
+    Box box;
+    for (const auto& polygon : scene.polygons)
+        for (const auto v : polygon.vertices) box.add(scene.vertices[v]);
+    limits.max_edge = box.diagonal() / kSceneCells;
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "--max-edge %.4g (the scene's size %.4g / %g: about %g patches across it; "
+                  "--max-edge L sets it, --max-edge none keeps surfaces whole)",
+                  limits.max_edge, box.diagonal(), kSceneCells, kSceneCells);
+    report.add(MeshReport::Kind::Note, text);
+    return limits;
+}
+
 } // namespace
 
 radfmt::MeshData patch_pass(const Scene& scene, const MeshOptions& options, MeshReport& report) {
-    const auto& limits = options.subdivision;
+    const auto limits = resolve_limits(scene, options.subdivision, report);
     for (const auto* by_group : {&limits.max_edge_by_group, &limits.max_area_by_group})
         for (const auto& [group, value] : *by_group)
             if (std::find(scene.groups.begin(), scene.groups.end(), group) == scene.groups.end())

@@ -47,7 +47,8 @@ std::vector<std::array<Rgb, 4>> corner_colours(const radfmt::MeshData& mesh,
                 // sheet (a two-sided surface): its light is on the other side, never mixed.
                 if (dot(pq.normal, p.normal) < -0.999) continue;
                 if (mode == Smoothing::Crease &&
-                    (pq.material != p.material || dot(pq.normal, p.normal) < cos_crease))
+                    (pq.material != p.material || pq.group != p.group ||
+                     dot(pq.normal, p.normal) < cos_crease))
                     continue;
                 const double w = mode == Smoothing::Average ? 1.0 : pq.area;
                 for (int c = 0; c < 3; ++c) sum[c] += w * patch[q][c];
