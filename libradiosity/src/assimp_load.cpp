@@ -197,6 +197,9 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
         if (name.empty()) name = "default";
         // A mirroring transform (negative determinant) turns faces inside out: undo it.
         const bool mirrored = transform.Determinant() < 0;
+        // Normals go through the inverse transpose of the transform's linear part.
+        aiMatrix3x3 normal_transform(transform);
+        normal_transform.Inverse().Transpose();
         for (unsigned k = 0; k < node.mNumMeshes; ++k) {
             const aiMesh& mesh = *ai->mMeshes[node.mMeshes[k]];
             if (!(mesh.mPrimitiveTypes & (aiPrimitiveType_TRIANGLE | aiPrimitiveType_POLYGON)))
@@ -221,6 +224,11 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
                     mesh.mMaterialIndex, static_cast<std::uint32_t>(scene.materials.size() - 1));
                 for (unsigned i = 0; i < face.mNumIndices; ++i)
                     polygon.vertices.push_back(base + face.mIndices[i]);
+                if (mesh.HasNormals()) // what the file says the front is (as OBJ's vn)
+                    for (unsigned i = 0; i < face.mNumIndices; ++i) {
+                        const aiVector3D n = normal_transform * mesh.mNormals[face.mIndices[i]];
+                        polygon.vn_sum = polygon.vn_sum + Vec3{n.x, n.y, n.z};
+                    }
                 if (mirrored) std::reverse(polygon.vertices.begin(), polygon.vertices.end());
                 scene.polygons.push_back(std::move(polygon));
             }

@@ -122,7 +122,20 @@ read -r verdict count < <(corner_colours default.ply)
 read -r verdict count < <(corner_colours average.ply)
 [ "$verdict" = same ] || fail "--smooth average should give both walls one colour at the corner: $verdict"
 
-# 7. With no limit given, rad-mesh grids at the scene's size / 20 and says so; none keeps
+# 7. --orient fix does no harm: the glTF living room's faces agree with the file's normals, and
+# the vote that would turn its shell and its table inside out is not applied.
+lr="$SRC/tests/data/living-room/living_room.glb"
+"$BIN/rad-mesh" "$lr" -o lr.mesh -q 2>/dev/null || fail "living room"
+err=$("$BIN/rad-mesh" "$lr" -o lr-fix.mesh --orient fix 2>&1) || fail "living room --orient fix: $err"
+grep -q "left 958 face(s) of group Cylinder as they are: their winding agrees with the file's own normals" <<<"$err" ||
+  fail "the table's vote was not refused: $err"
+up() { "$BIN/rad-info" --csv "$1" | awk -F, '$3 == "top" && $6 > 1.87 && $9 > 0.99 {a += $4} END {printf "%.4f", a}'; }
+[ "$(up lr.mesh)" = "$(up lr-fix.mesh)" ] && [ "$(up lr.mesh)" != 0.0000 ] || fail "the table top turned: $(up lr.mesh) facing up before, $(up lr-fix.mesh) after"
+# A room drawn facing out is still turned, one wall at a time, each making it better.
+err=$("$BIN/rad-mesh" outward.obj -o outward-fix.mesh --orient fix 2>&1) || fail "outward --orient fix"
+[ "$(grep -c "flipped 1 face(s) of group .*rays meet" <<<"$err")" = 6 ] || fail "outward room not turned wall by wall: $err"
+
+# 8. With no limit given, rad-mesh grids at the scene's size / 20 and says so; none keeps
 # surfaces whole.
 err=$("$BIN/rad-mesh" quad.obj -o auto.mesh 2>&1) || fail "default limit: $err"
 grep -q "rad-mesh: --max-edge 0.2795 (the scene's size 5.59 / 20" <<<"$err" || fail "default limit not said: $err"

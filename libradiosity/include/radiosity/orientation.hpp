@@ -46,4 +46,9 @@ std::size_t flip_groups(Scene& scene, const std::vector<std::string>& groups);
 std::vector<std::pair<std::string, std::size_t>>
 fix_orientation(Scene& scene, const std::vector<OrientationFinding>& findings);
 
+// Of the rays cast from the fronts of the scene's faces (16 cosine-weighted ones a triangle,
+// area-weighted) that meet a surface, the share that meet a back: what a fix of orientation
+// must lower. Deterministic (a stream per triangle).
+double seen_backs(const Scene& scene);
+
 } // namespace rad

@@ -1,9 +1,9 @@
 // Contact imprinting: cut where other objects touch or cross a face into it (CGAL's
 // constrained Delaunay triangulation in the face's plane), drop the regions hidden inside
 // other geometry, and keep the edges conforming.
+#include "../union_find.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/scene.hpp"
-#include "../union_find.hpp"
 #include "weld.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>

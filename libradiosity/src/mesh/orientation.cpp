@@ -1,10 +1,10 @@
 #include "radiosity/orientation.hpp"
 
+#include "../union_find.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/vec.hpp"
-#include "../union_find.hpp"
 #include "weld.hpp"
 
 #include <tbb/parallel_for.h>

@@ -2,6 +2,8 @@
 #include "radiosity/build_mesh.hpp"
 #include "radiosity/orientation.hpp"
 
+#include <cstdio>
+
 namespace rad {
 
 namespace {
@@ -11,6 +13,58 @@ void report_flips(const std::vector<std::pair<std::string, std::size_t>>& flippe
     for (const auto& [group, count] : flipped)
         report.add(MeshReport::Kind::Fix, "--orient fix flipped " + std::to_string(count) +
                                               " face(s) of group " + group + why);
+}
+
+// The vote does not turn faces whose winding agrees with the file's own normals (OBJ vn, glTF
+// NORMAL): the file says which way they face.
+void keep_faces_agreeing_with_normals(const Scene& scene, std::vector<OrientationFinding>& findings,
+                                      MeshReport& report) {
+    for (auto& finding : findings) {
+        std::vector<std::size_t> flip;
+        for (const auto f : finding.to_flip) {
+            const auto& p = scene.polygons[f];
+            std::vector<radfmt::Vec3> pts;
+            for (const auto v : p.vertices) pts.push_back(scene.vertices[v]);
+            if (length(p.vn_sum) == 0 || dot(newell_normal(pts), p.vn_sum) <= 0) flip.push_back(f);
+        }
+        if (flip.size() == finding.to_flip.size()) continue;
+        report.add(MeshReport::Kind::Warning,
+                   "--orient fix left " + std::to_string(finding.to_flip.size() - flip.size()) +
+                       " face(s) of group " + scene.groups[finding.group] +
+                       " as they are: their winding agrees with the file's own normals");
+        finding.to_flip = std::move(flip);
+    }
+}
+
+// Each finding's fix is kept only if it leaves the scene's surfaces seeing fewer backs than
+// before (a vote can be wrong: a room modelled as a solid, a table turned inside out).
+void fix_doing_no_harm(Scene& scene, const std::vector<OrientationFinding>& findings,
+                       const char* why, MeshReport& report) {
+    double before = seen_backs(scene);
+    for (const auto& finding : findings) {
+        if (finding.to_flip.empty()) continue;
+        Scene trial = scene;
+        const auto flipped = fix_orientation(trial, {finding});
+        const double after = seen_backs(trial);
+        if (after < before) {
+            scene = std::move(trial);
+            char text[160];
+            std::snprintf(text, sizeof text,
+                          "%s; the surfaces' rays meet %.1f%% backs, were %.1f%%", why, 100 * after,
+                          100 * before);
+            before = after;
+            report_flips(flipped, text, report);
+            continue;
+        }
+        char text[300];
+        std::snprintf(text, sizeof text,
+                      "--orient fix left %zu face(s) of group %s as they are: flipped, the "
+                      "scene's surfaces would see more backs (%.1f%% of what their rays meet, "
+                      "against %.1f%%)",
+                      finding.to_flip.size(), scene.groups[finding.group].c_str(), 100 * after,
+                      100 * before);
+        report.add(MeshReport::Kind::Warning, text);
+    }
 }
 
 } // namespace
@@ -29,11 +83,12 @@ std::vector<bool> orientation_pass(Scene& scene, const MeshOptions& options, Mes
                             : "; --orient fix would flip them, or --flip the group"));
     std::vector<bool> turned(scene.polygons.size(), false);
     if (options.orient_fix) {
-        report_flips(fix_orientation(scene, findings), "", report);
+        fix_doing_no_harm(scene, findings, "", report);
         // With closed objects facing outward, rays tell which way open surfaces face.
-        const auto facing = check_facing_by_visibility(scene);
+        auto facing = check_facing_by_visibility(scene);
         for (const auto& finding : facing) report.add(Kind::Warning, describe(finding, scene));
-        report_flips(fix_orientation(scene, facing), " (visibility)", report);
+        keep_faces_agreeing_with_normals(scene, facing, report);
+        fix_doing_no_harm(scene, facing, " (visibility)", report);
         return turned;
     }
     // Only the findings that are safe to act on: a closed room facing out, and faces wound

@@ -38,7 +38,8 @@ void report_faces(const SubdivisionReport& faces, MeshReport& report) {
 }
 
 // The default limit from the scene's size: the diagonal of the used vertices' bounding box.
-SubdivisionOptions resolve_limits(const Scene& scene, SubdivisionOptions limits, MeshReport& report) {
+SubdivisionOptions resolve_limits(const Scene& scene, SubdivisionOptions limits,
+                                  MeshReport& report) {
     if (limits.max_edge != kMaxEdgeFromScene) return limits;
     Box box;
     for (const auto& polygon : scene.polygons)

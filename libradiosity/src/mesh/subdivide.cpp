@@ -1,8 +1,8 @@
+#include "../union_find.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/two_sided.hpp"
 #include "radiosity/vec.hpp"
-#include "../union_find.hpp"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>

@@ -1,9 +1,9 @@
 // mesh_surfaces: the passes of planar regions in order, and the shape statistics.
 #include "radiosity/surfaces.hpp"
 
-#include "weld.hpp"
 #include "radiosity/error.hpp"
 #include "regions.hpp"
+#include "weld.hpp"
 
 #include <algorithm>
 #include <cmath>
