@@ -35,6 +35,14 @@ std::vector<std::string> material_warnings(const radfmt::MeshData& mesh,
             (source.illum >= 3 && source.illum <= 9) ||
             brightest(source.specular) > brightest(mat.reflectance) ||
             brightest(source.transmittance) > 0.5 * (1 - brightest(mat.reflectance));
+        // A dark Kd with its texture missing is that, whatever Ks says: the colour is lost.
+        if (!emits && source.texture_missing && brightest(mat.reflectance) < 0.1) {
+            lines.push_back("material '" + mat.name + "' has Kd " + rgb_text(mat.reflectance) +
+                            " and its map_Kd texture is missing: radiosity sees it nearly black "
+                            "(put the texture where the MTL says, or rad-solve --reflectance " +
+                            mat.name + "=r,g,b)");
+            continue;
+        }
         if (!emits && specular && brightest(mat.reflectance) < 0.1) {
             std::string line = "material '";
             line += mat.name;

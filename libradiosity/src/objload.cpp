@@ -368,6 +368,7 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
             if (!fs::is_regular_file(texture)) {
                 report.texture_problems.push_back(material.name + ": texture " + texture.string() +
                                                   " not found");
+                source.texture_missing = true;
             } else if (const auto mean = mean_texture_colour(texture, problem)) {
                 const bool kd_black = !states_kd.count(m.name) ||
                                       (m.diffuse[0] == 0 && m.diffuse[1] == 0 && m.diffuse[2] == 0);
@@ -382,6 +383,7 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
             } else {
                 report.texture_problems.push_back(material.name + ": texture " + texture.string() +
                                                   " unreadable (" + problem + ")");
+                source.texture_missing = true;
             }
         }
         scene.materials.push_back(material);

@@ -135,7 +135,20 @@ up() { "$BIN/rad-info" --csv "$1" | awk -F, '$3 == "top" && $6 > 1.87 && $9 > 0.
 err=$("$BIN/rad-mesh" outward.obj -o outward-fix.mesh --orient fix 2>&1) || fail "outward --orient fix"
 [ "$(grep -c "flipped 1 face(s) of group .*rays meet" <<<"$err")" = 6 ] || fail "outward room not turned wall by wall: $err"
 
-# 8. With no limit given, rad-mesh grids at the scene's size / 20 and says so; none keeps
+# 8. A Kd 0 material whose map_Kd is missing is reported as such, not as a mirror (its Ks).
+printf 'newmtl dark\nKd 0 0 0\nKs 0.5 0.5 0.5\nmap_Kd nowhere.png\nnewmtl lamp\nKd 0.5 0.5 0.5\nKe 5 5 5\n' > k.mtl
+printf 'mtllib k.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nusemtl dark\nf 1 2 3 4\nusemtl lamp\nf 5 7 6\n' > k.obj
+err=$("$BIN/rad-mesh" k.obj -o k.mesh 2>&1) || fail "dark textured material: $err"
+grep -q "material 'dark' has Kd 0,0,0 and its map_Kd texture is missing" <<<"$err" || fail "missing texture diagnosis: $err"
+grep -q "mirror or glass" <<<"$err" && fail "a missing texture taken for a mirror: $err"
+# Imprinting makes no faces of no area (a guard: on the pandora map, 116 degenerate input faces
+# became 2,345 dropped after imprinting before the fix, 204 after; the map is too large here).
+"$BIN/rad-mesh" "$SRC/tests/data/cornell-water/CornellBox-Water.obj" -o water.mesh --max-edge none 2> water.err || fail "water"
+"$BIN/rad-mesh" "$SRC/tests/data/cornell-water/CornellBox-Water.obj" -o water0.mesh --max-edge none --no-imprint 2> water0.err || fail "water without imprinting"
+d1=$(sed -n 's/.*dropped: \([0-9]*\) degenerate.*/\1/p' water.err); d0=$(sed -n 's/.*dropped: \([0-9]*\) degenerate.*/\1/p' water0.err)
+[ "${d1:-0}" -le "${d0:-0}" ] || fail "imprinting made degenerate faces: ${d1:-0} dropped, ${d0:-0} without imprinting"
+
+# 9. With no limit given, rad-mesh grids at the scene's size / 20 and says so; none keeps
 # surfaces whole.
 err=$("$BIN/rad-mesh" quad.obj -o auto.mesh 2>&1) || fail "default limit: $err"
 grep -q "rad-mesh: --max-edge 0.2795 (the scene's size 5.59 / 20" <<<"$err" || fail "default limit not said: $err"

@@ -14,6 +14,7 @@ struct MaterialSource {
     radfmt::Rgb specular{};      // Ks
     radfmt::Rgb transmittance{}; // Tf
     int illum = -1;              // the MTL illumination model, -1 when not given
+    bool texture_missing = false; // map_Kd named but not found or unreadable
 };
 
 // Everything doubtful about the materials a mesh uses, one line each, all at once:

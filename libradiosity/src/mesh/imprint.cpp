@@ -486,6 +486,16 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance, const std::vector
         }
         bool removed = false;
         auto piece = [&](std::vector<std::uint32_t> vertices) {
+            // Points of the outline that are collinear up to rounding make triangles of no
+            // area: they are not part of the face, and would count as degenerate input.
+            std::vector<Vec3> corners;
+            for (const auto v : vertices) corners.push_back(scene.vertices[v]);
+            double longest = 0;
+            for (std::size_t k = 0; k < corners.size(); ++k) {
+                const Vec3 d = corners[(k + 1) % corners.size()] - corners[k];
+                longest = std::max(longest, dot(d, d));
+            }
+            if (!(length(newell_normal(corners)) > 1e-9 * longest)) return;
             Polygon t;
             t.group = poly.group;
             t.material = poly.material;
