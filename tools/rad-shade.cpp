@@ -55,7 +55,9 @@ int main(int argc, char** argv) {
     app.add_option("--png", png, "Also write an sRGB tone-mapped PNG preview");
     app.add_option("--ply", ply, "Also write the smoothed mesh with vertex colours as PLY");
     app.add_option("--exposure", exposure,
-                   "Linear multiplier for PNG/PLY (default, or 0: automatic)")
+                   "Linear multiplier for PNG/PLY (default, or 0: from the solution, the same "
+                   "for every view: 0.85 over the luminance that 99% of the area of the "
+                   "surfaces that do not emit stays below; --albedo: from the image)")
         ->check(rad::tool::finite_range(0, 1e30));
     rad::tool::add_threads_option(app, threads);
     std::vector<std::string> mix;
@@ -171,8 +173,15 @@ int main(int argc, char** argv) {
                 "the view sees no geometry of " + mesh_path +
                 " (camera outside looking away, or inside an object facing nothing)");
 
-        // Exposure from what is lit; then the overlay in full magenta at that exposure.
-        const double scale = exposure > 0 ? exposure : rad::auto_exposure(image);
+        // Exposure from the solution (every view of it alike; lamps in view do not set it), or
+        // for albedo from the image; then the overlay in full magenta at that exposure.
+        double scale = exposure;
+        if (!(scale > 0) && !albedo) {
+            auto solved = mesh;
+            rad::apply_recorded_overrides(solved, rad_header);
+            scale = rad::solution_exposure(solved, values);
+        }
+        if (!(scale > 0)) scale = rad::auto_exposure(image);
         if (backfaces == "mark") rad::mark_back_faces(image, {1 / scale, 0, 1 / scale});
         const double back_share = double(image.back_face_pixels) / (double(width) * height);
         if (back_share > 0.01)

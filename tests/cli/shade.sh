@@ -85,4 +85,16 @@ expect_error "--exposure: '-1'" "$TMP/n.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TM
 "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/g2.exr" --png "$TMP/g2.png" --view-file "$VF" -x 48 -y 48 --gather 8 --exposure 1 --threads 2 -q || fail "--gather 2 threads"
 cmp -s "$TMP/g1.png" "$TMP/g2.png" || fail "--gather differs between 1 and 2 threads"
 expect_error "--gather shades a solution as solved" "$TMP/ga.exr" "$BIN/rad-shade" "$TMP/c.mesh" -o "$TMP/ga.exr" --view-file "$VF" --albedo --gather 8
+# Exposure from the solution (#25): two views of one solve get one exposure, and the lamp in
+# view of McGuire's box does not blow the picture out (under 1% of the pixels saturated).
+"$BIN/rad-mesh" "$SRC/tests/data/cornell-original/CornellBox-Original.obj" -o "$TMP/mc.mesh" -q 2>/dev/null || fail "mesh McGuire"
+"$BIN/rad-ff" "$TMP/mc.mesh" -o "$TMP/mc.ff" --method hemisphere --rays 500 -q 2>/dev/null || fail "ff McGuire"
+"$BIN/rad-solve" "$TMP/mc.mesh" "$TMP/mc.ff" -o "$TMP/mc.rad" -q || fail "solve McGuire"
+e1=$("$BIN/rad-shade" "$TMP/mc.mesh" "$TMP/mc.rad" -o "$TMP/v1.exr" --png "$TMP/v1.png" -x 128 -y 128 \
+  --view "-vp 0 1 3.9 -vd 0 0 -1 -vu 0 1 0 -vh 37 -vv 37" 2>&1 | sed -n 's/.*exposure \([0-9.e+-]*\)$/\1/p')
+e2=$("$BIN/rad-shade" "$TMP/mc.mesh" "$TMP/mc.rad" -o "$TMP/v2.exr" -x 128 -y 128 \
+  --view "-vp 0.5 1.2 2 -vd -0.3 0.1 -1 -vu 0 1 0 -vh 50 -vv 50" 2>&1 | sed -n 's/.*exposure \([0-9.e+-]*\)$/\1/p')
+[ -n "$e1" ] && [ "$e1" = "$e2" ] || fail "two views of one solution got exposures '$e1' and '$e2'"
+share=$(python3 "$SRC/tests/cli/png_stats.py" "$TMP/v1.png")
+python3 -c "import sys; sys.exit(not $share < 0.01)" || fail "lamp in view: $share of the pixels saturated"
 finish

@@ -103,6 +103,26 @@ double auto_exposure(const Image& image) {
     return *at > 0 ? 0.8 / *at : 1;
 }
 
+double solution_exposure(const radfmt::MeshData& solved, const std::vector<Rgb>& radiosity) {
+    std::vector<std::pair<double, double>> lit; // luminance, area of surfaces that do not emit
+    double total = 0;
+    for (std::size_t i = 0; i < solved.patches.size() && i < radiosity.size(); ++i) {
+        const auto& p = solved.patches[i];
+        if (solved.materials[p.material].emits()) continue;
+        const auto& b = radiosity[i];
+        const double y = 0.2126 * b[0] + 0.7152 * b[1] + 0.0722 * b[2];
+        if (!(y > 0) || !(p.area > 0)) continue;
+        lit.emplace_back(y, p.area);
+        total += p.area;
+    }
+    if (lit.empty()) return 0;
+    std::sort(lit.begin(), lit.end());
+    double below = 0;
+    for (const auto& [y, area] : lit)
+        if ((below += area) >= 0.99 * total) return 0.85 / y;
+    return 0.85 / lit.back().first;
+}
+
 std::uint8_t to_srgb8(double linear) {
     linear = std::clamp(linear, 0.0, 1.0);
     const double s =
