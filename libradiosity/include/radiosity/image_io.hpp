@@ -24,7 +24,7 @@ Image read_exr_layer(const std::string& path, const std::string& layer,
 Image read_exr(const std::string& path, std::map<std::string, std::string>* attributes = nullptr);
 // Multiplier that maps the 95th-percentile luminance of covered pixels to 0.8.
 double auto_exposure(const Image& image);
-// Exposure from a solution, the same for every view of it: 0.8 over the luminance that 95% of
+// Exposure from a solution, the same for every view of it: 0.85 over the luminance that 99% of
 // the area of the surfaces that do not emit stays below (emitters in view are not what the
 // picture is exposed for). 0 when nothing that does not emit is lit.
 double solution_exposure(const radfmt::MeshData& solved, const std::vector<Rgb>& radiosity);
