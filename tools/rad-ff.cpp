@@ -37,9 +37,15 @@ int main(int argc, char** argv) {
                  "Join part files (rad-ff --rows) of one mesh and options into the form-factor "
                  "file one run would have written, byte for byte; every row exactly once");
     app.add_option("-o,--output", output, "Output form-factor file")->required();
-    app.add_option("--method", options.method, method_help)
+    auto method_names = rad::form_factor_method_names();
+    method_names.push_back("auto");
+    options.method = "auto";
+    app.add_option("--method", options.method,
+                   "auto (the default): analytic up to " +
+                       std::to_string(rad::kAutoAnalyticPatches) +
+                       " patches, hemisphere above (analytic's pairs grow as n^2); " + method_help)
         ->capture_default_str()
-        ->check(CLI::IsMember(rad::form_factor_method_names()));
+        ->check(CLI::IsMember(method_names));
     app.add_option("--samples", options.samples,
                    "Sample points per patch, rounded to a square (default: 16 for analytic, 64 "
                    "for pairwise; pairwise uses a quarter of the resolution for distant pairs)")
@@ -74,12 +80,23 @@ int main(int argc, char** argv) {
         if (inputs.size() != 1)
             throw rad::InputError("give one mesh (several inputs are for --merge)");
         const auto& input = inputs.front();
-        options = rad::resolve_form_factor_options(options);
         const std::uint64_t limit = rad::tool::memory_limit(max_memory);
         rad::ThreadLimit thread_limit(threads);
         radfmt::Header mesh_header;
         const auto mesh = radfmt::read_mesh(input, &mesh_header);
         if (mesh.patches.empty()) throw rad::InputError(input + ": mesh has no patches");
+        if (options.method == "auto") {
+            options.method = rad::automatic_form_factor_method(mesh.patches.size());
+            const std::string why =
+                options.method == "analytic"
+                    ? "exact; above " + std::to_string(rad::kAutoAnalyticPatches) +
+                          " patches hemisphere, whose rays grow as n, not analytic's pairs as n^2"
+                    : "rays, O(n); analytic's pairs grow as n^2: --method analytic insists";
+            if (!options.quiet)
+                std::fprintf(stderr, "rad-ff: --method auto: %s for %zu patches (%s)\n",
+                             options.method.c_str(), mesh.patches.size(), why.c_str());
+        }
+        options = rad::resolve_form_factor_options(options);
         rad::check_ray_precision(mesh.vertices, input);
         const auto need = rad::estimate_form_factor_memory(mesh, options);
         if (need > limit)

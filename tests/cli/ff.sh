@@ -82,5 +82,14 @@ body_hash() { head -c 4096 "$1" | grep -a '^body_hash='; }
 [ -n "$(body_hash "$TMP/fine.ff")" ] && [ "$(body_hash "$TMP/fine.ff")" = "$(body_hash "$TMP/fine-memory.ff")" ] ||
   fail "spilled rows give another body"
 [ "$(ls -A "$TMP" | grep -c spool)" -eq 0 ] || fail "spill files left behind"
+# --method auto (the default): analytic for a small mesh, hemisphere above 2500 patches, said.
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/auto-small.mesh" --max-edge 0.1 -q 2>/dev/null
+err=$("$BIN/rad-ff" "$TMP/auto-small.mesh" -o "$TMP/auto-small.ff" 2>&1) || fail "auto small: $err"
+grep -q "rad-ff: --method auto: analytic for [0-9]* patches" <<<"$err" || fail "auto small: $err"
+"$BIN/rad-info" "$TMP/auto-small.ff" | grep -q "method.*analytic" || fail "auto small header: $("$BIN/rad-info" "$TMP/auto-small.ff")"
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/auto-big.mesh" --max-edge 0.025 -q 2>/dev/null
+err=$("$BIN/rad-ff" "$TMP/auto-big.mesh" -o "$TMP/auto-big.ff" --rays 200 2>&1) || fail "auto big: $err"
+grep -q "rad-ff: --method auto: hemisphere for [0-9]* patches" <<<"$err" || fail "auto big: $err"
+"$BIN/rad-info" "$TMP/auto-big.ff" | grep -q "method.*hemisphere" || fail "auto big header: $("$BIN/rad-info" "$TMP/auto-big.ff")"
 finish
 

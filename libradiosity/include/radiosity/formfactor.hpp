@@ -14,6 +14,12 @@
 
 namespace rad {
 
+// rad-ff's default method, "auto": analytic (exact contour integrals, O(n^2) pairs) up to this
+// many patches, where it takes a few tens of seconds on 2 cores; hemisphere (rays, O(n)) above.
+inline constexpr std::size_t kAutoAnalyticPatches = 2500;
+// The method "auto" stands for with this many patches.
+std::string automatic_form_factor_method(std::size_t patches);
+
 struct FormFactorOptions {
     std::string method = "analytic"; // a name from form_factor_methods()
     int samples = 0;                 // points per patch, rounded to a square (0: the method's)

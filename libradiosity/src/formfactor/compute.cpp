@@ -56,6 +56,10 @@ bool FormFactorContext::in_front(std::size_t i, std::size_t j) const {
     return false;
 }
 
+std::string automatic_form_factor_method(std::size_t patches) {
+    return patches <= kAutoAnalyticPatches ? "analytic" : "hemisphere";
+}
+
 FormFactorOptions resolve_form_factor_options(FormFactorOptions options) {
     form_factor_method(options.method).apply_defaults(options);
     return options;
