@@ -19,6 +19,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <vector>
@@ -152,6 +153,26 @@ std::string number_text(double v) {
 
 } // namespace
 
+// What lighting designers report of a work plane, over the sensors with a value (lux).
+void print_work_plane(const std::vector<double>& lux, long without_value) {
+    double low = std::numeric_limits<double>::infinity(), high = 0, sum = 0;
+    long count = 0;
+    for (const double e : lux)
+        if (std::isfinite(e)) low = std::min(low, e), high = std::max(high, e), sum += e, ++count;
+    if (count == 0) {
+        std::fprintf(stderr,
+                     "rad-gather: work plane: no sensor has a value (%ld inside or behind "
+                     "objects: nan)\n",
+                     without_value);
+        return;
+    }
+    const double mean = sum / double(count);
+    std::fprintf(stderr,
+                 "rad-gather: work plane: %ld sensor(s) with a value, %ld inside or behind "
+                 "objects (nan): Emin %.4g lx, Eavg %.4g lx, Emax %.4g lx, U0 = Emin/Eavg = %.3f\n",
+                 count, without_value, low, mean, high, mean > 0 ? low / mean : 0.0);
+}
+
 int main(int argc, char** argv) {
     CLI::App app{
         "Final gather: the irradiance (W/m^2, the units of radiosity) arriving at points of a\n"
@@ -199,7 +220,9 @@ int main(int argc, char** argv) {
         ->check(rad::tool::finite_range(0, 180));
     app.add_option("--grid", grid_text,
                    "Instead of reading points: upward sensors on a work plane, \"x0 z0 x1 z1 y "
-                   "nx nz\" (cell centres, height y, rows of constant z from z0, x fastest)");
+                   "nx nz\" (cell centres, height y, rows of constant z from z0, x fastest); "
+                   "sensors inside furniture have no value (nan, grey in the PNG, counted), and "
+                   "the summary gives Emin, Eavg, Emax and U0 = Emin/Eavg of the others");
     app.add_option("--png", png,
                    "With --grid: also write a false-colour PNG of the illuminance (lux) with a "
                    "legend");
@@ -217,6 +240,8 @@ int main(int argc, char** argv) {
         if (!grid_text.empty() && !points_path.empty())
             throw rad::InputError("give --grid or --points, not both");
         const auto grid = grid_text.empty() ? Grid{} : parse_grid(grid_text);
+        // A work plane runs through furniture: a sensor inside it has no value, not an error.
+        if (!grid_text.empty()) keep_going = true;
         options.smoothing = rad::parse_smoothing(smooth);
         rad::ThreadLimit thread_limit(threads);
         radfmt::OutputBatch outputs;
@@ -331,11 +356,14 @@ int main(int argc, char** argv) {
                                         static_cast<int>(grid.nz), "lux",
                                         "illuminance (lux) at y = " + number_text(grid.y));
         outputs.commit();
-        if (problems)
+        if (!grid_text.empty()) {
+            print_work_plane(grid_lux, problems);
+        } else if (problems) {
             std::fprintf(stderr,
                          "rad-gather: warning: %ld point(s) could not be gathered and were "
                          "written as nan; the first: %s\n",
                          problems, first_problem.c_str());
+        }
         if (!quiet) {
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -64,4 +64,30 @@ expect_error "does not belong to" "" "$BIN/rad-gather" "$TMP/other.mesh" "$R"
 python3 -c "
 for k in range(20000): print(0.05 + 0.45 * (k % 100) / 100, 0.4, 0.05 + 0.45 * (k // 100) / 200, 0, 1, 0)" |
   "$BIN/rad-gather" "$M" "$R" --rays 8 --shadow-rays 2 -q | wc -l | grep -qx 20000 || fail "streaming 20000 points"
+# A work plane through furniture (#25): the sensors inside the box have no value (nan, counted),
+# never 0, and the summary's Emin, Eavg, Emax and U0 are those of the sensors with a value.
+python3 "$SRC/tests/cli/surface_scenes.py" inward "$TMP/inward.obj"
+"$BIN/rad-mesh" "$TMP/inward.obj" -o "$TMP/in.mesh" --max-edge 0.25 -q 2>/dev/null || fail "mesh inward"
+"$BIN/rad-ff" "$TMP/in.mesh" -o "$TMP/in.ff" -q 2>/dev/null || fail "ff inward"
+"$BIN/rad-solve" "$TMP/in.mesh" "$TMP/in.ff" -o "$TMP/in.rad" -q || fail "solve inward"
+err=$("$BIN/rad-gather" "$TMP/in.mesh" "$TMP/in.rad" --grid "0 0 4 3 0.5 8 6" --lux -o "$TMP/plane.txt" --png "$TMP/plane.png" 2>&1) ||
+  fail "work plane through a box: $err"
+# The box stands on x 1..2, z 1..2 (below 0.8): the sensors at x, z = 1.25 and 1.75 are in it.
+python3 - "$TMP/plane.txt" "$err" <<'PY' || fail "work plane: $err"
+import math, re, sys
+values = [float(v) for v in open(sys.argv[1]).read().split()]
+inside = [k for k, v in enumerate(values) if math.isnan(v)]
+want = [j * 8 + i for j in (2, 3) for i in (2, 3)]
+assert inside == want, (inside, want)
+assert all(v > 0 for v in values if not math.isnan(v)), "a sensor with a value reads 0"
+good = [v for v in values if not math.isnan(v)]
+m = re.search(r"(\d+) sensor\(s\) with a value, (\d+) inside .*Emin ([0-9.e+]+) lx, Eavg ([0-9.e+]+) lx, "
+              r"Emax ([0-9.e+]+) lx, U0 = Emin/Eavg = ([0-9.]+)", sys.argv[2])
+assert m, sys.argv[2]
+count, nan, emin, eavg, emax, u0 = m.groups()
+assert int(count) == len(good) and int(nan) == 4
+mean = sum(good) / len(good)
+for said, value in ((emin, min(good)), (eavg, mean), (emax, max(good)), (u0, min(good) / mean)):
+    assert abs(float(said) - value) <= 2e-3 * value, (said, value)
+PY
 finish
