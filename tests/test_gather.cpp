@@ -255,3 +255,44 @@ TEST_CASE("a gathered image of a furnace is uniform, and at any thread count the
     }
     CHECK(again.rgb == image.rgb);
 }
+
+namespace {
+// Form factor from a point under the corner of an a x b rectangle at height h, facing it.
+double corner_rectangle(double a, double b, double h) {
+    const double x = a / h, y = b / h, sx = std::sqrt(1 + x * x), sy = std::sqrt(1 + y * y);
+    return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2 * kPi);
+}
+} // namespace
+
+TEST_CASE("exact gather on a surface: its own plane adds nothing, anywhere on a patch") {
+    // A 2 x 2 white floor (patches of 0.1) under the 1 x 1 lamp; every floor patch is given
+    // the radiosity 0.3, which a point on the floor must not see (the old code counted the
+    // patch under a point with form factor 1, or 0.5 on an edge, away from its centre).
+    // The floor and the lamp at heights whose sums round (0.1 apart, 0.6 up): the points'
+    // heights over their own patch's plane come out as rounding noise of either sign.
+    const std::string lamp = "v -0.5 1.1 -0.5\nv 0.5 1.1 -0.5\nv 0.5 1.1 0.5\nv -0.5 1.1 0.5\n"
+                             "usemtl lamp\nf 1 2 3 4\n";
+    const std::string floor =
+        "v -1 0.6 -1\nv -1 0.6 1\nv 1 0.6 1\nv 1 0.6 -1\nusemtl white\nf 5 6 7 8\n";
+    const auto mesh = mesh_of(lamp + floor, kLampMtl, 0.1);
+    auto b = emission_only(mesh);
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i)
+        if (!mesh.materials[mesh.patches[i].material].emits()) b[i] = {0.3, 0.3, 0.3};
+    rad::GatherOptions options;
+    options.exact = true;
+    options.shadow_rays = 0; // nothing in between: the closed form is the answer
+    const rad::Gatherer gatherer(mesh, b, options);
+    // Centres, edges and corners of floor patches, and points between, under the lamp.
+    const double points[][2] = {
+        {0.05, 0.05}, {0, 0},        {0.1, 0},     {0.3, 0.3},   {0.1, 0.37},
+        {-0.3, 0.2},  {0.49, -0.49}, {-0.25, 0.4}, {0.33, 0.17}, {0.7 / 3, 0.1 / 3}};
+    for (const auto& [x, z] : points) {
+        const auto e = gatherer.gather({x, 0.6, z}, {0, 1, 0}, 3);
+        CHECK(e.indirect[0] == 0);
+        const double f =
+            corner_rectangle(0.5 - x, 0.5 - z, 0.5) + corner_rectangle(0.5 + x, 0.5 - z, 0.5) +
+            corner_rectangle(0.5 - x, 0.5 + z, 0.5) + corner_rectangle(0.5 + x, 0.5 + z, 0.5);
+        CHECK(e.direct[0] == Approx(10 * f).epsilon(1e-6));
+        CHECK(e.direct[2] == Approx(40 * f).epsilon(1e-6));
+    }
+}

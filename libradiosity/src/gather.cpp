@@ -90,6 +90,15 @@ double Gatherer::form_factor_to(const Vec3& point, const Vec3& normal, std::size
     const auto& p = mesh_.patches[patch];
     clipped.clear();
     if (dot(point - p.centroid, p.normal) <= 0) return 0; // behind it
+    // A patch in the point's own plane, facing its way (the surface the point lies on, its
+    // corners off that plane by rounding): a plane sees nothing of itself. Left in, a point
+    // over the patch had its form factor as 1, or 0.5 on an edge.
+    if (dot(normal, p.normal) > 0.999) {
+        double off = 0;
+        for (int k = 0; k < p.corner_count(); ++k)
+            off = std::max(off, std::abs(dot(mesh_.vertices[p.corners[k]] - point, normal)));
+        if (off <= 1e-6 * std::sqrt(p.area)) return 0;
+    }
     clipped = ff::clip_to_front(corners_of(mesh_, patch), point, normal);
     if (clipped.size() < 3) return 0;
     const double f = point_to_polygon_form_factor(point, normal, clipped);
