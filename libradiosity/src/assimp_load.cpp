@@ -208,6 +208,8 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
                 group_of.try_emplace(name, static_cast<std::uint32_t>(scene.groups.size()));
             if (added) scene.groups.push_back(name);
             const auto base = static_cast<std::uint32_t>(scene.vertices.size());
+            scene.face_ranges.push_back({static_cast<int>(scene.polygons.size()) + 1,
+                                         "node '" + name + "', mesh '" + mesh.mName.C_Str() + "'"});
             for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
                 const Vec3 p = transform_point(transform, mesh.mVertices[v]);
                 if (!finite(p))
@@ -219,6 +221,7 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
                 const aiFace& face = mesh.mFaces[f];
                 if (face.mNumIndices < 3) continue;
                 Polygon polygon;
+                polygon.line = static_cast<int>(scene.polygons.size()) + 1; // faces numbered
                 polygon.group = it->second;
                 polygon.material = std::min<std::uint32_t>(
                     mesh.mMaterialIndex, static_cast<std::uint32_t>(scene.materials.size() - 1));

@@ -125,7 +125,11 @@ read -r verdict count < <(corner_colours average.ply)
 # 7. --orient fix does no harm: the glTF living room's faces agree with the file's normals, and
 # the vote that would turn its shell and its table inside out is not applied.
 lr="$SRC/tests/data/living-room/living_room.glb"
-"$BIN/rad-mesh" "$lr" -o lr.mesh -q 2>/dev/null || fail "living room"
+err=$("$BIN/rad-mesh" "$lr" -o lr.mesh 2>&1) || fail "living room: $err"
+# glTF faces are located by node, mesh and face, never as "line 0".
+grep -q "line 0\|:0)" <<<"$err" && fail "a glTF face located as line 0: $err"
+grep -q "wound against their neighbours across shared edges (first at .*living_room.glb: face 59 (node 'Cube', mesh 'Cube-0', its face 59))" <<<"$err" ||
+  fail "glTF location: $err"
 err=$("$BIN/rad-mesh" "$lr" -o lr-fix.mesh --orient fix 2>&1) || fail "living room --orient fix: $err"
 grep -q "left 958 face(s) of group Cylinder as they are: their winding agrees with the file's own normals" <<<"$err" ||
   fail "the table's vote was not refused: $err"

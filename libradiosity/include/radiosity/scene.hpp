@@ -31,7 +31,20 @@ struct Scene {
     // Per material, what the MTL says beyond Kd and Ke (Ka, Ks, Tf, illum), for the checks.
     std::vector<MaterialSource> material_sources;
     std::vector<std::string> material_files; // the MTL and texture files read, for provenance
+    // Formats without lines (glTF and the rest assimp reads): Polygon::line numbers the faces
+    // of the file from 1, and each range of them names where it comes from ("node 'Cube',
+    // mesh 'Cube'"), from its first face on. Empty for OBJ, whose lines are the file's.
+    struct FaceRange {
+        int first = 1;
+        std::string origin;
+    };
+    std::vector<FaceRange> face_ranges;
 };
+
+// A face for messages. OBJ: "12" (its line); others: "face 12 (node 'Cube', mesh 'Cube', its
+// face 3)". face_location: "scene.obj:12", or "scene.glb: face 12 (node ...)".
+std::string face_number(const Scene& scene, int line);
+std::string face_location(const Scene& scene, int line);
 
 struct SceneOptions {
     // Refuse what is otherwise repaired with a warning: faces without a known material, a

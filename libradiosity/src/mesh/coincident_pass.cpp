@@ -11,22 +11,24 @@ namespace {
 using Case = CoincidentCase;
 
 // "line 12 (copy of 3), ..." for the first cases of a kind (none for formats without lines).
-std::string case_lines(const CoincidentReport& found, Case::Kind kind) {
+std::string case_lines(const Scene& scene, const CoincidentReport& found, Case::Kind kind) {
     std::string lines;
     std::size_t listed = 0, count = 0;
     for (const auto& c : found.cases) {
         if (c.kind != kind) continue;
         ++count;
         if (listed >= 6 || c.other_line <= 0) continue;
-        lines += (listed++ ? ", " : "") + std::to_string(c.other_line) +
+        lines += (listed++ ? ", " : "") + face_number(scene, c.other_line) +
                  (kind == Case::kMerged || kind == Case::kWrongCopy ? " (copy of " : " (twin of ") +
-                 std::to_string(c.kept_line) + ")";
+                 face_number(scene, c.kept_line) + ")";
     }
     if (lines.empty()) return "";
-    return ", line " + lines + (count > listed ? ", ..." : "");
+    return std::string(scene.face_ranges.empty() ? ", line " : ", ") + lines +
+           (count > listed ? ", ..." : "");
 }
 
-void report_kind(const CoincidentReport& found, Case::Kind kind, MeshReport& report) {
+void report_kind(const Scene& scene, const CoincidentReport& found, Case::Kind kind,
+                 MeshReport& report) {
     std::size_t count = 0;
     double area = 0;
     for (const auto& c : found.cases)
@@ -34,7 +36,7 @@ void report_kind(const CoincidentReport& found, Case::Kind kind, MeshReport& rep
     if (!count) return;
     char head[200];
     std::snprintf(head, sizeof head, "%zu face(s) of area %.6g ", count, area);
-    const auto lines = case_lines(found, kind);
+    const auto lines = case_lines(scene, found, kind);
     using K = MeshReport::Kind;
     switch (kind) {
     case Case::kMerged:
@@ -67,7 +69,7 @@ void report_kind(const CoincidentReport& found, Case::Kind kind, MeshReport& rep
 std::vector<std::size_t> coincident_pass(Scene& scene, MeshReport& report) {
     const auto found = resolve_coincident_faces(scene);
     for (const auto kind : {Case::kMerged, Case::kWrongCopy, Case::kTwins, Case::kUndecided})
-        report_kind(found, kind, report);
+        report_kind(scene, found, kind, report);
     return found.kept;
 }
 

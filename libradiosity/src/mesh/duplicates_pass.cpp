@@ -8,12 +8,12 @@ void duplicates_pass(Scene& scene, MeshReport& report) {
     if (!duplicates.removed) return;
     std::string lines;
     for (std::size_t k = 0; k < duplicates.lines.size() && k < 10; ++k)
-        lines += (k ? ", " : "") + std::to_string(duplicates.lines[k].first) + " (repeats " +
-                 std::to_string(duplicates.lines[k].second) + ")";
+        lines += (k ? ", " : "") + face_number(scene, duplicates.lines[k].first) + " (repeats " +
+                 face_number(scene, duplicates.lines[k].second) + ")";
     if (duplicates.lines.size() > 10) lines += ", ...";
-    report.add(MeshReport::Kind::Change, "deduplicated: dropped " +
-                                             std::to_string(duplicates.removed) +
-                                             " duplicate face(s), line " + lines);
+    report.add(MeshReport::Kind::Change,
+               "deduplicated: dropped " + std::to_string(duplicates.removed) +
+                   " duplicate face(s), " + (scene.face_ranges.empty() ? "line " : "") + lines);
 }
 
 } // namespace rad

@@ -18,7 +18,7 @@ std::map<std::uint32_t, double> area_by_group(const Scene& scene) {
     return area;
 }
 
-std::string summary(const ImprintReport& imprint) {
+std::string summary(const Scene& scene, const ImprintReport& imprint) {
     char text[300];
     std::snprintf(text, sizeof text,
                   "imprinted: contacts cut into %zu face(s) (area %.6g); %zu hidden region(s) "
@@ -27,9 +27,10 @@ std::string summary(const ImprintReport& imprint) {
                   imprint.area_removed);
     std::string line = text;
     if (!imprint.removed_lines.empty()) {
-        line += ", from the face(s) at line";
+        line += scene.face_ranges.empty() ? ", from the face(s) at line" : ", from";
         for (std::size_t k = 0; k < imprint.removed_lines.size() && k < 8; ++k)
-            line.append(" ").append(std::to_string(imprint.removed_lines[k]));
+            line.append(k && !scene.face_ranges.empty() ? ", " : " ")
+                .append(face_number(scene, imprint.removed_lines[k]));
         if (imprint.removed_lines.size() > 8) line += " ...";
     }
     return line + " (--no-imprint keeps the faces whole)";
@@ -53,7 +54,7 @@ void imprint_pass(Scene& scene, const std::vector<bool>& turned, MeshReport& rep
                       area, scene.groups[group].c_str(), of, 100 * area / of);
         report.add(MeshReport::Kind::Warning, text);
     }
-    if (imprint.faces_imprinted) report.add(MeshReport::Kind::Change, summary(imprint));
+    if (imprint.faces_imprinted) report.add(MeshReport::Kind::Change, summary(scene, imprint));
 }
 
 } // namespace rad

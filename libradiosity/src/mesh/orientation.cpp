@@ -393,7 +393,7 @@ std::string describe(const OrientationFinding& finding, const Scene& scene) {
     }
     const auto& first = scene.polygons[finding.polygons.front()];
     return "group " + scene.groups[finding.group] + ": " + std::to_string(finding.polygons.size()) +
-           " face(s) " + what + " (first at " + FileLoc{scene.path, first.line}.str() + ")";
+           " face(s) " + what + " (first at " + face_location(scene, first.line) + ")";
 }
 
 std::size_t flip_groups(Scene& scene, const std::vector<std::string>& groups) {
