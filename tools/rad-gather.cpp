@@ -151,8 +151,6 @@ std::string number_text(double v) {
     return text;
 }
 
-} // namespace
-
 // What lighting designers report of a work plane, over the sensors with a value (lux).
 void print_work_plane(const std::vector<double>& lux, long without_value) {
     double low = std::numeric_limits<double>::infinity(), high = 0, sum = 0;
@@ -172,6 +170,8 @@ void print_work_plane(const std::vector<double>& lux, long without_value) {
                  "objects (nan): Emin %.4g lx, Eavg %.4g lx, Emax %.4g lx, U0 = Emin/Eavg = %.3f\n",
                  count, without_value, low, mean, high, mean > 0 ? low / mean : 0.0);
 }
+
+} // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{

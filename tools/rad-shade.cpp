@@ -150,14 +150,18 @@ int main(int argc, char** argv) {
         }
         const auto mode = flat ? rad::Smoothing::Flat : rad::parse_smoothing(smooth);
         const auto corners = rad::corner_colours(mesh, values, mode, crease);
+        // E and rho as solved (rad-solve's overrides are in the file's header): for the gather
+        // and the exposure.
+        radfmt::MeshData solved;
+        if (!albedo) {
+            solved = mesh;
+            rad::apply_recorded_overrides(solved, rad_header);
+        }
         rad::Image image;
         if (gather > 0) {
             if (albedo || !mix.empty() || mix_only || layers)
                 throw rad::InputError("--gather shades a solution as solved: not with --albedo, "
                                       "--mix, --mix-only or --layers");
-            // E and rho as solved (rad-solve's overrides are in the file's header).
-            auto solved = mesh;
-            rad::apply_recorded_overrides(solved, rad_header);
             rad::GatherOptions options;
             options.rays = gather;
             options.shadow_rays = shadow_rays;
@@ -176,11 +180,7 @@ int main(int argc, char** argv) {
         // Exposure from the solution (every view of it alike; lamps in view do not set it), or
         // for albedo from the image; then the overlay in full magenta at that exposure.
         double scale = exposure;
-        if (!(scale > 0) && !albedo) {
-            auto solved = mesh;
-            rad::apply_recorded_overrides(solved, rad_header);
-            scale = rad::solution_exposure(solved, values);
-        }
+        if (!(scale > 0) && !albedo) scale = rad::solution_exposure(solved, values);
         if (!(scale > 0)) scale = rad::auto_exposure(image);
         if (backfaces == "mark") rad::mark_back_faces(image, {1 / scale, 0, 1 / scale});
         const double back_share = double(image.back_face_pixels) / (double(width) * height);

@@ -67,7 +67,7 @@ struct SceneReport {
     std::vector<std::string> missing_libraries; // "'name' (line N) not found; looked for .."
     // Libraries named with folders (sub/x.mtl) found by file name alone: "'name' (line N) as P"
     std::vector<std::string> libraries_found_by_name;
-    std::vector<std::string> textures_averaged; // "material: file, mean r g b"
+    std::vector<std::string> textures_averaged;     // "material: file, mean r g b"
     std::vector<std::string> textures_replacing_kd; // materials whose Kd was 0 or absent
     std::vector<std::string> texture_problems;      // missing or unreadable textures
 };
@@ -116,6 +116,13 @@ struct SubdivisionOptions {
     // such as --max-edge 1e-4 would otherwise take all memory).
     double max_patches = 2e7;
 };
+
+// A group's limit (--max-edge GROUP=L, --max-area GROUP=A), or the scene's when it has none.
+inline double limit_for(const std::map<std::string, double>& by_group, const std::string& group,
+                        double fallback) {
+    const auto it = by_group.find(group);
+    return it != by_group.end() ? it->second : fallback;
+}
 
 struct SubdivisionReport {
     std::size_t degenerate_dropped = 0;

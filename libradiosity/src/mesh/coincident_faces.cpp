@@ -6,6 +6,8 @@
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 
+#include "polygon2d.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -54,30 +56,17 @@ std::vector<FacePlane> face_planes(const Scene& scene) {
     return planes;
 }
 
-// Winding number test in 2D; points within `tolerance` of the outline count as inside when
+// Whether p is inside the outline; a point within `tolerance` of it counts as inside when
 // `boundary_inside`.
-bool inside(const std::vector<std::array<double, 2>>& poly, const std::array<double, 2>& p,
-            double tolerance, bool boundary_inside) {
-    const std::size_t n = poly.size();
-    bool in = false;
-    for (std::size_t k = 0; k < n; ++k) {
-        const auto& a = poly[k];
-        const auto& b = poly[(k + 1) % n];
-        const double dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
-        const double t =
-            len2 > 0 ? std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0;
-        if (std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy) <= tolerance)
-            return boundary_inside;
-        if ((a[1] > p[1]) != (b[1] > p[1]) &&
-            p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]))
-            in = !in;
-    }
-    return in;
+bool inside(const std::vector<Point2d>& poly, const Point2d& p, double tolerance,
+            bool boundary_inside) {
+    if (on_outline(p, poly, tolerance)) return boundary_inside;
+    return point_in_polygon(p, poly);
 }
 
 // The share of rays from the front of these faces that meet the front of another surface.
-double front_hits(const Scene& scene, const std::vector<FacePlane>& planes,
-                  const std::vector<std::size_t>& faces, const RayScene& rays) {
+double front_hits(const std::vector<FacePlane>& planes, const std::vector<std::size_t>& faces,
+                  const RayScene& rays) {
     constexpr int kRays = 64;
     double fronts = 0, cast = 0;
     for (const auto f : faces) {
@@ -90,7 +79,6 @@ double front_hits(const Scene& scene, const std::vector<FacePlane>& planes,
             if (rays.first_hit(origin, d, front) >= 0 && front) ++fronts;
             ++cast;
         }
-        (void)scene;
     }
     return cast > 0 ? fronts / cast : 0;
 }
@@ -124,8 +112,8 @@ void decide_opposite_copies(const Scene& scene, const std::vector<FacePlane>& pl
                 std::sort(list->begin(), list->end());
                 list->erase(std::unique(list->begin(), list->end()), list->end());
             }
-            const double f1 = front_hits(scene, planes, first, rays);
-            const double f2 = front_hits(scene, planes, second, rays);
+            const double f1 = front_hits(planes, first, rays);
+            const double f2 = front_hits(planes, second, rays);
             CoincidentCase::Kind kind = CoincidentCase::kUndecided;
             if (f1 > 0.5 && f2 > 0.5)
                 kind = CoincidentCase::kTwins;

@@ -27,49 +27,44 @@ std::string case_lines(const Scene& scene, const CoincidentReport& found, Case::
            (count > listed ? ", ..." : "");
 }
 
-void report_kind(const Scene& scene, const CoincidentReport& found, Case::Kind kind,
+// Each kind's line: how loud it is, its verb and what the faces are.
+struct KindText {
+    Case::Kind kind;
+    MeshReport::Kind level;
+    const char* verb;
+    const char* what;
+};
+constexpr KindText kKindTexts[] = {
+    {Case::kMerged, MeshReport::Kind::Change, "dropped ",
+     "lying within a face of the same plane and winding"},
+    {Case::kWrongCopy, MeshReport::Kind::Change, "dropped ",
+     "drawn again facing the other way whose side sees backs or nothing (the copy facing the "
+     "scene is kept)"},
+    {Case::kTwins, MeshReport::Kind::Change, "kept ",
+     "drawn both ways, both sides facing the scene, as the two sides of a sheet"},
+    {Case::kUndecided, MeshReport::Kind::Warning, "",
+     "drawn both ways; their rays do not tell which side faces the scene, both are kept "
+     "(--flip GROUP, or delete one copy)"},
+};
+
+void report_kind(const Scene& scene, const CoincidentReport& found, const KindText& text,
                  MeshReport& report) {
     std::size_t count = 0;
     double area = 0;
     for (const auto& c : found.cases)
-        if (c.kind == kind) ++count, area += c.area;
+        if (c.kind == text.kind) ++count, area += c.area;
     if (!count) return;
     char head[200];
     std::snprintf(head, sizeof head, "%zu face(s) of area %.6g ", count, area);
-    const auto lines = case_lines(scene, found, kind);
-    using K = MeshReport::Kind;
-    switch (kind) {
-    case Case::kMerged:
-        report.add(K::Change, std::string("coincident: dropped ") + head +
-                                  "lying within a face of the same plane and winding" + lines);
-        break;
-    case Case::kWrongCopy:
-        report.add(K::Change, std::string("coincident: dropped ") + head +
-                                  "drawn again facing the other way whose side sees backs or "
-                                  "nothing (the copy facing the scene is kept)" +
-                                  lines);
-        break;
-    case Case::kTwins:
-        report.add(K::Change, std::string("coincident: kept ") + head +
-                                  "drawn both ways, both sides facing the scene, as the two "
-                                  "sides of a sheet" +
-                                  lines);
-        break;
-    case Case::kUndecided:
-        report.add(K::Warning, std::string("coincident: ") + head +
-                                   "drawn both ways; their rays do not tell which side faces the "
-                                   "scene, both are kept (--flip GROUP, or delete one copy)" +
-                                   lines);
-        break;
-    }
+    report.add(text.level, std::string("coincident: ") + text.verb + head + text.what +
+                               case_lines(scene, found, text.kind));
 }
 
 } // namespace
 
 std::vector<std::size_t> coincident_pass(Scene& scene, MeshReport& report) {
     const auto found = resolve_coincident_faces(scene);
-    for (const auto kind : {Case::kMerged, Case::kWrongCopy, Case::kTwins, Case::kUndecided})
-        report_kind(scene, found, kind, report);
+    for (const auto& text : kKindTexts) report_kind(scene, found, text, report);
     return found.kept;
 }
 

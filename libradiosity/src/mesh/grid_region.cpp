@@ -1,5 +1,6 @@
 // Pass 4 of mesh_surfaces: a region's grid of quads, and the triangles of the band between the
 // grid and the outline.
+#include "polygon2d.hpp"
 #include "regions.hpp"
 
 #include <CGAL/Delaunay_mesh_face_base_2.h>
@@ -29,6 +30,11 @@ using BandCriteria = CGAL::Delaunay_mesh_size_criteria_2<BandCDT>;
 struct GridFrame {
     XY origin{}, e1{}, e2{}; // e2 is e1 turned a quarter counter-clockwise
     double length1 = 0, length2 = 0;
+    // A point of the plane in the frame's own coordinates (along e1, along e2).
+    XY local(const XY& p) const {
+        const double dx = p[0] - origin[0], dy = p[1] - origin[1];
+        return {dx * e1[0] + dy * e1[1], dx * e2[0] + dy * e2[1]};
+    }
 };
 
 bool minimum_rectangle(const std::vector<Point2>& outline_points, GridFrame& frame) {
@@ -61,21 +67,17 @@ bool minimum_rectangle(const std::vector<Point2>& outline_points, GridFrame& fra
     return best < 1e300 && frame.length1 > 0 && frame.length2 > 0;
 }
 
-double segment_distance(const XY& p, const XY& a, const XY& b) {
-    const double dx = b[0] - a[0], dy = b[1] - a[1];
-    const double len2 = dx * dx + dy * dy;
-    double t = len2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2 : 0;
-    t = std::clamp(t, 0.0, 1.0);
-    return std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
-}
-
 // The grid over one region: which nodes lie on outline points, which are well inside, which
 // cells are whole quads.
 class RegionGrid {
   public:
     RegionGrid(const Region& region, const GridFrame& frame, const std::vector<XY>& outline_xy,
-               const std::vector<std::uint32_t>& outline_ids, double tolerance)
-        : region_(region), frame_(frame), outline_xy_(outline_xy) {
+               const std::vector<std::uint32_t>& outline_ids, const Points& points,
+               double tolerance)
+        : region_(region), frame_(frame) {
+        for (const auto& [a, b] : region.pieces)
+            piece_xy_.push_back(
+                {region.plane.to_2d(points.position[a]), region.plane.to_2d(points.position[b])});
         const double h = region.cell;
         nu_ =
             h > 0 ? std::max<std::size_t>(1, std::size_t(std::ceil(frame.length1 / h - 1e-9))) : 1;
@@ -103,10 +105,7 @@ class RegionGrid {
     std::uint32_t& id(std::size_t i, std::size_t j) { return node_id_[node(i, j)]; }
     bool full(std::size_t i, std::size_t j) const { return full_[cell(i, j)]; }
     bool full_at(const XY& p) const {
-        const double s =
-            (p[0] - frame_.origin[0]) * frame_.e1[0] + (p[1] - frame_.origin[1]) * frame_.e1[1];
-        const double t =
-            (p[0] - frame_.origin[0]) * frame_.e2[0] + (p[1] - frame_.origin[1]) * frame_.e2[1];
+        const auto [s, t] = frame_.local(p);
         const auto i = static_cast<long long>(std::floor(s / du_)),
                    j = static_cast<long long>(std::floor(t / dv_));
         if (i < 0 || j < 0 || i >= (long long)nu_ || j >= (long long)nv_) return false;
@@ -128,10 +127,7 @@ class RegionGrid {
 
   private:
     void place_outline_point(const XY& p, std::uint32_t id, double snap) {
-        const double s =
-            (p[0] - frame_.origin[0]) * frame_.e1[0] + (p[1] - frame_.origin[1]) * frame_.e1[1];
-        const double t =
-            (p[0] - frame_.origin[0]) * frame_.e2[0] + (p[1] - frame_.origin[1]) * frame_.e2[1];
+        const auto [s, t] = frame_.local(p);
         const double fi = s / du_, fj = t / dv_;
         const double ri = std::round(fi), rj = std::round(fj);
         const bool on_i = std::abs(fi - ri) * du_ < snap, on_j = std::abs(fj - rj) * dv_ < snap;
@@ -183,13 +179,9 @@ class RegionGrid {
         return true;
     }
 
-  public:
-    std::vector<std::array<XY, 2>> piece_xy_;
-
-  private:
     const Region& region_;
     GridFrame frame_;
-    const std::vector<XY>& outline_xy_;
+    std::vector<std::array<XY, 2>> piece_xy_; // the region's outline pieces in its plane
     std::size_t nu_ = 1, nv_ = 1;
     double du_ = 1, dv_ = 1;
     std::vector<std::uint32_t> node_id_;
@@ -211,8 +203,6 @@ void emit(const Region& region, const Points& points, radfmt::MeshData& mesh,
     mesh.patches.push_back(p);
 }
 
-// The band: a constrained Delaunay triangulation of the region minus its whole cells, with the
-// grid nodes well inside it as extra points (so a wide band is not all long triangles).
 // Points of one straight run of outline, off their line by rounding alone, make slivers of no
 // area outside the pieces: not part of the region.
 bool has_area(const Point2& a, const Point2& b, const Point2& c) {
@@ -350,13 +340,9 @@ double grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
     }
     GridFrame frame;
     if (!minimum_rectangle(pts, frame)) return 0; // no area
-    RegionGrid grid(region, frame, xy, ids, tolerance);
+    RegionGrid grid(region, frame, xy, ids, points, tolerance);
     std::unordered_set<EdgeKey> pieces;
-    for (const auto& [a, b] : region.pieces) {
-        pieces.insert(edge_key(a, b));
-        grid.piece_xy_.push_back(
-            {region.plane.to_2d(points.position[a]), region.plane.to_2d(points.position[b])});
-    }
+    for (const auto& [a, b] : region.pieces) pieces.insert(edge_key(a, b));
     grid.classify_nodes(pieces);
     std::unordered_set<EdgeKey> band(pieces.begin(), pieces.end());
     auto toggle = [&](EdgeKey e) {

@@ -2,6 +2,7 @@
 // constrained Delaunay triangulation in the face's plane), drop the regions hidden inside
 // other geometry, and keep the edges conforming.
 #include "../union_find.hpp"
+#include "polygon2d.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/scene.hpp"
 #include "weld.hpp"
@@ -98,18 +99,6 @@ bool clip_to_convex(Segment& s, const std::vector<std::array<double, 2>>& poly) 
     const Segment in{{s.a[0] + t0 * dx, s.a[1] + t0 * dy}, {s.a[0] + t1 * dx, s.a[1] + t1 * dy}};
     s = in;
     return true;
-}
-
-bool point_in_polygon(const std::array<double, 2>& p,
-                      const std::vector<std::array<double, 2>>& poly) {
-    bool inside = false;
-    for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-        const auto &a = poly[i], &b = poly[j];
-        if ((a[1] > p[1]) != (b[1] > p[1]) &&
-            p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0])
-            inside = !inside;
-    }
-    return inside;
 }
 
 // Where face q meets face p's plane, as a segment in p's coordinates (false: it does not,

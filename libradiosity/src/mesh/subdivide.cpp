@@ -50,12 +50,6 @@ FileLoc where(const Scene& scene, const Polygon& p) {
     return {scene.path, p.line};
 }
 
-double limit_for(const std::map<std::string, double>& by_group, const std::string& group,
-                 double fallback) {
-    const auto it = by_group.find(group);
-    return it != by_group.end() ? it->second : fallback;
-}
-
 // Ear clipping in the polygon's plane; polygons here are planar and simple.
 std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec3>& pts,
                                                       const std::vector<std::uint32_t>& ids,

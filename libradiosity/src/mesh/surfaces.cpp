@@ -2,6 +2,7 @@
 #include "radiosity/surfaces.hpp"
 
 #include "radiosity/error.hpp"
+#include "radiosity/scene.hpp"
 #include "regions.hpp"
 #include "weld.hpp"
 
@@ -12,12 +13,6 @@
 namespace rad {
 
 namespace {
-
-double limit_for(const std::map<std::string, double>& by_group, const std::string& group,
-                 double fallback) {
-    const auto it = by_group.find(group);
-    return it != by_group.end() ? it->second : fallback;
-}
 
 // A region's cell side from --max-edge and --max-area (the smaller wins).
 double cell_side(const radfmt::MeshData& faces, std::uint32_t group, const SurfaceOptions& o) {
