@@ -1,5 +1,7 @@
 // Final gather against closed forms, a furnace and the solver's own answer.
+#include "gather/light_tree.hpp"
 #include "helpers.hpp"
+#include "radiosity/build_mesh.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
 #include "radiosity/gathered.hpp"
@@ -11,6 +13,7 @@
 
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <numbers>
 #include <sstream>
 
@@ -295,4 +298,260 @@ TEST_CASE("exact gather on a surface: its own plane adds nothing, anywhere on a 
         CHECK(e.direct[0] == Approx(10 * f).epsilon(1e-6));
         CHECK(e.direct[2] == Approx(40 * f).epsilon(1e-6));
     }
+}
+
+namespace {
+// Direct light only, unshadowed: what the light tree's clusters change.
+rad::GatherOptions direct_only(double cluster_ratio) {
+    rad::GatherOptions options;
+    options.rays = 0;
+    options.shadow_rays = 0;
+    options.cluster_ratio = cluster_ratio;
+    return options;
+}
+
+std::vector<rad::gather::Light> emitters_of(const radfmt::MeshData& mesh) {
+    std::vector<rad::gather::Light> lights;
+    for (std::uint32_t i = 0; i < mesh.patches.size(); ++i)
+        if (mesh.materials[mesh.patches[i].material].emits())
+            lights.push_back({i, mesh.materials[mesh.patches[i].material].emission});
+    return lights;
+}
+} // namespace
+
+TEST_CASE("light tree: 4096 emitting patches seen from afar are a few nodes, and the closed form") {
+    // A 2 x 2 lamp facing down, cut into 64 x 64 patches, over points on its axis.
+    const std::string lamp = "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nusemtl lamp\nf 1 2 3 4\n";
+    const auto mesh = mesh_of(lamp, kLampMtl, 2.0 / 64);
+    REQUIRE(mesh.patches.size() == 4096);
+    const auto b = emission_only(mesh);
+    const rad::Gatherer every(mesh, b, direct_only(0)), tree(mesh, b, direct_only(0.1));
+    const rad::gather::LightTree lights(mesh, emitters_of(mesh));
+    rad::gather::LightTree::Cut cut;
+    for (double h : {0.5, 2.0, 8.0, 30.0}) {
+        const rad::Vec3 point{0.01, -h, 0.02}, up{0, 1, 0};
+        const double f = axis_square(1, h);
+        CHECK(every.gather(point, up, 1).direct[0] == Approx(10 * f).epsilon(1e-3));
+        CHECK(tree.gather(point, up, 1).direct[0] == Approx(10 * f).epsilon(0.01));
+        lights.cut(point, up, 0.1, cut);
+        const auto seen = cut.lights.size() + cut.clusters.size();
+        INFO("at height " << h << ": " << cut.lights.size() << " lights and " << cut.clusters.size()
+                          << " clusters");
+        // The lamp's size over its distance (2.8 / h) sets how finely it is cut, not its
+        // number of patches: one node from 30 away, a few from 8.
+        CHECK(seen <= (h >= 30 ? 1u : h >= 8 ? 16u : 4096u));
+        if (h <= 0.5) CHECK(seen > 256);
+    }
+    // Behind the lamp, or facing away from it: nothing seen, at no cost.
+    lights.cut({0, 1, 0}, {0, -1, 0}, 0.1, cut);
+    CHECK(cut.lights.size() + cut.clusters.size() == 0);
+    lights.cut({0, -3, 0}, {0, -1, 0}, 0.1, cut);
+    CHECK(cut.lights.size() + cut.clusters.size() == 0);
+}
+
+TEST_CASE("light tree: on an all-emitting torus the clusters agree with every patch on its own") {
+    // The Pixar torus with every face emitting (tests/data/torus-creases/torus-lit.*): curved,
+    // so lights face every way, and points on the inner ring see many of them.
+    const auto scene =
+        rad::load_obj(fs::path(RADIOSITY_SOURCE_DIR) / "tests/data/torus-creases/torus-lit.obj");
+    rad::SubdivisionOptions subdivision;
+    subdivision.max_edge = 0.085;
+    const auto mesh = rad::subdivide(scene, subdivision);
+    REQUIRE(mesh.patches.size() > 2000);
+    const auto b = emission_only(mesh);
+    const rad::Gatherer every(mesh, b, direct_only(0)), tree(mesh, b, direct_only(0.1));
+    const rad::gather::LightTree lights(mesh, emitters_of(mesh));
+    rad::gather::LightTree::Cut cut;
+    double worst = 0, mean = 0, seen = 0;
+    int lit = 0;
+    for (std::size_t i = 0; i < mesh.patches.size(); i += 7) {
+        const auto& p = mesh.patches[i];
+        const double want = every.gather(p.centroid, p.normal, i).direct[0];
+        if (!(want > 0)) continue; // on the outside, seeing none of it
+        const double got = tree.gather(p.centroid, p.normal, i).direct[0];
+        worst = std::max(worst, std::abs(got - want) / want);
+        mean += std::abs(got - want) / want;
+        lights.cut(p.centroid, p.normal, 0.1, cut);
+        seen += double(cut.lights.size() + cut.clusters.size());
+        ++lit;
+    }
+    REQUIRE(lit > 50);
+    mean /= lit;
+    seen /= lit;
+    INFO(lit << " points: error mean " << mean << " worst " << worst << "; " << seen
+             << " nodes a point of " << mesh.patches.size() << " emitters");
+    CHECK(worst < 0.01); // about (size / distance)^2 = 0.1^2 at most
+    CHECK(mean < 0.003);
+    CHECK(seen < 0.25 * double(mesh.patches.size()));
+}
+
+namespace {
+// Fireflies: pixels brighter (by r + g + b) than `factor` times the median of the pixels of
+// their 5 x 5 neighbourhood that show the same surface (`surface`, -1 for none or for an
+// emitter, which are left out), when at least half of them do. Against the neighbourhood
+// alone, a sharp edge would count: the bright side of a floor meeting a dark wall, or a box's
+// top seen edge-on as a line a pixel high.
+int fireflies(const rad::Image& image, double factor, const std::vector<int>& surface) {
+    const int w = image.width, h = image.height;
+    auto value = [&](int x, int y) {
+        const std::size_t at = 3 * (std::size_t(y) * w + x);
+        return double(image.rgb[at]) + image.rgb[at + 1] + image.rgb[at + 2];
+    };
+    auto id = [&](int x, int y) { return surface[std::size_t(y) * w + x]; };
+    int count = 0;
+    std::vector<double> around;
+    for (int y = 2; y < h - 2; ++y)
+        for (int x = 2; x < w - 2; ++x) {
+            if (id(x, y) < 0) continue;
+            around.clear();
+            for (int dy = -2; dy <= 2; ++dy)
+                for (int dx = -2; dx <= 2; ++dx)
+                    if (id(x + dx, y + dy) == id(x, y)) around.push_back(value(x + dx, y + dy));
+            if (around.size() < 13) continue;
+            std::nth_element(around.begin(), around.begin() + around.size() / 2, around.end());
+            count += value(x, y) > factor * around[around.size() / 2] ? 1 : 0;
+        }
+    return count;
+}
+
+// Solves the scene with the chain's defaults (analytic form factors, Gauss-Seidel).
+std::vector<rad::Rgb> solve_for_gather(const radfmt::MeshData& mesh) {
+    rad::FormFactorOptions ff_options;
+    ff_options.quiet = true;
+    const auto ff = rad::compute_form_factors(mesh, ff_options);
+    rad::SolveControl control;
+    control.tolerance = 1e-7;
+    control.max_iterations = 1000;
+    const auto solved =
+        rad::solver("gs").solve(rad::make_operator(mesh, ff), rad::emission_of(mesh), control);
+    std::vector<rad::Rgb> b(mesh.patches.size());
+    for (std::size_t i = 0; i < b.size(); ++i)
+        for (int k = 0; k < 3; ++k) b[i][k] = solved.radiosity.at(i, k);
+    return b;
+}
+
+// The surface each pixel's sample (at its centre, as render_gathered's with supersampling 1)
+// shows: its material and facing, or -1 for nothing or an emitter.
+std::vector<int> surfaces_seen(const rad::Gatherer& gatherer, const rad::View& view, int size) {
+    using rad::operator+, rad::operator*;
+    const rad::Vec3 dir = rad::normalized(view.direction);
+    const rad::Vec3 right = rad::normalized(rad::cross(dir, view.up)), up = rad::cross(right, dir);
+    const double t = std::tan(0.5 * view.horizontal_deg * kPi / 180);
+    std::map<std::array<long, 4>, int> ids;
+    std::vector<int> out(std::size_t(size) * size, -1);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const double cx = (2 * (x + 0.5) / size - 1) * t, cy = (1 - 2 * (y + 0.5) / size) * t;
+            const auto hit =
+                gatherer.scene().trace(view.position, rad::normalized(dir + right * cx + up * cy));
+            if (hit.patch < 0) continue;
+            const auto& p = gatherer.mesh().patches[static_cast<std::size_t>(hit.patch)];
+            if (gatherer.mesh().materials[p.material].emits()) continue;
+            const std::array<long, 4> key{long(p.material), std::lround(p.normal[0] * 20),
+                                          std::lround(p.normal[1] * 20),
+                                          std::lround(p.normal[2] * 20)};
+            out[std::size_t(y) * size + x] = ids.emplace(key, int(ids.size())).first->second;
+        }
+    return out;
+}
+} // namespace
+
+TEST_CASE("no fireflies: a patch lit so brightly that rays landing on it would be is a light") {
+    // A 4 x 3 x 4 room lit only through a 5 cm gap: a lamp 0.3 m over the floor inside a black
+    // hood open below, so the floor under it is very bright and the room sees it through the
+    // gap. An indirect ray that finds that floor carries hundreds of times a typical value.
+    std::string obj;
+    int count = 0;
+    auto quad = [&](rad::Vec3 a, rad::Vec3 b, rad::Vec3 c, rad::Vec3 d, const char* m) {
+        append_obj_face(obj, count, {a, b, c, d}, m);
+    };
+    const double cuts[] = {0, 1.8, 2.2, 4}; // the floor in 9 faces: one under the lamp
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k)
+            quad({cuts[i], 0, cuts[k]}, {cuts[i], 0, cuts[k + 1]}, {cuts[i + 1], 0, cuts[k + 1]},
+                 {cuts[i + 1], 0, cuts[k]}, "white");
+    quad({0, 3, 0}, {4, 3, 0}, {4, 3, 4}, {0, 3, 4}, "white"); // ceiling
+    quad({0, 0, 0}, {4, 0, 0}, {4, 3, 0}, {0, 3, 0}, "white"); // walls
+    quad({0, 0, 4}, {0, 3, 4}, {4, 3, 4}, {4, 0, 4}, "white");
+    quad({0, 0, 0}, {0, 3, 0}, {0, 3, 4}, {0, 0, 4}, "white");
+    quad({4, 0, 0}, {4, 0, 4}, {4, 3, 4}, {4, 3, 0}, "white");
+    quad({1.8, 0.3, 1.8}, {2.2, 0.3, 1.8}, {2.2, 0.3, 2.2}, {1.8, 0.3, 2.2}, "lamp"); // down
+    quad({1.79, 0.31, 1.79}, {1.79, 0.31, 2.21}, {2.21, 0.31, 2.21}, {2.21, 0.31, 1.79},
+         "black"); // the hood's roof, up
+    // The hood's walls, from 5 cm over the floor up to the lamp: each a face inward and a face
+    // outward, 1 cm apart.
+    quad({1.8, 0.05, 1.8}, {2.2, 0.05, 1.8}, {2.2, 0.3, 1.8}, {1.8, 0.3, 1.8}, "black");
+    quad({1.79, 0.05, 1.79}, {1.79, 0.31, 1.79}, {2.21, 0.31, 1.79}, {2.21, 0.05, 1.79}, "black");
+    quad({1.8, 0.05, 2.2}, {1.8, 0.3, 2.2}, {2.2, 0.3, 2.2}, {2.2, 0.05, 2.2}, "black");
+    quad({1.79, 0.05, 2.21}, {2.21, 0.05, 2.21}, {2.21, 0.31, 2.21}, {1.79, 0.31, 2.21}, "black");
+    quad({1.8, 0.05, 1.8}, {1.8, 0.3, 1.8}, {1.8, 0.3, 2.2}, {1.8, 0.05, 2.2}, "black");
+    quad({1.79, 0.05, 1.79}, {1.79, 0.05, 2.21}, {1.79, 0.31, 2.21}, {1.79, 0.31, 1.79}, "black");
+    quad({2.2, 0.05, 1.8}, {2.2, 0.05, 2.2}, {2.2, 0.3, 2.2}, {2.2, 0.3, 1.8}, "black");
+    quad({2.21, 0.05, 1.79}, {2.21, 0.31, 1.79}, {2.21, 0.31, 2.21}, {2.21, 0.05, 2.21}, "black");
+    const auto mesh = mesh_of(obj, kLampMtl, 0.5);
+    const auto b = solve_for_gather(mesh);
+    rad::View view;
+    view.position = {0.4, 1.6, 3.6};
+    view.direction = {2.6, 0.4, -3.0}; // walls, floor and ceiling; the hood out of view
+    view.horizontal_deg = view.vertical_deg = 60;
+    rad::GatherOptions options;
+    options.rays = 16;
+    options.shadow_rays = 8;
+    // One value a patch, as a light takes it (smoothing would spread the bright floor's value
+    // over its dark neighbours' corners, and the rays would see less of it than a light does).
+    options.smoothing = rad::Smoothing::Flat;
+    const rad::Gatherer gatherer(mesh, b, options);
+    CHECK(gatherer.bright_patches() >= 1); // the floor under the lamp
+    CHECK(gatherer.bright_patches() <= 8);
+    const auto image = rad::render_gathered(gatherer, view, 48, 48, 1, true);
+    options.bright_factor = 0; // every patch left to the rays
+    const auto before =
+        rad::render_gathered(rad::Gatherer(mesh, b, options), view, 48, 48, 1, true);
+    const auto surface = surfaces_seen(gatherer, view, 48);
+    INFO("fireflies: " << fireflies(before, 3, surface) << " left to the rays, "
+                       << fireflies(image, 3, surface) << " as a light");
+    CHECK(fireflies(before, 3, surface) > 20);
+    CHECK(fireflies(image, 3, surface) == 0);
+    // The same light either way: against the rays alone at 64 times as many, the image's
+    // mean agrees (at 16 rays, the fireflies' heavy tail makes the rays' mean itself noisy).
+    options.rays = 1024;
+    const auto reference =
+        rad::render_gathered(rad::Gatherer(mesh, b, options), view, 48, 48, 1, true);
+    double mean = 0, mean_before = 0, mean_reference = 0;
+    for (std::size_t i = 0; i < image.rgb.size(); ++i) {
+        mean += image.rgb[i];
+        mean_before += before.rgb[i];
+        mean_reference += reference.rgb[i];
+    }
+    INFO("image means: " << mean << " as a light, " << mean_before << " rays alone, "
+                         << mean_reference << " with 1024 rays");
+    CHECK(mean == Approx(mean_reference).epsilon(0.03));
+}
+
+TEST_CASE("no fireflies in a gathered Cornell box made with every default") {
+    // McGuire's box (tests/data/cornell-original) through the chain's defaults: rad-mesh's
+    // planar regions at the scene's size / 20, analytic form factors, Gauss-Seidel; gathered
+    // at the defaults (256 rays, 32 shadow rays) from the README's camera.
+    rad::MeshOptions mesh_options;
+    mesh_options.subdivision.max_edge = rad::kMaxEdgeFromScene;
+    rad::MeshReport report;
+    const auto mesh = rad::build_mesh(fs::path(RADIOSITY_SOURCE_DIR) /
+                                          "tests/data/cornell-original/CornellBox-Original.obj",
+                                      mesh_options, report);
+    const auto b = solve_for_gather(mesh);
+    const rad::Gatherer gatherer(mesh, b, {});
+    rad::View view;
+    view.position = {0, 1, 3.9};
+    view.direction = {0, 0, -1};
+    view.horizontal_deg = view.vertical_deg = 37;
+    const int size = 128;
+    const auto image = rad::render_gathered(gatherer, view, size, size, 1, true);
+    const auto surface = surfaces_seen(gatherer, view, size);
+    CHECK(fireflies(image, 3, surface) == 0);
+    // The same image with one pixel in a wall made 3.5 times as bright is caught.
+    auto marked = image;
+    const std::size_t at = 3 * (std::size_t(size / 2) * size + size / 8);
+    REQUIRE(surface[at / 3] >= 0);
+    for (int c = 0; c < 3; ++c) marked.rgb[at + c] *= 3.5f;
+    CHECK(fireflies(marked, 3, surface) == 1);
 }

@@ -195,9 +195,10 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(0, 1000000));
     app.add_option("--shadow-rays", options.shadow_rays,
-                   "Direct light: shadow rays per point for the emitters' visible fractions, "
-                   "shared among the emitting patches by what each contributes, at least one "
-                   "each (--exact: per patch); 0: no shadows")
+                   "Direct light: shadow rays per point for the lights' visible fractions "
+                   "(emitting patches, and patches lit so brightly that rays landing on them "
+                   "would be fireflies), shared by what each contributes; lights too faint "
+                   "for one each share theirs (--exact: per patch); 0: no shadows")
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
     app.add_flag("--exact", options.exact,

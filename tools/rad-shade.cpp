@@ -84,7 +84,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 1000000));
     app.add_option("--shadow-rays", shadow_rays,
                    "--gather: shadow rays per sample for the direct light, shared among the "
-                   "emitting patches by what each contributes")
+                   "lights (emitting patches, and patches lit so brightly that rays landing "
+                   "on them would be fireflies) by what each contributes")
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
     app.add_option("--max-memory", max_memory,

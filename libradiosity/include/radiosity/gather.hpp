@@ -1,10 +1,13 @@
 // Final gather: the irradiance arriving at any point from a solved scene, with rays cast
 // from the point itself, so shadows and gradients are as sharp as the geometry (not as
-// coarse as the patches). Direct light is taken from the emitters explicitly (exact
-// point-to-polygon form factor times the visible fraction from shadow rays); indirect light
-// from cosine-weighted rays, each taking the reflected radiosity (B - E) where it lands,
-// interpolated over the patch as rad-shade's smoothing does; or (exact) the point-to-polygon
-// sum over every patch.
+// coarse as the patches). Direct light is taken from the lights explicitly: the emitters, and
+// patches so bright that rays landing on them would make fireflies. They sit in a light tree,
+// so a point pays for the lights near it, not for all of them: a near light by its exact
+// point-to-polygon form factor, a far group of lights as one, each times the visible fraction
+// from shadow rays shared by what each contributes. Indirect light comes from cosine-weighted
+// rays, each taking the reflected radiosity (B - E) where it lands (nothing on a bright
+// patch: that is direct light), interpolated over the patch as rad-shade's smoothing does;
+// or (exact) the point-to-polygon sum over every patch.
 #pragma once
 #include "radfmt/kinds.hpp"
 #include "radiosity/random.hpp"
@@ -20,12 +23,22 @@
 #include <vector>
 
 namespace rad {
+namespace gather {
+class LightTree;
+}
 
 struct GatherOptions {
     int rays = 256; // indirect: cosine-weighted rays per point
     // Direct: shadow rays per point for the emitters' visible fractions, shared among the
     // emitting patches by what each contributes (at least one each); --exact: per patch.
     int shadow_rays = 32;
+    // Lights whose bounding sphere's radius is under this fraction of their distance are taken
+    // as one (relative error about its square); 0 (and `exact`): every light on its own.
+    double cluster_ratio = 0.1;
+    // Patches whose reflected radiosity (r + g + b) exceeds this many times the area-weighted
+    // mean over the scene are lights, not left to the indirect rays (a ray that lands on a
+    // small very bright patch is a firefly); 0: none. Not with `exact`, which has no rays.
+    double bright_factor = 8;
     bool exact = false;     // indirect as the point-to-polygon sum over every patch
     std::uint64_t seed = 1; // each point has its own stream: (seed, point index)
     Smoothing smoothing = Smoothing::Crease;
@@ -71,13 +84,25 @@ class Gatherer {
 
     const radfmt::MeshData& mesh() const { return mesh_; }
     const RayScene& scene() const { return *scene_; }
+    // Patches sampled as lights because they reflect so much (see bright_factor).
+    std::size_t bright_patches() const;
     // The radiosity of patch `patch` at its parameters (u, v), interpolated as rad-shade.
     Rgb radiosity_at(std::size_t patch, double u, double v) const;
     // The reflected part B - E, interpolated the same way.
     Rgb reflected_at(std::size_t patch, double u, double v) const;
 
   private:
+    struct Seen;
+    void find_bright_patches();
+    void build_light_tree();
     Rgb direct(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    Rgb shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
+                 Rng& rng) const;
+    double cluster_visible_fraction(const Vec3& point, const Vec3& normal, std::uint32_t node,
+                                    int rays, Rng& rng) const;
+    double pooled_visible_fraction(const Vec3& point, std::span<const Seen* const> pooled,
+                                   double weight, int rays, Rng& rng) const;
+    Vec3 point_on_light(std::size_t patch, double u, Rng& rng) const;
     Rgb exact_indirect(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
     double form_factor_to(const Vec3& point, const Vec3& normal, std::size_t patch,
                           std::vector<Vec3>& clipped) const;
@@ -91,7 +116,8 @@ class Gatherer {
     std::vector<std::array<Rgb, 4>> total_corners_;     // B at the corners
     std::vector<std::array<Rgb, 4>> reflected_corners_; // B - E at the corners
     std::vector<Rgb> reflected_flat_;                   // B - E per patch
-    std::vector<std::uint32_t> emitters_;               // patches with E > 0
+    std::vector<std::uint8_t> bright_;                  // lit so much it is a light
+    std::unique_ptr<gather::LightTree> lights_;         // emitters and bright patches
     std::vector<std::array<Rgb, 4>> corner_normals_;    // smoothed normals at the corners
 };
 

@@ -86,6 +86,13 @@ std::vector<double> fan_cdf(std::span<const Vec3> poly) {
 
 std::vector<Vec3> clip_to_front(std::span<const Vec3> poly, const Vec3& point, const Vec3& normal) {
     std::vector<Vec3> out;
+    clip_to_front(poly, point, normal, out);
+    return out;
+}
+
+void clip_to_front(std::span<const Vec3> poly, const Vec3& point, const Vec3& normal,
+                   std::vector<Vec3>& out) {
+    out.clear();
     const std::size_t n = poly.size();
     for (std::size_t k = 0; k < n; ++k) {
         const Vec3& a = poly[k];
@@ -94,7 +101,6 @@ std::vector<Vec3> clip_to_front(std::span<const Vec3> poly, const Vec3& point, c
         if (da >= 0) out.push_back(a);
         if ((da > 0 && db < 0) || (da < 0 && db > 0)) out.push_back(a + (b - a) * (da / (da - db)));
     }
-    return out;
 }
 
 double radical_inverse(std::uint64_t i, std::uint64_t base) {

@@ -42,6 +42,9 @@ std::vector<double> fan_cdf(std::span<const Vec3> poly);
 
 // Keeps the part of `poly` on the positive side of the plane (point, normal).
 std::vector<Vec3> clip_to_front(std::span<const Vec3> poly, const Vec3& point, const Vec3& normal);
+// The same into `out` (whose storage is reused); `out` must not be `poly`.
+void clip_to_front(std::span<const Vec3> poly, const Vec3& point, const Vec3& normal,
+                   std::vector<Vec3>& out);
 
 // Radical inverse in base b: the Halton sequence.
 double radical_inverse(std::uint64_t i, std::uint64_t base);

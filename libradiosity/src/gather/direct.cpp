@@ -1,0 +1,214 @@
+// Direct light of a final gather: the lights a point's cut of the light tree holds, each by
+// its exact form factor (a single light) or as one (a far group), times its visible fraction.
+#include "formfactor/sampling.hpp"
+#include "gather/light_tree.hpp"
+#include "radiosity/formfactor.hpp"
+#include "radiosity/gather.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rad {
+
+namespace {
+double brightness(const Rgb& c) {
+    return c[0] + c[1] + c[2];
+}
+
+// A stratified number in [0, 1) for sample s of `count`, turned by `offset`.
+double stratum(int s, int count, double offset) {
+    return ff::wrap((s + 0.5) / count + offset);
+}
+} // namespace
+
+// A light or group of lights a point sees, with the irradiance it gives there unshadowed.
+struct Gatherer::Seen {
+    bool cluster = false;
+    std::uint32_t id = 0; // the patch of a single light, the tree node of a cluster
+    Rgb irradiance{0, 0, 0};
+    double weight = 0;         // brightness(irradiance): its share of the shadow rays
+    std::vector<Vec3> clipped; // a single light: its part in front of the point
+};
+
+// The exact form factor from the point to the part of `patch` above the point's plane (0
+// when the point is behind the patch); `clipped` receives that part.
+double Gatherer::form_factor_to(const Vec3& point, const Vec3& normal, std::size_t patch,
+                                std::vector<Vec3>& clipped) const {
+    const auto& p = mesh_.patches[patch];
+    clipped.clear();
+    if (dot(point - p.centroid, p.normal) <= 0) return 0; // behind it
+    // A patch in the point's own plane, facing its way (the surface the point lies on, its
+    // corners off that plane by rounding): a plane sees nothing of itself. Left in, a point
+    // over the patch had its form factor as 1, or 0.5 on an edge.
+    if (dot(normal, p.normal) > 0.999) {
+        double off = 0;
+        for (int k = 0; k < p.corner_count(); ++k)
+            off = std::max(off, std::abs(dot(mesh_.vertices[p.corners[k]] - point, normal)));
+        if (off <= 1e-6 * std::sqrt(p.area)) return 0;
+    }
+    Vec3 corners[4];
+    for (int k = 0; k < p.corner_count(); ++k) corners[k] = mesh_.vertices[p.corners[k]];
+    ff::clip_to_front(std::span<const Vec3>(corners, p.corner_count()), point, normal, clipped);
+    if (clipped.size() < 3) return 0;
+    const double f = point_to_polygon_form_factor(point, normal, clipped);
+    return f > 0 ? f : 0;
+}
+
+// The part of `clipped` (of `patch`) the point sees: shadow rays to stratified points,
+// weighted by the form-factor kernel, so a half-hidden patch counts by what it contributes.
+double Gatherer::visible_fraction(const Vec3& point, const Vec3& normal, std::size_t patch,
+                                  const std::vector<Vec3>& clipped, int rays, Rng& rng) const {
+    if (rays <= 0) return 1;
+    const auto& p = mesh_.patches[patch];
+    const auto cdf = ff::fan_cdf(clipped);
+    const double offset = rng.uniform();
+    double weight_sum = 0, visible_sum = 0, plain_visible = 0;
+    for (int s = 0; s < rays; ++s) {
+        const Vec3 q =
+            ff::uniform_point(clipped, cdf, stratum(s, rays, offset), rng.uniform(), rng.uniform());
+        const Vec3 d = q - point;
+        const double r2 = dot(d, d);
+        if (!(r2 > 0)) continue;
+        const double w =
+            std::max(0.0, dot(d, normal)) * std::max(0.0, -dot(d, p.normal)) / (r2 * r2);
+        const bool visible = scene_->visible(point, q);
+        weight_sum += w;
+        visible_sum += visible ? w : 0;
+        plain_visible += visible ? 1 : 0;
+    }
+    return weight_sum > 0 ? visible_sum / weight_sum : plain_visible / rays;
+}
+
+// An area-uniform point of the whole patch, `u` (in [0, 1)) choosing where along its fan.
+Vec3 Gatherer::point_on_light(std::size_t patch, double u, Rng& rng) const {
+    const auto& p = mesh_.patches[patch];
+    Vec3 corners[4];
+    for (int k = 0; k < p.corner_count(); ++k) corners[k] = mesh_.vertices[p.corners[k]];
+    const std::span<const Vec3> polygon(corners, p.corner_count());
+    const auto cdf = ff::fan_cdf(polygon);
+    return ff::uniform_point(polygon, cdf, u, rng.uniform(), rng.uniform());
+}
+
+// A cluster's visible fraction: shadow rays to its lights, each chosen in proportion to its
+// power and a point on it uniformly, so the kernel-weighted ratio weighs them as they shine.
+double Gatherer::cluster_visible_fraction(const Vec3& point, const Vec3& normal, std::uint32_t node,
+                                          int rays, Rng& rng) const {
+    const double offset = rng.uniform();
+    double weight_sum = 0, visible_sum = 0, plain_visible = 0;
+    for (int s = 0; s < rays; ++s) {
+        double along = 0; // the stratum's rest, so the points on a light are stratified too
+        const auto& light = lights_->pick(node, stratum(s, rays, offset), &along);
+        const Vec3 q = point_on_light(light.patch, along, rng);
+        const Vec3 d = q - point;
+        const double r2 = dot(d, d);
+        if (!(r2 > 0)) continue;
+        const double w = std::max(0.0, dot(d, normal)) *
+                         std::max(0.0, -dot(d, mesh_.patches[light.patch].normal)) / (r2 * r2);
+        const bool visible = scene_->visible(point, q);
+        weight_sum += w;
+        visible_sum += visible ? w : 0;
+        plain_visible += visible ? 1 : 0;
+    }
+    return weight_sum > 0 ? visible_sum / weight_sum : plain_visible / rays;
+}
+
+// The visible fraction of lights too faint for a shadow ray each, together: each ray goes to
+// one of them chosen by its weight, and the share of rays that arrive stands for them all.
+double Gatherer::pooled_visible_fraction(const Vec3& point, std::span<const Seen* const> pooled,
+                                         double weight, int rays, Rng& rng) const {
+    const double offset = rng.uniform();
+    int visible = 0;
+    std::size_t at = 0;
+    double below = 0; // the weight of pooled[0, at)
+    for (int s = 0; s < rays; ++s) {
+        const double target = stratum(s, rays, offset) * weight;
+        // Strata ascend but wrap once: start over when the target falls behind.
+        if (target < below) at = 0, below = 0;
+        while (at + 1 < pooled.size() && below + pooled[at]->weight <= target)
+            below += pooled[at++]->weight;
+        const Seen& seen = *pooled[at];
+        Vec3 q;
+        if (seen.cluster) {
+            double along = 0;
+            const auto& light = lights_->pick(seen.id, rng.uniform(), &along);
+            q = point_on_light(light.patch, along, rng);
+        } else {
+            const auto cdf = ff::fan_cdf(seen.clipped);
+            q = ff::uniform_point(seen.clipped, cdf, rng.uniform(), rng.uniform(), rng.uniform());
+        }
+        visible += scene_->visible(point, q) ? 1 : 0;
+    }
+    return double(visible) / rays;
+}
+
+// Shadow rays shared by what each seen light gives: one with a share of at least half a ray
+// gets its own (rounded), the rest share theirs as one pool.
+Rgb Gatherer::shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
+                       Rng& rng) const {
+    Rgb sum{0, 0, 0}, pooled_sum{0, 0, 0};
+    const int budget = options_.shadow_rays;
+    thread_local std::vector<const Seen*> pooled;
+    pooled.clear();
+    double pooled_weight = 0;
+    for (const auto& s : seen) {
+        const double share = budget * s.weight / total;
+        if (budget > 0 && share < 0.5) {
+            pooled.push_back(&s);
+            pooled_weight += s.weight;
+            for (int k = 0; k < 3; ++k) pooled_sum[k] += s.irradiance[k];
+            continue;
+        }
+        const int rays = budget <= 0 ? 0 : static_cast<int>(std::lround(share));
+        const double visible = rays == 0 ? 1
+                               : s.cluster
+                                   ? cluster_visible_fraction(point, normal, s.id, rays, rng)
+                                   : visible_fraction(point, normal, s.id, s.clipped, rays, rng);
+        for (int k = 0; k < 3; ++k) sum[k] += s.irradiance[k] * visible;
+    }
+    if (!pooled.empty()) {
+        const int rays = std::max(1, static_cast<int>(std::lround(budget * pooled_weight / total)));
+        const double visible = pooled_visible_fraction(point, pooled, pooled_weight, rays, rng);
+        for (int k = 0; k < 3; ++k) sum[k] += pooled_sum[k] * visible;
+    }
+    return sum;
+}
+
+// Direct light: the point's cut of the light tree, single lights by their exact form factors,
+// groups as one, then shadow rays shared among them by what each gives.
+Rgb Gatherer::direct(const Vec3& point, const Vec3& normal, std::uint64_t index) const {
+    if (lights_->empty()) return {0, 0, 0};
+    Rng rng(options_.seed ^ 0xD1EC7ull, index);
+    thread_local gather::LightTree::Cut cut;
+    thread_local std::vector<Seen> seen; // kept between points for their buffers
+    // Exact: every light on its own too, no cluster's approximation.
+    lights_->cut(point, normal, options_.exact ? 0 : options_.cluster_ratio, cut);
+    std::size_t count = 0;
+    double total = 0;
+    for (const auto i : cut.lights) {
+        const auto& light = lights_->lights()[i];
+        if (count == seen.size()) seen.emplace_back();
+        Seen& s = seen[count];
+        const double f = form_factor_to(point, normal, light.patch, s.clipped);
+        if (f <= 0) continue;
+        s.cluster = false;
+        s.id = light.patch;
+        for (int k = 0; k < 3; ++k) s.irradiance[k] = light.radiosity[k] * f;
+        s.weight = brightness(s.irradiance);
+        total += s.weight;
+        ++count;
+    }
+    for (const auto& c : cut.clusters) {
+        if (!(brightness(c.irradiance) > 0)) continue;
+        if (count == seen.size()) seen.emplace_back();
+        Seen& s = seen[count++];
+        s.cluster = true;
+        s.id = c.node;
+        s.irradiance = c.irradiance;
+        s.weight = brightness(c.irradiance);
+        total += s.weight;
+    }
+    if (!(total > 0)) return {0, 0, 0};
+    return shadowed(point, normal, std::span<Seen>(seen.data(), count), total, rng);
+}
+
+} // namespace rad
