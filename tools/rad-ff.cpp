@@ -11,6 +11,50 @@
 #include "tool.hpp"
 
 #include <cstdio>
+#include <string>
+
+namespace {
+// Below this, a run is over before an estimate would matter.
+constexpr double kSayEstimateSeconds = 10;
+// Above this, an O(n^2) method also hears what hemisphere would cost.
+constexpr double kSuggestFasterSeconds = 60;
+
+std::string about(double seconds) {
+    char text[64];
+    if (seconds < 10)
+        std::snprintf(text, sizeof text, "about %.1f s", seconds);
+    else if (seconds < 90)
+        std::snprintf(text, sizeof text, "about %.0f s", seconds);
+    else if (seconds < 5400)
+        std::snprintf(text, sizeof text, "about %.0f min", seconds / 60);
+    else
+        std::snprintf(text, sizeof text, "about %.1f h", seconds / 3600);
+    return text;
+}
+
+// Measures the run before it starts and says what it will cost when that is long (or
+// `always`); for an O(n^2) method, also what hemisphere (rays, O(n)) would cost.
+void say_estimate(const radfmt::MeshData& mesh, const rad::FormFactorOptions& options,
+                  rad::RowRange range, bool always) {
+    const auto estimate = rad::estimate_form_factor_time(mesh, options, range);
+    if (!always && estimate.seconds < kSayEstimateSeconds) return;
+    const auto rows = std::min<std::uint64_t>(range.end, mesh.patches.size()) -
+                      std::min<std::uint64_t>(range.begin, mesh.patches.size());
+    std::string line = "rad-ff: " + options.method + ": " + about(estimate.seconds) + " for ";
+    line.append(std::to_string(rows)).append(" rows on ");
+    line.append(std::to_string(estimate.threads)).append(" thread(s) (measured on ");
+    line.append(std::to_string(estimate.sampled_rows)).append(" rows)");
+    if ((always || estimate.seconds > kSuggestFasterSeconds) && options.method != "hemisphere") {
+        rad::FormFactorOptions hemisphere;
+        hemisphere.method = "hemisphere";
+        hemisphere.seed = options.seed;
+        const auto faster = rad::estimate_form_factor_time(mesh, hemisphere, range);
+        if (always || faster.seconds < estimate.seconds)
+            line.append("; --method hemisphere: ").append(about(faster.seconds));
+    }
+    std::fprintf(stderr, "%s\n", line.c_str());
+}
+} // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{
@@ -36,7 +80,13 @@ int main(int argc, char** argv) {
     app.add_flag("--merge", merge,
                  "Join part files (rad-ff --rows) of one mesh and options into the form-factor "
                  "file one run would have written, byte for byte; every row exactly once");
-    app.add_option("-o,--output", output, "Output form-factor file")->required();
+    bool estimate_only = false;
+    auto* output_option = app.add_option("-o,--output", output, "Output form-factor file");
+    app.add_flag("--estimate", estimate_only,
+                 "Measure a few rows, say how long the run would take (and, for an O(n^2) "
+                 "method, what hemisphere would take), and stop: no output, no -o needed. "
+                 "Without it, rad-ff says so before runs of over 10 s")
+        ->excludes("--merge");
     auto method_names = rad::form_factor_method_names();
     method_names.push_back("auto");
     options.method = "auto";
@@ -66,7 +116,9 @@ int main(int argc, char** argv) {
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-ff", [&] {
-        rad::tool::check_outputs(inputs, {{"-o", output}});
+        if (output_option->count() == 0 && !estimate_only)
+            throw rad::InputError("--output is required (or --estimate, to measure only)");
+        if (!estimate_only) rad::tool::check_outputs(inputs, {{"-o", output}});
         if (merge) {
             if (!rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
             const auto merged =
@@ -110,6 +162,11 @@ int main(int argc, char** argv) {
 
         const auto range =
             rows.empty() ? rad::RowRange{} : rad::parse_rows(rows, mesh.patches.size());
+        if (estimate_only) {
+            say_estimate(mesh, options, range, true);
+            return 0;
+        }
+        if (!options.quiet) say_estimate(mesh, options, range, false);
         rad::FormFactorStats stats;
         // The rows are packed into the file's arrays as they are computed; what would not
         // fit within --max-memory waits on disk beside the output.

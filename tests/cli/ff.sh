@@ -12,6 +12,19 @@ for method in analytic pairwise hemisphere; do
 done
 err=$("$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/s.ff" 2>&1) || fail "summary run"
 grep -q "non-zeros.*rays.*rays/s.*row sums mean" <<<"$err" || fail "summary: $err"
+# --estimate: a few rows measured, the cost said in one line (and hemisphere's beside an
+# O(n^2) method's), nothing written; without it, -o is required.
+before=$(ls -A "$TMP")
+err=$("$BIN/rad-ff" "$TMP/c.mesh" --estimate --method analytic 2>&1) || fail "--estimate: $err"
+grep -Eq "^rad-ff: analytic: about [0-9.]+ (s|min|h) for [0-9]+ rows on [0-9]+ thread\(s\) \(measured on ([2-9]|[12][0-9]|3[0-2]) rows\); --method hemisphere: about [0-9.]+ (s|min|h)$" <<<"$err" ||
+  fail "--estimate line: $err"
+err=$("$BIN/rad-ff" "$TMP/c.mesh" --estimate --method hemisphere --rows 0/4 2>&1) || fail "--estimate --rows: $err"
+rows=$("$BIN/rad-info" "$TMP/c.mesh" | sed -n 's/^  patches = //p')
+grep -q "^rad-ff: hemisphere: about .* for $((rows / 4)) rows on" <<<"$err" || fail "--estimate --rows line: $err"
+grep -q "method hemisphere" <<<"$err" && fail "hemisphere suggested to itself: $err"
+[ "$(ls -A "$TMP")" = "$before" ] || fail "--estimate wrote: $(ls -A "$TMP")"
+expect_error "--output is required (or --estimate" "" "$BIN/rad-ff" "$TMP/c.mesh"
+expect_error "" "" "$BIN/rad-ff" a.ff b.ff --merge --estimate
 expect_error "more than --max-memory" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --max-memory 10K
 # The estimate counts what grows with the options (hemisphere's per-ray table), so a huge
 # --rays is refused at once instead of allocating gigabytes.

@@ -88,6 +88,20 @@ FormFactorOptions resolve_form_factor_options(FormFactorOptions options);
 std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
                                           const FormFactorOptions& options);
 
+// How long computing rows `range` of `mesh` will take on the threads allowed, measured
+// before it starts: the ray scene and the method's tables built once, then up to
+// kEstimateMaxRows rows spread over the range, on one thread, for about `budget_seconds`.
+inline constexpr std::size_t kEstimateMaxRows = 32;
+struct FormFactorEstimate {
+    double seconds = 0;       // the whole run, setup included
+    double setup_seconds = 0; // the ray scene and the method's tables
+    std::size_t sampled_rows = 0;
+    std::size_t threads = 1;
+};
+FormFactorEstimate estimate_form_factor_time(const radfmt::MeshData& mesh,
+                                             const FormFactorOptions& options, RowRange range = {},
+                                             double budget_seconds = 0.25);
+
 // The header fields describing how a form-factor file was computed (method, its options,
 // seed): what makes two files comparable.
 std::vector<std::pair<std::string, std::string>>
