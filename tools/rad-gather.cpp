@@ -185,6 +185,7 @@ int main(int argc, char** argv) {
     std::string mesh_path, rad_path, points_path, output, grid_text, png, smooth = "crease";
     rad::GatherOptions options;
     bool lux = false, header = false, keep_going = false, quiet = false;
+    double lux_max = 0;
     int threads = 0;
     app.add_option("MESH", mesh_path, "Patch mesh from rad-mesh")->required();
     app.add_option("RADIOSITY", rad_path, "Radiosity from rad-solve for this mesh")->required();
@@ -227,6 +228,11 @@ int main(int argc, char** argv) {
     app.add_option("--png", png,
                    "With --grid: also write a false-colour PNG of the illuminance (lux) with a "
                    "legend");
+    app.add_option("--lux-max", lux_max,
+                   "--png: the legend's top (lux), the same for every plane drawn with it "
+                   "(default: a round number at or above the plane's largest value; values "
+                   "above it get the top colour)")
+        ->check(rad::tool::finite_range(0, 1e30));
     app.add_option("--seed", options.seed, "Seed; each point has its own stream (seed, index)")
         ->capture_default_str();
     rad::tool::add_threads_option(app, threads);
@@ -236,6 +242,8 @@ int main(int argc, char** argv) {
     return rad::tool::run_tool("rad-gather", [&] {
         rad::tool::check_outputs({mesh_path, rad_path, points_path},
                                  {{"-o", output}, {"--png", png}});
+        if (lux_max > 0 && png.empty())
+            throw rad::InputError("--lux-max scales the --png of a --grid: give --png FILE");
         if (!png.empty() && grid_text.empty())
             throw rad::InputError("--png draws a --grid: give --grid \"x0 z0 x1 z1 y nx nz\"");
         if (!grid_text.empty() && !points_path.empty())
@@ -355,7 +363,7 @@ int main(int argc, char** argv) {
         if (!png.empty())
             rad::write_false_colour_png(png, grid_lux, static_cast<int>(grid.nx),
                                         static_cast<int>(grid.nz), "lux",
-                                        "illuminance (lux) at y = " + number_text(grid.y));
+                                        "illuminance (lux) at y = " + number_text(grid.y), lux_max);
         outputs.commit();
         if (!grid_text.empty()) {
             print_work_plane(grid_lux, problems);

@@ -56,6 +56,22 @@ assert data[:8] == b'\x89PNG\r\n\x1a\n'
 w, h = struct.unpack('>II', data[16:24])
 assert w > 400 and h > 300, (w, h)
 PY
+# --lux-max fixes the legend's top for every plane drawn with it: far above the values, the
+# first cell is the bottom colour (dark blue); by default it is not.
+"$BIN/rad-gather" "$M" "$R" --grid "0.02 0.02 0.54 0.54 0.1 13 13" --lux --png "$TMP/plane-max.png" \
+  --lux-max 1e6 --keep-going -o "$TMP/plane.txt" -q 2>/dev/null || fail "--lux-max"
+python3 - "$TMP/plane-max.png" "$TMP/plane.png" "$SRC/tests/cli" <<'PY' || fail "--lux-max colours"
+import sys
+sys.path.insert(0, sys.argv[3])
+from png_stats import read_png
+def first_cell(path):
+    w, h, rows = read_png(path)
+    return tuple(rows[58][3 * 14:3 * 14 + 3])
+fixed, default = first_cell(sys.argv[1]), first_cell(sys.argv[2])
+assert all(abs(a - b) <= 2 for a, b in zip(fixed, (13, 13, 89))), fixed
+assert default != fixed, default
+PY
+expect_error "--lux-max scales the --png" "" "$BIN/rad-gather" "$M" "$R" --grid "0 0 1 1 0.1 4 4" --lux-max 100
 expect_error "--png draws a --grid" "$TMP/x.png" "$BIN/rad-gather" "$M" "$R" --png "$TMP/x.png"
 expect_error "--grid takes seven numbers" "" "$BIN/rad-gather" "$M" "$R" --grid "0 0 1 1 0.1 4"
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/other.mesh" --max-edge 0.2 -q

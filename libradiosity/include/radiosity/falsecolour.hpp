@@ -12,9 +12,11 @@ namespace rad {
 std::array<std::uint8_t, 3> false_colour(double t);
 
 // Writes a PNG of `values` (row-major, `columns` x `rows`, row 0 at the top; NaN cells
-// grey), scaled from 0 to a round number at or above the largest value, with a legend
-// labelled in `unit` and a `title` line (min, mean, max are added below it).
+// grey), scaled from 0 to `top` (0: a round number at or above the largest value; values
+// above it get the top colour), with a legend labelled in `unit` and a `title` line (min,
+// mean, max are added below it).
 void write_false_colour_png(const std::string& path, std::span<const double> values, int columns,
-                            int rows, const std::string& unit, const std::string& title);
+                            int rows, const std::string& unit, const std::string& title,
+                            double top = 0);
 
 } // namespace rad

@@ -90,7 +90,8 @@ std::string number(double v) {
 } // namespace
 
 void write_false_colour_png(const std::string& path, std::span<const double> values, int columns,
-                            int rows, const std::string& unit, const std::string& title) {
+                            int rows, const std::string& unit, const std::string& title,
+                            double top_value) {
     if (columns <= 0 || rows <= 0 || values.size() != std::size_t(columns) * rows)
         throw InternalError("false-colour map: " + std::to_string(values.size()) +
                             " values for a " + std::to_string(columns) + "x" +
@@ -99,7 +100,7 @@ void write_false_colour_png(const std::string& path, std::span<const double> val
     std::size_t finite = 0;
     for (double v : values)
         if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v), sum += v, ++finite;
-    const double top = round_up(finite ? hi : 1);
+    const double top = top_value > 0 ? top_value : round_up(finite ? hi : 1);
     // Cells at least 2 px, the map about 480 px on its longer side.
     const int cell = std::max(2, 480 / std::max(columns, rows));
     const int map_w = columns * cell, map_h = rows * cell;
