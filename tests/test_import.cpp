@@ -185,3 +185,67 @@ TEST_CASE("PLY and COLLADA conversions of a fixture give the same surfaces") {
         CHECK(mesh.total_area() == Approx(reference.total_area()).epsilon(1e-6));
     }
 }
+
+namespace {
+// COLLADA nodes nested `depth` deep around one triangle: importers recurse once a level.
+std::string nested_collada(int depth) {
+    std::string nodes;
+    for (int i = 0; i < depth; ++i) nodes += "<node id=\"n" + std::to_string(i) + "\">";
+    nodes += "<instance_geometry url=\"#g\"/>";
+    for (int i = 0; i < depth; ++i) nodes += "</node>";
+    return R"(<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+<asset><up_axis>Y_UP</up_axis></asset>
+<library_geometries><geometry id="g"><mesh>
+<source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array>
+<technique_common><accessor source="#pa" count="3" stride="3"><param name="X" type="float"/>
+<param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+<vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+<triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles>
+</mesh></geometry></library_geometries>
+<library_visual_scenes><visual_scene id="s">)" +
+           nodes + R"(</visual_scene></library_visual_scenes>
+<scene><instance_visual_scene url="#s"/></scene></COLLADA>)";
+}
+} // namespace
+
+TEST_CASE("an importer that crashes takes its own process, not the tool's") {
+    const auto dir = temp_dir("isolated");
+    write_text(dir / "deep.dae", nested_collada(20000));
+    rad::SceneOptions options;
+    // A stack too small for 20000 levels: assimp overflows it and dies of SIGSEGV, in the
+    // child; the tool gets an error naming the file and the signal.
+    options.import.stack_bytes = 256 * 1024;
+    CHECK_THROWS_WITH(rad::load_scene(dir / "deep.dae", options),
+                      Contains("deep.dae: the importer (assimp) failed on this file (signal 11 "
+                               "(SIGSEGV): it crashed") &&
+                          Contains("nothing was written"));
+    // With the default stack (512 MiB) the same file reads.
+    const auto scene = rad::load_scene(dir / "deep.dae");
+    CHECK(scene.polygons.size() == 1);
+    CHECK(scene.groups.size() == 1);
+}
+
+TEST_CASE("an isolated import gives the scene and report an import in the tool's process does") {
+    const auto path = fs::path(RADIOSITY_SOURCE_DIR) / "tests/data/living-room/living_room.glb";
+    rad::SceneOptions in_process;
+    in_process.import.isolate = false;
+    rad::SceneReport report_isolated, report_here;
+    const auto isolated = rad::load_scene(path, {}, &report_isolated);
+    const auto here = rad::load_scene(path, in_process, &report_here);
+    REQUIRE(here.polygons.size() > 1000);
+    CHECK(isolated.vertices == here.vertices);
+    CHECK(isolated.polygons.size() == here.polygons.size());
+    bool same = true;
+    for (std::size_t i = 0; i < here.polygons.size() && same; ++i) {
+        const auto &a = isolated.polygons[i], &b = here.polygons[i];
+        same = a.vertices == b.vertices && a.group == b.group && a.material == b.material &&
+               a.line == b.line && a.vn_sum == b.vn_sum;
+    }
+    CHECK(same);
+    CHECK(isolated.groups == here.groups);
+    CHECK(isolated.material_files == here.material_files);
+    CHECK(isolated.face_ranges.size() == here.face_ranges.size());
+    CHECK(report_isolated.textures_averaged == report_here.textures_averaged);
+    CHECK(report_isolated.texture_problems == report_here.texture_problems);
+}

@@ -145,11 +145,28 @@ int main(int argc, char** argv) {
                    "(each input face subdivided on its own: the input's triangulation shows)")
         ->capture_default_str()
         ->check(CLI::IsMember({"regions", "faces"}));
+    std::string import_memory;
+    app.add_option("--import-timeout", obj_options.import.seconds,
+                   "glTF, PLY, COLLADA, FBX: assimp reads them in a process of its own; give up "
+                   "on a file it has not read in this many seconds (0: no limit)")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(0, 1e9));
+    app.add_option("--import-memory", import_memory,
+                   "... and on one for which it needs more address space than this (e.g. 4G; "
+                   "default: 80% of physical memory); a crash there is an error naming the "
+                   "file, never the tool's");
+    app.add_flag("--allow-outside-refs", obj_options.allow_outside_refs,
+                 "Let the scene refer to files outside its own folder (material libraries, "
+                 "textures, glTF buffers and images given by absolute paths or '..'); FIFOs "
+                 "and devices are never opened");
     app.add_flag("-q,--quiet", quiet, "Print no summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-mesh", [&] {
         rad::tool::check_outputs({input}, {{"-o", output}});
+        if (!import_memory.empty())
+            obj_options.import.memory_bytes =
+                rad::tool::parse_size(import_memory, "--import-memory");
         rad::SubdivisionOptions options;
         // No limit given at all: one from the scene's size, chosen by the patch pass.
         if (max_edge.empty() && max_area.empty()) options.max_edge = rad::kMaxEdgeFromScene;

@@ -17,6 +17,9 @@
 namespace rad::tool {
 
 int parse_arguments(CLI::App& app, int argc, char** argv) {
+    // A reader that goes away is a normal end from the first byte on, --help included
+    // (`rad-mesh --help | grep -q x` must not die of SIGPIPE when grep stops reading).
+    std::signal(SIGPIPE, SIG_IGN);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,6 +1,9 @@
 // Scenes in the formats assimp reads (glTF 2.0, PLY, COLLADA, FBX, ...): the same Scene as
 // an OBJ gives, so everything after reading (orientation, subdivision) is shared.
+#include "import/isolated.hpp"
+#include "import/precheck.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/texture.hpp"
 #include "radiosity/vec.hpp"
@@ -89,8 +92,8 @@ Vec3 transform_point(const aiMatrix4x4& m, const aiVector3D& v) {
 // The texture of `type` (or nothing), averaged: embedded ("*0", or a name an embedded
 // texture carries) or a file next to the scene.
 void apply_texture(const aiScene& scene, const aiMaterial& material, aiTextureType type,
-                   const fs::path& folder, radfmt::Material& out, SceneReport& report,
-                   std::vector<std::string>& files) {
+                   const fs::path& scene_path, bool allow_outside, radfmt::Material& out,
+                   SceneReport& report, std::vector<std::string>& files) {
     aiString name;
     if (material.GetTexture(type, 0, &name) != AI_SUCCESS || name.length == 0) return;
     const std::string texture_name = name.C_Str();
@@ -106,7 +109,9 @@ void apply_texture(const aiScene& scene, const aiMaterial& material, aiTextureTy
             problem = "uncompressed embedded textures are not read";
         }
     } else {
-        const auto path = folder / texture_name;
+        const auto path =
+            import::referenced_file(scene_path, scene_path.parent_path(), texture_name,
+                                    "material '" + out.name + "' texture", allow_outside);
         if (!fs::is_regular_file(path)) {
             report.texture_problems.push_back(out.name + ": texture " + path.string() +
                                               " not found");
@@ -136,6 +141,8 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
     const aiScene* ai =
         importer.ReadFile(path.string(), aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                                              aiProcess_ValidateDataStructure);
+    // assimp catches its own out-of-memory: it is one still (the isolated import says so).
+    if (!ai && std::strstr(importer.GetErrorString(), "bad_alloc")) throw std::bad_alloc();
     if (!ai || !ai->mRootNode || (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
         throw InputError(path.string() + ": cannot read the scene (" + importer.GetErrorString() +
                          ")");
@@ -158,13 +165,13 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
         aiColor3D diffuse(1, 1, 1);
         if (material.Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS) {
             out.reflectance = {{base.r, base.g, base.b}};
-            apply_texture(*ai, material, aiTextureType_BASE_COLOR, path.parent_path(), out, report,
-                          scene.material_files);
+            apply_texture(*ai, material, aiTextureType_BASE_COLOR, path, options.allow_outside_refs,
+                          out, report, scene.material_files);
         } else {
             if (material.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS)
                 out.reflectance = {{diffuse.r, diffuse.g, diffuse.b}};
-            apply_texture(*ai, material, aiTextureType_DIFFUSE, path.parent_path(), out, report,
-                          scene.material_files);
+            apply_texture(*ai, material, aiTextureType_DIFFUSE, path, options.allow_outside_refs,
+                          out, report, scene.material_files);
         }
         aiColor3D emissive(0, 0, 0);
         material.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
@@ -246,9 +253,20 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
     return scene;
 }
 
+// assimp runs isolated (import/isolated.hpp), after our own checks of what would hang or
+// crash it or have it read outside the scene's folder.
 Scene load_scene(const fs::path& path, const SceneOptions& options, SceneReport* report) {
     if (lower_extension(path) == ".obj") return load_obj(path, options, report);
-    return load_with_assimp(path, options, report);
+    import::check_before_import(path, options);
+    if (!options.import.isolate) return load_with_assimp(path, options, report);
+    ImportLimits limits = options.import;
+    if (limits.memory_bytes == 0)
+        limits.memory_bytes = static_cast<std::uint64_t>(0.8 * double(physical_memory_bytes()));
+    SceneReport local;
+    return import::run_isolated(
+        path, limits,
+        [&](SceneReport& child_report) { return load_with_assimp(path, options, &child_report); },
+        report ? *report : local);
 }
 
 } // namespace rad

@@ -1,6 +1,7 @@
 // Reading OBJ + MTL as people export them: tinyobjloader parses, a line-by-line check names
 // the file and line of what is malformed, and what can be repaired (a missing material, a
 // material library elsewhere, whitespace, textures) is repaired and reported.
+#include "import/precheck.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
@@ -72,6 +73,11 @@ struct LintResult {
 // those folders); an absolute name only where it says.
 Library find_library(const fs::path& obj, int line, const std::string& name,
                      const SceneOptions& options) {
+    // The scene's folder is the boundary: a name that leaves it (absolute, or climbing out
+    // with '..') is refused, unless allowed.
+    if (!options.allow_outside_refs)
+        import::referenced_file(FileLoc{obj.string(), line}.str(), obj.parent_path(), name,
+                                "mtllib", false);
     Library lib{line, name, {}, {}};
     std::vector<fs::path> candidates;
     if (fs::path(name).is_absolute()) {
@@ -297,7 +303,7 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
     // (textures are named relative to it).
     std::vector<tinyobj::material_t> materials;
     std::map<std::string, int> material_index;
-    std::vector<fs::path> material_folder;
+    std::vector<fs::path> material_folder, material_library;
     std::set<std::string> states_kd;
     std::set<fs::path> loaded;
     for (const auto& lib : lint.libraries) {
@@ -321,6 +327,7 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
         std::string warn, err;
         tinyobj::LoadMtl(&material_index, &materials, &text, &warn, &err);
         material_folder.resize(materials.size(), lib.found.parent_path());
+        material_library.resize(materials.size(), lib.found);
         scene.material_files.push_back(lib.found.string());
     }
 
@@ -363,7 +370,9 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
                                  "' has a negative or non-finite Kd or Ke");
         }
         if (!m.diffuse_texname.empty()) {
-            const auto texture = material_folder[index] / m.diffuse_texname;
+            const auto texture = import::referenced_file(
+                material_library[index], material_folder[index], m.diffuse_texname,
+                "material '" + m.name + "' map_Kd", options.allow_outside_refs);
             std::string problem;
             if (!fs::is_regular_file(texture)) {
                 report.texture_problems.push_back(material.name + ": texture " + texture.string() +

@@ -122,7 +122,7 @@ err=$("$BIN/rad-mesh" "$GLTF" -o gltf.mesh --max-edge 0.5 --emission-scale 3 2>&
 "$BIN/rad-ff" gltf.mesh -o gltf.ff --method hemisphere --rays 500 -q 2>/dev/null || fail "glTF ff"
 "$BIN/rad-solve" gltf.mesh gltf.ff -o gltf.rad -q --reflectance lamp=0.5 || fail "glTF solve"
 printf 'not a scene' > broken.glb
-expect_error "broken.glb: cannot read the scene" out5.mesh "$BIN/rad-mesh" broken.glb -o out5.mesh
+expect_error "broken.glb: not a GLB file" out5.mesh "$BIN/rad-mesh" broken.glb -o out5.mesh
 # Absurd limits are refused up front with the estimate, not after filling the memory (or
 # overflowing a count, or looping): --max-patches bounds them.
 for limit in "--max-edge 1e-21" "--max-edge 1e-4" "--max-area 1e-20"; do

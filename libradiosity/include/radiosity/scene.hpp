@@ -46,6 +46,16 @@ struct Scene {
 std::string face_number(const Scene& scene, int line);
 std::string face_location(const Scene& scene, int line);
 
+// Limits of a third-party importer (assimp: glTF, PLY, COLLADA, FBX, ...), which runs in a
+// child process: a file that crashes it, hangs it or exhausts its memory is refused with
+// how it failed, and the tool lives on.
+struct ImportLimits {
+    bool isolate = true;
+    double seconds = 300;                             // wall clock; 0: no limit
+    std::uint64_t memory_bytes = 0;                   // address space; 0: 80% of physical memory
+    std::size_t stack_bytes = std::size_t(512) << 20; // deep nesting recurses in importers
+};
+
 struct SceneOptions {
     // Refuse what is otherwise repaired with a warning: faces without a known material, a
     // missing material library (and, in subdivide, non-planar faces).
@@ -56,6 +66,11 @@ struct SceneOptions {
     // Formats read through assimp (glTF, PLY, COLLADA, FBX): emission in W/m^2 is their
     // emissive colour x glTF's emissiveStrength x this (their emission has no unit).
     double emission_scale = 1;
+    ImportLimits import;
+    // Files a scene refers to (glTF buffers and images, OBJ material libraries and textures)
+    // must lie in its folder or below, unless this allows them elsewhere; special files
+    // (FIFOs, devices) are never opened.
+    bool allow_outside_refs = false;
 };
 
 // What load_obj repaired or could not find, for its warnings and summary.
