@@ -73,10 +73,11 @@ int main(int argc, char** argv) {
     app.add_option("MESH", inputs,
                    "Patch mesh from rad-mesh (with --merge: the part files to join)")
         ->required();
-    app.add_option("--rows", rows,
-                   "Compute only these rows and write a part file: A:B (rows A to B, B "
-                   "excluded) or K/N (shard K of N, from 0, e.g. $SLURM_ARRAY_TASK_ID/16); "
-                   "rad-ff --merge joins the parts");
+    auto* rows_option =
+        app.add_option("--rows", rows,
+                       "Compute only these rows and write a part file: A:B (rows A to B, B "
+                       "excluded) or K/N (shard K of N, from 0, e.g. $SLURM_ARRAY_TASK_ID/16); "
+                       "rad-ff --merge joins the parts");
     app.add_flag("--merge", merge,
                  "Join part files (rad-ff --rows) of one mesh and options into the form-factor "
                  "file one run would have written, byte for byte; every row exactly once");
@@ -131,6 +132,9 @@ int main(int argc, char** argv) {
         }
         if (inputs.size() != 1)
             throw rad::InputError("give one mesh (several inputs are for --merge)");
+        if (rows_option->count() > 0 && rows.empty())
+            throw rad::InputError("--rows is empty: give A:B or K/N (leave --rows out for "
+                                  "every row)");
         const auto& input = inputs.front();
         const std::uint64_t limit = rad::tool::memory_limit(max_memory);
         rad::ThreadLimit thread_limit(threads);

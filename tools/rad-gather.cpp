@@ -62,6 +62,26 @@ void parse_sensor(const std::string& text, Sensor& sensor) {
     sensor.direction = {d[0] / len, d[1] / len, d[2] / len};
 }
 
+// Rays from a point farther than this many scene sizes from the scene cannot be traced in
+// single precision (Embree aborts on some): such points are refused, as rad-ff refuses
+// scenes out of its range.
+constexpr double kMaxSensorDistance = 1e6;
+
+// Why a sensor at `p` is out of the ray tracer's reach of the scene in `box`, or "".
+std::string out_of_reach(const rad::Vec3& p, const rad::Box& box) {
+    const double size = std::max(box.diagonal(), 1e-300);
+    using rad::operator-;
+    const double distance = rad::length(p - box.centre());
+    if (distance <= kMaxSensorDistance * size) return "";
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "the point is %.3g units from the scene, which is %.3g across: more than %.0e "
+                  "times its size away, rays from it cannot be traced in single precision "
+                  "(move it nearer)",
+                  distance, size, kMaxSensorDistance);
+    return text;
+}
+
 // Where sensors come from: lines of a stream, or a generated grid.
 class SensorSource {
   public:
@@ -263,6 +283,7 @@ int main(int argc, char** argv) {
         // E and rho as solved (rad-solve --emission/--reflectance overrides included).
         rad::apply_recorded_overrides(mesh, rad_header);
         const rad::Gatherer gatherer(mesh, solution.radiosity, options);
+        const rad::Box scene_box = rad::bounds(mesh.vertices);
 
         std::ifstream points_file;
         if (!points_path.empty()) {
@@ -299,6 +320,7 @@ int main(int argc, char** argv) {
             while (block.clear(), source->next(block, kBlock)) {
                 tbb::parallel_for(std::size_t(0), block.size(), [&](std::size_t k) {
                     auto& s = block[k];
+                    if (s.problem.empty()) s.problem = out_of_reach(s.position, scene_box);
                     if (!s.problem.empty()) return;
                     s.result = gatherer.gather(s.position, s.direction,
                                                static_cast<std::uint64_t>(written + k));
@@ -333,16 +355,16 @@ int main(int argc, char** argv) {
                         std::fprintf(out, "%.6g %.6g %.6g\n", h[0], h[1], h[2]);
                 }
                 written += static_cast<long>(block.size());
-                if (std::ferror(out))
+                if (std::ferror(out)) {
+                    if (out == stdout && rad::tool::stdout_reader_gone())
+                        return; // `| head`: a normal end, as for every tool
                     throw rad::SystemError("cannot write the output: " +
                                            std::string(std::strerror(errno)));
+                }
             }
         };
         if (output.empty()) {
-            run(stdout);
-            if (std::fflush(stdout) != 0 && errno != EPIPE)
-                throw rad::SystemError("cannot write to stdout: " +
-                                       std::string(std::strerror(errno)));
+            run(stdout); // run_tool checks what reached stdout
         } else {
             radfmt::write_atomically(output, [&](const std::filesystem::path& temp) {
                 std::FILE* out = std::fopen(temp.c_str(), "w");

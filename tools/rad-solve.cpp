@@ -9,6 +9,7 @@
 #include "tool.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -17,6 +18,20 @@
 #include <sstream>
 
 namespace {
+// A solution with a non-finite value is never written: the first such patch, named.
+void check_finite_solution(const rad::Channels& radiosity, const radfmt::MeshData& mesh) {
+    for (std::size_t i = 0; i < radiosity.patches(); ++i)
+        for (std::size_t c = 0; c < radiosity.channels; ++c)
+            if (!std::isfinite(radiosity.at(i, c))) {
+                const auto& p = mesh.patches[i];
+                throw rad::InputError(
+                    "patch " + std::to_string(i) + " (material '" +
+                    mesh.materials[p.material].name + "', group '" + mesh.groups[p.group] +
+                    "') has a radiosity that is not a finite number after the solve: the "
+                    "emission and reflectance with the form factors overflow (smaller "
+                    "--emission, reflectances under 1); nothing was written");
+            }
+}
 
 // "out/iter-%d.rad" with the iteration number substituted.
 std::string snapshot_path(const std::string& pattern, long iteration) {
@@ -192,6 +207,7 @@ int main(int argc, char** argv) {
             };
         const auto result = solver.solve(op, emission, control);
         rad::record_solve_result(header, solver, result);
+        check_finite_solution(result.radiosity, mesh);
         radfmt::write_radiosity(output, header, rad::radiosity_data(result.radiosity, groups));
         if (!log_path.empty()) {
             const auto text = log.str();

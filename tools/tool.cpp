@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <poll.h>
 #include <unistd.h>
 
 namespace rad::tool {
@@ -47,9 +48,18 @@ int run_tool(const char* tool, const std::function<int()>& body) {
     std::signal(SIGPIPE, SIG_IGN);
     try {
         const int rc = body();
+        // Standard output written out, the C++ and the C streams both: a write that failed
+        // (a full disk, /dev/full) cut what the tool printed, a system error; a reader that
+        // went away is a normal end.
+        errno = 0;
         std::cout.flush();
-        if (!std::cout && errno == EPIPE) return 0;
-        return rc;
+        const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+        const int error = errno;
+        if (!failed || stdout_reader_gone()) return rc;
+        std::cerr << tool << ": system error: cannot write to standard output"
+                  << (error ? std::string(" (") + std::strerror(error) + ")" : std::string())
+                  << ": what it printed is cut short\n";
+        return 2;
     } catch (const InputError& e) {
         std::cerr << tool << ": error: " << e.what() << '\n';
         return 1;
@@ -69,6 +79,12 @@ int run_tool(const char* tool, const std::function<int()>& body) {
         std::cerr << tool << ": internal error: " << e.what() << '\n';
         return 3;
     }
+}
+
+bool stdout_reader_gone() {
+    // The write end of a pipe whose read end is closed polls as an error.
+    pollfd out{STDOUT_FILENO, POLLOUT, 0};
+    return ::poll(&out, 1, 0) == 1 && (out.revents & POLLERR) != 0;
 }
 
 CLI::Validator finite_range(double lo, double hi) {

@@ -23,6 +23,10 @@ int run_tool(const char* tool, const std::function<int()>& body);
 // with NaN is false), so real-valued options use this instead.
 CLI::Validator finite_range(double lo, double hi);
 
+// Whether standard output is a pipe whose reader has gone (`rad-info --csv | head`): a
+// normal end for every tool, not a failed write.
+bool stdout_reader_gone();
+
 // Outputs named by a pattern with one %d (snapshots): the option, the pattern, and which
 // numbers it will write (empty: any).
 struct NumberedOutput {

@@ -1,8 +1,10 @@
 #include "radiosity/materials.hpp"
 
+#include "radiosity/error.hpp"
 #include "radiosity/solve_policy.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace rad {
 
@@ -66,6 +68,19 @@ std::vector<std::string> material_warnings(const radfmt::MeshData& mesh,
         lines.push_back("no material emits light (Ke > 0): every solve will be black "
                         "(rad-solve --emission MATERIAL=r,g,b)");
     return lines;
+}
+
+void check_emission_limit(const radfmt::Material& material, const std::string& where,
+                          const std::string& fix) {
+    const double most =
+        std::max({material.emission[0], material.emission[1], material.emission[2]});
+    if (!(most > kMaxEmission)) return;
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  " emits %.3g W/m^2, over the limit of %.0e (1.6e12 suns): a solve would "
+                  "overflow; ",
+                  most, kMaxEmission);
+    throw InputError(where + text + fix);
 }
 
 } // namespace rad

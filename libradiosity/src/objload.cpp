@@ -66,6 +66,10 @@ struct LintResult {
     std::vector<int> faces_without_material;         // before any usemtl
     std::vector<Library> libraries;
     std::size_t vertex_count = 0;
+    std::size_t texcoord_count = 0, normal_count = 0; // vt and vn lines so far
+    // Face corners naming a vt or vn that does not exist (ignored: neither shapes a patch).
+    std::size_t dangling_corners = 0;
+    std::string first_dangling; // "line 62: '5/1/1' refers to normal (vn) 1 of 0"
 };
 
 // Looks for a material library next to the OBJ, in the current directory, then in the
@@ -102,6 +106,36 @@ Library find_library(const fs::path& obj, int line, const std::string& name,
         }
     }
     return lib;
+}
+
+// The texture and normal indices of a face corner "v/vt/vn", "v//vn" or "v/vt": each given
+// one an integer naming a vt or vn line defined before (negative: counted back).
+void check_attribute_references(const std::string& token, std::size_t slash, LintResult& result,
+                                const FileLoc& where, bool strict) {
+    const auto second = token.find('/', slash + 1);
+    const std::string parts[2] = {token.substr(slash + 1, second == std::string::npos
+                                                              ? std::string::npos
+                                                              : second - slash - 1),
+                                  second == std::string::npos ? "" : token.substr(second + 1)};
+    const std::size_t counts[2] = {result.texcoord_count, result.normal_count};
+    const char* names[2] = {"texture coordinate (vt)", "normal (vn)"};
+    for (int k = 0; k < 2; ++k) {
+        if (parts[k].empty()) continue;
+        long index = 0;
+        auto [ptr, ec] = std::from_chars(parts[k].data(), parts[k].data() + parts[k].size(), index);
+        if (ec != std::errc() || ptr != parts[k].data() + parts[k].size())
+            throw InputError(where, "bad vertex reference '" + token + "'");
+        const long count = static_cast<long>(counts[k]);
+        const long resolved = index < 0 ? count + index + 1 : index;
+        if (index != 0 && resolved >= 1 && resolved <= count) continue;
+        const std::string what = "'" + token + "' refers to " + names[k] + " " +
+                                 std::to_string(index) + ", but only " + std::to_string(count) +
+                                 " are defined";
+        if (strict) throw InputError(where, "face corner " + what);
+        if (result.dangling_corners++ == 0)
+            result.first_dangling = "line " + std::to_string(where.line) + ": " + what;
+        return;
+    }
 }
 
 // Checks what tinyobjloader would accept silently or report without a line number.
@@ -146,6 +180,10 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
                                          "colour may follow, as decimal numbers)");
             }
             ++result.vertex_count;
+        } else if (keyword == "vt") {
+            ++result.texcoord_count;
+        } else if (keyword == "vn") {
+            ++result.normal_count;
         } else if (keyword == "f") {
             std::string token;
             int corners = 0;
@@ -164,6 +202,9 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
                                      "face refers to vertex " + std::to_string(index) +
                                          ", but only " + std::to_string(count) +
                                          " vertices are defined");
+                if (slash != std::string::npos)
+                    check_attribute_references(token, slash, result, FileLoc{path.string(), number},
+                                               options.strict);
                 ++corners;
             }
             if (corners < 3)
@@ -295,6 +336,8 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
     SceneReport local_report;
     SceneReport& report = report_out ? *report_out : local_report;
     const auto lint = lint_obj(path, options);
+    report.dangling_corners = lint.dangling_corners;
+    report.first_dangling = lint.first_dangling;
 
     Scene scene;
     scene.path = path.string();

@@ -90,9 +90,12 @@ void check_ray_precision(std::span<const radfmt::Vec3> points, const std::string
 RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>()) {
     check_ray_precision(mesh.vertices, "mesh");
     impl_->device = rtcNewDevice(nullptr);
-    if (!impl_->device)
-        throw SystemError("Embree device creation failed (error " +
-                          std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    if (!impl_->device) {
+        const auto error = rtcGetDeviceError(nullptr);
+        if (error == RTC_ERROR_OUT_OF_MEMORY)
+            throw SystemError("out of memory: the ray tracer (Embree) could not start");
+        throw SystemError("Embree device creation failed (error " + std::to_string(error) + ")");
+    }
     rtcSetDeviceErrorFunction(impl_->device, record_embree_error, impl_.get());
     impl_->scene = rtcNewScene(impl_->device);
     // Robust mode makes shared edges watertight, so rays do not leak between patches.

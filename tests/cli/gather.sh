@@ -14,6 +14,18 @@ import sys
 rows = [list(map(float, l.split())) for l in sys.argv[1].splitlines()]
 assert all(len(r) == 3 and all(v > 0 for v in r) for r in rows), rows
 PY
+# A point the ray tracer cannot reach from (x = 1e19: Embree aborts on it) is refused by line.
+printf '0.278 0.3 0.28 0 1 0\n1e19 0 0 0 1 0\n' > "$TMP/far.txt"
+expect_error "far.txt:2: the point is 1e+19 units from the scene" "" "$BIN/rad-gather" "$M" "$R" --points "$TMP/far.txt"
+far=$("$BIN/rad-gather" "$M" "$R" --points "$TMP/far.txt" --keep-going -q 2>/dev/null) || fail "far point --keep-going"
+[ "$(tail -1 <<<"$far")" = "nan nan nan" ] || fail "far point not nan: $far"
+# A reader that goes away is a normal end (exit 0, as for rad-info); a full disk is exit 2.
+for i in $(seq 1 9000); do echo "0.278 0.3 0.28 0 1 0"; done > "$TMP/many.txt"
+"$BIN/rad-gather" "$M" "$R" --points "$TMP/many.txt" --rays 2 -q 2>"$TMP/pipe.err" | head -1 >/dev/null
+[ "${PIPESTATUS[0]}" -eq 0 ] || fail "rad-gather exits non-zero when its reader closes the pipe"
+[ ! -s "$TMP/pipe.err" ] || fail "rad-gather complains about a closed pipe: $(cat "$TMP/pipe.err")"
+"$BIN/rad-gather" "$M" "$R" --points "$TMP/many.txt" --rays 2 -q > /dev/full 2>/dev/null; rc=$?
+[ $rc -eq 2 ] || fail "rad-gather > /dev/full: exit $rc (wanted 2)"
 # Same input from stdin and from a file, 1 and 2 threads: byte-identical.
 a=$("$BIN/rad-gather" "$M" "$R" -q --threads 1 < "$TMP/p.txt")
 b=$("$BIN/rad-gather" "$M" "$R" -q --threads 2 --points "$TMP/p.txt")

@@ -97,4 +97,28 @@ expect_error "up.obj:1: mtllib '../up.mtl' lies outside the scene's folder obj (
 expect_error "abs.obj:1: mtllib '/etc/passwd' is an absolute path" out.mesh "$BIN/rad-mesh" obj/abs.obj -o out.mesh
 expect_error "tex.mtl: material 'grey' map_Kd '../../../../../etc/passwd' lies outside" out.mesh "$BIN/rad-mesh" obj/tex.obj -o out.mesh
 "$BIN/rad-mesh" obj/up.obj -o out.mesh --allow-outside-refs -q 2>/dev/null || fail "OBJ --allow-outside-refs"
+rm -f out.mesh
+
+# Values: a vt or vn index that does not exist is reported (ignored; --strict refuses), an
+# emission a solve would overflow on is refused where it enters (rad-mesh, rad-solve).
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/9/9 2/9/9 3/9/9\n' > dangling.obj
+err=$("$BIN/rad-mesh" dangling.obj -o out.mesh 2>&1) || fail "dangling vt/vn: $err"
+grep -q "changed: ignored: 3 face corner(s) name a texture coordinate or normal that does not exist (first at line 4: '1/9/9' refers to texture coordinate (vt) 9, but only 0 are defined)" <<<"$err" ||
+  fail "dangling vt/vn not reported: $err"
+expect_error "dangling.obj:4: face corner '1/9/9' refers to texture coordinate (vt) 9" out2.mesh "$BIN/rad-mesh" dangling.obj -o out2.mesh --strict
+printf 'newmtl lamp\nKd 0.5 0.5 0.5\nKe 1e300 1e300 1e300\n' > hot.mtl
+{ echo 'mtllib hot.mtl'; sed 's/grey/lamp/' tri.txt; } > hot.obj
+expect_error "hot.obj: material 'lamp' emits 1e+300 W/m^2, over the limit of 1e+20" out2.mesh "$BIN/rad-mesh" hot.obj -o out2.mesh
+python3 - <<'PY'
+import json
+d = json.load(open("ok.gltf"))
+d["materials"] = [{"emissiveFactor": [1, 1, 1],
+                   "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1e308}}}]
+d["meshes"][0]["primitives"][0]["material"] = 0
+d["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+json.dump(d, open("strength.gltf", "w"))
+PY
+expect_error "strength.gltf: material" out2.mesh "$BIN/rad-mesh" strength.gltf -o out2.mesh
+"$BIN/rad-ff" out.mesh -o out.ff -q 2>/dev/null || fail "rad-ff on the dangling triangle"
+expect_error "material 'default' emits 1e+30 W/m^2, over the limit of 1e+20" out.rad "$BIN/rad-solve" out.mesh out.ff -o out.rad --emission default=1e30,1,1
 finish

@@ -20,6 +20,10 @@ done
 "$BIN/rad-info" --csv "$TMP/c.ff" 2>"$TMP/pipe.err" | head -1 >/dev/null
 [ "${PIPESTATUS[0]}" -eq 0 ] || fail "rad-info exits non-zero when its reader closes the pipe"
 [ ! -s "$TMP/pipe.err" ] || fail "rad-info complains about a closed pipe: $(cat "$TMP/pipe.err")"
+# A write that fails (a full disk) cuts the CSV: a system error, exit 2, not 0.
+"$BIN/rad-info" --csv "$TMP/c.mesh" > /dev/full 2>"$TMP/full.err"; rc=$?
+[ $rc -eq 2 ] || fail "rad-info --csv > /dev/full: exit $rc (wanted 2)"
+grep -q "cannot write to standard output" "$TMP/full.err" || fail "full disk message: $(cat "$TMP/full.err")"
 size=$(stat -c %s "$TMP/c.ff")
 for cut in 5 100 $((size / 2)) $((size - 1)); do
   head -c $cut "$TMP/c.ff" > "$TMP/cut.ff"

@@ -85,6 +85,10 @@ struct SceneReport {
     std::vector<std::string> textures_averaged;     // "material: file, mean r g b"
     std::vector<std::string> textures_replacing_kd; // materials whose Kd was 0 or absent
     std::vector<std::string> texture_problems;      // missing or unreadable textures
+    // OBJ face corners naming a vt or vn that does not exist, ignored (neither shapes a
+    // patch): how many, and the first ("line 62: '5/1/1' refers to normal (vn) 1, ...").
+    std::size_t dangling_corners = 0;
+    std::string first_dangling;
 };
 
 // Loads an OBJ with its MTL via tinyobjloader, after a line-by-line check that names the

@@ -114,6 +114,8 @@ std::string encode_scene(const Scene& scene, const SceneReport& report) {
          {&report.unknown_materials, &report.missing_libraries, &report.libraries_found_by_name,
           &report.textures_averaged, &report.textures_replacing_kd, &report.texture_problems})
         w.texts(*list);
+    w.put<std::uint64_t>(report.dangling_corners);
+    w.text(report.first_dangling);
     w.put(kMagic);
     return w.take();
 }
@@ -161,6 +163,8 @@ void decode_scene(std::string_view bytes, Scene& scene, SceneReport& report) {
          {&report.unknown_materials, &report.missing_libraries, &report.libraries_found_by_name,
           &report.textures_averaged, &report.textures_replacing_kd, &report.texture_problems})
         *list = r.texts();
+    report.dangling_corners = r.get<std::uint64_t>();
+    report.first_dangling = r.text();
     if (r.get<std::uint64_t>() != kMagic || !r.done()) r.count(~std::size_t(0));
 }
 

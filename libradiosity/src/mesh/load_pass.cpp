@@ -37,6 +37,12 @@ void report_materials(const SceneReport& scene, const SceneOptions& options, Mes
         report.add(Kind::Warning, "material(s) not defined in any material library: " + names);
     }
     report_texture_problems(scene, report);
+    if (scene.dangling_corners)
+        report.add(Kind::Change, "ignored: " + std::to_string(scene.dangling_corners) +
+                                     " face corner(s) name a texture coordinate or normal that "
+                                     "does not exist (first at " +
+                                     scene.first_dangling +
+                                     "); neither shapes a patch (--strict refuses)");
     if (scene.faces_defaulted)
         report.add(
             Kind::Change,
@@ -68,6 +74,10 @@ Scene load_pass(const std::filesystem::path& input, const SceneOptions& options,
     for (const auto& polygon : scene.polygons)
         for (const auto v : polygon.vertices) used.push_back(scene.vertices[v]);
     check_ray_precision(used, input.string());
+    for (const auto& m : scene.materials)
+        check_emission_limit(m, input.string() + ": material '" + m.name + "'",
+                             "check its value and unit (--emission-scale scales glTF, PLY, "
+                             "COLLADA and FBX emission)");
     report_materials(scene_report, options, report);
     return scene;
 }

@@ -1,6 +1,7 @@
 #include "radiosity/solve_policy.hpp"
 
 #include "radiosity/error.hpp"
+#include "radiosity/materials.hpp"
 #include "radiosity/numbers.hpp"
 
 #include <cmath>
@@ -90,6 +91,9 @@ void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& reques
             }
         header.set("override.emission_scale", scale);
     }
+    for (const auto& m : mesh.materials)
+        check_emission_limit(m, "material '" + m.name + "'",
+                             "give a smaller --emission or --emission-scale");
 }
 
 void apply_recorded_overrides(radfmt::MeshData& mesh, const radfmt::Header& solution_header) {
