@@ -6,7 +6,13 @@
 // scene, form factors, a solve, smoothing) to show that a refusal-free read is safe to use.
 // Built with ASan+UBSan (RADIOSITY_SANITIZE) it runs in CI; deterministic for a seed.
 //
-//   fuzz_readers DATA_DIR [--iterations N] [--seconds S] [--seed K] [--kind NAME]
+// Imports too (glTF, GLB, PLY ascii and binary, COLLADA, STL, FBX ascii: the Cornell box
+// exported by assimp, mutated as bytes): each read through rad-mesh's import path, where
+// assimp runs isolated, so a crash or hang of assimp's own is a refusal naming the file; the
+// run counts those apart.
+//
+//   fuzz_readers DATA_DIR [--iterations N] [--seconds S] [--seed K] [--kind NAME[,NAME...]]
+//                [--min-cases N]
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
@@ -17,6 +23,11 @@
 #include "radiosity/smoothing.hpp"
 #include "radiosity/solver.hpp"
 #include "radiosity/transport.hpp"
+
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 
 #include <chrono>
 #include <cmath>
@@ -191,7 +202,7 @@ class Mutator {
 
 // Outcomes: a clean read, a clear refusal, or a failure (anything else) that stops the run.
 struct Tally {
-    std::size_t read = 0, refused = 0;
+    std::size_t read = 0, refused = 0, importer_failed = 0;
 };
 
 bool expected_refusal(const std::function<void()>& body, Tally& tally, std::string& failure) {
@@ -200,8 +211,9 @@ bool expected_refusal(const std::function<void()>& body, Tally& tally, std::stri
         ++tally.read;
     } catch (const radfmt::FormatError&) {
         ++tally.refused;
-    } catch (const rad::InputError&) {
+    } catch (const rad::InputError& e) {
         ++tally.refused;
+        if (std::strstr(e.what(), "the importer (assimp) failed")) ++tally.importer_failed;
     } catch (const std::exception& e) {
         failure = std::string("unexpected exception: ") + e.what();
         return false;
@@ -243,14 +255,16 @@ void use_radiosity(const radfmt::MeshData& mesh, const radfmt::RadiosityData& ra
 int main(int argc, char** argv) {
     if (argc < 2) {
         std::cerr << "usage: fuzz_readers DATA_DIR [--iterations N] [--seconds S] [--seed K] "
-                     "[--kind mesh|formfactors|radiosity|obj|mtl]\n";
+                     "[--kind NAME[,NAME...]] [--min-cases N]\n  kinds: mesh formfactors "
+                     "radiosity obj mtl gltf glb ply plyb dae stl fbx\n";
         return 1;
     }
     const fs::path data = argv[1];
     long iterations = 2000;
     double seconds = 30;
     std::uint64_t seed = 1;
-    std::string only;
+    std::string only;   // ",name,name,": the kinds to run (all when empty)
+    long min_cases = 0; // a kind stopped by --seconds before this many cases fails
     for (int i = 2; i + 1 < argc; i += 2) {
         const std::string option = argv[i];
         if (option == "--iterations")
@@ -260,7 +274,9 @@ int main(int argc, char** argv) {
         else if (option == "--seed")
             seed = std::stoull(argv[i + 1]);
         else if (option == "--kind")
-            only = argv[i + 1];
+            only = "," + std::string(argv[i + 1]) + ",";
+        else if (option == "--min-cases")
+            min_cases = std::stol(argv[i + 1]);
         else {
             std::cerr << "fuzz_readers: unknown option " << option << "\n";
             return 1;
@@ -305,7 +321,44 @@ int main(int argc, char** argv) {
         std::function<void(const fs::path&)> read_and_use;
     };
     const auto mesh_copy = mesh;
-    const std::vector<Kind> kinds{
+    // Import seeds: the Cornell box exported by assimp in each format; extra files a format
+    // writes beside it (the glTF's .bin) are copied next to every mutant.
+    struct ImportSeed {
+        std::string kind, format, extension;
+    };
+    const ImportSeed import_seeds[] = {{"gltf", "gltf2", ".gltf"}, {"glb", "glb2", ".glb"},
+                                       {"ply", "ply", ".ply"},     {"plyb", "plyb", ".ply"},
+                                       {"dae", "collada", ".dae"}, {"stl", "stlb", ".stl"},
+                                       {"fbx", "fbxa", ".fbx"}};
+    const fs::path export_dir = dir / "exports";
+    fs::create_directories(export_dir);
+    for (const auto& seed_format : import_seeds) { // a fresh import for every export
+        Assimp::Importer importer;
+        // Triangulated: assimp 5.2's exporters corrupt the heap on the box's quads.
+        const aiScene* source = importer.ReadFile(obj.string(), aiProcess_JoinIdenticalVertices |
+                                                                    aiProcess_Triangulate);
+        if (!source) throw std::runtime_error("cannot read the import seed " + obj.string());
+        Assimp::Exporter exporter;
+        const auto target = export_dir / ("seed-" + seed_format.kind + seed_format.extension);
+        if (exporter.Export(source, seed_format.format, target.string()) != AI_SUCCESS)
+            throw std::runtime_error("assimp cannot export " + seed_format.format);
+    }
+    auto import_and_use = [&](const fs::path& p, const ImportSeed& seed_format) {
+        for (const auto& entry : fs::directory_iterator(export_dir)) // the .bin and the like
+            if (entry.path().extension() == ".bin")
+                fs::copy_file(entry.path(), p.parent_path() / entry.path().filename(),
+                              fs::copy_options::overwrite_existing);
+        const auto input = p.parent_path() / ("input" + seed_format.extension);
+        fs::rename(p, input);
+        rad::SceneOptions options;
+        options.import.seconds = 20; // a hang is a refusal, soon
+        auto s = rad::load_scene(input, options);
+        rad::SubdivisionOptions o;
+        o.max_edge = 0.6;
+        o.max_patches = 1e5;
+        use_mesh(rad::subdivide(s, o));
+    };
+    std::vector<Kind> kinds{
         {"mesh",
          {read_bytes(dir / "seed.mesh")},
          false,
@@ -345,10 +398,16 @@ int main(int argc, char** argv) {
              use_mesh(rad::subdivide(s, o));
          }},
     };
+    for (const auto& seed_format : import_seeds)
+        kinds.push_back(
+            {seed_format.kind,
+             {read_bytes(export_dir / ("seed-" + seed_format.kind + seed_format.extension))},
+             true,
+             [&, seed_format](const fs::path& p) { import_and_use(p, seed_format); }});
 
     int status = 0;
     for (const auto& kind : kinds) {
-        if (!only.empty() && kind.name != only) continue;
+        if (!only.empty() && only.find("," + kind.name + ",") == std::string::npos) continue;
         Mutator mutator(seed ^ std::hash<std::string>{}(kind.name));
         Tally tally;
         const auto start = std::chrono::steady_clock::now();
@@ -388,7 +447,15 @@ int main(int argc, char** argv) {
             }
         }
         std::cerr << "fuzz_readers: " << kind.name << ": " << done << " cases, " << tally.read
-                  << " read, " << tally.refused << " refused\n";
+                  << " read, " << tally.refused << " refused";
+        if (tally.importer_failed)
+            std::cerr << " (" << tally.importer_failed << " by the importer's failure)";
+        std::cerr << "\n";
+        if (status == 0 && done < min_cases && done < iterations) {
+            std::cerr << "fuzz_readers: " << kind.name << ": only " << done << " cases within "
+                      << seconds << " s, fewer than --min-cases " << min_cases << "\n";
+            status = 1;
+        }
     }
     fs::remove_all(dir);
     return status;
