@@ -569,3 +569,37 @@ TEST_CASE("patches are numbered along a Morton curve, each patch unchanged") {
     CHECK(rad::morton_code({0, 0, 1}, {0, 0, 0}, 1) == 4);
     CHECK(rad::morton_code({3, 0, 0}, {0, 0, 0}, 1) == 9);
 }
+
+TEST_CASE("a texture is decoded once per run, and one over the pixel limit not at all") {
+    const auto dir = temp_dir("texture-cache");
+    rad::Image image;
+    image.width = image.height = 16;
+    image.rgb.assign(16 * 16 * 3, 0.5f);
+    rad::write_png((dir / "shared.png").string(), image, 1.0);
+    // 40 materials on one texture (a game map's walls): one decode, 40 means.
+    std::string mtl, obj = "mtllib scene.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    for (int m = 0; m < 40; ++m) {
+        mtl += "newmtl m" + std::to_string(m) + "\nKd 1 1 1\nmap_Kd shared.png\n";
+        obj += "usemtl m" + std::to_string(m) + "\nf 1 2 3\n";
+    }
+    write_text(dir / "scene.mtl", mtl);
+    write_text(dir / "scene.obj", obj);
+    const auto before = rad::texture_decodes();
+    rad::SceneReport report;
+    const auto scene = rad::load_obj(dir / "scene.obj", {}, &report);
+    CHECK(rad::texture_decodes() - before == 1);
+    CHECK(report.textures_averaged.size() == 40);
+    for (const auto& m : scene.materials) CHECK(m.reflectance[0] == Approx(0.5).epsilon(0.02));
+    // Over the limit: refused from its header (16 x 16 = 256 pixels > 100), never decoded;
+    // the materials keep their Kd, with the reason.
+    rad::SceneOptions options;
+    options.max_texture_pixels = 100;
+    rad::SceneReport limited;
+    const auto kept = rad::load_obj(dir / "scene.obj", options, &limited);
+    CHECK(rad::texture_decodes() - before == 1);
+    REQUIRE(limited.texture_problems.size() == 40);
+    CHECK_THAT(limited.texture_problems[0],
+               Catch::Matchers::Contains("16 x 16 pixels, over the limit of 100 "
+                                         "(--max-texture-pixels raises it)"));
+    CHECK(kept.materials[0].reflectance[0] == 1);
+}

@@ -159,6 +159,11 @@ int main(int argc, char** argv) {
                  "Let the scene refer to files outside its own folder (material libraries, "
                  "textures, glTF buffers and images given by absolute paths or '..'); FIFOs "
                  "and devices are never opened");
+    app.add_option("--max-texture-pixels", obj_options.max_texture_pixels,
+                   "Textures with more pixels are not decoded (a warning; the material keeps "
+                   "its Kd); each texture file is decoded once per run")
+        ->capture_default_str()
+        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40));
     app.add_flag("-q,--quiet", quiet, "Print no summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 

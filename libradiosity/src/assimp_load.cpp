@@ -92,8 +92,9 @@ Vec3 transform_point(const aiMatrix4x4& m, const aiVector3D& v) {
 // The texture of `type` (or nothing), averaged: embedded ("*0", or a name an embedded
 // texture carries) or a file next to the scene.
 void apply_texture(const aiScene& scene, const aiMaterial& material, aiTextureType type,
-                   const fs::path& scene_path, bool allow_outside, radfmt::Material& out,
+                   const fs::path& scene_path, const SceneOptions& options, radfmt::Material& out,
                    SceneReport& report, std::vector<std::string>& files) {
+    const bool allow_outside = options.allow_outside_refs;
     aiString name;
     if (material.GetTexture(type, 0, &name) != AI_SUCCESS || name.length == 0) return;
     const std::string texture_name = name.C_Str();
@@ -104,7 +105,7 @@ void apply_texture(const aiScene& scene, const aiMaterial& material, aiTextureTy
             mean = mean_texture_colour(
                 std::span<const unsigned char>(
                     reinterpret_cast<const unsigned char*>(embedded->pcData), embedded->mWidth),
-                problem);
+                problem, options.max_texture_pixels);
         } else {
             problem = "uncompressed embedded textures are not read";
         }
@@ -117,7 +118,7 @@ void apply_texture(const aiScene& scene, const aiMaterial& material, aiTextureTy
                                               " not found");
             return;
         }
-        mean = mean_texture_colour(path, problem);
+        mean = mean_texture_colour(path, problem, options.max_texture_pixels);
         if (mean) files.push_back(path.string());
     }
     if (!mean) {
@@ -165,13 +166,13 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
         aiColor3D diffuse(1, 1, 1);
         if (material.Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS) {
             out.reflectance = {{base.r, base.g, base.b}};
-            apply_texture(*ai, material, aiTextureType_BASE_COLOR, path, options.allow_outside_refs,
-                          out, report, scene.material_files);
+            apply_texture(*ai, material, aiTextureType_BASE_COLOR, path, options, out, report,
+                          scene.material_files);
         } else {
             if (material.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS)
                 out.reflectance = {{diffuse.r, diffuse.g, diffuse.b}};
-            apply_texture(*ai, material, aiTextureType_DIFFUSE, path, options.allow_outside_refs,
-                          out, report, scene.material_files);
+            apply_texture(*ai, material, aiTextureType_DIFFUSE, path, options, out, report,
+                          scene.material_files);
         }
         aiColor3D emissive(0, 0, 0);
         material.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);

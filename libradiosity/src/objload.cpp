@@ -421,7 +421,8 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
                 report.texture_problems.push_back(material.name + ": texture " + texture.string() +
                                                   " not found");
                 source.texture_missing = true;
-            } else if (const auto mean = mean_texture_colour(texture, problem)) {
+            } else if (const auto mean =
+                           mean_texture_colour(texture, problem, options.max_texture_pixels)) {
                 const bool kd_black = !states_kd.count(m.name) ||
                                       (m.diffuse[0] == 0 && m.diffuse[1] == 0 && m.diffuse[2] == 0);
                 for (int k = 0; k < 3; ++k)

@@ -2,6 +2,7 @@
 #pragma once
 #include "radfmt/kinds.hpp"
 #include "radiosity/materials.hpp"
+#include "radiosity/texture.hpp"
 #include "radiosity/vec.hpp"
 
 #include <filesystem>
@@ -71,6 +72,8 @@ struct SceneOptions {
     // must lie in its folder or below, unless this allows them elsewhere; special files
     // (FIFOs, devices) are never opened.
     bool allow_outside_refs = false;
+    // Textures with more pixels are not decoded (a warning; the material keeps its Kd).
+    std::uint64_t max_texture_pixels = kMaxTexturePixels;
 };
 
 // What load_obj repaired or could not find, for its warnings and summary.
