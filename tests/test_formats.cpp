@@ -394,7 +394,8 @@ TEST_CASE("a symlink planted at the temporary name does not redirect the write")
     const auto dir = temp_dir("symlink");
     const auto victim = dir / "victim.txt";
     write_text(victim, "precious");
-    // The writer's temporary name is predictable: ".NAME.tmp.PID" beside the output.
+    // The writer's temporary name is predictable up to a random tag (".NAME.tmp.PID.TAG"
+    // beside the output); a link planted at ".NAME.tmp.PID", holding no lock, is removed.
     const auto temp = dir / (".out.mesh.tmp." + std::to_string(::getpid()));
     fs::create_symlink(victim, temp);
     radfmt::write_mesh(dir / "out.mesh", header_for("rad-mesh"), small_mesh());

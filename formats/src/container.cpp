@@ -12,6 +12,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <sys/file.h>
@@ -248,27 +249,70 @@ void rename_into_place(const PendingOutput& p) {
     unregister_temp(p.slot);
 }
 
-// ".NAME.tmp.PID" files beside `target` left by a run that was killed (SIGKILL cannot be
-// caught): removed when that PID is gone and nobody holds the file's lock (a writer on
-// another machine sharing the folder has a PID we cannot see, but holds its lock).
+// ".NAME.tmp.PID.TAG" (or an older run's ".NAME.tmp.PID") files beside `target` left by a
+// run that was killed (SIGKILL cannot be caught): removed when nobody holds the file's lock
+// and its PID is not another live process here. A held lock always keeps the file, whatever
+// its PID says: a PID says nothing of a writer in another PID namespace (two containers on
+// one volume are both PID 1) or on another machine.
 void remove_stale_temps(const fs::path& dir, const std::string& prefix) {
     std::error_code ec;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
         const auto name = it->path().filename().string();
         if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-        const auto digits = name.substr(prefix.size());
-        if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+        const auto rest = name.substr(prefix.size());
+        const auto dot = rest.find('.');
+        const auto digits = rest.substr(0, dot);
+        const auto tag = dot == std::string::npos ? std::string() : rest.substr(dot + 1);
+        if (digits.empty() || digits.size() > 9 ||
+            digits.find_first_not_of("0123456789") != std::string::npos ||
+            tag.find_first_not_of("0123456789abcdef") != std::string::npos)
             continue;
-        const auto pid = static_cast<pid_t>(std::stol(digits));
-        if (pid == ::getpid() || pid <= 0 || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
-        const int fd = ::open(it->path().c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+        const int fd = ::open(it->path().c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
         if (fd >= 0 && ::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-            ::close(fd);
+            ::close(fd); // being written
+            continue;
+        }
+        const auto pid = static_cast<pid_t>(std::stol(digits));
+        if (pid != ::getpid() && (::kill(pid, 0) == 0 || errno != ESRCH)) {
+            if (fd >= 0) ::close(fd); // perhaps a writer of an older kind, still alive
             continue;
         }
         ::unlink(it->path().c_str()); // a regular file, or a link planted there (not followed)
         if (fd >= 0) ::close(fd);
     }
+}
+
+std::string random_tag() {
+    std::random_device device;
+    const std::uint64_t bits = (std::uint64_t(device()) << 32) ^ device();
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(bits));
+    return text;
+}
+
+// Creates the temporary file ourselves, exclusively, without following a symlink, under a
+// name of our PID and a random tag (two writers with one PID never meet on one name), and
+// locks it; then checks that the name still is that file: a cleaner that took the unlocked
+// file for stale in the moment before the lock removed it, and another name is tried.
+int create_locked_temp(const fs::path& dir, const std::string& prefix, fs::path& temp) {
+    for (int attempt = 0; attempt < 16; ++attempt) {
+        temp = dir / (prefix + std::to_string(::getpid()) + "." + random_tag());
+        const int fd =
+            ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (fd < 0) {
+            if (errno == EEXIST) continue;
+            return -1;
+        }
+        struct stat opened {
+        }, named{};
+        if (::flock(fd, LOCK_EX | LOCK_NB) == 0 && ::fstat(fd, &opened) == 0 &&
+            ::lstat(temp.c_str(), &named) == 0 && opened.st_ino == named.st_ino &&
+            opened.st_dev == named.st_dev)
+            return fd;
+        ::close(fd);
+    }
+    errno = EEXIST;
+    return -1;
 }
 
 // Devices, FIFOs and the like (/dev/null, /dev/stdout on a pipe) are written in place:
@@ -330,31 +374,19 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
     std::string prefix = "."; // built by appending: GCC 12 warns falsely on "x" + string&&
     prefix += target.filename().string();
     prefix += ".tmp.";
-    remove_stale_temps(dir, prefix);
-    fs::path temp = dir / (prefix + std::to_string(::getpid()));
-    const auto temp_text = temp.string();
-    // Two outputs of one batch never share a temporary: the first is still pending.
+    // Two outputs of one batch never share a target.
     if (g_pending)
         for (const auto& p : *g_pending)
-            if (p.temp == temp) throw FormatError(path.string() + ": written twice in one run");
+            if (p.target == target) throw FormatError(path.string() + ": written twice in one run");
+    remove_stale_temps(dir, prefix);
+    fs::path temp;
+    int fd = create_locked_temp(dir, prefix, temp);
+    if (fd < 0)
+        throw WriteError(path.string() + ": cannot create a temporary file in " + dir.string() +
+                         ": " + std::strerror(errno));
+    const auto temp_text = temp.string();
     const std::size_t slot = register_temp(temp_text);
-    int fd = -1;
     try {
-        // Create the temporary file ourselves, exclusively and without following a symlink:
-        // its name is predictable, and a link planted there must not send our bytes (root's,
-        // perhaps) into someone else's file. Whatever is there (a stale file, a planted link)
-        // is removed first; the link's target is never touched. The lock tells other runs
-        // that the file is being written.
-        fd = ::open(temp_text.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-        if (fd < 0 && errno == EEXIST) {
-            ::unlink(temp_text.c_str());
-            fd = ::open(temp_text.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
-                        0666);
-        }
-        if (fd < 0)
-            throw WriteError(path.string() + ": cannot create the temporary file " + temp_text +
-                             ": " + std::strerror(errno));
-        ::flock(fd, LOCK_EX | LOCK_NB);
         fill(temp);
         ::close(fd);
         fd = -1;

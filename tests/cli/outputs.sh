@@ -88,6 +88,20 @@ cmp -s "$R" "$TMP/c.rad" || fail "the stale link's target was changed"
 exec 9>&-
 kill $live 2>/dev/null; wait $live 2>/dev/null
 
+# 13. Two writers in two PID namespaces on one folder (two containers on one volume, both
+#     PID 1): the other's temporary, named for its PID 1 and locked, is never deleted, and
+#     this run's output lands. Needs unshare (root); skipped where it cannot run.
+if unshare --pid --fork true 2>/dev/null; then
+  unshare --pid --fork flock "$TMP/.ns.rad.tmp.1" sleep 30 & other=$!
+  for i in $(seq 50); do [ -e "$TMP/.ns.rad.tmp.1" ] && break; sleep 0.1; done
+  unshare --pid --fork "$BIN/rad-solve" "$M" "$F" -o "$TMP/ns.rad" -q || fail "solve as PID 1"
+  [ -e "$TMP/.ns.rad.tmp.1" ] || fail "the other PID 1's locked temporary was deleted"
+  "$BIN/rad-info" "$TMP/ns.rad" >/dev/null 2>&1 || fail "the run as PID 1 lost its output"
+  kill $other 2>/dev/null; wait $other 2>/dev/null
+else
+  echo "note: unshare --pid unavailable: two-namespace check skipped"
+fi
+
 # 7. A header larger than readers accept is never written: refused before the work.
 args=(); for i in $(seq 60000); do args+=("--emission=m$i=1,1,1"); done
 err=$("$BIN/rad-solve" "$M" "$F" -o "$TMP/h.rad" "${args[@]}" 2>&1); rc=$?
