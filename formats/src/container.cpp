@@ -524,6 +524,12 @@ static ParsedHeader parse_header(std::string_view bytes, const std::string& path
                           " is not supported (this build reads version " +
                           std::to_string(kind_version(h.kind)) + ")");
     parsed.body_offset = (end + 2 + kBodyAlignment - 1) / kBodyAlignment * kBodyAlignment;
+    // The padding after the header is zeros, as the writer leaves it (no other bytes hide
+    // there unchecked).
+    for (std::size_t k = end + 2; k < std::min<std::size_t>(parsed.body_offset, bytes.size()); ++k)
+        if (bytes[k] != '\0')
+            throw FormatError(path + ": corrupt: non-zero padding between the header and the " +
+                              "body at byte " + std::to_string(k));
     const auto expected = parsed.body_offset + h.body_size;
     if (file_size < expected)
         throw FormatError(path + ": truncated: expected " + std::to_string(expected) +
@@ -602,6 +608,9 @@ BodyReader::BodyReader(const fs::path& path, const Kind* expected) : path_(path.
         if (std::fseek(file_, static_cast<long>(head), SEEK_SET) != 0 ||
             std::fread(gap.data(), 1, gap.size(), file_) != gap.size())
             throw FormatError(path_ + ": truncated header padding");
+        if (gap.find_first_not_of('\0') != std::string::npos)
+            throw FormatError(path_ + ": corrupt: non-zero padding between the header and the " +
+                              "body at byte " + std::to_string(head + gap.find_first_not_of('\0')));
         XXH64_update(file_state, gap.data(), gap.size());
     }
     if (std::fseek(file_, static_cast<long>(parsed.body_offset), SEEK_SET) != 0)

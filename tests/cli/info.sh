@@ -39,4 +39,15 @@ sed 's/^version=[0-9]*$/version=7/' "$TMP/c.rad" > "$TMP/v.rad"
 expect_error "corrupt header: checksum mismatch" "" "$BIN/rad-info" "$TMP/v.rad"
 expect_error "was expected" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.rad"
 expect_error "cannot open" "" "$BIN/rad-info" "$TMP/missing.ff"
+# A byte other than zero in the padding between header and body (outside both checksums).
+python3 - "$TMP/c.rad" "$TMP/pad.rad" <<'PY'
+import sys
+data = bytearray(open(sys.argv[1], "rb").read())
+pad = data.find(b"\n\n") + 2
+assert data[pad] == 0, "no padding after this header"
+data[pad] = ord("X")
+open(sys.argv[2], "wb").write(data)
+PY
+expect_error "pad.rad: corrupt: non-zero padding between the header and the body at byte" "" "$BIN/rad-info" "$TMP/pad.rad"
+expect_error "non-zero padding between the header and the body" "$TMP/y.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/pad.rad" -o "$TMP/y.exr" --view "-vp 0.278 0.273 -0.8 -vd 0 0 1 -vu 0 1 0 -vh 40 -vv 40"
 finish
