@@ -9,6 +9,20 @@ bounded() { timeout 60 "$@"; }
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n' > cut.ply
 expect_error "cut.ply: PLY header has no 'end_header' line (a truncated file?)" out.mesh bounded "$BIN/rad-mesh" cut.ply -o out.mesh
 
+# A PLY vertex of NaN (binary and ascii): assimp drops it and a quad quietly becomes less.
+python3 - <<'PY'
+import struct
+head = ("ply\nformat {}\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n")
+nan = float("nan")
+open("nan.ply", "wb").write(head.format("binary_little_endian 1.0").encode() +
+                            struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 1, nan, 0, 1, 0) +
+                            struct.pack("<B4i", 4, 0, 1, 2, 3))
+open("nan-ascii.ply", "w").write(head.format("ascii 1.0") + "0 0 0\n1 0 0\n1 1 nan\n0 1 0\n4 0 1 2 3\n")
+PY
+expect_error "nan.ply: vertex 2 has z that is not a finite number" out.mesh bounded "$BIN/rad-mesh" nan.ply -o out.mesh
+expect_error "nan-ascii.ply: vertex 2 has z that is not a finite number" out.mesh bounded "$BIN/rad-mesh" nan-ascii.ply -o out.mesh
+
 # COLLADA with an index of 1e30: assimp loops with its memory growing. The time limit and the
 # memory limit each end it, as an error naming the file and which limit.
 cat > huge.dae <<'DAE'

@@ -6,10 +6,13 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <optional>
+#include <sstream>
 
 namespace rad::import {
 namespace fs = std::filesystem;
@@ -83,6 +86,109 @@ void check_ply_header(const fs::path& path) {
         throw InputError(
             path.string() + ": PLY header has no 'end_header' line" +
             (head.size() < 64 * 1024 ? " (a truncated file?)" : " in its first 64 KiB"));
+}
+
+// The PLY's vertex positions are finite numbers (assimp drops a vertex of NaN and the faces
+// around it change shape quietly). Read when the vertex element comes first and holds only
+// scalar properties (fixed-size records): the layout of every PLY exporter we know.
+struct PlyLayout {
+    std::string format; // ascii, binary_little_endian, binary_big_endian
+    std::uint64_t vertices = 0;
+    std::vector<std::pair<std::string, std::string>> properties; // (type, name) of a vertex
+    std::size_t body = 0;                                        // offset of the data
+    bool readable = false;
+};
+
+PlyLayout ply_layout(const std::string& head) {
+    PlyLayout layout;
+    std::istringstream lines(head);
+    std::string line;
+    bool in_vertex = false, first_element = true, lists = false;
+    while (std::getline(lines, line)) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream words(line);
+        std::string keyword;
+        words >> keyword;
+        if (keyword == "format") {
+            words >> layout.format;
+        } else if (keyword == "element") {
+            std::string name;
+            words >> name;
+            in_vertex = first_element && name == "vertex";
+            if (in_vertex) words >> layout.vertices;
+            first_element = false;
+        } else if (keyword == "property" && in_vertex) {
+            std::string type, name;
+            words >> type >> name;
+            if (type == "list") lists = true;
+            layout.properties.emplace_back(type, name);
+        } else if (keyword == "end_header") {
+            layout.body = static_cast<std::size_t>(lines.tellg());
+            break;
+        }
+    }
+    layout.readable = layout.vertices > 0 && !lists && layout.body > 0;
+    return layout;
+}
+
+int ply_size(const std::string& type) {
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+    if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" ||
+        type == "float32")
+        return 4;
+    if (type == "double" || type == "float64") return 8;
+    return 0;
+}
+
+void check_ply_vertices(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(64 * 1024, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    const auto layout = ply_layout(head);
+    if (!layout.readable) return;
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(layout.body));
+    const bool ascii = layout.format == "ascii";
+    const bool swap = layout.format == "binary_big_endian";
+    std::size_t record = 0;
+    for (const auto& [type, name] : layout.properties) {
+        if (ply_size(type) == 0) return; // a type we do not know: leave it to assimp
+        record += static_cast<std::size_t>(ply_size(type));
+    }
+    std::string bytes(record, '\0');
+    for (std::uint64_t v = 0; v < layout.vertices; ++v) {
+        if (!ascii && !in.read(bytes.data(), static_cast<std::streamsize>(record))) return;
+        std::size_t at = 0;
+        for (const auto& [type, name] : layout.properties) {
+            double value = 0;
+            if (ascii) {
+                std::string token;
+                if (!(in >> token)) return;
+                if (name != "x" && name != "y" && name != "z") continue;
+                if (token.find_first_of("nNiI") != std::string::npos)
+                    value = std::numeric_limits<double>::quiet_NaN();
+            } else {
+                const int size = ply_size(type);
+                char raw[8];
+                std::memcpy(raw, bytes.data() + at, static_cast<std::size_t>(size));
+                at += static_cast<std::size_t>(size);
+                if (name != "x" && name != "y" && name != "z") continue;
+                if (swap) std::reverse(raw, raw + size);
+                if (type == "float" || type == "float32") {
+                    float f;
+                    std::memcpy(&f, raw, 4);
+                    value = f;
+                } else if (type == "double" || type == "float64") {
+                    std::memcpy(&value, raw, 8);
+                }
+            }
+            if (!std::isfinite(value))
+                throw InputError(path.string() + ": vertex " + std::to_string(v) + " has " + name +
+                                 " that is not a finite number");
+        }
+    }
 }
 
 // A glTF number that must be a whole number from 0 (indices, offsets, lengths, counts).
@@ -321,7 +427,10 @@ void check_before_import(const fs::path& path, const SceneOptions& options) {
         throw InputError(path.string() + ": not a regular file (a FIFO, device or folder is "
                                          "never opened)");
     const auto ext = lower_extension(path);
-    if (ext == ".ply") check_ply_header(path);
+    if (ext == ".ply") {
+        check_ply_header(path);
+        check_ply_vertices(path);
+    }
     if (ext == ".gltf" || ext == ".glb") {
         std::uint64_t bin_bytes = 0;
         const auto doc = gltf_document(path, bin_bytes);
