@@ -25,12 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string lower_extension(const fs::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
+using import::lower_extension;
 
 // What assimp 5.2 does not give of a glTF file: each material's emissiveStrength
 // (KHR_materials_emissive_strength), and the files it refers to (buffers, images), which the

@@ -18,7 +18,6 @@ namespace rad::import {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
 std::string lower_extension(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -26,6 +25,7 @@ std::string lower_extension(const fs::path& path) {
     return ext;
 }
 
+namespace {
 // %XX escapes of a URI decoded (glTF URIs are percent-encoded).
 std::string percent_decoded(const std::string& uri) {
     std::string out;

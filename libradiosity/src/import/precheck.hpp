@@ -8,6 +8,9 @@
 
 namespace rad::import {
 
+// A file's extension in lower case (".glb"): how readers are chosen.
+std::string lower_extension(const std::filesystem::path& path);
+
 // A file the scene refers to (`reference`, as written in `from`) resolved against `folder`:
 // refused when absolute or outside `folder` (unless `allow_outside`), or when it names
 // something other than a regular file (a FIFO or device is never opened). Returns the path.
