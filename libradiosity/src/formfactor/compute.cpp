@@ -73,18 +73,19 @@ std::size_t block_rows(std::uint64_t max_row_entries, unsigned threads) {
     const auto rows = kBlockEntries / std::max<std::uint64_t>(1, max_row_entries);
     return static_cast<std::size_t>(std::clamp<std::uint64_t>(rows, 16 * threads, 8192));
 }
-unsigned active_threads() {
+} // namespace
+
+unsigned ff::active_threads() {
     return static_cast<unsigned>(
         tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 }
-} // namespace
 
 std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
                                           const FormFactorOptions& options) {
     const std::uint64_t n = mesh.patches.size();
     const auto& method = form_factor_method(options.method);
     const std::uint64_t per_row = method.max_row_entries(mesh, options);
-    const auto threads = active_threads();
+    const auto threads = ff::active_threads();
     // The rows are spooled to disk a block at a time (rad-ff): two blocks of rows (4 + 4
     // bytes an entry: one computed while the other is written) and the spool's buffers,
     // row starts and fractions (12 bytes a row); Embree and the mesh take a few hundred
@@ -133,7 +134,7 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
 
     Progress progress("rad-ff " + options.method, last - first, options.quiet);
     const auto max_entries = method.max_row_entries(mesh, options);
-    const std::size_t block_size = block_rows(max_entries, active_threads());
+    const std::size_t block_size = block_rows(max_entries, ff::active_threads());
     // Two blocks: while one is handed to the sink (written to disk, in rad-ff), the next is
     // computed.
     std::vector<FormFactorRow> block_rows_of[2];

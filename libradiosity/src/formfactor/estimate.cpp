@@ -5,8 +5,6 @@
 #include "radiosity/formfactor.hpp"
 #include "radiosity/formfactor_method.hpp"
 
-#include <tbb/global_control.h>
-
 #include <algorithm>
 #include <chrono>
 
@@ -46,8 +44,7 @@ FormFactorEstimate estimate_form_factor_time(const radfmt::MeshData& mesh,
         ++estimate.sampled_rows;
         elapsed = std::chrono::duration<double>(clock::now() - start).count();
     }
-    const auto threads = std::max<std::size_t>(
-        1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    const std::size_t threads = std::max(1u, ff::active_threads());
     estimate.seconds = estimate.setup_seconds + elapsed / double(estimate.sampled_rows) *
                                                     double(last - first) / double(threads);
     estimate.threads = threads;

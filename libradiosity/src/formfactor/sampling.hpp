@@ -58,6 +58,9 @@ inline double wrap(double x) {
 void probe_back_faces(const FormFactorContext& context, std::size_t i, std::uint64_t seed, int rays,
                       RayLog& log);
 
+// The threads compute_form_factors may use (TBB's allowed parallelism).
+unsigned active_threads();
+
 // Points per axis for `samples` points per patch (rounded to a square).
 int points_per_axis(int samples);
 

@@ -9,11 +9,33 @@
 #include <cmath>
 
 namespace rad {
+using gather::brightness;
 
 namespace {
-double brightness(const Rgb& c) {
-    return c[0] + c[1] + c[2];
-}
+// The visible fraction of a light from shadow rays to points on it: each ray weighted by the
+// form-factor kernel cos cos / r^2, so a half-hidden light counts by what it gives (the
+// plain share of rays when none has weight).
+struct KernelTally {
+    double weight_sum = 0, visible_sum = 0, plain_visible = 0;
+    // One ray from `point` (facing `normal`) to `q` on a light facing `light_normal`;
+    // `visible` casts it (not when q is the point itself).
+    template <class Visible>
+    void add(const Vec3& point, const Vec3& normal, const Vec3& q, const Vec3& light_normal,
+             Visible visible) {
+        const Vec3 d = q - point;
+        const double r2 = dot(d, d);
+        if (!(r2 > 0)) return;
+        const double w =
+            std::max(0.0, dot(d, normal)) * std::max(0.0, -dot(d, light_normal)) / (r2 * r2);
+        const bool seen = visible(q);
+        weight_sum += w;
+        visible_sum += seen ? w : 0;
+        plain_visible += seen ? 1 : 0;
+    }
+    double fraction(int rays) const {
+        return weight_sum > 0 ? visible_sum / weight_sum : plain_visible / rays;
+    }
+};
 
 // A stratified number in [0, 1) for sample s of `count`, turned by `offset`.
 double stratum(int s, int count, double offset) {
@@ -62,21 +84,14 @@ double Gatherer::visible_fraction(const Vec3& point, const Vec3& normal, std::si
     const auto& p = mesh_.patches[patch];
     const auto cdf = ff::fan_cdf(clipped);
     const double offset = rng.uniform();
-    double weight_sum = 0, visible_sum = 0, plain_visible = 0;
+    KernelTally tally;
     for (int s = 0; s < rays; ++s) {
         const Vec3 q =
             ff::uniform_point(clipped, cdf, stratum(s, rays, offset), rng.uniform(), rng.uniform());
-        const Vec3 d = q - point;
-        const double r2 = dot(d, d);
-        if (!(r2 > 0)) continue;
-        const double w =
-            std::max(0.0, dot(d, normal)) * std::max(0.0, -dot(d, p.normal)) / (r2 * r2);
-        const bool visible = scene_->visible(point, q);
-        weight_sum += w;
-        visible_sum += visible ? w : 0;
-        plain_visible += visible ? 1 : 0;
+        tally.add(point, normal, q, p.normal,
+                  [&](const Vec3& at) { return scene_->visible(point, at); });
     }
-    return weight_sum > 0 ? visible_sum / weight_sum : plain_visible / rays;
+    return tally.fraction(rays);
 }
 
 // An area-uniform point of the whole patch, `u` (in [0, 1)) choosing where along its fan.
@@ -94,22 +109,15 @@ Vec3 Gatherer::point_on_light(std::size_t patch, double u, Rng& rng) const {
 double Gatherer::cluster_visible_fraction(const Vec3& point, const Vec3& normal, std::uint32_t node,
                                           int rays, Rng& rng) const {
     const double offset = rng.uniform();
-    double weight_sum = 0, visible_sum = 0, plain_visible = 0;
+    KernelTally tally;
     for (int s = 0; s < rays; ++s) {
         double along = 0; // the stratum's rest, so the points on a light are stratified too
         const auto& light = lights_->pick(node, stratum(s, rays, offset), &along);
         const Vec3 q = point_on_light(light.patch, along, rng);
-        const Vec3 d = q - point;
-        const double r2 = dot(d, d);
-        if (!(r2 > 0)) continue;
-        const double w = std::max(0.0, dot(d, normal)) *
-                         std::max(0.0, -dot(d, mesh_.patches[light.patch].normal)) / (r2 * r2);
-        const bool visible = scene_->visible(point, q);
-        weight_sum += w;
-        visible_sum += visible ? w : 0;
-        plain_visible += visible ? 1 : 0;
+        tally.add(point, normal, q, mesh_.patches[light.patch].normal,
+                  [&](const Vec3& at) { return scene_->visible(point, at); });
     }
-    return weight_sum > 0 ? visible_sum / weight_sum : plain_visible / rays;
+    return tally.fraction(rays);
 }
 
 // The visible fraction of lights too faint for a shadow ray each, together: each ray goes to

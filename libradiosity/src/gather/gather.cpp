@@ -11,14 +11,11 @@
 #include <cmath>
 
 namespace rad {
+using gather::brightness;
 
 namespace {
 bool emits(const Rgb& e) {
     return e[0] > 0 || e[1] > 0 || e[2] > 0;
-}
-
-double brightness(const Rgb& c) {
-    return c[0] + c[1] + c[2];
 }
 
 // Rays from a point are stratified: a (0,2)-net rotated per point by seeded offsets.

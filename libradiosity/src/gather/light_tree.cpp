@@ -9,10 +9,6 @@ namespace rad::gather {
 
 namespace {
 constexpr double kPi = std::numbers::pi;
-
-double brightness(const Rgb& c) {
-    return c[0] + c[1] + c[2];
-}
 } // namespace
 
 LightTree::LightTree(const radfmt::MeshData& mesh, std::vector<Light> lights)

@@ -16,6 +16,11 @@
 
 namespace rad::gather {
 
+// r + g + b: what the tree and the shadow rays weigh lights by.
+inline double brightness(const Rgb& c) {
+    return c[0] + c[1] + c[2];
+}
+
 struct Light {
     std::uint32_t patch;
     Rgb radiosity; // what it sends: its exitance E (plus its reflected B - E when bright)

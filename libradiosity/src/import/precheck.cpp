@@ -73,11 +73,16 @@ fs::path referenced_file(const fs::path& from, const fs::path& folder_in,
 namespace {
 // A PLY's header ends with an end_header line within its first 64 KiB (without it, assimp
 // reads on forever).
-void check_ply_header(const fs::path& path) {
+// The first 64 KiB of a file: where a PLY's header must end.
+std::string file_head(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::string head(64 * 1024, '\0');
     in.read(head.data(), static_cast<std::streamsize>(head.size()));
     head.resize(static_cast<std::size_t>(in.gcount()));
+    return head;
+}
+
+void check_ply_header(const fs::path& path, const std::string& head) {
     if (head.rfind("ply", 0) != 0)
         throw InputError(path.string() + ": not a PLY file (it does not start with 'ply')");
     const auto end = head.find("end_header");
@@ -141,14 +146,10 @@ int ply_size(const std::string& type) {
     return 0;
 }
 
-void check_ply_vertices(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string head(64 * 1024, '\0');
-    in.read(head.data(), static_cast<std::streamsize>(head.size()));
-    head.resize(static_cast<std::size_t>(in.gcount()));
+void check_ply_vertices(const fs::path& path, const std::string& head) {
     const auto layout = ply_layout(head);
     if (!layout.readable) return;
-    in.clear();
+    std::ifstream in(path, std::ios::binary);
     in.seekg(static_cast<std::streamoff>(layout.body));
     const bool ascii = layout.format == "ascii";
     const bool swap = layout.format == "binary_big_endian";
@@ -428,8 +429,9 @@ void check_before_import(const fs::path& path, const SceneOptions& options) {
                                          "never opened)");
     const auto ext = lower_extension(path);
     if (ext == ".ply") {
-        check_ply_header(path);
-        check_ply_vertices(path);
+        const auto head = file_head(path);
+        check_ply_header(path, head);
+        check_ply_vertices(path, head);
     }
     if (ext == ".gltf" || ext == ".glb") {
         std::uint64_t bin_bytes = 0;
