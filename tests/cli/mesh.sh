@@ -34,6 +34,13 @@ expect_error "bent.obj:7: face is not planar" out.mesh "$BIN/rad-mesh" bent.obj 
 err=$("$BIN/rad-mesh" bent.obj -o bent.mesh --max-edge none 2>&1) || fail "a bent face should be split: $err"
 grep -q "rad-mesh: 2 patches" <<<"$err" || fail "bent face patches: $err"
 grep -q "changed: triangulated: 1 non-planar face(s) split into triangles (worst at line 7: " <<<"$err" || fail "split summary: $err"
+# The same from an assimp format (a PLY quad): located by face, node and mesh, never "line 2".
+printf 'ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0.2\n0 1 0\n0 0 1\n1 0 1\n0 1 1\n4 0 1 2 3\n3 4 6 5\n' > bent.ply
+err=$("$BIN/rad-mesh" bent.ply -o bent-ply.mesh --max-edge none 2>&1) || fail "bent PLY quad: $err"
+grep -q "non-planar face(s) split into triangles (worst at face [0-9]* (node '[^']*', mesh '[^']*', its face [0-9]*): " <<<"$err" || fail "bent PLY quad located by line: $err"
+expect_error "bent.ply: face " out.mesh "$BIN/rad-mesh" bent.ply -o out.mesh --strict
+err=$("$BIN/rad-mesh" bent.ply -o out.mesh --strict 2>&1)
+grep -q "bent.ply: face [0-9]* (node '[^']*', mesh '[^']*', its face [0-9]*): face is not planar" <<<"$err" || fail "strict PLY message: $err"
 printf 'mtllib s.mtl\n' > empty.obj
 expect_error "empty" out.mesh "$BIN/rad-mesh" empty.obj -o out.mesh
 printf 'mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nusemtl grey\nf 1 2 3\nf 1 2 4\n' > degen.obj

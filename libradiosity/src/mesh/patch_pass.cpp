@@ -21,15 +21,19 @@ SurfaceOptions surface_options(const SubdivisionOptions& limits, const std::stri
     return options;
 }
 
-void report_faces(const SubdivisionReport& faces, MeshReport& report) {
+void report_faces(const Scene& scene, const SubdivisionReport& faces, MeshReport& report) {
     if (faces.nonplanar_split) {
+        // An OBJ's line, or a glTF/assimp face by its node and mesh.
+        const auto worst = scene.face_ranges.empty()
+                               ? "line " + std::to_string(faces.worst_nonplanar_line)
+                               : face_number(scene, faces.worst_nonplanar_line);
         char text[256];
         std::snprintf(text, sizeof text,
-                      "triangulated: %zu non-planar face(s) split into triangles (worst at line "
-                      "%d: %.3g off its plane, %.2g%% of its size; --strict refuses them)",
-                      faces.nonplanar_split, faces.worst_nonplanar_line,
+                      ": %.3g off its plane, %.2g%% of its size; --strict refuses them)",
                       faces.worst_nonplanar_offset, 100 * faces.worst_nonplanar_relative);
-        report.add(MeshReport::Kind::Change, text);
+        report.add(MeshReport::Kind::Change,
+                   "triangulated: " + std::to_string(faces.nonplanar_split) +
+                       " non-planar face(s) split into triangles (worst at " + worst + text);
     }
     if (faces.degenerate_dropped)
         report.add(MeshReport::Kind::Change,
@@ -75,7 +79,7 @@ radfmt::MeshData patch_pass(const Scene& scene, const MeshOptions& options, Mesh
     } else {
         mesh = subdivide(scene, limits, &faces);
     }
-    report_faces(faces, report);
+    report_faces(scene, faces, report);
     return mesh;
 }
 

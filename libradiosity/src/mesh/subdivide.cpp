@@ -46,10 +46,6 @@ double elongation(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 constexpr double kBandedElongation = 4;
 
-FileLoc where(const Scene& scene, const Polygon& p) {
-    return {scene.path, p.line};
-}
-
 // Ear clipping in the polygon's plane; polygons here are planar and simple.
 std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec3>& pts,
                                                       const std::vector<std::uint32_t>& ids,
@@ -139,13 +135,12 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
         }
         const bool planar = worst <= options.planarity_tolerance * size;
         if (!planar && options.strict)
-            throw InputError(where(scene, poly),
-                             "face is not planar: vertex " + std::to_string(worst_vertex + 1) +
-                                 " lies " + std::to_string(worst) +
-                                 " off the face's plane (tolerance " +
-                                 std::to_string(options.planarity_tolerance * size) +
-                                 "; without --strict it is split into triangles, or raise "
-                                 "--planarity-tolerance)");
+            throw InputError(face_location(scene, poly.line) + ": face is not planar: vertex " +
+                             std::to_string(worst_vertex + 1) + " lies " + std::to_string(worst) +
+                             " off the face's plane (tolerance " +
+                             std::to_string(options.planarity_tolerance * size) +
+                             "; without --strict it is split into triangles, or raise "
+                             "--planarity-tolerance)");
         bool convex_quad = pts.size() == 4;
         for (std::size_t k = 0; k < 4 && convex_quad; ++k)
             convex_quad = dot(cross(pts[(k + 1) % 4] - pts[k], pts[(k + 2) % 4] - pts[(k + 1) % 4]),
