@@ -52,9 +52,11 @@ void print_summary(const radfmt::MeshData& mesh, const rad::MeshReport& report) 
     std::fprintf(stderr,
                  "rad-mesh: %zu face(s) as %zu planar region(s): %zu grid cell(s), %zu "
                  "triangle(s) along outlines; aspect <= 3: %.1f%% of the patches of regions a "
-                 "cell wide or more (worst %.3g), %zu patch(es) in thinner regions\n",
+                 "tenth of a cell wide or more (%.1f%% of those a cell wide or more; worst "
+                 "%.3g), %zu patch(es) in regions thinner than a tenth of a cell\n",
                  s.faces, s.regions, s.cells, s.band_triangles,
-                 100 * s.shape.fraction_aspect_at_most_3, s.shape.worst_aspect, s.shape.excused);
+                 100 * s.shape.fraction_aspect_at_most_3,
+                 100 * s.shape.fraction_wide_aspect_at_most_3, s.shape.worst_aspect, s.shape.thin);
 }
 } // namespace
 

@@ -10,15 +10,47 @@ python3 surface_scenes.py KIND OUT.obj
             (their faces out, rightly)
   inward    the same room facing in, as it should
   beam      the inward room with a beam through its right wall, sticking out by 1
+  holed     the back wall with a 16-sided window, as a fan of triangles around it, and a
+            shelf 6 cm deep along the left wall (a region narrower than a cell)
 python3 surface_scenes.py gltf CORNELL.obj OUT.gltf
   the OBJ's faces as glTF triangles, one mesh per material (Kd as base colour, Ke as emission)
 """
 import base64
+import math
 import json
 import struct
 import sys
 
 W, H, D = 4.0, 2.5, 3.0  # room: x 0..W, y 0..H, z 0..D; the back wall is z = 0
+
+
+def holed_wall(v, faces):
+    """The back wall around a 16-gon window: triangles from each window edge to the points of
+    the wall's outline (the corners, and the points at the window corners' angles)."""
+    cx, cy, r, n = 2.0, 1.25, 0.5, 16
+    angles = [2 * math.pi * (k + 0.5) / n for k in range(n)]
+
+    def outer(a):  # where the ray from the centre at angle a meets the wall's outline
+        dx, dy = math.cos(a), math.sin(a)
+        t = min((W - cx) / dx if dx > 0 else -cx / dx if dx < 0 else 1e9,
+                (H - cy) / dy if dy > 0 else -cy / dy if dy < 0 else 1e9)
+        return (cx + t * dx, cy + t * dy, 0)
+
+    corners = [(W, H), (0, H), (0, 0), (W, 0)]
+    corner_angles = [math.atan2(y - cy, x - cx) % (2 * math.pi) for x, y in corners]
+    base = len(v)
+    v.extend((cx + r * math.cos(a), cy + r * math.sin(a), 0) for a in angles)  # the window
+    for k in range(n):
+        a0, a1 = angles[k], angles[(k + 1) % n] + (2 * math.pi if k == n - 1 else 0)
+        chain = [outer(a0)] + [(x, y, 0) for (x, y), a in zip(corners, corner_angles)
+                               if a0 < a < a1 or a0 < a + 2 * math.pi < a1] + [outer(a1)]
+        ids = []
+        for p in chain:
+            v.append(p)
+            ids.append(len(v))
+        for q in range(len(ids) - 1):
+            faces.append(("back", [base + 1 + k, ids[q], ids[q + 1]]))
+        faces.append(("back", [base + 1 + k, ids[-1], base + 1 + (k + 1) % n]))
 
 
 def room(kind):
@@ -54,6 +86,9 @@ def room(kind):
         v.extend(rim)
         for k in range(len(rim) - 1):
             faces.append(("back", [base + 1, base + 2 + k, base + 3 + k]))
+    elif kind == "holed":
+        holed_wall(v, faces)
+        quad("shelf", (0, 1, 1), (0, 1, 1.06), (3, 1, 1.06), (3, 1, 1))
     elif kind == "outward":
         reversed_quad("back", *back)
     else:
@@ -103,7 +138,7 @@ def write_obj(path, v, faces):
             out.write("f " + " ".join(map(str, idx)) + "\n")
     colours = {"floor": "0.6 0.6 0.6", "ceiling": "0.7 0.7 0.7", "left": "0.6 0.2 0.2",
                "right": "0.2 0.6 0.2", "front": "0.5 0.5 0.5", "back": "0.5 0.5 0.7",
-               "sheet": "0.5 0.5 0.5", "box": "0.5 0.5 0.5", "beam": "0.5 0.5 0.5", "light": "0.5 0.5 0.5"}
+               "sheet": "0.5 0.5 0.5", "box": "0.5 0.5 0.5", "beam": "0.5 0.5 0.5", "shelf": "0.5 0.5 0.5", "light": "0.5 0.5 0.5"}
     with open(mtl, "w") as out:
         for mat, kd in colours.items():
             out.write(f"newmtl {mat}\nKd {kd}\n")

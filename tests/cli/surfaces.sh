@@ -159,4 +159,32 @@ grep -q "rad-mesh: --max-edge 0.2795 (the scene's size 5.59 / 20" <<<"$err" || f
 [ "$(patches <(echo "$err"))" -gt 500 ] || fail "the default limit did not subdivide: $err"
 err=$("$BIN/rad-mesh" quad.obj -o whole.mesh --max-edge none 2>&1) || fail "--max-edge none: $err"
 [ "$(patches <(echo "$err"))" = 7 ] || fail "--max-edge none should keep the 7 surfaces whole: $err"
+# 10. Shapes on real interiors (issue #24 "well-shaped grids"). Band triangles are refined
+# until their aspect is 3 or less, outline pieces halved where a bad triangle needs it (for
+# every region sharing them): the summary's share of good patches, over the regions a tenth
+# of a cell wide or more, and over those a cell wide or more. Before: the living room 88.7%
+# (of regions a cell wide), the pandora cut 55.7%.
+shape_share() { # ERRFILE -> "TENTH WIDE"
+  sed -n 's/.*aspect <= 3: \([0-9.]*\)% of the patches of regions a tenth of a cell wide or more (\([0-9.]*\)% of those a cell wide.*/\1 \2/p' "$1"
+}
+at_least() { python3 -c "import sys; sys.exit(not $1 >= $2)"; }
+"$BIN/rad-mesh" "$SRC/tests/data/living-room/living_room.glb" -o lr.mesh 2> lr.err || fail "living room: $(cat lr.err)"
+read -r tenth wide < <(shape_share lr.err)
+echo "living room: aspect <= 3 for $tenth% (a tenth of a cell wide or more), $wide% (a cell wide)"
+at_least "${tenth:-0}" 93 && at_least "${wide:-0}" 93 || fail "living room shapes: $(grep planar lr.err)"
+"$BIN/rad-mesh" "$SRC/tests/data/pandora-cut/pandora-cut.obj" -o pc.mesh 2> pc.err || fail "pandora cut: $(cat pc.err)"
+read -r tenth wide < <(shape_share pc.err)
+echo "pandora cut: aspect <= 3 for $tenth% (a tenth of a cell wide or more), $wide% (a cell wide)"
+at_least "${tenth:-0}" 85 && at_least "${wide:-0}" 88 || fail "pandora cut shapes: $(grep planar pc.err)"
+# A shelf 6 cm deep at a 25 cm cell (a region a quarter of a cell wide) is cut across into
+# near-square patches, not into 25 x 6 cm strips (aspect 4.2); the holed wall stays a grid.
+python3 "$GEN" holed holed.obj
+"$BIN/rad-mesh" holed.obj -o holed.mesh --max-edge 0.25 2> holed.err || fail "holed: $(cat holed.err)"
+grep -q "aspect <= 3: 100.0% of the patches of regions a tenth of a cell wide or more" holed.err || fail "holed wall and shelf: $(cat holed.err)"
+"$BIN/rad-info" --csv holed.mesh | python3 -c "
+import csv, sys
+shelf = [p for p in csv.DictReader(sys.stdin) if p['group'] == 'shelf']
+area = sum(float(p['area']) for p in shelf)
+assert abs(area - 0.18) < 1e-9 and len(shelf) >= 25, (len(shelf), area)
+" || fail "shelf not cut across"
 finish

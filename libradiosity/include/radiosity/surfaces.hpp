@@ -6,6 +6,7 @@
 #pragma once
 #include "radfmt/kinds.hpp"
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -29,22 +30,28 @@ struct SurfaceOptions {
 // edge over its shortest height (longest^2 / (2 area) for a triangle: 1.15 equilateral; for a
 // quad, the longest edge over its area / the mean length of each pair of opposite sides: 1 for
 // a square).
+// A region's width (the shorter side of its minimum-area rectangle) against its cell: wide (a
+// cell or more: near-square patches of a cell), narrow (a tenth of a cell or more: cut across
+// into near-square patches twice its width long) or thin (a trim or sill: patches as thin as
+// the region, a cell long).
+enum class WidthClass : std::uint8_t { Wide, Narrow, Thin };
 struct ShapeStats {
-    double fraction_aspect_at_most_3 = 1; // of the patches counted
-    double worst_aspect = 1;
-    std::size_t excused = 0; // patches not counted
+    double fraction_aspect_at_most_3 = 1;      // of the patches of wide and narrow regions
+    double fraction_wide_aspect_at_most_3 = 1; // of the patches of wide regions
+    double worst_aspect = 1;                   // of wide and narrow regions
+    std::size_t thin = 0;                      // patches of thin regions, not counted
 };
 double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
-// Over every patch, or those whose `excused` entry is false (e.g. patches of regions thinner
-// than a cell, which cannot be near-square).
-ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<bool>* excused = nullptr);
+// Over the patches of wide and narrow regions (`classes` by patch; patches past its end are
+// wide).
+ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClass>& classes = {});
 
 struct SurfaceReport {
     std::size_t faces = 0, regions = 0;
     std::size_t cells = 0;            // full grid cells: quads
     std::size_t band_triangles = 0;   // triangles between the cells and a region's outline
     std::size_t dropped_vertices = 0; // collinear outline points no other region needs
-    ShapeStats shape;                 // over the patches of regions at least a cell wide
+    ShapeStats shape;
 };
 
 // The faces (triangles and planar convex quads, as `subdivide` makes them with no limits) as

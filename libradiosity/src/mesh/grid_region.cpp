@@ -16,56 +16,43 @@ namespace rad::surfaces {
 
 namespace {
 
-using XY = std::array<double, 2>;
 // The band's triangulation, refined for shape (CGAL's Delaunay mesher) without splitting its
 // constrained edges: those are shared with the grid's quads and with other regions.
 using BandFb = CGAL::Delaunay_mesh_face_base_2<K, CGAL::Constrained_triangulation_face_base_2<K>>;
 using BandCDT =
     CGAL::Constrained_Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb, BandFb>,
                                                CGAL::Exact_predicates_tag>;
-using BandCriteria = CGAL::Delaunay_mesh_size_criteria_2<BandCDT>;
 
-// The region's own axes: the minimum-area rectangle around its outline (one side of it lies
-// along a side of the convex hull: rotating calipers, each side tried).
-struct GridFrame {
-    XY origin{}, e1{}, e2{}; // e2 is e1 turned a quarter counter-clockwise
-    double length1 = 0, length2 = 0;
-    // A point of the plane in the frame's own coordinates (along e1, along e2).
-    XY local(const XY& p) const {
-        const double dx = p[0] - origin[0], dy = p[1] - origin[1];
-        return {dx * e1[0] + dy * e1[1], dx * e2[0] + dy * e2[1]};
-    }
+// CGAL's size and angle criteria, plus: a triangle whose aspect (longest edge over shortest
+// height) is over 3 is bad. An angle bound alone lets obtuse triangles of 25-30 degree corners
+// through, whose aspect reaches 5.
+struct BandCriteria : CGAL::Delaunay_mesh_size_criteria_2<BandCDT> {
+    using Base = CGAL::Delaunay_mesh_size_criteria_2<BandCDT>;
+    using Base::Base;
+    struct Is_bad : Base::Is_bad {
+        using Base::Is_bad::Is_bad;
+        CGAL::Mesh_2::Face_badness operator()(const Quality q) const {
+            return Base::Is_bad::operator()(q);
+        }
+        CGAL::Mesh_2::Face_badness operator()(const BandCDT::Face_handle& face, Quality& q) const {
+            const auto badness = Base::Is_bad::operator()(face, q);
+            if (badness != CGAL::Mesh_2::NOT_BAD) return badness;
+            const auto &a = face->vertex(0)->point(), &b = face->vertex(1)->point(),
+                       &c = face->vertex(2)->point();
+            const double twice_area = std::abs(2 * CGAL::area(a, b, c));
+            const double longest =
+                std::max({CGAL::squared_distance(a, b), CGAL::squared_distance(b, c),
+                          CGAL::squared_distance(c, a)});
+            const double aspect = twice_area > 0 ? longest / twice_area : 1e300;
+            if (aspect <= kMaxAspect) return CGAL::Mesh_2::NOT_BAD;
+            q.first =
+                std::min(q.first, 0.999 * this->B * (kMaxAspect / aspect) * (kMaxAspect / aspect));
+            return CGAL::Mesh_2::BAD;
+        }
+    };
+    Is_bad is_bad_object() const { return Is_bad(this->bound(), this->size_bound(), this->traits); }
+    static constexpr double kMaxAspect = 3;
 };
-
-bool minimum_rectangle(const std::vector<Point2>& outline_points, GridFrame& frame) {
-    std::vector<Point2> hull;
-    CGAL::convex_hull_2(outline_points.begin(), outline_points.end(), std::back_inserter(hull));
-    if (hull.size() < 3) return false;
-    double best = 1e300;
-    for (std::size_t k = 0; k < hull.size(); ++k) {
-        const auto& a = hull[k];
-        const auto& b = hull[(k + 1) % hull.size()];
-        const double len = std::hypot(b.x() - a.x(), b.y() - a.y());
-        if (!(len > 0)) continue;
-        const XY e1{(b.x() - a.x()) / len, (b.y() - a.y()) / len}, e2{-e1[1], e1[0]};
-        double lo1 = 1e300, hi1 = -1e300, lo2 = 1e300, hi2 = -1e300;
-        for (const auto& p : hull) {
-            const double s = p.x() * e1[0] + p.y() * e1[1], t = p.x() * e2[0] + p.y() * e2[1];
-            lo1 = std::min(lo1, s), hi1 = std::max(hi1, s), lo2 = std::min(lo2, t),
-            hi2 = std::max(hi2, t);
-        }
-        const double area = (hi1 - lo1) * (hi2 - lo2);
-        if (area < best * (1 - 1e-12)) {
-            best = area;
-            frame.e1 = e1;
-            frame.e2 = e2;
-            frame.origin = {e1[0] * lo1 + e2[0] * lo2, e1[1] * lo1 + e2[1] * lo2};
-            frame.length1 = hi1 - lo1;
-            frame.length2 = hi2 - lo2;
-        }
-    }
-    return best < 1e300 && frame.length1 > 0 && frame.length2 > 0;
-}
 
 // The grid over one region: which nodes lie on outline points, which are well inside, which
 // cells are whole quads.
@@ -212,6 +199,15 @@ bool has_area(const Point2& a, const Point2& b, const Point2& c) {
     return twice_area > 1e-9 * longest;
 }
 
+double band_area(const BandCDT& cdt) {
+    double area = 0;
+    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+        if (f->is_in_domain())
+            area += std::abs(
+                CGAL::area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()));
+    return area;
+}
+
 // The band: a constrained Delaunay triangulation of the region minus its whole cells, with the
 // grid nodes well inside it as extra points, refined until no triangle has an angle under
 // about 20 degrees or an edge over a cell, where that needs no point on the band's outline.
@@ -258,7 +254,12 @@ void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<
         CGAL::Delaunay_mesher_no_edge_refinement_2<BandCDT, BandCriteria> mesher(
             cdt, BandCriteria(0.125, region.cell));
         mesher.init(true);
-        mesher.refine_mesh();
+        // The aspect bound is past what Delaunay refinement is proven to reach: a budget of
+        // points, a few for every cell of the band and every constrained edge.
+        const auto budget = static_cast<std::size_t>(
+            16 * band_area(cdt) / (region.cell * region.cell) + 8 * band.size() + 64);
+        for (std::size_t step = 0; step < budget && mesher.step_by_step_refine_mesh(); ++step) {
+        }
     }
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
         if (v->info().id == kNone)

@@ -137,7 +137,7 @@ std::vector<std::uint32_t> walk_run(EdgeKey e, const Runs& runs, const Points& p
 struct Run {
     std::vector<std::uint32_t> chain;   // the points from one kept end to the other
     std::vector<std::uint32_t> regions; // on either side
-    double cell = 0;                    // the smallest cell of those regions
+    double cell = 0;                    // the shortest piece of those regions
     std::vector<std::uint32_t> points;  // after splitting, from chain.front() to chain.back()
 };
 
@@ -219,9 +219,9 @@ std::vector<Run> find_runs(const std::vector<std::vector<std::array<std::uint32_
             dropped += run.chain.size() - 2;
             run.regions = incidence.regions_of.at(edge_key(a, b));
             for (const auto on : run.regions)
-                if (regions[on].cell > 0)
+                if (regions[on].piece > 0)
                     run.cell =
-                        run.cell > 0 ? std::min(run.cell, regions[on].cell) : regions[on].cell;
+                        run.cell > 0 ? std::min(run.cell, regions[on].piece) : regions[on].piece;
             runs.push_back(std::move(run));
         }
     runs_of_region.assign(split.size(), {});

@@ -58,11 +58,29 @@ struct Plane {
     Vec3 to_3d(double x, double y) const { return origin + u * x + v * y; }
 };
 
+using XY = std::array<double, 2>;
+
+// The region's own axes: the minimum-area rectangle around its outline (one side of it lies
+// along a side of the convex hull: rotating calipers, each side tried).
+struct GridFrame {
+    XY origin{}, e1{}, e2{}; // e2 is e1 turned a quarter counter-clockwise
+    double length1 = 0, length2 = 0;
+    // A point of the plane in the frame's own coordinates (along e1, along e2).
+    XY local(const XY& p) const {
+        const double dx = p[0] - origin[0], dy = p[1] - origin[1];
+        return {dx * e1[0] + dy * e1[1], dx * e2[0] + dy * e2[1]};
+    }
+};
+// False when the points span no area.
+bool minimum_rectangle(const std::vector<Point2>& outline_points, GridFrame& frame);
+
 struct Region {
     std::vector<std::uint32_t> faces; // patches of the input mesh
     std::uint32_t group = 0, material = 0;
     Plane plane;
-    double cell = 0; // the full cell's side (0: no limit)
+    double cell = 0;  // the full cell's side (0: no limit)
+    double piece = 0; // the longest outline piece (0: no limit): the cell, less where thinner
+    double width = 0; // the shorter side of its minimum-area rectangle
     // The region's faces triangulated with their edges as constraints, faces marked inside:
     // tells whether a point of the plane is in the region.
     std::unique_ptr<CDT> cdt;
@@ -87,10 +105,20 @@ std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
 void trace_outline(Region& region, const radfmt::MeshData& faces,
                    const std::vector<std::uint32_t>& weld, Points& points);
 
+// The shorter side of the region's minimum-area rectangle (from its outline edges).
+double region_width(const Region& region, const Points& points);
+
 // Pass 3: outline edges split where another region's outline point lies on them, collinear
 // points that no region needs dropped, and each straight run split into equal pieces no longer
 // than the smallest cell of the regions along it. Returns the points dropped.
 std::size_t split_outline_runs(std::vector<Region>& regions, Points& points, double tolerance);
+
+// Pass 3b: each region gridded on trial (pass 4); the outline piece that a bad band triangle
+// lies on, or whose diametral circle holds its circumcentre, is halved for every region that
+// has it (never below a tenth of a cell), and those regions tried again, up to `rounds`
+// times. Returns the points added.
+std::size_t refine_outline_pieces(std::vector<Region>& regions, Points& points, double tolerance,
+                                  int rounds);
 
 // Pass 4: the region's grid cells as quads and the band between them and its outline as
 // triangles, appended to `mesh` (whose vertices are `points`, patches facing the region's way).

@@ -24,6 +24,15 @@ double cell_side(const radfmt::MeshData& faces, std::uint32_t group, const Surfa
     return side;
 }
 
+// A region thinner than its cell is cut across into pieces twice its width long (near-square
+// patches). One thinner than a tenth of a cell (a trim, a sill) keeps pieces of a cell: its
+// patches are as thin as it is, and cutting it into specks would spend patches on detail the
+// rest of the scene is not resolved to.
+double piece_length(double cell, double width) {
+    if (!(cell > 0) || width >= cell || width < cell / 10) return cell;
+    return 2 * width;
+}
+
 // Vertices renumbered to those the patches use, in order of first use.
 void drop_unused_vertices(radfmt::MeshData& mesh) {
     std::vector<std::uint32_t> new_id(mesh.vertices.size(), surfaces::kNone);
@@ -74,20 +83,30 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
         throw InputError(options.source + ": these limits (--max-edge, --max-area) would make " +
                          text + " (use larger limits, or raise --max-patches)");
     }
-    for (auto& region : regions) surfaces::trace_outline(region, faces, weld, points);
+    for (auto& region : regions) {
+        surfaces::trace_outline(region, faces, weld, points);
+        region.width = surfaces::region_width(region, points);
+        region.piece = piece_length(region.cell, region.width);
+    }
     rep.regions = regions.size();
     rep.dropped_vertices = surfaces::split_outline_runs(regions, points, tolerance);
+    surfaces::refine_outline_pieces(regions, points, tolerance, 6);
 
     radfmt::MeshData mesh;
     mesh.groups = faces.groups;
     mesh.materials = faces.materials;
-    std::vector<bool> in_thin_region;
+    std::vector<WidthClass> classes;
     for (const auto& region : regions) {
         const double width = surfaces::grid_region(region, points, mesh, rep, tolerance);
-        in_thin_region.resize(mesh.patches.size(), region.cell > 0 && width < region.cell);
+        // Regions thinner than a tenth of a cell are slivers by their own shape; those under a
+        // cell are cut across into near-square patches.
+        const auto width_class = !(region.cell > 0) || width >= region.cell ? WidthClass::Wide
+                                 : width >= region.cell / 10                ? WidthClass::Narrow
+                                                                            : WidthClass::Thin;
+        classes.resize(mesh.patches.size(), width_class);
     }
     mesh.vertices = points.position;
-    rep.shape = shape_stats(mesh, &in_thin_region);
+    rep.shape = shape_stats(mesh, classes);
     drop_unused_vertices(mesh);
     if (mesh.patches.size() >= radfmt::kNoVertex)
         throw InputError("too many patches for 32-bit indices");
@@ -112,21 +131,24 @@ double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
     return longest / std::min(h1, h2);
 }
 
-ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<bool>* excused) {
+ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClass>& classes) {
     ShapeStats stats;
-    std::size_t good = 0, counted = 0;
+    std::size_t good[2] = {0, 0}, counted[2] = {0, 0};
     stats.worst_aspect = 0;
     for (std::size_t k = 0; k < mesh.patches.size(); ++k) {
-        if (excused && (*excused)[k]) {
-            ++stats.excused;
+        const auto c = k < classes.size() ? classes[k] : WidthClass::Wide;
+        if (c == WidthClass::Thin) {
+            ++stats.thin;
             continue;
         }
         const double a = patch_aspect(mesh, mesh.patches[k]);
-        ++counted;
-        if (a <= 3) ++good;
+        const bool fine = a <= 3;
+        ++counted[0], good[0] += fine; // a tenth of a cell wide or more
+        if (c == WidthClass::Wide) ++counted[1], good[1] += fine;
         stats.worst_aspect = std::max(stats.worst_aspect, a);
     }
-    stats.fraction_aspect_at_most_3 = counted ? double(good) / double(counted) : 1;
+    stats.fraction_aspect_at_most_3 = counted[0] ? double(good[0]) / double(counted[0]) : 1;
+    stats.fraction_wide_aspect_at_most_3 = counted[1] ? double(good[1]) / double(counted[1]) : 1;
     return stats;
 }
 
