@@ -4,6 +4,7 @@
 #include "radiosity/two_sided.hpp"
 
 #include <embree3/rtcore.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <cstdio>
@@ -143,7 +144,11 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
         if (impl_->patch_of.size() <= id) impl_->patch_of.resize(id + 1);
         impl_->patch_of[id] = *patches;
     }
-    rtcCommitScene(impl_->scene);
+    // Built on one thread: Embree's parallel builders shape the tree by how many threads
+    // share the work, and a ray meeting two surfaces at one distance (coincident faces) hits
+    // the one the tree visits first; one thread gives one tree on every machine and run.
+    tbb::task_arena one_thread(1);
+    one_thread.execute([&] { rtcCommitScene(impl_->scene); });
     impl_->raise_if_failed("building the ray scene");
     // Relative to the scene: a fixed floor would swallow a scene measured in nanometres.
     const double size = box.diagonal();

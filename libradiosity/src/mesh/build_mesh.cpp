@@ -3,10 +3,17 @@
 #include "radiosity/error.hpp"
 #include "radiosity/materials.hpp"
 
+#include <tbb/global_control.h>
+
 namespace rad {
 
 radfmt::MeshData build_mesh(const std::filesystem::path& input, const MeshOptions& options,
                             MeshReport& report, Scene* scene_out) {
+    // One thread: the passes' ray casts (orientation, coincident faces, imprinting) are a
+    // small part of the time, and results that depend on how work was shared between
+    // threads (the ray scene's tree, which of two coincident faces a ray meets) would make
+    // the mesh differ from machine to machine.
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     if (options.two_sided_emission && options.two_sided.empty())
         throw InputError("--two-sided-emission needs --two-sided GROUP|MATERIAL|all");
     auto scene = load_pass(input, options.scene, report);

@@ -19,7 +19,7 @@ double seen_backs(const Scene& scene) {
     struct Sum {
         double backs = 0, hits = 0;
     };
-    const auto total = tbb::parallel_reduce(
+    const auto total = tbb::parallel_deterministic_reduce(
         tbb::blocked_range<std::size_t>(0, mesh.patches.size(), 256), Sum{},
         [&](const tbb::blocked_range<std::size_t>& range, Sum sum) {
             for (auto t = range.begin(); t != range.end(); ++t) {
