@@ -7,6 +7,7 @@
 #include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/solve_policy.hpp"
+#include "radiosity/stages.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
@@ -68,6 +69,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> max_edge, max_area;
     double planarity = 1e-3;
     bool quiet = false;
+    bool timings = false;
     app.add_option("SCENE", input,
                    "Scene file: OBJ (+ MTL), or glTF 2.0 (.gltf, .glb), PLY, COLLADA (.dae), "
                    "FBX and the other formats assimp reads")
@@ -166,7 +168,10 @@ int main(int argc, char** argv) {
                    "its Kd); each texture file is decoded once per run")
         ->capture_default_str()
         ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40));
-    app.add_flag("-q,--quiet", quiet, "Print no summary");
+    app.add_flag("-q,--quiet", quiet,
+                 "Print no summary (and no progress; progress shows only on a terminal)");
+    app.add_flag("--timings", timings,
+                 "Print each stage's wall time and the peak memory so far (stderr)");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-mesh", [&] {
@@ -194,6 +199,8 @@ int main(int argc, char** argv) {
                                           " has a channel >= 1 (a reflectance is below 1)");
             obj_options.default_reflectance = value;
         }
+        rad::StageLog stages("rad-mesh", quiet, timings);
+        obj_options.stages = &stages;
         rad::MeshOptions mesh_options;
         mesh_options.scene = obj_options;
         mesh_options.subdivision = options;
@@ -207,6 +214,7 @@ int main(int argc, char** argv) {
         rad::MeshReport report;
         rad::Scene scene;
         const auto mesh = rad::build_mesh(input, mesh_options, report, &scene);
+        stages.finish(); // clears the terminal's stage line before the report
         using Kind = rad::MeshReport::Kind;
         for (const auto& line : report.lines) {
             if (line.kind == Kind::Warning)
@@ -215,11 +223,13 @@ int main(int argc, char** argv) {
                 std::cerr << "rad-mesh: " << line.text << '\n';
         }
 
+        stages.begin("writing " + std::filesystem::path(output).filename().string());
         std::vector<radfmt::Parent> sources{{input, nullptr}};
         for (const auto& mtl : scene.material_files) sources.push_back({mtl, nullptr});
         const auto header = radfmt::derived_header(rad::tool_version("rad-mesh"),
                                                    radfmt::command_line(argc, argv), sources);
         radfmt::write_mesh(output, header, mesh);
+        stages.finish();
         if (!quiet) print_summary(mesh, report);
         for (const auto& line : report.lines)
             if (line.kind == Kind::Change) std::cerr << "rad-mesh: changed: " << line.text << '\n';

@@ -5,6 +5,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
+#include "radiosity/stages.hpp"
 #include "radiosity/texture.hpp"
 #include "radiosity/vec.hpp"
 
@@ -146,8 +147,12 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
     std::string line;
     int number = 0;
     bool have_material = false;
+    const double file_bytes = std::max<double>(1, static_cast<double>(fs::file_size(path)));
+    double bytes_read = 0;
     while (std::getline(in, line)) {
         ++number;
+        bytes_read += static_cast<double>(line.size() + 1);
+        if (number % 65536 == 0) stage_fraction(options.stages, bytes_read / file_bytes);
         if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3); // UTF-8 BOM
         while (!line.empty() && (line.back() == '\r' || line.back() == '\\')) line.pop_back();
         std::istringstream words(line);
@@ -374,6 +379,7 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
         scene.material_files.push_back(lib.found.string());
     }
 
+    begin_stage(options.stages, "parsing " + path.filename().string());
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> used_materials;

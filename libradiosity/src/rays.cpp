@@ -88,7 +88,7 @@ void check_ray_precision(std::span<const radfmt::Vec3> points, const std::string
     }
 }
 
-RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>()) {
+RayScene::RayScene(const radfmt::MeshData& mesh, RayBuild build) : impl_(std::make_unique<Impl>()) {
     check_ray_precision(mesh.vertices, "mesh");
     impl_->device = rtcNewDevice(nullptr);
     if (!impl_->device) {
@@ -101,7 +101,8 @@ RayScene::RayScene(const radfmt::MeshData& mesh) : impl_(std::make_unique<Impl>(
     impl_->scene = rtcNewScene(impl_->device);
     // Robust mode makes shared edges watertight, so rays do not leak between patches.
     rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneBuildQuality(impl_->scene, build == RayBuild::Quality ? RTC_BUILD_QUALITY_HIGH
+                                                                     : RTC_BUILD_QUALITY_LOW);
 
     // One Embree quad per patch; triangles are quads whose last vertex repeats the third
     // (Embree's own encoding). The two sides of a two-sided surface are two patches on one

@@ -116,7 +116,9 @@ done
 
 # Foot test: a box on a lit floor. No floor patch is under the box; the mean radiosity of
 # the box's lowest 20 cm (its lowest row at h) converges under refinement (h, h/2, h/4: the
-# second change at most half the first).
+# second change at most 3/4 of the first). First-order convergence halves the change, and
+# the visibility sampling's noise (about 5e-4 at h) moves the ratio by 0.1 with the patches'
+# order alone, so half is no bound to test against.
 declare -a band
 for h in 0.2 0.1 0.05; do
   "$BIN/rad-mesh" "$DATA/box-on-floor/box-on-floor.obj" -o "$TMP/foot.mesh" --max-edge $h -q 2>/dev/null || fail "mesh foot $h"
@@ -130,5 +132,5 @@ done
 echo "box's lowest 20 cm at h, h/2, h/4: ${band[*]}"
 python3 -c "
 a, b, c = ${band[0]}, ${band[1]}, ${band[2]}
-assert abs(c - b) <= 0.5 * abs(b - a), (a, b, c)" || fail "the box's foot does not converge: ${band[*]}"
+assert abs(c - b) <= 0.75 * abs(b - a), (a, b, c)" || fail "the box's foot does not converge: ${band[*]}"
 finish

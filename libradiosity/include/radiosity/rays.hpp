@@ -28,9 +28,13 @@ inline bool sees_mostly_backs(double hit_fraction, double back_fraction,
     return back_fraction > max_back_fraction && back_fraction * hit_fraction >= 0.1;
 }
 
+// How much work building a RayScene's tree may take: Fast for a few rays per patch (the mesh
+// stage's checks), Quality for millions (form factors, images).
+enum class RayBuild { Fast, Quality };
+
 class RayScene {
   public:
-    explicit RayScene(const radfmt::MeshData& mesh);
+    explicit RayScene(const radfmt::MeshData& mesh, RayBuild build = RayBuild::Quality);
     ~RayScene();
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;

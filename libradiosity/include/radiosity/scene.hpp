@@ -12,6 +12,8 @@
 
 namespace rad {
 
+class StageLog;
+
 // One input face as written in the OBJ, before subdivision.
 struct Polygon {
     std::vector<std::uint32_t> vertices; // indices into Scene::vertices
@@ -74,6 +76,8 @@ struct SceneOptions {
     bool allow_outside_refs = false;
     // Textures with more pixels are not decoded (a warning; the material keeps its Kd).
     std::uint64_t max_texture_pixels = kMaxTexturePixels;
+    // Where reading, and the mesh stage's passes after it, show how far they are (optional).
+    StageLog* stages = nullptr;
 };
 
 // What load_obj repaired or could not find, for its warnings and summary.
@@ -174,9 +178,10 @@ std::uint64_t morton_code(const Vec3& point, const Vec3& origin, double cell);
 
 // The faces as fans of triangles, each with its face's own (Newell) normal: a mesh for a
 // RayScene over the scene as written. `face_of` and `triangle_area` get one entry per
-// triangle when given.
+// triangle when given; faces marked in `reversed` are taken as wound the other way.
 radfmt::MeshData face_triangles(const Scene& scene, std::vector<std::size_t>* face_of = nullptr,
-                                std::vector<double>* triangle_area = nullptr);
+                                std::vector<double>* triangle_area = nullptr,
+                                const std::vector<bool>* reversed = nullptr);
 
 // Contacts imprinted (rad-mesh's default): where a face of another object touches or crosses
 // a face (coplanar and facing it, an edge lying in it, or going through it), the contact

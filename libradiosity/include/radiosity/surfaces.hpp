@@ -13,6 +13,8 @@
 
 namespace rad {
 
+class StageLog;
+
 struct SurfaceOptions {
     double max_edge = 0; // a full cell's side; 0: each region as few patches as its shape allows
     double max_area = 0; // a full cell's area at most (0: no limit)
@@ -22,8 +24,9 @@ struct SurfaceOptions {
     // their corners lie within `plane_tolerance` x the scene's size of the region's plane.
     double angle_tolerance = 0.5;
     double plane_tolerance = 1e-5;
-    double max_patches = 2e7; // refused before gridding when the cells would be more
-    std::string source;       // the scene file, for messages
+    double max_patches = 2e7;   // refused before gridding when the cells would be more
+    std::string source;         // the scene file, for messages
+    StageLog* stages = nullptr; // shows how far the stage is (optional)
 };
 
 // Shape of a patch mesh, for rad-mesh's summary and the tests: a patch's aspect is its longest

@@ -2,6 +2,7 @@
 #include "radiosity/build_mesh.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/materials.hpp"
+#include "radiosity/stages.hpp"
 
 #include <tbb/global_control.h>
 
@@ -16,16 +17,23 @@ radfmt::MeshData build_mesh(const std::filesystem::path& input, const MeshOption
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     if (options.two_sided_emission && options.two_sided.empty())
         throw InputError("--two-sided-emission needs --two-sided GROUP|MATERIAL|all");
+    StageLog* stages = options.scene.stages;
+    begin_stage(stages, "reading " + input.filename().string());
     auto scene = load_pass(input, options.scene, report);
+    begin_stage(stages, "duplicates");
     duplicates_pass(scene, report);
+    begin_stage(stages, "orientation");
     const auto turned = orientation_pass(scene, options, report);
+    begin_stage(stages, "coincident faces");
     const auto kept = coincident_pass(scene, report);
     if (options.imprint) {
+        begin_stage(stages, "imprinting");
         std::vector<bool> kept_turned; // `turned` was for the faces before coincident ones went
         for (const auto f : kept) kept_turned.push_back(turned[f]);
         imprint_pass(scene, kept_turned, report);
     }
     auto mesh = patch_pass(scene, options, report);
+    begin_stage(stages, "two-sided, materials, order");
     two_sided_pass(mesh, options, report);
     if (const auto problems = material_warnings(mesh, scene.material_sources); !problems.empty()) {
         std::string text = "materials to check before solving:";

@@ -8,6 +8,8 @@
 
 #include "polygon2d.hpp"
 
+#include <CGAL/box_intersection_d.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -20,9 +22,17 @@ namespace {
 struct FacePlane {
     Vec3 normal{}, centroid{}, u{}, v{};
     double area = 0, offset = 0;
-    std::vector<std::array<double, 2>> outline; // corners in the plane's (u, v)
-    std::array<double, 4> box{1e300, 1e300, -1e300, -1e300};
+    std::array<double, 4> box{1e300, 1e300, -1e300, -1e300}; // of its corners in (u, v)
 };
+
+// A face's corners in its plane's (u, v): made when needed, as few faces are compared.
+std::vector<std::array<double, 2>> outline_of(const Scene& scene, const FacePlane& plane,
+                                              std::size_t f) {
+    std::vector<std::array<double, 2>> outline;
+    for (const auto v : scene.polygons[f].vertices)
+        outline.push_back({dot(scene.vertices[v], plane.u), dot(scene.vertices[v], plane.v)});
+    return outline;
+}
 
 // The plane of each face, with axes shared by every face of that plane (up to the normal's
 // sign), so that outlines of faces drawn both ways can be compared.
@@ -48,7 +58,6 @@ std::vector<FacePlane> face_planes(const Scene& scene) {
         p.v = cross(axis, p.u);
         for (const auto& q : pts) {
             const std::array<double, 2> xy{dot(q, p.u), dot(q, p.v)};
-            p.outline.push_back(xy);
             p.box = {std::min(p.box[0], xy[0]), std::min(p.box[1], xy[1]),
                      std::max(p.box[2], xy[0]), std::max(p.box[3], xy[1])};
         }
@@ -92,7 +101,7 @@ void decide_opposite_copies(const Scene& scene, const std::vector<FacePlane>& pl
                             const Pairs& opposite, std::vector<bool>& drop,
                             CoincidentReport& report) {
     if (opposite.empty()) return;
-    const RayScene rays(face_triangles(scene));
+    const RayScene rays(face_triangles(scene), RayBuild::Fast);
     for (const auto& [plane, pairs] : opposite) {
         auto side_of = [&](std::size_t f) -> SideKey {
             const auto& p = planes[f];
@@ -134,6 +143,45 @@ void decide_opposite_copies(const Scene& scene, const std::vector<FacePlane>& pl
     }
 }
 
+// The pairs of one plane's faces whose boxes overlap by more than `tolerance`, each as (the
+// face first by its box's lower u, the other), in that order. CGAL's box intersection finds
+// the candidates on a large plane (a sweep along u alone is quadratic on a finely
+// triangulated floor).
+std::vector<std::pair<std::size_t, std::size_t>>
+overlapping_pairs(const std::vector<FacePlane>& planes, std::vector<std::size_t>& faces,
+                  double tolerance) {
+    std::sort(faces.begin(), faces.end(), [&](auto a, auto b) {
+        return std::pair(planes[a].box[0], a) < std::pair(planes[b].box[0], b);
+    });
+    std::vector<std::pair<std::size_t, std::size_t>> ranks; // positions in `faces`
+    auto consider = [&](std::size_t i, std::size_t j) {
+        if (j < i) std::swap(i, j);
+        const auto &a = planes[faces[i]].box, &b = planes[faces[j]].box;
+        if (b[0] > a[2] - tolerance || b[1] > a[3] - tolerance || a[1] > b[3] - tolerance) return;
+        ranks.emplace_back(i, j);
+    };
+    constexpr std::size_t kSweepAtMost = 64;
+    if (faces.size() <= kSweepAtMost) {
+        for (std::size_t i = 0; i < faces.size(); ++i)
+            for (std::size_t j = i + 1; j < faces.size(); ++j) consider(i, j);
+    } else {
+        using Box2 = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
+        std::vector<Box2> boxes;
+        for (std::size_t i = 0; i < faces.size(); ++i) {
+            const auto& b = planes[faces[i]].box;
+            double lo[2] = {b[0], b[1]}, hi[2] = {b[2], b[3]};
+            boxes.emplace_back(lo, hi, i);
+        }
+        CGAL::box_self_intersection_d(
+            boxes.begin(), boxes.end(),
+            [&](const Box2& a, const Box2& b) { consider(a.info(), b.info()); });
+        std::sort(ranks.begin(), ranks.end());
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (const auto& [i, j] : ranks) pairs.emplace_back(faces[i], faces[j]);
+    return pairs;
+}
+
 } // namespace
 
 CoincidentReport resolve_coincident_faces(Scene& scene) {
@@ -157,36 +205,30 @@ CoincidentReport resolve_coincident_faces(Scene& scene) {
     std::map<std::array<long long, 4>, std::set<std::pair<std::size_t, std::size_t>>> opposite;
     for (auto& [key, faces] : by_plane) {
         if (faces.size() < 2) continue;
-        std::sort(faces.begin(), faces.end(),
-                  [&](auto a, auto b) { return planes[a].box[0] < planes[b].box[0]; });
-        for (std::size_t i = 0; i < faces.size(); ++i)
-            for (std::size_t j = i + 1; j < faces.size(); ++j) {
-                const auto &a = planes[faces[i]], &b = planes[faces[j]];
-                if (b.box[0] > a.box[2] - tolerance) break;
-                if (b.box[1] > a.box[3] - tolerance || a.box[1] > b.box[3] - tolerance) continue;
-                const bool same = dot(a.normal, b.normal) > 0;
-                const auto ca = std::array<double, 2>{dot(a.centroid, a.u), dot(a.centroid, a.v)};
-                const auto cb = std::array<double, 2>{dot(b.centroid, b.u), dot(b.centroid, b.v)};
-                if (!inside(b.outline, ca, tolerance, false) &&
-                    !inside(a.outline, cb, tolerance, false))
+        for (const auto& [fa0, fb0] : overlapping_pairs(planes, faces, tolerance)) {
+            auto fa = fa0, fb = fb0;
+            const auto &a = planes[fa], &b = planes[fb];
+            const bool same = dot(a.normal, b.normal) > 0;
+            const auto ca = std::array<double, 2>{dot(a.centroid, a.u), dot(a.centroid, a.v)};
+            const auto cb = std::array<double, 2>{dot(b.centroid, b.u), dot(b.centroid, b.v)};
+            if (!inside(outline_of(scene, b, fb), ca, tolerance, false) &&
+                !inside(outline_of(scene, a, fa), cb, tolerance, false))
+                continue;
+            if (same) { // the smaller one, when it lies wholly in the other, is a copy
+                if (planes[fa].area > planes[fb].area) std::swap(fa, fb);
+                const auto big = outline_of(scene, planes[fb], fb);
+                const auto small = outline_of(scene, planes[fa], fa);
+                if (!std::all_of(small.begin(), small.end(),
+                                 [&](const auto& q) { return inside(big, q, tolerance, true); }))
                     continue;
-                auto fa = faces[i], fb = faces[j];
-                if (same) { // the smaller one, when it lies wholly in the other, is a copy
-                    if (planes[fa].area > planes[fb].area) std::swap(fa, fb);
-                    const auto& small = planes[fa];
-                    if (!std::all_of(small.outline.begin(), small.outline.end(),
-                                     [&](const auto& q) {
-                                         return inside(planes[fb].outline, q, tolerance, true);
-                                     }))
-                        continue;
-                    if (drop[fa]) continue;
-                    drop[fa] = true;
-                    report.cases.push_back({CoincidentCase::kMerged, scene.polygons[fa].line,
-                                            scene.polygons[fb].line, small.area});
-                } else {
-                    opposite[{key[0], key[1], key[2], key[3]}].insert({fa, fb});
-                }
+                if (drop[fa]) continue;
+                drop[fa] = true;
+                report.cases.push_back({CoincidentCase::kMerged, scene.polygons[fa].line,
+                                        scene.polygons[fb].line, planes[fa].area});
+            } else {
+                opposite[{key[0], key[1], key[2], key[3]}].insert({fa, fb});
             }
+        }
     }
     decide_opposite_copies(scene, planes, opposite, drop, report);
     std::vector<Polygon> kept;

@@ -192,11 +192,10 @@ class Imprinter {
     Imprinter(Scene& scene, double tol, const std::vector<bool>& turned,
               std::vector<std::uint32_t> welded, CutLines lines)
         : scene_(scene), tol_(tol), turned_(turned), welded_(std::move(welded)),
-          lines_(std::move(lines)), rays_(facing_triangles()), out_(scene.polygons.size()),
+          lines_(std::move(lines)), rays_(facing_triangles(), RayBuild::Fast),
           replaced_(scene.polygons.size(), 0) {}
     void cut_faces() {
-        for (std::size_t f = 0; f < lines_.faces.size(); ++f)
-            if (!lines_.cuts[f].empty()) cut_face(f);
+        for (const auto& [f, cuts] : lines_.cuts) cut_face(f);
     }
     void finish(); // the other faces get the points put on their edges
     ImprintReport report;
@@ -205,11 +204,7 @@ class Imprinter {
     // Which way a face points counts as the orientation checks would fix it, so that a scene
     // whose walls face out does not make everything inside it look hidden.
     radfmt::MeshData facing_triangles() const {
-        Scene fixed = scene_;
-        for (std::size_t f = 0; f < fixed.polygons.size() && f < turned_.size(); ++f)
-            if (turned_[f])
-                std::reverse(fixed.polygons[f].vertices.begin(), fixed.polygons[f].vertices.end());
-        return face_triangles(fixed);
+        return face_triangles(scene_, nullptr, nullptr, &turned_);
     }
     void cut_face(std::size_t f);
     void triangulate_cuts(std::size_t f, CutFace& cut);
@@ -218,6 +213,7 @@ class Imprinter {
     std::uint32_t edge_vertex(std::uint32_t wa, std::uint32_t wb, const Vec3& a, const Vec3& b,
                               const Vec3& x);
     void add_piece(std::size_t f, std::vector<std::uint32_t> vertices);
+    void add_edge_points(Polygon& poly) const;
     void emit_pieces(std::size_t f, const CutFace& cut, const Regions& regions,
                      const std::vector<char>& hidden);
 
@@ -234,12 +230,12 @@ class Imprinter {
     CutLines lines_;
     RayScene rays_;
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<EdgePoint>> edge_points_;
-    std::vector<std::vector<Polygon>> out_; // what each face becomes, in face order
+    std::map<std::size_t, std::vector<Polygon>> out_; // what each cut face becomes
     std::vector<char> replaced_;
 };
 
 void Imprinter::triangulate_cuts(std::size_t f, CutFace& cut) {
-    const auto& p = lines_.faces[f];
+    const auto& p = lines_.faces.at(f);
     const auto& poly = scene_.polygons[f];
     for (std::size_t k = 0; k < p.points.size(); ++k) {
         const auto xy = p.frame.to2d(p.points[k]);
@@ -249,7 +245,7 @@ void Imprinter::triangulate_cuts(std::size_t f, CutFace& cut) {
     }
     CutPoints points(cut, tol_);
     std::vector<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>> cut_edges;
-    for (const auto& c : lines_.cuts[f]) {
+    for (const auto& c : lines_.cuts.at(f)) {
         const auto a = points.snap(c.a), b = points.snap(c.b);
         if (a != b) cut_edges.emplace_back(a, b);
     }
@@ -265,7 +261,7 @@ void Imprinter::triangulate_cuts(std::size_t f, CutFace& cut) {
 // A region is hidden when, from just above its largest triangle, most of what the rays meet
 // are backs (inside an object, under a block, behind a wall).
 std::vector<char> Imprinter::hidden_regions(std::size_t f, const Regions& regions) const {
-    const auto& p = lines_.faces[f];
+    const auto& p = lines_.faces.at(f);
     std::vector<char> hidden(regions.count, 0);
     const double lift = std::max(2 * rays_.epsilon(), 100 * tol_);
     for (int r = 0; r < regions.count; ++r) {
@@ -308,7 +304,7 @@ std::uint32_t Imprinter::edge_vertex(std::uint32_t wa, std::uint32_t wb, const V
 // The new vertices: corners keep theirs; points on the outline are shared along its edges;
 // the rest are new.
 void Imprinter::number_vertices(std::size_t f, CutFace& cut) {
-    const auto& p = lines_.faces[f];
+    const auto& p = lines_.faces.at(f);
     const auto& poly = scene_.polygons[f];
     const auto& outline2d = cut.outline2d;
     for (auto v = cut.cdt.finite_vertices_begin(); v != cut.cdt.finite_vertices_end(); ++v) {
@@ -353,7 +349,7 @@ void Imprinter::add_piece(std::size_t f, std::vector<std::uint32_t> vertices) {
 void Imprinter::emit_pieces(std::size_t f, const CutFace& cut, const Regions& regions,
                             const std::vector<char>& hidden) {
     const auto outline_of =
-        simple_outlines(cut.cdt, regions.count, lines_.faces[f].frame, scene_.vertices);
+        simple_outlines(cut.cdt, regions.count, lines_.faces.at(f).frame, scene_.vertices);
     for (int r = 0; r < regions.count; ++r)
         if (!hidden[r] && !outline_of[r].empty()) add_piece(f, outline_of[r]);
     for (auto fh = cut.cdt.finite_faces_begin(); fh != cut.cdt.finite_faces_end(); ++fh) {
@@ -387,36 +383,48 @@ void Imprinter::cut_face(std::size_t f) {
     if (removed) report.removed_lines.push_back(poly.line);
     replaced_[f] = 1;
     ++report.faces_imprinted;
-    report.area_imprinted += lines_.faces[f].area;
+    report.area_imprinted += lines_.faces.at(f).area;
 }
 
 void Imprinter::finish() {
-    const std::size_t n = scene_.polygons.size();
-    for (std::size_t f = 0; f < n; ++f) {
-        if (replaced_[f]) continue;
-        auto poly = scene_.polygons[f];
-        std::vector<std::uint32_t> with_points;
-        for (std::size_t k = 0; k < poly.vertices.size(); ++k) {
-            const auto a = poly.vertices[k], b = poly.vertices[(k + 1) % poly.vertices.size()];
-            with_points.push_back(a);
-            const auto wa = welded_[a], wb = welded_[b];
-            const auto it =
-                edge_points_.find(wa < wb ? std::make_pair(wa, wb) : std::make_pair(wb, wa));
-            if (it == edge_points_.end()) continue;
-            auto list = it->second;
-            std::sort(list.begin(), list.end(),
-                      [](const EdgePoint& x, const EdgePoint& y) { return x.t < y.t; });
-            if (wa > wb) std::reverse(list.begin(), list.end());
-            for (const auto& e : list)
-                if (e.t > 0 && e.t < 1) with_points.push_back(e.vertex);
-        }
-        poly.vertices = std::move(with_points);
-        out_[f].push_back(std::move(poly));
-    }
+    std::vector<char> on_cut_edge(
+        welded_.empty() ? 0 : *std::max_element(welded_.begin(), welded_.end()) + 1, 0);
+    for (const auto& [edge, points] : edge_points_)
+        on_cut_edge[edge.first] = on_cut_edge[edge.second] = 1;
     std::vector<Polygon> polygons;
-    for (auto& pieces : out_)
-        for (auto& piece : pieces) polygons.push_back(std::move(piece));
+    polygons.reserve(scene_.polygons.size());
+    for (std::size_t f = 0; f < scene_.polygons.size(); ++f) {
+        if (replaced_[f]) {
+            for (auto& piece : out_[f]) polygons.push_back(std::move(piece));
+            continue;
+        }
+        auto& poly = scene_.polygons[f];
+        const bool touched = std::any_of(poly.vertices.begin(), poly.vertices.end(),
+                                         [&](std::uint32_t v) { return on_cut_edge[welded_[v]]; });
+        if (touched) add_edge_points(poly);
+        polygons.push_back(std::move(poly));
+    }
     scene_.polygons = std::move(polygons);
+}
+
+// The points other faces' cuts put on this face's edges, in order along each edge.
+void Imprinter::add_edge_points(Polygon& poly) const {
+    std::vector<std::uint32_t> with_points;
+    for (std::size_t k = 0; k < poly.vertices.size(); ++k) {
+        const auto a = poly.vertices[k], b = poly.vertices[(k + 1) % poly.vertices.size()];
+        with_points.push_back(a);
+        const auto wa = welded_[a], wb = welded_[b];
+        const auto it =
+            edge_points_.find(wa < wb ? std::make_pair(wa, wb) : std::make_pair(wb, wa));
+        if (it == edge_points_.end()) continue;
+        auto list = it->second;
+        std::sort(list.begin(), list.end(),
+                  [](const EdgePoint& x, const EdgePoint& y) { return x.t < y.t; });
+        if (wa > wb) std::reverse(list.begin(), list.end());
+        for (const auto& e : list)
+            if (e.t > 0 && e.t < 1) with_points.push_back(e.vertex);
+    }
+    poly.vertices = std::move(with_points);
 }
 
 } // namespace
@@ -429,8 +437,7 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance, const std::vector
     auto welded = weld_by_position(scene.vertices);
     auto lines = find_cut_lines(scene, welded, tol, size);
     // Rays over the scene as written decide which regions are hidden.
-    if (std::all_of(lines.cuts.begin(), lines.cuts.end(), [](const auto& c) { return c.empty(); }))
-        return {};
+    if (lines.cuts.empty()) return {};
     Imprinter imprinter(scene, tol, turned, std::move(welded), std::move(lines));
     imprinter.cut_faces();
     if (imprinter.report.faces_imprinted) imprinter.finish();

@@ -1,10 +1,11 @@
 // Contact imprinting, step 1: where other faces touch or cross each face (its cut lines).
-#include "../union_find.hpp"
+#include "box_pairs.hpp"
 #include "imprint_parts.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <unordered_map>
 
 namespace rad::imprinting {
 
@@ -109,90 +110,164 @@ Face make_face(const Scene& scene, const Polygon& poly, const std::vector<std::u
     return face;
 }
 
-// Candidate pairs: overlapping boxes (a sweep along x), not of one object.
-std::vector<std::vector<std::uint32_t>> touching_pairs(const std::vector<Face>& faces, double tol) {
-    const std::size_t n = faces.size();
-    std::vector<std::size_t> order(n);
-    for (std::size_t f = 0; f < n; ++f) order[f] = f;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return faces[a].box.lo[0] < faces[b].box.lo[0];
-    });
-    std::vector<std::vector<std::uint32_t>> touching(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto& a = faces[order[i]];
-        if (!a.planar && a.points.size() < 3) continue;
-        for (std::size_t j = i + 1; j < n && faces[order[j]].box.lo[0] <= a.box.hi[0] + tol; ++j) {
-            const auto& b = faces[order[j]];
-            bool overlap = true;
-            for (int k = 1; k < 3; ++k)
-                overlap =
-                    overlap && b.box.lo[k] <= a.box.hi[k] + tol && a.box.lo[k] <= b.box.hi[k] + tol;
-            if (!overlap) continue;
-            std::vector<std::uint32_t> shared;
-            std::set_intersection(a.welded.begin(), a.welded.end(), b.welded.begin(),
-                                  b.welded.end(), std::back_inserter(shared));
-            if (!shared.empty()) continue; // one object (or two faces meeting at an edge)
-            touching[order[i]].push_back(static_cast<std::uint32_t>(order[j]));
-            touching[order[j]].push_back(static_cast<std::uint32_t>(order[i]));
-        }
+// Newell's normal of a face (twice its area), as make_face has it.
+Vec3 face_normal(const Scene& scene, std::uint32_t f) {
+    const auto& vs = scene.polygons[f].vertices;
+    Vec3 n{0, 0, 0};
+    for (std::size_t k = 0; k < vs.size(); ++k) {
+        const auto& a = scene.vertices[vs[k]];
+        const auto& b = scene.vertices[vs[(k + 1) % vs.size()]];
+        n = n + Vec3{(a[1] - b[1]) * (a[2] + b[2]), (a[2] - b[2]) * (a[0] + b[0]),
+                     (a[0] - b[0]) * (a[1] + b[1])};
     }
-    return touching;
+    return n;
 }
 
-// The cut lines of every face. A cut parallel to a side of a convex face runs on to its
-// outline, and on across the coplanar faces it continues into (the tiles of one floor): a
-// rectangle cut by lines parallel to its sides stays rectangles, so regular grids. Other cuts
-// stay as they are (slanted lines run on would make thin cells); the regions they bound are
-// triangulated.
-class CutFinder {
-  public:
-    CutFinder(CutLines& lines, double tol, double size) : lines_(lines), tol_(tol), size_(size) {
-        const std::size_t n = lines.faces.size();
-        lines.cuts.assign(n, {});
-        chords_.resize(n);
-        outlines_.resize(n);
-        is_convex_.assign(n, 0);
-        for (std::size_t f = 0; f < n; ++f) {
-            if (!lines.faces[f].planar) continue;
-            for (const auto& x : lines.faces[f].points)
-                outlines_[f].push_back(lines.faces[f].frame.to2d(x));
-            is_convex_[f] = convex(outlines_[f]);
-        }
+// Whether `contact` can find anything between face p and face q: q crosses p's plane, or
+// lies on it along an edge, or lies in it facing the other way. Most pairs of nearby faces
+// do not: those of a curved surface, and the tiles of one floor that meet at a corner.
+bool reaches_plane(const Scene& scene, std::uint32_t p, std::uint32_t q, double tol) {
+    const Vec3 normal = normalized(face_normal(scene, p));
+    const Vec3& origin = scene.vertices[scene.polygons[p].vertices[0]];
+    const auto& vs = scene.polygons[q].vertices;
+    int above = 0, below = 0, on = 0;
+    for (const auto v : vs) {
+        const double h = dot(scene.vertices[v] - origin, normal);
+        above += h > tol, below += h < -tol, on += std::abs(h) <= tol;
     }
-    void add_contacts(const std::vector<std::vector<std::uint32_t>>& touching) {
-        const auto& faces = lines_.faces;
-        for (std::size_t f = 0; f < faces.size(); ++f) {
-            if (!faces[f].planar) continue;
-            for (const auto q : touching[f]) {
-                if (faces[q].area == 0) continue;
-                Segment s;
-                std::vector<Segment> found;
-                if (contact(faces[f], faces[q], tol_, s, found)) found.push_back(s);
-                for (const auto& c : found) add_cut(f, c, false);
+    if (on == static_cast<int>(vs.size())) // coplanar: only a face facing p's front counts
+        return dot(normalized(face_normal(scene, q)), normal) <= -0.5;
+    return (above && below) || on >= 2;
+}
+
+// Candidate pairs: faces whose boxes overlap within `tol` (for_each_overlapping_pair), not
+// of one object (no welded corner in common), each as (a face, one
+// that reaches its plane). Faces of no area take no part. Sorted, so they do not depend on
+// the order CGAL reports them in.
+std::vector<std::pair<std::uint32_t, std::uint32_t>>
+touching_pairs(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol) {
+    std::vector<Box> boxes(scene.polygons.size()); // empty for faces without area
+    std::vector<Vec3> points;
+    for (std::size_t f = 0; f < scene.polygons.size(); ++f) {
+        points.clear();
+        for (const auto v : scene.polygons[f].vertices) points.push_back(scene.vertices[v]);
+        if (points.size() < 3 || !(length(newell_normal(points)) > 0)) continue;
+        boxes[f] = bounds(points);
+        for (int k = 0; k < 3; ++k) boxes[f].lo[k] -= tol / 2, boxes[f].hi[k] += tol / 2;
+    }
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for_each_overlapping_pair(boxes, [&](std::uint32_t a, std::uint32_t b) {
+        // One object (or two faces meeting at an edge): a welded corner in common.
+        for (const auto u : scene.polygons[a].vertices)
+            for (const auto v : scene.polygons[b].vertices)
+                if (welded[u] == welded[v]) return;
+        if (reaches_plane(scene, a, b, tol)) pairs.emplace_back(a, b);
+        if (reaches_plane(scene, b, a, tol)) pairs.emplace_back(b, a);
+    });
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+}
+
+// Faces sharing a welded edge, for walking a surface: each welded point's faces.
+class FacesAtPoints {
+  public:
+    FacesAtPoints(const Scene& scene, const std::vector<std::uint32_t>& welded)
+        : scene_(scene), welded_(welded) {
+        std::uint32_t count = 0;
+        for (const auto w : welded) count = std::max(count, w + 1);
+        start_.assign(count + 1, 0);
+        for (const auto& poly : scene.polygons)
+            for (const auto v : poly.vertices) ++start_[welded[v] + 1];
+        for (std::size_t k = 1; k < start_.size(); ++k) start_[k] += start_[k - 1];
+        faces_.resize(start_.back());
+        auto next = start_;
+        for (std::uint32_t f = 0; f < scene.polygons.size(); ++f)
+            for (const auto v : scene.polygons[f].vertices) faces_[next[welded[v]]++] = f;
+    }
+    // The faces that have the welded edge a-b (corners next to each other), ascending.
+    void with_edge(std::uint32_t a, std::uint32_t b, std::vector<std::uint32_t>& out) const {
+        out.clear();
+        for (auto k = start_[a]; k < start_[a + 1]; ++k) {
+            const auto g = faces_[k];
+            if (k > start_[a] && faces_[k - 1] == g) continue;
+            const auto& vs = scene_.polygons[g].vertices;
+            for (std::size_t i = 0; i < vs.size(); ++i) {
+                const auto u = welded_[vs[i]], w = welded_[vs[(i + 1) % vs.size()]];
+                if ((u == a && w == b) || (u == b && w == a)) {
+                    out.push_back(g);
+                    break;
+                }
             }
         }
     }
-    void run_on(const Scene& scene, const std::vector<std::uint32_t>& welded);
 
   private:
-    bool parallel_to_a_side(std::size_t f, const Segment& c) const;
-    bool along_outline(std::size_t f, const Segment& c) const;
-    void add_cut(std::size_t f, Segment c, bool run_on);
-
-    CutLines& lines_;
-    double tol_, size_;
-    std::vector<std::vector<std::array<Vec3, 2>>> chords_; // the run-on lines, in 3D
-    std::vector<std::vector<XY>> outlines_;
-    std::vector<char> is_convex_;
+    const Scene& scene_;
+    const std::vector<std::uint32_t>& welded_;
+    std::vector<std::uint32_t> start_, faces_;
 };
 
-bool CutFinder::parallel_to_a_side(std::size_t f, const Segment& c) const {
-    const auto& outline2d = outlines_[f];
+// The cut lines of the faces that other objects touch. A cut parallel to a side of a convex
+// face runs on to its outline, and on across the coplanar faces it continues into (the tiles
+// of one floor): a rectangle cut by lines parallel to its sides stays rectangles, so regular
+// grids. Other cuts stay as they are (slanted lines run on would make thin cells); the regions
+// they bound are triangulated. Only the faces a contact or a run-on line reaches are looked at
+// closely: on a large scene, nearly none.
+class CutFinder {
+  public:
+    CutFinder(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol, double size)
+        : scene_(scene), welded_(welded), tol_(tol), size_(size) {}
+    void add_contacts(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& touching) {
+        for (const auto& [f, q] : touching) {
+            if (!face(f).face.planar) continue;
+            Segment s;
+            std::vector<Segment> found;
+            if (contact(face(f).face, face(q).face, tol_, s, found)) found.push_back(s);
+            for (const auto& c : found) add_cut(f, c, false);
+        }
+    }
+    void run_on();
+    CutLines result();
+
+  private:
+    struct Entry {
+        Face face;
+        std::vector<XY> outline; // in the face's plane (planar faces)
+        bool convex = false;
+        std::vector<Segment> cuts;
+        std::vector<std::array<Vec3, 2>> chords; // the run-on lines, in 3D
+    };
+    Entry& face(std::uint32_t f);
+    std::vector<std::uint32_t> surface_of(std::uint32_t f, const FacesAtPoints& adjacency,
+                                          std::vector<char>& seen);
+    bool parallel_to_a_side(const Entry& e, const Segment& c) const;
+    bool along_outline(const Entry& e, const Segment& c) const;
+    void add_cut(std::uint32_t f, Segment c, bool run_on);
+
+    const Scene& scene_;
+    const std::vector<std::uint32_t>& welded_;
+    double tol_, size_;
+    std::unordered_map<std::uint32_t, Entry> entries_; // made when first needed
+};
+
+CutFinder::Entry& CutFinder::face(std::uint32_t f) {
+    const auto [it, fresh] = entries_.try_emplace(f);
+    auto& e = it->second;
+    if (!fresh) return e;
+    e.face = make_face(scene_, scene_.polygons[f], welded_, tol_);
+    if (e.face.planar) {
+        for (const auto& x : e.face.points) e.outline.push_back(e.face.frame.to2d(x));
+        e.convex = convex(e.outline);
+    }
+    return e;
+}
+
+bool CutFinder::parallel_to_a_side(const Entry& e, const Segment& c) const {
     const double dx = c.b[0] - c.a[0], dy = c.b[1] - c.a[1];
     const double len = std::hypot(dx, dy);
-    for (std::size_t k = 0; k < outline2d.size(); ++k) {
-        const auto& e0 = outline2d[k];
-        const auto& e1 = outline2d[(k + 1) % outline2d.size()];
+    for (std::size_t k = 0; k < e.outline.size(); ++k) {
+        const auto& e0 = e.outline[k];
+        const auto& e1 = e.outline[(k + 1) % e.outline.size()];
         const double ex = e1[0] - e0[0], ey = e1[1] - e0[1];
         if (std::abs(dx * ey - dy * ex) <= 1e-9 * len * std::hypot(ex, ey)) return true;
     }
@@ -200,11 +275,10 @@ bool CutFinder::parallel_to_a_side(std::size_t f, const Segment& c) const {
 }
 
 // Along the outline already: nothing to cut.
-bool CutFinder::along_outline(std::size_t f, const Segment& c) const {
-    const auto& outline2d = outlines_[f];
-    for (std::size_t k = 0; k < outline2d.size(); ++k) {
-        const auto& e0 = outline2d[k];
-        const auto& e1 = outline2d[(k + 1) % outline2d.size()];
+bool CutFinder::along_outline(const Entry& e, const Segment& c) const {
+    for (std::size_t k = 0; k < e.outline.size(); ++k) {
+        const auto& e0 = e.outline[k];
+        const auto& e1 = e.outline[(k + 1) % e.outline.size()];
         const double edge = std::hypot(e1[0] - e0[0], e1[1] - e0[1]);
         if (std::abs(cross2(e0, e1, c.a)) <= tol_ * edge &&
             std::abs(cross2(e0, e1, c.b)) <= tol_ * edge)
@@ -214,81 +288,120 @@ bool CutFinder::along_outline(std::size_t f, const Segment& c) const {
 }
 
 // `run_on`: a line run on from a coplanar neighbour (it need not reach in by itself).
-void CutFinder::add_cut(std::size_t f, Segment c, bool run_on) {
-    const auto& outline2d = outlines_[f];
+void CutFinder::add_cut(std::uint32_t f, Segment c, bool run_on) {
+    auto& e = face(f);
     const double dx = c.b[0] - c.a[0], dy = c.b[1] - c.a[1];
     const double len = std::hypot(dx, dy);
     if (len <= tol_) return;
-    const bool parallel = parallel_to_a_side(f, c);
-    if (run_on && !(is_convex_[f] && parallel)) return;
+    const bool parallel = parallel_to_a_side(e, c);
+    if (run_on && !(e.convex && parallel)) return;
     // Only a contact that reaches into the face (by more than the tolerance) cuts it.
     if (!run_on) {
-        if (is_convex_[f] && !clip_to_convex(c, outline2d)) return;
+        if (e.convex && !clip_to_convex(c, e.outline)) return;
         if (std::hypot(c.b[0] - c.a[0], c.b[1] - c.a[1]) <= tol_) return;
     }
-    if (is_convex_[f] && parallel) {
+    if (e.convex && parallel) {
         const double reach = 4 * size_ / len;
         c = {{c.a[0] - reach * dx, c.a[1] - reach * dy},
              {c.b[0] + reach * dx, c.b[1] + reach * dy}};
-        if (!clip_to_convex(c, outline2d)) return;
+        if (!clip_to_convex(c, e.outline)) return;
     }
     if (std::hypot(c.b[0] - c.a[0], c.b[1] - c.a[1]) <= tol_) return;
-    if (along_outline(f, c)) return;
-    lines_.cuts[f].push_back(c);
-    const auto& frame = lines_.faces[f].frame;
-    if (is_convex_[f] && parallel)
-        chords_[f].push_back({frame.to3d(c.a[0], c.a[1]), frame.to3d(c.b[0], c.b[1])});
+    if (along_outline(e, c)) return;
+    e.cuts.push_back(c);
+    if (e.convex && parallel)
+        e.chords.push_back({e.face.frame.to3d(c.a[0], c.a[1]), e.face.frame.to3d(c.b[0], c.b[1])});
+}
+
+// The planar faces reached from f across welded edges without leaving its plane, f's
+// included, in index order. As a union of each edge's faces with the first planar face that
+// has the edge (by index) when they are coplanar with it: the surfaces the imprinting was
+// first written with.
+std::vector<std::uint32_t> CutFinder::surface_of(std::uint32_t f, const FacesAtPoints& adjacency,
+                                                 std::vector<char>& seen) {
+    std::vector<std::uint32_t> surface{f}, stack{f}, sharing, planar;
+    seen[f] = 1;
+    auto coplanar = [&](std::uint32_t g, std::uint32_t h) {
+        const auto &a = face(g).face, &b = face(h).face;
+        return dot(a.frame.normal, b.frame.normal) > 1 - 1e-9 &&
+               std::abs(a.frame.offset - b.frame.offset) <= tol_;
+    };
+    auto reach = [&](std::uint32_t h) {
+        if (seen[h]) return;
+        seen[h] = 1;
+        surface.push_back(h);
+        stack.push_back(h);
+    };
+    while (!stack.empty()) {
+        const auto g = stack.back();
+        stack.pop_back();
+        const auto& vs = scene_.polygons[g].vertices;
+        for (std::size_t k = 0; k < vs.size(); ++k) {
+            adjacency.with_edge(welded_[vs[k]], welded_[vs[(k + 1) % vs.size()]], sharing);
+            planar.clear();
+            for (const auto h : sharing)
+                if (face(h).face.planar) planar.push_back(h);
+            if (planar.empty()) continue;
+            const auto first = planar.front();
+            if (g == first) {
+                for (const auto h : planar)
+                    if (h != g && coplanar(g, h)) reach(h);
+            } else if (coplanar(g, first)) {
+                reach(first);
+            }
+        }
+    }
+    std::sort(surface.begin(), surface.end());
+    return surface;
 }
 
 // Coplanar faces sharing an edge (welded) form one surface; its run-on lines cross all.
-void CutFinder::run_on(const Scene& scene, const std::vector<std::uint32_t>& welded) {
-    const auto& faces = lines_.faces;
-    const std::size_t n = faces.size();
-    UnionFind surfaces(n);
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> first_with_edge;
-    for (std::size_t f = 0; f < n; ++f) {
-        if (!faces[f].planar) continue;
-        const auto& vs = scene.polygons[f].vertices;
-        for (std::size_t k = 0; k < vs.size(); ++k) {
-            auto a = welded[vs[k]], b = welded[vs[(k + 1) % vs.size()]];
-            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-            const auto [it, fresh] = first_with_edge.emplace(key, f);
-            if (fresh) continue;
-            const auto& g = faces[it->second];
-            if (dot(g.frame.normal, faces[f].frame.normal) > 1 - 1e-9 &&
-                std::abs(g.frame.offset - faces[f].frame.offset) <= tol_)
-                surfaces.unite(f, it->second);
-        }
-    }
-    std::map<std::size_t, std::vector<std::size_t>> members;
-    for (std::size_t f = 0; f < n; ++f)
-        if (faces[f].planar) members[surfaces.find(f)].push_back(f);
-    for (const auto& [root, list] : members) {
+void CutFinder::run_on() {
+    std::vector<std::uint32_t> with_chords;
+    for (const auto& [f, e] : entries_)
+        if (!e.chords.empty()) with_chords.push_back(f);
+    if (with_chords.empty()) return;
+    std::sort(with_chords.begin(), with_chords.end());
+    const FacesAtPoints adjacency(scene_, welded_);
+    std::vector<char> seen(scene_.polygons.size(), 0);
+    for (const auto start : with_chords) {
+        if (seen[start]) continue;
+        const auto list = surface_of(start, adjacency, seen);
         if (list.size() < 2) continue;
         // Each line runs on into the others, not back into its own face: cut there already,
         // run on again it would be re-clipped a rounding error away (a second, near-duplicate
         // point on the outline).
-        std::vector<std::pair<std::array<Vec3, 2>, std::size_t>> lines;
+        std::vector<std::pair<std::array<Vec3, 2>, std::uint32_t>> lines;
         for (const auto f : list)
-            for (const auto& chord : chords_[f]) lines.emplace_back(chord, f);
+            for (const auto& chord : face(f).chords) lines.emplace_back(chord, f);
         for (const auto& [line, from] : lines)
             for (const auto f : list)
-                if (f != from)
-                    add_cut(f, {faces[f].frame.to2d(line[0]), faces[f].frame.to2d(line[1])}, true);
+                if (f != from) {
+                    const auto& frame = face(f).face.frame;
+                    add_cut(f, {frame.to2d(line[0]), frame.to2d(line[1])}, true);
+                }
     }
+}
+
+CutLines CutFinder::result() {
+    CutLines lines;
+    for (auto& [f, e] : entries_)
+        if (!e.cuts.empty()) {
+            lines.cuts.emplace(f, std::move(e.cuts));
+            lines.faces.emplace(f, std::move(e.face));
+        }
+    entries_.clear();
+    return lines;
 }
 
 } // namespace
 
 CutLines find_cut_lines(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol,
                         double size) {
-    CutLines lines;
-    for (const auto& poly : scene.polygons)
-        lines.faces.push_back(make_face(scene, poly, welded, tol));
-    CutFinder finder(lines, tol, size);
-    finder.add_contacts(touching_pairs(lines.faces, tol));
-    finder.run_on(scene, welded);
-    return lines;
+    CutFinder finder(scene, welded, tol, size);
+    finder.add_contacts(touching_pairs(scene, welded, tol));
+    finder.run_on();
+    return finder.result();
 }
 
 } // namespace rad::imprinting

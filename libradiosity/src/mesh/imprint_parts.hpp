@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <vector>
 
 namespace rad::imprinting {
@@ -39,13 +40,14 @@ struct Segment {
 double cross2(const XY& o, const XY& a, const XY& b);
 bool convex(const std::vector<XY>& poly);
 
-// Every face of the scene with its plane (planar within `tol`), and the lines where other
-// objects' faces touch or cross it, in its plane's coordinates: contacts that reach into it,
-// and (for a convex face) lines parallel to a side run on to its outline and across the
-// coplanar faces of its surface, so cut rectangles stay rectangles.
+// The faces that other objects' faces touch or cross, with their planes (planar within
+// `tol`), and the lines where they do, in each face's plane coordinates: contacts that reach
+// into it, and (for a convex face) lines parallel to a side run on to its outline and across
+// the coplanar faces of its surface, so cut rectangles stay rectangles. Faces without cuts are
+// in neither map.
 struct CutLines {
-    std::vector<Face> faces;
-    std::vector<std::vector<Segment>> cuts; // by face
+    std::map<std::size_t, Face> faces;
+    std::map<std::size_t, std::vector<Segment>> cuts; // by face
 };
 CutLines find_cut_lines(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol,
                         double size);

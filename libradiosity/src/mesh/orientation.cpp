@@ -14,6 +14,8 @@
 #include <deque>
 #include <map>
 #include <numeric>
+#include <span>
+#include <tuple>
 #include <unordered_map>
 
 namespace rad {
@@ -43,48 +45,80 @@ std::vector<Vec3> points_of(const Scene& scene, const Polygon& p) {
 // Faces connected across welded edges (two faces per edge), whatever their winding.
 struct SurfaceGraph {
     // Per face: (neighbour, whether the two run along the shared edge the same way, i.e.
-    // disagree in winding).
-    std::vector<std::vector<std::pair<std::size_t, bool>>> neighbours;
+    // disagree in winding), face f's from start[f] to start[f + 1].
+    struct Neighbours {
+        std::vector<std::size_t> start;
+        std::vector<std::pair<std::size_t, bool>> list;
+        std::span<const std::pair<std::size_t, bool>> operator[](std::size_t f) const {
+            return {list.data() + start[f], list.data() + start[f + 1]};
+        }
+    } neighbours;
     std::vector<bool> open_edge_of; // has an edge used by one face (or more than two)
     std::vector<std::vector<std::size_t>> members; // the connected surfaces, faces ascending
 };
 
-SurfaceGraph connect_surfaces(const Scene& scene) {
-    const std::size_t n = scene.polygons.size();
+// Each face's edges by their welded ends (sorted by edge, then face), skipping faces without
+// area: they have no side to agree on.
+struct EdgeUse {
+    std::uint64_t edge; // smaller welded id << 32 | larger
+    std::uint32_t polygon;
+    bool forward; // runs from the smaller welded id to the larger
+    bool operator<(const EdgeUse& o) const {
+        return std::tie(edge, polygon, forward) < std::tie(o.edge, o.polygon, o.forward);
+    }
+};
+std::vector<EdgeUse> edge_uses(const Scene& scene) {
     const auto id = weld_by_position(scene.vertices);
-    struct Use {
-        std::size_t polygon;
-        bool forward; // runs from the smaller welded id to the larger
-    };
-    std::unordered_map<std::uint64_t, std::vector<Use>> edges;
-    for (std::size_t f = 0; f < n; ++f) {
+    std::vector<EdgeUse> uses;
+    std::vector<Vec3> pts;
+    for (std::size_t f = 0; f < scene.polygons.size(); ++f) {
         const auto& vs = scene.polygons[f].vertices;
-        // A face without area (subdivision drops it) has no side to agree on.
-        const auto pts = points_of(scene, scene.polygons[f]);
+        pts.clear();
+        for (const auto v : vs) pts.push_back(scene.vertices[v]);
         double size = 0;
         for (const auto& p : pts) size = std::max(size, length(p - pts.front()));
         if (!(length(newell_normal(pts)) > 1e-12 * size * size)) continue;
         for (std::size_t k = 0; k < vs.size(); ++k) {
             const auto a = id[vs[k]], b = id[vs[(k + 1) % vs.size()]];
             if (a == b) continue;
-            const auto key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-            edges[key].push_back({f, a < b});
+            uses.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b),
+                            static_cast<std::uint32_t>(f), a < b});
         }
     }
+    std::sort(uses.begin(), uses.end());
+    return uses;
+}
+
+SurfaceGraph connect_surfaces(const Scene& scene) {
+    const std::size_t n = scene.polygons.size();
+    const auto uses = edge_uses(scene);
     SurfaceGraph graph;
     UnionFind components(n);
-    graph.neighbours.resize(n);
     graph.open_edge_of.assign(n, false);
-    for (const auto& [key, uses] : edges) {
-        if (uses.size() != 2) {
-            for (const auto& u : uses) graph.open_edge_of[u.polygon] = true;
-            continue;
+    std::vector<std::array<std::size_t, 2>> pairs; // the two faces of each shared edge
+    std::vector<char> same_way;
+    for (std::size_t k = 0; k < uses.size();) {
+        std::size_t end = k;
+        while (end < uses.size() && uses[end].edge == uses[k].edge) ++end;
+        if (end - k != 2) {
+            for (auto u = k; u < end; ++u) graph.open_edge_of[uses[u].polygon] = true;
+        } else if (uses[k].polygon != uses[k + 1].polygon) {
+            components.unite(uses[k].polygon, uses[k + 1].polygon);
+            pairs.push_back({uses[k].polygon, uses[k + 1].polygon});
+            same_way.push_back(uses[k].forward == uses[k + 1].forward);
         }
-        if (uses[0].polygon == uses[1].polygon) continue;
-        components.unite(uses[0].polygon, uses[1].polygon);
-        const bool same = uses[0].forward == uses[1].forward;
-        graph.neighbours[uses[0].polygon].push_back({uses[1].polygon, same});
-        graph.neighbours[uses[1].polygon].push_back({uses[0].polygon, same});
+        k = end;
+    }
+    auto& nb = graph.neighbours;
+    nb.start.assign(n + 1, 0);
+    for (const auto& [a, b] : pairs) ++nb.start[a + 1], ++nb.start[b + 1];
+    for (std::size_t f = 0; f < n; ++f) nb.start[f + 1] += nb.start[f];
+    nb.list.resize(nb.start[n]);
+    auto next = nb.start;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const auto [a, b] = pairs[k];
+        nb.list[next[a]++] = {b, same_way[k] != 0};
+        nb.list[next[b]++] = {a, same_way[k] != 0};
     }
     std::map<std::size_t, std::size_t> index_of_root;
     for (std::size_t f = 0; f < n; ++f) {
@@ -219,12 +253,23 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
 }
 
 radfmt::MeshData face_triangles(const Scene& scene, std::vector<std::size_t>* face_of,
-                                std::vector<double>* triangle_area) {
+                                std::vector<double>* triangle_area,
+                                const std::vector<bool>* reversed) {
     radfmt::MeshData mesh;
     mesh.vertices = scene.vertices;
+    std::size_t triangles = 0;
+    for (const auto& polygon : scene.polygons)
+        triangles += polygon.vertices.size() >= 3 ? polygon.vertices.size() - 2 : 0;
+    mesh.patches.reserve(triangles);
+    if (face_of) face_of->reserve(triangles);
+    if (triangle_area) triangle_area->reserve(triangles);
+    std::vector<Vec3> pts;
+    std::vector<std::uint32_t> vs;
     for (std::size_t f = 0; f < scene.polygons.size(); ++f) {
-        const auto& vs = scene.polygons[f].vertices;
-        const auto pts = points_of(scene, scene.polygons[f]);
+        vs = scene.polygons[f].vertices;
+        if (reversed && f < reversed->size() && (*reversed)[f]) std::reverse(vs.begin(), vs.end());
+        pts.clear();
+        for (const auto v : vs) pts.push_back(scene.vertices[v]);
         const Vec3 n2 = newell_normal(pts);
         if (vs.size() < 3 || length(n2) == 0) continue;
         for (std::size_t k = 1; k + 1 < vs.size(); ++k) {
@@ -251,7 +296,7 @@ std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
     std::vector<double> triangle_area;
     const auto rays_mesh = face_triangles(scene, &face_of, &triangle_area);
     if (rays_mesh.patches.empty()) return {};
-    const RayScene rays(rays_mesh);
+    const RayScene rays(rays_mesh, RayBuild::Fast);
     std::vector<std::vector<std::size_t>> triangles_of(surfaces.members.size());
     for (std::size_t t = 0; t < face_of.size(); ++t)
         triangles_of[surface_of[face_of[t]]].push_back(t);

@@ -2,6 +2,7 @@
 // planar regions (or, --surfaces faces, each face subdivided on its own).
 #include "radiosity/build_mesh.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/stages.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -10,7 +11,8 @@ namespace rad {
 
 namespace {
 
-SurfaceOptions surface_options(const SubdivisionOptions& limits, const std::string& source) {
+SurfaceOptions surface_options(const SubdivisionOptions& limits, const std::string& source,
+                               StageLog* stages) {
     SurfaceOptions options;
     options.max_edge = limits.max_edge;
     options.max_area = limits.max_area;
@@ -18,6 +20,7 @@ SurfaceOptions surface_options(const SubdivisionOptions& limits, const std::stri
     options.max_area_by_group = limits.max_area_by_group;
     options.max_patches = limits.max_patches;
     options.source = source;
+    options.stages = stages;
     return options;
 }
 
@@ -74,9 +77,12 @@ radfmt::MeshData patch_pass(const Scene& scene, const MeshOptions& options, Mesh
         whole.max_edge = whole.max_area = 0;
         whole.max_edge_by_group.clear();
         whole.max_area_by_group.clear();
-        mesh = mesh_surfaces(subdivide(scene, whole, &faces), surface_options(limits, scene.path),
+        begin_stage(options.scene.stages, "faces");
+        mesh = mesh_surfaces(subdivide(scene, whole, &faces),
+                             surface_options(limits, scene.path, options.scene.stages),
                              &report.surfaces);
     } else {
+        begin_stage(options.scene.stages, "patches");
         mesh = subdivide(scene, limits, &faces);
     }
     report_faces(scene, faces, report);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace rad::surfaces {
 
@@ -60,15 +61,122 @@ class TriangleBuckets {
     std::vector<std::vector<std::uint32_t>> buckets_;
 };
 
+double corner_angle(const XY& before, const XY& at, const XY& after) {
+    const double ax = before[0] - at[0], ay = before[1] - at[1];
+    const double bx = after[0] - at[0], by = after[1] - at[1];
+    return std::atan2(std::abs(ax * by - ay * bx), ax * bx + ay * by);
+}
+
+// The region's sides when its faces tile it without overlapping, which is what nearly every
+// input gives: the directed edges of its faces that no other face of it has reversed. They
+// count only when each point starts and ends exactly one side (loops that neither cross nor
+// touch) and the faces' corners around each inner point add up to a full turn (no face folds
+// over another there). Fills `sides`; false when a triangulation must decide instead
+// (overlapping faces, T-vertices, a point where two loops touch).
+bool sides_of_a_tiling(const Region& region, const radfmt::MeshData& faces,
+                       const std::vector<std::uint32_t>& weld, const Points& points,
+                       std::vector<std::array<std::uint32_t, 2>>& sides) {
+    std::vector<std::array<std::uint32_t, 2>> edges;
+    std::vector<std::pair<std::uint32_t, double>> turn; // inner angle at each corner's point
+    for (const auto f : region.faces) {
+        const auto& p = faces.patches[f];
+        const int n = p.corner_count();
+        std::array<XY, 4> xy;
+        std::array<std::uint32_t, 4> id;
+        for (int k = 0; k < n; ++k)
+            id[k] = weld[p.corners[k]], xy[k] = region.plane.to_2d(points.position[id[k]]);
+        for (int k = 0; k < n; ++k) {
+            if (id[k] == id[(k + 1) % n]) return false;
+            edges.push_back({id[k], id[(k + 1) % n]});
+            turn.emplace_back(id[k], corner_angle(xy[(k + n - 1) % n], xy[k], xy[(k + 1) % n]));
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
+    sides.clear();
+    for (const auto& e : edges)
+        if (!std::binary_search(edges.begin(), edges.end(), std::array{e[1], e[0]}))
+            sides.push_back(e);
+    if (sides.empty()) return false;
+    std::vector<std::uint32_t> starts, ends;
+    for (const auto& e : sides) starts.push_back(e[0]), ends.push_back(e[1]);
+    std::sort(starts.begin(), starts.end());
+    std::sort(ends.begin(), ends.end());
+    if (starts != ends || std::adjacent_find(starts.begin(), starts.end()) != starts.end())
+        return false;
+    std::sort(turn.begin(), turn.end());
+    for (std::size_t k = 0; k < turn.size();) {
+        const auto id = turn[k].first;
+        double sum = 0;
+        for (; k < turn.size() && turn[k].first == id; ++k) sum += turn[k].second;
+        const bool on_side = std::binary_search(starts.begin(), starts.end(), id);
+        if (on_side ? !(sum < 2 * std::numbers::pi - 1e-9)
+                    : !(std::abs(sum - 2 * std::numbers::pi) <= 1e-6))
+            return false;
+    }
+    return true;
+}
+
+} // namespace
+
+SideIndex::SideIndex(std::vector<std::array<XY, 2>> sides) : sides_(std::move(sides)) {
+    for (const auto& s : sides_)
+        for (const auto& p : s) lo_ = std::min(lo_, p[1]), hi_ = std::max(hi_, p[1]);
+    const std::size_t count = std::max<std::size_t>(1, sides_.size() / 4);
+    strips_.resize(count);
+    step_ = std::max(1e-300, (hi_ - lo_) / double(count));
+    for (std::uint32_t k = 0; k < sides_.size(); ++k) {
+        const auto& s = sides_[k];
+        const auto a = strip(std::min(s[0][1], s[1][1])), b = strip(std::max(s[0][1], s[1][1]));
+        for (auto i = a; i <= b; ++i) strips_[i].push_back(k);
+    }
+}
+
+std::size_t SideIndex::strip(double y) const {
+    const auto i = static_cast<long long>((y - lo_) / step_);
+    return static_cast<std::size_t>(std::clamp<long long>(i, 0, (long long)strips_.size() - 1));
+}
+
+bool SideIndex::contains(double x, double y) const {
+    if (!(y >= lo_ && y <= hi_)) return false;
+    bool inside = false;
+    for (const auto k : strips_[strip(y)]) {
+        const auto& a = sides_[k][0];
+        const auto& b = sides_[k][1];
+        if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0])
+            inside = !inside;
+    }
+    return inside;
+}
+
+namespace {
+
+// A region whose faces tile it: its sides are its outline, and they tell what is inside.
+bool outline_of_a_tiling(Region& region, const radfmt::MeshData& faces,
+                         const std::vector<std::uint32_t>& weld, const Points& points) {
+    std::vector<std::array<std::uint32_t, 2>> sides;
+    if (!sides_of_a_tiling(region, faces, weld, points, sides)) return false;
+    std::vector<std::array<XY, 2>> segments;
+    for (const auto& [a, b] : sides) {
+        region.outline.push_back({a, b});
+        segments.push_back(
+            {region.plane.to_2d(points.position[a]), region.plane.to_2d(points.position[b])});
+    }
+    region.sides = std::make_unique<SideIndex>(std::move(segments));
+    return true;
+}
+
 } // namespace
 
 bool Region::contains(const Point2& p) const {
+    if (sides) return sides->contains(p.x(), p.y());
     const auto face = cdt->locate(p);
     return face != nullptr && !cdt->is_infinite(face) && face->info().inside;
 }
 
 void trace_outline(Region& region, const radfmt::MeshData& faces,
                    const std::vector<std::uint32_t>& weld, Points& points) {
+    if (outline_of_a_tiling(region, faces, weld, points)) return;
     region.cdt = std::make_unique<CDT>();
     auto& cdt = *region.cdt;
     std::vector<Triangle2> triangles;

@@ -74,6 +74,20 @@ struct GridFrame {
 // False when the points span no area.
 bool minimum_rectangle(const std::vector<Point2>& outline_points, GridFrame& frame);
 
+// The sides of a region (closed loops, holes included) in the plane, in horizontal strips:
+// whether a point is inside by the sides its strip crosses (even-odd).
+class SideIndex {
+  public:
+    explicit SideIndex(std::vector<std::array<XY, 2>> sides);
+    bool contains(double x, double y) const;
+
+  private:
+    std::size_t strip(double y) const;
+    std::vector<std::array<XY, 2>> sides_;
+    std::vector<std::vector<std::uint32_t>> strips_;
+    double lo_ = 1e300, hi_ = -1e300, step_ = 1;
+};
+
 struct Region {
     std::vector<std::uint32_t> faces; // patches of the input mesh
     std::uint32_t group = 0, material = 0;
@@ -83,7 +97,9 @@ struct Region {
     double width = 0; // the shorter side of its minimum-area rectangle
     // The region's faces triangulated with their edges as constraints, faces marked inside:
     // tells whether a point of the plane is in the region.
+    // A region whose faces tile it (no overlaps) has none: its sides tell instead.
     std::unique_ptr<CDT> cdt;
+    std::unique_ptr<SideIndex> sides;
     std::vector<std::array<std::uint32_t, 2>> outline; // boundary edges, before the runs
     std::vector<std::array<std::uint32_t, 2>> pieces;  // boundary pieces, after the runs
     // A region whose outline is four straight runs around a convex quadrilateral, with equal

@@ -14,7 +14,7 @@ double seen_backs(const Scene& scene) {
     std::vector<double> area;
     const auto mesh = face_triangles(scene, &face_of, &area);
     if (mesh.patches.empty()) return 0;
-    const RayScene rays(mesh);
+    const RayScene rays(mesh, RayBuild::Fast);
     constexpr int kRays = 16;
     struct Sum {
         double backs = 0, hits = 0;

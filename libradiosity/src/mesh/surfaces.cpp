@@ -3,6 +3,7 @@
 
 #include "radiosity/error.hpp"
 #include "radiosity/scene.hpp"
+#include "radiosity/stages.hpp"
 #include "regions.hpp"
 #include "weld.hpp"
 
@@ -66,6 +67,7 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     const double size = bounds(faces.vertices).diagonal();
     const double tolerance = 1e-7 * size;
 
+    begin_stage(options.stages, "planar regions");
     auto regions = surfaces::find_planar_regions(faces, weld, points, options, size);
     double cells = 0;
     for (auto& region : regions) {
@@ -83,6 +85,7 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
         throw InputError(options.source + ": these limits (--max-edge, --max-area) would make " +
                          text + " (use larger limits, or raise --max-patches)");
     }
+    begin_stage(options.stages, "outlines");
     for (auto& region : regions) {
         surfaces::trace_outline(region, faces, weld, points);
         region.width = surfaces::region_width(region, points);
@@ -90,13 +93,17 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     }
     rep.regions = regions.size();
     rep.dropped_vertices = surfaces::split_outline_runs(regions, points, tolerance);
+    begin_stage(options.stages, "outline refinement");
     surfaces::refine_outline_pieces(regions, points, tolerance, 6);
+    begin_stage(options.stages, "grids");
 
     radfmt::MeshData mesh;
     mesh.groups = faces.groups;
     mesh.materials = faces.materials;
     std::vector<WidthClass> classes;
-    for (const auto& region : regions) {
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        const auto& region = regions[r];
+        if (r % 1024 == 0) stage_fraction(options.stages, double(r) / regions.size());
         const double width = surfaces::grid_region(region, points, mesh, rep, tolerance);
         // Regions thinner than a tenth of a cell are slivers by their own shape; those under a
         // cell are cut across into near-square patches.
