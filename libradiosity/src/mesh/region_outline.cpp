@@ -207,15 +207,18 @@ void trace_outline(Region& region, const radfmt::MeshData& faces,
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
         if (v->info().id == kNone)
             v->info().id = points.add(region.plane.to_3d(v->point().x(), v->point().y()));
-    for (auto e = cdt.finite_edges_begin(); e != cdt.finite_edges_end(); ++e) {
-        const auto face = e->first;
-        const int k = e->second;
-        const auto other = face->neighbor(k);
-        const bool in = !cdt.is_infinite(face) && face->info().inside;
-        const bool out_in = !cdt.is_infinite(other) && other->info().inside;
-        if (in == out_in) continue;
-        region.outline.push_back(
-            {face->vertex(cdt.cw(k))->info().id, face->vertex(cdt.ccw(k))->info().id});
+    // The sides of the inside faces that border the outside, in the faces' order and each
+    // counter-clockwise around its face: CGAL's edge iterator reports an edge from whichever
+    // of its two faces lies first in memory, which would make the outline's order and
+    // direction (and so the mesh) depend on the process's memory layout.
+    for (auto face = cdt.finite_faces_begin(); face != cdt.finite_faces_end(); ++face) {
+        if (!face->info().inside) continue;
+        for (int k = 0; k < 3; ++k) {
+            const auto other = face->neighbor(k);
+            if (!cdt.is_infinite(other) && other->info().inside) continue;
+            region.outline.push_back(
+                {face->vertex(cdt.ccw(k))->info().id, face->vertex(cdt.cw(k))->info().id});
+        }
     }
 }
 
