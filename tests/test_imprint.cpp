@@ -4,7 +4,11 @@
 
 #include <catch2/catch.hpp>
 
+#include "mesh/box_pairs.hpp"
+
 #include <map>
+#include <random>
+#include <set>
 
 using namespace testing_helpers;
 
@@ -125,4 +129,49 @@ TEST_CASE("a contact a hair over a face's edge removes nothing there, and keeps 
         CHECK(open_length(mesh, "floor") == Approx(10).epsilon(1e-7));
         for (const auto& p : mesh.patches) CHECK(p.corner_count() == 4);
     }
+}
+
+// The broad phase of contact finding against every pair tried: flat boxes sharing an extent
+// (a finely triangulated floor and wall), boxes larger than many cells, empty boxes, and
+// boxes that only touch, which count.
+TEST_CASE("for_each_overlapping_pair finds exactly the overlapping pairs", "[imprint]") {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<rad::Box> boxes;
+    for (int i = 0; i < 40; ++i)
+        for (int j = 0; j < 40; ++j) { // floor tiles at y = 0, sharing edges
+            rad::Box b;
+            b.add({i * 0.1, 0, j * 0.1});
+            b.add({(i + 1) * 0.1, 0, (j + 1) * 0.1});
+            boxes.push_back(b);
+        }
+    for (int k = 0; k < 600; ++k) { // small boxes anywhere, some flat
+        rad::Box b;
+        const radfmt::Vec3 p{4 * unit(rng), unit(rng) < 0.2 ? 0.0 : unit(rng), 4 * unit(rng)};
+        b.add(p);
+        b.add(rad::operator+(p, radfmt::Vec3{0.2 * unit(rng), 0.2 * unit(rng), 0.2 * unit(rng)}));
+        boxes.push_back(b);
+    }
+    for (int k = 0; k < 5; ++k) { // large ones: a wall, slabs
+        rad::Box b;
+        b.add({0, 0, 0.7 * k});
+        b.add({4, 1, 0.7 * k + (k % 2 ? 0.0 : 0.5)});
+        boxes.push_back(b);
+    }
+    boxes.push_back(rad::Box{}); // empty: no pairs
+    std::set<std::pair<std::uint32_t, std::uint32_t>> found, expected;
+    rad::for_each_overlapping_pair(boxes, [&](std::uint32_t a, std::uint32_t b) {
+        REQUIRE(a < b);
+        REQUIRE(found.insert({a, b}).second); // once each
+    });
+    auto overlap = [](const rad::Box& a, const rad::Box& b) {
+        for (int k = 0; k < 3; ++k)
+            if (a.lo[k] > b.hi[k] || b.lo[k] > a.hi[k]) return false;
+        return true;
+    };
+    for (std::uint32_t a = 0; a < boxes.size(); ++a)
+        for (std::uint32_t b = a + 1; b < boxes.size(); ++b)
+            if (overlap(boxes[a], boxes[b])) expected.insert({a, b});
+    CHECK(expected.size() > 5000);
+    CHECK(found == expected);
 }

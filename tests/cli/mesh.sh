@@ -142,5 +142,19 @@ done
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o ok.mesh --max-edge 0.05 --max-patches 1000000 -q 2>/dev/null || fail "a sane limit refused"
 err=$("$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o few.mesh --max-edge 0.05 --max-patches 100 2>&1) && fail "--max-patches 100 accepted ~800 patches"
 grep -q "more than --max-patches 100" <<<"$err" || fail "--max-patches message: $err"
+# Progress: on a terminal rad-mesh names each stage as it goes (on one line, rewritten), and
+# clears it before its summary; with stderr a file it prints no stage line. --timings lists
+# every stage with its time and the peak memory.
+script -qec "'$BIN/rad-mesh' '$SRC/scenes/cornell/cornell.obj' -o tty.mesh --max-edge 0.05" /dev/null > tty.out 2>&1 || fail "rad-mesh on a terminal failed: $(cat tty.out)"
+for stage in "reading cornell.obj" parsing orientation imprinting "planar regions" grids "writing tty.mesh"; do
+  grep -q "rad-mesh: $stage" tty.out || fail "no '$stage' shown on a terminal: $(tr '\r' '\n' < tty.out)"
+done
+grep -q $'\r' tty.out || fail "the terminal's stage line is not rewritten in place"
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o notty.mesh --max-edge 0.05 2> notty.err || fail "rad-mesh (no terminal)"
+if grep -q -e $'\r' -e "rad-mesh: imprinting" notty.err; then fail "progress printed with stderr not a terminal"; fi
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o timed.mesh --max-edge 0.05 -q --timings 2> timed.err || fail "--timings"
+for stage in "reading cornell.obj" "parsing cornell.obj" duplicates orientation "coincident faces" imprinting faces "planar regions" outlines "outline runs" "outline refinement" grids "writing timed.mesh"; do
+  grep -Eq "^rad-mesh: timing: $stage +[0-9.]+ s, peak memory +[0-9.]+ MiB$" timed.err || fail "--timings has no line for '$stage': $(cat timed.err)"
+done
 finish
 

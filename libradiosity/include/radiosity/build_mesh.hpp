@@ -54,7 +54,9 @@ std::vector<bool> orientation_pass(Scene& scene, const MeshOptions& options, Mes
 // Returns the index before the pass of each face kept.
 std::vector<std::size_t> coincident_pass(Scene& scene, MeshReport& report);
 void imprint_pass(Scene& scene, const std::vector<bool>& turned, MeshReport& report);
-radfmt::MeshData patch_pass(const Scene& scene, const MeshOptions& options, MeshReport& report);
+// Gridding planar regions, it releases the scene's polygons and vertices once they are clean
+// faces (on a large input, the memory they hold is needed for the regions).
+radfmt::MeshData patch_pass(Scene& scene, const MeshOptions& options, MeshReport& report);
 void two_sided_pass(radfmt::MeshData& mesh, const MeshOptions& options, MeshReport& report);
 
 } // namespace rad

@@ -20,17 +20,27 @@ namespace rad {
 namespace {
 
 struct FacePlane {
-    Vec3 normal{}, centroid{}, u{}, v{};
+    Vec3 normal{}, centroid{};
     double area = 0, offset = 0;
     std::array<double, 4> box{1e300, 1e300, -1e300, -1e300}; // of its corners in (u, v)
+    // The plane's axes, shared by every face of that plane (up to the normal's sign): made
+    // when needed, as a scene has millions of faces.
+    Vec3 axis() const {
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(normal[c]) > 1e-9) return normal[c] < 0 ? normal * -1.0 : normal;
+        return normal;
+    }
+    Vec3 u() const { return orthogonal(axis()); }
+    Vec3 v() const { return cross(axis(), u()); }
 };
 
 // A face's corners in its plane's (u, v): made when needed, as few faces are compared.
 std::vector<std::array<double, 2>> outline_of(const Scene& scene, const FacePlane& plane,
                                               std::size_t f) {
     std::vector<std::array<double, 2>> outline;
-    for (const auto v : scene.polygons[f].vertices)
-        outline.push_back({dot(scene.vertices[v], plane.u), dot(scene.vertices[v], plane.v)});
+    const Vec3 u = plane.u(), v = plane.v();
+    for (const auto k : scene.polygons[f].vertices)
+        outline.push_back({dot(scene.vertices[k], u), dot(scene.vertices[k], v)});
     return outline;
 }
 
@@ -38,8 +48,9 @@ std::vector<std::array<double, 2>> outline_of(const Scene& scene, const FacePlan
 // sign), so that outlines of faces drawn both ways can be compared.
 std::vector<FacePlane> face_planes(const Scene& scene) {
     std::vector<FacePlane> planes(scene.polygons.size());
+    std::vector<Vec3> pts;
     for (std::size_t f = 0; f < scene.polygons.size(); ++f) {
-        std::vector<Vec3> pts;
+        pts.clear();
         for (const auto v : scene.polygons[f].vertices) pts.push_back(scene.vertices[v]);
         auto& p = planes[f];
         const Vec3 n2 = pts.size() >= 3 ? newell_normal(pts) : Vec3{0, 0, 0};
@@ -48,16 +59,9 @@ std::vector<FacePlane> face_planes(const Scene& scene) {
         p.normal = normalized(n2);
         p.centroid = polygon_centroid(pts);
         p.offset = dot(p.normal, p.centroid);
-        Vec3 axis = p.normal;
-        for (int c = 0; c < 3; ++c)
-            if (std::abs(axis[c]) > 1e-9) {
-                if (axis[c] < 0) axis = axis * -1.0;
-                break;
-            }
-        p.u = orthogonal(axis);
-        p.v = cross(axis, p.u);
+        const Vec3 u = p.u(), v = p.v();
         for (const auto& q : pts) {
-            const std::array<double, 2> xy{dot(q, p.u), dot(q, p.v)};
+            const std::array<double, 2> xy{dot(q, u), dot(q, v)};
             p.box = {std::min(p.box[0], xy[0]), std::min(p.box[1], xy[1]),
                      std::max(p.box[2], xy[0]), std::max(p.box[3], xy[1])};
         }
@@ -81,9 +85,10 @@ double front_hits(const std::vector<FacePlane>& planes, const std::vector<std::s
     for (const auto f : faces) {
         const auto& p = planes[f];
         const Vec3 origin = p.centroid + p.normal * (4 * rays.epsilon());
+        const Vec3 u = p.u(), v = p.v();
         Rng rng(0x636f696e, f);
         for (int k = 0; k < kRays; ++k) {
-            const Vec3 d = cosine_direction(p.normal, p.u, p.v, rng.uniform(), rng.uniform());
+            const Vec3 d = cosine_direction(p.normal, u, v, rng.uniform(), rng.uniform());
             bool front = false;
             if (rays.first_hit(origin, d, front) >= 0 && front) ++fronts;
             ++cast;
@@ -105,7 +110,7 @@ void decide_opposite_copies(const Scene& scene, const std::vector<FacePlane>& pl
     for (const auto& [plane, pairs] : opposite) {
         auto side_of = [&](std::size_t f) -> SideKey {
             const auto& p = planes[f];
-            return {dot(p.normal, cross(p.u, p.v)) > 0 ? 1 : -1, scene.polygons[f].group,
+            return {dot(p.normal, cross(p.u(), p.v())) > 0 ? 1 : -1, scene.polygons[f].group,
                     scene.polygons[f].material};
         };
         std::map<std::pair<SideKey, SideKey>, std::vector<std::pair<std::size_t, std::size_t>>>
@@ -186,7 +191,7 @@ overlapping_pairs(const std::vector<FacePlane>& planes, std::vector<std::size_t>
 
 CoincidentReport resolve_coincident_faces(Scene& scene) {
     CoincidentReport report;
-    const auto planes = face_planes(scene);
+    auto planes = face_planes(scene);
     const double size = bounds(scene.vertices).diagonal();
     const double tolerance = 1e-6 * size;
     // Faces by plane (normal up to sign, offset), quantised to the tolerance.
@@ -194,7 +199,7 @@ CoincidentReport resolve_coincident_faces(Scene& scene) {
     for (std::size_t f = 0; f < planes.size(); ++f) {
         const auto& p = planes[f];
         if (!(p.area > 0)) continue;
-        const double sign = dot(p.normal, cross(p.u, p.v)) > 0 ? 1 : -1;
+        const double sign = dot(p.normal, cross(p.u(), p.v())) > 0 ? 1 : -1;
         std::array<long long, 4> key;
         for (int c = 0; c < 3; ++c) key[c] = std::llround(sign * p.normal[c] * 1e6);
         key[3] = std::llround(sign * p.offset / std::max(1e-300, 1e-6 * size));
@@ -209,8 +214,8 @@ CoincidentReport resolve_coincident_faces(Scene& scene) {
             auto fa = fa0, fb = fb0;
             const auto &a = planes[fa], &b = planes[fb];
             const bool same = dot(a.normal, b.normal) > 0;
-            const auto ca = std::array<double, 2>{dot(a.centroid, a.u), dot(a.centroid, a.v)};
-            const auto cb = std::array<double, 2>{dot(b.centroid, b.u), dot(b.centroid, b.v)};
+            const auto ca = std::array<double, 2>{dot(a.centroid, a.u()), dot(a.centroid, a.v())};
+            const auto cb = std::array<double, 2>{dot(b.centroid, b.u()), dot(b.centroid, b.v())};
             if (!inside(outline_of(scene, b, fb), ca, tolerance, false) &&
                 !inside(outline_of(scene, a, fa), cb, tolerance, false))
                 continue;
@@ -231,13 +236,17 @@ CoincidentReport resolve_coincident_faces(Scene& scene) {
         }
     }
     decide_opposite_copies(scene, planes, opposite, drop, report);
-    std::vector<Polygon> kept;
+    std::vector<FacePlane>().swap(planes);
+    // Kept faces moved down in place: a second vector of every face would double the
+    // polygons' memory on a large scene.
+    std::size_t count = 0;
     for (std::size_t f = 0; f < scene.polygons.size(); ++f)
         if (!drop[f]) {
-            kept.push_back(std::move(scene.polygons[f]));
+            if (count != f) scene.polygons[count] = std::move(scene.polygons[f]);
+            ++count;
             report.kept.push_back(f);
         }
-    scene.polygons = std::move(kept);
+    scene.polygons.resize(count);
     return report;
 }
 

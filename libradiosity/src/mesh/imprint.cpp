@@ -214,6 +214,7 @@ class Imprinter {
                               const Vec3& x);
     void add_piece(std::size_t f, std::vector<std::uint32_t> vertices);
     void add_edge_points(Polygon& poly) const;
+    void place_pieces();
     void emit_pieces(std::size_t f, const CutFace& cut, const Regions& regions,
                      const std::vector<char>& hidden);
 
@@ -391,20 +392,55 @@ void Imprinter::finish() {
         welded_.empty() ? 0 : *std::max_element(welded_.begin(), welded_.end()) + 1, 0);
     for (const auto& [edge, points] : edge_points_)
         on_cut_edge[edge.first] = on_cut_edge[edge.second] = 1;
-    std::vector<Polygon> polygons;
-    polygons.reserve(scene_.polygons.size());
-    for (std::size_t f = 0; f < scene_.polygons.size(); ++f) {
-        if (replaced_[f]) {
-            for (auto& piece : out_[f]) polygons.push_back(std::move(piece));
-            continue;
-        }
-        auto& poly = scene_.polygons[f];
+    auto& polygons = scene_.polygons;
+    for (std::size_t f = 0; f < polygons.size(); ++f) {
+        if (replaced_[f]) continue;
+        auto& poly = polygons[f];
         const bool touched = std::any_of(poly.vertices.begin(), poly.vertices.end(),
                                          [&](std::uint32_t v) { return on_cut_edge[welded_[v]]; });
         if (touched) add_edge_points(poly);
-        polygons.push_back(std::move(poly));
     }
-    scene_.polygons = std::move(polygons);
+    place_pieces();
+}
+
+// Each cut face becomes its pieces. In place where every face's polygons land at or after its
+// own index (moved from the last face down, none is overwritten before it has moved): a
+// second vector of every face would add its size to a large scene's peak memory.
+void Imprinter::place_pieces() {
+    auto& polygons = scene_.polygons;
+    const std::size_t n = polygons.size();
+    auto pieces_of = [&](std::size_t f) -> std::vector<Polygon>* {
+        const auto it = out_.find(f);
+        return it == out_.end() ? nullptr : &it->second;
+    };
+    std::vector<std::size_t> start(n + 1, 0);
+    bool in_place = true;
+    for (std::size_t f = 0; f < n; ++f) {
+        const auto count = !replaced_[f] ? 1 : pieces_of(f) ? pieces_of(f)->size() : 0;
+        if (count > 0 && start[f] < f) in_place = false;
+        start[f + 1] = start[f] + count;
+    }
+    if (!in_place) {
+        std::vector<Polygon> out;
+        out.reserve(start[n]);
+        for (std::size_t f = 0; f < n; ++f)
+            if (!replaced_[f])
+                out.push_back(std::move(polygons[f]));
+            else if (auto* pieces = pieces_of(f))
+                for (auto& piece : *pieces) out.push_back(std::move(piece));
+        polygons = std::move(out);
+        return;
+    }
+    polygons.resize(std::max(n, start[n]));
+    for (std::size_t f = n; f-- > 0;) {
+        if (!replaced_[f]) {
+            if (start[f] != f) polygons[start[f]] = std::move(polygons[f]);
+        } else if (auto* pieces = pieces_of(f)) {
+            for (std::size_t k = 0; k < pieces->size(); ++k)
+                polygons[start[f] + k] = std::move((*pieces)[k]);
+        }
+    }
+    polygons.resize(start[n]);
 }
 
 // The points other faces' cuts put on this face's edges, in order along each edge.

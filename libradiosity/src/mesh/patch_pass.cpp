@@ -63,7 +63,7 @@ SubdivisionOptions resolve_limits(const Scene& scene, SubdivisionOptions limits,
 
 } // namespace
 
-radfmt::MeshData patch_pass(const Scene& scene, const MeshOptions& options, MeshReport& report) {
+radfmt::MeshData patch_pass(Scene& scene, const MeshOptions& options, MeshReport& report) {
     const auto limits = resolve_limits(scene, options.subdivision, report);
     for (const auto* by_group : {&limits.max_edge_by_group, &limits.max_area_by_group})
         for (const auto& [group, value] : *by_group)
@@ -78,8 +78,10 @@ radfmt::MeshData patch_pass(const Scene& scene, const MeshOptions& options, Mesh
         whole.max_edge_by_group.clear();
         whole.max_area_by_group.clear();
         begin_stage(options.scene.stages, "faces");
-        mesh = mesh_surfaces(subdivide(scene, whole, &faces),
-                             surface_options(limits, scene.path, options.scene.stages),
+        auto clean = subdivide(scene, whole, &faces);
+        std::vector<Polygon>().swap(scene.polygons);
+        std::vector<Vec3>().swap(scene.vertices);
+        mesh = mesh_surfaces(clean, surface_options(limits, scene.path, options.scene.stages),
                              &report.surfaces);
     } else {
         begin_stage(options.scene.stages, "patches");

@@ -91,6 +91,7 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
         region.width = surfaces::region_width(region, points);
         region.piece = piece_length(region.cell, region.width);
     }
+    begin_stage(options.stages, "outline runs");
     rep.regions = regions.size();
     rep.dropped_vertices = surfaces::split_outline_runs(regions, points, tolerance);
     begin_stage(options.stages, "outline refinement");
