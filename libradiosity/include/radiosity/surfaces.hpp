@@ -38,6 +38,7 @@ struct SurfaceOptions {
 // into near-square patches twice its width long) or thin (a trim or sill: patches as thin as
 // the region, a cell long).
 enum class WidthClass : std::uint8_t { Wide, Narrow, Thin };
+WidthClass width_class(double cell, double width); // no cell (0): wide
 struct ShapeStats {
     double fraction_aspect_at_most_3 = 1;      // of the patches of wide and narrow regions
     double fraction_wide_aspect_at_most_3 = 1; // of the patches of wide regions

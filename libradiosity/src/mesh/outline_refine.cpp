@@ -117,7 +117,8 @@ std::size_t refine_outline_pieces(std::vector<Region>& regions, Points& points, 
         std::set<EdgeKey> split; // ordered: the same points whatever the order found
         for (std::size_t r = 0; r < regions.size(); ++r)
             if (trial[r] && regions[r].cell > 0 && regions[r].quad_sides.empty() &&
-                regions[r].width >= regions[r].cell / 10) // thinner ones are slivers anyway
+                width_class(regions[r].cell, regions[r].width) !=
+                    WidthClass::Thin) // slivers anyway
                 find_pieces_to_split(regions[r], points, tolerance, split);
         if (split.empty()) break;
         added += split.size();

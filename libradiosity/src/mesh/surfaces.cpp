@@ -30,9 +30,17 @@ double cell_side(const radfmt::MeshData& faces, std::uint32_t group, const Surfa
 // patches are as thin as it is, and cutting it into specks would spend patches on detail the
 // rest of the scene is not resolved to.
 double piece_length(double cell, double width) {
-    if (!(cell > 0) || width >= cell || width < cell / 10) return cell;
-    return 2 * width;
+    return width_class(cell, width) == WidthClass::Narrow ? 2 * width : cell;
 }
+
+} // namespace
+
+WidthClass width_class(double cell, double width) {
+    if (!(cell > 0) || width >= cell) return WidthClass::Wide;
+    return width >= cell / 10 ? WidthClass::Narrow : WidthClass::Thin;
+}
+
+namespace {
 
 // Vertices renumbered to those the patches use, in order of first use.
 void drop_unused_vertices(radfmt::MeshData& mesh) {
@@ -108,10 +116,7 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
         const double width = surfaces::grid_region(region, points, mesh, rep, tolerance);
         // Regions thinner than a tenth of a cell are slivers by their own shape; those under a
         // cell are cut across into near-square patches.
-        const auto width_class = !(region.cell > 0) || width >= region.cell ? WidthClass::Wide
-                                 : width >= region.cell / 10                ? WidthClass::Narrow
-                                                                            : WidthClass::Thin;
-        classes.resize(mesh.patches.size(), width_class);
+        classes.resize(mesh.patches.size(), width_class(region.cell, width));
     }
     mesh.vertices = points.position;
     rep.shape = shape_stats(mesh, classes);
