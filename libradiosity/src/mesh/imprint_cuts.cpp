@@ -110,47 +110,42 @@ Face make_face(const Scene& scene, const Polygon& poly, const std::vector<std::u
     return face;
 }
 
-// Newell's normal of a face (twice its area), as make_face has it.
-Vec3 face_normal(const Scene& scene, std::uint32_t f) {
-    const auto& vs = scene.polygons[f].vertices;
-    Vec3 n{0, 0, 0};
-    for (std::size_t k = 0; k < vs.size(); ++k) {
-        const auto& a = scene.vertices[vs[k]];
-        const auto& b = scene.vertices[vs[(k + 1) % vs.size()]];
-        n = n + Vec3{(a[1] - b[1]) * (a[2] + b[2]), (a[2] - b[2]) * (a[0] + b[0]),
-                     (a[0] - b[0]) * (a[1] + b[1])};
-    }
-    return n;
+// A face's corners, into `points` (reused: this runs for every candidate pair).
+void corners_of(const Scene& scene, std::uint32_t f, std::vector<Vec3>& points) {
+    points.clear();
+    for (const auto v : scene.polygons[f].vertices) points.push_back(scene.vertices[v]);
 }
 
 // Whether `contact` can find anything between face p and face q: q crosses p's plane, or
 // lies on it along an edge, or lies in it facing the other way. Most pairs of nearby faces
-// do not: those of a curved surface, and the tiles of one floor that meet at a corner.
-bool reaches_plane(const Scene& scene, std::uint32_t p, std::uint32_t q, double tol) {
-    const Vec3 normal = normalized(face_normal(scene, p));
-    const Vec3& origin = scene.vertices[scene.polygons[p].vertices[0]];
-    const auto& vs = scene.polygons[q].vertices;
+// do not: those of a curved surface, and the tiles of one floor that meet at a corner. The
+// plane as make_face has it (Newell's normal, through the first corner).
+bool reaches_plane(const Scene& scene, std::uint32_t p, std::uint32_t q, double tol,
+                   std::vector<Vec3>& points) {
+    corners_of(scene, p, points);
+    const Vec3 normal = normalized(newell_normal(points));
+    const Vec3 origin = points[0];
+    corners_of(scene, q, points);
     int above = 0, below = 0, on = 0;
-    for (const auto v : vs) {
-        const double h = dot(scene.vertices[v] - origin, normal);
+    for (const auto& x : points) {
+        const double h = dot(x - origin, normal);
         above += h > tol, below += h < -tol, on += std::abs(h) <= tol;
     }
-    if (on == static_cast<int>(vs.size())) // coplanar: only a face facing p's front counts
-        return dot(normalized(face_normal(scene, q)), normal) <= -0.5;
+    if (on == static_cast<int>(points.size())) // coplanar: only a face facing p's front counts
+        return dot(normalized(newell_normal(points)), normal) <= -0.5;
     return (above && below) || on >= 2;
 }
 
 // Candidate pairs: faces whose boxes overlap within `tol` (for_each_overlapping_pair), not
-// of one object (no welded corner in common), each as (a face, one
-// that reaches its plane). Faces of no area take no part. Sorted, so they do not depend on
-// the order CGAL reports them in.
+// of one object (no welded corner in common), each as (a face, one that reaches its plane).
+// Faces of no area take no part. Sorted, so they do not depend on the order the pairs are
+// found in.
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
 touching_pairs(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol) {
     std::vector<Box> boxes(scene.polygons.size()); // empty for faces without area
     std::vector<Vec3> points;
-    for (std::size_t f = 0; f < scene.polygons.size(); ++f) {
-        points.clear();
-        for (const auto v : scene.polygons[f].vertices) points.push_back(scene.vertices[v]);
+    for (std::uint32_t f = 0; f < scene.polygons.size(); ++f) {
+        corners_of(scene, f, points);
         if (points.size() < 3 || !(length(newell_normal(points)) > 0)) continue;
         boxes[f] = bounds(points);
         for (int k = 0; k < 3; ++k) boxes[f].lo[k] -= tol / 2, boxes[f].hi[k] += tol / 2;
@@ -161,8 +156,8 @@ touching_pairs(const Scene& scene, const std::vector<std::uint32_t>& welded, dou
         for (const auto u : scene.polygons[a].vertices)
             for (const auto v : scene.polygons[b].vertices)
                 if (welded[u] == welded[v]) return;
-        if (reaches_plane(scene, a, b, tol)) pairs.emplace_back(a, b);
-        if (reaches_plane(scene, b, a, tol)) pairs.emplace_back(b, a);
+        if (reaches_plane(scene, a, b, tol, points)) pairs.emplace_back(a, b);
+        if (reaches_plane(scene, b, a, tol, points)) pairs.emplace_back(b, a);
     });
     std::sort(pairs.begin(), pairs.end());
     return pairs;

@@ -1,10 +1,10 @@
 #include "radiosity/two_sided.hpp"
 
+#include "equal_keys.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/vec.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <map>
 
 namespace rad {
@@ -18,49 +18,21 @@ std::vector<radfmt::Vec3> corner_key(const radfmt::MeshData& mesh, const radfmt:
     return key;
 }
 
-std::uint64_t mix(std::uint64_t h, double x) {
-    // splitmix64's finaliser over the running hash and the value (-0 counted as 0).
-    h ^= std::bit_cast<std::uint64_t>(x + 0.0) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
-    h ^= h >> 30, h *= 0xbf58476d1ce4e5b9ULL, h ^= h >> 27, h *= 0x94d049bb133111ebULL;
-    return h ^ (h >> 31);
-}
 } // namespace
 
 std::vector<std::int64_t> find_twins(const radfmt::MeshData& mesh) {
-    // Patches by a hash of their sorted corners (a map keyed by the corners themselves costs
-    // a node and two allocations a patch); equal hashes are compared corner by corner.
     const std::size_t n = mesh.patches.size();
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> by_hash(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        std::uint64_t h = 0;
-        for (const auto& corner : corner_key(mesh, mesh.patches[i]))
-            for (const double x : corner) h = mix(h, x);
-        by_hash[i] = {h, static_cast<std::uint32_t>(i)};
-    }
-    std::sort(by_hash.begin(), by_hash.end());
+    const auto first =
+        first_with_equal_key(n, [&](std::size_t i) { return corner_key(mesh, mesh.patches[i]); });
+    std::vector<std::uint32_t> on_spot(n, 0); // patches on each spot, by its first patch
+    for (std::size_t i = 0; i < n; ++i) ++on_spot[first[i]];
     std::vector<std::int64_t> twin(n, -1);
-    for (std::size_t start = 0; start < n;) {
-        std::size_t end = start + 1;
-        while (end < n && by_hash[end].first == by_hash[start].first) ++end;
-        // Within one hash, the patches on each spot (almost always one spot).
-        std::vector<std::pair<std::vector<radfmt::Vec3>, std::uint32_t>> spots;
-        if (end - start >= 2)
-            for (auto k = start; k < end; ++k)
-                spots.emplace_back(corner_key(mesh, mesh.patches[by_hash[k].second]),
-                                   by_hash[k].second);
-        std::sort(spots.begin(), spots.end());
-        for (std::size_t a = 0; a < spots.size();) {
-            std::size_t b = a + 1;
-            while (b < spots.size() && spots[b].first == spots[a].first) ++b;
-            // More than two on one spot: no pairing to trust.
-            if (b - a == 2) {
-                const auto i = spots[a].second, j = spots[a + 1].second;
-                if (dot(mesh.patches[i].normal, mesh.patches[j].normal) < 0)
-                    twin[i] = j, twin[j] = i;
-            }
-            a = b;
-        }
-        start = end;
+    for (std::size_t j = 0; j < n; ++j) {
+        const auto i = first[j];
+        // More than two on one spot: no pairing to trust.
+        if (i == j || on_spot[i] != 2) continue;
+        if (dot(mesh.patches[i].normal, mesh.patches[j].normal) < 0)
+            twin[i] = static_cast<std::int64_t>(j), twin[j] = static_cast<std::int64_t>(i);
     }
     return twin;
 }
