@@ -1,4 +1,5 @@
 // rad-mesh: OBJ+MTL scene -> conforming patch mesh.
+#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/build_mesh.hpp"
@@ -171,8 +172,11 @@ int main(int argc, char** argv) {
     app.add_flag("-q,--quiet", quiet,
                  "Print no summary (and no progress; progress shows only on a terminal)");
     app.add_flag("--timings", timings,
-                 "Print each stage's wall time and the peak memory so far (stderr)");
+                 "Print each stage's wall time and the peak memory so far (stderr), and "
+                 "whether the heap is in transparent huge pages (rad-mesh restarts itself "
+                 "once to ask glibc for them; RADIOSITY_HUGE_PAGES=0 keeps 4 KiB pages)");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
+    rad::tool::restart_with_huge_pages(argv);
 
     return rad::tool::run_tool("rad-mesh", [&] {
         rad::tool::check_outputs({input}, {{"-o", output}});
@@ -230,6 +234,8 @@ int main(int argc, char** argv) {
                                                    radfmt::command_line(argc, argv), sources);
         radfmt::write_mesh(output, header, mesh);
         stages.finish();
+        if (timings)
+            std::cerr << "rad-mesh: timing: pages: " << rad::tool::huge_pages_state() << '\n';
         if (!quiet) print_summary(mesh, report);
         for (const auto& line : report.lines)
             if (line.kind == Kind::Change) std::cerr << "rad-mesh: changed: " << line.text << '\n';

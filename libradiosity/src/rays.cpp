@@ -89,6 +89,18 @@ void check_ray_precision(std::span<const radfmt::Vec3> points, const std::string
 }
 
 RayScene::RayScene(const radfmt::MeshData& mesh, RayBuild build) : impl_(std::make_unique<Impl>()) {
+    const auto size = add_geometry(mesh, build);
+    commit(size);
+}
+
+RayScene::RayScene(radfmt::MeshData&& mesh, RayBuild build) : impl_(std::make_unique<Impl>()) {
+    const auto size = add_geometry(mesh, build);
+    radfmt::MeshData().patches.swap(mesh.patches); // Embree holds its own copy now
+    std::vector<Vec3>().swap(mesh.vertices);
+    commit(size);
+}
+
+double RayScene::add_geometry(const radfmt::MeshData& mesh, RayBuild build) {
     check_ray_precision(mesh.vertices, "mesh");
     impl_->device = rtcNewDevice(nullptr);
     if (!impl_->device) {
@@ -145,6 +157,10 @@ RayScene::RayScene(const radfmt::MeshData& mesh, RayBuild build) : impl_(std::ma
         if (impl_->patch_of.size() <= id) impl_->patch_of.resize(id + 1);
         impl_->patch_of[id] = *patches;
     }
+    return box.diagonal();
+}
+
+void RayScene::commit(double size) {
     // Built on one thread: Embree's parallel builders shape the tree by how many threads
     // share the work, and a ray meeting two surfaces at one distance (coincident faces) hits
     // the one the tree visits first; one thread gives one tree on every machine and run.
@@ -152,7 +168,6 @@ RayScene::RayScene(const radfmt::MeshData& mesh, RayBuild build) : impl_(std::ma
     one_thread.execute([&] { rtcCommitScene(impl_->scene); });
     impl_->raise_if_failed("building the ray scene");
     // Relative to the scene: a fixed floor would swallow a scene measured in nanometres.
-    const double size = box.diagonal();
     epsilon_ = size > 0 ? 1e-5 * size : 1e-9;
 }
 

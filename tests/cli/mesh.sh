@@ -156,5 +156,21 @@ if grep -q -e $'\r' -e "rad-mesh: imprinting" notty.err; then fail "progress pri
 for stage in "reading cornell.obj" "parsing cornell.obj" duplicates orientation "coincident faces" imprinting faces "planar regions" outlines "outline runs" "outline refinement" grids "writing timed.mesh"; do
   grep -Eq "^rad-mesh: timing: $stage +[0-9.]+ s, peak memory +[0-9.]+ MiB$" timed.err || fail "--timings has no line for '$stage': $(cat timed.err)"
 done
+# Huge pages: rad-mesh restarts itself once with glibc.malloc.hugetlb=1 when the kernel has
+# transparent huge pages on; RADIOSITY_HUGE_PAGES=0, or a GLIBC_TUNABLES that sets it, keeps
+# what is asked; the mesh is the same either way.
+policy=$(sed -n 's/.*\[\(.*\)\].*/\1/p' /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null || true)
+if [ -n "$policy" ] && [ "$policy" != never ]; then
+  grep -q "^rad-mesh: timing: pages: transparent huge pages asked for (glibc.malloc.hugetlb=1), [0-9.]* MiB in them now$" timed.err || fail "no huge pages asked for (kernel: $policy): $(cat timed.err)"
+else
+  grep -q "^rad-mesh: timing: pages: 4 KiB pages (the kernel has transparent huge pages off)" timed.err || fail "pages line without huge pages: $(cat timed.err)"
+fi
+RADIOSITY_HUGE_PAGES=0 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o small.mesh --max-edge 0.05 -q --timings 2> small.err || fail "RADIOSITY_HUGE_PAGES=0"
+grep -q "^rad-mesh: timing: pages: 4 KiB pages (RADIOSITY_HUGE_PAGES=0)" small.err || fail "RADIOSITY_HUGE_PAGES=0 not kept: $(cat small.err)"
+GLIBC_TUNABLES=glibc.malloc.hugetlb=0 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o own.mesh --max-edge 0.05 -q --timings 2> own.err || fail "GLIBC_TUNABLES set by the user"
+grep -q "^rad-mesh: timing: pages: 4 KiB pages (GLIBC_TUNABLES sets glibc.malloc.hugetlb)" own.err || fail "the user's GLIBC_TUNABLES overridden: $(cat own.err)"
+for m in small own; do
+  [ "$(grep -a -m1 body_hash $m.mesh)" = "$(grep -a -m1 body_hash timed.mesh)" ] || fail "$m.mesh differs from timed.mesh"
+done
 finish
 

@@ -35,6 +35,9 @@ enum class RayBuild { Fast, Quality };
 class RayScene {
   public:
     explicit RayScene(const radfmt::MeshData& mesh, RayBuild build = RayBuild::Quality);
+    // The same, releasing the mesh's patches and vertices before the tree is built (the
+    // build's peak of memory), for a mesh made only to be traced.
+    explicit RayScene(radfmt::MeshData&& mesh, RayBuild build = RayBuild::Quality);
     ~RayScene();
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;
@@ -58,6 +61,10 @@ class RayScene {
     struct Impl; // public so Embree's C error callback can reach it
 
   private:
+    // The device, the scene and its geometry from the mesh; returns the scene's size.
+    double add_geometry(const radfmt::MeshData& mesh, RayBuild build);
+    void commit(double size);
+
     std::unique_ptr<Impl> impl_;
     double epsilon_ = 1e-6;
     // Embree works in float: coordinates are stored relative to the scene's centre, so a

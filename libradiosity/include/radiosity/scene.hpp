@@ -165,6 +165,11 @@ struct SubdivisionReport {
 // T-vertices. Polygons with more than 4 vertices (or concave quads) are triangulated first.
 radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options,
                            SubdivisionReport* report = nullptr);
+// `subdivide` with no limits (planarity, strictness and --max-patches as `options` say):
+// the faces cleaned into planar triangles and convex quads, one patch each. Takes the
+// scene's polygons and vertices (left empty) to keep the peak of memory down.
+radfmt::MeshData clean_faces(Scene& scene, const SubdivisionOptions& options,
+                             SubdivisionReport* report = nullptr);
 
 // Renumbers the patches along a Morton (Z-order) curve of their centroids, quantised to
 // kMortonSteps steps a side of the centroids' bounding cube, patches in one step in their

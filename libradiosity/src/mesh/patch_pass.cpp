@@ -73,14 +73,8 @@ radfmt::MeshData patch_pass(Scene& scene, const MeshOptions& options, MeshReport
     radfmt::MeshData mesh;
     report.regions = options.regions;
     if (options.regions) {
-        SubdivisionOptions whole = limits; // clean faces first, gridded as regions
-        whole.max_edge = whole.max_area = 0;
-        whole.max_edge_by_group.clear();
-        whole.max_area_by_group.clear();
-        begin_stage(options.scene.stages, "faces");
-        auto clean = subdivide(scene, whole, &faces);
-        std::vector<Polygon>().swap(scene.polygons);
-        std::vector<Vec3>().swap(scene.vertices);
+        begin_stage(options.scene.stages, "faces"); // cleaned first, gridded as regions
+        const auto clean = clean_faces(scene, limits, &faces);
         mesh = mesh_surfaces(clean, surface_options(limits, scene.path, options.scene.stages),
                              &report.surfaces);
     } else {

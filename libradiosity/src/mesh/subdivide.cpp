@@ -19,8 +19,31 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
                            SubdivisionReport* report) {
     SubdivisionReport local;
     const auto elements = subdivision::make_elements(scene, options, report ? *report : local);
-    auto counts = subdivision::agree_edge_counts(elements, scene, options);
-    auto mesh = subdivision::make_patches(elements, counts, scene);
+    radfmt::MeshData mesh;
+    if (subdivision::without_limits(options)) {
+        subdivision::check_estimate(elements, scene, options);
+        mesh = subdivision::make_whole_patches(elements, scene);
+    } else {
+        auto counts = subdivision::agree_edge_counts(elements, scene, options);
+        mesh = subdivision::make_patches(elements, counts, scene);
+    }
+    if (mesh.patches.size() >= radfmt::kNoVertex)
+        throw InputError(scene.path + ": too many patches for 32-bit indices");
+    return mesh;
+}
+
+radfmt::MeshData clean_faces(Scene& scene, const SubdivisionOptions& options,
+                             SubdivisionReport* report) {
+    SubdivisionOptions whole = options;
+    whole.max_edge = whole.max_area = 0;
+    whole.max_edge_by_group.clear();
+    whole.max_area_by_group.clear();
+    SubdivisionReport local;
+    const auto elements = subdivision::make_elements(scene, whole, report ? *report : local);
+    std::vector<Polygon>().swap(scene.polygons); // the elements hold what is left of them
+    subdivision::check_estimate(elements, scene, whole);
+    auto mesh = subdivision::make_whole_patches(elements, scene);
+    std::vector<Vec3>().swap(scene.vertices);
     if (mesh.patches.size() >= radfmt::kNoVertex)
         throw InputError(scene.path + ": too many patches for 32-bit indices");
     return mesh;

@@ -61,6 +61,8 @@ std::vector<double> tie_edges(const std::vector<Element>& elements, const Scene&
     return edge_limit;
 }
 
+} // namespace
+
 // What the limits will cost, estimated before anything is made: about one patch per half
 // square of the edge limit (or per area limit) plus one per edge segment of the outline.
 // Counts are computed in double, so absurd limits cannot overflow.
@@ -87,6 +89,13 @@ void check_estimate(const std::vector<Element>& elements, const Scene& scene,
                          " (use larger limits, or raise --max-patches)");
     }
 }
+
+bool without_limits(const SubdivisionOptions& options) {
+    return options.max_edge <= 0 && options.max_area <= 0 && options.max_edge_by_group.empty() &&
+           options.max_area_by_group.empty();
+}
+
+namespace {
 
 // One element's counts raised to meet its area limit; false when they already do.
 bool raise_for_area(const Element& e, const std::array<std::size_t, 4>& ee, double limit,

@@ -48,6 +48,9 @@ struct EdgeCounts {
     std::size_t count(std::size_t edge) { return segments[classes.find(edge)]; }
 };
 // Throws before anything is made when the limits would make over --max-patches patches.
+void check_estimate(const std::vector<Element>& elements, const Scene& scene,
+                    const SubdivisionOptions& options);
+// Calls check_estimate.
 EdgeCounts agree_edge_counts(const std::vector<Element>& elements, const Scene& scene,
                              const SubdivisionOptions& options);
 
@@ -55,5 +58,10 @@ EdgeCounts agree_edge_counts(const std::vector<Element>& elements, const Scene& 
 // banded triangles in bands along their longest edge; edge points shared (no T-vertices).
 radfmt::MeshData make_patches(const std::vector<Element>& elements, EdgeCounts& counts,
                               const Scene& scene);
+// The same with no limits (every edge one segment): one patch an element, with the vertices
+// and patches make_patches would give, without numbering the edges.
+radfmt::MeshData make_whole_patches(const std::vector<Element>& elements, const Scene& scene);
+// Whether the options set no limit (make_whole_patches applies).
+bool without_limits(const SubdivisionOptions& options);
 
 } // namespace rad::subdivision

@@ -11,22 +11,30 @@ namespace {
 
 class PatchWriter {
   public:
-    PatchWriter(const Scene& scene, EdgeCounts& counts)
+    // No counts: every edge is one segment (no limits), and each element one patch.
+    PatchWriter(const Scene& scene, EdgeCounts* counts)
         : scene_(scene), counts_(counts), remap_(scene.vertices.size(), radfmt::kNoVertex) {
         mesh_.groups = scene.groups;
         mesh_.materials = scene.materials;
     }
     void write(const Element& e, std::size_t f) {
+        static constexpr std::array<std::size_t, 4> kUncounted{};
+        const auto& ee = counts_ ? counts_->element_edges[f] : kUncounted;
         if (e.corners == 4)
-            quad_grid(e, counts_.element_edges[f]);
+            quad_grid(e, ee);
         else if (e.banded)
-            banded(e, counts_.element_edges[f], counts_.element_limit[f]);
+            banded(e, ee, counts_ ? counts_->element_limit[f] : 0);
         else
-            triangle_grid(e, counts_.element_edges[f]);
+            triangle_grid(e, ee);
+    }
+    void reserve(std::size_t patches, std::size_t vertices) {
+        mesh_.patches.reserve(patches);
+        mesh_.vertices.reserve(vertices);
     }
     radfmt::MeshData take() { return std::move(mesh_); }
 
   private:
+    std::size_t count(std::size_t edge) const { return counts_ ? counts_->count(edge) : 1; }
     std::uint32_t add_vertex(const Vec3& p) {
         mesh_.vertices.push_back(p);
         return static_cast<std::uint32_t>(mesh_.vertices.size() - 1);
@@ -54,7 +62,7 @@ class PatchWriter {
     }
     // The points of edge (a, b) from a to b, its agreed count of segments.
     std::vector<std::uint32_t> edge_chain(std::uint32_t a, std::uint32_t b, std::size_t edge) {
-        const std::size_t n = counts_.count(edge);
+        const std::size_t n = count(edge);
         std::vector<std::uint32_t> chain;
         for (std::size_t k = 0; k <= n; ++k) chain.push_back(edge_vertex(a, b, k, n));
         return chain;
@@ -93,7 +101,7 @@ class PatchWriter {
     void zip_to_point(const Element& e, std::uint32_t end, const std::vector<std::uint32_t>& upper);
 
     const Scene& scene_;
-    EdgeCounts& counts_;
+    EdgeCounts* counts_; // null: one segment an edge
     radfmt::MeshData mesh_;
     std::vector<std::uint32_t> remap_;                    // scene vertex -> mesh vertex
     std::unordered_map<Edge, std::uint32_t> edge_points_; // first interior point of an edge
@@ -101,7 +109,7 @@ class PatchWriter {
 
 void PatchWriter::quad_grid(const Element& e, const std::array<std::size_t, 4>& ee) {
     const auto& v = e.v;
-    const std::size_t nu = counts_.count(ee[0]), nv = counts_.count(ee[1]);
+    const std::size_t nu = count(ee[0]), nv = count(ee[1]);
     std::vector<std::uint32_t> grid((nu + 1) * (nv + 1));
     auto at = [&](std::size_t i, std::size_t j) -> std::uint32_t& {
         return grid[j * (nu + 1) + i];
@@ -131,7 +139,7 @@ void PatchWriter::quad_grid(const Element& e, const std::array<std::size_t, 4>& 
 
 void PatchWriter::triangle_grid(const Element& e, const std::array<std::size_t, 4>& ee) {
     const auto& v = e.v;
-    const std::size_t n = counts_.count(ee[0]);
+    const std::size_t n = count(ee[0]);
     std::vector<std::uint32_t> grid((n + 1) * (n + 1), radfmt::kNoVertex);
     auto at = [&](std::size_t i, std::size_t j) -> std::uint32_t& { return grid[j * (n + 1) + i]; };
     const Vec3 p0 = scene_.vertices[v[0]], p1 = scene_.vertices[v[1]], p2 = scene_.vertices[v[2]];
@@ -266,7 +274,14 @@ void PatchWriter::zip(const Element& e, const std::vector<std::uint32_t>& lower,
 
 radfmt::MeshData make_patches(const std::vector<Element>& elements, EdgeCounts& counts,
                               const Scene& scene) {
-    PatchWriter writer(scene, counts);
+    PatchWriter writer(scene, &counts);
+    for (std::size_t f = 0; f < elements.size(); ++f) writer.write(elements[f], f);
+    return writer.take();
+}
+
+radfmt::MeshData make_whole_patches(const std::vector<Element>& elements, const Scene& scene) {
+    PatchWriter writer(scene, nullptr);
+    writer.reserve(elements.size(), scene.vertices.size());
     for (std::size_t f = 0; f < elements.size(); ++f) writer.write(elements[f], f);
     return writer.take();
 }
