@@ -5,21 +5,22 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <unordered_map>
-#include <unordered_set>
+#include <span>
 
 namespace rad::surfaces {
 
 namespace {
 
-// Outline points in buckets of a uniform grid, to find those lying on an edge.
+// Outline points in the cells of a uniform grid (kCells a side over their box), sorted by
+// cell, to find those lying on an edge.
 class PointBuckets {
   public:
     PointBuckets(const std::vector<std::uint32_t>& ids, const Points& points) : points_(points) {
         for (const auto id : ids) box_.add(points.position[id]);
-        cell_ = std::max(1e-300, box_.diagonal() / 256);
-        for (const auto id : ids) buckets_[key(points.position[id])].push_back(id);
+        cell_ = std::max(1e-300, box_.diagonal() / kCells);
+        by_cell_.reserve(ids.size());
+        for (const auto id : ids) by_cell_.emplace_back(code(cell_of(points.position[id])), id);
+        std::sort(by_cell_.begin(), by_cell_.end());
     }
     // Points strictly inside segment ab (within `tolerance` of it), ordered from a to b.
     std::vector<std::uint32_t> on_segment(std::uint32_t a, std::uint32_t b,
@@ -31,23 +32,25 @@ class PointBuckets {
         Box box;
         box.add(pa);
         box.add(pb);
-        const auto lo = key(box.lo - Vec3{tolerance, tolerance, tolerance});
-        const auto hi = key(box.hi + Vec3{tolerance, tolerance, tolerance});
+        const auto lo = cell_of(box.lo - Vec3{tolerance, tolerance, tolerance});
+        const auto hi = cell_of(box.hi + Vec3{tolerance, tolerance, tolerance});
         for (auto i = lo[0]; i <= hi[0]; ++i)
-            for (auto j = lo[1]; j <= hi[1]; ++j)
-                for (auto k = lo[2]; k <= hi[2]; ++k) {
-                    const auto it = buckets_.find({i, j, k});
-                    if (it == buckets_.end()) continue;
-                    for (const auto c : it->second) {
-                        if (c == a || c == b) continue;
-                        const Vec3 pc = points_.position[c];
-                        const double t = len2 > 0 ? dot(pc - pa, d) / len2 : 0;
-                        if (t <= 0 || t >= 1) continue;
-                        if (length(pa + d * t - pc) < tolerance && length(pc - pa) > tolerance &&
-                            length(pc - pb) > tolerance)
-                            found.emplace_back(t, c);
-                    }
+            for (auto j = lo[1]; j <= hi[1]; ++j) {
+                // Cells (i, j, lo..hi) are consecutive in the order of the codes.
+                auto it = std::lower_bound(by_cell_.begin(), by_cell_.end(),
+                                           std::pair{code({i, j, lo[2]}), std::uint32_t(0)});
+                for (const auto last = code({i, j, hi[2]});
+                     it != by_cell_.end() && it->first <= last; ++it) {
+                    const auto c = it->second;
+                    if (c == a || c == b) continue;
+                    const Vec3 pc = points_.position[c];
+                    const double t = len2 > 0 ? dot(pc - pa, d) / len2 : 0;
+                    if (t <= 0 || t >= 1) continue;
+                    if (length(pa + d * t - pc) < tolerance && length(pc - pa) > tolerance &&
+                        length(pc - pb) > tolerance)
+                        found.emplace_back(t, c);
                 }
+            }
         std::sort(found.begin(), found.end());
         std::vector<std::uint32_t> out;
         for (const auto& [t, c] : found) out.push_back(c);
@@ -55,17 +58,23 @@ class PointBuckets {
     }
 
   private:
-    using Key = std::array<long long, 3>;
-    Key key(const Vec3& p) const {
-        Key k;
+    static constexpr std::int64_t kCells = 256; // the box's diagonal in cells
+    using Cell = std::array<std::int64_t, 3>;
+    // Clamped to the grid: no point lies outside it.
+    Cell cell_of(const Vec3& p) const {
+        Cell k;
         for (int c = 0; c < 3; ++c)
-            k[c] = static_cast<long long>(std::floor((p[c] - box_.lo[c]) / cell_));
+            k[c] = std::clamp<std::int64_t>(
+                static_cast<std::int64_t>(std::floor((p[c] - box_.lo[c]) / cell_)), 0, kCells);
         return k;
+    }
+    static std::uint64_t code(const Cell& k) {
+        return std::uint64_t((k[0] * (kCells + 1) + k[1]) * (kCells + 1) + k[2]);
     }
     const Points& points_;
     Box box_;
     double cell_ = 1;
-    std::map<Key, std::vector<std::uint32_t>> buckets_;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> by_cell_; // (cell's code, point)
 };
 
 // Each region's outline edges, split at the other regions' outline points lying on them.
@@ -91,15 +100,31 @@ split_at_foreign_points(const std::vector<Region>& regions, const Points& points
     return split;
 }
 
+// The outline edges (each once, by key) with the regions on them, and the edges at each
+// point: sorted arrays, found by binary search.
 struct Runs {
-    std::unordered_map<EdgeKey, std::vector<std::uint32_t>> regions_of; // sorted, unique
-    std::unordered_map<std::uint32_t, std::vector<EdgeKey>> edges_at;
+    std::vector<EdgeKey> edges;            // sorted
+    std::vector<std::size_t> region_start; // edges.size() + 1: regions of edge i in
+    std::vector<std::uint32_t> regions;    // regions[region_start[i] .. region_start[i + 1])
+    std::vector<std::size_t> edge_start;   // points + 1: edges at point v in
+    std::vector<std::size_t> edges_at;     // edges_at[edge_start[v] .. edge_start[v + 1])
+
+    std::size_t index(EdgeKey e) const {
+        return std::size_t(std::lower_bound(edges.begin(), edges.end(), e) - edges.begin());
+    }
+    std::span<const std::uint32_t> regions_of(std::size_t edge) const {
+        return {regions.data() + region_start[edge], regions.data() + region_start[edge + 1]};
+    }
+    std::span<const std::size_t> edges_of(std::uint32_t v) const {
+        return {edges_at.data() + edge_start[v], edges_at.data() + edge_start[v + 1]};
+    }
     // A point no region needs: two outline edges meet there in a straight line, with the same
     // regions on both.
     bool droppable(std::uint32_t v, const Points& points, double tolerance) const {
-        const auto& at = edges_at.at(v);
-        if (at.size() != 2 || regions_of.at(at[0]) != regions_of.at(at[1])) return false;
-        const auto p = other_end(at[0], v), q = other_end(at[1], v);
+        const auto at = edges_of(v);
+        if (at.size() != 2 || !std::ranges::equal(regions_of(at[0]), regions_of(at[1])))
+            return false;
+        const auto p = other_end(edges[at[0]], v), q = other_end(edges[at[1]], v);
         const Vec3 pv = points.position[v], pp = points.position[p], pq = points.position[q];
         const Vec3 d = normalized(pq - pp);
         const Vec3 off = (pv - pp) - d * dot(pv - pp, d);
@@ -111,19 +136,55 @@ struct Runs {
     }
 };
 
-// The straight run through edge e: points from one kept end to the other.
-std::vector<std::uint32_t> walk_run(EdgeKey e, const Runs& runs, const Points& points,
-                                    double tolerance, std::unordered_set<EdgeKey>& seen) {
-    const auto a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
-    seen.insert(e);
+Runs incidence_of(const std::vector<std::vector<std::array<std::uint32_t, 2>>>& split,
+                  std::size_t point_count) {
+    std::vector<std::pair<EdgeKey, std::uint32_t>> on; // (edge, region)
+    for (std::uint32_t r = 0; r < split.size(); ++r)
+        for (const auto& [a, b] : split[r])
+            if (a != b) on.emplace_back(edge_key(a, b), r);
+    std::sort(on.begin(), on.end());
+    on.erase(std::unique(on.begin(), on.end()), on.end());
+    Runs runs;
+    for (std::size_t k = 0; k < on.size(); ++k) {
+        if (k == 0 || on[k].first != on[k - 1].first) {
+            runs.edges.push_back(on[k].first);
+            runs.region_start.push_back(runs.regions.size());
+        }
+        runs.regions.push_back(on[k].second);
+    }
+    runs.region_start.push_back(runs.regions.size());
+    runs.edge_start.assign(point_count + 1, 0);
+    for (const auto e : runs.edges) {
+        ++runs.edge_start[(e >> 32) + 1];
+        ++runs.edge_start[std::uint32_t(e) + 1];
+    }
+    for (std::size_t v = 0; v < point_count; ++v) runs.edge_start[v + 1] += runs.edge_start[v];
+    runs.edges_at.resize(2 * runs.edges.size());
+    auto fill = runs.edge_start;
+    for (std::size_t i = 0; i < runs.edges.size(); ++i) {
+        runs.edges_at[fill[runs.edges[i] >> 32]++] = i;
+        runs.edges_at[fill[std::uint32_t(runs.edges[i])]++] = i;
+    }
+    return runs;
+}
+
+// The straight run through edge e: points from one kept end to the other; the edges it
+// takes are marked in `seen`.
+std::vector<std::uint32_t> walk_run(std::size_t e, const Runs& runs, const Points& points,
+                                    double tolerance, std::vector<char>& seen) {
+    const auto a = static_cast<std::uint32_t>(runs.edges[e] >> 32),
+               b = static_cast<std::uint32_t>(runs.edges[e]);
+    seen[e] = 1;
     auto extend = [&](std::uint32_t from, std::uint32_t at) {
         std::vector<std::uint32_t> chain{at};
         while (runs.droppable(at, points, tolerance)) {
-            const auto& two = runs.edges_at.at(at);
-            const auto next_edge = Runs::other_end(two[0], at) == from ? two[1] : two[0];
-            if (!seen.insert(next_edge).second) break;
+            const auto two = runs.edges_of(at);
+            const auto next_edge =
+                Runs::other_end(runs.edges[two[0]], at) == from ? two[1] : two[0];
+            if (seen[next_edge]) break;
+            seen[next_edge] = 1;
             from = at;
-            at = Runs::other_end(next_edge, at);
+            at = Runs::other_end(runs.edges[next_edge], at);
             chain.push_back(at);
         }
         return chain;
@@ -194,41 +255,33 @@ std::vector<Run> find_runs(const std::vector<std::vector<std::array<std::uint32_
                            const std::vector<Region>& regions, const Points& points,
                            double tolerance, std::vector<std::vector<std::size_t>>& runs_of_region,
                            std::size_t& dropped) {
-    Runs incidence;
-    for (std::uint32_t r = 0; r < split.size(); ++r)
-        for (const auto& [a, b] : split[r]) {
-            if (a == b) continue;
-            auto& on = incidence.regions_of[edge_key(a, b)];
-            if (on.empty() || on.back() != r) on.push_back(r);
-            for (const auto v : {a, b}) {
-                auto& at = incidence.edges_at[v];
-                if (std::find(at.begin(), at.end(), edge_key(a, b)) == at.end())
-                    at.push_back(edge_key(a, b));
-            }
-        }
-    std::unordered_set<EdgeKey> seen;
-    std::unordered_map<EdgeKey, std::size_t> run_of;
+    const auto incidence = incidence_of(split, points.position.size());
+    std::vector<char> seen(incidence.edges.size(), 0);
+    std::vector<std::size_t> run_of(incidence.edges.size());
     std::vector<Run> runs;
     for (std::uint32_t r = 0; r < split.size(); ++r)
         for (const auto& [a, b] : split[r]) {
-            if (a == b || seen.count(edge_key(a, b))) continue;
+            if (a == b) continue;
+            const auto e = incidence.index(edge_key(a, b));
+            if (seen[e]) continue;
             Run run;
-            run.chain = walk_run(edge_key(a, b), incidence, points, tolerance, seen);
+            run.chain = walk_run(e, incidence, points, tolerance, seen);
             for (std::size_t k = 0; k + 1 < run.chain.size(); ++k)
-                run_of[edge_key(run.chain[k], run.chain[k + 1])] = runs.size();
+                run_of[incidence.index(edge_key(run.chain[k], run.chain[k + 1]))] = runs.size();
             dropped += run.chain.size() - 2;
-            run.regions = incidence.regions_of.at(edge_key(a, b));
-            for (const auto on : run.regions)
-                if (regions[on].piece > 0)
-                    run.cell =
-                        run.cell > 0 ? std::min(run.cell, regions[on].piece) : regions[on].piece;
+            const auto on = incidence.regions_of(e);
+            run.regions.assign(on.begin(), on.end());
+            for (const auto region : run.regions)
+                if (regions[region].piece > 0)
+                    run.cell = run.cell > 0 ? std::min(run.cell, regions[region].piece)
+                                            : regions[region].piece;
             runs.push_back(std::move(run));
         }
     runs_of_region.assign(split.size(), {});
     for (std::uint32_t r = 0; r < split.size(); ++r) {
         auto& mine = runs_of_region[r];
         for (const auto& [a, b] : split[r])
-            if (a != b) mine.push_back(run_of.at(edge_key(a, b)));
+            if (a != b) mine.push_back(run_of[incidence.index(edge_key(a, b))]);
         std::sort(mine.begin(), mine.end());
         mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
     }
