@@ -108,6 +108,18 @@ int main(int argc, char** argv) {
     app.add_option("--rays", options.rays, "hemisphere: rays per patch")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000000));
+    app.add_option("--resolution", options.resolution,
+                   "hemicube: pixels across the hemi-cube's top face, even (default " +
+                       std::to_string(rad::kDefaultHemicubeResolution) + ": " +
+                       std::to_string(rad::hemicube_rays(rad::kDefaultHemicubeResolution)) +
+                       " rays a patch)")
+        ->check(CLI::Range(2, rad::kMaxHemicubeResolution));
+    app.add_option("--hemicube-origin", options.hemicube_origin,
+                   "hemicube: spread (each pixel's ray from its own point of the patch: the "
+                   "patch's form factor) or centre (the paper's: the form factor from the "
+                   "patch's centre, aliasing small far patches)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"spread", "centre"}));
     app.add_option("--seed", options.seed, "Seed for every random choice")->capture_default_str();
     rad::tool::add_threads_option(app, threads);
     app.add_option("--max-memory", max_memory,
@@ -156,13 +168,14 @@ int main(int argc, char** argv) {
         rad::check_ray_precision(mesh.vertices, input);
         const auto need = rad::estimate_form_factor_memory(mesh, options);
         if (need > limit)
-            throw rad::InputError(input + ": " + options.method + " form factors for " +
-                                  std::to_string(mesh.patches.size()) + " patches need up to " +
-                                  rad::human_bytes(double(need)) + ", more than --max-memory " +
-                                  rad::human_bytes(double(limit)) +
-                                  (options.method == "hemisphere"
-                                       ? " (use fewer --rays or a coarser mesh)"
-                                       : " (use --method hemisphere or a coarser mesh)"));
+            throw rad::InputError(
+                input + ": " + options.method + " form factors for " +
+                std::to_string(mesh.patches.size()) + " patches need up to " +
+                rad::human_bytes(double(need)) + ", more than --max-memory " +
+                rad::human_bytes(double(limit)) +
+                (options.method == "hemisphere" ? " (use fewer --rays or a coarser mesh)"
+                 : options.method == "hemicube" ? " (use a lower --resolution or a coarser mesh)"
+                                                : " (use --method hemisphere or a coarser mesh)"));
 
         const auto range =
             rows.empty() ? rad::RowRange{} : rad::parse_rows(rows, mesh.patches.size());

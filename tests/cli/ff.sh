@@ -1,8 +1,8 @@
 # rad-ff: byte-identical output at 1 and 2 threads, memory refusal, summary.
 source "$(dirname "$0")/lib.sh"
 cornell_mesh 0.1
-for method in analytic pairwise hemisphere; do
-  extra=""; [ $method = pairwise ] && extra="--samples 16"
+for method in analytic pairwise hemisphere hemicube; do
+  extra=""; [ $method = pairwise ] && extra="--samples 16"; [ $method = hemicube ] && extra="--resolution 20"
   # The same command (the output path is part of the recorded command line), then compare.
   "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/c.ff" --method $method --threads 1 --seed 5 $extra -q || fail "$method 1 thread"
   mv "$TMP/c.ff" "$TMP/1.ff"
@@ -34,6 +34,10 @@ expect_error "more than --max-memory" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o
 # --rays is refused at once instead of allocating gigabytes.
 expect_error "need up to 3.0 GiB, more than --max-memory 100.0 MiB (use fewer --rays" "$TMP/m.ff" \
   "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --method hemisphere --rays 100000000 --max-memory 100M
+expect_error "more than --max-memory 100.0 MiB (use a lower --resolution" "$TMP/m.ff" \
+  "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --method hemicube --resolution 4096 --max-memory 100M
+expect_error "the hemi-cube's resolution is an even number from 2 to 4096" "$TMP/h.ff" \
+  "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/h.ff" --method hemicube --resolution 51
 expect_error "not a size" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --max-memory lots
 # Interrupted: no output file and no temporary left behind.
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/big.mesh" --max-edge 0.02 -q

@@ -20,11 +20,21 @@ inline constexpr std::size_t kAutoAnalyticPatches = 2500;
 // The method "auto" stands for with this many patches.
 std::string automatic_form_factor_method(std::size_t patches);
 
+// The hemi-cube's pixels across its top face by default: 3 R^2 rays a patch (7500), about
+// what hemisphere casts by default.
+inline constexpr int kDefaultHemicubeResolution = 50, kMaxHemicubeResolution = 4096;
+// Rays (pixels) of a hemi-cube: the top face R x R and four half faces R x R/2.
+inline constexpr std::uint64_t hemicube_rays(int resolution) {
+    return 3 * std::uint64_t(resolution) * std::uint64_t(resolution);
+}
+
 struct FormFactorOptions {
     std::string method = "analytic"; // a name from form_factor_methods()
     int samples = 0;                 // points per patch, rounded to a square (0: the method's)
     int visibility_rays = 1;         // analytic: rays per sample point towards the other patch
     int rays = 8192;                 // hemisphere: rays per patch
+    int resolution = 0;              // hemicube: pixels across its top face, even (0: the method's)
+    std::string hemicube_origin = "spread"; // hemicube: rays from over the patch, or "centre"
     std::uint64_t seed = 1;
     bool quiet = false;
 };

@@ -8,6 +8,7 @@
     X(analytic)                    \
     X(pairwise)                    \
     X(hemisphere)                  \
+    X(hemicube)                    \
     /* one X(name) line per method, above this line */
 // clang-format on
 
