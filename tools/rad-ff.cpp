@@ -1,4 +1,5 @@
 // rad-ff: patch mesh -> cached sparse form-factor matrix.
+#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
@@ -127,6 +128,7 @@ int main(int argc, char** argv) {
                    "80% of physical memory)");
     app.add_flag("-q,--quiet", options.quiet, "No progress and no summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
+    rad::tool::restart_with_huge_pages(argv);
 
     return rad::tool::run_tool("rad-ff", [&] {
         if (output_option->count() == 0 && !estimate_only)

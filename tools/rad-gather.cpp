@@ -1,4 +1,5 @@
 // rad-gather: mesh + solved radiosity + points -> irradiance (or illuminance) at each point.
+#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
@@ -258,6 +259,7 @@ int main(int argc, char** argv) {
     rad::tool::add_threads_option(app, threads);
     app.add_flag("-q,--quiet", quiet, "No progress and no summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
+    rad::tool::restart_with_huge_pages(argv);
 
     return rad::tool::run_tool("rad-gather", [&] {
         rad::tool::check_outputs({mesh_path, rad_path, points_path},

@@ -1,4 +1,5 @@
 // rad-shade: mesh + radiosity + view -> linear OpenEXR image (+ PNG preview, PLY mesh).
+#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
@@ -93,6 +94,7 @@ int main(int argc, char** argv) {
                    "default: 80% of physical memory)");
     app.add_flag("-q,--quiet", quiet, "No summary");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
+    rad::tool::restart_with_huge_pages(argv);
 
     return rad::tool::run_tool("rad-shade", [&] {
         rad::tool::check_outputs({mesh_path, rad_path},

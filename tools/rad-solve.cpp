@@ -1,4 +1,5 @@
 // rad-solve: mesh + cached form factors -> per-patch radiosity.
+#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
@@ -127,6 +128,7 @@ int main(int argc, char** argv) {
     app.add_flag("-q,--quiet", quiet, "No summary");
     app.add_flag("-v,--verbose", verbose, "Log every iteration to stderr");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
+    rad::tool::restart_with_huge_pages(argv);
 
     return rad::tool::run_tool("rad-solve", [&] {
         if (!snapshot.empty()) snapshot_path(snapshot, 0); // validates the pattern first

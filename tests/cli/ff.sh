@@ -10,6 +10,11 @@ for method in analytic pairwise hemisphere hemicube; do
   mv "$TMP/c.ff" "$TMP/2.ff"
   cmp -s "$TMP/1.ff" "$TMP/2.ff" || fail "$method differs between 1 and 2 threads"
 done
+# With 4 KiB pages (the tools otherwise restart themselves once with glibc.malloc.hugetlb=1):
+# the same bytes (2.ff is the last method's, hemicube).
+RADIOSITY_HUGE_PAGES=0 "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/c.ff" --method hemicube --threads 2 --seed 5 --resolution 20 -q || fail "4 KiB pages"
+cmp -s "$TMP/c.ff" "$TMP/2.ff" || fail "rad-ff differs with 4 KiB pages"
+rm -f "$TMP/c.ff"
 err=$("$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/s.ff" 2>&1) || fail "summary run"
 grep -q "non-zeros.*rays.*rays/s.*row sums mean" <<<"$err" || fail "summary: $err"
 # --estimate: a few rows measured, the cost said in one line (and hemisphere's beside an
