@@ -140,6 +140,95 @@ void check_attribute_references(const std::string& token, std::size_t slash, Lin
 }
 
 // Checks what tinyobjloader would accept silently or report without a line number.
+// A material library named on line `line`: found, or (with --strict) refused.
+Library find_checked_library(const fs::path& obj, int line, const std::string& name,
+                             const SceneOptions& options) {
+    auto lib = find_library(obj, line, name, options);
+    if (lib.found.empty() && options.strict) {
+        std::string looked;
+        for (const auto& l : lib.looked) looked += (looked.empty() ? "" : ", ") + l;
+        throw InputError(FileLoc{obj.string(), line}, "material library '" + name +
+                                                          "' not found (looked for " + looked +
+                                                          "; --mtl-path DIR adds a folder)");
+    }
+    return lib;
+}
+
+// The words of a line, split at whitespace as `>>` splits them, without a stream.
+class Words {
+  public:
+    explicit Words(std::string_view line) : line_(line) {}
+    bool next(std::string_view& word) {
+        while (at_ < line_.size() && is_space(line_[at_])) ++at_;
+        if (at_ == line_.size()) return false;
+        const auto begin = at_;
+        while (at_ < line_.size() && !is_space(line_[at_])) ++at_;
+        word = line_.substr(begin, at_ - begin);
+        return true;
+    }
+    std::string_view rest() const { return line_.substr(at_); }
+
+  private:
+    static bool is_space(char c) {
+        return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
+    }
+    std::string_view line_;
+    std::size_t at_ = 0;
+};
+
+// A `v` line after its keyword: x y z, then at most a weight or an r g b colour.
+void lint_vertex(Words& words, const FileLoc& where) {
+    double xyz[3];
+    for (int k = 0; k < 3; ++k) {
+        std::string_view token;
+        if (!words.next(token)) throw InputError(where, "vertex needs three numbers");
+        if (spells_non_finite(token))
+            throw InputError(where, "vertex coordinate '" + std::string(token) +
+                                        "' is not a finite number");
+        if (!parse_number(token, xyz[k]))
+            throw InputError(where, "vertex coordinate '" + std::string(token) +
+                                        "' is not a decimal number within double range (such "
+                                        "as 1.5 or -2e-3)");
+    }
+    // What may follow: a weight w, or an r g b vertex colour (a common extension); numbers,
+    // in the same grammar, and nothing else.
+    std::string_view extra;
+    for (int k = 0; words.next(extra) && extra[0] != '#'; ++k) {
+        double ignored = 0;
+        if (k >= 3 || !parse_number(extra, ignored))
+            throw InputError(where, "unexpected '" + std::string(extra) +
+                                        "' after the vertex's x y z (only a weight or an r g b "
+                                        "colour may follow, as decimal numbers)");
+    }
+}
+
+// An `f` line after its keyword: at least three corners, each naming a vertex (and any vt or
+// vn) defined before it.
+void lint_face(Words& words, const FileLoc& where, bool strict, LintResult& result) {
+    std::string_view token;
+    int corners = 0;
+    while (words.next(token)) {
+        long index = 0;
+        const auto slash = token.find('/');
+        const auto head = token.substr(0, slash);
+        auto [ptr, ec] = std::from_chars(head.data(), head.data() + head.size(), index);
+        if (ec != std::errc() || ptr != head.data() + head.size())
+            throw InputError(where, "bad vertex reference '" + std::string(token) + "'");
+        const long count = static_cast<long>(result.vertex_count);
+        const long resolved = index < 0 ? count + index + 1 : index;
+        if (index == 0 || resolved < 1 || resolved > count)
+            throw InputError(where, "face refers to vertex " + std::to_string(index) +
+                                        ", but only " + std::to_string(count) +
+                                        " vertices are defined");
+        if (slash != std::string_view::npos)
+            check_attribute_references(std::string(token), slash, result, where, strict);
+        ++corners;
+    }
+    if (corners < 3)
+        throw InputError(where, "face has " + std::to_string(corners) +
+                                    " vertices; at least 3 are needed");
+}
+
 LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
     std::ifstream in(path);
     if (!in) throw InputError(path.string() + ": cannot open OBJ file");
@@ -149,101 +238,41 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
     bool have_material = false;
     const double file_bytes = std::max<double>(1, static_cast<double>(fs::file_size(path)));
     double bytes_read = 0;
+    FileLoc where{path.string(), 0}; // the line's, for messages
     while (std::getline(in, line)) {
-        ++number;
+        where.line = ++number;
         bytes_read += static_cast<double>(line.size() + 1);
         if (number % 65536 == 0) stage_fraction(options.stages, bytes_read / file_bytes);
         if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3); // UTF-8 BOM
         while (!line.empty() && (line.back() == '\r' || line.back() == '\\')) line.pop_back();
-        std::istringstream words(line);
-        std::string keyword;
-        if (!(words >> keyword) || keyword[0] == '#') continue;
+        Words words(line);
+        std::string_view keyword;
+        if (!words.next(keyword) || keyword[0] == '#') continue;
         if (keyword == "v") {
-            double xyz[3];
-            for (int k = 0; k < 3; ++k) {
-                std::string token;
-                if (!(words >> token))
-                    throw InputError(FileLoc{path.string(), number}, "vertex needs three numbers");
-                if (spells_non_finite(token))
-                    throw InputError(FileLoc{path.string(), number},
-                                     "vertex coordinate '" + token + "' is not a finite number");
-                if (!parse_number(token, xyz[k]))
-                    throw InputError(FileLoc{path.string(), number},
-                                     "vertex coordinate '" + token +
-                                         "' is not a decimal number within double range (such "
-                                         "as 1.5 or -2e-3)");
-            }
-            // What may follow: a weight w, or an r g b vertex colour (a common extension);
-            // numbers, in the same grammar, and nothing else.
-            std::string extra;
-            for (int k = 0; words >> extra && extra[0] != '#'; ++k) {
-                double ignored = 0;
-                if (k >= 3 || !parse_number(extra, ignored))
-                    throw InputError(FileLoc{path.string(), number},
-                                     "unexpected '" + extra +
-                                         "' after the vertex's x y z (only a weight or an r g b "
-                                         "colour may follow, as decimal numbers)");
-            }
+            lint_vertex(words, where);
             ++result.vertex_count;
         } else if (keyword == "vt") {
             ++result.texcoord_count;
         } else if (keyword == "vn") {
             ++result.normal_count;
         } else if (keyword == "f") {
-            std::string token;
-            int corners = 0;
-            while (words >> token) {
-                long index = 0;
-                const auto slash = token.find('/');
-                const auto head = token.substr(0, slash);
-                auto [ptr, ec] = std::from_chars(head.data(), head.data() + head.size(), index);
-                if (ec != std::errc() || ptr != head.data() + head.size())
-                    throw InputError(FileLoc{path.string(), number},
-                                     "bad vertex reference '" + token + "'");
-                const long count = static_cast<long>(result.vertex_count);
-                const long resolved = index < 0 ? count + index + 1 : index;
-                if (index == 0 || resolved < 1 || resolved > count)
-                    throw InputError(FileLoc{path.string(), number},
-                                     "face refers to vertex " + std::to_string(index) +
-                                         ", but only " + std::to_string(count) +
-                                         " vertices are defined");
-                if (slash != std::string::npos)
-                    check_attribute_references(token, slash, result, FileLoc{path.string(), number},
-                                               options.strict);
-                ++corners;
-            }
-            if (corners < 3)
-                throw InputError(FileLoc{path.string(), number},
-                                 "face has " + std::to_string(corners) +
-                                     " vertices; at least 3 are needed");
+            lint_face(words, where, options.strict, result);
             if (!have_material) {
                 if (options.strict)
-                    throw InputError(FileLoc{path.string(), number},
-                                     "face has no material (put 'usemtl NAME' before it, or "
-                                     "leave out --strict to give it a default material)");
+                    throw InputError(where, "face has no material (put 'usemtl NAME' before it, "
+                                            "or leave out --strict to give it a default material)");
                 result.faces_without_material.push_back(number);
             }
             result.face_lines.push_back(number);
         } else if (keyword == "usemtl") {
             // As tinyobjloader reads it: the first word, whatever whitespace surrounds it.
-            std::string name;
-            words >> name;
-            result.usemtl.emplace_back(number, name);
+            std::string_view name;
+            words.next(name);
+            result.usemtl.emplace_back(number, std::string(name));
             have_material = true;
         } else if (keyword == "mtllib") {
-            std::string rest;
-            std::getline(words, rest);
-            for (const auto& name : library_names(rest)) {
-                auto lib = find_library(path, number, name, options);
-                if (lib.found.empty() && options.strict) {
-                    std::string looked;
-                    for (const auto& l : lib.looked) looked += (looked.empty() ? "" : ", ") + l;
-                    throw InputError(FileLoc{path.string(), number},
-                                     "material library '" + name + "' not found (looked for " +
-                                         looked + "; --mtl-path DIR adds a folder)");
-                }
-                result.libraries.push_back(std::move(lib));
-            }
+            for (const auto& name : library_names(std::string(words.rest())))
+                result.libraries.push_back(find_checked_library(path, number, name, options));
         }
     }
     return result;
