@@ -30,6 +30,8 @@ class PairwiseKernel final : public RowKernel {
         // patches come before j.
         const std::uint64_t row_seed = row_rng.next();
         const std::size_t n = mesh.patches.size();
+        std::vector<std::array<Vec3, 4>> cells; // j's m x m cells
+        std::vector<Vec3> clipped;              // a cell's part in front of i's sample
         for (std::size_t j = 0; j < n; ++j) {
             if (j == i || !context_.in_front(i, j) || !context_.in_front(j, i)) continue;
             const auto& pj = mesh.patches[j];
@@ -42,18 +44,24 @@ class PairwiseKernel final : public RowKernel {
             const bool far = length(pj.centroid - pi.centroid) >
                              4 * std::max(context_.diameter[i], context_.diameter[j]);
             const int m = far ? m_far_ : m_near_;
+            // j's cells depend on neither the sample of i nor the random numbers: made once
+            // per pair of patches, not once per sample.
+            cells.clear();
+            for (int a = 0; a < m; ++a)
+                for (int b = 0; b < m; ++b) {
+                    double jac = 0;
+                    cells.push_back({patch_point(gj, double(a) / m, double(b) / m, jac),
+                                     patch_point(gj, double(a + 1) / m, double(b) / m, jac),
+                                     patch_point(gj, double(a + 1) / m, double(b + 1) / m, jac),
+                                     patch_point(gj, double(a) / m, double(b + 1) / m, jac)});
+                }
             double f = 0;
             for (const auto& s : far ? samples_far : samples) {
                 for (int a = 0; a < m; ++a)
                     for (int b = 0; b < m; ++b) {
-                        double jac = 0;
-                        std::array<Vec3, 4> cell{
-                            patch_point(gj, double(a) / m, double(b) / m, jac),
-                            patch_point(gj, double(a + 1) / m, double(b) / m, jac),
-                            patch_point(gj, double(a + 1) / m, double(b + 1) / m, jac),
-                            patch_point(gj, double(a) / m, double(b + 1) / m, jac)};
-                        const auto clipped = clip_to_front(cell, s.point, pi.normal);
+                        clip_to_front(cells[std::size_t(a * m + b)], s.point, pi.normal, clipped);
                         if (clipped.size() < 3) continue;
+                        double jac = 0;
                         const Vec3 target =
                             patch_point(gj, (a + rng.uniform()) / m, (b + rng.uniform()) / m, jac);
                         if (dot(target - s.point, pi.normal) <= 0) continue;
