@@ -149,6 +149,11 @@ std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
 // point's tangent plane (clip it first) and face the point.
 double point_to_polygon_form_factor(const Vec3& point, const Vec3& normal,
                                     std::span<const Vec3> polygon);
+// One edge's term of point_to_polygon_form_factor's contour sum, for the unit directions a and b
+// from the point to the edge's ends: a polygon's form factor is |the sum of its edges' terms| / 2
+// pi, and an edge walked the other way gives exactly the negated term (so cells sharing an edge
+// share it).
+double contour_edge_term(const Vec3& a, const Vec3& b, const Vec3& normal);
 
 // Closed forms for tests and checks (Howell's catalogue, C-11 and C-14).
 double parallel_rectangles_form_factor(double a, double b, double c);      // a x b, distance c

@@ -11,19 +11,21 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 }
 
+double contour_edge_term(const Vec3& a, const Vec3& b, const Vec3& normal) {
+    const Vec3 c = cross(a, b);
+    const double s = length(c);
+    if (s < 1e-15) return 0;
+    const double angle = std::atan2(s, dot(a, b));
+    return angle * dot(normal, c) / s;
+}
+
 double point_to_polygon_form_factor(const Vec3& point, const Vec3& normal,
                                     std::span<const Vec3> polygon) {
     double sum = 0;
     const std::size_t n = polygon.size();
-    for (std::size_t k = 0; k < n; ++k) {
-        const Vec3 a = normalized(polygon[k] - point);
-        const Vec3 b = normalized(polygon[(k + 1) % n] - point);
-        const Vec3 c = cross(a, b);
-        const double s = length(c);
-        if (s < 1e-15) continue;
-        const double angle = std::atan2(s, dot(a, b));
-        sum += angle * dot(normal, c) / s;
-    }
+    for (std::size_t k = 0; k < n; ++k)
+        sum += contour_edge_term(normalized(polygon[k] - point),
+                                 normalized(polygon[(k + 1) % n] - point), normal);
     return std::abs(sum) / (2 * kPi);
 }
 

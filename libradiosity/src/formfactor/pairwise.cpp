@@ -4,9 +4,80 @@
 #include "sampling.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace rad::ff {
 namespace {
+
+// Patch j's m x m cells as a grid of (m + 1)^2 points, seen from one sample point of i at a
+// time. A cell wholly in front of the sample's plane takes its form factor from its four
+// edges' contour terms, each computed once and shared with the neighbouring cell (walked
+// the other way, exactly negated): half the arctangents of a cell at a time, the same sum
+// in the same order, so the same bits. Other cells are clipped and summed whole.
+class CellGrid {
+  public:
+    void set_patch(const PatchPolygon& patch, int m) {
+        m_ = m;
+        points_.clear();
+        for (int b = 0; b <= m; ++b)
+            for (int a = 0; a <= m; ++a) {
+                double jac = 0;
+                points_.push_back(patch_point(patch, double(a) / m, double(b) / m, jac));
+            }
+    }
+    void set_sample(const Vec3& point, const Vec3& normal) {
+        point_ = point;
+        normal_ = normal;
+        direction_.resize(points_.size());
+        height_.resize(points_.size());
+        for (std::size_t k = 0; k < points_.size(); ++k) {
+            direction_[k] = normalized(points_[k] - point);
+            height_[k] = dot(points_[k] - point, normal);
+        }
+        along_a_.assign(points_.size(), kUnknown);
+        along_b_.assign(points_.size(), kUnknown);
+    }
+    // Cell (a, b)'s corners, counter-clockwise as the patch's.
+    std::array<Vec3, 4> cell(int a, int b) const {
+        return {points_[at(a, b)], points_[at(a + 1, b)], points_[at(a + 1, b + 1)],
+                points_[at(a, b + 1)]};
+    }
+    bool in_front(int a, int b) const {
+        return height_[at(a, b)] >= 0 && height_[at(a + 1, b)] >= 0 &&
+               height_[at(a + 1, b + 1)] >= 0 && height_[at(a, b + 1)] >= 0;
+    }
+    // The form factor from the sample to cell (a, b), which must be in front.
+    double form_factor(int a, int b) {
+        double sum = 0;
+        sum += edge_along_a(a, b);
+        sum += edge_along_b(a + 1, b);
+        sum += -edge_along_a(a, b + 1);
+        sum += -edge_along_b(a, b);
+        return std::abs(sum) / (2 * kPi);
+    }
+
+  private:
+    static constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+    std::size_t at(int a, int b) const { return std::size_t(b) * std::size_t(m_ + 1) + a; }
+    // The edges from point (a, b) to (a + 1, b) and to (a, b + 1).
+    double edge_along_a(int a, int b) {
+        auto& term = along_a_[at(a, b)];
+        if (std::isnan(term))
+            term = contour_edge_term(direction_[at(a, b)], direction_[at(a + 1, b)], normal_);
+        return term;
+    }
+    double edge_along_b(int a, int b) {
+        auto& term = along_b_[at(a, b)];
+        if (std::isnan(term))
+            term = contour_edge_term(direction_[at(a, b)], direction_[at(a, b + 1)], normal_);
+        return term;
+    }
+    int m_ = 1;
+    Vec3 point_{}, normal_{};
+    std::vector<Vec3> points_, direction_;
+    std::vector<double> height_, along_a_, along_b_;
+};
 
 class PairwiseKernel final : public RowKernel {
   public:
@@ -30,8 +101,8 @@ class PairwiseKernel final : public RowKernel {
         // patches come before j.
         const std::uint64_t row_seed = row_rng.next();
         const std::size_t n = mesh.patches.size();
-        std::vector<std::array<Vec3, 4>> cells; // j's m x m cells
-        std::vector<Vec3> clipped;              // a cell's part in front of i's sample
+        CellGrid grid;             // j's m x m cells
+        std::vector<Vec3> clipped; // a cell's part in front of i's sample
         for (std::size_t j = 0; j < n; ++j) {
             if (j == i || !context_.in_front(i, j) || !context_.in_front(j, i)) continue;
             const auto& pj = mesh.patches[j];
@@ -44,30 +115,26 @@ class PairwiseKernel final : public RowKernel {
             const bool far = length(pj.centroid - pi.centroid) >
                              4 * std::max(context_.diameter[i], context_.diameter[j]);
             const int m = far ? m_far_ : m_near_;
-            // j's cells depend on neither the sample of i nor the random numbers: made once
-            // per pair of patches, not once per sample.
-            cells.clear();
-            for (int a = 0; a < m; ++a)
-                for (int b = 0; b < m; ++b) {
-                    double jac = 0;
-                    cells.push_back({patch_point(gj, double(a) / m, double(b) / m, jac),
-                                     patch_point(gj, double(a + 1) / m, double(b) / m, jac),
-                                     patch_point(gj, double(a + 1) / m, double(b + 1) / m, jac),
-                                     patch_point(gj, double(a) / m, double(b + 1) / m, jac)});
-                }
+            grid.set_patch(gj, m);
             double f = 0;
             for (const auto& s : far ? samples_far : samples) {
+                grid.set_sample(s.point, pi.normal);
                 for (int a = 0; a < m; ++a)
                     for (int b = 0; b < m; ++b) {
-                        clip_to_front(cells[std::size_t(a * m + b)], s.point, pi.normal, clipped);
-                        if (clipped.size() < 3) continue;
+                        const bool whole = grid.in_front(a, b);
+                        if (!whole) {
+                            clip_to_front(grid.cell(a, b), s.point, pi.normal, clipped);
+                            if (clipped.size() < 3) continue;
+                        }
                         double jac = 0;
                         const Vec3 target =
                             patch_point(gj, (a + rng.uniform()) / m, (b + rng.uniform()) / m, jac);
                         if (dot(target - s.point, pi.normal) <= 0) continue;
                         ++rays;
                         if (!context_.scene.visible(s.point, target)) continue;
-                        f += s.weight * point_to_polygon_form_factor(s.point, pi.normal, clipped);
+                        f += s.weight *
+                             (whole ? grid.form_factor(a, b)
+                                    : point_to_polygon_form_factor(s.point, pi.normal, clipped));
                     }
             }
             if (f > 0) row.emplace_back(static_cast<std::uint32_t>(j), static_cast<float>(f));
