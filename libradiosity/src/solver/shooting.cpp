@@ -61,131 +61,170 @@ class ShootingState {
     std::vector<std::size_t> rho_at_;
 };
 
-} // namespace
-
 // Progressive refinement (Cohen et al. 1988): shoot the unshot radiosity of the patch with
 // the most unshot power. Row i of F holds F_ij; reciprocity gives the shares
-// F_ji = F_ij A_i / A_j that the receivers j take.
+// F_ji = F_ij A_i / A_j that the receivers j take. With `ambient` (APR), what is shown adds
+// Cohen's ambient term.
+class ProgressiveRefinement {
+  public:
+    ProgressiveRefinement(const TransportOperator& op, const Channels& emission, bool ambient)
+        : op_(op), n_(op.patch_count()), channels_(emission.channels), ambient_(ambient),
+          state_(op, emission), mean_reflectance_(channels_, 0.0), b_power_(channels_, 0.0),
+          unshot_total_(channels_, 0.0), shot_(channels_), choice_(powers()) {
+        for (std::size_t i = 0; i < n_; ++i) {
+            double e = 0;
+            for (std::size_t c = 0; c < channels_; ++c) e += emission.at(i, c);
+            emitted_ += e * op.area[i];
+            total_area_ += op.area[i];
+            for (std::size_t c = 0; c < channels_; ++c)
+                mean_reflectance_[c] += op.rho(i, c) * op.area[i];
+        }
+        for (auto& r : mean_reflectance_) r = total_area_ > 0 ? r / total_area_ : 0;
+        sum_totals();
+    }
+    // One shot from the patch with the most unshot power; false when none has any.
+    bool shoot_once();
+    // The unshot power as a fraction of the emitted.
+    double unshot_fraction() const {
+        return emitted_ > 0 ? std::max(0.0, unshot_power_) / emitted_ : 0;
+    }
+    // B (with APR's ambient term), and its power per channel.
+    Channels displayed() const;
+    std::vector<double> displayed_power() const;
+
+  private:
+    std::vector<double> powers() const {
+        std::vector<double> power(n_);
+        for (std::size_t i = 0; i < n_; ++i) power[i] = state_.power(state_.patch(i));
+        return power;
+    }
+    void sum_totals();
+    // 1 - mean rho of channel c: APR's interreflection factor is its inverse.
+    double one_minus_reflectance(std::size_t c) const {
+        return 1 - std::min(mean_reflectance_[c], 0.999999);
+    }
+
+    const TransportOperator& op_;
+    std::size_t n_, channels_;
+    bool ambient_;
+    ShootingState state_;
+    double emitted_ = 0, total_area_ = 0;
+    std::vector<double> mean_reflectance_;
+    // The power of B and of the unshot radiosity, kept up to date shot by shot, so the record
+    // of a shot costs O(channels), not a sum over every patch; summed afresh every n shots
+    // (first at the start), so their rounding does not drift.
+    double unshot_power_ = 0;
+    std::vector<double> b_power_, unshot_total_, shot_;
+    ShooterChoice choice_;
+    std::size_t shots_ = 0;
+};
+
+void ProgressiveRefinement::sum_totals() {
+    unshot_power_ = 0;
+    std::fill(b_power_.begin(), b_power_.end(), 0.0);
+    std::fill(unshot_total_.begin(), unshot_total_.end(), 0.0);
+    for (std::size_t i = 0; i < n_; ++i) {
+        const double* s = state_.patch(i);
+        unshot_power_ += state_.power(s);
+        for (std::size_t c = 0; c < channels_; ++c) {
+            b_power_[c] += state_.b(s)[c] * op_.area[i];
+            unshot_total_[c] += state_.unshot(s)[c] * op_.area[i];
+        }
+    }
+}
+
+bool ProgressiveRefinement::shoot_once() {
+    if (shots_ > 0 && shots_ % std::max<std::size_t>(n_, 1) == 0) sum_totals();
+    const std::size_t shooter = choice_.best();
+    if (shooter == ShooterChoice::kNone) return false;
+    ++shots_;
+    const auto& ff = *op_.form_factors;
+    double* from = state_.patch(shooter);
+    unshot_power_ -= state_.power(from);
+    for (std::size_t c = 0; c < channels_; ++c) {
+        shot_[c] = state_.unshot(from)[c];
+        state_.unshot(from)[c] = 0;
+        unshot_total_[c] -= shot_[c] * op_.area[shooter];
+    }
+    choice_.lower(shooter, 0);
+    const double a_i = op_.area[shooter];
+    const auto row_end = ff.row_start[shooter + 1];
+    for (auto k = ff.row_start[shooter]; k < row_end; ++k) {
+        // The receivers are known ahead: their state is asked for a few receivers early, so
+        // its cache misses overlap instead of stalling each reception in turn.
+        if (k + kPrefetchAhead < row_end) state_.prefetch(ff.columns[k + kPrefetchAhead]);
+        const auto j = ff.columns[k];
+        double* to = state_.patch(j);
+        const double a_j = ShootingState::area(to);
+        const double f_ji = ff.values[k] * a_i / a_j;
+        for (std::size_t c = 0; c < channels_; ++c) {
+            const double received = state_.rho(to, c) * shot_[c] * f_ji;
+            state_.b(to)[c] += received;
+            state_.unshot(to)[c] += received;
+            unshot_power_ += received * a_j;
+            b_power_[c] += received * a_j;
+            unshot_total_[c] += received * a_j;
+        }
+        choice_.raise(j, state_.power(to));
+    }
+    return true;
+}
+
+// APR's ambient term adds sum_i A_i rho_i x ambient = mean rho x unshot power x the
+// interreflection factor, per channel.
+std::vector<double> ProgressiveRefinement::displayed_power() const {
+    auto power = b_power_;
+    if (ambient_)
+        for (std::size_t c = 0; c < channels_; ++c)
+            power[c] += mean_reflectance_[c] * unshot_total_[c] / one_minus_reflectance(c);
+    return power;
+}
+
+// APR's display adds rho_i times Cohen's ambient estimate: the unshot power spread over the
+// scene and multiplied by the interreflection factor.
+Channels ProgressiveRefinement::displayed() const {
+    Channels shown = state_.take(false);
+    if (!ambient_) return shown;
+    const Channels unshot = state_.take(true);
+    std::vector<double> unshot_mean(channels_, 0.0);
+    for (std::size_t i = 0; i < n_; ++i)
+        for (std::size_t c = 0; c < channels_; ++c)
+            unshot_mean[c] += unshot.at(i, c) * op_.area[i] / total_area_;
+    for (std::size_t i = 0; i < n_; ++i)
+        for (std::size_t c = 0; c < channels_; ++c)
+            shown.at(i, c) += op_.rho(i, c) * unshot_mean[c] / one_minus_reflectance(c);
+    return shown;
+}
+
+} // namespace
+
 SolveResult shoot(const TransportOperator& op, const Channels& emission,
                   const SolveControl& control, bool ambient) {
     const auto start = std::chrono::steady_clock::now();
-    const auto& ff = *op.form_factors;
-    const std::size_t n = op.patch_count();
-    const std::size_t channels = emission.channels;
-    ShootingState state(op, emission);
-    double emitted = 0, total_area = 0;
-    std::vector<double> mean_reflectance(channels, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-        double e = 0;
-        for (std::size_t c = 0; c < channels; ++c) e += emission.at(i, c);
-        emitted += e * op.area[i];
-        total_area += op.area[i];
-        for (std::size_t c = 0; c < channels; ++c) mean_reflectance[c] += op.rho(i, c) * op.area[i];
-    }
-    for (auto& r : mean_reflectance) r = total_area > 0 ? r / total_area : 0;
-    // The power of B and of the unshot radiosity per channel, kept up to date shot by shot,
-    // so the record of a shot costs O(channels), not a sum over every patch; summed afresh
-    // every n shots (first at the start), so their rounding does not drift.
-    std::vector<double> b_power(channels, 0.0), unshot_total(channels, 0.0);
-    double unshot_power = 0;
-    auto sum_totals = [&] {
-        unshot_power = 0;
-        std::fill(b_power.begin(), b_power.end(), 0.0);
-        std::fill(unshot_total.begin(), unshot_total.end(), 0.0);
-        for (std::size_t i = 0; i < n; ++i) {
-            const double* s = state.patch(i);
-            unshot_power += state.power(s);
-            for (std::size_t c = 0; c < channels; ++c) {
-                b_power[c] += state.b(s)[c] * op.area[i];
-                unshot_total[c] += state.unshot(s)[c] * op.area[i];
-            }
-        }
-    };
-    sum_totals();
-    // APR's ambient term adds sum_i A_i rho_i x ambient = mean rho x unshot power / (1 - mean
-    // rho) per channel.
-    auto displayed_power = [&] {
-        auto power = b_power;
-        if (ambient)
-            for (std::size_t c = 0; c < channels; ++c)
-                power[c] += mean_reflectance[c] * unshot_total[c] /
-                            (1 - std::min(mean_reflectance[c], 0.999999));
-        return power;
-    };
-    auto unshot_fraction = [&](double power) { return emitted > 0 ? power / emitted : 0; };
-    // APR's display adds rho_i times Cohen's ambient estimate: the unshot power spread over
-    // the scene and multiplied by the interreflection factor 1 / (1 - mean rho).
-    auto displayed = [&]() {
-        Channels shown = state.take(false);
-        if (!ambient) return shown;
-        const Channels unshot = state.take(true);
-        std::vector<double> unshot_mean(channels, 0.0);
-        for (std::size_t i = 0; i < n; ++i)
-            for (std::size_t c = 0; c < channels; ++c)
-                unshot_mean[c] += unshot.at(i, c) * op.area[i] / total_area;
-        for (std::size_t i = 0; i < n; ++i)
-            for (std::size_t c = 0; c < channels; ++c)
-                shown.at(i, c) +=
-                    op.rho(i, c) * unshot_mean[c] / (1 - std::min(mean_reflectance[c], 0.999999));
-        return shown;
-    };
+    ProgressiveRefinement pr(op, emission, ambient);
     auto keep_going = [&](long done, double residual) {
         if (control.max_iterations > 0 && done >= control.max_iterations) return false;
         if (control.tolerance > 0 && done > 0 && residual < control.tolerance) return false;
         return true;
     };
-
-    std::vector<double> powers(n);
-    for (std::size_t i = 0; i < n; ++i) powers[i] = state.power(state.patch(i));
-    ShooterChoice choice(std::move(powers));
-    std::vector<double> shot(channels);
     long done = 0;
     double residual = 1;
     while (keep_going(done, residual)) {
-        if (done > 0 && done % static_cast<long>(std::max<std::size_t>(n, 1)) == 0) sum_totals();
-        const std::size_t shooter = choice.best();
-        if (shooter == ShooterChoice::kNone) {
+        if (!pr.shoot_once()) {
             residual = 0;
             break;
         }
-        double* from = state.patch(shooter);
-        unshot_power -= state.power(from);
-        for (std::size_t c = 0; c < channels; ++c) {
-            shot[c] = state.unshot(from)[c];
-            state.unshot(from)[c] = 0;
-            unshot_total[c] -= shot[c] * op.area[shooter];
-        }
-        choice.lower(shooter, 0);
-        const double a_i = op.area[shooter];
-        const auto row_end = ff.row_start[shooter + 1];
-        for (auto k = ff.row_start[shooter]; k < row_end; ++k) {
-            // The receivers are known ahead: their state is asked for a few receivers early,
-            // so its cache misses overlap instead of stalling each reception in turn.
-            if (k + kPrefetchAhead < row_end) state.prefetch(ff.columns[k + kPrefetchAhead]);
-            const auto j = ff.columns[k];
-            double* to = state.patch(j);
-            const double a_j = ShootingState::area(to);
-            const double f_ji = ff.values[k] * a_i / a_j;
-            for (std::size_t c = 0; c < channels; ++c) {
-                const double received = state.rho(to, c) * shot[c] * f_ji;
-                state.b(to)[c] += received;
-                state.unshot(to)[c] += received;
-                unshot_power += received * a_j;
-                b_power[c] += received * a_j;
-                unshot_total[c] += received * a_j;
-            }
-            choice.raise(j, state.power(to));
-        }
-        residual = unshot_fraction(std::max(0.0, unshot_power));
+        residual = pr.unshot_fraction();
         ++done;
         if (control.on_iteration) {
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            control.on_iteration({done, residual, displayed_power(), seconds}, displayed);
+            control.on_iteration({done, residual, pr.displayed_power(), seconds},
+                                 [&] { return pr.displayed(); });
         }
     }
     SolveResult result;
-    result.radiosity = displayed();
+    result.radiosity = pr.displayed();
     result.iterations = done;
     result.residual = residual;
     result.converged = control.tolerance > 0 && residual < control.tolerance;
