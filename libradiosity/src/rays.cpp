@@ -95,8 +95,7 @@ RayScene::RayScene(const radfmt::MeshData& mesh, RayBuild build) : impl_(std::ma
 
 RayScene::RayScene(radfmt::MeshData&& mesh, RayBuild build) : impl_(std::make_unique<Impl>()) {
     const auto size = add_geometry(mesh, build);
-    radfmt::MeshData().patches.swap(mesh.patches); // Embree holds its own copy now
-    std::vector<Vec3>().swap(mesh.vertices);
+    mesh = radfmt::MeshData(); // Embree holds its own copy now
     commit(size);
 }
 

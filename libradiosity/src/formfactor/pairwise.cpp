@@ -27,7 +27,6 @@ class CellGrid {
             }
     }
     void set_sample(const Vec3& point, const Vec3& normal) {
-        point_ = point;
         normal_ = normal;
         direction_.resize(points_.size());
         height_.resize(points_.size());
@@ -61,20 +60,16 @@ class CellGrid {
     static constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
     std::size_t at(int a, int b) const { return std::size_t(b) * std::size_t(m_ + 1) + a; }
     // The edges from point (a, b) to (a + 1, b) and to (a, b + 1).
-    double edge_along_a(int a, int b) {
-        auto& term = along_a_[at(a, b)];
-        if (std::isnan(term))
-            term = contour_edge_term(direction_[at(a, b)], direction_[at(a + 1, b)], normal_);
-        return term;
-    }
-    double edge_along_b(int a, int b) {
-        auto& term = along_b_[at(a, b)];
-        if (std::isnan(term))
-            term = contour_edge_term(direction_[at(a, b)], direction_[at(a, b + 1)], normal_);
-        return term;
+    double edge_along_a(int a, int b) { return edge(along_a_, at(a, b), at(a + 1, b)); }
+    double edge_along_b(int a, int b) { return edge(along_b_, at(a, b), at(a, b + 1)); }
+    // The term of the edge from point `from` to point `to`, kept in `terms[from]`.
+    double edge(std::vector<double>& terms, std::size_t from, std::size_t to) {
+        if (std::isnan(terms[from]))
+            terms[from] = contour_edge_term(direction_[from], direction_[to], normal_);
+        return terms[from];
     }
     int m_ = 1;
-    Vec3 point_{}, normal_{};
+    Vec3 normal_{};
     std::vector<Vec3> points_, direction_;
     std::vector<double> height_, along_a_, along_b_;
 };

@@ -15,10 +15,11 @@
 
 namespace rad {
 
-radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options,
-                           SubdivisionReport* report) {
-    SubdivisionReport local;
-    const auto elements = subdivision::make_elements(scene, options, report ? *report : local);
+namespace {
+
+// The elements' patches: one each with no limits, else over the agreed edge counts.
+radfmt::MeshData patches_of(const std::vector<subdivision::Element>& elements, const Scene& scene,
+                            const SubdivisionOptions& options) {
     radfmt::MeshData mesh;
     if (subdivision::without_limits(options)) {
         subdivision::check_estimate(elements, scene, options);
@@ -32,6 +33,15 @@ radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options
     return mesh;
 }
 
+} // namespace
+
+radfmt::MeshData subdivide(const Scene& scene, const SubdivisionOptions& options,
+                           SubdivisionReport* report) {
+    SubdivisionReport local;
+    const auto elements = subdivision::make_elements(scene, options, report ? *report : local);
+    return patches_of(elements, scene, options);
+}
+
 radfmt::MeshData clean_faces(Scene& scene, const SubdivisionOptions& options,
                              SubdivisionReport* report) {
     SubdivisionOptions whole = options;
@@ -41,11 +51,8 @@ radfmt::MeshData clean_faces(Scene& scene, const SubdivisionOptions& options,
     SubdivisionReport local;
     const auto elements = subdivision::make_elements(scene, whole, report ? *report : local);
     std::vector<Polygon>().swap(scene.polygons); // the elements hold what is left of them
-    subdivision::check_estimate(elements, scene, whole);
-    auto mesh = subdivision::make_whole_patches(elements, scene);
+    auto mesh = patches_of(elements, scene, whole);
     std::vector<Vec3>().swap(scene.vertices);
-    if (mesh.patches.size() >= radfmt::kNoVertex)
-        throw InputError(scene.path + ": too many patches for 32-bit indices");
     return mesh;
 }
 
