@@ -18,7 +18,6 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
-#include <bit>
 
 namespace rad::ff {
 namespace {
@@ -96,37 +95,23 @@ class HemicubeKernel final : public RowKernel {
     }
 
   private:
-    // Per thread: the row's sums by patch (zero between rows), and which are not zero, as a
-    // two-level bitmap read back in column order.
+    // Per thread: the row's sums by patch (zero between rows), and the patches reached.
     struct Tally {
         std::vector<double> sum;
-        std::vector<std::uint64_t> words, summary;
+        ColumnMarks reached;
         void resize(std::size_t n) {
-            if (sum.size() == n) return;
-            sum.assign(n, 0);
-            words.assign((n + 63) / 64, 0);
-            summary.assign((n + 4095) / 4096, 0);
+            if (sum.size() != n) sum.assign(n, 0);
+            reached.resize(n);
         }
         void add(std::size_t j, double weight) {
-            if (sum[j] == 0) {
-                words[j / 64] |= std::uint64_t(1) << (j % 64);
-                summary[j / 4096] |= std::uint64_t(1) << (j / 64 % 64);
-            }
+            reached.mark(j);
             sum[j] += weight;
         }
         void drain(FormFactorRow& row) {
-            for (std::size_t s = 0; s < summary.size(); ++s) {
-                for (auto bits = summary[s]; bits; bits &= bits - 1) {
-                    const std::size_t w = 64 * s + std::size_t(std::countr_zero(bits));
-                    for (auto b = words[w]; b; b &= b - 1) {
-                        const std::size_t j = 64 * w + std::size_t(std::countr_zero(b));
-                        row.emplace_back(static_cast<std::uint32_t>(j), static_cast<float>(sum[j]));
-                        sum[j] = 0;
-                    }
-                    words[w] = 0;
-                }
-                summary[s] = 0;
-            }
+            reached.drain([&](std::size_t j) {
+                row.emplace_back(static_cast<std::uint32_t>(j), static_cast<float>(sum[j]));
+                sum[j] = 0;
+            });
         }
     };
     const FormFactorContext& context_;

@@ -5,7 +5,6 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
-#include <bit>
 
 namespace rad::ff {
 namespace {
@@ -35,13 +34,10 @@ class HemisphereKernel final : public RowKernel {
         // offsets (Cranley-Patterson), so the estimate is unbiased and stratified jointly.
         const double rot[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
         // Hits are tallied in the log's row counter of each patch (beside its front and back
-        // counters); the patches hit are marked in a two-level bitmap, read back in column
-        // order (no sort), and their counters reset after.
-        auto& tally = tally_.local();
-        if (tally.hit_words.size() != (n + 63) / 64) {
-            tally.hit_words.assign((n + 63) / 64, 0);
-            tally.hit_summary.assign((n + 4095) / 4096, 0);
-        }
+        // counters); the patches hit are marked, read back in column order, and their
+        // counters reset after.
+        auto& marks = marks_.local();
+        marks.resize(n);
         for (int r = 0; r < rays_; ++r) {
             const double u0 = wrap(qmc_[r][0] + rot[0]);
             const double u1 = wrap(qmc_[r][1] + rot[1]);
@@ -58,39 +54,23 @@ class HemisphereKernel final : public RowKernel {
             // A patch cannot see itself; a hit on itself (a warped quad) is no evidence.
             log.record(static_cast<std::size_t>(hit) == i ? -1 : hit, front, traced.distance);
             if (hit >= 0 && front && static_cast<std::size_t>(hit) != i &&
-                log.row_count(static_cast<std::size_t>(hit))++ == 0) {
-                const auto j = static_cast<std::size_t>(hit);
-                tally.hit_words[j / 64] |= std::uint64_t(1) << (j % 64);
-                tally.hit_summary[j / 4096] |= std::uint64_t(1) << (j / 64 % 64);
-            }
+                log.row_count(static_cast<std::size_t>(hit))++ == 0)
+                marks.mark(static_cast<std::size_t>(hit));
         }
-        for (std::size_t s = 0; s < tally.hit_summary.size(); ++s) {
-            for (auto summary = tally.hit_summary[s]; summary; summary &= summary - 1) {
-                const std::size_t w = 64 * s + static_cast<std::size_t>(std::countr_zero(summary));
-                for (auto bits = tally.hit_words[w]; bits; bits &= bits - 1) {
-                    const std::size_t j = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
-                    auto& count = log.row_count(j);
-                    row.emplace_back(static_cast<std::uint32_t>(j),
-                                     static_cast<float>(double(count) / rays_));
-                    count = 0;
-                }
-                tally.hit_words[w] = 0;
-            }
-            tally.hit_summary[s] = 0;
-        }
+        marks.drain([&](std::size_t j) {
+            auto& count = log.row_count(j);
+            row.emplace_back(static_cast<std::uint32_t>(j),
+                             static_cast<float>(double(count) / rays_));
+            count = 0;
+        });
         return static_cast<std::uint64_t>(rays_);
     }
 
   private:
-    struct HitTally {
-        std::vector<std::uint32_t> counts;      // hits per patch, all zero between rows
-        std::vector<std::uint64_t> hit_words;   // a bit per patch: hit in this row
-        std::vector<std::uint64_t> hit_summary; // a bit per word of hit_words: not zero
-    };
     const FormFactorContext& context_;
     int rays_;
     std::vector<std::array<double, 4>> qmc_;
-    mutable tbb::enumerable_thread_specific<HitTally> tally_;
+    mutable tbb::enumerable_thread_specific<ColumnMarks> marks_; // the patches hit
 };
 
 class Hemisphere final : public FormFactorMethod {

@@ -3,7 +3,9 @@
 #include "radiosity/formfactor_method.hpp"
 #include "radiosity/vec.hpp"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <span>
 #include <vector>
@@ -45,6 +47,37 @@ std::vector<Vec3> clip_to_front(std::span<const Vec3> poly, const Vec3& point, c
 // The same into `out` (whose storage is reused); `out` must not be `poly`.
 void clip_to_front(std::span<const Vec3> poly, const Vec3& point, const Vec3& normal,
                    std::vector<Vec3>& out);
+
+// The patches a row has reached, as a two-level bitmap (a bit per patch, and a bit per word
+// of those): marked in any order, read back in column order without a sort, and cleared as
+// they are read, so a row costs its hits, not a pass over every patch.
+class ColumnMarks {
+  public:
+    void resize(std::size_t patches) {
+        if (words_.size() == (patches + 63) / 64) return;
+        words_.assign((patches + 63) / 64, 0);
+        summary_.assign((patches + 4095) / 4096, 0);
+    }
+    void mark(std::size_t j) {
+        words_[j / 64] |= std::uint64_t(1) << (j % 64);
+        summary_[j / 4096] |= std::uint64_t(1) << (j / 64 % 64);
+    }
+    // Calls visit(j) for every marked patch, ascending, and clears the marks.
+    template <class Visit> void drain(Visit&& visit) {
+        for (std::size_t s = 0; s < summary_.size(); ++s) {
+            for (auto summary = summary_[s]; summary; summary &= summary - 1) {
+                const std::size_t w = 64 * s + static_cast<std::size_t>(std::countr_zero(summary));
+                for (auto bits = words_[w]; bits; bits &= bits - 1)
+                    visit(64 * w + static_cast<std::size_t>(std::countr_zero(bits)));
+                words_[w] = 0;
+            }
+            summary_[s] = 0;
+        }
+    }
+
+  private:
+    std::vector<std::uint64_t> words_, summary_;
+};
 
 // Radical inverse in base b: the Halton sequence.
 double radical_inverse(std::uint64_t i, std::uint64_t base);
