@@ -32,6 +32,9 @@ void write_png(const std::string& path, const Image& image, double exposure);
 // 8-bit sRGB pixels, row-major, top row first, 3 bytes each.
 void write_png_rgb8(const std::string& path, int width, int height,
                     const std::vector<std::uint8_t>& pixels);
+// The same PNG as bytes in memory (for a glb's embedded images).
+std::vector<std::uint8_t> encode_png_rgb8(int width, int height,
+                                          const std::vector<std::uint8_t>& pixels);
 void write_ply(const std::string& path, const radfmt::MeshData& mesh,
                const std::vector<std::array<Rgb, 4>>& corners, double exposure);
 std::uint8_t to_srgb8(double linear);

@@ -157,6 +157,24 @@ void write_png_rgb8(const std::string& path, int width, int height,
     });
 }
 
+std::vector<std::uint8_t> encode_png_rgb8(int width, int height,
+                                          const std::vector<std::uint8_t>& pixels) {
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    png.width = static_cast<png_uint_32>(width);
+    png.height = static_cast<png_uint_32>(height);
+    png.format = PNG_FORMAT_RGB;
+    png_alloc_size_t bytes = 0;
+    // First call sizes the buffer, the second fills it.
+    if (!png_image_write_to_memory(&png, nullptr, &bytes, 0, pixels.data(), 0, nullptr))
+        throw InternalError(std::string("cannot encode PNG: ") + png.message);
+    std::vector<std::uint8_t> out(bytes);
+    if (!png_image_write_to_memory(&png, out.data(), &bytes, 0, pixels.data(), 0, nullptr))
+        throw InternalError(std::string("cannot encode PNG: ") + png.message);
+    out.resize(bytes);
+    return out;
+}
+
 void write_ply(const std::string& path, const radfmt::MeshData& mesh,
                const std::vector<std::array<Rgb, 4>>& corners, double exposure) {
     radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {

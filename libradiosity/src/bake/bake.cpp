@@ -1,0 +1,49 @@
+// From a solution to what a glb holds: smoothed corner colours, or charts and lightmaps.
+#include "radiosity/bake.hpp"
+#include "radiosity/image_io.hpp"
+
+namespace rad {
+
+std::vector<std::uint8_t> lightmap_pixels(const Lightmap& map, double exposure) {
+    std::vector<std::uint8_t> pixels(map.rgb.size());
+    for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = to_srgb8(map.rgb[i] * exposure);
+    return pixels;
+}
+
+BakeResult bake(const radfmt::MeshData& mesh, const std::vector<Rgb>& radiosity,
+                const std::vector<std::pair<std::string, std::vector<Rgb>>>& groups,
+                const BakeOptions& options) {
+    BakeResult result;
+    result.scene.mesh = &mesh;
+    auto corners = corner_colours(mesh, radiosity, options.smoothing, options.crease_deg);
+    if (options.lightmap_size == 0) {
+        for (auto& patch : corners)
+            for (auto& c : patch)
+                for (auto& channel : c) channel *= options.exposure;
+        result.scene.corner_colours = std::move(corners);
+        return result;
+    }
+    const auto charts = build_charts(mesh, options.chart_angle_deg);
+    result.charts = charts.size();
+    result.layout =
+        pack_atlas(charts, options.lightmap_size, options.texels_per_metre, options.padding);
+    result.lightmap = render_lightmap(mesh, charts, result.layout, corners);
+    result.scene.lightmap_uv = atlas_uv(mesh, charts, result.layout);
+    result.scene.surface_uv = chart_uv(mesh, charts);
+    const int size = result.layout.size;
+    result.scene.lightmap_png =
+        encode_png_rgb8(size, size, lightmap_pixels(result.lightmap, options.exposure));
+    for (const auto& [name, values] : groups) {
+        const auto group_corners =
+            corner_colours(mesh, values, options.smoothing, options.crease_deg);
+        result.group_lightmaps.push_back(
+            render_lightmap(mesh, charts, result.layout, group_corners));
+        result.scene.group_lightmaps_png.emplace_back(
+            name,
+            encode_png_rgb8(size, size,
+                            lightmap_pixels(result.group_lightmaps.back(), options.exposure)));
+    }
+    return result;
+}
+
+} // namespace rad

@@ -1,0 +1,158 @@
+// Rendering smoothed radiosity into the atlas: texel centres interpolated inside each patch,
+// then each chart's rectangle filled outward from its texels.
+#include "radiosity/bake.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+namespace rad {
+
+namespace {
+
+struct TexelPoint {
+    double x, y; // texel coordinates (centres at +0.5)
+    Rgb colour;
+};
+
+TexelPoint corner_texel(const Chart& chart, std::size_t i, int k, const AtlasLayout& layout,
+                        std::size_t chart_index, const Rgb& colour) {
+    const auto& o = layout.origin[chart_index];
+    return {o[0] + layout.padding + chart.corner_uv[i][k][0] * layout.texels_per_metre,
+            o[1] + layout.padding + chart.corner_uv[i][k][1] * layout.texels_per_metre, colour};
+}
+
+void put(Lightmap& map, int x, int y, const Rgb& c, Lightmap::State state) {
+    const std::size_t at = std::size_t(y) * map.size + x;
+    map.state[at] = state;
+    for (int ch = 0; ch < 3; ++ch) map.rgb[3 * at + ch] = static_cast<float>(c[ch]);
+}
+
+// Sets the texels whose centres lie in the triangle (not those a chart texel already has);
+// returns how many it covers, set or not.
+int rasterise_triangle(Lightmap& map, const TexelPoint& a, const TexelPoint& b,
+                       const TexelPoint& c) {
+    const double area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+    if (std::abs(area) < 1e-18) return 0;
+    const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))));
+    const int x1 = std::min(map.size - 1, static_cast<int>(std::floor(std::max({a.x, b.x, c.x}))));
+    const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
+    const int y1 = std::min(map.size - 1, static_cast<int>(std::floor(std::max({a.y, b.y, c.y}))));
+    const double eps = 1e-9;
+    int covered = 0;
+    for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+            const double px = x + 0.5, py = y + 0.5;
+            const double wa = ((b.x - px) * (c.y - py) - (c.x - px) * (b.y - py)) / area;
+            const double wb = ((c.x - px) * (a.y - py) - (a.x - px) * (c.y - py)) / area;
+            const double wc = 1 - wa - wb;
+            if (wa < -eps || wb < -eps || wc < -eps) continue;
+            ++covered;
+            if (map.state[std::size_t(y) * map.size + x] == Lightmap::kChart) continue;
+            Rgb colour;
+            for (int ch = 0; ch < 3; ++ch)
+                colour[ch] = a.colour[ch] * wa + b.colour[ch] * wb + c.colour[ch] * wc;
+            put(map, x, y, colour, Lightmap::kChart);
+        }
+    }
+    return covered;
+}
+
+// Fills the rectangle's other texels from its chart texels, breadth first over 8 neighbours:
+// each gets the value of a chart texel at the least Chebyshev distance.
+void fill_rectangle(Lightmap& map, const std::array<int, 2>& origin,
+                    const std::array<int, 2>& extent) {
+    std::deque<std::array<int, 2>> queue;
+    for (int y = origin[1]; y < origin[1] + extent[1]; ++y)
+        for (int x = origin[0]; x < origin[0] + extent[0]; ++x)
+            if (map.state[std::size_t(y) * map.size + x] == Lightmap::kChart)
+                queue.push_back({x, y});
+    while (!queue.empty()) {
+        const auto [x, y] = queue.front();
+        queue.pop_front();
+        const std::size_t from = std::size_t(y) * map.size + x;
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int nx = x + dx, ny = y + dy;
+                if (nx < origin[0] || ny < origin[1] || nx >= origin[0] + extent[0] ||
+                    ny >= origin[1] + extent[1])
+                    continue;
+                const std::size_t to = std::size_t(ny) * map.size + nx;
+                if (map.state[to] != Lightmap::kEmpty) continue;
+                map.state[to] = Lightmap::kPadding;
+                for (int ch = 0; ch < 3; ++ch) map.rgb[3 * to + ch] = map.rgb[3 * from + ch];
+                queue.push_back({nx, ny});
+            }
+        }
+    }
+}
+
+} // namespace
+
+Lightmap render_lightmap(const radfmt::MeshData& mesh, const std::vector<Chart>& charts,
+                         const AtlasLayout& layout,
+                         const std::vector<std::array<Rgb, 4>>& corner_colours) {
+    Lightmap map;
+    map.size = layout.size;
+    map.rgb.assign(std::size_t(map.size) * map.size * 3, 0.0f);
+    map.state.assign(std::size_t(map.size) * map.size, Lightmap::kEmpty);
+    for (std::size_t c = 0; c < charts.size(); ++c) {
+        const Chart& chart = charts[c];
+        for (std::size_t i = 0; i < chart.patches.size(); ++i) {
+            const auto patch = chart.patches[i];
+            const int n = mesh.patches[patch].corner_count();
+            std::array<TexelPoint, 4> t;
+            for (int k = 0; k < n; ++k)
+                t[k] = corner_texel(chart, i, k, layout, c, corner_colours[patch][k]);
+            // As rad-shade draws a quad: two triangles from corner 0.
+            int covered = rasterise_triangle(map, t[0], t[1], t[2]);
+            if (n == 4) covered += rasterise_triangle(map, t[0], t[2], t[3]);
+            if (covered > 0) continue;
+            // A patch thinner than a texel: its centre's texel carries it.
+            TexelPoint mid{0, 0, {}};
+            for (int k = 0; k < n; ++k) {
+                mid.x += t[k].x / n;
+                mid.y += t[k].y / n;
+                for (int ch = 0; ch < 3; ++ch) mid.colour[ch] += t[k].colour[ch] / n;
+            }
+            const int x = std::clamp(static_cast<int>(mid.x), 0, map.size - 1);
+            const int y = std::clamp(static_cast<int>(mid.y), 0, map.size - 1);
+            if (map.state[std::size_t(y) * map.size + x] != Lightmap::kChart)
+                put(map, x, y, mid.colour, Lightmap::kChart);
+        }
+    }
+    for (std::size_t c = 0; c < charts.size(); ++c)
+        fill_rectangle(map, layout.origin[c], layout.extent[c]);
+    return map;
+}
+
+std::vector<std::array<std::array<float, 2>, 4>> atlas_uv(const radfmt::MeshData& mesh,
+                                                          const std::vector<Chart>& charts,
+                                                          const AtlasLayout& layout) {
+    std::vector<std::array<std::array<float, 2>, 4>> uv(mesh.patches.size());
+    for (std::size_t c = 0; c < charts.size(); ++c) {
+        const Chart& chart = charts[c];
+        for (std::size_t i = 0; i < chart.patches.size(); ++i) {
+            const auto patch = chart.patches[i];
+            for (int k = 0; k < mesh.patches[patch].corner_count(); ++k) {
+                const auto t = corner_texel(chart, i, k, layout, c, Rgb{});
+                uv[patch][k] = {static_cast<float>(t.x / layout.size),
+                                static_cast<float>(t.y / layout.size)};
+            }
+        }
+    }
+    return uv;
+}
+
+std::vector<std::array<std::array<float, 2>, 4>> chart_uv(const radfmt::MeshData& mesh,
+                                                          const std::vector<Chart>& charts) {
+    std::vector<std::array<std::array<float, 2>, 4>> uv(mesh.patches.size());
+    for (const Chart& chart : charts)
+        for (std::size_t i = 0; i < chart.patches.size(); ++i)
+            for (int k = 0; k < mesh.patches[chart.patches[i]].corner_count(); ++k)
+                uv[chart.patches[i]][k] = {static_cast<float>(chart.corner_uv[i][k][0]),
+                                           static_cast<float>(chart.corner_uv[i][k][1])};
+    return uv;
+}
+
+} // namespace rad

@@ -1,0 +1,82 @@
+# rad-bake: vertex-colour, lightmap and light-group glbs pass the Khronos glTF-Validator (the
+# Cornell box and two public fixtures); the viewer page, in headless Chromium, shows what
+# rad-shade shows from the same camera, and its sliders relight as rad-shade --mix does.
+source "$(dirname "$0")/lib.sh"
+WEB="$SRC/web"
+[ -d "$WEB/node_modules/gltf-validator" ] && [ -d "$WEB/node_modules/puppeteer-core" ] ||
+  { echo "FAIL: web/node_modules is missing: run scripts/install-deps"; exit 1; }
+command -v chromium >/dev/null || { echo "FAIL: chromium is missing: run scripts/install-deps"; exit 1; }
+validate() { node "$WEB/validate-gltf.mjs" "$@" || fail "glTF-Validator: $*"; }
+# page_matches PAGE REFERENCE [SETTINGS]: the page's pixels within 1% of the reference's.
+page_matches() {
+  local out
+  out=$(node "$WEB/test-viewer.mjs" --page "$1" --reference "$2" --max-difference 0.01 ${3:+--set "$3"} 2>&1) ||
+    fail "page $1 against $2 ${3:-}: $out"
+  echo "$out"
+}
+
+cornell_mesh 0.05
+"$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/c.ff" -q
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/c.rad" -q
+VF="$SRC/scenes/cornell/cornell.vf"
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/c.exr" --view-file "$VF" --png "$TMP/c.png" -q
+
+# Vertex colours and a 512x512 lightmap, each with its page.
+"$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/vc.glb" --html "$TMP/vc.html" --view-file "$VF" -q ||
+  fail "vertex-colour bake"
+err=$("$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/lm.glb" --lightmap 512 --html "$TMP/lm.html" \
+  --view-file "$VF" --exr "$TMP/lm.exr" --png "$TMP/lm.png" 2>&1) || fail "lightmap bake: $err"
+grep -q "rad-bake: wrote .*lm.glb (971 patches, 16 charts in a 512x512 lightmap at [0-9.]* texels/m), exposure" <<<"$err" || fail "summary: $err"
+head -c 8 "$TMP/lm.png" | od -An -c | grep -q "P   N   G" || fail "atlas png"
+if command -v exrheader >/dev/null; then
+  exrheader "$TMP/lm.exr" | grep -q "dataWindow (type box2i): (0 0) - (511 511)" || fail "atlas exr size"
+fi
+validate "$TMP/vc.glb" "$TMP/lm.glb"
+page_matches "$TMP/vc.html" "$TMP/c.png"
+page_matches "$TMP/lm.html" "$TMP/c.png"
+# The comparison can fail: at 1.5 times the exposure the page is far from rad-shade's image.
+node "$WEB/test-viewer.mjs" --page "$TMP/lm.html" --reference "$TMP/c.png" --max-difference 0.01 \
+  --set '{"exposure": 1.5}' >/dev/null 2>&1 && fail "the page at another exposure matched"
+# The same bake twice, and at one thread: the same bytes (the same command line, from two
+# folders, as the glb records it).
+mkdir -p "$TMP/one" "$TMP/two"
+(cd "$TMP/one" && "$BIN/rad-bake" ../c.mesh ../c.rad -o lm.glb --lightmap 512 -q)
+(cd "$TMP/two" && "$BIN/rad-bake" ../c.mesh ../c.rad -o lm.glb --lightmap 512 -q --threads 1)
+cmp -s "$TMP/one/lm.glb" "$TMP/two/lm.glb" || fail "two bakes differ (one at one thread)"
+
+# Light groups: the lamp and a glowing green wall, one lightmap each; the page's sliders mix
+# them as rad-shade --mix does.
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/g.rad" --light-groups --emission green=1,3,0.5 -q
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/g.rad" -o "$TMP/g.exr" --view-file "$VF" --png "$TMP/g.png" --exposure 0.7 -q
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/g.rad" -o "$TMP/gm.exr" --view-file "$VF" --mix light=0.3 --png "$TMP/gm.png" --exposure 0.7 -q
+"$BIN/rad-bake" "$TMP/c.mesh" "$TMP/g.rad" -o "$TMP/g.glb" --lightmap 512 --html "$TMP/g.html" \
+  --view-file "$VF" --exposure 0.7 --exr "$TMP/g-atlas.exr" -q || fail "light-group bake"
+validate "$TMP/g.glb"
+page_matches "$TMP/g.html" "$TMP/g.png"
+page_matches "$TMP/g.html" "$TMP/gm.png" '{"weights": {"light": 0.3}}'
+if command -v exrheader >/dev/null; then
+  exrheader "$TMP/g-atlas.exr" | grep -q "light.R" || fail "no light-group layers in the atlas EXR"
+fi
+
+# Public fixtures: the original Cornell box (OBJ) and the glTF living room (given a light).
+"$BIN/rad-mesh" "$SRC/tests/data/cornell-original/CornellBox-Original.obj" -o "$TMP/o.mesh" -q 2>/dev/null
+"$BIN/rad-ff" "$TMP/o.mesh" -o "$TMP/o.ff" -q 2>/dev/null
+"$BIN/rad-solve" "$TMP/o.mesh" "$TMP/o.ff" -o "$TMP/o.rad" -q
+"$BIN/rad-mesh" "$SRC/tests/data/living-room/living_room.glb" -o "$TMP/lr.mesh" -q 2>/dev/null
+"$BIN/rad-ff" "$TMP/lr.mesh" -o "$TMP/lr.ff" --method hemisphere --rays 256 -q 2>/dev/null
+"$BIN/rad-solve" "$TMP/lr.mesh" "$TMP/lr.ff" -o "$TMP/lr.rad" --emission ceiling=30 -q
+for s in o lr; do
+  "$BIN/rad-bake" "$TMP/$s.mesh" "$TMP/$s.rad" -o "$TMP/$s-vc.glb" -q || fail "$s vertex colours"
+  "$BIN/rad-bake" "$TMP/$s.mesh" "$TMP/$s.rad" -o "$TMP/$s-lm.glb" --lightmap 1024 -q || fail "$s lightmap"
+  validate "$TMP/$s-vc.glb" "$TMP/$s-lm.glb"
+done
+
+# Bad input: a stale radiosity, options that need --lightmap or --html, a page without a camera.
+"$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/other.mesh" --max-edge 0.2 -q
+expect_error "does not belong to" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/other.mesh" "$TMP/c.rad" -o "$TMP/x.glb"
+expect_error "need --lightmap SIZE" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --png "$TMP/x.png"
+expect_error "--html needs a camera" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --html "$TMP/x.html"
+expect_error "are for the --html page" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --view-file "$VF"
+expect_error "do not fit a 64x64 lightmap at" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --lightmap 64 --texels-per-metre 1000
+[ -e "$TMP/x.html" ] && fail "a page was written by a failed run"
+finish
