@@ -63,147 +63,188 @@ rad::Image lightmap_image(const rad::Lightmap& map) {
     return image;
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
-    CLI::App app{"Bake a solution into a binary glTF (.glb) that any glTF viewer shows lit:\n"
-                 "smoothed radiosity as vertex colours, or with --lightmap as a texture atlas\n"
-                 "on a second UV set (TEXCOORD_1). Materials are KHR_materials_unlit."};
+struct Arguments {
     std::string mesh_path, rad_path, output, smooth = "crease", exr, png, html, view_text,
                                              view_file;
     double crease = 30, exposure = 0, density = 0, chart_angle = 20;
     int lightmap = 0, padding = 2, threads = 0;
     bool quiet = false, mix_only = false;
     std::vector<std::string> mix;
-    app.add_option("MESH", mesh_path, "Patch mesh from rad-mesh")->required();
-    app.add_option("RADIOSITY", rad_path, "Radiosity from rad-solve")->required();
-    app.add_option("-o,--output", output, "Output binary glTF (.glb)")->required();
-    app.add_option("--smooth", smooth, "Smoothing, as rad-shade's --smooth")
+};
+
+void add_options(CLI::App& app, Arguments& a) {
+    app.add_option("MESH", a.mesh_path, "Patch mesh from rad-mesh")->required();
+    app.add_option("RADIOSITY", a.rad_path, "Radiosity from rad-solve")->required();
+    app.add_option("-o,--output", a.output, "Output binary glTF (.glb)")->required();
+    app.add_option("--smooth", a.smooth, "Smoothing, as rad-shade's --smooth")
         ->capture_default_str()
         ->check(CLI::IsMember({"average", "area", "crease", "flat"}));
-    app.add_option("--crease-angle", crease, "crease: largest normal angle smoothed across")
+    app.add_option("--crease-angle", a.crease, "crease: largest normal angle smoothed across")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 180));
-    app.add_option("--exposure", exposure,
+    app.add_option("--exposure", a.exposure,
                    "Linear multiplier from W/m^2 to display values (default, or 0: rad-shade's "
                    "exposure from the solution, so the glb looks like rad-shade's image)")
         ->check(rad::tool::finite_range(0, 1e30));
-    app.add_option("--mix", mix, "Weight a light group, as rad-shade --mix (repeatable)");
-    app.add_flag("--mix-only", mix_only, "Groups not named in --mix are off");
-    app.add_option("--lightmap", lightmap,
+    app.add_option("--mix", a.mix, "Weight a light group, as rad-shade --mix (repeatable)");
+    app.add_flag("--mix-only", a.mix_only, "Groups not named in --mix are off");
+    app.add_option("--lightmap", a.lightmap,
                    "Bake a SIZE x SIZE lightmap atlas instead of vertex colours (e.g. 1024)")
         ->check(CLI::Range(8, 16384));
-    app.add_option("--texels-per-metre", density,
+    app.add_option("--texels-per-metre", a.density,
                    "--lightmap: texel density (default: the highest at which the charts fit)")
         ->check(rad::tool::finite_range(0, 1e9));
-    app.add_option("--padding", padding,
+    app.add_option("--padding", a.padding,
                    "--lightmap: texels around each chart, filled from its edge so bilinear "
                    "filtering never reads a neighbour")
         ->capture_default_str()
         ->check(CLI::Range(1, 64));
-    app.add_option("--chart-angle", chart_angle,
+    app.add_option("--chart-angle", a.chart_angle,
                    "--lightmap: largest angle between normals within one chart (degrees)")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 60));
-    app.add_option("--exr", exr,
+    app.add_option("--exr", a.exr,
                    "--lightmap: also write the atlas as linear float OpenEXR (radiosity, W/m^2; "
                    "one layer per light group)");
-    app.add_option("--png", png, "--lightmap: also write the atlas as sRGB PNG (as in the glb)");
-    app.add_option("--html", html,
+    app.add_option("--png", a.png, "--lightmap: also write the atlas as sRGB PNG (as in the glb)");
+    app.add_option("--html", a.html,
                    "Also write a self-contained viewer page (three.js): the glb from the camera "
                    "of --view/--view-file at the same exposure, orbit controls, an exposure "
                    "slider and with light groups one slider per group (needs --lightmap)");
-    app.add_option("--view", view_text, "--html: the camera, as rad-shade's --view");
-    app.add_option("--view-file", view_file, "--html: the camera, as rad-shade's --view-file");
-    rad::tool::add_threads_option(app, threads);
-    app.add_flag("-q,--quiet", quiet, "No summary");
+    app.add_option("--view", a.view_text, "--html: the camera, as rad-shade's --view");
+    app.add_option("--view-file", a.view_file, "--html: the camera, as rad-shade's --view-file");
+    rad::tool::add_threads_option(app, a.threads);
+    app.add_flag("-q,--quiet", a.quiet, "No summary");
+}
+
+// The page's camera; throws InputError for options that do not go together.
+rad::View checked_view(const Arguments& a) {
+    if (a.lightmap == 0 && (!a.exr.empty() || !a.png.empty() || a.density > 0))
+        throw rad::InputError("--exr, --png and --texels-per-metre need --lightmap SIZE");
+    if (!a.html.empty() && a.view_text.empty() && a.view_file.empty())
+        throw rad::InputError("--html needs a camera: give --view or --view-file");
+    if (a.html.empty() && !(a.view_text.empty() && a.view_file.empty()))
+        throw rad::InputError("--view and --view-file are for the --html page");
+    rad::View view = a.view_file.empty() ? rad::View{} : rad::read_view_file(a.view_file);
+    if (!a.view_text.empty()) view = rad::parse_view(a.view_text, rad::FileLoc{"--view"}, view);
+    return view;
+}
+
+// Each light group's radiosity at weight 1, named.
+std::vector<std::pair<std::string, std::vector<radfmt::Rgb>>>
+group_radiosity(const radfmt::RadiosityData& radiosity) {
+    std::vector<std::pair<std::string, std::vector<radfmt::Rgb>>> groups;
+    for (std::size_t g = 0; g < radiosity.group_count(); ++g) {
+        std::vector<radfmt::Rgb> group(radiosity.radiosity.size());
+        for (std::size_t i = 0; i < group.size(); ++i) group[i] = radiosity.of_group(i, g);
+        groups.emplace_back(radiosity.group_names[g], std::move(group));
+    }
+    return groups;
+}
+
+rad::BakeOptions bake_options(const Arguments& a, double solution_exposure) {
+    rad::BakeOptions options;
+    options.smoothing = rad::parse_smoothing(a.smooth);
+    options.crease_deg = a.crease;
+    options.exposure = a.exposure > 0 ? a.exposure : solution_exposure;
+    if (!(options.exposure > 0)) options.exposure = 1; // nothing lit: show values as they are
+    options.lightmap_size = a.lightmap;
+    options.texels_per_metre = a.density;
+    options.padding = a.padding;
+    options.chart_angle_deg = a.chart_angle;
+    return options;
+}
+
+// The atlas files beside the glb: linear EXR (a layer per group) and the sRGB PNG.
+void write_atlas_files(const Arguments& a, const rad::BakeResult& result,
+                       const std::vector<std::string>& group_names, double exposure) {
+    if (!a.exr.empty()) {
+        std::vector<rad::Image> group_images;
+        std::vector<rad::ImageLayer> layers;
+        for (const auto& map : result.group_lightmaps) group_images.push_back(lightmap_image(map));
+        for (std::size_t g = 0; g < group_images.size(); ++g)
+            layers.push_back({group_names[g], &group_images[g]});
+        rad::write_exr(a.exr, lightmap_image(result.lightmap),
+                       {{"radiosity:tool", rad::tool_version("rad-bake")},
+                        {"radiosity:units", "radiosity W/m^2 (linear)"},
+                        {"radiosity:glb", a.output}},
+                       layers);
+    }
+    if (!a.png.empty())
+        rad::write_png_rgb8(a.png, result.layout.size, result.layout.size,
+                            rad::lightmap_pixels(result.lightmap, exposure));
+}
+
+void print_summary(const Arguments& a, const radfmt::MeshData& mesh, const rad::BakeResult& result,
+                   double exposure) {
+    if (a.lightmap > 0)
+        std::fprintf(stderr,
+                     "rad-bake: wrote %s (%zu patches, %zu charts in a %dx%d lightmap at %.4g "
+                     "texels/m%s), exposure %.4g\n",
+                     a.output.c_str(), mesh.patches.size(), result.charts, a.lightmap, a.lightmap,
+                     result.layout.texels_per_metre,
+                     result.group_lightmaps.empty() ? "" : ", one lightmap per light group",
+                     exposure);
+    else
+        std::fprintf(stderr, "rad-bake: wrote %s (%zu patches, vertex colours), exposure %.4g\n",
+                     a.output.c_str(), mesh.patches.size(), exposure);
+}
+
+int bake_files(const Arguments& a, const std::string& command) {
+    rad::tool::check_outputs(
+        {a.mesh_path, a.rad_path},
+        {{"-o", a.output}, {"--exr", a.exr}, {"--png", a.png}, {"--html", a.html}});
+    const rad::View view = checked_view(a);
+    radfmt::OutputBatch outputs; // the glb, the page and the atlas land together or not at all
+    rad::ThreadLimit thread_limit(a.threads);
+    radfmt::Header mesh_header, rad_header;
+    const auto mesh = radfmt::read_mesh(a.mesh_path, &mesh_header);
+    const auto radiosity = radfmt::read_radiosity(a.rad_path, &rad_header);
+    const auto values = rad::mix_light_groups(radiosity, a.mix, a.mix_only, a.rad_path);
+    radfmt::require_same_geometry(a.rad_path, rad_header, values.size(), a.mesh_path, mesh,
+                                  "run rad-ff and rad-solve on " + a.mesh_path + " again");
+    radfmt::MeshData solved = mesh; // E and rho as solved, for the exposure
+    rad::apply_recorded_overrides(solved, rad_header);
+    const auto options = bake_options(a, rad::solution_exposure(solved, values));
+    const auto groups = a.lightmap > 0
+                            ? group_radiosity(radiosity)
+                            : std::vector<std::pair<std::string, std::vector<radfmt::Rgb>>>{};
+    if (a.lightmap == 0 && radiosity.group_count() > 0 && !a.quiet)
+        std::fprintf(stderr,
+                     "rad-bake: note: vertex colours hold one mix of the solution's %zu light "
+                     "groups; --lightmap keeps one lightmap per group for mixing later\n",
+                     radiosity.group_count());
+
+    auto result = rad::bake(mesh, values, groups, options);
+    result.scene.generator = rad::tool_version("rad-bake");
+    result.scene.extras_json =
+        provenance_json(mesh_header, a.mesh_path, rad_header, a.rad_path, command, options, result)
+            .dump();
+    const auto glb = rad::baked_glb(result.scene);
+    rad::write_file(a.output, glb.data(), glb.size());
+    if (!a.html.empty()) {
+        const auto page =
+            rad::viewer_page(glb, page_config(view, options.exposure), "radiosity: " + a.output);
+        rad::write_file(a.html, page.data(), page.size());
+    }
+    std::vector<std::string> group_names;
+    for (const auto& g : groups) group_names.push_back(g.first);
+    write_atlas_files(a, result, group_names, options.exposure);
+    outputs.commit();
+    if (!a.quiet) print_summary(a, mesh, result, options.exposure);
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Bake a solution into a binary glTF (.glb) that any glTF viewer shows lit:\n"
+                 "smoothed radiosity as vertex colours, or with --lightmap as a texture atlas\n"
+                 "on a second UV set (TEXCOORD_1). Materials are KHR_materials_unlit."};
+    Arguments arguments;
+    add_options(app, arguments);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
     rad::tool::restart_with_huge_pages(argv);
-
-    return rad::tool::run_tool("rad-bake", [&] {
-        rad::tool::check_outputs(
-            {mesh_path, rad_path},
-            {{"-o", output}, {"--exr", exr}, {"--png", png}, {"--html", html}});
-        if (lightmap == 0 && (!exr.empty() || !png.empty() || density > 0))
-            throw rad::InputError("--exr, --png and --texels-per-metre need --lightmap SIZE");
-        if (!html.empty() && view_text.empty() && view_file.empty())
-            throw rad::InputError("--html needs a camera: give --view or --view-file");
-        if (html.empty() && !(view_text.empty() && view_file.empty()))
-            throw rad::InputError("--view and --view-file are for the --html page");
-        rad::View view = view_file.empty() ? rad::View{} : rad::read_view_file(view_file);
-        if (!view_text.empty()) view = rad::parse_view(view_text, rad::FileLoc{"--view"}, view);
-        radfmt::OutputBatch outputs;
-        rad::ThreadLimit thread_limit(threads);
-        radfmt::Header mesh_header, rad_header;
-        const auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
-        const auto radiosity = radfmt::read_radiosity(rad_path, &rad_header);
-        const auto values = rad::mix_light_groups(radiosity, mix, mix_only, rad_path);
-        radfmt::require_same_geometry(rad_path, rad_header, values.size(), mesh_path, mesh,
-                                      "run rad-ff and rad-solve on " + mesh_path + " again");
-        radfmt::MeshData solved = mesh;
-        rad::apply_recorded_overrides(solved, rad_header);
-
-        rad::BakeOptions options;
-        options.smoothing = rad::parse_smoothing(smooth);
-        options.crease_deg = crease;
-        options.exposure = exposure > 0 ? exposure : rad::solution_exposure(solved, values);
-        if (!(options.exposure > 0)) options.exposure = 1;
-        options.lightmap_size = lightmap;
-        options.texels_per_metre = density;
-        options.padding = padding;
-        options.chart_angle_deg = chart_angle;
-        std::vector<std::pair<std::string, std::vector<radfmt::Rgb>>> groups;
-        if (lightmap > 0)
-            for (std::size_t g = 0; g < radiosity.group_count(); ++g) {
-                std::vector<radfmt::Rgb> group(radiosity.radiosity.size());
-                for (std::size_t i = 0; i < group.size(); ++i) group[i] = radiosity.of_group(i, g);
-                groups.emplace_back(radiosity.group_names[g], std::move(group));
-            }
-        auto result = rad::bake(mesh, values, groups, options);
-        result.scene.generator = rad::tool_version("rad-bake");
-        result.scene.extras_json =
-            provenance_json(mesh_header, mesh_path, rad_header, rad_path,
-                            radfmt::command_line(argc, argv), options, result)
-                .dump();
-        const auto glb = rad::baked_glb(result.scene);
-        rad::write_file(output, glb.data(), glb.size());
-        if (!html.empty()) {
-            const auto page =
-                rad::viewer_page(glb, page_config(view, options.exposure), "radiosity: " + output);
-            rad::write_file(html, page.data(), page.size());
-        }
-        if (!exr.empty()) {
-            const auto main_image = lightmap_image(result.lightmap);
-            std::vector<rad::Image> group_images;
-            std::vector<rad::ImageLayer> layers;
-            for (const auto& map : result.group_lightmaps)
-                group_images.push_back(lightmap_image(map));
-            for (std::size_t g = 0; g < group_images.size(); ++g)
-                layers.push_back({groups[g].first, &group_images[g]});
-            rad::write_exr(exr, main_image,
-                           {{"radiosity:tool", rad::tool_version("rad-bake")},
-                            {"radiosity:units", "radiosity W/m^2 (linear)"},
-                            {"radiosity:glb", output}},
-                           layers);
-        }
-        if (!png.empty())
-            rad::write_png_rgb8(png, result.layout.size, result.layout.size,
-                                rad::lightmap_pixels(result.lightmap, options.exposure));
-        outputs.commit();
-        if (!quiet) {
-            if (lightmap > 0)
-                std::fprintf(stderr,
-                             "rad-bake: wrote %s (%zu patches, %zu charts in a %dx%d lightmap at "
-                             "%.4g texels/m%s), exposure %.4g\n",
-                             output.c_str(), mesh.patches.size(), result.charts, lightmap, lightmap,
-                             result.layout.texels_per_metre,
-                             groups.empty() ? "" : ", one lightmap per light group",
-                             options.exposure);
-            else
-                std::fprintf(stderr,
-                             "rad-bake: wrote %s (%zu patches, vertex colours), exposure %.4g\n",
-                             output.c_str(), mesh.patches.size(), options.exposure);
-        }
-        return 0;
-    });
+    return rad::tool::run_tool(
+        "rad-bake", [&] { return bake_files(arguments, radfmt::command_line(argc, argv)); });
 }

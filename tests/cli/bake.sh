@@ -65,10 +65,14 @@ fi
 "$BIN/rad-mesh" "$SRC/tests/data/living-room/living_room.glb" -o "$TMP/lr.mesh" -q 2>/dev/null
 "$BIN/rad-ff" "$TMP/lr.mesh" -o "$TMP/lr.ff" --method hemisphere --rays 256 -q 2>/dev/null
 "$BIN/rad-solve" "$TMP/lr.mesh" "$TMP/lr.ff" -o "$TMP/lr.rad" --emission ceiling=30 -q
+# Light groups: a second emitter in each (the short box, the table top).
+"$BIN/rad-solve" "$TMP/o.mesh" "$TMP/o.ff" -o "$TMP/o-g.rad" --light-groups --emission shortBox=2,2,2 -q
+"$BIN/rad-solve" "$TMP/lr.mesh" "$TMP/lr.ff" -o "$TMP/lr-g.rad" --light-groups --emission ceiling=30 --emission top=3 -q
 for s in o lr; do
   "$BIN/rad-bake" "$TMP/$s.mesh" "$TMP/$s.rad" -o "$TMP/$s-vc.glb" -q || fail "$s vertex colours"
   "$BIN/rad-bake" "$TMP/$s.mesh" "$TMP/$s.rad" -o "$TMP/$s-lm.glb" --lightmap 1024 -q || fail "$s lightmap"
-  validate "$TMP/$s-vc.glb" "$TMP/$s-lm.glb"
+  "$BIN/rad-bake" "$TMP/$s.mesh" "$TMP/$s-g.rad" -o "$TMP/$s-g.glb" --lightmap 1024 -q || fail "$s light groups"
+  validate "$TMP/$s-vc.glb" "$TMP/$s-lm.glb" "$TMP/$s-g.glb"
 done
 
 # Bad input: a stale radiosity, options that need --lightmap or --html, a page without a camera.
