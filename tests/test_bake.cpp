@@ -204,3 +204,32 @@ TEST_CASE("glb: header, chunks, counts and colours as written") {
         CHECK(found);
     }
 }
+
+TEST_CASE("irradiance: albedo times what falls on a patch, plus its emission, gives B back") {
+    auto mesh = cube_mesh();
+    mesh.materials[0].reflectance = {0.5, 0.25, 0.0}; // a channel that reflects nothing
+    mesh.materials[0].emission = {0.1, 0.0, 0.0};
+    const auto b = random_radiosity(mesh.patches.size(), 5);
+    const auto h = rad::patch_irradiance(mesh, b);
+    for (std::size_t i = 0; i < b.size(); ++i) {
+        CHECK(0.5 * h[i][0] + 0.1 == Approx(std::max(b[i][0], 0.1)));
+        CHECK(0.25 * h[i][1] == Approx(b[i][1]));
+        CHECK(h[i][2] == Approx((h[i][0] + h[i][1]) / 2)); // unknown: the other channels' mean
+    }
+    // Baked with flat smoothing, every chart texel of the irradiance atlas is its patch's H.
+    rad::BakeOptions options;
+    options.smoothing = rad::Smoothing::Flat;
+    options.lightmap_size = 256;
+    options.engine_solved = &mesh;
+    const auto result = rad::bake(mesh, b, {}, options);
+    std::size_t texels = 0;
+    for (std::size_t t = 0; t < result.irradiance.state.size(); ++t) {
+        if (result.irradiance.state[t] != rad::Lightmap::kChart) continue;
+        ++texels;
+        bool found = false;
+        for (const auto& v : h)
+            found = found || result.irradiance.rgb[3 * t + 1] == float(v[1]);
+        CHECK(found);
+    }
+    CHECK(texels > 256 * 256 / 4); // six walls fill over half the atlas
+}

@@ -65,7 +65,7 @@ rad::Image lightmap_image(const rad::Lightmap& map) {
 
 struct Arguments {
     std::string mesh_path, rad_path, output, smooth = "crease", exr, png, html, view_text,
-                                             view_file;
+                                             view_file, engine;
     double crease = 30, exposure = 0, density = 0, chart_angle = 20;
     int lightmap = 0, padding = 2, threads = 0;
     bool quiet = false, mix_only = false;
@@ -111,6 +111,11 @@ void add_options(CLI::App& app, Arguments& a) {
                    "Also write a self-contained viewer page (three.js): the glb from the camera "
                    "of --view/--view-file at the same exposure, orbit controls, an exposure "
                    "slider and with light groups one slider per group (needs --lightmap)");
+    app.add_option("--engine", a.engine,
+                   "--lightmap: also write a glb for engines: the scene's own materials (base "
+                   "colour = reflectance, emissive), TEXCOORD_1, and an irradiance atlas (what "
+                   "falls on the surface, x exposure, sRGB) for the engine's lightmap slot, "
+                   "named in asset.extras.radiosity.lightmap_texture");
     app.add_option("--view", a.view_text, "--html: the camera, as rad-shade's --view");
     app.add_option("--view-file", a.view_file, "--html: the camera, as rad-shade's --view-file");
     rad::tool::add_threads_option(app, a.threads);
@@ -119,8 +124,8 @@ void add_options(CLI::App& app, Arguments& a) {
 
 // The page's camera; throws InputError for options that do not go together.
 rad::View checked_view(const Arguments& a) {
-    if (a.lightmap == 0 && (!a.exr.empty() || !a.png.empty() || a.density > 0))
-        throw rad::InputError("--exr, --png and --texels-per-metre need --lightmap SIZE");
+    if (a.lightmap == 0 && (!a.exr.empty() || !a.png.empty() || !a.engine.empty() || a.density > 0))
+        throw rad::InputError("--exr, --png, --engine and --texels-per-metre need --lightmap SIZE");
     if (!a.html.empty() && a.view_text.empty() && a.view_file.empty())
         throw rad::InputError("--html needs a camera: give --view or --view-file");
     if (a.html.empty() && !(a.view_text.empty() && a.view_file.empty()))
@@ -164,9 +169,12 @@ void write_atlas_files(const Arguments& a, const rad::BakeResult& result,
         for (const auto& map : result.group_lightmaps) group_images.push_back(lightmap_image(map));
         for (std::size_t g = 0; g < group_images.size(); ++g)
             layers.push_back({group_names[g], &group_images[g]});
+        const auto irradiance = lightmap_image(result.irradiance);
+        if (!a.engine.empty()) layers.push_back({"irradiance", &irradiance});
         rad::write_exr(a.exr, lightmap_image(result.lightmap),
                        {{"radiosity:tool", rad::tool_version("rad-bake")},
-                        {"radiosity:units", "radiosity W/m^2 (linear)"},
+                        {"radiosity:units", "radiosity W/m^2 (linear); layer irradiance (with "
+                                            "--engine): W/m^2 falling on the surface"},
                         {"radiosity:glb", a.output}},
                        layers);
     }
@@ -190,10 +198,28 @@ void print_summary(const Arguments& a, const radfmt::MeshData& mesh, const rad::
                      a.output.c_str(), mesh.patches.size(), exposure);
 }
 
+// The glb for engines: the scene's materials, and the irradiance atlas for their lightmap slot.
+void write_engine_glb(const std::string& path, const rad::BakeResult& result, double exposure) {
+    rad::BakeScene engine = result.scene;
+    engine.engine_materials = true;
+    engine.exposure = exposure;
+    engine.lightmap_png = result.irradiance_png;
+    engine.group_lightmaps_png.clear();
+    auto extras = nlohmann::json::parse(engine.extras_json);
+    extras["lightmap"]["content"] =
+        "irradiance in W/m^2 times exposure (sRGB): an engine's albedo times it, plus the "
+        "emissive, gives the baked radiosity";
+    engine.extras_json = extras.dump();
+    const auto bytes = rad::baked_glb(engine);
+    rad::write_file(path, bytes.data(), bytes.size());
+}
+
 int bake_files(const Arguments& a, const std::string& command) {
-    rad::tool::check_outputs(
-        {a.mesh_path, a.rad_path},
-        {{"-o", a.output}, {"--exr", a.exr}, {"--png", a.png}, {"--html", a.html}});
+    rad::tool::check_outputs({a.mesh_path, a.rad_path}, {{"-o", a.output},
+                                                         {"--exr", a.exr},
+                                                         {"--png", a.png},
+                                                         {"--html", a.html},
+                                                         {"--engine", a.engine}});
     const rad::View view = checked_view(a);
     radfmt::OutputBatch outputs; // the glb, the page and the atlas land together or not at all
     rad::ThreadLimit thread_limit(a.threads);
@@ -205,7 +231,8 @@ int bake_files(const Arguments& a, const std::string& command) {
                                   "run rad-ff and rad-solve on " + a.mesh_path + " again");
     radfmt::MeshData solved = mesh; // E and rho as solved, for the exposure
     rad::apply_recorded_overrides(solved, rad_header);
-    const auto options = bake_options(a, rad::solution_exposure(solved, values));
+    auto options = bake_options(a, rad::solution_exposure(solved, values));
+    if (!a.engine.empty()) options.engine_solved = &solved;
     const auto groups = a.lightmap > 0
                             ? group_radiosity(radiosity)
                             : std::vector<std::pair<std::string, std::vector<radfmt::Rgb>>>{};
@@ -227,6 +254,7 @@ int bake_files(const Arguments& a, const std::string& command) {
             rad::viewer_page(glb, page_config(view, options.exposure), "radiosity: " + a.output);
         rad::write_file(a.html, page.data(), page.size());
     }
+    if (!a.engine.empty()) write_engine_glb(a.engine, result, options.exposure);
     std::vector<std::string> group_names;
     for (const auto& g : groups) group_names.push_back(g.first);
     write_atlas_files(a, result, group_names, options.exposure);

@@ -5,6 +5,7 @@
 //
 //   node test-viewer.mjs --page P.html --reference R.png [--set '{"weights":{"g":0}}']
 //        [--screenshot S.png] [--width 512] [--height 512] [--max-difference 0.03]
+//        [--glb G.glb: show this glb in the page instead of its own]
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
@@ -76,7 +77,15 @@ try {
   page.on('pageerror', (error) => problems.push(String(error)));
   page.on('requestfailed', (request) => problems.push(`request failed: ${request.url()}`));
   await page.setViewport({ width: Number(opts.width), height: Number(opts.height), deviceScaleFactor: 1 });
-  await page.goto(pathToFileURL(resolve(opts.page)).href, { waitUntil: 'load' });
+  if (opts.glb) {
+    // The same page showing another glb (rad-bake --engine's): its embedded glb replaced.
+    const html = readFileSync(opts.page, 'utf8').replace(
+      /(<script id="radiosity-glb" type="application\/octet-stream">)[^<]*(<\/script>)/,
+      (_, open, close) => `${open}\n${readFileSync(opts.glb).toString('base64')}\n${close}`);
+    await page.setContent(html, { waitUntil: 'load' });
+  } else {
+    await page.goto(pathToFileURL(resolve(opts.page)).href, { waitUntil: 'load' });
+  }
   await page.waitForFunction(() => document.body.dataset.ready || document.body.dataset.error, { timeout: 120000 });
   const error = await page.evaluate(() => document.body.dataset.error);
   if (error) throw new Error(`the page failed: ${error}`);

@@ -31,9 +31,16 @@ head -c 8 "$TMP/lm.png" | od -An -c | grep -q "P   N   G" || fail "atlas png"
 if command -v exrheader >/dev/null; then
   exrheader "$TMP/lm.exr" | grep -q "dataWindow (type box2i): (0 0) - (511 511)" || fail "atlas exr size"
 fi
-validate "$TMP/vc.glb" "$TMP/lm.glb"
+# For engines: the scene's materials and the irradiance atlas, shown by three.js's
+# MeshStandardMaterial with the atlas as its light map (the page given that glb instead).
+"$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/lm-u.glb" --lightmap 512 --engine "$TMP/engine.glb" -q ||
+  fail "engine bake"
+validate "$TMP/vc.glb" "$TMP/lm.glb" "$TMP/engine.glb"
 page_matches "$TMP/vc.html" "$TMP/c.png"
 page_matches "$TMP/lm.html" "$TMP/c.png"
+out=$(node "$WEB/test-viewer.mjs" --page "$TMP/lm.html" --glb "$TMP/engine.glb" --reference "$TMP/c.png" --max-difference 0.01 2>&1) ||
+  fail "engine glb in three.js: $out"
+echo "$out"
 # The comparison can fail: at 1.5 times the exposure the page is far from rad-shade's image.
 node "$WEB/test-viewer.mjs" --page "$TMP/lm.html" --reference "$TMP/c.png" --max-difference 0.01 \
   --set '{"exposure": 1.5}' >/dev/null 2>&1 && fail "the page at another exposure matched"
@@ -78,6 +85,7 @@ done
 # Bad input: a stale radiosity, options that need --lightmap or --html, a page without a camera.
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/other.mesh" --max-edge 0.2 -q
 expect_error "does not belong to" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/other.mesh" "$TMP/c.rad" -o "$TMP/x.glb"
+expect_error "need --lightmap SIZE" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --engine "$TMP/e.glb"
 expect_error "need --lightmap SIZE" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --png "$TMP/x.png"
 expect_error "--html needs a camera" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --html "$TMP/x.html"
 expect_error "are for the --html page" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --view-file "$VF"

@@ -115,6 +115,19 @@ async function main() {
       node.material = mixingMaterial(textures, node.material.side === THREE.DoubleSide);
       materials.push(node.material);
     });
+  } else if (extras.lightmap_texture !== undefined) {
+    // A glb for engines (rad-bake --engine): the scene's own materials lit by the irradiance
+    // atlas in three.js's light-map slot on the second UV set. MeshStandardMaterial takes a
+    // light map as irradiance and divides by pi (Lambert), hence the intensity pi.
+    const lightMap = await gltf.parser.getDependency('texture', extras.lightmap_texture);
+    lightMap.colorSpace = THREE.SRGBColorSpace;
+    lightMap.channel = 1;
+    gltf.scene.traverse((node) => {
+      if (!node.isMesh) return;
+      Object.assign(node.material, { lightMap, lightMapIntensity: Math.PI, envMap: null });
+      node.material.needsUpdate = true;
+      materials.push(node.material);
+    });
   } else {
     gltf.scene.traverse((node) => node.isMesh && materials.push(node.material));
   }
@@ -131,6 +144,10 @@ async function main() {
       if (m.isShaderMaterial) {
         m.uniforms.scale.value = scale;
         m.uniforms.weights.value = groups.map((g) => state.weights[g.name]);
+      } else if (m.lightMap && !m.map) {
+        if (m.baseColour === undefined) m.baseColour = { colour: m.color.clone(), emissive: m.emissive.clone() };
+        m.lightMapIntensity = Math.PI * scale;
+        m.emissive.copy(m.baseColour.emissive).multiplyScalar(scale);
       } else {
         m.color.setScalar(scale);
       }

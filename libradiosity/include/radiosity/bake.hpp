@@ -77,6 +77,11 @@ struct BakeScene {
     // Further lightmaps (one per light group), as PNG bytes, named; the glb lists them in
     // asset.extras.radiosity.light_groups with their image indices.
     std::vector<std::pair<std::string, std::vector<std::uint8_t>>> group_lightmaps_png;
+    // For engines: materials as the scene's own (metallic-roughness, base colour = reflectance,
+    // emission as emissive), not unlit, and the atlas (`lightmap_png`: then irradiance) only
+    // listed in asset.extras.radiosity.lightmap, for the engine's lightmap slot.
+    bool engine_materials = false;
+    double exposure = 1; // for engine materials' emissive display values
     // JSON text of asset.extras.radiosity (provenance and facts).
     std::string extras_json;
     std::string generator;
@@ -109,15 +114,25 @@ struct BakeOptions {
     double texels_per_metre = 0; // 0: the highest density that fits
     int padding = 2;
     double chart_angle_deg = 20;
+    // Also an irradiance atlas for engines (BakeResult::irradiance): needs the solved E and rho.
+    const radfmt::MeshData* engine_solved = nullptr;
 };
 
 struct BakeResult {
     BakeScene scene;    // ready for baked_glb (mesh, colours or lightmap; no extras)
     AtlasLayout layout; // with a lightmap
     std::size_t charts = 0;
-    Lightmap lightmap;                     // radiosity, W/m^2 (linear, not exposed)
-    std::vector<Lightmap> group_lightmaps; // one per light group, each at weight 1
+    Lightmap lightmap;                        // radiosity, W/m^2 (linear, not exposed)
+    std::vector<Lightmap> group_lightmaps;    // one per light group, each at weight 1
+    Lightmap irradiance;                      // with engine_solved: W/m^2 falling on the surface
+    std::vector<std::uint8_t> irradiance_png; // sRGB of irradiance x exposure
 };
+
+// What falls on each patch: H = (B - E) / rho per channel, so that an engine's albedo times H
+// (plus emission) gives back B. A channel with rho = 0 takes the mean of the patch's other
+// channels' H (0 when it has none).
+std::vector<Rgb> patch_irradiance(const radfmt::MeshData& solved,
+                                  const std::vector<Rgb>& radiosity);
 
 // Smooths the per-patch radiosity as rad-shade does and lays it out for a glb: vertex colours,
 // or charts, atlas and lightmaps (and one lightmap per group when `groups` is not empty).

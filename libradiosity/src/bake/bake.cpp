@@ -2,12 +2,33 @@
 #include "radiosity/bake.hpp"
 #include "radiosity/image_io.hpp"
 
+#include <algorithm>
+
 namespace rad {
 
 std::vector<std::uint8_t> lightmap_pixels(const Lightmap& map, double exposure) {
     std::vector<std::uint8_t> pixels(map.rgb.size());
     for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = to_srgb8(map.rgb[i] * exposure);
     return pixels;
+}
+
+std::vector<Rgb> patch_irradiance(const radfmt::MeshData& solved,
+                                  const std::vector<Rgb>& radiosity) {
+    std::vector<Rgb> h(radiosity.size());
+    for (std::size_t i = 0; i < h.size(); ++i) {
+        const auto& m = solved.materials[solved.patches[i].material];
+        double sum = 0;
+        int known = 0;
+        for (int c = 0; c < 3; ++c)
+            if (m.reflectance[c] > 0) {
+                h[i][c] = std::max(0.0, radiosity[i][c] - m.emission[c]) / m.reflectance[c];
+                sum += h[i][c];
+                ++known;
+            }
+        for (int c = 0; c < 3; ++c)
+            if (!(m.reflectance[c] > 0)) h[i][c] = known > 0 ? sum / known : 0;
+    }
+    return h;
 }
 
 BakeResult bake(const radfmt::MeshData& mesh, const std::vector<Rgb>& radiosity,
@@ -33,6 +54,14 @@ BakeResult bake(const radfmt::MeshData& mesh, const std::vector<Rgb>& radiosity,
     const int size = result.layout.size;
     result.scene.lightmap_png =
         encode_png_rgb8(size, size, lightmap_pixels(result.lightmap, options.exposure));
+    if (options.engine_solved) {
+        const auto irradiance = patch_irradiance(*options.engine_solved, radiosity);
+        result.irradiance = render_lightmap(
+            mesh, charts, result.layout,
+            corner_colours(mesh, irradiance, options.smoothing, options.crease_deg));
+        result.irradiance_png =
+            encode_png_rgb8(size, size, lightmap_pixels(result.irradiance, options.exposure));
+    }
     for (const auto& [name, values] : groups) {
         const auto group_corners =
             corner_colours(mesh, values, options.smoothing, options.crease_deg);

@@ -118,6 +118,23 @@ void add_patch(PrimitiveData& prim, const radfmt::MeshData& mesh, const radfmt::
         prim.indices.insert(prim.indices.end(), {ids[0], ids[2], ids[3]});
 }
 
+// The scene's own material for an engine: base colour = reflectance, emission as emissive
+// (display values: times the exposure, clamped to 1).
+json engine_material_json(const radfmt::Material& m, bool two_sided_sheet, double exposure) {
+    json base = json::array(), emissive = json::array();
+    for (int c = 0; c < 3; ++c) {
+        base.push_back(std::clamp(m.reflectance[c], 0.0, 1.0));
+        emissive.push_back(std::clamp(m.emission[c] * exposure, 0.0, 1.0));
+    }
+    base.push_back(1.0);
+    return {{"name", m.name + (two_sided_sheet ? " (one side of a two-sided sheet)" : "")},
+            {"pbrMetallicRoughness",
+             {{"baseColorFactor", base}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
+            {"emissiveFactor", emissive},
+            {"doubleSided", !two_sided_sheet},
+            {"extras", {{"reflectance", m.reflectance.c}, {"emission_W_per_m2", m.emission.c}}}};
+}
+
 json material_json(const radfmt::Material& m, bool two_sided_sheet, int texture) {
     json pbr = {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}},
                 {"metallicFactor", 0.0},
@@ -158,7 +175,7 @@ json build_document(const BakeScene& scene, GlbBuilder& glb) {
     glb.doc["asset"] = {{"version", "2.0"}, {"generator", scene.generator}};
     if (!scene.extras_json.empty())
         glb.doc["asset"]["extras"] = {{"radiosity", json::parse(scene.extras_json)}};
-    glb.doc["extensionsUsed"] = {"KHR_materials_unlit"};
+    if (!scene.engine_materials) glb.doc["extensionsUsed"] = {"KHR_materials_unlit"};
     int texture = -1;
     if (!scene.lightmap_uv.empty()) {
         glb.doc["samplers"] = {
@@ -166,6 +183,7 @@ json build_document(const BakeScene& scene, GlbBuilder& glb) {
         glb.doc["textures"] = {
             {{"source", glb.add_png(scene.lightmap_png, "lightmap")}, {"sampler", 0}}};
         texture = 0;
+        if (scene.engine_materials) glb.doc["asset"]["extras"]["radiosity"]["lightmap_texture"] = 0;
     }
     json groups = json::array();
     for (const auto& [name, png] : scene.group_lightmaps_png) {
@@ -185,8 +203,10 @@ json build_document(const BakeScene& scene, GlbBuilder& glb) {
         } else {
             attributes["COLOR_0"] = glb.add_floats(prim.value, 3, "VEC3", false);
         }
+        const auto& material = scene.mesh->materials[key.first];
         glb.doc["materials"].push_back(
-            material_json(scene.mesh->materials[key.first], key.second, texture));
+            scene.engine_materials ? engine_material_json(material, key.second, scene.exposure)
+                                   : material_json(material, key.second, texture));
         primitives.push_back({{"attributes", attributes},
                               {"indices", glb.add_indices(prim.indices)},
                               {"material", glb.doc["materials"].size() - 1},
