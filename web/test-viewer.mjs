@@ -6,6 +6,7 @@
 //   node test-viewer.mjs --page P.html --reference R.png [--set '{"weights":{"g":0}}']
 //        [--screenshot S.png] [--width 512] [--height 512] [--max-difference 0.03]
 //        [--glb G.glb: show this glb in the page instead of its own]
+//        [--slide name=value,...: move the page's sliders, as a user would]
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
@@ -91,6 +92,20 @@ try {
   if (error) throw new Error(`the page failed: ${error}`);
   if (problems.length > 0) throw new Error(`the page reported: ${problems.join('; ')}`);
   if (opts.set) await page.evaluate((s) => window.radiosity.set(s), JSON.parse(opts.set));
+  if (opts.slide) {
+    // As a user would: move the sliders (name=value,...) and let their input events relight.
+    for (const setting of opts.slide.split(',')) {
+      const [name, value] = setting.split('=');
+      const moved = await page.evaluate((n, v) => {
+        const input = document.querySelector(`#panel input[data-name="${n}"]`);
+        if (!input) return false;
+        input.value = v;
+        input.dispatchEvent(new Event('input'));
+        return true;
+      }, name, value);
+      if (!moved) throw new Error(`the page has no slider '${name}'`);
+    }
+  }
   const shown = await page.evaluate(() => window.radiosity.pixels());
   if (opts.screenshot) await page.screenshot({ path: opts.screenshot });
   const result = compare(shown, await decodePng(page, opts.reference));

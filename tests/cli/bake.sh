@@ -61,6 +61,10 @@ cmp -s "$TMP/one/lm.glb" "$TMP/two/lm.glb" || fail "two bakes differ (one at one
 validate "$TMP/g.glb"
 page_matches "$TMP/g.html" "$TMP/g.png"
 page_matches "$TMP/g.html" "$TMP/gm.png" '{"weights": {"light": 0.3}}'
+# The same by moving the slider, as a user would.
+out=$(node "$WEB/test-viewer.mjs" --page "$TMP/g.html" --reference "$TMP/gm.png" --max-difference 0.01 --slide light=0.3 2>&1) ||
+  fail "the light slider: $out"
+echo "$out"
 if command -v exrheader >/dev/null; then
   exrheader "$TMP/g-atlas.exr" | grep -q "light.R" || fail "no light-group layers in the atlas EXR"
 fi
