@@ -3,6 +3,7 @@
 #include "radfmt/chain.hpp"
 
 #include <catch2/catch.hpp>
+#include <cstring>
 
 #include <functional>
 #include <limits>
@@ -438,4 +439,87 @@ TEST_CASE("form-factor parts round-trip, and are refused when they fill rows not
                         Contains("are not a range of the 3 rows"));
     // A part is not a matrix, nor a matrix a part.
     REQUIRE_THROWS_WITH(radfmt::read_form_factors(dir / "p.part"), Contains("was expected"));
+}
+
+TEST_CASE("formfactors version 3: hit counts exact, other values as they are, spool identical") {
+    const auto dir = temp_dir("compact");
+    auto header = header_for("rad-ff");
+    header.set("method", "hemisphere");
+    header.set("rays", "1000");
+    radfmt::FormFactorData ff;
+    ff.patch_count = 3000;
+    ff.row_start = {0};
+    std::uint32_t state = 777;
+    auto next = [&] { return state = state * 1664525u + 1013904223u; };
+    radfmt::FormFactorSpool spool(ff.patch_count, dir);
+    radfmt::FormFactorSpool spilled(ff.patch_count, dir, std::uint64_t(8) << 20);
+    for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
+        std::vector<std::uint32_t> columns;
+        std::vector<float> values;
+        std::uint32_t column = next() % 50;
+        const std::size_t length = i % 101 == 0 ? 0 : 300 + next() % 700;
+        for (std::size_t k = 0; k < length && column < ff.patch_count; ++k) {
+            columns.push_back(column);
+            // Hit counts over 1000 rays as hemisphere stores them; every 7th row a value that
+            // is no count (a float row).
+            values.push_back(i % 7 == 3 ? 0.1234567f
+                                        : static_cast<float>(double(1 + next() % 6) / 1000));
+            column += 1 + next() % 4;
+        }
+        ff.columns.insert(ff.columns.end(), columns.begin(), columns.end());
+        ff.values.insert(ff.values.end(), values.begin(), values.end());
+        ff.row_start.push_back(ff.columns.size());
+        ff.back_fraction.push_back(0.25f);
+        spool.add_row(columns, values, 0.25f);
+        spilled.add_row(columns, values, 0.25f);
+    }
+    REQUIRE(ff.nonzeros() > 1'000'000);
+    radfmt::write_form_factors(dir / "memory.ff", header, ff);
+    radfmt::write_form_factors(dir / "spool.ff", header, spool);
+    radfmt::write_form_factors(dir / "spilled.ff", header, spilled);
+    CHECK(spilled.spilled());
+    CHECK(read_all(dir / "memory.ff") == read_all(dir / "spool.ff"));
+    CHECK(read_all(dir / "memory.ff") == read_all(dir / "spilled.ff"));
+    radfmt::Header read_header;
+    const auto back = radfmt::read_form_factors(dir / "memory.ff", &read_header);
+    CHECK(read_header.version == 3);
+    CHECK(back.row_start == ff.row_start);
+    CHECK(back.columns == ff.columns);
+    CHECK(std::memcmp(back.values.data(), ff.values.data(), ff.values.size() * 4) == 0);
+    // Small deltas and counts take a byte each: 2 bytes a count entry, 5 a float one.
+    const double bytes_per_entry = double(read_header.body_size) / double(ff.nonzeros());
+    CHECK(bytes_per_entry < 3);
+    // Without the method's rays every value is a float: still exact, larger.
+    radfmt::write_form_factors(dir / "floats.ff", header_for("rad-ff"), ff);
+    const auto floats = radfmt::read_form_factors(dir / "floats.ff", &read_header);
+    CHECK(std::memcmp(floats.values.data(), ff.values.data(), ff.values.size() * 4) == 0);
+    CHECK(double(read_header.body_size) / double(ff.nonzeros()) > 4.5);
+}
+
+TEST_CASE("formfactors version 2 files (plain arrays) are still read") {
+    const auto dir = temp_dir("v2");
+    radfmt::FormFactorData ff;
+    ff.patch_count = 3;
+    ff.row_start = {0, 2, 2, 3};
+    ff.columns = {1, 2, 0};
+    ff.values = {0.25f, 0.5f, 0.125f};
+    ff.back_fraction = {0.0f, 0.75f, 0.5f};
+    radfmt::BodyWriter w;
+    w.u64(ff.patch_count);
+    w.u64(ff.nonzeros());
+    w.array(ff.row_start);
+    w.array(ff.columns);
+    w.array(ff.values);
+    w.array(ff.back_fraction);
+    auto header = header_for("rad-ff");
+    header.kind = radfmt::Kind::FormFactors;
+    header.version = 2;
+    header.set("patches", "3");
+    header.set("nonzeros", "3");
+    radfmt::write_file(dir / "v2.ff", header, w);
+    const auto old = radfmt::read_form_factors(dir / "v2.ff");
+    CHECK(old.row_start == ff.row_start);
+    CHECK(old.columns == ff.columns);
+    CHECK(old.values == ff.values);
+    CHECK(old.back_fraction == ff.back_fraction);
 }

@@ -1,8 +1,11 @@
 #include "radfmt/kinds.hpp"
 
+#include "compact_rows.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ostream>
 
 namespace radfmt {
@@ -166,16 +169,77 @@ void write_form_factor_body(const fs::path& path, Header header, const FormFacto
     header.kind = kind;
     header.set("patches", std::to_string(ff.patch_count));
     header.set("nonzeros", std::to_string(ff.nonzeros()));
+    if (ff.back_fraction.size() != ff.patch_count)
+        throw std::logic_error("form factors written without one back-face fraction per row");
     BodyWriter w;
     w.u64(ff.patch_count);
     w.u64(ff.nonzeros());
-    w.array(ff.row_start);
-    w.array(ff.columns);
-    w.array(ff.values);
-    if (ff.back_fraction.size() != ff.patch_count)
-        throw std::logic_error("form factors written without one back-face fraction per row");
+    // Version 3 of formfactors: compact rows (parts keep the plain arrays).
+    std::vector<std::uint64_t> row_offset;
+    std::vector<std::uint8_t> code;
+    if (kind == Kind::FormFactors) {
+        const auto denominator = compact::hit_denominator(header);
+        w.u64(denominator);
+        w.array(ff.row_start);
+        row_offset.reserve(ff.patch_count + 1);
+        for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
+            row_offset.push_back(code.size());
+            const auto b = ff.row_start[i], n = ff.row_start[i + 1] - b;
+            compact::encode_row({ff.columns.data() + b, n}, {ff.values.data() + b, n}, denominator,
+                                code);
+        }
+        row_offset.push_back(code.size());
+        w.array(row_offset);
+        w.array(code);
+    } else {
+        w.array(ff.row_start);
+        w.array(ff.columns);
+        w.array(ff.values);
+    }
     w.array(ff.back_fraction);
     write_file(path, std::move(header), w);
+}
+
+// Version 3's rows: offsets checked, then the codes read in pieces and decoded into the
+// arrays (never the whole code and the arrays at once).
+void read_compact_rows(BodyReader& r, FormFactorData& ff, std::uint64_t nnz,
+                       std::uint64_t denominator) {
+    const auto row_offset = r.array<std::uint64_t>(ff.patch_count + 1, "row offsets");
+    if (ff.row_start.front() != 0 || ff.row_start.back() != nnz)
+        r.fail("row starts do not span the non-zeros");
+    if (row_offset.front() != 0) r.fail("row offsets do not start at 0");
+    for (std::uint64_t i = 0; i < ff.patch_count; ++i)
+        if (ff.row_start[i] > ff.row_start[i + 1] || row_offset[i] > row_offset[i + 1])
+            r.fail("row starts or offsets decrease at row " + std::to_string(i));
+    const std::uint64_t code_size = row_offset.back();
+    r.begin_pieces(code_size, "row codes");
+    ff.columns.resize(nnz);
+    ff.values.resize(nnz);
+    std::vector<std::uint8_t> buffer;
+    std::size_t begin = 0, have = 0; // valid bytes: buffer[begin, begin + have)
+    std::uint64_t left = code_size;
+    for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
+        const auto length = static_cast<std::size_t>(row_offset[i + 1] - row_offset[i]);
+        if (have < length) {
+            if (have > 0) std::memmove(buffer.data(), buffer.data() + begin, have);
+            begin = 0;
+            const std::size_t capacity = std::max<std::size_t>(length, std::size_t(1) << 20);
+            if (buffer.size() < capacity) buffer.resize(capacity);
+            const auto more =
+                static_cast<std::size_t>(std::min<std::uint64_t>(capacity - have, left));
+            r.read_piece(buffer.data() + have, more);
+            have += more;
+            left -= more;
+        }
+        const auto b = ff.row_start[i];
+        const std::string why = compact::decode_row(
+            buffer.data() + begin, length, ff.row_start[i + 1] - b, ff.patch_count, denominator,
+            ff.columns.data() + b, ff.values.data() + b, i, b);
+        if (!why.empty()) r.fail(why);
+        begin += length;
+        have -= length;
+    }
+    r.end_pieces();
 }
 
 // The same bytes from a spool (FormFactorSpool::fill_body lays out the body as above).
@@ -184,7 +248,10 @@ void write_form_factor_body(const fs::path& path, Header header, FormFactorSpool
     header.set("patches", std::to_string(ff.patch_count()));
     header.set("nonzeros", std::to_string(ff.nonzeros()));
     BodyWriter w;
-    ff.fill_body(w);
+    if (kind == Kind::FormFactors)
+        ff.fill_compact_body(w, compact::hit_denominator(header));
+    else
+        ff.fill_body(w);
     write_file(path, std::move(header), w);
 }
 
@@ -194,10 +261,17 @@ FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, K
     BodyReader r(path, &kind);
     FormFactorData ff;
     ff.patch_count = r.count(8, "rows");
-    const auto nnz = r.count(8, "non-zeros");
+    const bool compact = kind == Kind::FormFactors && r.header().version >= 3;
+    // A compact non-zero takes at least two bytes (column delta and count).
+    const auto nnz = r.count(compact ? 2 : 8, "non-zeros");
+    const std::uint64_t denominator = compact ? r.u64() : 0;
     ff.row_start = r.array<std::uint64_t>(ff.patch_count + 1, "row starts");
-    ff.columns = r.array<std::uint32_t>(nnz, "columns");
-    ff.values = r.array<float>(nnz, "values");
+    if (compact) {
+        read_compact_rows(r, ff, nnz, denominator);
+    } else {
+        ff.columns = r.array<std::uint32_t>(nnz, "columns");
+        ff.values = r.array<float>(nnz, "values");
+    }
     // Parts have them from their version 1 on.
     if (r.header().version >= 2 || kind == Kind::FormFactorPart) {
         ff.back_fraction = r.array<float>(ff.patch_count, "back-face fractions");
@@ -452,7 +526,7 @@ constexpr KindInfo kKinds[] = {
     {Kind::Mesh, "mesh", "patch mesh", 1, 1,
      "patch,group,material,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b", mesh_csv,
      mesh_summary},
-    {Kind::FormFactors, "formfactors", "form-factor matrix", 2, 1, "row,col,f", form_factor_csv,
+    {Kind::FormFactors, "formfactors", "form-factor matrix", 3, 1, "row,col,f", form_factor_csv,
      form_factor_summary},
     {Kind::FormFactorPart, "formfactor-part", "form-factor rows (a shard of rad-ff --rows)", 1, 1,
      "row,col,f", form_factor_part_csv, form_factor_part_summary},

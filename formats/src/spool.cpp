@@ -2,6 +2,8 @@
 // spilled to disk past a memory budget.
 #include "radfmt/kinds.hpp"
 
+#include "compact_rows.hpp"
+
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -56,6 +58,7 @@ FormFactorSpool::FormFactorSpool(std::uint64_t patch_count, const fs::path& spil
 FormFactorSpool::~FormFactorSpool() {
     if (columns_fd_ >= 0) ::close(columns_fd_);
     if (values_fd_ >= 0) ::close(values_fd_);
+    if (code_fd_ >= 0) ::close(code_fd_);
 }
 
 void FormFactorSpool::add_entry(std::uint32_t column, float value) {
@@ -137,6 +140,123 @@ void FormFactorSpool::fill_body(BodyWriter& body) {
         // Chunks of an even number of 4-byte entries: no padding between them.
         for (const auto& chunk : column_chunks_) body.array(chunk);
         for (const auto& chunk : value_chunks_) body.array(chunk);
+    }
+    body.array(back_fraction_);
+}
+
+namespace {
+
+// The spool's entries in order, from its chunks in memory (each released once read) or from
+// its two spill files.
+class EntrySource {
+  public:
+    EntrySource(std::vector<std::vector<std::uint32_t>>& columns,
+                std::vector<std::vector<float>>& values, int columns_fd, int values_fd)
+        : columns_(columns), values_(values), columns_fd_(columns_fd), values_fd_(values_fd) {}
+
+    void next(std::size_t n, std::vector<std::uint32_t>& columns, std::vector<float>& values) {
+        columns.resize(n);
+        values.resize(n);
+        for (std::size_t k = 0; k < n;) {
+            if (at_ == size()) refill();
+            const std::size_t take = std::min(n - k, size() - at_);
+            std::memcpy(columns.data() + k, column_block().data() + at_, take * 4);
+            std::memcpy(values.data() + k, value_block().data() + at_, take * 4);
+            at_ += take;
+            k += take;
+        }
+    }
+
+  private:
+    bool spilled() const { return columns_fd_ >= 0; }
+    std::size_t size() const { return spilled() ? block_columns_.size() : current_size_; }
+    const std::vector<std::uint32_t>& column_block() const {
+        return spilled() ? block_columns_ : columns_[chunk_ - 1];
+    }
+    const std::vector<float>& value_block() const {
+        return spilled() ? block_values_ : values_[chunk_ - 1];
+    }
+    void refill() {
+        at_ = 0;
+        if (!spilled()) {
+            if (chunk_ > 0) { // the chunk read is no longer needed
+                std::vector<std::uint32_t>().swap(columns_[chunk_ - 1]);
+                std::vector<float>().swap(values_[chunk_ - 1]);
+            }
+            if (chunk_ >= columns_.size())
+                throw std::logic_error("FormFactorSpool: entries ran out");
+            current_size_ = columns_[chunk_++].size();
+            return;
+        }
+        block_columns_.resize(kChunkEntries);
+        block_values_.resize(kChunkEntries);
+        const auto got_columns = ::pread(columns_fd_, block_columns_.data(), kChunkEntries * 4,
+                                         static_cast<off_t>(offset_));
+        const auto got_values = ::pread(values_fd_, block_values_.data(), kChunkEntries * 4,
+                                        static_cast<off_t>(offset_));
+        if (got_columns <= 0 || got_columns != got_values || got_columns % 4 != 0)
+            throw WriteError(std::string("cannot read back the spilled rows: ") +
+                             (got_columns < 0 ? std::strerror(errno) : "short read"));
+        offset_ += std::uint64_t(got_columns);
+        block_columns_.resize(std::size_t(got_columns) / 4);
+        block_values_.resize(std::size_t(got_columns) / 4);
+    }
+
+    std::vector<std::vector<std::uint32_t>>& columns_;
+    std::vector<std::vector<float>>& values_;
+    int columns_fd_, values_fd_;
+    std::size_t chunk_ = 0, current_size_ = 0, at_ = 0;
+    std::uint64_t offset_ = 0;
+    std::vector<std::uint32_t> block_columns_;
+    std::vector<float> block_values_;
+};
+
+} // namespace
+
+void FormFactorSpool::fill_compact_body(BodyWriter& body, std::uint64_t denominator) {
+    if (rows() != patch_count_)
+        throw std::logic_error("FormFactorSpool: written before every row was added");
+    body.u64(patch_count_);
+    body.u64(nonzeros());
+    body.u64(denominator);
+    body.array(row_start_);
+    if (spilled()) {
+        chunk_full(); // the last chunk to disk
+        code_fd_ = open_unnamed_file(folder_);
+        if (code_fd_ < 0)
+            throw WriteError(folder_.string() + ": cannot create a temporary file for the rows (" +
+                             std::strerror(errno) + ")");
+    }
+    EntrySource entries(column_chunks_, value_chunks_, columns_fd_, values_fd_);
+    std::vector<std::uint32_t> columns;
+    std::vector<float> values;
+    std::vector<std::uint8_t> code; // the rows not yet in a block
+    std::uint64_t stored = 0;       // code bytes in blocks (or in code_fd_)
+    // Full blocks of 4 MiB (a multiple of 8: they lay out as one array) to memory or disk.
+    constexpr std::size_t kCodeBlock = std::size_t(4) << 20;
+    auto store = [&](std::size_t bytes) {
+        if (spilled())
+            write_all(code_fd_, code.data(), bytes, folder_);
+        else
+            code_blocks_.emplace_back(code.begin(), code.begin() + long(bytes));
+        code.erase(code.begin(), code.begin() + long(bytes));
+        stored += bytes;
+    };
+    row_offset_.clear();
+    row_offset_.reserve(patch_count_ + 1);
+    for (std::uint64_t i = 0; i < patch_count_; ++i) {
+        row_offset_.push_back(stored + code.size());
+        entries.next(static_cast<std::size_t>(row_start_[i + 1] - row_start_[i]), columns, values);
+        compact::encode_row(columns, values, denominator, code);
+        while (code.size() >= kCodeBlock) store(kCodeBlock);
+    }
+    row_offset_.push_back(stored + code.size());
+    if (!code.empty()) store(code.size());
+    body.array(row_offset_);
+    if (spilled()) {
+        body.file_array(code_fd_, row_offset_.back());
+    } else {
+        for (const auto& block : code_blocks_) body.array(block);
     }
     body.array(back_fraction_);
 }

@@ -140,6 +140,14 @@ class BodyReader {
         align();
         return out;
     }
+    // An array read in pieces (too large to hold twice): begin_pieces checks that `bytes`
+    // remain, read_piece reads the next part, end_pieces passes the padding after it.
+    void begin_pieces(std::uint64_t bytes, const char* what) {
+        align();
+        need(bytes, what);
+    }
+    void read_piece(void* into, std::uint64_t bytes) { read(into, bytes); }
+    void end_pieces() { align(); }
     // Requires the end of the body and checks its checksum: call it before trusting values.
     void expect_end();
     [[noreturn]] void fail(const std::string& message);

@@ -131,8 +131,12 @@ class FormFactorSpool {
     std::uint64_t nonzeros() const { return row_start_.back(); }
     bool spilled() const { return columns_fd_ >= 0; }
     const std::vector<float>& back_fraction() const { return back_fraction_; }
-    // Lays out the body (rows must all be in; spilled entries are flushed first).
+    // Lays out the body (rows must all be in; spilled entries are flushed first): the plain
+    // arrays (a formfactor-part), or compact rows (formfactors version 3, hit counts over
+    // `denominator` where they are exact; 0: floats). Compact, the entries are released as
+    // they are encoded.
     void fill_body(BodyWriter& body);
+    void fill_compact_body(BodyWriter& body, std::uint64_t denominator);
 
   private:
     void add_entry(std::uint32_t column, float value);
@@ -147,6 +151,10 @@ class FormFactorSpool {
     std::vector<std::vector<std::uint32_t>> column_chunks_;
     std::vector<std::vector<float>> value_chunks_;
     int columns_fd_ = -1, values_fd_ = -1;
+    // Compact rows: their offsets and code (in memory, or in code_fd_ when spilled).
+    std::vector<std::uint64_t> row_offset_;
+    std::vector<std::vector<std::uint8_t>> code_blocks_; // full blocks of kCodeBlock bytes
+    int code_fd_ = -1;
 };
 void write_form_factors(const std::filesystem::path& path, Header header, FormFactorSpool& ff);
 void write_form_factor_part(const std::filesystem::path& path, Header header, FormFactorSpool& ff,
