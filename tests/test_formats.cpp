@@ -453,6 +453,10 @@ TEST_CASE("formfactors version 3: hit counts exact, other values as they are, sp
     auto next = [&] { return state = state * 1664525u + 1013904223u; };
     radfmt::FormFactorSpool spool(ff.patch_count, dir);
     radfmt::FormFactorSpool spilled(ff.patch_count, dir, std::uint64_t(8) << 20);
+    // Encoding as the rows come (as rad-ff does), in memory and past a budget of one block.
+    REQUIRE(radfmt::formfactors_hit_denominator(header) == 1000);
+    radfmt::FormFactorSpool encoding(ff.patch_count, dir, radfmt::FormFactorSpool::kNoLimit, 1000);
+    radfmt::FormFactorSpool encoding_spilled(ff.patch_count, dir, std::uint64_t(4) << 20, 1000);
     for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
         std::vector<std::uint32_t> columns;
         std::vector<float> values;
@@ -472,14 +476,28 @@ TEST_CASE("formfactors version 3: hit counts exact, other values as they are, sp
         ff.back_fraction.push_back(0.25f);
         spool.add_row(columns, values, 0.25f);
         spilled.add_row(columns, values, 0.25f);
+        encoding.add_row(columns, values, 0.25f);
+        std::vector<std::pair<std::uint32_t, float>> entries;
+        for (std::size_t k = 0; k < columns.size(); ++k)
+            entries.emplace_back(columns[k], values[k]);
+        encoding_spilled.add_row(entries, 0.25f);
     }
     REQUIRE(ff.nonzeros() > 1'000'000);
     radfmt::write_form_factors(dir / "memory.ff", header, ff);
     radfmt::write_form_factors(dir / "spool.ff", header, spool);
     radfmt::write_form_factors(dir / "spilled.ff", header, spilled);
+    radfmt::write_form_factors(dir / "encoding.ff", header, encoding);
+    radfmt::write_form_factors(dir / "encoding-spilled.ff", header, encoding_spilled);
     CHECK(spilled.spilled());
+    CHECK_FALSE(encoding.spilled());
+    CHECK(encoding_spilled.spilled());
     CHECK(read_all(dir / "memory.ff") == read_all(dir / "spool.ff"));
     CHECK(read_all(dir / "memory.ff") == read_all(dir / "spilled.ff"));
+    CHECK(read_all(dir / "memory.ff") == read_all(dir / "encoding.ff"));
+    CHECK(read_all(dir / "memory.ff") == read_all(dir / "encoding-spilled.ff"));
+    // An encoding spool is a whole matrix: it is not written as a part.
+    CHECK_THROWS_AS(radfmt::write_form_factor_part(dir / "p.ff", header, encoding, 0, 1),
+                    std::logic_error);
     radfmt::Header read_header;
     const auto back = radfmt::read_form_factors(dir / "memory.ff", &read_header);
     CHECK(read_header.version == 3);

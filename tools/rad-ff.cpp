@@ -12,6 +12,7 @@
 #include "tool.hpp"
 
 #include <cstdio>
+#include <optional>
 #include <string>
 
 namespace {
@@ -189,8 +190,17 @@ int main(int argc, char** argv) {
         rad::FormFactorStats stats;
         // The rows are packed into the file's arrays as they are computed; what would not
         // fit within --max-memory waits on disk beside the output.
+        // A whole matrix is encoded as its rows come (formfactors version 3: the spool holds
+        // what the file will); a part keeps the plain arrays.
+        std::optional<std::uint64_t> compact;
+        if (rows.empty()) {
+            radfmt::Header fields;
+            for (const auto& [key, value] : rad::form_factor_header_fields(options))
+                fields.set(key, value);
+            compact = radfmt::formfactors_hit_denominator(fields);
+        }
         radfmt::FormFactorSpool ff(mesh.patches.size(), radfmt::FormFactorSpool::folder_for(output),
-                                   limit - need);
+                                   limit - need, compact);
         rad::compute_form_factor_rows(
             mesh, options,
             [&](std::size_t, rad::FormFactorEntries row, float back_fraction) {

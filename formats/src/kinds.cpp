@@ -321,6 +321,10 @@ FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, K
 }
 } // namespace
 
+std::uint64_t formfactors_hit_denominator(const Header& header) {
+    return compact::hit_denominator(header);
+}
+
 void write_form_factors(const fs::path& path, Header header, const FormFactorData& ff) {
     write_form_factor_body(path, std::move(header), ff, Kind::FormFactors);
 }

@@ -48,11 +48,12 @@ void write_all(int fd, const void* data, std::size_t size, const fs::path& folde
 } // namespace
 
 FormFactorSpool::FormFactorSpool(std::uint64_t patch_count, const fs::path& spill_folder,
-                                 std::uint64_t memory_budget)
+                                 std::uint64_t memory_budget, std::optional<std::uint64_t> compact)
     : patch_count_(patch_count), folder_(spill_folder.empty() ? fs::path(".") : spill_folder),
-      memory_budget_(memory_budget) {
+      memory_budget_(memory_budget), compact_(compact) {
     back_fraction_.reserve(patch_count);
     row_start_.reserve(patch_count + 1);
+    if (compact_) row_offset_.reserve(patch_count + 1);
 }
 
 FormFactorSpool::~FormFactorSpool() {
@@ -104,10 +105,45 @@ void FormFactorSpool::spill() {
     }
 }
 
+namespace {
+constexpr std::size_t kCodeBlock = std::size_t(4)
+                                   << 20; // a multiple of 8: blocks lay out as one array
+} // namespace
+
+// The first `bytes` of the pending code as a block: in memory while the budget allows, then
+// (with every block before it) to a spill file.
+void FormFactorSpool::store_code(std::size_t bytes) {
+    if (code_fd_ < 0 && (code_blocks_.size() + 1) * kCodeBlock > memory_budget_) {
+        code_fd_ = open_unnamed_file(folder_);
+        if (code_fd_ < 0)
+            throw WriteError(folder_.string() + ": cannot create a temporary file for the rows (" +
+                             std::strerror(errno) + ")");
+        for (const auto& block : code_blocks_)
+            write_all(code_fd_, block.data(), block.size(), folder_);
+        code_blocks_.clear();
+    }
+    if (code_fd_ >= 0)
+        write_all(code_fd_, code_.data(), bytes, folder_);
+    else
+        code_blocks_.emplace_back(code_.begin(), code_.begin() + long(bytes));
+    code_.erase(code_.begin(), code_.begin() + long(bytes));
+    code_stored_ += bytes;
+}
+
+void FormFactorSpool::add_compact_row(std::span<const std::uint32_t> columns,
+                                      std::span<const float> values, float back_fraction) {
+    compact::encode_row(columns, values, *compact_, code_);
+    while (code_.size() >= kCodeBlock) store_code(kCodeBlock);
+    row_offset_.push_back(code_stored_ + code_.size());
+    row_start_.push_back(row_start_.back() + columns.size());
+    back_fraction_.push_back(back_fraction);
+}
+
 void FormFactorSpool::add_row(std::span<const std::uint32_t> columns, std::span<const float> values,
                               float back_fraction) {
     if (columns.size() != values.size() || rows() >= patch_count_)
         throw std::logic_error("FormFactorSpool: a row with unequal arrays, or too many rows");
+    if (compact_) return add_compact_row(columns, values, back_fraction);
     for (std::size_t k = 0; k < columns.size(); ++k) add_entry(columns[k], values[k]);
     row_start_.push_back(row_start_.back() + columns.size());
     back_fraction_.push_back(back_fraction);
@@ -116,6 +152,13 @@ void FormFactorSpool::add_row(std::span<const std::uint32_t> columns, std::span<
 void FormFactorSpool::add_row(std::span<const std::pair<std::uint32_t, float>> entries,
                               float back_fraction) {
     if (rows() >= patch_count_) throw std::logic_error("FormFactorSpool: too many rows");
+    if (compact_) {
+        std::vector<std::uint32_t> columns(entries.size());
+        std::vector<float> values(entries.size());
+        for (std::size_t k = 0; k < entries.size(); ++k)
+            columns[k] = entries[k].first, values[k] = entries[k].second;
+        return add_compact_row(columns, values, back_fraction);
+    }
     for (const auto& [column, value] : entries) add_entry(column, value);
     row_start_.push_back(row_start_.back() + entries.size());
     back_fraction_.push_back(back_fraction);
@@ -127,8 +170,9 @@ fs::path FormFactorSpool::folder_for(const fs::path& output) {
 }
 
 void FormFactorSpool::fill_body(BodyWriter& body) {
-    if (rows() != patch_count_)
-        throw std::logic_error("FormFactorSpool: written before every row was added");
+    if (rows() != patch_count_ || compact_)
+        throw std::logic_error("FormFactorSpool: written before every row was added, or a "
+                               "compact spool written as plain arrays");
     body.u64(patch_count_);
     body.u64(nonzeros());
     body.array(row_start_);
@@ -213,48 +257,35 @@ class EntrySource {
 
 } // namespace
 
+// A plain spool written as formfactors: its entries encoded now, each chunk released once read.
+void FormFactorSpool::reencode_rows(std::uint64_t denominator) {
+    if (columns_fd_ >= 0) chunk_full(); // the last chunk to disk
+    EntrySource entries(column_chunks_, value_chunks_, columns_fd_, values_fd_);
+    std::vector<std::uint32_t> columns;
+    std::vector<float> values;
+    compact_ = denominator;
+    for (std::uint64_t i = 0; i < patch_count_; ++i) {
+        entries.next(static_cast<std::size_t>(row_start_[i + 1] - row_start_[i]), columns, values);
+        compact::encode_row(columns, values, denominator, code_);
+        while (code_.size() >= kCodeBlock) store_code(kCodeBlock);
+        row_offset_.push_back(code_stored_ + code_.size());
+    }
+}
+
 void FormFactorSpool::fill_compact_body(BodyWriter& body, std::uint64_t denominator) {
     if (rows() != patch_count_)
         throw std::logic_error("FormFactorSpool: written before every row was added");
+    if (!compact_) reencode_rows(denominator);
+    if (*compact_ != denominator)
+        throw std::logic_error("FormFactorSpool: encoded for another hit denominator");
+    if (!code_.empty()) store_code(code_.size());
     body.u64(patch_count_);
     body.u64(nonzeros());
     body.u64(denominator);
     body.array(row_start_);
-    if (spilled()) {
-        chunk_full(); // the last chunk to disk
-        code_fd_ = open_unnamed_file(folder_);
-        if (code_fd_ < 0)
-            throw WriteError(folder_.string() + ": cannot create a temporary file for the rows (" +
-                             std::strerror(errno) + ")");
-    }
-    EntrySource entries(column_chunks_, value_chunks_, columns_fd_, values_fd_);
-    std::vector<std::uint32_t> columns;
-    std::vector<float> values;
-    std::vector<std::uint8_t> code; // the rows not yet in a block
-    std::uint64_t stored = 0;       // code bytes in blocks (or in code_fd_)
-    // Full blocks of 4 MiB (a multiple of 8: they lay out as one array) to memory or disk.
-    constexpr std::size_t kCodeBlock = std::size_t(4) << 20;
-    auto store = [&](std::size_t bytes) {
-        if (spilled())
-            write_all(code_fd_, code.data(), bytes, folder_);
-        else
-            code_blocks_.emplace_back(code.begin(), code.begin() + long(bytes));
-        code.erase(code.begin(), code.begin() + long(bytes));
-        stored += bytes;
-    };
-    row_offset_.clear();
-    row_offset_.reserve(patch_count_ + 1);
-    for (std::uint64_t i = 0; i < patch_count_; ++i) {
-        row_offset_.push_back(stored + code.size());
-        entries.next(static_cast<std::size_t>(row_start_[i + 1] - row_start_[i]), columns, values);
-        compact::encode_row(columns, values, denominator, code);
-        while (code.size() >= kCodeBlock) store(kCodeBlock);
-    }
-    row_offset_.push_back(stored + code.size());
-    if (!code.empty()) store(code.size());
     body.array(row_offset_);
-    if (spilled()) {
-        body.file_array(code_fd_, row_offset_.back());
+    if (code_fd_ >= 0) {
+        body.file_array(code_fd_, code_stored_);
     } else {
         for (const auto& block : code_blocks_) body.array(block);
     }

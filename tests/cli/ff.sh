@@ -31,7 +31,7 @@ grep -q "method hemisphere" <<<"$err" && fail "hemisphere suggested to itself: $
 expect_error "--output is required (or --estimate" "" "$BIN/rad-ff" "$TMP/c.mesh"
 expect_error "--rows is empty: give A:B or K/N" "$TMP/r.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/r.ff" --rows ''
 # Under an address-space limit Embree's failure to start says "out of memory" (exit 2).
-err=$(ulimit -v 200000; "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/u.ff" -q 2>&1); rc=$?
+err=$(ulimit -v 120000; "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/u.ff" -q 2>&1); rc=$?
 [ $rc -eq 2 ] && grep -q "out of memory" <<<"$err" || fail "ulimit -v: exit $rc: $err"
 expect_error "" "" "$BIN/rad-ff" a.ff b.ff --merge --estimate
 expect_error "more than --max-memory" "$TMP/m.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/m.ff" --max-memory 10K

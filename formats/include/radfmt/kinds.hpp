@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -114,8 +115,13 @@ FormFactorData read_form_factor_part(const std::filesystem::path& path,
 // order, every row of the matrix (empty ones too).
 class FormFactorSpool {
   public:
+    // With `compact` (the hit denominator of formfactors_hit_denominator, 0 for floats), rows
+    // are encoded as formfactors version 3 as they come: the spool then holds what the file
+    // will (2-5 bytes a non-zero instead of 8), and can only be written as formfactors.
+    static constexpr std::uint64_t kNoLimit = std::numeric_limits<std::uint64_t>::max();
     FormFactorSpool(std::uint64_t patch_count, const std::filesystem::path& spill_folder,
-                    std::uint64_t memory_budget = std::numeric_limits<std::uint64_t>::max());
+                    std::uint64_t memory_budget = kNoLimit,
+                    std::optional<std::uint64_t> compact = std::nullopt);
     ~FormFactorSpool();
     FormFactorSpool(const FormFactorSpool&) = delete;
     FormFactorSpool& operator=(const FormFactorSpool&) = delete;
@@ -129,7 +135,8 @@ class FormFactorSpool {
     std::uint64_t patch_count() const { return patch_count_; }
     std::uint64_t rows() const { return row_start_.size() - 1; }
     std::uint64_t nonzeros() const { return row_start_.back(); }
-    bool spilled() const { return columns_fd_ >= 0; }
+    bool spilled() const { return columns_fd_ >= 0 || code_fd_ >= 0; }
+    bool compact() const { return compact_.has_value(); }
     const std::vector<float>& back_fraction() const { return back_fraction_; }
     // Lays out the body (rows must all be in; spilled entries are flushed first): the plain
     // arrays (a formfactor-part), or compact rows (formfactors version 3, hit counts over
@@ -140,6 +147,10 @@ class FormFactorSpool {
 
   private:
     void add_entry(std::uint32_t column, float value);
+    void add_compact_row(std::span<const std::uint32_t> columns, std::span<const float> values,
+                         float back_fraction);
+    void store_code(std::size_t bytes);
+    void reencode_rows(std::uint64_t denominator);
     void chunk_full();
     void spill();
     std::uint64_t patch_count_;
@@ -152,11 +163,17 @@ class FormFactorSpool {
     std::vector<std::vector<float>> value_chunks_;
     int columns_fd_ = -1, values_fd_ = -1;
     // Compact rows: their offsets and code (in memory, or in code_fd_ when spilled).
-    std::vector<std::uint64_t> row_offset_;
-    std::vector<std::vector<std::uint8_t>> code_blocks_; // full blocks of kCodeBlock bytes
+    std::optional<std::uint64_t> compact_;
+    std::vector<std::uint64_t> row_offset_{0};
+    std::vector<std::vector<std::uint8_t>> code_blocks_; // full blocks of 4 MiB, then the rest
+    std::vector<std::uint8_t> code_;                     // rows not yet in a block
+    std::uint64_t code_stored_ = 0;                      // bytes in blocks or in code_fd_
     int code_fd_ = -1;
 };
 void write_form_factors(const std::filesystem::path& path, Header header, FormFactorSpool& ff);
+// The denominator formfactors version 3 stores hit counts over: the rays of a hemisphere
+// method's header (fields method and rays), else 0 (values stored as floats).
+std::uint64_t formfactors_hit_denominator(const Header& header);
 void write_form_factor_part(const std::filesystem::path& path, Header header, FormFactorSpool& ff,
                             std::uint64_t rows_begin, std::uint64_t rows_end);
 

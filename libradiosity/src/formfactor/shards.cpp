@@ -174,7 +174,8 @@ MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
 
     // The rows, part after part, through a spool: one part is read at a time, and what does
     // not fit in the budget beside it waits on disk.
-    radfmt::FormFactorSpool spool(n, radfmt::FormFactorSpool::folder_for(output), memory_budget);
+    radfmt::FormFactorSpool spool(n, radfmt::FormFactorSpool::folder_for(output), memory_budget,
+                                  radfmt::formfactors_hit_denominator(out.header));
     for (const auto& p : parts) {
         std::uint64_t begin = 0, end = 0;
         const auto ff = radfmt::read_form_factor_part(p.path, nullptr, &begin, &end);
