@@ -130,11 +130,17 @@ void FormFactorSpool::store_code(std::size_t bytes) {
     code_stored_ += bytes;
 }
 
-void FormFactorSpool::add_compact_row(std::span<const std::uint32_t> columns,
-                                      std::span<const float> values, float back_fraction) {
+// A row's code after the others, full blocks stored, and where the next row's code starts.
+void FormFactorSpool::encode_code_row(std::span<const std::uint32_t> columns,
+                                      std::span<const float> values) {
     compact::encode_row(columns, values, *compact_, code_);
     while (code_.size() >= kCodeBlock) store_code(kCodeBlock);
     row_offset_.push_back(code_stored_ + code_.size());
+}
+
+void FormFactorSpool::add_compact_row(std::span<const std::uint32_t> columns,
+                                      std::span<const float> values, float back_fraction) {
+    encode_code_row(columns, values);
     row_start_.push_back(row_start_.back() + columns.size());
     back_fraction_.push_back(back_fraction);
 }
@@ -152,12 +158,12 @@ void FormFactorSpool::add_row(std::span<const std::uint32_t> columns, std::span<
 void FormFactorSpool::add_row(std::span<const std::pair<std::uint32_t, float>> entries,
                               float back_fraction) {
     if (rows() >= patch_count_) throw std::logic_error("FormFactorSpool: too many rows");
-    if (compact_) {
-        std::vector<std::uint32_t> columns(entries.size());
-        std::vector<float> values(entries.size());
+    if (compact_) { // split into the spool's scratch arrays (no allocation once they are grown)
+        scratch_columns_.resize(entries.size());
+        scratch_values_.resize(entries.size());
         for (std::size_t k = 0; k < entries.size(); ++k)
-            columns[k] = entries[k].first, values[k] = entries[k].second;
-        return add_compact_row(columns, values, back_fraction);
+            scratch_columns_[k] = entries[k].first, scratch_values_[k] = entries[k].second;
+        return add_compact_row(scratch_columns_, scratch_values_, back_fraction);
     }
     for (const auto& [column, value] : entries) add_entry(column, value);
     row_start_.push_back(row_start_.back() + entries.size());
@@ -266,9 +272,7 @@ void FormFactorSpool::reencode_rows(std::uint64_t denominator) {
     compact_ = denominator;
     for (std::uint64_t i = 0; i < patch_count_; ++i) {
         entries.next(static_cast<std::size_t>(row_start_[i + 1] - row_start_[i]), columns, values);
-        compact::encode_row(columns, values, denominator, code_);
-        while (code_.size() >= kCodeBlock) store_code(kCodeBlock);
-        row_offset_.push_back(code_stored_ + code_.size());
+        encode_code_row(columns, values);
     }
 }
 

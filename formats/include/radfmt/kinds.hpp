@@ -149,6 +149,7 @@ class FormFactorSpool {
     void add_entry(std::uint32_t column, float value);
     void add_compact_row(std::span<const std::uint32_t> columns, std::span<const float> values,
                          float back_fraction);
+    void encode_code_row(std::span<const std::uint32_t> columns, std::span<const float> values);
     void store_code(std::size_t bytes);
     void reencode_rows(std::uint64_t denominator);
     void chunk_full();
@@ -168,6 +169,8 @@ class FormFactorSpool {
     std::vector<std::vector<std::uint8_t>> code_blocks_; // full blocks of 4 MiB, then the rest
     std::vector<std::uint8_t> code_;                     // rows not yet in a block
     std::uint64_t code_stored_ = 0;                      // bytes in blocks or in code_fd_
+    std::vector<std::uint32_t> scratch_columns_;         // a row of pairs, split
+    std::vector<float> scratch_values_;
     int code_fd_ = -1;
 };
 void write_form_factors(const std::filesystem::path& path, Header header, FormFactorSpool& ff);
