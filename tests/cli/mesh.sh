@@ -78,6 +78,20 @@ done
 ff_err=$("$BIN/rad-ff" flipped.mesh -o flipped-a.ff --method analytic -q 2>&1) || fail "rad-ff analytic"
 grep -q "group back: 100% of the" <<<"$ff_err" || fail "analytic probe rays did not name the flipped wall: $ff_err"
 "$BIN/rad-info" flipped.ff | grep -q "rays arriving at back faces: mean" || fail "rad-info shows no back-face fractions"
+# The same box with no o/g lines (every face in the unnamed group; issue #24 item 8): the
+# warnings name the material and the connected surface of the flipped wall (its first line)
+# instead of "group default", and rad-mesh does not suggest --flip (there is no group to name).
+grep -v '^[og] ' flip/cornell.obj > flip/nogroups.obj
+err=$("$BIN/rad-mesh" flip/nogroups.obj -o nogroups.mesh --max-edge 0.1 2>&1) || fail "no groups mesh: $err"
+line=$(grep -n '^f 24 23 22 21$' flip/nogroups.obj | cut -d: -f1)
+grep -q "material white, the connected surface from .*nogroups.obj:[0-9]*: 1 face(s) wound against their neighbours across shared edges (first at .*nogroups.obj:$line); --orient fix would flip them$" <<<"$err" ||
+  fail "no groups: the flipped wall not named by material and surface: $err"
+grep -q "group default" <<<"$err" && fail "no groups: 'group default' named: $err"
+ff_err=$("$BIN/rad-ff" nogroups.mesh -o nogroups.ff --method hemisphere --rays 2000 2>&1) || fail "rad-ff no groups"
+# rad-ff has no groups to go by either: it names the material and where the surface is (the
+# back wall's centre, z = 0.5592).
+grep -q "warning: nogroups.mesh: material white, the surface around (0.278, 0.2744, 0.5592): 100% of the [0-9]* rays that reach it arrive at its back: it probably faces the wrong way (rad-mesh --orient fix)" <<<"$ff_err" ||
+  fail "rad-ff did not name the material and surface: $ff_err"
 
 # A room modelled as seen from outside (every face of the Cornell room reversed): topology
 # cannot tell, rad-ff names the walls (reached from behind) and the blocks (looking at

@@ -3,6 +3,7 @@
 #pragma once
 #include "radiosity/scene.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,15 +17,20 @@ struct OrientationFinding {
         RoomOutward,       // a closed room (around the rest of the scene) facing outward
         FacingAway,        // an open surface whose back sees what its front should
     };
-    Kind kind;
+    Kind kind = Kind::AgainstNormals;
     std::uint32_t group = 0;           // the group of the faces found
     std::vector<std::size_t> polygons; // indices into Scene::polygons, ascending
     std::vector<std::size_t> to_flip;  // what --orient fix reverses (a subset of polygons)
+    // When the group is the file's unnamed one ("default": an OBJ with no g/o lines), the
+    // finding is the faces of one material, and names it and the connected surface of its
+    // first face (that surface's first line).
+    std::optional<std::uint32_t> material;
+    int surface_line = 0;
 };
 
-// Every finding, one per (kind, group). Connected surfaces are found by welding vertices
-// by position; a closed surface facing inward is a room (fine) when it encloses the rest
-// of the scene, and an object turned inside out otherwise.
+// Every finding, one per (kind, group), or per (kind, material) in the unnamed group. Connected
+// surfaces are found by welding vertices by position; a closed surface facing inward is a room
+// (fine) when it encloses the rest of the scene, and an object turned inside out otherwise.
 std::vector<OrientationFinding> check_orientation(const Scene& scene);
 
 // Visibility voting with rays, for what topology cannot tell (a room modelled as seen from
@@ -34,7 +40,8 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene);
 // closed objects already face outward; deterministic for a given scene.
 std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene);
 
-// One warning line: "group pillar: 4 face(s) ... (first at scene.obj:12)".
+// One warning line: "group pillar: 4 face(s) ... (first at scene.obj:12)", or with no groups
+// "material white, the surface from scene.obj:10: 4 face(s) ... (first at scene.obj:12)".
 std::string describe(const OrientationFinding& finding, const Scene& scene);
 
 // Reverses the winding of every face of the named groups; throws InputError naming the

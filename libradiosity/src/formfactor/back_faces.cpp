@@ -4,7 +4,10 @@
 #include "sampling.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
+#include <map>
 
 namespace rad {
 
@@ -37,11 +40,30 @@ std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
     struct GroupTally {
         std::size_t patches = 0, looking_at_backs = 0;
         std::uint64_t reached_front = 0, reached_back = 0;
+        Vec3 weighted_centre{0, 0, 0};
+        double area = 0;
     };
-    std::vector<GroupTally> groups(mesh.groups.size());
+    // By group; the patches of the unnamed group (an OBJ with no g/o lines) by material and
+    // plane, the only names the file gives them.
+    const double size = bounds(mesh.vertices).diagonal();
+    char text[160];
+    std::map<std::array<long long, 4>, long long> plane_index;
+    auto plane_of = [&](const radfmt::Patch& patch) {
+        const double d = dot(patch.normal, patch.centroid);
+        const std::array<long long, 4> key{
+            std::llround(patch.normal[0] * 1e3), std::llround(patch.normal[1] * 1e3),
+            std::llround(patch.normal[2] * 1e3), std::llround(d / std::max(size, 1e-300) * 1e4)};
+        return plane_index.emplace(key, (long long)plane_index.size()).first->second;
+    };
+    std::map<std::array<long long, 3>, GroupTally> groups;
     for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
-        auto& g = groups[mesh.patches[i].group];
+        const auto& patch = mesh.patches[i];
+        const bool unnamed = mesh.groups[patch.group] == "default";
+        auto& g = groups[{patch.group, unnamed ? (long long)patch.material : -1,
+                          unnamed ? plane_of(patch) : -1}];
         ++g.patches;
+        g.weighted_centre = g.weighted_centre + patch.centroid * patch.area;
+        g.area += patch.area;
         if (i < back_fraction.size() && back_fraction[i] > 0.5f) ++g.looking_at_backs;
         if (i < stats.reached_front.size()) {
             g.reached_front += stats.reached_front[i];
@@ -49,9 +71,16 @@ std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
         }
     }
     std::vector<std::string> out;
-    char text[160];
-    for (std::size_t k = 0; k < groups.size(); ++k) {
-        const auto& g = groups[k];
+    for (const auto& [key, g] : groups) {
+        std::string name = "group " + mesh.groups[key[0]];
+        std::string fix = "rad-mesh --orient fix, or --flip " + mesh.groups[key[0]];
+        if (key[1] >= 0) {
+            const Vec3 c = g.weighted_centre * (1 / std::max(g.area, 1e-300));
+            std::snprintf(text, sizeof text, ", the surface around (%.4g, %.4g, %.4g)", c[0], c[1],
+                          c[2]);
+            name = "material " + mesh.materials[key[1]].name + text;
+            fix = "rad-mesh --orient fix";
+        }
         // Patches of a correct scene may look at a back now and then (the top of a lamp
         // under the ceiling): only a group where most patches do is reported.
         if (2 * g.looking_at_backs > g.patches) {
@@ -59,10 +88,7 @@ std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
                           "%zu of %zu patches look at the back of other surfaces (most of their "
                           "rays arrive at back faces): ",
                           g.looking_at_backs, g.patches);
-            std::string line = "group ";
-            line += mesh.groups[k];
-            line += ": ";
-            line += text;
+            std::string line = name + ": " + text;
             line += "they probably face the wrong way, or what they look at does (a sheet seen "
                     "from both sides needs rad-mesh --two-sided)";
             out.push_back(std::move(line));
@@ -77,13 +103,8 @@ std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
                           "%.0f%% of the %llu rays that reach it arrive at its back: ",
                           100.0 * double(g.reached_back) / double(reached),
                           static_cast<unsigned long long>(reached));
-            std::string line = "group ";
-            line += mesh.groups[k];
-            line += ": ";
-            line += text;
-            line += "it probably faces the wrong way (rad-mesh --orient fix, or --flip ";
-            line += mesh.groups[k];
-            line += ")";
+            std::string line = name + ": " + text;
+            line += "it probably faces the wrong way (" + fix + ")";
             out.push_back(std::move(line));
         }
     }

@@ -25,14 +25,25 @@ namespace {
 void add_finding(std::vector<OrientationFinding>& out, OrientationFinding::Kind kind,
                  const Scene& scene, const std::vector<std::size_t>& polygons,
                  const std::vector<bool>& flip) {
-    std::map<std::uint32_t, std::vector<std::size_t>> by_group;
-    for (auto p : polygons) by_group[scene.polygons[p].group].push_back(p);
-    for (auto& [group, list] : by_group) {
+    // Faces of the unnamed group go by material: the only name the file gives them.
+    std::map<std::pair<std::uint32_t, std::int64_t>, std::vector<std::size_t>> by_name;
+    for (auto p : polygons) {
+        const auto& polygon = scene.polygons[p];
+        const bool unnamed = scene.groups[polygon.group] == "default";
+        by_name[{polygon.group, unnamed ? std::int64_t(polygon.material) : -1}].push_back(p);
+    }
+    for (auto& [name, list] : by_name) {
         std::sort(list.begin(), list.end());
         std::vector<std::size_t> to_flip;
         for (auto p : list)
             if (flip[p]) to_flip.push_back(p);
-        out.push_back({kind, group, std::move(list), std::move(to_flip)});
+        OrientationFinding finding;
+        finding.kind = kind;
+        finding.group = name.first;
+        finding.polygons = std::move(list);
+        finding.to_flip = std::move(to_flip);
+        if (name.second >= 0) finding.material = static_cast<std::uint32_t>(name.second);
+        out.push_back(std::move(finding));
     }
 }
 
@@ -133,6 +144,21 @@ SurfaceGraph connect_surfaces(const Scene& scene) {
 // A surface encloses the rest of the scene (a room) when its box holds the scene's box, give
 // or take 1% of the scene's size: exporters let water or furniture poke a few millimetres
 // through a wall.
+// Each finding's surface_line: the first line of the connected surface of its first face.
+void name_surfaces(std::vector<OrientationFinding>& findings, const Scene& scene,
+                   const SurfaceGraph& surfaces) {
+    std::vector<std::size_t> surface_of(scene.polygons.size());
+    for (std::size_t c = 0; c < surfaces.members.size(); ++c)
+        for (auto f : surfaces.members[c]) surface_of[f] = c;
+    for (auto& finding : findings) {
+        if (finding.polygons.empty()) continue;
+        int first = scene.polygons[finding.polygons.front()].line;
+        for (const auto f : surfaces.members[surface_of[finding.polygons.front()]])
+            first = std::min(first, scene.polygons[f].line);
+        finding.surface_line = first;
+    }
+}
+
 bool encloses(const Box& surface, const Box& scene) {
     const double tol = 0.01 * length(scene.hi - scene.lo);
     for (int c = 0; c < 3; ++c)
@@ -249,6 +275,7 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
                 flip);
     add_finding(findings, OrientationFinding::Kind::InsideOut, scene, inside_out, flip);
     add_finding(findings, OrientationFinding::Kind::RoomOutward, scene, room_outward, flip);
+    name_surfaces(findings, scene, surfaces);
     return findings;
 }
 
@@ -412,6 +439,7 @@ std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
     std::sort(facing_away.begin(), facing_away.end());
     std::vector<OrientationFinding> findings;
     add_finding(findings, OrientationFinding::Kind::FacingAway, scene, facing_away, flip);
+    name_surfaces(findings, scene, surfaces);
     return findings;
 }
 
@@ -437,8 +465,13 @@ std::string describe(const OrientationFinding& finding, const Scene& scene) {
         break;
     }
     const auto& first = scene.polygons[finding.polygons.front()];
-    return "group " + scene.groups[finding.group] + ": " + std::to_string(finding.polygons.size()) +
-           " face(s) " + what + " (first at " + face_location(scene, first.line) + ")";
+    const std::string whose = finding.material
+                                  ? "material " + scene.materials[*finding.material].name +
+                                        ", the connected surface from " +
+                                        face_location(scene, finding.surface_line)
+                                  : "group " + scene.groups[finding.group];
+    return whose + ": " + std::to_string(finding.polygons.size()) + " face(s) " + what +
+           " (first at " + face_location(scene, first.line) + ")";
 }
 
 std::size_t flip_groups(Scene& scene, const std::vector<std::string>& groups) {

@@ -78,8 +78,9 @@ std::vector<bool> orientation_pass(Scene& scene, const MeshOptions& options, Mes
     for (const auto& finding : findings)
         report.add(Kind::Warning,
                    describe(finding, scene) +
-                       (options.orient_fix || finding.to_flip.empty()
-                            ? ""
+                       (options.orient_fix || finding.to_flip.empty() ? ""
+                        : finding.material
+                            ? "; --orient fix would flip them"
                             : "; --orient fix would flip them, or --flip the group"));
     std::vector<bool> turned(scene.polygons.size(), false);
     if (options.orient_fix) {
