@@ -12,6 +12,10 @@ python3 surface_scenes.py KIND OUT.obj
   beam      the inward room with a beam through its right wall, sticking out by 1
   holed     the back wall with a 16-sided window, as a fan of triangles around it, and a
             shelf 6 cm deep along the left wall (a region narrower than a cell)
+  tiles     the floor's first 30 cm from the back wall as a row of tiles (their own material)
+            whose joints are 5 mm apart in pairs: points a wall's band cannot mesh well
+  frame     a picture frame of 2 cm strips around a 1 m opening, standing in the room (one
+            region, thin everywhere though its rectangle is a metre wide)
 python3 surface_scenes.py gltf CORNELL.obj OUT.gltf
   the OBJ's faces as glTF triangles, one mesh per material (Kd as base colour, Ke as emission)
 """
@@ -65,7 +69,13 @@ def room(kind):
         quad(mat, *reversed(corners))
 
     add = reversed_quad if kind == "outward" else quad
-    add("floor", (0, 0, 0), (0, 0, D), (W, 0, D), (W, 0, 0))
+    if kind == "tiles":
+        add("floor", (0, 0, 0.3), (0, 0, D), (W, 0, D), (W, 0, 0.3))
+        joints = sorted({0.0, W} | {round(x + d, 6) for x in (0.5, 1.3, 2.1, 2.9, 3.5) for d in (0, 0.005)})
+        for k, (x0, x1) in enumerate(zip(joints, joints[1:])):
+            add("tile" + "ab"[k % 2], (x0, 0, 0), (x0, 0, 0.3), (x1, 0, 0.3), (x1, 0, 0))
+    else:
+        add("floor", (0, 0, 0), (0, 0, D), (W, 0, D), (W, 0, 0))
     add("ceiling", (0, H, 0), (W, H, 0), (W, H, D), (0, H, D))
     add("left", (0, 0, 0), (0, H, 0), (0, H, D), (0, 0, D))
     add("right", (W, 0, 0), (W, 0, D), (W, H, D), (W, H, 0))
@@ -95,6 +105,12 @@ def room(kind):
         quad("back", *back)
     if kind == "twice":
         reversed_quad("back", *back)
+    if kind == "frame":  # x 1..3, y 0.5..1.5 at z = 1.5, facing +z; strips 2 cm wide
+        o, i = (1.0, 0.5, 3.0, 1.5), (1.02, 0.52, 2.98, 1.48)
+        quad("frame", (o[0], o[1], 1.5), (o[2], o[1], 1.5), (i[2], i[1], 1.5), (i[0], i[1], 1.5))
+        quad("frame", (o[2], o[1], 1.5), (o[2], o[3], 1.5), (i[2], i[3], 1.5), (i[2], i[1], 1.5))
+        quad("frame", (o[2], o[3], 1.5), (o[0], o[3], 1.5), (i[0], i[3], 1.5), (i[2], i[3], 1.5))
+        quad("frame", (o[0], o[3], 1.5), (o[0], o[1], 1.5), (i[0], i[1], 1.5), (i[0], i[3], 1.5))
     if kind == "sheet":
         quad("sheet", (1, 0.5, 1.5), (3, 0.5, 1.5), (3, 1.5, 1.5), (1, 1.5, 1.5))
         reversed_quad("sheet", (1, 0.5, 1.5), (3, 0.5, 1.5), (3, 1.5, 1.5), (1, 1.5, 1.5))

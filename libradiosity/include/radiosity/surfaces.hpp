@@ -33,35 +33,44 @@ struct SurfaceOptions {
 // edge over its shortest height (longest^2 / (2 area) for a triangle: 1.15 equilateral; for a
 // quad, the longest edge over its area / the mean length of each pair of opposite sides: 1 for
 // a square).
-// A region's width (the shorter side of its minimum-area rectangle) against its cell: wide (a
-// cell or more: near-square patches of a cell), narrow (a tenth of a cell or more: cut across
-// into near-square patches twice its width long) or thin (a trim or sill: patches as thin as
-// the region, a cell long).
-enum class WidthClass : std::uint8_t { Wide, Narrow, Thin };
-WidthClass width_class(double cell, double width); // no cell (0): wide
+// A region's width (the shorter side of its minimum-area rectangle, or its thickness, the
+// diameter of the largest circle inside it, where under half that: frames, rings) against its
+// cell: wide (a cell or more: near-square patches of a cell), narrow (a tenth of a cell or more:
+// cut across into near-square patches twice its width long) or thin (a trim or sill: patches as
+// thin as the region, a cell long). A narrow region's patch is thin where the region is that
+// thin there: the largest circle inside it around the patch is under a tenth of a cell and
+// under half the region's width (a thin tab or strip of a wider region).
+enum class WidthClass : std::uint8_t { Wide, Narrow, Thin }; // in order of thinness
+WidthClass width_class(double cell, double width);           // no cell (0): wide
 struct ShapeStats {
-    double fraction_aspect_at_most_3 = 1;      // of the patches of wide and narrow regions
+    double fraction_aspect_at_most_3 = 1;      // of the patches not thin
     double fraction_wide_aspect_at_most_3 = 1; // of the patches of wide regions
-    double worst_aspect = 1;                   // of wide and narrow regions
-    std::size_t thin = 0;                      // patches of thin regions, not counted
+    double worst_aspect = 1;                   // of the patches not thin
+    std::size_t thin = 0;                      // patches where the region is thin, not counted
+    std::size_t specks = 0; // patches not thin whose longest edge is under a tenth of a cell
 };
 double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
-// Over the patches of wide and narrow regions (`classes` by patch; patches past its end are
-// wide).
-ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClass>& classes = {});
+double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
+// Over the patches not thin (`classes` by patch; patches past its end are wide); `cells` gives
+// each patch's cell side (patches past its end are not counted as specks).
+ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClass>& classes = {},
+                       const std::vector<double>& cells = {});
 
 struct SurfaceReport {
     std::size_t faces = 0, regions = 0;
     std::size_t cells = 0;            // full grid cells: quads
     std::size_t band_triangles = 0;   // triangles between the cells and a region's outline
     std::size_t dropped_vertices = 0; // collinear outline points no other region needs
+    std::size_t t_vertices = 0;       // points a region left out where smoothing stops anyway
     ShapeStats shape;
 };
 
 // The faces (triangles and planar convex quads, as `subdivide` makes them with no limits) as
 // the patches of gridded planar regions. Outline points are shared between the regions along
-// an edge (no T-vertices: each straight run of outline between two corners is split once, for
-// every region on it, into pieces of at most the smallest cell size of those regions). Inside,
+// an edge (each straight run of outline between two corners is split once, for every region on
+// it, into pieces of at most the smallest cell size of those regions), except that a region
+// leaves out a point of a straight stretch between pieces under a tenth of a cell where no
+// other region there is smoothed with it (T-vertices where crease smoothing stops). Inside,
 // a cell whose corners are at least a third of a cell from the outline (or on an outline
 // point) is a quad; the band between those cells and the outline is a constrained Delaunay
 // triangulation (CGAL) of their corners and the outline points.

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace rad::surfaces {
@@ -90,6 +91,7 @@ class RegionGrid {
     std::size_t node(std::size_t i, std::size_t j) const { return j * (nu_ + 1) + i; }
     std::size_t cell(std::size_t i, std::size_t j) const { return j * nu_ + i; }
     std::uint32_t& id(std::size_t i, std::size_t j) { return node_id_[node(i, j)]; }
+    std::uint32_t id(std::size_t i, std::size_t j) const { return node_id_[node(i, j)]; }
     bool full(std::size_t i, std::size_t j) const { return full_[cell(i, j)]; }
     bool full_at(const XY& p) const {
         const auto [s, t] = frame_.local(p);
@@ -99,6 +101,8 @@ class RegionGrid {
         return full_[cell(std::size_t(i), std::size_t(j))];
     }
     bool node_ok(std::size_t i, std::size_t j) const { return node_ok_[node(i, j)]; }
+    // The cell is left to the band (its corners stay usable points of the band).
+    void give_to_band(std::size_t i, std::size_t j) { full_[cell(i, j)] = false; }
     bool matched(std::size_t i, std::size_t j) const { return matched_.count(node(i, j)) > 0; }
 
     // Nodes off the outline are usable when inside and a third of a cell from the outline.
@@ -313,38 +317,10 @@ void grid_quadrilateral(const Region& region, Points& points, radfmt::MeshData& 
         }
 }
 
-} // namespace
-
-double grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
-                   SurfaceReport& report, double tolerance) {
-    if (!region.quad_sides.empty()) {
-        grid_quadrilateral(region, points, mesh, report);
-        const auto& s = region.quad_sides;
-        double longest = 0, area = 0;
-        for (const auto& side : s)
-            longest = std::max(
-                longest, length(points.position[side.back()] - points.position[side.front()]));
-        const Vec3 a = points.position[s[0].front()], b = points.position[s[1].front()],
-                   c = points.position[s[2].front()], d = points.position[s[3].front()];
-        area = 0.5 * length(cross(c - a, d - b));
-        return longest > 0 ? area / longest : 0;
-    }
-    std::vector<std::uint32_t> ids;
-    for (const auto& [a, b] : region.pieces) ids.push_back(a), ids.push_back(b);
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-    std::vector<XY> xy;
-    std::vector<Point2> pts;
-    for (const auto id : ids) {
-        xy.push_back(region.plane.to_2d(points.position[id]));
-        pts.emplace_back(xy.back()[0], xy.back()[1]);
-    }
-    GridFrame frame;
-    if (!minimum_rectangle(pts, frame)) return 0; // no area
-    RegionGrid grid(region, frame, xy, ids, points, tolerance);
-    std::unordered_set<EdgeKey> pieces;
-    for (const auto& [a, b] : region.pieces) pieces.insert(edge_key(a, b));
-    grid.classify_nodes(pieces);
+// The region's whole cells as quads, and the band between them and the outline.
+void mesh_cells_and_band(const Region& region, RegionGrid& grid,
+                         const std::unordered_set<EdgeKey>& pieces, Points& points,
+                         radfmt::MeshData& mesh, SurfaceReport& report) {
     std::unordered_set<EdgeKey> band(pieces.begin(), pieces.end());
     auto toggle = [&](EdgeKey e) {
         if (!band.erase(e)) band.insert(e);
@@ -366,12 +342,87 @@ double grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
                 toggle(edge_key(grid.id(c[k][0], c[k][1]),
                                 grid.id(c[(k + 1) % 4][0], c[(k + 1) % 4][1])));
         }
-    const double width = std::min(frame.length1, frame.length2);
-    if (band.empty()) return width;
+    if (band.empty()) return;
     std::vector<EdgeKey> ordered(band.begin(), band.end());
     std::sort(ordered.begin(), ordered.end()); // the same triangulation whatever the hash order
     triangulate_band(region, grid, ordered, points, mesh, report);
-    return width;
+}
+
+// Rounds of giving cells to the band: enough for a cell's neighbours to follow it.
+constexpr int kMaxBandRounds = 2;
+
+// The whole cells with a corner on a band triangle of aspect over 3 (sorted, once each).
+std::vector<std::array<std::size_t, 2>> cells_at_bad_triangles(const RegionGrid& grid,
+                                                               const radfmt::MeshData& trial,
+                                                               const Points& points) {
+    std::unordered_map<std::uint32_t, std::array<std::size_t, 2>> node_of;
+    for (std::size_t j = 0; j <= grid.nv(); ++j)
+        for (std::size_t i = 0; i <= grid.nu(); ++i)
+            if (grid.id(i, j) != kNone) node_of[grid.id(i, j)] = {i, j};
+    radfmt::MeshData probe;
+    probe.vertices = points.position; // patch_aspect reads corners from the mesh
+    std::vector<std::array<std::size_t, 2>> cells;
+    for (const auto& patch : trial.patches) {
+        if (patch.corner_count() != 3 || patch_aspect(probe, patch) <= 3) continue;
+        for (int k = 0; k < 3; ++k) {
+            const auto it = node_of.find(patch.corners[k]);
+            if (it == node_of.end()) continue;
+            const auto [i, j] = it->second;
+            for (const auto di : {0, 1})
+                for (const auto dj : {0, 1})
+                    if (i >= std::size_t(di) && j >= std::size_t(dj) && i - di < grid.nu() &&
+                        j - dj < grid.nv() && grid.full(i - di, j - dj))
+                        cells.push_back({i - di, j - dj});
+        }
+    }
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    return cells;
+}
+
+} // namespace
+
+void grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
+                 SurfaceReport& report, double tolerance) {
+    if (!region.quad_sides.empty()) {
+        grid_quadrilateral(region, points, mesh, report);
+        return;
+    }
+    std::vector<std::uint32_t> ids;
+    for (const auto& [a, b] : region.pieces) ids.push_back(a), ids.push_back(b);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    std::vector<XY> xy;
+    std::vector<Point2> pts;
+    for (const auto id : ids) {
+        xy.push_back(region.plane.to_2d(points.position[id]));
+        pts.emplace_back(xy.back()[0], xy.back()[1]);
+    }
+    GridFrame frame;
+    if (!minimum_rectangle(pts, frame)) return; // no area
+    RegionGrid grid(region, frame, xy, ids, points, tolerance);
+    std::unordered_set<EdgeKey> pieces;
+    for (const auto& [a, b] : region.pieces) pieces.insert(edge_key(a, b));
+    grid.classify_nodes(pieces);
+    // The band's refinement may not split a cell's sides: a bad triangle at a cell's corner
+    // stays bad. Such cells are given to the band and the region meshed again.
+    for (int round = 0;; ++round) {
+        const auto kept = points.position.size();
+        RegionGrid trial_grid = grid;
+        radfmt::MeshData trial;
+        SurfaceReport counts;
+        mesh_cells_and_band(region, trial_grid, pieces, points, trial, counts);
+        std::vector<std::array<std::size_t, 2>> cells;
+        if (round < kMaxBandRounds) cells = cells_at_bad_triangles(trial_grid, trial, points);
+        if (cells.empty()) {
+            mesh.patches.insert(mesh.patches.end(), trial.patches.begin(), trial.patches.end());
+            report.cells += counts.cells;
+            report.band_triangles += counts.band_triangles;
+            break;
+        }
+        points.position.resize(kept);
+        for (const auto& [i, j] : cells) grid.give_to_band(i, j);
+    }
 }
 
 } // namespace rad::surfaces

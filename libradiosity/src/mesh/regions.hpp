@@ -94,7 +94,7 @@ struct Region {
     Plane plane;
     double cell = 0;  // the full cell's side (0: no limit)
     double piece = 0; // the longest outline piece (0: no limit): the cell, less where thinner
-    double width = 0; // the shorter side of its minimum-area rectangle
+    double width = 0; // the shorter side of its minimum-area rectangle, or less: its thickness
     // The region's faces triangulated with their edges as constraints, faces marked inside:
     // tells whether a point of the plane is in the region.
     // A region whose faces tile it (no overlaps) has none: its sides tell instead.
@@ -124,10 +124,23 @@ void trace_outline(Region& region, const radfmt::MeshData& faces,
 // The shorter side of the region's minimum-area rectangle (from its outline edges).
 double region_width(const Region& region, const Points& points);
 
+// The diameter of the largest circle inside the region, within `precision`; the search stops
+// once it finds one at least `enough` across (then the value is at least that).
+double region_thickness(const Region& region, const Points& points, double enough,
+                        double precision);
+
 // Pass 3: outline edges split where another region's outline point lies on them, collinear
 // points that no region needs dropped, and each straight run split into equal pieces no longer
 // than the smallest cell of the regions along it. Returns the points dropped.
 std::size_t split_outline_runs(std::vector<Region>& regions, Points& points, double tolerance);
+
+// Pass 3a: in each region not gridded as a quadrilateral, a piece shorter than a quarter of its
+// piece length (at least a tenth of a cell) is merged with its straight neighbour across a point
+// the region may leave out: one where every other region is never smoothed together with it
+// (another material or group, or a bend past rad-shade's default crease angle). The merged
+// pieces stay within the region's piece length. Returns the points left out (T-vertices).
+std::size_t relax_outline_points(std::vector<Region>& regions, const Points& points,
+                                 double tolerance);
 
 // Pass 3b: each region gridded on trial (pass 4); the outline piece that a bad band triangle
 // lies on, or whose diametral circle holds its circumcentre, is halved for every region that
@@ -136,10 +149,17 @@ std::size_t split_outline_runs(std::vector<Region>& regions, Points& points, dou
 std::size_t refine_outline_pieces(std::vector<Region>& regions, Points& points, double tolerance,
                                   int rounds);
 
+// For each of mesh's patches from `first` on (the region's), the diameter of the largest circle
+// inside the region that holds its centroid, among circles centred on the patches' centroids
+// and edge midpoints: how thin the region is where the patch lies.
+std::vector<double> local_thickness(const Region& region, const Points& points,
+                                    const radfmt::MeshData& mesh, std::size_t first);
+
 // Pass 4: the region's grid cells as quads and the band between them and its outline as
 // triangles, appended to `mesh` (whose vertices are `points`, patches facing the region's way).
-// Returns the region's width (the shorter side of its bounding rectangle).
-double grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
-                   SurfaceReport& report, double tolerance);
+// A cell with a corner on a band triangle of aspect over 3 is given to the band (the band's
+// refinement may not split the cells' sides), for up to two rounds.
+void grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
+                 SurfaceReport& report, double tolerance);
 
 } // namespace rad::surfaces

@@ -58,6 +58,34 @@ void drop_unused_vertices(radfmt::MeshData& mesh) {
     mesh.vertices = std::move(kept);
 }
 
+// The shorter side of the region's minimum-area rectangle, or its thickness (the diameter of the
+// largest circle inside it) where that is under half the side: a frame of thin strips, a ring
+// or an L of thin arms is thin, though its rectangle is not. (Any compact shape's circle is
+// over half its rectangle's side: a triangle's at least two thirds.)
+double width_or_thickness(const surfaces::Region& region, const surfaces::Points& points) {
+    const double side = surfaces::region_width(region, points);
+    if (!(region.cell > 0)) return side;
+    // Past a cell, or past half the side, the region is what its rectangle says: stop there.
+    const double enough = std::min(side / 2, region.cell);
+    const double thickness = surfaces::region_thickness(region, points, enough, region.cell / 100);
+    return thickness < enough ? thickness : side;
+}
+
+// The width class of each of the region's patches (mesh's from `first` on): the region's, or
+// thinner where the region is thinner (a thin tab on a narrow region).
+void classify_patches(const surfaces::Region& region, const surfaces::Points& points,
+                      const radfmt::MeshData& mesh, std::size_t first,
+                      std::vector<WidthClass>& classes, std::vector<double>& cells) {
+    const auto whole = width_class(region.cell, region.width);
+    classes.resize(mesh.patches.size(), whole);
+    cells.resize(mesh.patches.size(), region.cell);
+    if (whole != WidthClass::Narrow) return; // wide regions are gridded whole, thin ones thin
+    const auto local = surfaces::local_thickness(region, points, mesh, first);
+    for (std::size_t k = 0; k < local.size(); ++k)
+        if (local[k] < region.width / 2) // much thinner there: a tab, a strip
+            classes[first + k] = std::max(whole, width_class(region.cell, local[k]));
+}
+
 } // namespace
 
 radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptions& options,
@@ -96,12 +124,13 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     begin_stage(options.stages, "outlines");
     for (auto& region : regions) {
         surfaces::trace_outline(region, faces, weld, points);
-        region.width = surfaces::region_width(region, points);
+        region.width = width_or_thickness(region, points);
         region.piece = piece_length(region.cell, region.width);
     }
     begin_stage(options.stages, "outline runs");
     rep.regions = regions.size();
     rep.dropped_vertices = surfaces::split_outline_runs(regions, points, tolerance);
+    rep.t_vertices = surfaces::relax_outline_points(regions, points, tolerance);
     begin_stage(options.stages, "outline refinement");
     surfaces::refine_outline_pieces(regions, points, tolerance, 6);
     begin_stage(options.stages, "grids");
@@ -110,20 +139,31 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     mesh.groups = faces.groups;
     mesh.materials = faces.materials;
     std::vector<WidthClass> classes;
+    std::vector<double> cell_of_patch;
     for (std::size_t r = 0; r < regions.size(); ++r) {
         const auto& region = regions[r];
         if (r % 1024 == 0) stage_fraction(options.stages, double(r) / regions.size());
-        const double width = surfaces::grid_region(region, points, mesh, rep, tolerance);
-        // Regions thinner than a tenth of a cell are slivers by their own shape; those under a
-        // cell are cut across into near-square patches.
-        classes.resize(mesh.patches.size(), width_class(region.cell, width));
+        const auto first = mesh.patches.size();
+        surfaces::grid_region(region, points, mesh, rep, tolerance);
+        // Where a region is thinner than a tenth of a cell its patches are slivers by its own
+        // shape; where under a cell, it is cut across into near-square patches.
+        classify_patches(region, points, mesh, first, classes, cell_of_patch);
     }
     mesh.vertices = points.position;
-    rep.shape = shape_stats(mesh, classes);
+    rep.shape = shape_stats(mesh, classes, cell_of_patch);
     drop_unused_vertices(mesh);
     if (mesh.patches.size() >= radfmt::kNoVertex)
         throw InputError("too many patches for 32-bit indices");
     return mesh;
+}
+
+double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
+    const int n = patch.corner_count();
+    double longest = 0;
+    for (int k = 0; k < n; ++k)
+        longest = std::max(longest, length(mesh.vertices[patch.corners[(k + 1) % n]] -
+                                           mesh.vertices[patch.corners[k]]));
+    return longest;
 }
 
 double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
@@ -144,7 +184,8 @@ double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
     return longest / std::min(h1, h2);
 }
 
-ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClass>& classes) {
+ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClass>& classes,
+                       const std::vector<double>& cells) {
     ShapeStats stats;
     std::size_t good[2] = {0, 0}, counted[2] = {0, 0};
     stats.worst_aspect = 0;
@@ -154,11 +195,13 @@ ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClas
             ++stats.thin;
             continue;
         }
-        const double a = patch_aspect(mesh, mesh.patches[k]);
+        const auto& patch = mesh.patches[k];
+        const double a = patch_aspect(mesh, patch);
         const bool fine = a <= 3;
-        ++counted[0], good[0] += fine; // a tenth of a cell wide or more
+        ++counted[0], good[0] += fine; // a tenth of a cell thick or more
         if (c == WidthClass::Wide) ++counted[1], good[1] += fine;
         stats.worst_aspect = std::max(stats.worst_aspect, a);
+        if (k < cells.size() && longest_edge(mesh, patch) < cells[k] / 10) ++stats.specks;
     }
     stats.fraction_aspect_at_most_3 = counted[0] ? double(good[0]) / double(counted[0]) : 1;
     stats.fraction_wide_aspect_at_most_3 = counted[1] ? double(good[1]) / double(counted[1]) : 1;
