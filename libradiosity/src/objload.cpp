@@ -363,25 +363,17 @@ std::string rgb_text(const radfmt::Rgb& c) {
     return text;
 }
 
-} // namespace
-
-Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* report_out) {
-    if (!fs::is_regular_file(path)) throw InputError(path.string() + ": no such OBJ file");
-    SceneReport local_report;
-    SceneReport& report = report_out ? *report_out : local_report;
-    const auto lint = lint_obj(path, options);
-    report.dangling_corners = lint.dangling_corners;
-    report.first_dangling = lint.first_dangling;
-
-    Scene scene;
-    scene.path = path.string();
-
-    // Every library found, in order, once; each material remembers its library's folder
-    // (textures are named relative to it).
+// The material libraries the OBJ names, each read once, in order.
+struct MaterialLibraries {
     std::vector<tinyobj::material_t> materials;
-    std::map<std::string, int> material_index;
-    std::vector<fs::path> material_folder, material_library;
-    std::set<std::string> states_kd;
+    std::map<std::string, int> index;
+    std::vector<fs::path> folder, library; // per material: textures are named relative to it
+    std::set<std::string> states_kd;       // materials whose library gives a Kd line
+};
+
+MaterialLibraries read_material_libraries(const fs::path& path, const LintResult& lint,
+                                          Scene& scene, SceneReport& report) {
+    MaterialLibraries libs;
     std::set<fs::path> loaded;
     for (const auto& lib : lint.libraries) {
         if (lib.found.empty()) {
@@ -400,17 +392,24 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
                                                      lib.found.lexically_normal().string());
         const auto canonical = fs::weakly_canonical(lib.found);
         if (!loaded.insert(canonical).second) continue;
-        std::istringstream text(normalised_mtl(lib.found, states_kd));
+        std::istringstream text(normalised_mtl(lib.found, libs.states_kd));
         std::string warn, err;
-        tinyobj::LoadMtl(&material_index, &materials, &text, &warn, &err);
-        material_folder.resize(materials.size(), lib.found.parent_path());
-        material_library.resize(materials.size(), lib.found);
+        tinyobj::LoadMtl(&libs.index, &libs.materials, &text, &warn, &err);
+        libs.folder.resize(libs.materials.size(), lib.found.parent_path());
+        libs.library.resize(libs.materials.size(), lib.found);
         scene.material_files.push_back(lib.found.string());
     }
+    return libs;
+}
 
-    begin_stage(options.stages, "parsing " + path.filename().string());
+struct ParsedObj {
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
+};
+
+// tinyobjloader over the OBJ's text, given the materials already read.
+ParsedObj parse_obj(const fs::path& path, const MaterialLibraries& libs) {
+    ParsedObj parsed;
     std::vector<tinyobj::material_t> used_materials;
     std::string warn, err;
     // The OBJ as text, without a UTF-8 byte-order mark (which would hide the first line's
@@ -419,17 +418,51 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
     std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
     if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
     std::istringstream obj(std::move(text));
-    PreloadedMaterials reader(materials, material_index);
-    if (!tinyobj::LoadObj(&attrib, &shapes, &used_materials, &warn, &err, &obj, &reader,
-                          /*triangulate=*/false, /*default_vcols_fallback=*/false))
+    PreloadedMaterials reader(libs.materials, libs.index);
+    if (!tinyobj::LoadObj(&parsed.attrib, &parsed.shapes, &used_materials, &warn, &err, &obj,
+                          &reader, /*triangulate=*/false, /*default_vcols_fallback=*/false))
         throw InputError(path.string() + ": " + err);
+    return parsed;
+}
 
-    for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
-        scene.vertices.push_back(
-            {attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]});
+// A map_Kd texture's mean colour as the material's reflectance (times Kd when the library
+// gives one that is not black); a missing or unreadable texture is reported.
+void apply_texture(const tinyobj::material_t& m, std::size_t index, const MaterialLibraries& libs,
+                   const SceneOptions& options, radfmt::Material& material, MaterialSource& source,
+                   Scene& scene, SceneReport& report) {
+    const auto texture =
+        import::referenced_file(libs.library[index], libs.folder[index], m.diffuse_texname,
+                                "material '" + m.name + "' map_Kd", options.allow_outside_refs);
+    std::string problem;
+    if (!fs::is_regular_file(texture)) {
+        report.texture_problems.push_back(material.name + ": texture " + texture.string() +
+                                          " not found");
+        source.texture_missing = true;
+    } else if (const auto mean =
+                   mean_texture_colour(texture, problem, options.max_texture_pixels)) {
+        const bool kd_black = !libs.states_kd.count(m.name) ||
+                              (m.diffuse[0] == 0 && m.diffuse[1] == 0 && m.diffuse[2] == 0);
+        for (int k = 0; k < 3; ++k)
+            material.reflectance[k] = kd_black ? (*mean)[k] : (*mean)[k] * m.diffuse[k];
+        report.textures_averaged.push_back(material.name + ": " + texture.string() + ", mean " +
+                                           rgb_text(*mean));
+        if (kd_black) report.textures_replacing_kd.push_back(material.name);
+        if (std::find(scene.material_files.begin(), scene.material_files.end(), texture.string()) ==
+            scene.material_files.end())
+            scene.material_files.push_back(texture.string());
+    } else {
+        report.texture_problems.push_back(material.name + ": texture " + texture.string() +
+                                          " unreadable (" + problem + ")");
+        source.texture_missing = true;
+    }
+}
 
-    for (std::size_t index = 0; index < materials.size(); ++index) {
-        const auto& m = materials[index];
+// The libraries' materials as the scene's, in their order (Kd, Ke; what else the MTL says is
+// kept for the material checks).
+void add_materials(const fs::path& path, const MaterialLibraries& libs, const SceneOptions& options,
+                   Scene& scene, SceneReport& report) {
+    for (std::size_t index = 0; index < libs.materials.size(); ++index) {
+        const auto& m = libs.materials[index];
         radfmt::Material material;
         material.name = m.name;
         MaterialSource source;
@@ -447,92 +480,108 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
                 throw InputError(path.string() + ": material '" + m.name +
                                  "' has a negative or non-finite Kd or Ke");
         }
-        if (!m.diffuse_texname.empty()) {
-            const auto texture = import::referenced_file(
-                material_library[index], material_folder[index], m.diffuse_texname,
-                "material '" + m.name + "' map_Kd", options.allow_outside_refs);
-            std::string problem;
-            if (!fs::is_regular_file(texture)) {
-                report.texture_problems.push_back(material.name + ": texture " + texture.string() +
-                                                  " not found");
-                source.texture_missing = true;
-            } else if (const auto mean =
-                           mean_texture_colour(texture, problem, options.max_texture_pixels)) {
-                const bool kd_black = !states_kd.count(m.name) ||
-                                      (m.diffuse[0] == 0 && m.diffuse[1] == 0 && m.diffuse[2] == 0);
-                for (int k = 0; k < 3; ++k)
-                    material.reflectance[k] = kd_black ? (*mean)[k] : (*mean)[k] * m.diffuse[k];
-                report.textures_averaged.push_back(material.name + ": " + texture.string() +
-                                                   ", mean " + rgb_text(*mean));
-                if (kd_black) report.textures_replacing_kd.push_back(material.name);
-                if (std::find(scene.material_files.begin(), scene.material_files.end(),
-                              texture.string()) == scene.material_files.end())
-                    scene.material_files.push_back(texture.string());
-            } else {
-                report.texture_problems.push_back(material.name + ": texture " + texture.string() +
-                                                  " unreadable (" + problem + ")");
-                source.texture_missing = true;
-            }
-        }
+        if (!m.diffuse_texname.empty())
+            apply_texture(m, index, libs, options, material, source, scene, report);
         scene.materials.push_back(material);
         scene.material_sources.push_back(source);
     }
+}
 
-    // Faces whose material is missing (no usemtl before them, or a name no library defines)
-    // share one default material, made when first needed.
-    std::set<std::string> known;
-    for (const auto& m : scene.materials) known.insert(m.name);
-    std::map<std::string, int> unknown_first_line;
-    for (const auto& [line, name] : lint.usemtl)
-        if (!known.count(name) && !unknown_first_line.count(name)) {
-            if (options.strict)
-                throw InputError(FileLoc{path.string(), line},
-                                 "unknown material '" + name + "' (not defined in any mtllib)");
-            unknown_first_line[name] = line;
-            report.unknown_materials.push_back(name + " (line " + std::to_string(line) + ")");
-        }
-    auto default_material = [&]() -> std::uint32_t {
-        if (report.default_material.empty()) {
-            report.default_material = "default";
-            while (known.count(report.default_material)) report.default_material += "_";
-            scene.materials.push_back({report.default_material, options.default_reflectance, {}});
-            scene.material_sources.push_back({});
+// The material of a face whose material no library defines: its `usemtl` name with the
+// default reflectance (so that rad-solve's --emission NAME= and --reflectance NAME= still find
+// it), or one default material for faces before any usemtl, each made when first needed.
+class MissingMaterials {
+  public:
+    MissingMaterials(const fs::path& path, const LintResult& lint, const SceneOptions& options,
+                     Scene& scene, SceneReport& report)
+        : lint_(lint), options_(options), scene_(scene), report_(report) {
+        for (const auto& m : scene.materials) known_.insert(m.name);
+        std::set<std::string> reported;
+        for (const auto& [line, name] : lint.usemtl)
+            if (!known_.count(name) && reported.insert(name).second) {
+                if (options.strict)
+                    throw InputError(FileLoc{path.string(), line},
+                                     "unknown material '" + name + "' (not defined in any mtllib)");
+                report.unknown_materials.push_back(name + " (line " + std::to_string(line) + ")");
+            }
+    }
+    // For the face at `line` (0: not known).
+    std::uint32_t material_at(int line) {
+        const auto name = line > 0 ? usemtl_at(line) : std::string();
+        return name.empty() ? default_material() : named_default(name);
+    }
+
+  private:
+    std::uint32_t default_material() {
+        if (report_.default_material.empty()) {
+            report_.default_material = "default";
+            while (known_.count(report_.default_material)) report_.default_material += "_";
+            scene_.materials.push_back(
+                {report_.default_material, options_.default_reflectance, {}});
+            scene_.material_sources.push_back({});
         }
         return static_cast<std::uint32_t>(
-            std::find_if(scene.materials.begin(), scene.materials.end(),
-                         [&](const auto& m) { return m.name == report.default_material; }) -
-            scene.materials.begin());
-    };
-
-    // A `usemtl` name no library defines keeps its name, with the default reflectance, so
-    // that rad-solve's --emission NAME= and --reflectance NAME= still find it.
-    std::map<std::string, std::uint32_t> named_defaults;
-    auto named_default = [&](const std::string& name) -> std::uint32_t {
-        const auto it = named_defaults.find(name);
-        if (it != named_defaults.end()) return it->second;
-        const auto id = static_cast<std::uint32_t>(scene.materials.size());
-        scene.materials.push_back({name, options.default_reflectance, {}});
-        scene.material_sources.push_back({});
-        named_defaults[name] = id;
+            std::find_if(scene_.materials.begin(), scene_.materials.end(),
+                         [&](const auto& m) { return m.name == report_.default_material; }) -
+            scene_.materials.begin());
+    }
+    std::uint32_t named_default(const std::string& name) {
+        const auto it = named_.find(name);
+        if (it != named_.end()) return it->second;
+        const auto id = static_cast<std::uint32_t>(scene_.materials.size());
+        scene_.materials.push_back({name, options_.default_reflectance, {}});
+        scene_.material_sources.push_back({});
+        named_[name] = id;
         return id;
-    };
+    }
     // The name of the last `usemtl` before `line` that no library defines ("" if none).
-    auto usemtl_at = [&](int line) -> std::string {
+    std::string usemtl_at(int line) const {
         std::string name;
-        for (const auto& [at, used] : lint.usemtl) {
+        for (const auto& [at, used] : lint_.usemtl) {
             if (at > line) break;
             name = used;
         }
-        return known.count(name) ? std::string() : name;
-    };
+        return known_.count(name) ? std::string() : name;
+    }
 
+    const LintResult& lint_;
+    const SceneOptions& options_;
+    Scene& scene_;
+    SceneReport& report_;
+    std::set<std::string> known_;
+    std::map<std::string, std::uint32_t> named_;
+};
+
+// One face's corners, and the sum of its vn normals when every corner has one.
+Polygon polygon_of(const tinyobj::shape_t& shape, std::size_t offset, int count,
+                   const tinyobj::attrib_t& attrib) {
+    Polygon poly;
+    bool all_normals = true;
+    Vec3 vn{0, 0, 0};
+    for (int k = 0; k < count; ++k) {
+        const auto& index = shape.mesh.indices[offset + k];
+        poly.vertices.push_back(static_cast<std::uint32_t>(index.vertex_index));
+        if (index.normal_index < 0 ||
+            3 * std::size_t(index.normal_index) + 2 >= attrib.normals.size()) {
+            all_normals = false;
+            continue;
+        }
+        for (int c = 0; c < 3; ++c) vn[c] += attrib.normals[3 * index.normal_index + c];
+    }
+    if (all_normals) poly.vn_sum = vn;
+    return poly;
+}
+
+// The shapes' faces as the scene's polygons, with their groups, lines and materials.
+void add_polygons(const fs::path& path, const ParsedObj& parsed, const LintResult& lint,
+                  std::size_t library_materials, const SceneOptions& options, Scene& scene,
+                  SceneReport& report) {
+    MissingMaterials missing(path, lint, options, scene, report);
+    std::size_t faces = 0;
+    for (const auto& s : parsed.shapes) faces += s.mesh.num_face_vertices.size();
+    const bool lines_match = faces == lint.face_lines.size();
     std::size_t face_number = 0;
-    const bool lines_match = [&] {
-        std::size_t faces = 0;
-        for (const auto& s : shapes) faces += s.mesh.num_face_vertices.size();
-        return faces == lint.face_lines.size();
-    }();
-    for (const auto& shape : shapes) {
+    for (const auto& shape : parsed.shapes) {
         const std::string group_name = shape.name.empty() ? "default" : shape.name;
         std::uint32_t group = 0;
         for (; group < scene.groups.size(); ++group)
@@ -540,31 +589,17 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
         if (group == scene.groups.size()) scene.groups.push_back(group_name);
         std::size_t offset = 0;
         for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_number) {
-            Polygon poly;
+            const int count = shape.mesh.num_face_vertices[f];
+            Polygon poly = polygon_of(shape, offset, count, parsed.attrib);
+            offset += count;
             poly.group = group;
             poly.line = lines_match ? lint.face_lines[face_number] : 0;
-            const int count = shape.mesh.num_face_vertices[f];
-            bool all_normals = true;
-            Vec3 vn{0, 0, 0};
-            for (int k = 0; k < count; ++k) {
-                const auto& index = shape.mesh.indices[offset + k];
-                poly.vertices.push_back(static_cast<std::uint32_t>(index.vertex_index));
-                if (index.normal_index < 0 ||
-                    3 * std::size_t(index.normal_index) + 2 >= attrib.normals.size()) {
-                    all_normals = false;
-                    continue;
-                }
-                for (int c = 0; c < 3; ++c) vn[c] += attrib.normals[3 * index.normal_index + c];
-            }
-            if (all_normals) poly.vn_sum = vn;
-            offset += count;
             const int material = shape.mesh.material_ids[f];
-            if (material < 0 || material >= static_cast<int>(materials.size())) {
+            if (material < 0 || material >= static_cast<int>(library_materials)) {
                 if (options.strict)
                     throw InputError(FileLoc{path.string(), poly.line},
                                      "face has no known material");
-                const auto name = lines_match ? usemtl_at(poly.line) : std::string();
-                poly.material = name.empty() ? default_material() : named_default(name);
+                poly.material = missing.material_at(lines_match ? poly.line : 0);
                 if (report.faces_defaulted++ == 0) report.first_defaulted_line = poly.line;
             } else {
                 poly.material = static_cast<std::uint32_t>(material);
@@ -572,6 +607,28 @@ Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* r
             scene.polygons.push_back(std::move(poly));
         }
     }
+}
+
+} // namespace
+
+Scene load_obj(const fs::path& path, const SceneOptions& options, SceneReport* report_out) {
+    if (!fs::is_regular_file(path)) throw InputError(path.string() + ": no such OBJ file");
+    SceneReport local_report;
+    SceneReport& report = report_out ? *report_out : local_report;
+    const auto lint = lint_obj(path, options);
+    report.dangling_corners = lint.dangling_corners;
+    report.first_dangling = lint.first_dangling;
+
+    Scene scene;
+    scene.path = path.string();
+    const auto libs = read_material_libraries(path, lint, scene, report);
+    begin_stage(options.stages, "parsing " + path.filename().string());
+    const auto parsed = parse_obj(path, libs);
+    for (std::size_t i = 0; i + 2 < parsed.attrib.vertices.size(); i += 3)
+        scene.vertices.push_back({parsed.attrib.vertices[i], parsed.attrib.vertices[i + 1],
+                                  parsed.attrib.vertices[i + 2]});
+    add_materials(path, libs, options, scene, report);
+    add_polygons(path, parsed, lint, libs.materials.size(), options, scene, report);
     if (scene.polygons.empty()) throw InputError(path.string() + ": scene is empty (no faces)");
     return scene;
 }

@@ -168,106 +168,134 @@ bool encloses(const Box& surface, const Box& scene) {
 
 } // namespace
 
-std::vector<OrientationFinding> check_orientation(const Scene& scene) {
-    std::vector<OrientationFinding> findings;
-    const std::size_t n = scene.polygons.size();
+namespace {
 
-    // Each face's geometry, once: Newell normal (length twice the area), centroid, area; and
-    // the box around every face, to tell a room (a surface around all the rest) from objects.
-    struct FaceGeometry {
-        Vec3 normal2, centroid;
-        double area;
-    };
-    std::vector<FaceGeometry> face(n);
-    Box scene_box;
-    for (std::size_t f = 0; f < n; ++f) {
+// Each face's geometry, once: Newell normal (length twice the area), centroid, area.
+struct FaceGeometry {
+    Vec3 normal2, centroid;
+    double area;
+};
+
+// The faces' geometry, and the box around every face (to tell a room, a surface around all
+// the rest, from objects).
+std::vector<FaceGeometry> face_geometry(const Scene& scene, Box& scene_box) {
+    std::vector<FaceGeometry> face(scene.polygons.size());
+    for (std::size_t f = 0; f < face.size(); ++f) {
         const auto pts = points_of(scene, scene.polygons[f]);
         const Vec3 n2 = newell_normal(pts);
         face[f] = {n2, polygon_centroid(pts), 0.5 * length(n2)};
         for (const auto& p : pts) scene_box.add(p);
     }
+    return face;
+}
 
-    // 1. Faces wound against their own vn normals.
-    std::vector<std::size_t> against_normals;
-    for (std::size_t f = 0; f < n; ++f) {
+std::vector<std::size_t> faces_against_normals(const Scene& scene,
+                                               const std::vector<FaceGeometry>& face) {
+    std::vector<std::size_t> against;
+    for (std::size_t f = 0; f < face.size(); ++f) {
         const auto& p = scene.polygons[f];
         if (length(p.vn_sum) == 0 || p.vertices.size() < 3) continue;
-        if (dot(face[f].normal2, p.vn_sum) < 0) against_normals.push_back(f);
+        if (dot(face[f].normal2, p.vn_sum) < 0) against.push_back(f);
     }
-    add_finding(findings, OrientationFinding::Kind::AgainstNormals, scene, against_normals,
-                std::vector<bool>(n, false)); // vn may be the wrong part: report, never fix
+    return against;
+}
+
+// Breadth-first parity over one connected surface: 1 = flipped relative to its first face.
+// False when no parity is consistent (a Moebius-like tangle).
+bool winding_parity(const std::vector<std::size_t>& faces, const SurfaceGraph& surfaces,
+                    std::vector<int>& parity) {
+    bool orientable = true;
+    std::deque<std::size_t> queue{faces.front()};
+    parity[faces.front()] = 0;
+    while (!queue.empty()) {
+        const auto f = queue.front();
+        queue.pop_front();
+        for (const auto& [g, same] : surfaces.neighbours[f]) {
+            const int want = parity[f] ^ (same ? 1 : 0);
+            if (parity[g] < 0) {
+                parity[g] = want;
+                queue.push_back(g);
+            } else if (parity[g] != want) {
+                orientable = false;
+            }
+        }
+    }
+    return orientable;
+}
+
+struct SurfaceVerdict {
+    int minority = 1; // the parity class of lesser area
+    int right = 0;    // the parity class facing the right way
+    bool room = false;
+};
+
+// Which parity class of a connected surface faces the right way. Facing inward is right for a
+// room, a surface that encloses everything else; any other surface is an object, which must
+// face outward.
+SurfaceVerdict judge_surface(const std::vector<std::size_t>& faces, const Scene& scene,
+                             const std::vector<FaceGeometry>& face, const std::vector<int>& parity,
+                             const SurfaceGraph& surfaces, const Box& scene_box) {
+    double area[2] = {0, 0};
+    Box box;
+    Vec3 centre{0, 0, 0};
+    double total_area = 0;
+    for (auto f : faces) {
+        area[parity[f]] += face[f].area;
+        centre = centre + face[f].centroid * face[f].area;
+        total_area += face[f].area;
+        for (auto v : scene.polygons[f].vertices) box.add(scene.vertices[v]);
+    }
+    if (total_area > 0) centre = centre * (1 / total_area);
+    SurfaceVerdict verdict;
+    verdict.minority = area[1] <= area[0] ? 1 : 0;
+    const bool closed =
+        std::none_of(faces.begin(), faces.end(), [&](auto f) { return surfaces.open_edge_of[f]; });
+    verdict.room = encloses(box, scene_box);
+    // For an open room or a surface alone in its scene (an empty room or a lone object?), the
+    // majority; otherwise the one whose faces point away from the surface's centre (an object)
+    // or towards it (a closed room around other things). For a closed surface the score below
+    // is six times its signed volume.
+    verdict.right = 1 - verdict.minority;
+    if (!verdict.room || (closed && faces.size() < scene.polygons.size())) {
+        double score = 0; // > 0: parity-0 faces as written point away from the centre
+        for (auto f : faces)
+            score += (parity[f] == 0 ? 1 : -1) * dot(face[f].normal2, face[f].centroid - centre);
+        // A flat or nearly flat surface has no inside: keep its majority. A closed surface
+        // must show a volume of at least 1% of its area times its size.
+        const double scale = (closed ? 6 : 1) * total_area * length(box.hi - box.lo);
+        if (std::abs(score) > 0.01 * scale) verdict.right = (score > 0) == !verdict.room ? 0 : 1;
+    }
+    return verdict;
+}
+
+} // namespace
+
+std::vector<OrientationFinding> check_orientation(const Scene& scene) {
+    std::vector<OrientationFinding> findings;
+    const std::size_t n = scene.polygons.size();
+    Box scene_box;
+    const auto face = face_geometry(scene, scene_box);
+
+    // 1. Faces wound against their own vn normals (vn may be the wrong part: report, never fix).
+    add_finding(findings, OrientationFinding::Kind::AgainstNormals, scene,
+                faces_against_normals(scene, face), std::vector<bool>(n, false));
 
     // 2. Connected surfaces over welded edges, and each face's winding relative to its
     // neighbours: two faces agree when they run along their shared edge in opposite
-    // directions.
+    // directions. The minority (by area) disagrees with the rest.
     const auto surfaces = connect_surfaces(scene);
-    const auto& neighbours = surfaces.neighbours;
-    const auto& open_edge_of = surfaces.open_edge_of;
-
     std::vector<std::size_t> against_neighbours, inside_out, room_outward;
     std::vector<bool> flip(n, false);
     std::vector<int> parity(n, -1);
     for (const auto& faces : surfaces.members) {
-        if (faces.size() < 2) continue;
-        // Breadth-first parity: 1 = flipped relative to the component's first face.
-        bool orientable = true;
-        std::deque<std::size_t> queue{faces.front()};
-        parity[faces.front()] = 0;
-        while (!queue.empty()) {
-            const auto f = queue.front();
-            queue.pop_front();
-            for (const auto& [g, same] : neighbours[f]) {
-                const int want = parity[f] ^ (same ? 1 : 0);
-                if (parity[g] < 0) {
-                    parity[g] = want;
-                    queue.push_back(g);
-                } else if (parity[g] != want) {
-                    orientable = false;
-                }
-            }
-        }
-        if (!orientable) continue; // a Moebius-like tangle: no consistent answer to give
-        // The minority (by area) disagrees with the rest.
-        double area[2] = {0, 0};
-        Box box;
-        Vec3 centre{0, 0, 0};
-        double total_area = 0;
+        if (faces.size() < 2 || !winding_parity(faces, surfaces, parity)) continue;
+        const auto verdict = judge_surface(faces, scene, face, parity, surfaces, scene_box);
         for (auto f : faces) {
-            area[parity[f]] += face[f].area;
-            centre = centre + face[f].centroid * face[f].area;
-            total_area += face[f].area;
-            for (auto v : scene.polygons[f].vertices) box.add(scene.vertices[v]);
-        }
-        if (total_area > 0) centre = centre * (1 / total_area);
-        const int minority = area[1] <= area[0] ? 1 : 0;
-
-        // Facing inward is right for a room, a surface that encloses everything else; any
-        // other surface is an object, which must face outward.
-        const bool closed =
-            std::none_of(faces.begin(), faces.end(), [&](auto f) { return open_edge_of[f]; });
-        const bool room = encloses(box, scene_box);
-        // Which parity class faces the right way: for an open room or a surface alone in
-        // its scene (an empty room or a lone object?), the majority; otherwise the one whose
-        // faces point away from the surface's centre (an object) or towards it (a closed room
-        // around other things). For a closed surface the score below is six times its
-        // signed volume.
-        int right = 1 - minority;
-        if (!room || (closed && faces.size() < n)) {
-            double score = 0; // > 0: parity-0 faces as written point away from the centre
-            for (auto f : faces)
-                score +=
-                    (parity[f] == 0 ? 1 : -1) * dot(face[f].normal2, face[f].centroid - centre);
-            // A flat or nearly flat surface has no inside: keep its majority. A closed surface
-            // must show a volume of at least 1% of its area times its size.
-            const double scale = (closed ? 6 : 1) * total_area * length(box.hi - box.lo);
-            if (std::abs(score) > 0.01 * scale) right = (score > 0) == !room ? 0 : 1;
-        }
-        for (auto f : faces) {
-            if (parity[f] == right) continue;
+            if (parity[f] == verdict.right) continue;
             flip[f] = true;
-            (parity[f] == minority ? against_neighbours
-             : room                ? room_outward
-                                   : inside_out)
+            (parity[f] == verdict.minority ? against_neighbours
+             : verdict.room                ? room_outward
+                                           : inside_out)
                 .push_back(f);
         }
     }
@@ -312,125 +340,166 @@ radfmt::MeshData face_triangles(const Scene& scene, std::vector<std::size_t>* fa
     return mesh;
 }
 
-std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
-    const std::size_t n = scene.polygons.size();
-    const auto surfaces = connect_surfaces(scene);
-    std::vector<std::size_t> surface_of(n);
-    for (std::size_t c = 0; c < surfaces.members.size(); ++c)
-        for (auto f : surfaces.members[c]) surface_of[f] = c;
+namespace {
 
-    std::vector<std::size_t> face_of; // per triangle
-    std::vector<double> triangle_area;
-    const auto rays_mesh = face_triangles(scene, &face_of, &triangle_area);
-    if (rays_mesh.patches.empty()) return {};
-    const RayScene rays(rays_mesh, RayBuild::Fast);
-    std::vector<std::vector<std::size_t>> triangles_of(surfaces.members.size());
-    for (std::size_t t = 0; t < face_of.size(); ++t)
-        triangles_of[surface_of[face_of[t]]].push_back(t);
-
-    // Rays from both sides of every surface, tallied by what they met: per (surface, side),
-    // escapes and hits on the front or back of each other surface.
-    const std::size_t surface_count = surfaces.members.size();
+// What the rays from one side of a surface met: hits on the front or back of each other
+// surface, and escapes.
+struct SideTally {
     struct Link {
         std::size_t target;
         int facing; // 0: met the target's front, 1: its back (as the faces are now)
         double rays;
     };
-    struct Side {
-        std::vector<Link> links;
-        double escaped = 0;
-    };
-    std::vector<std::array<Side, 2>> sides(surface_count);
-    std::vector<double> rays_per_side(surface_count, 0);
-    std::vector<char> free(surface_count, 0); // may be flipped (not a closed object)
-    tbb::parallel_for(std::size_t(0), surface_count, [&](std::size_t c) {
-        const auto& faces = surfaces.members[c];
-        const auto& triangles = triangles_of[c];
-        if (triangles.empty()) return;
-        const bool closed = std::none_of(faces.begin(), faces.end(),
-                                         [&](auto f) { return surfaces.open_edge_of[f]; });
-        std::vector<double> cdf;
-        double total = 0;
-        for (auto t : triangles) cdf.push_back(total += triangle_area[t]);
-        if (!(total > 0)) return;
-        // Closed surfaces stay as their volume says, but cast rays too: others see them.
-        free[c] = !closed;
-        // A few rays per face, at least 64 and at most 1024 per side.
-        const int count = static_cast<int>(std::clamp<std::size_t>(64 * faces.size(), 64, 1024));
-        rays_per_side[c] = count;
-        Rng rng(0x0F1A, c);
-        for (int side = 0; side < 2; ++side) {
-            std::map<std::pair<std::size_t, int>, double> met;
-            for (int r = 0; r < count; ++r) {
-                const double pick = rng.uniform() * total;
-                const auto t = triangles[std::min<std::size_t>(
-                    std::lower_bound(cdf.begin(), cdf.end(), pick) - cdf.begin(),
-                    triangles.size() - 1)];
-                const auto& tri = rays_mesh.patches[t];
-                const Vec3 a = scene.vertices[tri.corners[0]], b = scene.vertices[tri.corners[1]],
-                           d = scene.vertices[tri.corners[2]];
-                double u = rng.uniform(), v = rng.uniform();
-                if (u + v > 1) u = 1 - u, v = 1 - v;
-                const Vec3 origin = a + (b - a) * u + (d - a) * v;
-                const Vec3 normal = side == 0 ? tri.normal : tri.normal * -1.0;
-                const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
-                const double u2 = rng.uniform(), u3 = rng.uniform();
-                const Vec3 dir = cosine_direction(normal, tu, tv, u2, u3);
-                bool front = false;
-                const auto hit = rays.first_hit(origin, dir, front);
-                if (hit < 0) {
-                    sides[c][side].escaped += 1;
-                } else if (const auto target = surface_of[face_of[hit]]; target != c) {
-                    met[{target, front ? 0 : 1}] += 1; // its own surface turns with it
-                }
-            }
-            for (const auto& [key, rays_met] : met)
-                sides[c][side].links.push_back({key.first, key.second, rays_met});
-        }
-    });
+    std::vector<Link> links;
+    double escaped = 0;
+};
 
-    // How well side `t` (0 front, 1 back, after the flips so far) of surface c faces what
-    // it sees: +1 per ray that meets a front, -1 per ray that meets a back or escapes. A
-    // surface faces the wrong way when its back does clearly better than its front. The
-    // evidence is mutual (a room split into separately modelled walls: each sees the
-    // others' backs until one turns), so the clearest case is flipped first, then the rest
-    // is weighed again.
-    std::vector<int> flipped(surface_count, 0);
-    auto quality = [&](std::size_t c, int t) {
-        const auto& side = sides[c][t ^ flipped[c]];
+struct SurfaceTally {
+    std::array<SideTally, 2> sides; // front, back
+    double rays_per_side = 0;
+    bool free = false; // may be flipped (not a closed object)
+};
+
+// The triangles of the scene's faces, and the surfaces they belong to, for the ray casts.
+struct TracedSurfaces {
+    std::vector<std::size_t> surface_of;                // per face
+    std::vector<std::size_t> face_of;                   // per triangle
+    std::vector<double> triangle_area;                  // per triangle
+    std::vector<std::vector<std::size_t>> triangles_of; // per surface
+    radfmt::MeshData mesh;
+};
+
+TracedSurfaces traced_surfaces(const Scene& scene, const SurfaceGraph& surfaces) {
+    TracedSurfaces traced;
+    traced.surface_of.resize(scene.polygons.size());
+    for (std::size_t c = 0; c < surfaces.members.size(); ++c)
+        for (auto f : surfaces.members[c]) traced.surface_of[f] = c;
+    traced.mesh = face_triangles(scene, &traced.face_of, &traced.triangle_area);
+    traced.triangles_of.resize(surfaces.members.size());
+    for (std::size_t t = 0; t < traced.face_of.size(); ++t)
+        traced.triangles_of[traced.surface_of[traced.face_of[t]]].push_back(t);
+    return traced;
+}
+
+// Cosine-weighted rays from both sides of surface c (a few per face, at least 64 and at most
+// 1024 per side), from area-uniform points of its triangles.
+SurfaceTally tally_surface(std::size_t c, const Scene& scene, const SurfaceGraph& surfaces,
+                           const TracedSurfaces& traced, const RayScene& rays) {
+    SurfaceTally tally;
+    const auto& faces = surfaces.members[c];
+    const auto& triangles = traced.triangles_of[c];
+    if (triangles.empty()) return tally;
+    std::vector<double> cdf;
+    double total = 0;
+    for (auto t : triangles) cdf.push_back(total += traced.triangle_area[t]);
+    if (!(total > 0)) return tally;
+    // Closed surfaces stay as their volume says, but cast rays too: others see them.
+    tally.free =
+        std::any_of(faces.begin(), faces.end(), [&](auto f) { return surfaces.open_edge_of[f]; });
+    const int count = static_cast<int>(std::clamp<std::size_t>(64 * faces.size(), 64, 1024));
+    tally.rays_per_side = count;
+    Rng rng(0x0F1A, c);
+    for (int side = 0; side < 2; ++side) {
+        std::map<std::pair<std::size_t, int>, double> met;
+        for (int r = 0; r < count; ++r) {
+            const double pick = rng.uniform() * total;
+            const auto t = triangles[std::min<std::size_t>(
+                std::lower_bound(cdf.begin(), cdf.end(), pick) - cdf.begin(),
+                triangles.size() - 1)];
+            const auto& tri = traced.mesh.patches[t];
+            const Vec3 a = scene.vertices[tri.corners[0]], b = scene.vertices[tri.corners[1]],
+                       d = scene.vertices[tri.corners[2]];
+            double u = rng.uniform(), v = rng.uniform();
+            if (u + v > 1) u = 1 - u, v = 1 - v;
+            const Vec3 origin = a + (b - a) * u + (d - a) * v;
+            const Vec3 normal = side == 0 ? tri.normal : tri.normal * -1.0;
+            const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
+            const double u2 = rng.uniform(), u3 = rng.uniform();
+            const Vec3 dir = cosine_direction(normal, tu, tv, u2, u3);
+            bool front = false;
+            const auto hit = rays.first_hit(origin, dir, front);
+            if (hit < 0) {
+                tally.sides[side].escaped += 1;
+            } else if (const auto target = traced.surface_of[traced.face_of[hit]]; target != c) {
+                met[{target, front ? 0 : 1}] += 1; // its own surface turns with it
+            }
+        }
+        for (const auto& [key, rays_met] : met)
+            tally.sides[side].links.push_back({key.first, key.second, rays_met});
+    }
+    return tally;
+}
+
+// How well side `t` (0 front, 1 back, after the flips so far) of surface c faces what it sees:
+// +1 per ray that meets a front, -1 per ray that meets a back or escapes. A surface faces the
+// wrong way when its back does clearly better than its front. The evidence is mutual (a room
+// split into separately modelled walls: each sees the others' backs until one turns), so the
+// clearest case is flipped first, then the rest is weighed again.
+class FacingVote {
+  public:
+    explicit FacingVote(const std::vector<SurfaceTally>& tally)
+        : tally_(tally), flipped_(tally.size(), 0), advantage_(tally.size(), 0),
+          seen_by_(tally.size()) {
+        for (std::size_t c = 0; c < tally.size(); ++c)
+            for (int t = 0; t < 2; ++t)
+                for (const auto& link : tally[c].sides[t].links) seen_by_[link.target].push_back(c);
+        for (auto& list : seen_by_) {
+            std::sort(list.begin(), list.end());
+            list.erase(std::unique(list.begin(), list.end()), list.end());
+        }
+        for (std::size_t c = 0; c < tally.size(); ++c) weigh(c);
+    }
+    // The surfaces to flip (1), clearest first, until none is clearly better turned.
+    std::vector<int> vote() {
+        constexpr double kClearly = 0.2; // a fifth of the rays, net
+        for (std::size_t step = 0; step < 2 * tally_.size() + 2; ++step) {
+            const auto best =
+                std::max_element(advantage_.begin(), advantage_.end()) - advantage_.begin();
+            if (advantage_[best] <= kClearly) break;
+            flipped_[best] ^= 1;
+            weigh(best);
+            for (auto c : seen_by_[best]) weigh(c);
+        }
+        return flipped_;
+    }
+
+  private:
+    double quality(std::size_t c, int t) const {
+        const auto& side = tally_[c].sides[t ^ flipped_[c]];
         double sum = -side.escaped;
         for (const auto& link : side.links)
-            sum += ((link.facing ^ flipped[link.target]) == 0 ? 1 : -1) * link.rays;
-        return sum / std::max(1.0, rays_per_side[c]);
-    };
-    std::vector<std::vector<std::size_t>> seen_by(surface_count);
-    for (std::size_t c = 0; c < surface_count; ++c)
-        for (int t = 0; t < 2; ++t)
-            for (const auto& link : sides[c][t].links) seen_by[link.target].push_back(c);
-    for (auto& list : seen_by) {
-        std::sort(list.begin(), list.end());
-        list.erase(std::unique(list.begin(), list.end()), list.end());
+            sum += ((link.facing ^ flipped_[link.target]) == 0 ? 1 : -1) * link.rays;
+        return sum / std::max(1.0, tally_[c].rays_per_side);
     }
-    // A surface is a candidate when its front does badly (meets mostly backs, or nothing)
-    // and its back clearly better; a lamp under a ceiling, whose back sees the ceiling's
-    // front, is not one: its front sees the room.
-    std::vector<double> advantage(surface_count, 0);
-    auto weigh = [&](std::size_t c) {
+    // A surface is a candidate when its front does badly (meets mostly backs, or nothing) and
+    // its back clearly better; a lamp under a ceiling, whose back sees the ceiling's front, is
+    // not one: its front sees the room.
+    void weigh(std::size_t c) {
         const double front = quality(c, 0);
-        advantage[c] = free[c] && front < 0 ? quality(c, 1) - front : 0;
-    };
-    for (std::size_t c = 0; c < surface_count; ++c) weigh(c);
-    constexpr double kClearly = 0.2; // a fifth of the rays, net
-    for (std::size_t step = 0; step < 2 * surface_count + 2; ++step) {
-        const auto best = std::max_element(advantage.begin(), advantage.end()) - advantage.begin();
-        if (advantage[best] <= kClearly) break;
-        flipped[best] ^= 1;
-        weigh(best);
-        for (auto c : seen_by[best]) weigh(c);
+        advantage_[c] = tally_[c].free && front < 0 ? quality(c, 1) - front : 0;
     }
+
+    const std::vector<SurfaceTally>& tally_;
+    std::vector<int> flipped_;
+    std::vector<double> advantage_;
+    std::vector<std::vector<std::size_t>> seen_by_;
+};
+
+} // namespace
+
+std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene) {
+    const auto surfaces = connect_surfaces(scene);
+    const auto traced = traced_surfaces(scene, surfaces);
+    if (traced.mesh.patches.empty()) return {};
+    const RayScene rays(traced.mesh, RayBuild::Fast);
+    std::vector<SurfaceTally> tally(surfaces.members.size());
+    tbb::parallel_for(std::size_t(0), tally.size(), [&](std::size_t c) {
+        tally[c] = tally_surface(c, scene, surfaces, traced, rays);
+    });
+    const auto flipped = FacingVote(tally).vote();
     std::vector<std::size_t> facing_away;
-    std::vector<bool> flip(n, false);
-    for (std::size_t c = 0; c < surface_count; ++c)
+    std::vector<bool> flip(scene.polygons.size(), false);
+    for (std::size_t c = 0; c < flipped.size(); ++c)
         if (flipped[c])
             for (auto f : surfaces.members[c]) {
                 facing_away.push_back(f);
