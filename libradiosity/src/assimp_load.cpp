@@ -125,6 +125,122 @@ void apply_texture(const aiScene& scene, const aiMaterial& material, aiTextureTy
     report.textures_averaged.push_back(out.name + ": " + texture_name);
 }
 
+
+// One assimp material as the scene's: base colour (or diffuse) and its texture's mean as the
+// reflectance, emissive times its strength as the emission.
+radfmt::Material material_of(const aiScene& ai, unsigned m, double strength, const fs::path& path,
+                             const SceneOptions& options, SceneReport& report, Scene& scene) {
+    const aiMaterial& material = *ai.mMaterials[m];
+    radfmt::Material out;
+    aiString name;
+    out.name = material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS && name.length > 0
+                   ? name.C_Str()
+                   : "material" + std::to_string(m);
+    aiColor4D base(1, 1, 1, 1);
+    aiColor3D diffuse(1, 1, 1);
+    if (material.Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS) {
+        out.reflectance = {{base.r, base.g, base.b}};
+        apply_texture(ai, material, aiTextureType_BASE_COLOR, path, options, out, report,
+                      scene.material_files);
+    } else {
+        if (material.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS)
+            out.reflectance = {{diffuse.r, diffuse.g, diffuse.b}};
+        apply_texture(ai, material, aiTextureType_DIFFUSE, path, options, out, report,
+                      scene.material_files);
+    }
+    aiColor3D emissive(0, 0, 0);
+    material.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
+    out.emission = {{emissive.r * strength * options.emission_scale,
+                     emissive.g * strength * options.emission_scale,
+                     emissive.b * strength * options.emission_scale}};
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(out.reflectance[k]) || out.reflectance[k] < 0 ||
+            !std::isfinite(out.emission[k]) || out.emission[k] < 0)
+            throw InputError(path.string() + ": material '" + out.name +
+                             "' has a negative or non-finite colour or emission");
+    return out;
+}
+
+void add_materials(const aiScene& ai, const fs::path& path, const SceneOptions& options,
+                   Scene& scene, SceneReport& report) {
+    const auto extras = gltf_extras(path);
+    for (const auto& file : extras.files)
+        if (fs::is_regular_file(path.parent_path() / file))
+            scene.material_files.push_back((path.parent_path() / file).string());
+    for (unsigned m = 0; m < ai.mNumMaterials; ++m) {
+        float intensity = 1;
+        ai.mMaterials[m]->Get(AI_MATKEY_EMISSIVE_INTENSITY, intensity);
+        const auto& strengths = extras.emissive_strength;
+        const double strength = m < strengths.size() ? strengths[m] : double(intensity);
+        scene.materials.push_back(material_of(ai, m, strength, path, options, report, scene));
+        scene.material_sources.push_back({});
+    }
+    if (scene.materials.empty()) {
+        scene.materials.push_back({"default", options.default_reflectance, {}});
+        scene.material_sources.push_back({});
+        report.default_material = "default";
+    }
+}
+
+// One node's mesh, placed by `transform` (faces reversed when it mirrors), in group `group`.
+void add_mesh(const aiMesh& mesh, const aiMatrix4x4& transform, std::uint32_t group,
+              const std::string& node_name, const fs::path& path, Scene& scene) {
+    // A mirroring transform (negative determinant) turns faces inside out: undo it.
+    const bool mirrored = transform.Determinant() < 0;
+    // Normals go through the inverse transpose of the transform's linear part.
+    aiMatrix3x3 normal_transform(transform);
+    normal_transform.Inverse().Transpose();
+    const auto base = static_cast<std::uint32_t>(scene.vertices.size());
+    scene.face_ranges.push_back({static_cast<int>(scene.polygons.size()) + 1,
+                                 "node '" + node_name + "', mesh '" + mesh.mName.C_Str() + "'"});
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+        const Vec3 p = transform_point(transform, mesh.mVertices[v]);
+        if (!finite(p))
+            throw InputError(path.string() + ": mesh '" + mesh.mName.C_Str() +
+                             "' has a vertex that is not a finite number");
+        scene.vertices.push_back(p);
+    }
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+        const aiFace& face = mesh.mFaces[f];
+        if (face.mNumIndices < 3) continue;
+        Polygon polygon;
+        polygon.line = static_cast<int>(scene.polygons.size()) + 1; // faces numbered
+        polygon.group = group;
+        polygon.material = std::min<std::uint32_t>(
+            mesh.mMaterialIndex, static_cast<std::uint32_t>(scene.materials.size() - 1));
+        for (unsigned i = 0; i < face.mNumIndices; ++i)
+            polygon.vertices.push_back(base + face.mIndices[i]);
+        if (mesh.HasNormals()) // what the file says the front is (as OBJ's vn)
+            for (unsigned i = 0; i < face.mNumIndices; ++i) {
+                const aiVector3D n = normal_transform * mesh.mNormals[face.mIndices[i]];
+                polygon.vn_sum = polygon.vn_sum + Vec3{n.x, n.y, n.z};
+            }
+        if (mirrored) std::reverse(polygon.vertices.begin(), polygon.vertices.end());
+        scene.polygons.push_back(std::move(polygon));
+    }
+}
+
+// Every node's meshes, placed by the product of the transforms down to it; a node's group is
+// its name, or its parent's when it has none.
+void add_nodes(const aiScene& ai, const aiNode& node, const aiMatrix4x4& parent,
+               const std::string& parent_name, const fs::path& path,
+               std::map<std::string, std::uint32_t>& group_of, Scene& scene) {
+    const aiMatrix4x4 transform = parent * node.mTransformation;
+    std::string name = node.mName.length ? node.mName.C_Str() : parent_name;
+    if (name.empty()) name = "default";
+    for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+        const aiMesh& mesh = *ai.mMeshes[node.mMeshes[k]];
+        if (!(mesh.mPrimitiveTypes & (aiPrimitiveType_TRIANGLE | aiPrimitiveType_POLYGON)))
+            continue;
+        const auto [it, added] =
+            group_of.try_emplace(name, static_cast<std::uint32_t>(scene.groups.size()));
+        if (added) scene.groups.push_back(name);
+        add_mesh(mesh, transform, it->second, name, path, scene);
+    }
+    for (unsigned c = 0; c < node.mNumChildren; ++c)
+        add_nodes(ai, *node.mChildren[c], transform, name, path, group_of, scene);
+}
+
 } // namespace
 
 Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneReport* report_out) {
@@ -142,107 +258,11 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
     if (!ai || !ai->mRootNode || (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
         throw InputError(path.string() + ": cannot read the scene (" + importer.GetErrorString() +
                          ")");
-
     Scene scene;
     scene.path = path.string();
-    const auto extras = gltf_extras(path);
-    const auto& strengths = extras.emissive_strength;
-    for (const auto& file : extras.files)
-        if (fs::is_regular_file(path.parent_path() / file))
-            scene.material_files.push_back((path.parent_path() / file).string());
-    for (unsigned m = 0; m < ai->mNumMaterials; ++m) {
-        const aiMaterial& material = *ai->mMaterials[m];
-        radfmt::Material out;
-        aiString name;
-        out.name = material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS && name.length > 0
-                       ? name.C_Str()
-                       : "material" + std::to_string(m);
-        aiColor4D base(1, 1, 1, 1);
-        aiColor3D diffuse(1, 1, 1);
-        if (material.Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS) {
-            out.reflectance = {{base.r, base.g, base.b}};
-            apply_texture(*ai, material, aiTextureType_BASE_COLOR, path, options, out, report,
-                          scene.material_files);
-        } else {
-            if (material.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS)
-                out.reflectance = {{diffuse.r, diffuse.g, diffuse.b}};
-            apply_texture(*ai, material, aiTextureType_DIFFUSE, path, options, out, report,
-                          scene.material_files);
-        }
-        aiColor3D emissive(0, 0, 0);
-        material.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
-        float intensity = 1;
-        material.Get(AI_MATKEY_EMISSIVE_INTENSITY, intensity);
-        const double strength = m < strengths.size() ? strengths[m] : double(intensity);
-        out.emission = {{emissive.r * strength * options.emission_scale,
-                         emissive.g * strength * options.emission_scale,
-                         emissive.b * strength * options.emission_scale}};
-        for (int k = 0; k < 3; ++k)
-            if (!std::isfinite(out.reflectance[k]) || out.reflectance[k] < 0 ||
-                !std::isfinite(out.emission[k]) || out.emission[k] < 0)
-                throw InputError(path.string() + ": material '" + out.name +
-                                 "' has a negative or non-finite colour or emission");
-        scene.materials.push_back(out);
-        scene.material_sources.push_back({});
-    }
-    if (scene.materials.empty()) {
-        scene.materials.push_back({"default", options.default_reflectance, {}});
-        scene.material_sources.push_back({});
-        report.default_material = "default";
-    }
-
-    // Every node's meshes, placed by the product of the transforms down to it.
+    add_materials(*ai, path, options, scene, report);
     std::map<std::string, std::uint32_t> group_of;
-    const auto walk = [&](const auto& self, const aiNode& node, const aiMatrix4x4& parent,
-                          const std::string& parent_name) -> void {
-        const aiMatrix4x4 transform = parent * node.mTransformation;
-        std::string name = node.mName.length ? node.mName.C_Str() : parent_name;
-        if (name.empty()) name = "default";
-        // A mirroring transform (negative determinant) turns faces inside out: undo it.
-        const bool mirrored = transform.Determinant() < 0;
-        // Normals go through the inverse transpose of the transform's linear part.
-        aiMatrix3x3 normal_transform(transform);
-        normal_transform.Inverse().Transpose();
-        for (unsigned k = 0; k < node.mNumMeshes; ++k) {
-            const aiMesh& mesh = *ai->mMeshes[node.mMeshes[k]];
-            if (!(mesh.mPrimitiveTypes & (aiPrimitiveType_TRIANGLE | aiPrimitiveType_POLYGON)))
-                continue;
-            const auto [it, added] =
-                group_of.try_emplace(name, static_cast<std::uint32_t>(scene.groups.size()));
-            if (added) scene.groups.push_back(name);
-            const auto base = static_cast<std::uint32_t>(scene.vertices.size());
-            scene.face_ranges.push_back({static_cast<int>(scene.polygons.size()) + 1,
-                                         "node '" + name + "', mesh '" + mesh.mName.C_Str() + "'"});
-            for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-                const Vec3 p = transform_point(transform, mesh.mVertices[v]);
-                if (!finite(p))
-                    throw InputError(path.string() + ": mesh '" + mesh.mName.C_Str() +
-                                     "' has a vertex that is not a finite number");
-                scene.vertices.push_back(p);
-            }
-            for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-                const aiFace& face = mesh.mFaces[f];
-                if (face.mNumIndices < 3) continue;
-                Polygon polygon;
-                polygon.line = static_cast<int>(scene.polygons.size()) + 1; // faces numbered
-                polygon.group = it->second;
-                polygon.material = std::min<std::uint32_t>(
-                    mesh.mMaterialIndex, static_cast<std::uint32_t>(scene.materials.size() - 1));
-                for (unsigned i = 0; i < face.mNumIndices; ++i)
-                    polygon.vertices.push_back(base + face.mIndices[i]);
-                if (mesh.HasNormals()) // what the file says the front is (as OBJ's vn)
-                    for (unsigned i = 0; i < face.mNumIndices; ++i) {
-                        const aiVector3D n = normal_transform * mesh.mNormals[face.mIndices[i]];
-                        polygon.vn_sum = polygon.vn_sum + Vec3{n.x, n.y, n.z};
-                    }
-                if (mirrored) std::reverse(polygon.vertices.begin(), polygon.vertices.end());
-                scene.polygons.push_back(std::move(polygon));
-            }
-        }
-        for (unsigned c = 0; c < node.mNumChildren; ++c)
-            self(self, *node.mChildren[c], transform, name);
-    };
-    walk(walk, *ai->mRootNode, aiMatrix4x4(), "");
+    add_nodes(*ai, *ai->mRootNode, aiMatrix4x4(), "", path, group_of, scene);
     if (scene.polygons.empty())
         throw InputError(path.string() + ": scene is empty (no faces; points and lines are not "
                                          "surfaces)");
