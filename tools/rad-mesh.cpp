@@ -63,185 +63,206 @@ void print_summary(const radfmt::MeshData& mesh, const rad::MeshReport& report) 
                  100 * s.shape.fraction_wide_aspect_at_most_3, s.shape.worst_aspect, s.shape.thin,
                  s.shape.specks, s.t_vertices);
 }
-} // namespace
-
-int main(int argc, char** argv) {
-    CLI::App app{"Read a scene (Wavefront OBJ with its MTL materials: Kd = reflectance, Ke = "
-                 "emitted exitance in W/m^2;\nor glTF, PLY, COLLADA, FBX) and write the conforming "
-                 "patch mesh of the chain."};
+// What the command line says.
+struct MeshArgs {
     std::string input, output;
     std::vector<std::string> max_edge, max_area;
-    double planarity = 1e-3;
-    bool quiet = false;
-    bool timings = false;
-    app.add_option("SCENE", input,
+    double planarity = 1e-3, max_patches = 2e7;
+    bool quiet = false, timings = false, strict = false;
+    std::string patch_order = "morton", default_reflectance, orient = "warn";
+    std::string surfaces = "regions", import_memory;
+    rad::SceneOptions scene;
+    std::vector<std::string> mtl_paths, flip, two_sided;
+    bool two_sided_emission = false, no_imprint = false;
+};
+
+// The input, output and subdivision options.
+void add_scene_options(CLI::App& app, MeshArgs& a) {
+    app.add_option("SCENE", a.input,
                    "Scene file: OBJ (+ MTL), or glTF 2.0 (.gltf, .glb), PLY, COLLADA (.dae), "
                    "FBX and the other formats assimp reads")
         ->required();
-    app.add_option("-o,--output", output, "Output mesh file")->required();
-    app.add_option("--max-edge", max_edge,
+    app.add_option("-o,--output", a.output, "Output mesh file")->required();
+    app.add_option("--max-edge", a.max_edge,
                    "Longest patch edge, or none (surfaces as few patches as their shape "
                    "allows); repeat as GROUP=L for a per-group limit (default: the scene's "
                    "size, its bounding box's diagonal, over 20)");
-    app.add_option("--max-area", max_area, "Largest patch area; repeat as GROUP=A per group");
-    double max_patches = 2e7;
-    app.add_option("--max-patches", max_patches,
+    app.add_option("--max-area", a.max_area, "Largest patch area; repeat as GROUP=A per group");
+    app.add_option("--max-patches", a.max_patches,
                    "Refuse (before subdividing) when the limits would make more patches than "
                    "this")
         ->capture_default_str()
         ->check(rad::tool::finite_range(1, 4e9));
-    app.add_option("--planarity-tolerance", planarity,
+    app.add_option("--planarity-tolerance", a.planarity,
                    "Largest distance of a face vertex from the face's plane, relative to the "
                    "face's size")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 1));
-    std::string patch_order = "morton";
-    app.add_option("--patch-order", patch_order,
+    app.add_option("--patch-order", a.patch_order,
                    "How patches are numbered: morton (along a Z-order curve of their centroids, "
                    "so that neighbours in space are neighbours in memory: faster solves) or "
                    "faces (in the order of the scene's faces, each face's patches row by row)")
         ->capture_default_str()
         ->check(CLI::IsMember({"morton", "faces"}));
-    bool strict = false;
-    rad::SceneOptions obj_options;
-    std::string default_reflectance;
-    std::vector<std::string> mtl_paths;
-    app.add_flag("--strict", strict,
+    app.add_flag("--strict", a.strict,
                  "Refuse what is otherwise repaired with a warning: non-planar faces (split "
                  "into triangles), faces without a known material (given a default one), "
                  "missing material libraries");
-    app.add_option("--default-reflectance", default_reflectance,
+    app.add_option("--default-reflectance", a.default_reflectance,
                    "Reflectance of the material given to faces without one: r,g,b or one value "
                    "(default: 0.5)");
-    app.add_option("--emission-scale", obj_options.emission_scale,
+    app.add_option("--emission-scale", a.scene.emission_scale,
                    "glTF, PLY, COLLADA, FBX: W/m^2 of emission per unit of emissive colour x "
                    "emissiveStrength (their emission has no physical unit)")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 1e30));
-    app.add_option("--mtl-path", mtl_paths,
+    app.add_option("--mtl-path", a.mtl_paths,
                    "Folder to look for material libraries in, after the OBJ's folder and the "
                    "current directory (repeatable)");
-    std::string orient = "warn";
-    std::vector<std::string> flip;
-    app.add_option("--orient", orient,
+}
+
+// The mesh stage's own options: orientation, two-sided surfaces, imprinting, surfaces.
+void add_stage_options(CLI::App& app, MeshArgs& a) {
+    app.add_option("--orient", a.orient,
                    "Faces that point the wrong way (against their vn, against their neighbours, "
                    "closed objects inside out): warn about them, or fix them (consistent within "
                    "each connected surface, closed objects outward, then open surfaces whose "
                    "back sees the front of others flipped by ray-cast voting)")
         ->capture_default_str()
         ->check(CLI::IsMember({"warn", "fix"}));
-    app.add_option("--flip", flip, "Reverse the faces of this group (repeatable)");
-    std::vector<std::string> two_sided;
-    bool two_sided_emission = false;
-    app.add_option("--two-sided", two_sided,
+    app.add_option("--flip", a.flip, "Reverse the faces of this group (repeatable)");
+    app.add_option("--two-sided", a.two_sided,
                    "Give these surfaces a back patch per patch, with its own radiosity, for "
                    "thin things modelled as one sheet (curtains, leaves, table tops as "
                    "planes): a group name, a material name, or 'all' (repeatable)");
-    app.add_flag("--two-sided-emission", two_sided_emission,
+    app.add_flag("--two-sided-emission", a.two_sided_emission,
                  "Emitters among the --two-sided surfaces emit from both sides (default: the "
                  "front only; the back gets the material's copy '<name>.back' without Ke)");
-    bool no_imprint = false;
-    app.add_flag("--no-imprint", no_imprint,
+    app.add_flag("--no-imprint", a.no_imprint,
                  "Do not imprint contacts (by default, where another object touches or crosses "
                  "a face, the contact lines are cut into it before subdividing, so no patch "
                  "straddles a contact, and regions hidden inside other geometry are removed)");
-    std::string surfaces = "regions";
-    app.add_option("--surfaces", surfaces,
+    app.add_option("--surfaces", a.surfaces,
                    "What is gridded into patches: regions (connected faces in one plane with one "
                    "material and group are merged into one surface, gridded into near-square "
                    "patches along its own axes, whatever the input's triangulation) or faces "
                    "(each input face subdivided on its own: the input's triangulation shows)")
         ->capture_default_str()
         ->check(CLI::IsMember({"regions", "faces"}));
-    std::string import_memory;
-    app.add_option("--import-timeout", obj_options.import.seconds,
+}
+
+// Importing, textures, and what rad-mesh prints.
+void add_import_options(CLI::App& app, MeshArgs& a) {
+    app.add_option("--import-timeout", a.scene.import.seconds,
                    "glTF, PLY, COLLADA, FBX: assimp reads them in a process of its own; give up "
                    "on a file it has not read in this many seconds (0: no limit)")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 1e9));
-    app.add_option("--import-memory", import_memory,
+    app.add_option("--import-memory", a.import_memory,
                    "... and on one for which it needs more address space than this (e.g. 4G; "
                    "default: 80% of physical memory); a crash there is an error naming the "
                    "file, never the tool's");
-    app.add_flag("--allow-outside-refs", obj_options.allow_outside_refs,
+    app.add_flag("--allow-outside-refs", a.scene.allow_outside_refs,
                  "Let the scene refer to files outside its own folder (material libraries, "
                  "textures, glTF buffers and images given by absolute paths or '..'); FIFOs "
                  "and devices are never opened");
-    app.add_option("--max-texture-pixels", obj_options.max_texture_pixels,
+    app.add_option("--max-texture-pixels", a.scene.max_texture_pixels,
                    "Textures with more pixels are not decoded (a warning; the material keeps "
                    "its Kd); each texture file is decoded once per run")
         ->capture_default_str()
         ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40));
-    app.add_flag("-q,--quiet", quiet,
+    app.add_flag("-q,--quiet", a.quiet,
                  "Print no summary (and no progress; progress shows only on a terminal)");
-    app.add_flag("--timings", timings,
+    app.add_flag("--timings", a.timings,
                  "Print each stage's wall time and the peak memory so far (stderr), and "
                  "whether the heap is in transparent huge pages (rad-mesh restarts itself "
                  "once to ask glibc for them; RADIOSITY_HUGE_PAGES=0 keeps 4 KiB pages)");
+}
+
+// The mesh stage's options from the command line's (throws InputError on bad values).
+rad::MeshOptions mesh_options_of(MeshArgs& a) {
+    if (!a.import_memory.empty())
+        a.scene.import.memory_bytes = rad::tool::parse_size(a.import_memory, "--import-memory");
+    rad::SubdivisionOptions options;
+    // No limit given at all: one from the scene's size, chosen by the patch pass.
+    if (a.max_edge.empty() && a.max_area.empty()) options.max_edge = rad::kMaxEdgeFromScene;
+    parse_limits(a.max_edge, "--max-edge", options.max_edge, options.max_edge_by_group);
+    parse_limits(a.max_area, "--max-area", options.max_area, options.max_area_by_group);
+    options.planarity_tolerance = a.planarity;
+    options.strict = a.strict;
+    options.max_patches = a.max_patches;
+    a.scene.strict = a.strict;
+    for (const auto& dir : a.mtl_paths) a.scene.mtl_paths.emplace_back(dir);
+    if (!a.default_reflectance.empty()) {
+        const auto value = rad::parse_material_override("default=" + a.default_reflectance,
+                                                        "--default-reflectance")
+                               .value;
+        for (double v : value)
+            if (!(v < 1))
+                throw rad::InputError("--default-reflectance: " + a.default_reflectance +
+                                      " has a channel >= 1 (a reflectance is below 1)");
+        a.scene.default_reflectance = value;
+    }
+    rad::MeshOptions mesh_options;
+    mesh_options.scene = a.scene;
+    mesh_options.subdivision = options;
+    mesh_options.regions = a.surfaces == "regions";
+    mesh_options.imprint = !a.no_imprint;
+    mesh_options.orient_fix = a.orient == "fix";
+    mesh_options.flip = a.flip;
+    mesh_options.two_sided = a.two_sided;
+    mesh_options.two_sided_emission = a.two_sided_emission;
+    mesh_options.morton_order = a.patch_order == "morton";
+    return mesh_options;
+}
+
+void print_lines(const rad::MeshReport& report, const std::string& input, bool quiet) {
+    using Kind = rad::MeshReport::Kind;
+    for (const auto& line : report.lines) {
+        if (line.kind == Kind::Warning)
+            std::cerr << "rad-mesh: warning: " << input << ": " << line.text << '\n';
+        else if (line.kind == Kind::Fix || (line.kind == Kind::Note && !quiet))
+            std::cerr << "rad-mesh: " << line.text << '\n';
+    }
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Read a scene (Wavefront OBJ with its MTL materials: Kd = reflectance, Ke = "
+                 "emitted exitance in W/m^2;\nor glTF, PLY, COLLADA, FBX) and write the conforming "
+                 "patch mesh of the chain."};
+    MeshArgs a;
+    add_scene_options(app, a);
+    add_stage_options(app, a);
+    add_import_options(app, a);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
     rad::tool::restart_with_huge_pages(argv);
 
     return rad::tool::run_tool("rad-mesh", [&] {
-        rad::tool::check_outputs({input}, {{"-o", output}});
-        if (!import_memory.empty())
-            obj_options.import.memory_bytes =
-                rad::tool::parse_size(import_memory, "--import-memory");
-        rad::SubdivisionOptions options;
-        // No limit given at all: one from the scene's size, chosen by the patch pass.
-        if (max_edge.empty() && max_area.empty()) options.max_edge = rad::kMaxEdgeFromScene;
-        parse_limits(max_edge, "--max-edge", options.max_edge, options.max_edge_by_group);
-        parse_limits(max_area, "--max-area", options.max_area, options.max_area_by_group);
-        options.planarity_tolerance = planarity;
-        options.strict = strict;
-        options.max_patches = max_patches;
-        obj_options.strict = strict;
-        for (const auto& dir : mtl_paths) obj_options.mtl_paths.emplace_back(dir);
-        if (!default_reflectance.empty()) {
-            const auto value = rad::parse_material_override("default=" + default_reflectance,
-                                                            "--default-reflectance")
-                                   .value;
-            for (double v : value)
-                if (!(v < 1))
-                    throw rad::InputError("--default-reflectance: " + default_reflectance +
-                                          " has a channel >= 1 (a reflectance is below 1)");
-            obj_options.default_reflectance = value;
-        }
-        rad::StageLog stages("rad-mesh", quiet, timings);
-        obj_options.stages = &stages;
-        rad::MeshOptions mesh_options;
-        mesh_options.scene = obj_options;
-        mesh_options.subdivision = options;
-        mesh_options.regions = surfaces == "regions";
-        mesh_options.imprint = !no_imprint;
-        mesh_options.orient_fix = orient == "fix";
-        mesh_options.flip = flip;
-        mesh_options.two_sided = two_sided;
-        mesh_options.two_sided_emission = two_sided_emission;
-        mesh_options.morton_order = patch_order == "morton";
+        rad::tool::check_outputs({a.input}, {{"-o", a.output}});
+        auto mesh_options = mesh_options_of(a);
+        rad::StageLog stages("rad-mesh", a.quiet, a.timings);
+        mesh_options.scene.stages = &stages;
         rad::MeshReport report;
         rad::Scene scene;
-        const auto mesh = rad::build_mesh(input, mesh_options, report, &scene);
+        const auto mesh = rad::build_mesh(a.input, mesh_options, report, &scene);
         stages.finish(); // clears the terminal's stage line before the report
-        using Kind = rad::MeshReport::Kind;
-        for (const auto& line : report.lines) {
-            if (line.kind == Kind::Warning)
-                std::cerr << "rad-mesh: warning: " << input << ": " << line.text << '\n';
-            else if (line.kind == Kind::Fix || (line.kind == Kind::Note && !quiet))
-                std::cerr << "rad-mesh: " << line.text << '\n';
-        }
+        print_lines(report, a.input, a.quiet);
 
-        stages.begin("writing " + std::filesystem::path(output).filename().string());
-        std::vector<radfmt::Parent> sources{{input, nullptr}};
+        stages.begin("writing " + std::filesystem::path(a.output).filename().string());
+        std::vector<radfmt::Parent> sources{{a.input, nullptr}};
         for (const auto& mtl : scene.material_files) sources.push_back({mtl, nullptr});
         const auto header = radfmt::derived_header(rad::tool_version("rad-mesh"),
                                                    radfmt::command_line(argc, argv), sources);
-        radfmt::write_mesh(output, header, mesh);
+        radfmt::write_mesh(a.output, header, mesh);
         stages.finish();
-        if (timings)
+        if (a.timings)
             std::cerr << "rad-mesh: timing: pages: " << rad::tool::huge_pages_state() << '\n';
-        if (!quiet) print_summary(mesh, report);
+        if (!a.quiet) print_summary(mesh, report);
         for (const auto& line : report.lines)
-            if (line.kind == Kind::Change) std::cerr << "rad-mesh: changed: " << line.text << '\n';
+            if (line.kind == rad::MeshReport::Kind::Change)
+                std::cerr << "rad-mesh: changed: " << line.text << '\n';
         return 0;
     });
 }
