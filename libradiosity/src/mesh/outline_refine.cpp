@@ -69,7 +69,9 @@ void find_pieces_to_split(const Region& region, Points& points, double tolerance
     trial.vertices = points.position; // patch_aspect reads corners from the mesh
     std::unordered_set<EdgeKey> pieces;
     for (const auto& [a, b] : region.pieces) pieces.insert(edge_key(a, b));
-    const double shortest = region.cell / 10;
+    // Halving stops at a twentieth of a cell: well-shaped triangles next to an outline feature
+    // that small must be about its size (a game map's brush steps); slivers there would not.
+    const double shortest = region.cell / 20;
     for (const auto& patch : trial.patches) {
         if (patch.corner_count() != 3 || patch_aspect(trial, patch) <= 3) continue;
         if (const auto key = piece_to_split(region, pieces, points, patch, shortest))

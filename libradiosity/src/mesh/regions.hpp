@@ -134,17 +134,17 @@ double region_thickness(const Region& region, const Points& points, double enoug
 // than the smallest cell of the regions along it. Returns the points dropped.
 std::size_t split_outline_runs(std::vector<Region>& regions, Points& points, double tolerance);
 
-// Pass 3a: in each region not gridded as a quadrilateral, a piece shorter than a quarter of its
-// piece length (at least a tenth of a cell) is merged with its straight neighbour across a point
-// the region may leave out: one where every other region is never smoothed together with it
-// (another material or group, or a bend past rad-shade's default crease angle). The merged
-// pieces stay within the region's piece length. Returns the points left out (T-vertices).
+// Pass 3a: in each region not gridded as a quadrilateral, a piece shorter than a tenth of a cell
+// is merged with its straight neighbour across a point the region may leave out: one where
+// every other region is never smoothed together with it (another material or group, or a bend
+// past rad-shade's default crease angle). The merged pieces stay within the region's piece
+// length. Returns the points left out (T-vertices).
 std::size_t relax_outline_points(std::vector<Region>& regions, const Points& points,
                                  double tolerance);
 
 // Pass 3b: each region gridded on trial (pass 4); the outline piece that a bad band triangle
 // lies on, or whose diametral circle holds its circumcentre, is halved for every region that
-// has it (never below a tenth of a cell), and those regions tried again, up to `rounds`
+// has it (never below a twentieth of a cell), and those regions tried again, up to `rounds`
 // times. Returns the points added.
 std::size_t refine_outline_pieces(std::vector<Region>& regions, Points& points, double tolerance,
                                   int rounds);
