@@ -66,14 +66,13 @@ void find_pieces_to_split(const Region& region, Points& points, double tolerance
     radfmt::MeshData trial;
     SurfaceReport ignored;
     grid_region(region, points, trial, ignored, tolerance);
-    trial.vertices = points.position; // patch_aspect reads corners from the mesh
     std::unordered_set<EdgeKey> pieces;
     for (const auto& [a, b] : region.pieces) pieces.insert(edge_key(a, b));
     // Halving stops at a twentieth of a cell: well-shaped triangles next to an outline feature
     // that small must be about its size (a game map's brush steps); slivers there would not.
     const double shortest = region.cell / 20;
     for (const auto& patch : trial.patches) {
-        if (patch.corner_count() != 3 || patch_aspect(trial, patch) <= 3) continue;
+        if (patch.corner_count() != 3 || triangle_aspect(points, patch) <= 3) continue;
         if (const auto key = piece_to_split(region, pieces, points, patch, shortest))
             split.insert(key);
     }
