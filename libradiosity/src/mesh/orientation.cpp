@@ -66,6 +66,7 @@ struct SurfaceGraph {
     } neighbours;
     std::vector<bool> open_edge_of; // has an edge used by one face (or more than two)
     std::vector<std::vector<std::size_t>> members; // the connected surfaces, faces ascending
+    std::vector<std::size_t> surface_of;           // per face: its surface in members
 };
 
 // Each face's edges by their welded ends (sorted by edge, then face), skipping faces without
@@ -132,43 +133,38 @@ SurfaceGraph connect_surfaces(const Scene& scene) {
         nb.list[next[b]++] = {a, same_way[k] != 0};
     }
     std::map<std::size_t, std::size_t> index_of_root;
+    graph.surface_of.resize(n);
     for (std::size_t f = 0; f < n; ++f) {
         const auto [it, added] =
             index_of_root.try_emplace(components.find(f), graph.members.size());
         if (added) graph.members.emplace_back();
         graph.members[it->second].push_back(f);
+        graph.surface_of[f] = it->second;
     }
     return graph;
 }
 
-// A surface encloses the rest of the scene (a room) when its box holds the scene's box, give
-// or take 1% of the scene's size: exporters let water or furniture poke a few millimetres
-// through a wall.
 // Each finding's surface_line: the first line of the connected surface of its first face.
 void name_surfaces(std::vector<OrientationFinding>& findings, const Scene& scene,
                    const SurfaceGraph& surfaces) {
-    std::vector<std::size_t> surface_of(scene.polygons.size());
-    for (std::size_t c = 0; c < surfaces.members.size(); ++c)
-        for (auto f : surfaces.members[c]) surface_of[f] = c;
     for (auto& finding : findings) {
         if (finding.polygons.empty()) continue;
         int first = scene.polygons[finding.polygons.front()].line;
-        for (const auto f : surfaces.members[surface_of[finding.polygons.front()]])
+        for (const auto f : surfaces.members[surfaces.surface_of[finding.polygons.front()]])
             first = std::min(first, scene.polygons[f].line);
         finding.surface_line = first;
     }
 }
 
+// A surface encloses the rest of the scene (a room) when its box holds the scene's box, give
+// or take 1% of the scene's size: exporters let water or furniture poke a few millimetres
+// through a wall.
 bool encloses(const Box& surface, const Box& scene) {
     const double tol = 0.01 * length(scene.hi - scene.lo);
     for (int c = 0; c < 3; ++c)
         if (scene.lo[c] < surface.lo[c] - tol || scene.hi[c] > surface.hi[c] + tol) return false;
     return true;
 }
-
-} // namespace
-
-namespace {
 
 // Each face's geometry, once: Newell normal (length twice the area), centroid, area.
 struct FaceGeometry {
@@ -360,9 +356,8 @@ struct SurfaceTally {
     bool free = false; // may be flipped (not a closed object)
 };
 
-// The triangles of the scene's faces, and the surfaces they belong to, for the ray casts.
+// The triangles of the scene's faces, for the ray casts, and each surface's triangles.
 struct TracedSurfaces {
-    std::vector<std::size_t> surface_of;                // per face
     std::vector<std::size_t> face_of;                   // per triangle
     std::vector<double> triangle_area;                  // per triangle
     std::vector<std::vector<std::size_t>> triangles_of; // per surface
@@ -371,13 +366,10 @@ struct TracedSurfaces {
 
 TracedSurfaces traced_surfaces(const Scene& scene, const SurfaceGraph& surfaces) {
     TracedSurfaces traced;
-    traced.surface_of.resize(scene.polygons.size());
-    for (std::size_t c = 0; c < surfaces.members.size(); ++c)
-        for (auto f : surfaces.members[c]) traced.surface_of[f] = c;
     traced.mesh = face_triangles(scene, &traced.face_of, &traced.triangle_area);
     traced.triangles_of.resize(surfaces.members.size());
     for (std::size_t t = 0; t < traced.face_of.size(); ++t)
-        traced.triangles_of[traced.surface_of[traced.face_of[t]]].push_back(t);
+        traced.triangles_of[surfaces.surface_of[traced.face_of[t]]].push_back(t);
     return traced;
 }
 
@@ -420,7 +412,7 @@ SurfaceTally tally_surface(std::size_t c, const Scene& scene, const SurfaceGraph
             const auto hit = rays.first_hit(origin, dir, front);
             if (hit < 0) {
                 tally.sides[side].escaped += 1;
-            } else if (const auto target = traced.surface_of[traced.face_of[hit]]; target != c) {
+            } else if (const auto target = surfaces.surface_of[traced.face_of[hit]]; target != c) {
                 met[{target, front ? 0 : 1}] += 1; // its own surface turns with it
             }
         }
