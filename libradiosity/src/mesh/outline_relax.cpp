@@ -34,16 +34,12 @@ bool never_smoothed_together(const Region& a, const Region& b) {
 std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>
 regions_at_points(const std::vector<Region>& regions) {
     std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> at;
-    for (std::uint32_t r = 0; r < regions.size(); ++r)
+    for (std::uint32_t r = 0; r < regions.size(); ++r) // in order: each list comes sorted
         for (const auto& piece : regions[r].pieces)
             for (const auto p : piece) {
                 auto& list = at[p];
                 if (list.empty() || list.back() != r) list.push_back(r);
             }
-    for (auto& [p, list] : at) {
-        std::sort(list.begin(), list.end());
-        list.erase(std::unique(list.begin(), list.end()), list.end());
-    }
     return at;
 }
 
@@ -57,7 +53,6 @@ class PieceChain {
             for (const auto p : pieces_[k]) at_[p].push_back(k);
     }
     std::size_t size() const { return pieces_.size(); }
-    bool alive(std::size_t k) const { return alive_[k]; }
     double length_of(std::size_t k) const {
         return length(points_.position[pieces_[k][1]] - points_.position[pieces_[k][0]]);
     }
@@ -104,12 +99,13 @@ class PieceChain {
     double tolerance_;
 };
 
-// Shortest first, each piece under `gap` merged with its straight neighbour across a point
-// the region may leave out, the shorter merge first, while the result stays within the
+// Shortest first, each piece under a tenth of a cell merged with its straight neighbour across a
+// point the region may leave out, the shorter merge first, while the result stays within the
 // region's piece length. Returns the points left out.
 std::size_t relax_region(Region& region, std::uint32_t self, const std::vector<Region>& regions,
                          const std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>& at,
-                         const Points& points, double tolerance, double gap) {
+                         const Points& points, double tolerance) {
+    const double gap = region.cell / 10;
     auto may_leave = [&](std::uint32_t p) {
         for (const auto r : at.at(p))
             if (r != self && !never_smoothed_together(region, regions[r])) return false;
@@ -151,9 +147,7 @@ std::size_t relax_outline_points(std::vector<Region>& regions, const Points& poi
         auto& region = regions[r];
         // Quadrilateral regions' sides are evenly split runs, already as long as they may be.
         if (!(region.piece > 0) || !region.quad_sides.empty()) continue;
-
-        const double gap = region.cell / 10;
-        left_out += relax_region(region, r, regions, at, points, tolerance, gap);
+        left_out += relax_region(region, r, regions, at, points, tolerance);
     }
     return left_out;
 }
