@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,8 @@ struct ShapeStats {
     std::size_t specks = 0; // patches not thin whose longest edge is under a tenth of a cell
 };
 double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
+// The same with the corners read from `vertices` (a mesh's, or points a mesh is being made of).
+double patch_aspect(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch);
 double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
 // Over the patches not thin (`classes` by patch; patches past its end are wide); `cells` gives
 // each patch's cell side (patches past its end are not counted as specks).

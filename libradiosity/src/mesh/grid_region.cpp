@@ -361,7 +361,7 @@ std::vector<std::array<std::size_t, 2>> cells_at_bad_triangles(const RegionGrid&
             if (grid.id(i, j) != kNone) node_of[grid.id(i, j)] = {i, j};
     std::vector<std::array<std::size_t, 2>> cells;
     for (const auto& patch : trial.patches) {
-        if (patch.corner_count() != 3 || triangle_aspect(points, patch) <= 3) continue;
+        if (patch.corner_count() != 3 || patch_aspect(points.position, patch) <= 3) continue;
         for (int k = 0; k < 3; ++k) {
             const auto it = node_of.find(patch.corners[k]);
             if (it == node_of.end()) continue;
@@ -379,14 +379,6 @@ std::vector<std::array<std::size_t, 2>> cells_at_bad_triangles(const RegionGrid&
 }
 
 } // namespace
-
-double triangle_aspect(const Points& points, const radfmt::Patch& triangle) {
-    double longest = 0;
-    for (int k = 0; k < 3; ++k)
-        longest = std::max(longest, length(points.position[triangle.corners[(k + 1) % 3]] -
-                                           points.position[triangle.corners[k]]));
-    return triangle.area > 0 ? longest * longest / (2 * triangle.area) : 1e300;
-}
 
 void grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
                  SurfaceReport& report, double tolerance) {

@@ -72,7 +72,7 @@ void find_pieces_to_split(const Region& region, Points& points, double tolerance
     // that small must be about its size (a game map's brush steps); slivers there would not.
     const double shortest = region.cell / 20;
     for (const auto& patch : trial.patches) {
-        if (patch.corner_count() != 3 || triangle_aspect(points, patch) <= 3) continue;
+        if (patch.corner_count() != 3 || patch_aspect(points.position, patch) <= 3) continue;
         if (const auto key = piece_to_split(region, pieces, points, patch, shortest))
             split.insert(key);
     }

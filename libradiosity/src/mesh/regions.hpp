@@ -155,10 +155,6 @@ std::size_t refine_outline_pieces(std::vector<Region>& regions, Points& points, 
 std::vector<double> local_thickness(const Region& region, const Points& points,
                                     const radfmt::MeshData& mesh, std::size_t first);
 
-// A triangle patch's aspect as patch_aspect gives it (its longest edge squared over twice its
-// area), read from the points rather than from a mesh holding a copy of them.
-double triangle_aspect(const Points& points, const radfmt::Patch& triangle);
-
 // Pass 4: the region's grid cells as quads and the band between them and its outline as
 // triangles, appended to `mesh` (whose vertices are `points`, patches facing the region's way).
 // A cell with a corner on a band triangle of aspect over 3 is given to the band (the band's

@@ -167,9 +167,13 @@ double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
 }
 
 double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
+    return patch_aspect(mesh.vertices, patch);
+}
+
+double patch_aspect(std::span<const Vec3> vertices, const radfmt::Patch& patch) {
     const int n = patch.corner_count();
     std::array<Vec3, 4> c;
-    for (int k = 0; k < n; ++k) c[k] = mesh.vertices[patch.corners[k]];
+    for (int k = 0; k < n; ++k) c[k] = vertices[patch.corners[k]];
     double longest = 0;
     std::array<double, 4> side{};
     for (int k = 0; k < n; ++k) {
