@@ -504,6 +504,25 @@ TEST_CASE("formfactors version 3: hit counts exact, other values as they are, sp
     CHECK(back.row_start == ff.row_start);
     CHECK(back.columns == ff.columns);
     CHECK(std::memcmp(back.values.data(), ff.values.data(), ff.values.size() * 4) == 0);
+    // Kept as the code (rad-solve's layout), the rows decode to the same bits.
+    const auto kept =
+        radfmt::read_form_factors(dir / "memory.ff", nullptr, radfmt::FormFactorLayout::compact);
+    REQUIRE(kept.is_compact());
+    CHECK(kept.columns.empty());
+    CHECK(kept.nonzeros() == ff.nonzeros());
+    CHECK(kept.back_fraction == ff.back_fraction);
+    radfmt::FormFactorRowBuffer buffer;
+    bool rows_same = true;
+    for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
+        const auto row = kept.row(i, buffer);
+        const auto b = ff.row_start[i];
+        rows_same = rows_same && row.size == ff.row_start[i + 1] - b &&
+                    std::memcmp(row.columns, ff.columns.data() + b, row.size * 4) == 0 &&
+                    std::memcmp(row.values, ff.values.data() + b, row.size * 4) == 0;
+    }
+    CHECK(rows_same);
+    // A compact matrix is written from plain arrays only (rad-solve never writes one).
+    CHECK_THROWS_AS(radfmt::write_form_factors(dir / "again.ff", header, kept), std::logic_error);
     // Small deltas and counts take a byte each: 2 bytes a count entry, 5 a float one.
     const double bytes_per_entry = double(read_header.body_size) / double(ff.nonzeros());
     CHECK(bytes_per_entry < 3);
@@ -512,6 +531,54 @@ TEST_CASE("formfactors version 3: hit counts exact, other values as they are, sp
     const auto floats = radfmt::read_form_factors(dir / "floats.ff", &read_header);
     CHECK(std::memcmp(floats.values.data(), ff.values.data(), ff.values.size() * 4) == 0);
     CHECK(double(read_header.body_size) / double(ff.nonzeros()) > 4.5);
+}
+
+TEST_CASE("packed rows: far columns, large counts and non-count values decode exactly") {
+    // rad-solve's packed layout stores a step past 65534 and a count past 254 (or a value
+    // that is no count) out of line; every such entry must come back bit for bit.
+    const auto dir = temp_dir("packed");
+    auto header = header_for("rad-ff");
+    header.set("method", "hemisphere");
+    header.set("rays", "1000");
+    radfmt::FormFactorData ff;
+    ff.patch_count = 200000;
+    ff.row_start = {0};
+    const std::vector<std::vector<std::pair<std::uint32_t, float>>> rows = {
+        {{0, 0.001f}, {70000, 0.3f}, {70001, 0.254f}, {199999, 0.255f}},
+        {{65534, 0.002f}, {131069, 0.1234567f}, {131070, 1.2f}},
+        {},
+        {{199999, 0.001f}}};
+    for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
+        if (i < rows.size())
+            for (const auto& [column, value] : rows[i]) {
+                ff.columns.push_back(column);
+                ff.values.push_back(value);
+            }
+        ff.row_start.push_back(ff.columns.size());
+        ff.back_fraction.push_back(0);
+    }
+    radfmt::write_form_factors(dir / "far.ff", header, ff);
+    const auto packed =
+        radfmt::read_form_factors(dir / "far.ff", nullptr, radfmt::FormFactorLayout::compact);
+    REQUIRE(packed.is_compact());
+    // Steps of 65535 or more: 70000, 199999, 65534, 131069 and 199999.
+    CHECK(packed.compact.far_column.size() == 5);
+    CHECK(packed.compact.other_value.size() == 4); // 0.3, 0.255, 0.1234567, 1.2
+    radfmt::FormFactorRowBuffer buffer;
+    for (std::uint64_t i = 0; i < rows.size(); ++i) {
+        CAPTURE(i);
+        const auto row = packed.row(i, buffer);
+        REQUIRE(row.size == rows[i].size());
+        for (std::size_t k = 0; k < row.size; ++k) {
+            CHECK(row.columns[k] == rows[i][k].first);
+            CHECK(std::memcmp(&row.values[k], &rows[i][k].second, 4) == 0);
+        }
+    }
+    // Without hit counts (no rays in the header) nothing would get smaller: plain arrays.
+    radfmt::write_form_factors(dir / "floats.ff", header_for("rad-ff"), ff);
+    CHECK_FALSE(
+        radfmt::read_form_factors(dir / "floats.ff", nullptr, radfmt::FormFactorLayout::compact)
+            .is_compact());
 }
 
 TEST_CASE("formfactors version 2 files (plain arrays) are still read") {

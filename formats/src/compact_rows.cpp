@@ -48,6 +48,40 @@ bool all_counts(std::span<const float> values, std::uint64_t denominator) {
 
 } // namespace
 
+std::vector<float> packed_value_table(std::uint64_t denominator) {
+    std::vector<float> table(CompactFormFactorRows::kOtherValue, 0.0f);
+    if (denominator > 0)
+        for (std::uint64_t count = 0; count < table.size(); ++count)
+            table[count] = count_value(count, denominator);
+    return table;
+}
+
+void pack_row(const std::uint32_t* columns, const float* values, std::uint64_t count,
+              CompactFormFactorRows& rows) {
+    std::uint32_t previous = ~std::uint32_t(0); // so that the first step is its column + 1
+    for (std::uint64_t k = 0; k < count; ++k) {
+        const std::uint32_t step = columns[k] - previous;
+        previous = columns[k];
+        if (step < CompactFormFactorRows::kFarStep) {
+            rows.step.push_back(static_cast<std::uint16_t>(step));
+        } else {
+            rows.step.push_back(CompactFormFactorRows::kFarStep);
+            rows.far_column.push_back(columns[k]);
+        }
+        const double hits = std::nearbyint(double(values[k]) * double(rows.denominator));
+        const bool looked_up =
+            rows.denominator > 0 && hits >= 1 && hits < CompactFormFactorRows::kOtherValue &&
+            std::bit_cast<std::uint32_t>(rows.value_of_count[std::size_t(hits)]) ==
+                std::bit_cast<std::uint32_t>(values[k]);
+        if (looked_up) {
+            rows.count.push_back(static_cast<std::uint8_t>(hits));
+        } else {
+            rows.count.push_back(CompactFormFactorRows::kOtherValue);
+            rows.other_value.push_back(values[k]);
+        }
+    }
+}
+
 std::uint64_t hit_denominator(const Header& header) {
     const std::string* method = header.find("method");
     const std::string* rays = header.find("rays");

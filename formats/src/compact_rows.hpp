@@ -4,6 +4,7 @@
 // exact float a hemisphere method stores) or the float's 4 bytes (tag 0).
 #pragma once
 #include "radfmt/container.hpp"
+#include "radfmt/kinds.hpp"
 
 #include <cstdint>
 #include <span>
@@ -27,5 +28,13 @@ void encode_row(std::span<const std::uint32_t> columns, std::span<const float> v
 std::string decode_row(const std::uint8_t* data, std::size_t size, std::uint64_t count,
                        std::uint64_t patch_count, std::uint64_t denominator, std::uint32_t* columns,
                        float* values, std::uint64_t row, std::uint64_t first_entry);
+
+// Appends a row (columns ascending, count entries) to packed rows; the caller records the
+// row's far_start and other_start before it.
+void pack_row(const std::uint32_t* columns, const float* values, std::uint64_t count,
+              CompactFormFactorRows& rows);
+
+// The value of each count that packed rows look up: count / denominator for 0..254.
+std::vector<float> packed_value_table(std::uint64_t denominator);
 
 } // namespace radfmt::compact

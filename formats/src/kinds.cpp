@@ -1,6 +1,7 @@
 #include "radfmt/kinds.hpp"
 
 #include "compact_rows.hpp"
+#include "radfmt/packed_rows.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -171,6 +172,7 @@ void write_form_factor_body(const fs::path& path, Header header, const FormFacto
     header.set("nonzeros", std::to_string(ff.nonzeros()));
     if (ff.back_fraction.size() != ff.patch_count)
         throw std::logic_error("form factors written without one back-face fraction per row");
+    if (ff.is_compact()) throw std::logic_error("form factors written from their compact rows");
     BodyWriter w;
     w.u64(ff.patch_count);
     w.u64(ff.nonzeros());
@@ -200,21 +202,73 @@ void write_form_factor_body(const fs::path& path, Header header, const FormFacto
     write_file(path, std::move(header), w);
 }
 
-// Version 3's rows: offsets checked, then the codes read in pieces and decoded into the
-// arrays (never the whole code and the arrays at once).
-void read_compact_rows(BodyReader& r, FormFactorData& ff, std::uint64_t nnz,
-                       std::uint64_t denominator) {
-    const auto row_offset = r.array<std::uint64_t>(ff.patch_count + 1, "row offsets");
+// Version 3's row offsets, checked against the row starts.
+std::vector<std::uint64_t> read_row_offsets(BodyReader& r, const FormFactorData& ff,
+                                            std::uint64_t nnz) {
+    auto row_offset = r.array<std::uint64_t>(ff.patch_count + 1, "row offsets");
     if (ff.row_start.front() != 0 || ff.row_start.back() != nnz)
         r.fail("row starts do not span the non-zeros");
     if (row_offset.front() != 0) r.fail("row offsets do not start at 0");
     for (std::uint64_t i = 0; i < ff.patch_count; ++i)
         if (ff.row_start[i] > ff.row_start[i + 1] || row_offset[i] > row_offset[i + 1])
             r.fail("row starts or offsets decrease at row " + std::to_string(i));
+    return row_offset;
+}
+
+// Where read_compact_rows puts each decoded row: into the plain arrays, or packed (then
+// decoded into a scratch row first).
+class DecodedRows {
+  public:
+    DecodedRows(FormFactorData& ff, std::uint64_t nnz, std::uint64_t denominator, bool packed)
+        : ff_(ff), packed_(packed) {
+        if (!packed_) {
+            ff_.columns.resize(nnz);
+            ff_.values.resize(nnz);
+            return;
+        }
+        auto& rows = ff_.compact;
+        rows.denominator = denominator;
+        rows.value_of_count = compact::packed_value_table(denominator);
+        rows.step.reserve(nnz);
+        rows.count.reserve(nnz);
+        rows.far_start = {0};
+        rows.other_start = {0};
+    }
+    std::uint32_t* columns(std::uint64_t i) {
+        return packed_ ? scratch(i).columns.data() : ff_.columns.data() + ff_.row_start[i];
+    }
+    float* values(std::uint64_t i) {
+        return packed_ ? scratch(i).values.data() : ff_.values.data() + ff_.row_start[i];
+    }
+    void done(std::uint64_t i) {
+        if (!packed_) return;
+        auto& rows = ff_.compact;
+        compact::pack_row(scratch_.columns.data(), scratch_.values.data(), ff_.row_size(i), rows);
+        rows.far_start.push_back(rows.far_column.size());
+        rows.other_start.push_back(rows.other_value.size());
+    }
+
+  private:
+    FormFactorRowBuffer& scratch(std::uint64_t i) {
+        if (scratch_.columns.size() < ff_.row_size(i)) {
+            scratch_.columns.resize(ff_.row_size(i));
+            scratch_.values.resize(ff_.row_size(i));
+        }
+        return scratch_;
+    }
+    FormFactorData& ff_;
+    bool packed_;
+    FormFactorRowBuffer scratch_;
+};
+
+// Version 3's rows: offsets checked, then the codes read in pieces and decoded into the
+// arrays or packed (never the whole code and the rows at once).
+void read_compact_rows(BodyReader& r, FormFactorData& ff, std::uint64_t nnz,
+                       std::uint64_t denominator, bool packed) {
+    const auto row_offset = read_row_offsets(r, ff, nnz);
     const std::uint64_t code_size = row_offset.back();
     r.begin_pieces(code_size, "row codes");
-    ff.columns.resize(nnz);
-    ff.values.resize(nnz);
+    DecodedRows rows(ff, nnz, denominator, packed);
     std::vector<std::uint8_t> buffer;
     std::size_t begin = 0, have = 0; // valid bytes: buffer[begin, begin + have)
     std::uint64_t left = code_size;
@@ -232,10 +286,11 @@ void read_compact_rows(BodyReader& r, FormFactorData& ff, std::uint64_t nnz,
             left -= more;
         }
         const auto b = ff.row_start[i];
-        const std::string why = compact::decode_row(
-            buffer.data() + begin, length, ff.row_start[i + 1] - b, ff.patch_count, denominator,
-            ff.columns.data() + b, ff.values.data() + b, i, b);
+        const std::string why =
+            compact::decode_row(buffer.data() + begin, length, ff.row_start[i + 1] - b,
+                                ff.patch_count, denominator, rows.columns(i), rows.values(i), i, b);
         if (!why.empty()) r.fail(why);
+        rows.done(i);
         begin += length;
         have -= length;
     }
@@ -257,7 +312,8 @@ void write_form_factor_body(const fs::path& path, Header header, FormFactorSpool
 
 FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, Kind kind,
                                      std::uint64_t* rows_begin = nullptr,
-                                     std::uint64_t* rows_end = nullptr) {
+                                     std::uint64_t* rows_end = nullptr,
+                                     FormFactorLayout layout = FormFactorLayout::plain) {
     BodyReader r(path, &kind);
     FormFactorData ff;
     ff.patch_count = r.count(8, "rows");
@@ -267,7 +323,9 @@ FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, K
     const std::uint64_t denominator = compact ? r.u64() : 0;
     ff.row_start = r.array<std::uint64_t>(ff.patch_count + 1, "row starts");
     if (compact) {
-        read_compact_rows(r, ff, nnz, denominator);
+        // Packed only where the values are hit counts: other rows would not get smaller.
+        const bool packed = layout == FormFactorLayout::compact && denominator > 0;
+        read_compact_rows(r, ff, nnz, denominator, packed);
     } else {
         ff.columns = r.array<std::uint32_t>(nnz, "columns");
         ff.values = r.array<float>(nnz, "values");
@@ -328,8 +386,25 @@ std::uint64_t formfactors_hit_denominator(const Header& header) {
 void write_form_factors(const fs::path& path, Header header, const FormFactorData& ff) {
     write_form_factor_body(path, std::move(header), ff, Kind::FormFactors);
 }
-FormFactorData read_form_factors(const fs::path& path, Header* header_out) {
-    return read_form_factor_body(path, header_out, Kind::FormFactors);
+FormFactorData read_form_factors(const fs::path& path, Header* header_out,
+                                 FormFactorLayout layout) {
+    return read_form_factor_body(path, header_out, Kind::FormFactors, nullptr, nullptr, layout);
+}
+
+FormFactorRow FormFactorData::row(std::uint64_t i, FormFactorRowBuffer& buffer) const {
+    const std::size_t count = row_size(i);
+    if (!is_compact()) return {columns.data() + row_start[i], values.data() + row_start[i], count};
+    if (buffer.columns.size() < count) {
+        buffer.columns.resize(count);
+        buffer.values.resize(count);
+    }
+    PackedColumns packed_columns(compact, *this, i);
+    PackedValues packed_values(compact, *this, i);
+    for (std::size_t k = 0; k < count; ++k) {
+        buffer.columns[k] = packed_columns.next();
+        buffer.values[k] = packed_values.next();
+    }
+    return {buffer.columns.data(), buffer.values.data(), count};
 }
 void write_form_factor_part(const fs::path& path, Header header, const FormFactorData& ff,
                             std::uint64_t rows_begin, std::uint64_t rows_end) {

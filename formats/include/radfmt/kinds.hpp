@@ -63,19 +63,58 @@ struct MeshData {
     std::string geometry_hash() const;
 };
 
+// One row of a form-factor matrix: its columns (ascending) and values, `size` of each.
+struct FormFactorRow {
+    const std::uint32_t* columns = nullptr;
+    const float* values = nullptr;
+    std::size_t size = 0;
+};
+
+// Where a compact matrix's rows are decoded to (reused from row to row).
+struct FormFactorRowBuffer {
+    std::vector<std::uint32_t> columns;
+    std::vector<float> values;
+};
+
+// A hemisphere matrix's rows packed in memory (read with FormFactorLayout::compact): 3 bytes
+// a non-zero instead of 8, fixed widths so that a row decodes without a chain of lengths.
+// Per entry the step from the previous column (the first from -1) and the hit count; a step
+// of 0xFFFF takes its column from far_column, a count of 0xFF its value from other_value
+// (rare: a step past 65534, a count past 254 or a value that is no count).
+struct CompactFormFactorRows {
+    static constexpr std::uint16_t kFarStep = 0xFFFF;
+    static constexpr std::uint8_t kOtherValue = 0xFF;
+    std::vector<std::uint16_t> step;
+    std::vector<std::uint8_t> count;
+    std::vector<std::uint32_t> far_column;
+    std::vector<float> other_value;
+    std::vector<std::uint64_t> far_start, other_start; // per row, into the two lists (n + 1)
+    std::uint64_t denominator = 0;                     // the method's rays
+    std::vector<float> value_of_count;                 // count / denominator, for 0..254
+};
+
 // Compressed sparse rows: row i holds (column, F_ij) for its non-zero entries, columns
-// ascending.
+// ascending. Either plain (columns and values) or compact (rows kept as their code).
 struct FormFactorData {
     std::uint64_t patch_count = 0;
     std::vector<std::uint64_t> row_start; // patch_count + 1 entries
     std::vector<std::uint32_t> columns;
     std::vector<float> values;
+    CompactFormFactorRows compact;
     // Per row, the fraction of patch i's cosine-weighted rays that arrived at the back of a
     // surface (version 2 on; empty when read from a version 1 file): rows near 1 belong to
     // patches that probably face the wrong way.
     std::vector<float> back_fraction;
-    std::uint64_t nonzeros() const { return columns.size(); }
+    std::uint64_t nonzeros() const { return row_start.empty() ? 0 : row_start.back(); }
+    bool is_compact() const { return !compact.far_start.empty(); }
+    std::size_t row_size(std::uint64_t i) const { return row_start[i + 1] - row_start[i]; }
+    // Row i: the arrays' own entries when plain, decoded into `buffer` when compact.
+    FormFactorRow row(std::uint64_t i, FormFactorRowBuffer& buffer) const;
 };
+
+// How read_form_factors keeps the rows: as plain arrays (8 bytes a non-zero), or packed (3
+// bytes) when the file is version 3 with hit counts (what rad-solve keeps in memory).
+enum class FormFactorLayout { plain, compact };
 
 struct RadiosityData {
     std::vector<Rgb> radiosity; // B per patch, W/m^2 (every light group at its own emission)
@@ -95,7 +134,8 @@ void write_mesh(const std::filesystem::path& path, Header header, const MeshData
 MeshData read_mesh(const std::filesystem::path& path, Header* header_out = nullptr);
 
 void write_form_factors(const std::filesystem::path& path, Header header, const FormFactorData& ff);
-FormFactorData read_form_factors(const std::filesystem::path& path, Header* header_out = nullptr);
+FormFactorData read_form_factors(const std::filesystem::path& path, Header* header_out = nullptr,
+                                 FormFactorLayout layout = FormFactorLayout::plain);
 // A shard of the matrix (rad-ff --rows): every row is present, only [rows_begin, rows_end)
 // filled; the range is recorded in the header, checked on reading and returned.
 void write_form_factor_part(const std::filesystem::path& path, Header header,

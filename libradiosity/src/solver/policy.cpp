@@ -167,9 +167,11 @@ bool any_emitter(const radfmt::MeshData& mesh) {
 
 RowSumReport check_row_sums(const radfmt::FormFactorData& ff, double tolerance) {
     RowSumReport report;
+    radfmt::FormFactorRowBuffer buffer;
     for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
         double sum = 0;
-        for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) sum += ff.values[k];
+        const auto row = ff.row(i, buffer);
+        for (std::size_t k = 0; k < row.size; ++k) sum += row.values[k];
         if (sum > 1 + tolerance) ++report.rows_above;
         report.largest = std::max(report.largest, sum);
     }

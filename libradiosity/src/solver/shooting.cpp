@@ -115,6 +115,7 @@ class ProgressiveRefinement {
     // (first at the start), so their rounding does not drift.
     double unshot_power_ = 0;
     std::vector<double> b_power_, unshot_total_, shot_;
+    radfmt::FormFactorRowBuffer row_buffer_; // the shooter's row, when the matrix is compact
     ShooterChoice choice_;
     std::size_t shots_ = 0;
 };
@@ -148,15 +149,15 @@ bool ProgressiveRefinement::shoot_once() {
     }
     choice_.lower(shooter, 0);
     const double a_i = op_.area[shooter];
-    const auto row_end = ff.row_start[shooter + 1];
-    for (auto k = ff.row_start[shooter]; k < row_end; ++k) {
+    const auto row = ff.row(shooter, row_buffer_);
+    for (std::size_t k = 0; k < row.size; ++k) {
         // The receivers are known ahead: their state is asked for a few receivers early, so
         // its cache misses overlap instead of stalling each reception in turn.
-        if (k + kPrefetchAhead < row_end) state_.prefetch(ff.columns[k + kPrefetchAhead]);
-        const auto j = ff.columns[k];
+        if (k + kPrefetchAhead < row.size) state_.prefetch(row.columns[k + kPrefetchAhead]);
+        const auto j = row.columns[k];
         double* to = state_.patch(j);
         const double a_j = ShootingState::area(to);
-        const double f_ji = ff.values[k] * a_i / a_j;
+        const double f_ji = row.values[k] * a_i / a_j;
         for (std::size_t c = 0; c < channels_; ++c) {
             const double received = state_.rho(to, c) * shot_[c] * f_ji;
             state_.b(to)[c] += received;

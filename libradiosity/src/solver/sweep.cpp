@@ -1,8 +1,11 @@
 #include "sweep.hpp"
 
+#include "radfmt/packed_rows.hpp"
+
 #include <emmintrin.h>
 #include <xmmintrin.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -25,35 +28,49 @@ struct GatherCopy {
     }
 };
 
-// sum_k F_ik B_k over row i, RGB: one 4-lane load per entry, two independent pairs of
-// double accumulators.
-inline void gather_rgb(const radfmt::FormFactorData& ff, std::size_t i, const float* from,
-                       double* out) {
+// A plain row's columns or values, read in order (as the packed rows' cursors are).
+template <class T> struct PlainCursor {
+    const T* at;
+    T next() { return *at++; }
+    void skip(std::uint64_t n) { at += n; }
+};
+
+// Skips the first n columns of a packed row (decoding them).
+inline void skip(radfmt::PackedColumns& columns, std::uint64_t n) {
+    for (std::uint64_t k = 0; k < n; ++k) columns.next();
+}
+template <class T> void skip(PlainCursor<T>& cursor, std::uint64_t n) {
+    cursor.skip(n);
+}
+
+// sum_k F_ik B_k over a row of `end` entries, RGB: one 4-lane load per entry, two independent
+// pairs of double accumulators. `ahead` walks the same columns to prefetch.
+template <class Columns, class Values>
+inline void gather_rgb(Columns columns, Columns ahead, Values values, std::uint64_t end,
+                       const float* from, double* out) {
     __m128d rg0 = _mm_setzero_pd(), bx0 = _mm_setzero_pd();
     __m128d rg1 = _mm_setzero_pd(), bx1 = _mm_setzero_pd();
-    auto k = ff.row_start[i];
-    const auto end = ff.row_start[i + 1];
-    const std::uint32_t* columns = ff.columns.data();
-    const float* values = ff.values.data();
-    // Entry k into one accumulator pair: B's RGB (four float lanes) times F, in double.
-    auto add = [&](std::uint64_t k_, __m128d& rg, __m128d& bx) {
-        const __m128 bj = _mm_loadu_ps(from + 4 * std::size_t(columns[k_]));
-        const __m128d f = _mm_set1_pd(values[k_]);
+    // The next entry into one accumulator pair: B's RGB (four float lanes) times F, in double.
+    auto add = [&](__m128d& rg, __m128d& bx) {
+        const __m128 bj = _mm_loadu_ps(from + 4 * std::size_t(columns.next()));
+        const __m128d f = _mm_set1_pd(values.next());
         rg = _mm_add_pd(rg, _mm_mul_pd(f, _mm_cvtps_pd(bj)));
         bx = _mm_add_pd(bx, _mm_mul_pd(f, _mm_cvtps_pd(_mm_movehl_ps(bj, bj))));
     };
     // The columns of a large scene's rows are scattered (each a cache miss): fetch B a few
     // entries ahead, so the misses overlap.
     constexpr std::uint64_t kAhead = 16;
+    skip(ahead, std::min(kAhead, end));
+    std::uint64_t k = 0;
     for (; k + 1 < end; k += 2) {
         if (k + 1 + kAhead < end)
-            for (std::uint64_t a = kAhead; a < kAhead + 2; ++a)
-                _mm_prefetch(reinterpret_cast<const char*>(from + 4 * std::size_t(columns[k + a])),
+            for (int a = 0; a < 2; ++a)
+                _mm_prefetch(reinterpret_cast<const char*>(from + 4 * std::size_t(ahead.next())),
                              _MM_HINT_T0);
-        add(k, rg0, bx0);
-        add(k + 1, rg1, bx1);
+        add(rg0, bx0);
+        add(rg1, bx1);
     }
-    if (k < end) add(k, rg0, bx0);
+    if (k < end) add(rg0, bx0);
     double rg[2], bx[2];
     _mm_storeu_pd(rg, _mm_add_pd(rg0, rg1));
     _mm_storeu_pd(bx, _mm_add_pd(bx0, bx1));
@@ -63,14 +80,33 @@ inline void gather_rgb(const radfmt::FormFactorData& ff, std::size_t i, const fl
 }
 
 // Any channel count (light groups): the same sums, entry by entry.
-inline void gather_any(const radfmt::FormFactorData& ff, std::size_t i, const float* from,
+template <class Columns, class Values>
+inline void gather_any(Columns columns, Values values, std::uint64_t end, const float* from,
                        std::size_t channels, double* out) {
     for (std::size_t c = 0; c < channels; ++c) out[c] = 0;
-    for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) {
-        const float* bj = from + channels * std::size_t(ff.columns[k]);
-        const double f = ff.values[k];
+    for (std::uint64_t k = 0; k < end; ++k) {
+        const float* bj = from + channels * std::size_t(columns.next());
+        const double f = values.next();
         for (std::size_t c = 0; c < channels; ++c) out[c] += f * bj[c];
     }
+}
+
+// Row i gathered from `from`, decoding a packed matrix's row as it goes.
+template <std::size_t kChannels>
+inline void gather_row(const radfmt::FormFactorData& ff, std::size_t i, const float* from,
+                       std::size_t channels, double* out) {
+    const std::uint64_t end = ff.row_size(i);
+    auto gather = [&](auto columns, auto values) {
+        if constexpr (kChannels == 3)
+            gather_rgb(columns, columns, values, end, from, out);
+        else
+            gather_any(columns, values, end, from, channels, out);
+    };
+    if (ff.is_compact())
+        gather(radfmt::PackedColumns(ff.compact, ff, i), radfmt::PackedValues(ff.compact, ff, i));
+    else
+        gather(PlainCursor<std::uint32_t>{ff.columns.data() + ff.row_start[i]},
+               PlainCursor<float>{ff.values.data() + ff.row_start[i]});
 }
 
 template <std::size_t kChannels>
@@ -84,10 +120,7 @@ std::pair<double, double> sweep_rows(const TransportOperator& op, const Channels
     const bool in_place = &source == &b;
     double change = 0, magnitude = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        if constexpr (kChannels == 3)
-            gather_rgb(ff, i, copy.values.data(), gathered.data());
-        else
-            gather_any(ff, i, copy.values.data(), channels, gathered.data());
+        gather_row<kChannels>(ff, i, copy.values.data(), channels, gathered.data());
         double* bi = b.row(i);
         const double* ei = emission.row(i);
         for (std::size_t c = 0; c < channels; ++c) {
