@@ -70,7 +70,7 @@ class ProgressiveRefinement {
     ProgressiveRefinement(const TransportOperator& op, const Channels& emission, bool ambient)
         : op_(op), n_(op.patch_count()), channels_(emission.channels), ambient_(ambient),
           state_(op, emission), mean_reflectance_(channels_, 0.0), b_power_(channels_, 0.0),
-          unshot_total_(channels_, 0.0), shot_(channels_), choice_(powers()) {
+          unshot_total_(channels_, 0.0), shot_(channels_), gain_(channels_), choice_(powers()) {
         for (std::size_t i = 0; i < n_; ++i) {
             double e = 0;
             for (std::size_t c = 0; c < channels_; ++c) e += emission.at(i, c);
@@ -99,6 +99,8 @@ class ProgressiveRefinement {
         return power;
     }
     void sum_totals();
+    // The shooter's row received (kChannels: the channel count, 0 when not known here).
+    template <std::size_t kChannels> void receive(const radfmt::FormFactorRow& row, double a_i);
     // 1 - mean rho of channel c: APR's interreflection factor is its inverse.
     double one_minus_reflectance(std::size_t c) const {
         return 1 - std::min(mean_reflectance_[c], 0.999999);
@@ -114,7 +116,7 @@ class ProgressiveRefinement {
     // of a shot costs O(channels), not a sum over every patch; summed afresh every n shots
     // (first at the start), so their rounding does not drift.
     double unshot_power_ = 0;
-    std::vector<double> b_power_, unshot_total_, shot_;
+    std::vector<double> b_power_, unshot_total_, shot_, gain_;
     radfmt::FormFactorRowBuffer row_buffer_; // the shooter's row, when the matrix is compact
     ShooterChoice choice_;
     std::size_t shots_ = 0;
@@ -148,8 +150,28 @@ bool ProgressiveRefinement::shoot_once() {
         unshot_total_[c] -= shot_[c] * op_.area[shooter];
     }
     choice_.lower(shooter, 0);
-    const double a_i = op_.area[shooter];
     const auto row = ff.row(shooter, row_buffer_);
+    if (channels_ == 3)
+        receive<3>(row, op_.area[shooter]);
+    else
+        receive<0>(row, op_.area[shooter]);
+    return true;
+}
+
+template <std::size_t kChannels>
+void ProgressiveRefinement::receive(const radfmt::FormFactorRow& row, double a_i) {
+    const std::size_t channels = kChannels ? kChannels : channels_;
+    // The power received per channel, summed over the row in locals and added to the totals
+    // once: accumulating into the members made every reception wait on the previous one.
+    double local_gain[kChannels ? kChannels : 1] = {};
+    if constexpr (kChannels == 0) std::fill(gain_.begin(), gain_.end(), 0.0);
+    double* gain = kChannels ? local_gain : gain_.data();
+    double shot[kChannels ? kChannels : 1];
+    const double* from = shot_.data();
+    if constexpr (kChannels > 0) {
+        std::copy_n(shot_.data(), kChannels, shot);
+        from = shot;
+    }
     for (std::size_t k = 0; k < row.size; ++k) {
         // The receivers are known ahead: their state is asked for a few receivers early, so
         // its cache misses overlap instead of stalling each reception in turn.
@@ -158,17 +180,19 @@ bool ProgressiveRefinement::shoot_once() {
         double* to = state_.patch(j);
         const double a_j = ShootingState::area(to);
         const double f_ji = row.values[k] * a_i / a_j;
-        for (std::size_t c = 0; c < channels_; ++c) {
-            const double received = state_.rho(to, c) * shot_[c] * f_ji;
+        for (std::size_t c = 0; c < channels; ++c) {
+            const double received = state_.rho(to, c) * from[c] * f_ji;
             state_.b(to)[c] += received;
             state_.unshot(to)[c] += received;
-            unshot_power_ += received * a_j;
-            b_power_[c] += received * a_j;
-            unshot_total_[c] += received * a_j;
+            gain[c] += received * a_j;
         }
         choice_.raise(j, state_.power(to));
     }
-    return true;
+    for (std::size_t c = 0; c < channels; ++c) {
+        unshot_power_ += gain[c];
+        b_power_[c] += gain[c];
+        unshot_total_[c] += gain[c];
+    }
 }
 
 // APR's ambient term adds sum_i A_i rho_i x ambient = mean rho x unshot power x the
