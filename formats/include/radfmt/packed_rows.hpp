@@ -42,4 +42,28 @@ class PackedValues {
     const float* table_;
 };
 
+// A plain row's columns or values, read in order as the packed cursors are.
+template <class T> struct ArrayCursor {
+    const T* at;
+    T next() { return *at++; }
+};
+
+// Moves a cursor of columns n entries on.
+inline void skip(PackedColumns& columns, std::uint64_t n) {
+    for (std::uint64_t k = 0; k < n; ++k) columns.next();
+}
+template <class T> void skip(ArrayCursor<T>& cursor, std::uint64_t n) {
+    cursor.at += n;
+}
+
+// Calls f(columns, values) with cursors over row i, packed or plain; the loop inside f is
+// compiled once for each layout.
+template <class F> void with_row_cursors(const FormFactorData& ff, std::uint64_t i, F&& f) {
+    if (ff.is_compact())
+        f(PackedColumns(ff.compact, ff, i), PackedValues(ff.compact, ff, i));
+    else
+        f(ArrayCursor<std::uint32_t>{ff.columns.data() + ff.row_start[i]},
+          ArrayCursor<float>{ff.values.data() + ff.row_start[i]});
+}
+
 } // namespace radfmt

@@ -1,6 +1,8 @@
 #include "shooting.hpp"
 #include "shooter_choice.hpp"
 
+#include "radfmt/packed_rows.hpp"
+
 #include <algorithm>
 #include <chrono>
 
@@ -100,7 +102,8 @@ class ProgressiveRefinement {
     }
     void sum_totals();
     // The shooter's row received (kChannels: the channel count, 0 when not known here).
-    template <std::size_t kChannels> void receive(const radfmt::FormFactorRow& row, double a_i);
+    template <std::size_t kChannels, class Columns, class Values>
+    void receive(Columns columns, Values values, std::uint64_t size, double a_i);
     // 1 - mean rho of channel c: APR's interreflection factor is its inverse.
     double one_minus_reflectance(std::size_t c) const {
         return 1 - std::min(mean_reflectance_[c], 0.999999);
@@ -117,7 +120,6 @@ class ProgressiveRefinement {
     // (first at the start), so their rounding does not drift.
     double unshot_power_ = 0;
     std::vector<double> b_power_, unshot_total_, shot_, gain_;
-    radfmt::FormFactorRowBuffer row_buffer_; // the shooter's row, when the matrix is compact
     ShooterChoice choice_;
     std::size_t shots_ = 0;
 };
@@ -150,16 +152,18 @@ bool ProgressiveRefinement::shoot_once() {
         unshot_total_[c] -= shot_[c] * op_.area[shooter];
     }
     choice_.lower(shooter, 0);
-    const auto row = ff.row(shooter, row_buffer_);
-    if (channels_ == 3)
-        receive<3>(row, op_.area[shooter]);
-    else
-        receive<0>(row, op_.area[shooter]);
+    radfmt::with_row_cursors(ff, shooter, [&](auto columns, auto values) {
+        if (channels_ == 3)
+            receive<3>(columns, values, ff.row_size(shooter), op_.area[shooter]);
+        else
+            receive<0>(columns, values, ff.row_size(shooter), op_.area[shooter]);
+    });
     return true;
 }
 
-template <std::size_t kChannels>
-void ProgressiveRefinement::receive(const radfmt::FormFactorRow& row, double a_i) {
+template <std::size_t kChannels, class Columns, class Values>
+void ProgressiveRefinement::receive(Columns columns, Values values, std::uint64_t size,
+                                    double a_i) {
     const std::size_t channels = kChannels ? kChannels : channels_;
     // The power received per channel, summed over the row in locals and added to the totals
     // once: accumulating into the members made every reception wait on the previous one.
@@ -172,14 +176,16 @@ void ProgressiveRefinement::receive(const radfmt::FormFactorRow& row, double a_i
         std::copy_n(shot_.data(), kChannels, shot);
         from = shot;
     }
-    for (std::size_t k = 0; k < row.size; ++k) {
-        // The receivers are known ahead: their state is asked for a few receivers early, so
-        // its cache misses overlap instead of stalling each reception in turn.
-        if (k + kPrefetchAhead < row.size) state_.prefetch(row.columns[k + kPrefetchAhead]);
-        const auto j = row.columns[k];
+    // The receivers are known ahead: their state is asked for a few receivers early, so its
+    // cache misses overlap instead of stalling each reception in turn.
+    Columns ahead = columns;
+    radfmt::skip(ahead, std::min<std::uint64_t>(kPrefetchAhead, size));
+    for (std::uint64_t k = 0; k < size; ++k) {
+        if (k + kPrefetchAhead < size) state_.prefetch(ahead.next());
+        const auto j = columns.next();
         double* to = state_.patch(j);
         const double a_j = ShootingState::area(to);
-        const double f_ji = row.values[k] * a_i / a_j;
+        const double f_ji = values.next() * a_i / a_j;
         for (std::size_t c = 0; c < channels; ++c) {
             const double received = state_.rho(to, c) * from[c] * f_ji;
             state_.b(to)[c] += received;

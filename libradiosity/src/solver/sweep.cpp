@@ -28,21 +28,6 @@ struct GatherCopy {
     }
 };
 
-// A plain row's columns or values, read in order (as the packed rows' cursors are).
-template <class T> struct PlainCursor {
-    const T* at;
-    T next() { return *at++; }
-    void skip(std::uint64_t n) { at += n; }
-};
-
-// Skips the first n columns of a packed row (decoding them).
-inline void skip(radfmt::PackedColumns& columns, std::uint64_t n) {
-    for (std::uint64_t k = 0; k < n; ++k) columns.next();
-}
-template <class T> void skip(PlainCursor<T>& cursor, std::uint64_t n) {
-    cursor.skip(n);
-}
-
 // sum_k F_ik B_k over a row of `end` entries, RGB: one 4-lane load per entry, two independent
 // pairs of double accumulators. `ahead` walks the same columns to prefetch.
 template <class Columns, class Values>
@@ -60,7 +45,7 @@ inline void gather_rgb(Columns columns, Columns ahead, Values values, std::uint6
     // The columns of a large scene's rows are scattered (each a cache miss): fetch B a few
     // entries ahead, so the misses overlap.
     constexpr std::uint64_t kAhead = 16;
-    skip(ahead, std::min(kAhead, end));
+    radfmt::skip(ahead, std::min(kAhead, end));
     std::uint64_t k = 0;
     for (; k + 1 < end; k += 2) {
         if (k + 1 + kAhead < end)
@@ -96,17 +81,12 @@ template <std::size_t kChannels>
 inline void gather_row(const radfmt::FormFactorData& ff, std::size_t i, const float* from,
                        std::size_t channels, double* out) {
     const std::uint64_t end = ff.row_size(i);
-    auto gather = [&](auto columns, auto values) {
+    radfmt::with_row_cursors(ff, i, [&](auto columns, auto values) {
         if constexpr (kChannels == 3)
             gather_rgb(columns, columns, values, end, from, out);
         else
             gather_any(columns, values, end, from, channels, out);
-    };
-    if (ff.is_compact())
-        gather(radfmt::PackedColumns(ff.compact, ff, i), radfmt::PackedValues(ff.compact, ff, i));
-    else
-        gather(PlainCursor<std::uint32_t>{ff.columns.data() + ff.row_start[i]},
-               PlainCursor<float>{ff.values.data() + ff.row_start[i]});
+    });
 }
 
 template <std::size_t kChannels>
