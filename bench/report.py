@@ -58,8 +58,8 @@ out.append(f"- Compiler: {compiler}; Embree {embree}")
 out.append(f"- Measured single-thread read bandwidth (`bench-membw`): {bandwidth / 1e9:.1f} GB/s\n")
 
 out.append("## Scaling: the Cornell box meshed finer (hemisphere form factors, 1000 rays per patch)\n")
-out.append("The .ff is formfactors version 3 (compact rows), which rad-solve keeps in memory as it is and "
-           "decodes row by row. \"sweep GB/s\" counts the matrix as plain arrays (8 bytes a non-zero) "
+out.append("The .ff is formfactors version 3 (compact rows); rad-solve keeps the rows packed in memory "
+           "(3 bytes a non-zero) and decodes each as it reads it. \"sweep GB/s\" counts the matrix as plain arrays (8 bytes a non-zero) "
            "would stream, so it compares with the bandwidth as the decoded matrix; \"shots / sweep\" is "
            "n PR shots over one Gauss-Seidel sweep.\n")
 out.append("| target N | patches | rad-mesh | rad-ff hemisphere | .ff size | bytes a non-zero | rad-ff peak | / .ff | rays/s | raw Embree rays/s | ratio | "
