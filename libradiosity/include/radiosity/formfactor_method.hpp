@@ -49,12 +49,10 @@ using FormFactorRow = std::vector<std::pair<std::uint32_t, float>>;
 struct RayLog {
     std::uint32_t rays = 0;
     std::uint32_t back_hits = 0;
-    // This thread's counters, three per patch: rays that reached its front, its back, and a
-    // scratch count a kernel may use within one row (kept zero between rows). One patch's
-    // three share a cache line: a ray's hit costs one memory access, not one per array.
+    // This thread's counters, two per patch: rays that reached its front and its back. One
+    // patch's two share a cache line: a ray's hit costs one memory access, not one per array.
     std::uint32_t* counters = nullptr;
-    static constexpr std::size_t kCountersPerPatch = 3;
-    std::uint32_t& row_count(std::size_t patch) { return counters[3 * patch + 2]; }
+    static constexpr std::size_t kCountersPerPatch = 2;
     // Rays that met a back face closer than `near` (the patch's own size): they started
     // under or inside other geometry (a contact not imprinted, surfaces crossing).
     double near = 0;
@@ -63,13 +61,17 @@ struct RayLog {
         ++rays;
         if (hit < 0) return;
         if (front) {
-            ++counters[3 * hit];
+            ++counters[2 * hit];
         } else {
             ++back_hits;
-            ++counters[3 * hit + 1];
+            ++counters[2 * hit + 1];
             if (distance < near) ++started_inside;
         }
     }
+    // A ray that reached `patch`'s front, counted by the kernel itself and added with
+    // add_fronts once per row (as record would have counted it ray by ray).
+    void record_counted_front() { ++rays; }
+    void add_fronts(std::size_t patch, std::uint32_t count) { counters[2 * patch] += count; }
 };
 
 // A method prepared for one mesh: computes rows, from many threads at once.

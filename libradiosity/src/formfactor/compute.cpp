@@ -90,9 +90,9 @@ std::uint64_t estimate_form_factor_memory(const radfmt::MeshData& mesh,
     // bytes an entry: one computed while the other is written) and the spool's buffers,
     // row starts and fractions (12 bytes a row); Embree and the mesh take a few hundred
     // bytes per patch.
-    // The ray tallies are three counters per patch and thread.
+    // The ray tallies are two counters per patch and thread.
     const std::uint64_t block = std::min<std::uint64_t>(n, block_rows(per_row, threads));
-    return 3 * block * per_row * 8 + n * 412 + mesh.vertices.size() * 64 + n * 12 * threads +
+    return 3 * block * per_row * 8 + n * 412 + mesh.vertices.size() * 64 + n * 8 * threads +
            method.working_memory(mesh, options, threads);
 }
 

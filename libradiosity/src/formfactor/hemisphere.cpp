@@ -33,11 +33,11 @@ class HemisphereKernel final : public RowKernel {
         // origin, Halton bases 3 and 5 for the direction), rotated per patch by seeded
         // offsets (Cranley-Patterson), so the estimate is unbiased and stratified jointly.
         const double rot[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-        // Hits are tallied in the log's row counter of each patch (beside its front and back
-        // counters); the patches hit are marked, read back in column order, and their
-        // counters reset after.
-        auto& marks = marks_.local();
-        marks.resize(n);
+        // Front hits are tallied in a dense array of this thread's (4 bytes a patch, so it
+        // stays in the cache where the log's counters would not), the patches hit marked,
+        // read back in column order, added to the log's front counts and reset.
+        auto& hits = hits_.local();
+        hits.resize(n);
         for (int r = 0; r < rays_; ++r) {
             const double u0 = wrap(qmc_[r][0] + rot[0]);
             const double u1 = wrap(qmc_[r][1] + rot[1]);
@@ -52,15 +52,19 @@ class HemisphereKernel final : public RowKernel {
             const auto hit = traced.patch;
             const bool front = traced.front;
             // A patch cannot see itself; a hit on itself (a warped quad) is no evidence.
-            log.record(static_cast<std::size_t>(hit) == i ? -1 : hit, front, traced.distance);
-            if (hit >= 0 && front && static_cast<std::size_t>(hit) != i &&
-                log.row_count(static_cast<std::size_t>(hit))++ == 0)
-                marks.mark(static_cast<std::size_t>(hit));
+            const bool self = static_cast<std::size_t>(hit) == i;
+            if (hit >= 0 && front && !self) {
+                log.record_counted_front();
+                hits.add(static_cast<std::size_t>(hit));
+            } else {
+                log.record(self ? -1 : hit, front, traced.distance);
+            }
         }
-        marks.drain([&](std::size_t j) {
-            auto& count = log.row_count(j);
+        hits.marks.drain([&](std::size_t j) {
+            auto& count = hits.count[j];
             row.emplace_back(static_cast<std::uint32_t>(j),
                              static_cast<float>(double(count) / rays_));
+            log.add_fronts(j, count);
             count = 0;
         });
         return static_cast<std::uint64_t>(rays_);
@@ -70,7 +74,19 @@ class HemisphereKernel final : public RowKernel {
     const FormFactorContext& context_;
     int rays_;
     std::vector<std::array<double, 4>> qmc_;
-    mutable tbb::enumerable_thread_specific<ColumnMarks> marks_; // the patches hit
+    // Per thread: the row's front hits by patch (zero between rows), and the patches hit.
+    struct RowHits {
+        std::vector<std::uint32_t> count;
+        ColumnMarks marks;
+        void resize(std::size_t n) {
+            if (count.size() != n) count.assign(n, 0);
+            marks.resize(n);
+        }
+        void add(std::size_t j) {
+            if (count[j]++ == 0) marks.mark(j);
+        }
+    };
+    mutable tbb::enumerable_thread_specific<RowHits> hits_;
 };
 
 class Hemisphere final : public FormFactorMethod {
@@ -92,11 +108,11 @@ class Hemisphere final : public FormFactorMethod {
     }
     std::uint64_t working_memory(const radfmt::MeshData& mesh, const FormFactorOptions& options,
                                  unsigned threads) const override {
-        // The shared low-discrepancy table (four doubles per ray), and per thread the
-        // bitmaps of the patches hit (the counters are the log's).
+        // The shared low-discrepancy table (four doubles per ray), and per thread the row's
+        // hit counts and the bitmaps of the patches hit.
         const std::uint64_t rays = static_cast<std::uint64_t>(std::max(1, options.rays));
         return rays * sizeof(std::array<double, 4>) +
-               std::uint64_t(threads) * (mesh.patches.size() / 8 + 1);
+               std::uint64_t(threads) * (mesh.patches.size() * 4 + mesh.patches.size() / 8 + 1);
     }
     std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
                                        const FormFactorOptions& options) const override {
