@@ -306,7 +306,11 @@ int main(int argc, char** argv) {
     header.tool = "fuzz_readers";
     header.command = "fuzz_readers";
     radfmt::write_mesh(dir / "seed.mesh", header, mesh);
-    radfmt::write_form_factors(dir / "seed.ff", header, ff);
+    // With the method's fields, so that the rows are hit counts (rad-solve then packs them).
+    radfmt::Header ff_header = header;
+    for (const auto& [key, value] : rad::form_factor_header_fields(ff_options))
+        ff_header.set(key, value);
+    radfmt::write_form_factors(dir / "seed.ff", ff_header, ff);
     radfmt::write_radiosity(dir / "seed.rad", header, rad::radiosity_data(solution, {}));
     // A second radiosity seed with light groups (version 2's extra arrays).
     rad::Channels grouped(mesh.patches.size(), 6);
@@ -366,7 +370,12 @@ int main(int argc, char** argv) {
         {"formfactors",
          {read_bytes(dir / "seed.ff")},
          false,
-         [&](const fs::path& p) { use_form_factors(mesh_copy, radfmt::read_form_factors(p)); }},
+         [&](const fs::path& p) {
+             use_form_factors(mesh_copy, radfmt::read_form_factors(p));
+             // rad-solve's layout: the rows packed, decoded as the solvers read them.
+             use_form_factors(mesh_copy, radfmt::read_form_factors(
+                                             p, nullptr, radfmt::FormFactorLayout::compact));
+         }},
         {"radiosity",
          {read_bytes(dir / "seed.rad"), read_bytes(dir / "seed-groups.rad")},
          false,
