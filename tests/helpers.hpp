@@ -57,6 +57,16 @@ inline radfmt::MeshData mesh_from_obj(const std::string& obj, double max_edge = 
     return rad::subdivide(scene_from_obj(obj), options);
 }
 
+#ifdef RADIOSITY_SOURCE_DIR
+// The project's Cornell box (scenes/cornell) meshed at `max_edge`.
+inline radfmt::MeshData cornell_mesh(double max_edge) {
+    rad::SubdivisionOptions options;
+    options.max_edge = max_edge;
+    return rad::subdivide(
+        rad::load_obj(fs::path(RADIOSITY_SOURCE_DIR) / "scenes/cornell/cornell.obj"), options);
+}
+#endif
+
 // Appends one face to OBJ text: "g GROUP" (when given), "usemtl MATERIAL", its vertices and
 // an 'f' line over them; `count` is the number of vertices written so far. Appended piece by
 // piece (GCC 12 warns falsely about "literal" + string&&).

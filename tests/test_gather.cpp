@@ -181,10 +181,7 @@ TEST_CASE("a point inside an object sees backs; one outside an open scene does n
 }
 
 TEST_CASE("at patch centres of the Cornell box the gather agrees with the solved (B - E) / rho") {
-    const auto scene = rad::load_obj(fs::path(RADIOSITY_SOURCE_DIR) / "scenes/cornell/cornell.obj");
-    rad::SubdivisionOptions subdivision;
-    subdivision.max_edge = 0.1;
-    const auto mesh = rad::subdivide(scene, subdivision);
+    const auto mesh = cornell_mesh(0.1);
     rad::FormFactorOptions ff_options;
     ff_options.quiet = true;
     const auto ff = rad::compute_form_factors(mesh, ff_options);

@@ -274,10 +274,7 @@ TEST_CASE(
     // The reference: the patch with the most unshot power, found by scanning every patch,
     // the first of equals (what PR did before its heap). Same shots, same order: the same
     // radiosity, bit for bit.
-    const auto scene = rad::load_obj(fs::path(RADIOSITY_SOURCE_DIR) / "scenes/cornell/cornell.obj");
-    rad::SubdivisionOptions subdivision;
-    subdivision.max_edge = 0.1;
-    const auto mesh = rad::subdivide(scene, subdivision);
+    const auto mesh = cornell_mesh(0.1);
     const auto ff = analytic(mesh);
     const auto op = rad::make_operator(mesh, ff);
     const auto emission = rad::emission_of(mesh);
@@ -314,12 +311,9 @@ TEST_CASE(
 }
 
 TEST_CASE("a matrix kept as its compact rows solves bit for bit as its plain arrays") {
-    // rad-solve keeps a version 3 file's rows as their code and decodes them row by row;
+    // rad-solve keeps a hemisphere matrix's rows packed and decodes them as it reads them;
     // every solver, RGB and stacked light groups, must give exactly what the arrays give.
-    const auto scene = rad::load_obj(fs::path(RADIOSITY_SOURCE_DIR) / "scenes/cornell/cornell.obj");
-    rad::SubdivisionOptions subdivision;
-    subdivision.max_edge = 0.1;
-    const auto mesh = rad::subdivide(scene, subdivision);
+    const auto mesh = cornell_mesh(0.1);
     rad::FormFactorOptions options;
     options.quiet = true;
     options.method = "hemisphere";
