@@ -4,18 +4,18 @@
 
 namespace rad::solve_impl {
 
-ShooterChoice::ShooterChoice(std::vector<double> powers)
-    : power_(std::move(powers)), block_((power_.size() + kBlock - 1) / kBlock),
-      group_((power_.size() + kGroup - 1) / kGroup) {
+ShooterChoice::ShooterChoice(std::size_t patches, PowerOf power_of, const void* context)
+    : patches_(patches), power_of_(power_of), context_(context),
+      block_((patches + kBlock - 1) / kBlock), group_((patches + kGroup - 1) / kGroup) {
     for (std::size_t b = 0; b < block_.size(); ++b) block_[b] = scan_block(b);
     for (std::size_t g = 0; g < group_.size(); ++g) group_[g] = scan_group(g);
 }
 
 ShooterChoice::Best ShooterChoice::scan_block(std::size_t block) const {
     Best best;
-    const std::size_t end = std::min(power_.size(), (block + 1) * kBlock);
+    const std::size_t end = std::min(patches_, (block + 1) * kBlock);
     for (std::size_t j = block * kBlock; j < end; ++j) {
-        const Best candidate{power_[j], static_cast<std::uint32_t>(j)};
+        const Best candidate{power_of_(context_, j), static_cast<std::uint32_t>(j)};
         if (better(candidate, best)) best = candidate;
     }
     return best;
@@ -29,8 +29,7 @@ ShooterChoice::Best ShooterChoice::scan_group(std::size_t group) const {
     return best;
 }
 
-void ShooterChoice::lower(std::size_t i, double power) {
-    power_[i] = power;
+void ShooterChoice::lower(std::size_t i) {
     block_[i / kBlock] = scan_block(i / kBlock);
     group_[i / kGroup] = scan_group(i / kGroup);
 }

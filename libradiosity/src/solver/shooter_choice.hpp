@@ -16,18 +16,20 @@ namespace rad::solve_impl {
 class ShooterChoice {
   public:
     static constexpr std::size_t kNone = ~std::size_t(0);
-    explicit ShooterChoice(std::vector<double> powers);
+    // Patch i's power, asked of the shooting state (`context`) when a block is scanned: the
+    // choice keeps no copy, so a reception writes nothing here but a block's best.
+    using PowerOf = double (*)(const void* context, std::size_t i);
+    ShooterChoice(std::size_t patches, PowerOf power_of, const void* context);
     // Patch j's power is now `power`, at least what it was.
     void raise(std::size_t j, double power) {
-        power_[j] = power;
         const Best candidate{power, static_cast<std::uint32_t>(j)};
         if (better(candidate, block_[j / kBlock])) {
             block_[j / kBlock] = candidate;
             if (better(candidate, group_[j / kGroup])) group_[j / kGroup] = candidate;
         }
     }
-    // Patch i's power is now `power`, possibly less than it was.
-    void lower(std::size_t i, double power);
+    // Patch i's power is now less than it was (or as much): its block and group are scanned.
+    void lower(std::size_t i);
     // The patch with the most power (the lowest index among equals), or kNone when no patch
     // has any.
     std::size_t best() const;
@@ -45,7 +47,9 @@ class ShooterChoice {
     Best scan_block(std::size_t block) const;
     Best scan_group(std::size_t group) const;
 
-    std::vector<double> power_;
+    std::size_t patches_;
+    PowerOf power_of_;
+    const void* context_;
     std::vector<Best> block_, group_; // power 0: none in it has power
 };
 

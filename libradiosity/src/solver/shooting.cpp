@@ -79,7 +79,8 @@ class ProgressiveRefinement {
     ProgressiveRefinement(const TransportOperator& op, const Channels& emission, bool ambient)
         : op_(op), n_(op.patch_count()), channels_(emission.channels), ambient_(ambient),
           state_(op, emission), mean_reflectance_(channels_, 0.0), b_power_(channels_, 0.0),
-          unshot_total_(channels_, 0.0), shot_(channels_), gain_(channels_), choice_(powers()) {
+          unshot_total_(channels_, 0.0), shot_(channels_), gain_(channels_),
+          choice_(n_, &power_of, this) {
         for (std::size_t i = 0; i < n_; ++i) {
             double e = 0;
             for (std::size_t c = 0; c < channels_; ++c) e += emission.at(i, c);
@@ -102,10 +103,10 @@ class ProgressiveRefinement {
     std::vector<double> displayed_power() const;
 
   private:
-    std::vector<double> powers() const {
-        std::vector<double> power(n_);
-        for (std::size_t i = 0; i < n_; ++i) power[i] = state_.power(state_.patch(i));
-        return power;
+    // Patch i's unshot power, for the shooter choice's scans.
+    static double power_of(const void* self, std::size_t i) {
+        const auto& state = static_cast<const ProgressiveRefinement*>(self)->state_;
+        return state.power(state.patch(i));
     }
     void sum_totals();
     // The shooter's row received (kChannels: the channel count, 0 when not known here).
@@ -158,7 +159,7 @@ bool ProgressiveRefinement::shoot_once() {
         state_.unshot(from)[c] = 0;
         unshot_total_[c] -= shot_[c] * op_.area[shooter];
     }
-    choice_.lower(shooter, 0);
+    choice_.lower(shooter); // its unshot radiosity is 0 now
     radfmt::with_row_cursors(ff, shooter, [&](auto columns, auto values) {
         if (channels_ == 3)
             receive<3>(columns, values, ff.row_size(shooter), op_.area[shooter]);
