@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
         radfmt::Header overrides;
         rad::apply_material_overrides(mesh, request, overrides);
         rad::check_reflectances(mesh, request.force);
-        // Kept as the file's compact rows (a third of plain arrays' memory), decoded per row.
+        // A hemisphere matrix is kept packed (3 bytes a non-zero against 8), decoded per row.
         const auto ff =
             radfmt::read_form_factors(ff_path, &ff_header, radfmt::FormFactorLayout::compact);
         const auto geometry_hash =

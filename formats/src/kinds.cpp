@@ -1,7 +1,6 @@
 #include "radfmt/kinds.hpp"
 
 #include "compact_rows.hpp"
-#include "radfmt/packed_rows.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -235,30 +234,29 @@ class DecodedRows {
         rows.other_start = {0};
     }
     std::uint32_t* columns(std::uint64_t i) {
-        return packed_ ? scratch(i).columns.data() : ff_.columns.data() + ff_.row_start[i];
+        return packed_ ? fit(scratch_columns_, i) : ff_.columns.data() + ff_.row_start[i];
     }
     float* values(std::uint64_t i) {
-        return packed_ ? scratch(i).values.data() : ff_.values.data() + ff_.row_start[i];
+        return packed_ ? fit(scratch_values_, i) : ff_.values.data() + ff_.row_start[i];
     }
     void done(std::uint64_t i) {
         if (!packed_) return;
         auto& rows = ff_.compact;
-        compact::pack_row(scratch_.columns.data(), scratch_.values.data(), ff_.row_size(i), rows);
+        compact::pack_row(scratch_columns_.data(), scratch_values_.data(), ff_.row_size(i), rows);
         rows.far_start.push_back(rows.far_column.size());
         rows.other_start.push_back(rows.other_value.size());
     }
 
   private:
-    FormFactorRowBuffer& scratch(std::uint64_t i) {
-        if (scratch_.columns.size() < ff_.row_size(i)) {
-            scratch_.columns.resize(ff_.row_size(i));
-            scratch_.values.resize(ff_.row_size(i));
-        }
-        return scratch_;
+    // The scratch row, long enough for row i.
+    template <class T> T* fit(std::vector<T>& scratch, std::uint64_t i) {
+        if (scratch.size() < ff_.row_size(i)) scratch.resize(ff_.row_size(i));
+        return scratch.data();
     }
     FormFactorData& ff_;
     bool packed_;
-    FormFactorRowBuffer scratch_;
+    std::vector<std::uint32_t> scratch_columns_;
+    std::vector<float> scratch_values_;
 };
 
 // Version 3's rows: offsets checked, then the codes read in pieces and decoded into the
@@ -391,21 +389,6 @@ FormFactorData read_form_factors(const fs::path& path, Header* header_out,
     return read_form_factor_body(path, header_out, Kind::FormFactors, nullptr, nullptr, layout);
 }
 
-FormFactorRow FormFactorData::row(std::uint64_t i, FormFactorRowBuffer& buffer) const {
-    const std::size_t count = row_size(i);
-    if (!is_compact()) return {columns.data() + row_start[i], values.data() + row_start[i], count};
-    if (buffer.columns.size() < count) {
-        buffer.columns.resize(count);
-        buffer.values.resize(count);
-    }
-    PackedColumns packed_columns(compact, *this, i);
-    PackedValues packed_values(compact, *this, i);
-    for (std::size_t k = 0; k < count; ++k) {
-        buffer.columns[k] = packed_columns.next();
-        buffer.values[k] = packed_values.next();
-    }
-    return {buffer.columns.data(), buffer.values.data(), count};
-}
 void write_form_factor_part(const fs::path& path, Header header, const FormFactorData& ff,
                             std::uint64_t rows_begin, std::uint64_t rows_end) {
     header.set("rows_begin", std::to_string(rows_begin));

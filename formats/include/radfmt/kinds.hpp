@@ -63,19 +63,6 @@ struct MeshData {
     std::string geometry_hash() const;
 };
 
-// One row of a form-factor matrix: its columns (ascending) and values, `size` of each.
-struct FormFactorRow {
-    const std::uint32_t* columns = nullptr;
-    const float* values = nullptr;
-    std::size_t size = 0;
-};
-
-// Where a compact matrix's rows are decoded to (reused from row to row).
-struct FormFactorRowBuffer {
-    std::vector<std::uint32_t> columns;
-    std::vector<float> values;
-};
-
 // A hemisphere matrix's rows packed in memory (read with FormFactorLayout::compact): 3 bytes
 // a non-zero instead of 8, fixed widths so that a row decodes without a chain of lengths.
 // Per entry the step from the previous column (the first from -1) and the hit count; a step
@@ -94,7 +81,8 @@ struct CompactFormFactorRows {
 };
 
 // Compressed sparse rows: row i holds (column, F_ij) for its non-zero entries, columns
-// ascending. Either plain (columns and values) or compact (rows kept as their code).
+// ascending. Either plain (columns and values) or packed (`compact`, read with
+// FormFactorLayout::compact); radfmt/packed_rows.hpp reads a row of either in order.
 struct FormFactorData {
     std::uint64_t patch_count = 0;
     std::vector<std::uint64_t> row_start; // patch_count + 1 entries
@@ -108,8 +96,6 @@ struct FormFactorData {
     std::uint64_t nonzeros() const { return row_start.empty() ? 0 : row_start.back(); }
     bool is_compact() const { return !compact.far_start.empty(); }
     std::size_t row_size(std::uint64_t i) const { return row_start[i + 1] - row_start[i]; }
-    // Row i: the arrays' own entries when plain, decoded into `buffer` when compact.
-    FormFactorRow row(std::uint64_t i, FormFactorRowBuffer& buffer) const;
 };
 
 // How read_form_factors keeps the rows: as plain arrays (8 bytes a non-zero), or packed (3

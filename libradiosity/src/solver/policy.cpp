@@ -4,6 +4,8 @@
 #include "radiosity/materials.hpp"
 #include "radiosity/numbers.hpp"
 
+#include "radfmt/packed_rows.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -167,11 +169,11 @@ bool any_emitter(const radfmt::MeshData& mesh) {
 
 RowSumReport check_row_sums(const radfmt::FormFactorData& ff, double tolerance) {
     RowSumReport report;
-    radfmt::FormFactorRowBuffer buffer;
     for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
         double sum = 0;
-        const auto row = ff.row(i, buffer);
-        for (std::size_t k = 0; k < row.size; ++k) sum += row.values[k];
+        radfmt::with_row_cursors(ff, i, [&](auto, auto values) {
+            for (std::size_t k = 0; k < ff.row_size(i); ++k) sum += values.next();
+        });
         if (sum > 1 + tolerance) ++report.rows_above;
         report.largest = std::max(report.largest, sum);
     }
