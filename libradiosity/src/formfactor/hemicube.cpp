@@ -90,34 +90,17 @@ class HemicubeKernel final : public RowKernel {
             if (hit.patch >= 0 && hit.front && static_cast<std::size_t>(hit.patch) != i)
                 tally.add(static_cast<std::size_t>(hit.patch), pixel.weight);
         }
-        tally.drain(row);
+        tally.drain([&](std::size_t j, double sum) {
+            row.emplace_back(static_cast<std::uint32_t>(j), static_cast<float>(sum));
+        });
         return pixels_.size();
     }
 
   private:
-    // Per thread: the row's sums by patch (zero between rows), and the patches reached.
-    struct Tally {
-        std::vector<double> sum;
-        ColumnMarks reached;
-        void resize(std::size_t n) {
-            if (sum.size() != n) sum.assign(n, 0);
-            reached.resize(n);
-        }
-        void add(std::size_t j, double weight) {
-            reached.mark(j);
-            sum[j] += weight;
-        }
-        void drain(FormFactorRow& row) {
-            reached.drain([&](std::size_t j) {
-                row.emplace_back(static_cast<std::uint32_t>(j), static_cast<float>(sum[j]));
-                sum[j] = 0;
-            });
-        }
-    };
     const FormFactorContext& context_;
     std::vector<Pixel> pixels_;
     bool at_centre_;
-    mutable tbb::enumerable_thread_specific<Tally> tally_;
+    mutable tbb::enumerable_thread_specific<RowTally<double>> tally_; // delta form factors
 };
 
 class Hemicube final : public FormFactorMethod {

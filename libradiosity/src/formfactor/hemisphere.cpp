@@ -55,17 +55,15 @@ class HemisphereKernel final : public RowKernel {
             const bool self = static_cast<std::size_t>(hit) == i;
             if (hit >= 0 && front && !self) {
                 log.record_counted_front();
-                hits.add(static_cast<std::size_t>(hit));
+                hits.add(static_cast<std::size_t>(hit), 1);
             } else {
                 log.record(self ? -1 : hit, front, traced.distance);
             }
         }
-        hits.marks.drain([&](std::size_t j) {
-            auto& count = hits.count[j];
+        hits.drain([&](std::size_t j, std::uint32_t count) {
             row.emplace_back(static_cast<std::uint32_t>(j),
                              static_cast<float>(double(count) / rays_));
             log.add_fronts(j, count);
-            count = 0;
         });
         return static_cast<std::uint64_t>(rays_);
     }
@@ -74,19 +72,7 @@ class HemisphereKernel final : public RowKernel {
     const FormFactorContext& context_;
     int rays_;
     std::vector<std::array<double, 4>> qmc_;
-    // Per thread: the row's front hits by patch (zero between rows), and the patches hit.
-    struct RowHits {
-        std::vector<std::uint32_t> count;
-        ColumnMarks marks;
-        void resize(std::size_t n) {
-            if (count.size() != n) count.assign(n, 0);
-            marks.resize(n);
-        }
-        void add(std::size_t j) {
-            if (count[j]++ == 0) marks.mark(j);
-        }
-    };
-    mutable tbb::enumerable_thread_specific<RowHits> hits_;
+    mutable tbb::enumerable_thread_specific<RowTally<std::uint32_t>> hits_; // front hits
 };
 
 class Hemisphere final : public FormFactorMethod {

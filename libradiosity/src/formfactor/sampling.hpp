@@ -79,6 +79,31 @@ class ColumnMarks {
     std::vector<std::uint64_t> words_, summary_;
 };
 
+// A row's sums by patch (zero between rows) and the patches reached: add in any order,
+// drain in column order (each sum handed on and reset). Per thread, sized to the mesh.
+template <class T> class RowTally {
+  public:
+    void resize(std::size_t patches) {
+        if (sum_.size() != patches) sum_.assign(patches, T{});
+        reached_.resize(patches);
+    }
+    void add(std::size_t j, T amount) {
+        if (sum_[j] == T{}) reached_.mark(j);
+        sum_[j] += amount;
+    }
+    // Calls visit(j, sum) for every patch reached, ascending, and resets it.
+    template <class Visit> void drain(Visit&& visit) {
+        reached_.drain([&](std::size_t j) {
+            visit(j, sum_[j]);
+            sum_[j] = T{};
+        });
+    }
+
+  private:
+    std::vector<T> sum_;
+    ColumnMarks reached_;
+};
+
 // Radical inverse in base b: the Halton sequence.
 double radical_inverse(std::uint64_t i, std::uint64_t base);
 
