@@ -5,6 +5,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/formfactor_method.hpp"
+#include "radiosity/hierarchy.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/rays.hpp"
@@ -56,6 +57,29 @@ void say_estimate(const radfmt::MeshData& mesh, const rad::FormFactorOptions& op
     }
     std::fprintf(stderr, "%s\n", line.c_str());
 }
+// --method hierarchical: the tree and its links into a links file.
+void write_hierarchical(const std::string& input, const radfmt::MeshData& mesh,
+                        const radfmt::Header& mesh_header, const rad::HierarchyOptions& options,
+                        const std::string& output, const std::string& command, bool quiet) {
+    rad::HierarchyStats stats;
+    const auto links = rad::compute_links(mesh, options, &stats);
+    const radfmt::Parent parents[] = {{input, &mesh_header}};
+    auto header = radfmt::derived_header(rad::tool_version("rad-ff"), command, parents);
+    for (const auto& [key, value] : rad::link_header_fields(options)) header.set(key, value);
+    header.set("mesh_geometry_hash", mesh.geometry_hash());
+    radfmt::write_links(output, header, links);
+    if (quiet) return;
+    const double n = double(std::max<std::size_t>(1, mesh.patches.size()));
+    std::fprintf(
+        stderr,
+        "rad-ff: hierarchical: %zu patches, %zu nodes, %llu links (%.1f a patch, %llu "
+        "between two patches), %llu pairs examined (%llu facing away), %llu rays; tree "
+        "%.3f s, links %.3f s\n",
+        mesh.patches.size(), links.nodes.size(), static_cast<unsigned long long>(links.links()),
+        double(links.links()) / n, static_cast<unsigned long long>(stats.leaf_links),
+        static_cast<unsigned long long>(stats.pairs), static_cast<unsigned long long>(stats.culled),
+        static_cast<unsigned long long>(stats.rays), stats.tree_seconds, stats.link_seconds);
+}
 } // namespace
 
 int main(int argc, char** argv) {
@@ -92,6 +116,10 @@ int main(int argc, char** argv) {
         ->excludes("--merge");
     auto method_names = rad::form_factor_method_names();
     method_names.push_back("auto");
+    method_names.push_back("hierarchical");
+    method_help += "; hierarchical: links between a tree of patch blocks and clusters, O(n) "
+                   "instead of n^2 (writes a links file; rad-solve --method gs or jacobi)";
+    rad::HierarchyOptions hierarchy;
     options.method = "auto";
     app.add_option("--method", options.method,
                    "auto (the default): analytic up to " +
@@ -101,7 +129,8 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember(method_names));
     app.add_option("--samples", options.samples,
                    "Sample points per patch, rounded to a square (default: 16 for analytic, 64 "
-                   "for pairwise; pairwise uses a quarter of the resolution for distant pairs)")
+                   "for pairwise; pairwise uses a quarter of the resolution for distant pairs; "
+                   "hierarchical: sample pairs and rays per link between blocks or clusters, 64)")
         ->check(CLI::Range(1, 4096));
     app.add_option("--visibility-rays", options.visibility_rays,
                    "analytic: visibility rays per sample point and patch")
@@ -122,6 +151,11 @@ int main(int argc, char** argv) {
                    "patch's centre, aliasing small far patches)")
         ->capture_default_str()
         ->check(CLI::IsMember({"spread", "centre"}));
+    app.add_option("--epsilon", hierarchy.epsilon,
+                   "hierarchical: link two nodes when the larger of their form factors to each "
+                   "other is at most this (smaller: more links, closer to the full matrix)")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(1e-9, 1));
     app.add_option("--seed", options.seed, "Seed for every random choice")->capture_default_str();
     rad::tool::add_threads_option(app, threads);
     app.add_option("--max-memory", max_memory,
@@ -167,8 +201,18 @@ int main(int argc, char** argv) {
                 std::fprintf(stderr, "rad-ff: --method auto: %s for %zu patches (%s)\n",
                              options.method.c_str(), mesh.patches.size(), why.c_str());
         }
-        options = rad::resolve_form_factor_options(options);
         rad::check_ray_precision(mesh.vertices, input);
+        if (options.method == "hierarchical") {
+            if (!rows.empty() || estimate_only)
+                throw rad::InputError("--method hierarchical refines links from the whole tree: "
+                                      "it takes neither --rows nor --estimate");
+            hierarchy.samples = options.samples > 0 ? options.samples : rad::kDefaultLinkSamples;
+            hierarchy.seed = options.seed;
+            write_hierarchical(input, mesh, mesh_header, hierarchy, output,
+                               radfmt::command_line(argc, argv), options.quiet);
+            return 0;
+        }
+        options = rad::resolve_form_factor_options(options);
         const auto need = rad::estimate_form_factor_memory(mesh, options);
         if (need > limit)
             throw rad::InputError(

@@ -62,6 +62,30 @@ std::set<long> parse_iteration_list(const std::string& text) {
     return out;
 }
 
+// F as rad-ff wrote it: a form-factor matrix (kept packed when it holds hit counts, 3 bytes
+// a non-zero against 8, decoded per row) or a link hierarchy.
+struct Transport {
+    radfmt::FormFactorData matrix;
+    radfmt::LinkData links;
+    radfmt::Header header;
+    bool hierarchical = false;
+    std::string geometry_hash;
+};
+
+Transport read_transport(const std::string& ff_path, const std::string& mesh_path,
+                         const radfmt::MeshData& mesh) {
+    Transport t;
+    t.hierarchical = radfmt::read_header(ff_path).kind == radfmt::Kind::Links;
+    if (t.hierarchical)
+        t.links = radfmt::read_links(ff_path, &t.header);
+    else
+        t.matrix = radfmt::read_form_factors(ff_path, &t.header, radfmt::FormFactorLayout::compact);
+    t.geometry_hash = radfmt::require_same_geometry(
+        ff_path, t.header, t.hierarchical ? t.links.patch_count : t.matrix.patch_count, mesh_path,
+        mesh, "run rad-ff on " + mesh_path + " again");
+    return t;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -78,7 +102,9 @@ int main(int argc, char** argv) {
         method_help += std::string(method_help.empty() ? "" : "; ") + std::string(s->name()) +
                        ": " + std::string(s->summary());
     app.add_option("MESH", mesh_path, "Patch mesh from rad-mesh")->required();
-    app.add_option("FORMFACTORS", ff_path, "Form-factor file from rad-ff for this mesh")
+    app.add_option("FORMFACTORS", ff_path,
+                   "Form-factor file (or links file, rad-ff --method hierarchical) from rad-ff for "
+                   "this mesh")
         ->required();
     app.add_option("-o,--output", output, "Output radiosity file")->required();
     app.add_option("--method", request.method, method_help)
@@ -143,36 +169,40 @@ int main(int argc, char** argv) {
         radfmt::OutputBatch outputs;
         request.tolerance_given = app.count("--tolerance") > 0;
         const auto& solver = rad::solver(request.method);
-        radfmt::Header mesh_header, ff_header;
+        radfmt::Header mesh_header;
         auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
         // The materials first: a refusal comes before the (large) form factors are read. The
         // override fields are kept to go into the header once it exists.
         radfmt::Header overrides;
         rad::apply_material_overrides(mesh, request, overrides);
         rad::check_reflectances(mesh, request.force);
-        // A hemisphere matrix is kept packed (3 bytes a non-zero against 8), decoded per row.
-        const auto ff =
-            radfmt::read_form_factors(ff_path, &ff_header, radfmt::FormFactorLayout::compact);
-        const auto geometry_hash =
-            radfmt::require_same_geometry(ff_path, ff_header, ff.patch_count, mesh_path, mesh,
-                                          "run rad-ff on " + mesh_path + " again");
+        const auto transport = read_transport(ff_path, mesh_path, mesh);
+        const auto& ff_header = transport.header;
+        if (transport.hierarchical && solver.shooting())
+            throw rad::InputError(ff_path +
+                                  " holds links (rad-ff --method hierarchical): pr "
+                                  "and apr shoot along rows of F, which links do not have; use "
+                                  "--method gs or jacobi");
 
         const radfmt::Parent parents[] = {{mesh_path, &mesh_header}, {ff_path, &ff_header}};
         auto header = radfmt::derived_header(rad::tool_version("rad-solve"),
                                              radfmt::command_line(argc, argv), parents);
         for (const auto& [key, value] : overrides.fields) header.set(key, value);
-        for (const auto& warning :
-             rad::solve_warnings(mesh, ff, ff_path, request.row_sum_tolerance))
-            std::cerr << "rad-solve: warning: " << warning << '\n';
+        const auto warnings =
+            transport.hierarchical
+                ? rad::solve_warnings(mesh, transport.links, ff_path, request.row_sum_tolerance)
+                : rad::solve_warnings(mesh, transport.matrix, ff_path, request.row_sum_tolerance);
+        for (const auto& warning : warnings) std::cerr << "rad-solve: warning: " << warning << '\n';
 
         auto control = rad::stop_rule(solver, request, mesh.patches.size());
         if (!snapshot.empty() && snapshot_iterations.empty() && snapshot_every <= 0)
             throw rad::InputError("--snapshot needs --snapshot-at or --snapshot-every");
         if (snapshot.empty() && (!snapshot_iterations.empty() || snapshot_every > 0))
             throw rad::InputError("--snapshot-at/--snapshot-every need --snapshot PATTERN");
-        rad::record_solve_inputs(header, request, geometry_hash, ff_header);
+        rad::record_solve_inputs(header, request, transport.geometry_hash, ff_header);
 
-        const auto op = rad::make_operator(mesh, ff);
+        const auto op = transport.hierarchical ? rad::make_operator(mesh, transport.links)
+                                               : rad::make_operator(mesh, transport.matrix);
         std::vector<rad::LightGroup> groups;
         if (light_groups || !group_specs.empty()) {
             groups = rad::light_groups(mesh, group_specs);

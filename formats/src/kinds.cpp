@@ -1,6 +1,7 @@
 #include "radfmt/kinds.hpp"
 
 #include "compact_rows.hpp"
+#include "links.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -595,6 +596,8 @@ constexpr KindInfo kKinds[] = {
     {Kind::Radiosity, "radiosity", "radiosity solution", 2, 1,
      "patch,b_r,b_g,b_b (with light groups: patch,group,b_r,b_g,b_b)", radiosity_csv,
      radiosity_summary},
+    {Kind::Links, "links", "link hierarchy (hierarchical form factors)", 1, 1,
+     "node,first,count,source,f", detail::links_csv, detail::links_summary},
 };
 
 } // namespace

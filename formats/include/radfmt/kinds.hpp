@@ -102,6 +102,32 @@ struct FormFactorData {
 // bytes) when the file is version 3 with hit counts (what rad-solve keeps in memory).
 enum class FormFactorLayout { plain, compact };
 
+// A link hierarchy (rad-ff --method hierarchical): a binary tree over the mesh's patches
+// (its leaves) and the links between its nodes, the hierarchical form of F. A node gathers
+// over its links, sum_l factor_l B(source_l), B of a node being the area-weighted mean of
+// its patches; what a node gathers every patch under it receives.
+struct LinkNode {
+    std::uint32_t first = 0, count = 0; // its patches: leaf_order[first, first + count)
+    std::uint32_t left = 0, right = 0;  // children (kNoNode for a leaf, a single patch)
+};
+inline constexpr std::uint32_t kNoNode = std::numeric_limits<std::uint32_t>::max();
+
+struct LinkData {
+    std::uint64_t patch_count = 0;
+    std::vector<std::uint32_t> leaf_order; // the patches in tree order
+    // In depth-first order: nodes[0] is the root, every node comes after its parent and a
+    // left subtree before its right sibling.
+    std::vector<LinkNode> nodes;
+    std::vector<std::uint64_t> link_start; // per node + 1: the links the node gathers over
+    std::vector<std::uint32_t> source;     // the node the light comes from
+    std::vector<float> factor;             // F: the node's mean form factor to the source
+    std::uint64_t links() const { return source.size(); }
+    bool is_leaf(std::size_t node) const { return nodes[node].left == kNoNode; }
+};
+
+void write_links(const std::filesystem::path& path, Header header, const LinkData& links);
+LinkData read_links(const std::filesystem::path& path, Header* header_out = nullptr);
+
 struct RadiosityData {
     std::vector<Rgb> radiosity; // B per patch, W/m^2 (every light group at its own emission)
     // Light groups (version 2 on, may be none): each group's own radiosity, as if only its

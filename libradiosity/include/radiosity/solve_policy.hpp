@@ -68,10 +68,14 @@ struct RowSumReport {
     double largest = 0;
 };
 RowSumReport check_row_sums(const radfmt::FormFactorData& ff, double tolerance);
+// The same through a link hierarchy: a patch's row is its node's links and its ancestors'.
+RowSumReport check_row_sums(const radfmt::LinkData& links, double tolerance);
 
 // Warnings a solve of `mesh` over `ff` deserves (no emitter, heavy rows), as message lines.
 std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh,
                                         const radfmt::FormFactorData& ff,
+                                        const std::string& ff_path, double row_sum_tolerance);
+std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh, const radfmt::LinkData& links,
                                         const std::string& ff_path, double row_sum_tolerance);
 
 // The stopping rule for `request` on `patches` patches: --sweeps into shots, the solver's

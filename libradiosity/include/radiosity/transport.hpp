@@ -5,6 +5,7 @@
 #include "radfmt/kinds.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -29,9 +30,19 @@ struct Channels {
 Channels to_channels(std::span<const radfmt::Rgb> rgb);
 std::vector<radfmt::Rgb> to_rgb(const Channels& values, std::size_t first_channel = 0);
 
-// B = E + diag(rho) F B. Channel c of a right-hand side reflects with colour c % colours.
+// F as a link hierarchy (rad-ff --method hierarchical), with what a sweep over it needs per
+// node: its parent and area.
+struct LinkTransport {
+    const radfmt::LinkData* links = nullptr;
+    std::vector<std::uint32_t> parent; // per node; the root's is kNoNode
+    std::vector<double> area;          // per node: its patches' area
+};
+
+// B = E + diag(rho) F B, F given as rows (form_factors) or as links (hierarchy). Channel c of a
+// right-hand side reflects with colour c % colours.
 struct TransportOperator {
     const radfmt::FormFactorData* form_factors = nullptr;
+    std::shared_ptr<const LinkTransport> hierarchy;
     std::vector<double> area;        // per patch
     std::size_t colours = 3;         // reflectance channels per patch
     std::vector<double> reflectance; // patch-major, `colours` per patch
@@ -44,6 +55,8 @@ struct TransportOperator {
 
 // The operator of a mesh (materials as they are in `mesh`) over its form factors.
 TransportOperator make_operator(const radfmt::MeshData& mesh, const radfmt::FormFactorData& ff);
+// The same over a link hierarchy: the sweep solvers (gs, jacobi) gather over its links.
+TransportOperator make_operator(const radfmt::MeshData& mesh, const radfmt::LinkData& links);
 // The emission of every patch, RGB.
 Channels emission_of(const radfmt::MeshData& mesh);
 

@@ -26,46 +26,15 @@ class AnalyticKernel final : public RowKernel {
         const auto samples_close =
             gauss_samples(context_.polygons[i], pi.area, close_nodes_, close_weights_);
         std::uint64_t rays = 0;
-        // Each pair draws from a stream of its own: F_ij does not depend on which other
-        // patches come before j.
         const std::uint64_t row_seed = row_rng.next();
         const std::size_t n = mesh.patches.size();
         for (std::size_t j = 0; j < n; ++j) {
-            if (j == i || !context_.in_front(i, j) || !context_.in_front(j, i)) continue;
-            const auto& pj = mesh.patches[j];
+            if (j == i) continue;
+            // Each pair draws from a stream of its own: F_ij does not depend on which other
+            // patches come before j.
             Rng rng(row_seed, context_.stream_key[j]);
-            // Patch i is planar: clipping j to i's front half-space is the same for every
-            // sample point of i, so it is done once per pair.
-            const auto clipped =
-                clip_to_front(context_.polygons[j].points(), pi.centroid, pi.normal);
-            if (clipped.size() < 3) continue;
-            const auto cdf = fan_cdf(clipped);
-            const int vis = visibility_rays_;
-            const bool close = length(pj.centroid - pi.centroid) <
-                               2 * std::max(context_.diameter[i], context_.diameter[j]);
-            double f = 0;
-            for (const auto& s : close ? samples_close : samples) {
-                // Visible fraction from this point: rays to area-uniform points of j,
-                // weighted by the kernel cos cos / r^2 so that the parts of j that matter
-                // most count most (exact when all or none are visible).
-                double seen = 0, total = 0;
-                for (int r = 0; r < vis; ++r) {
-                    const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-                    const Vec3 y = uniform_point(clipped, cdf, u0, u1, u2);
-                    const Vec3 d = y - s.point;
-                    const double r2 = dot(d, d);
-                    const double kernel = vis == 1 ? 1.0
-                                                   : std::max(0.0, dot(d, pi.normal)) *
-                                                         std::max(0.0, -dot(d, pj.normal)) /
-                                                         (r2 * r2 + 1e-300);
-                    total += kernel;
-                    if (context_.scene.visible(s.point, y)) seen += kernel;
-                }
-                rays += vis;
-                if (seen > 0)
-                    f += s.weight * (total > 0 ? seen / total : 0.0) *
-                         point_to_polygon_form_factor(s.point, pi.normal, clipped);
-            }
+            const double f = analytic_pair_form_factor(context_, i, j, samples, samples_close,
+                                                       visibility_rays_, rng, rays);
             if (f > 0) row.emplace_back(static_cast<std::uint32_t>(j), static_cast<float>(f));
         }
         return rays;

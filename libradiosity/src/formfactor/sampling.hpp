@@ -42,6 +42,15 @@ Vec3 uniform_point(std::span<const Vec3> poly, std::span<const double> fan_cdf, 
                    double u1, double u2);
 std::vector<double> fan_cdf(std::span<const Vec3> poly);
 
+// F_ij by the analytic method's rule: at the quadrature `samples` of patch i (the
+// `samples_close` when the patches are within twice their size), the exact form factor of j
+// clipped to i's front, times the visible fraction from `visibility_rays` rays to points of
+// j drawn from `rng`. 0 when either faces away from the other; adds the rays cast to `rays`.
+double analytic_pair_form_factor(const FormFactorContext& context, std::size_t i, std::size_t j,
+                                 std::span<const Sample> samples,
+                                 std::span<const Sample> samples_close, int visibility_rays,
+                                 Rng& rng, std::uint64_t& rays);
+
 // Keeps the part of `poly` on the positive side of the plane (point, normal).
 std::vector<Vec3> clip_to_front(std::span<const Vec3> poly, const Vec3& point, const Vec3& normal);
 // The same into `out` (whose storage is reused); `out` must not be `poly`.

@@ -1,3 +1,4 @@
+#include "radiosity/hierarchy.hpp"
 #include "radiosity/solve_policy.hpp"
 
 #include "radiosity/error.hpp"
@@ -180,20 +181,43 @@ RowSumReport check_row_sums(const radfmt::FormFactorData& ff, double tolerance) 
     return report;
 }
 
-std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh,
-                                        const radfmt::FormFactorData& ff,
-                                        const std::string& ff_path, double row_sum_tolerance) {
+namespace {
+std::vector<std::string> warnings_of(const radfmt::MeshData& mesh, const RowSumReport& rows,
+                                     const std::string& ff_path, double row_sum_tolerance,
+                                     const char* remedy) {
     std::vector<std::string> out;
     if (!any_emitter(mesh)) out.push_back("no patch emits light: the result is black");
-    const auto rows = check_row_sums(ff, row_sum_tolerance);
     if (rows.rows_above) {
         std::ostringstream text;
         text << rows.rows_above << " form-factor row(s) of " << ff_path << " sum above 1 + "
              << row_sum_tolerance << " (largest " << rows.largest
-             << "): the form factors are inaccurate; use more samples or rays";
+             << "): the form factors are inaccurate; " << remedy;
         out.push_back(text.str());
     }
     return out;
+}
+} // namespace
+
+RowSumReport check_row_sums(const radfmt::LinkData& links, double tolerance) {
+    RowSumReport report;
+    for (const double sum : link_row_sums(links)) {
+        if (sum > 1 + tolerance) ++report.rows_above;
+        report.largest = std::max(report.largest, sum);
+    }
+    return report;
+}
+
+std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh,
+                                        const radfmt::FormFactorData& ff,
+                                        const std::string& ff_path, double row_sum_tolerance) {
+    return warnings_of(mesh, check_row_sums(ff, row_sum_tolerance), ff_path, row_sum_tolerance,
+                       "use more samples or rays");
+}
+
+std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh, const radfmt::LinkData& links,
+                                        const std::string& ff_path, double row_sum_tolerance) {
+    return warnings_of(mesh, check_row_sums(links, row_sum_tolerance), ff_path, row_sum_tolerance,
+                       "use more --samples or a smaller --epsilon");
 }
 
 SolveControl stop_rule(const Solver& solver, const SolveRequest& request, std::size_t patches) {

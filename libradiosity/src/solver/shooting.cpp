@@ -2,6 +2,7 @@
 #include "shooter_choice.hpp"
 
 #include "radfmt/packed_rows.hpp"
+#include "radiosity/error.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -239,6 +240,11 @@ Channels ProgressiveRefinement::displayed() const {
 
 SolveResult shoot(const TransportOperator& op, const Channels& emission,
                   const SolveControl& control, bool ambient) {
+    // A shot spreads one patch's power along its column of F; links have no columns.
+    if (!op.form_factors)
+        throw InputError("pr and apr shoot along the rows of a form-factor matrix; a links "
+                         "file (rad-ff --method hierarchical) is solved with --method gs or "
+                         "jacobi");
     const auto start = std::chrono::steady_clock::now();
     ProgressiveRefinement pr(op, emission, ambient);
     auto keep_going = [&](long done, double residual) {

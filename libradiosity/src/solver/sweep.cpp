@@ -117,6 +117,7 @@ std::pair<double, double> sweep_rows(const TransportOperator& op, const Channels
 
 std::pair<double, double> sweep(const TransportOperator& op, const Channels& emission, Channels& b,
                                 Channels& scratch, bool in_place) {
+    if (op.hierarchy) return link_sweep(op, emission, b, in_place);
     if (!in_place) scratch = b;
     const Channels& source = in_place ? b : scratch;
     // RGB, and light groups of 2 to 4 (6 to 12 channels), with the count known to the

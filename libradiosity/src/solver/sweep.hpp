@@ -11,6 +11,10 @@ namespace rad::solve_impl {
 std::pair<double, double> sweep(const TransportOperator& op, const Channels& emission, Channels& b,
                                 Channels& scratch, bool in_place);
 
+// The same over a link hierarchy (op.hierarchy): gather over links with push-pull.
+std::pair<double, double> link_sweep(const TransportOperator& op, const Channels& emission,
+                                     Channels& b, bool in_place);
+
 // Sweeps until the control's limits, starting from B = E.
 SolveResult solve_by_sweeps(const TransportOperator& op, const Channels& emission,
                             const SolveControl& control, bool in_place);

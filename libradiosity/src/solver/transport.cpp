@@ -29,6 +29,28 @@ TransportOperator make_operator(const radfmt::MeshData& mesh, const radfmt::Form
     return op;
 }
 
+TransportOperator make_operator(const radfmt::MeshData& mesh, const radfmt::LinkData& links) {
+    radfmt::FormFactorData none;
+    auto op = make_operator(mesh, none);
+    op.form_factors = nullptr;
+    auto hierarchy = std::make_shared<LinkTransport>();
+    hierarchy->links = &links;
+    hierarchy->parent.assign(links.nodes.size(), radfmt::kNoNode);
+    hierarchy->area.assign(links.nodes.size(), 0.0);
+    // Children come after their parents: from the last node back, a node's children are done.
+    for (std::size_t i = links.nodes.size(); i-- > 0;) {
+        const auto& n = links.nodes[i];
+        if (n.left == radfmt::kNoNode) {
+            hierarchy->area[i] = op.area[links.leaf_order[n.first]];
+        } else {
+            hierarchy->parent[n.left] = hierarchy->parent[n.right] = static_cast<std::uint32_t>(i);
+            hierarchy->area[i] = hierarchy->area[n.left] + hierarchy->area[n.right];
+        }
+    }
+    op.hierarchy = std::move(hierarchy);
+    return op;
+}
+
 Channels emission_of(const radfmt::MeshData& mesh) {
     Channels e(mesh.patches.size(), 3);
     for (std::size_t i = 0; i < mesh.patches.size(); ++i)

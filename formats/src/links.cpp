@@ -1,0 +1,146 @@
+// The links kind: a binary tree over the patches and the links between its nodes
+// (rad-ff --method hierarchical). Every index is checked on reading, so the solver can
+// trust the tree.
+#include "links.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace radfmt {
+namespace fs = std::filesystem;
+
+void write_links(const fs::path& path, Header header, const LinkData& links) {
+    header.kind = Kind::Links;
+    header.set("patches", std::to_string(links.patch_count));
+    header.set("nodes", std::to_string(links.nodes.size()));
+    header.set("links", std::to_string(links.links()));
+    BodyWriter w;
+    w.u64(links.patch_count);
+    w.array(links.leaf_order);
+    w.u64(links.nodes.size());
+    w.array(links.nodes);
+    w.array(links.link_start);
+    w.u64(links.links());
+    w.array(links.source);
+    w.array(links.factor);
+    write_file(path, std::move(header), w);
+}
+
+namespace {
+void check_leaf_order(const LinkData& links, BodyReader& r) {
+    std::vector<bool> seen(links.patch_count, false);
+    for (const auto patch : links.leaf_order) {
+        if (patch >= links.patch_count || seen[patch])
+            r.fail("the leaf order is not a permutation of the patches (patch " +
+                   std::to_string(patch) + ")");
+        seen[patch] = true;
+    }
+}
+
+// Every node's children come after it, split its patches in two and have no other parent.
+void check_tree(const LinkData& links, BodyReader& r) {
+    const auto& nodes = links.nodes;
+    if (links.patch_count == 0) {
+        if (!nodes.empty()) r.fail("a tree without patches");
+        return;
+    }
+    if (nodes.empty() || nodes[0].first != 0 || nodes[0].count != links.patch_count)
+        r.fail("the root does not hold every patch");
+    std::vector<bool> has_parent(nodes.size(), false);
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const auto& n = nodes[i];
+        const std::string where = "node " + std::to_string(i);
+        if (n.left == kNoNode || n.right == kNoNode) {
+            if (n.left != n.right || n.count != 1)
+                r.fail(where + " is a leaf of more than a patch");
+            continue;
+        }
+        if (n.left <= i || n.right <= i || n.left >= nodes.size() || n.right >= nodes.size() ||
+            has_parent[n.left] || has_parent[n.right])
+            r.fail(where + " has children out of order");
+        has_parent[n.left] = has_parent[n.right] = true;
+        const auto& a = nodes[n.left];
+        const auto& b = nodes[n.right];
+        if (a.first != n.first || a.count == 0 || b.count == 0 || b.first != n.first + a.count ||
+            std::uint64_t(a.count) + b.count != n.count)
+            r.fail(where + "'s children do not split its patches");
+    }
+    for (std::size_t i = 1; i < nodes.size(); ++i)
+        if (!has_parent[i]) r.fail("node " + std::to_string(i) + " has no parent");
+}
+
+void check_links(const LinkData& links, BodyReader& r) {
+    const auto& start = links.link_start;
+    if (start.size() != links.nodes.size() + 1 || start.front() != 0 ||
+        start.back() != links.links())
+        r.fail("the link starts do not cover the links");
+    for (std::size_t i = 0; i + 1 < start.size(); ++i)
+        if (start[i] > start[i + 1]) r.fail("the link starts are not ascending");
+    for (std::uint64_t l = 0; l < links.links(); ++l) {
+        if (links.source[l] >= links.nodes.size())
+            r.fail("link " + std::to_string(l) + " comes from a node that does not exist");
+        if (!(links.factor[l] >= 0 && std::isfinite(links.factor[l])))
+            r.fail("link " + std::to_string(l) + " has a factor that is negative or not finite");
+    }
+}
+} // namespace
+
+LinkData read_links(const fs::path& path, Header* header_out) {
+    const Kind kind = Kind::Links;
+    BodyReader r(path, &kind);
+    LinkData links;
+    links.patch_count = r.count(sizeof(std::uint32_t), "patches");
+    links.leaf_order = r.array<std::uint32_t>(links.patch_count, "leaf order");
+    const auto nodes = r.count(sizeof(LinkNode), "nodes");
+    links.nodes = r.array<LinkNode>(nodes, "nodes");
+    links.link_start = r.array<std::uint64_t>(nodes + 1, "link starts");
+    const auto count = r.count(sizeof(std::uint32_t) + sizeof(float), "links");
+    links.source = r.array<std::uint32_t>(count, "link sources");
+    links.factor = r.array<float>(count, "link factors");
+    r.expect_end();
+    if (links.patch_count >= kNoNode) r.fail("too many patches");
+    for (const auto& [key, value] :
+         {std::pair<const char*, std::uint64_t>{"patches", links.patch_count},
+          {"nodes", nodes},
+          {"links", count}}) {
+        const auto* recorded = r.header().find(key);
+        if (recorded && *recorded != std::to_string(value))
+            r.fail(std::string("the header says ") + key + "=" + *recorded +
+                   " but the body holds " + std::to_string(value));
+    }
+    check_leaf_order(links, r);
+    check_tree(links, r);
+    check_links(links, r);
+    if (header_out) *header_out = r.take_header();
+    return links;
+}
+
+namespace detail {
+void links_csv(const fs::path& path, std::ostream& out) {
+    const auto links = read_links(path);
+    out << "node,first,count,source,f\n";
+    char line[160];
+    for (std::size_t i = 0; i < links.nodes.size(); ++i) {
+        const auto& n = links.nodes[i];
+        for (auto l = links.link_start[i]; l < links.link_start[i + 1]; ++l) {
+            std::snprintf(line, sizeof line, "%zu,%u,%u,%u,%.9g\n", i, n.first, n.count,
+                          links.source[l], double(links.factor[l]));
+            out << line;
+        }
+        if (!out) return;
+    }
+}
+
+std::string links_summary(const fs::path& path, Header& header) {
+    const auto links = read_links(path, &header);
+    char text[200];
+    std::snprintf(text, sizeof text, "%llu patches, %zu nodes, %llu links (%.2f a patch)",
+                  static_cast<unsigned long long>(links.patch_count), links.nodes.size(),
+                  static_cast<unsigned long long>(links.links()),
+                  links.patch_count ? double(links.links()) / double(links.patch_count) : 0.0);
+    return text;
+}
+} // namespace detail
+
+} // namespace radfmt

@@ -1,0 +1,10 @@
+// The links kind's CSV and summary, for the kind table in kinds.cpp (internal header).
+#pragma once
+#include "radfmt/kinds.hpp"
+
+#include <ostream>
+
+namespace radfmt::detail {
+void links_csv(const std::filesystem::path& path, std::ostream& out);
+std::string links_summary(const std::filesystem::path& path, Header& header);
+} // namespace radfmt::detail

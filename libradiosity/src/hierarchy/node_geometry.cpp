@@ -1,0 +1,105 @@
+#include "hierarchy/node_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rad::hierarchy {
+
+namespace {
+double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+    return 0.5 * length(cross(b - a, c - a));
+}
+
+// Two planar nodes on one plane make a planar parent.
+NodeGeometry merged(const NodeGeometry& a, const NodeGeometry& b, double tolerance) {
+    NodeGeometry out;
+    out.area = a.area + b.area;
+    out.box = a.box;
+    out.box.add(b.box.lo);
+    out.box.add(b.box.hi);
+    out.planar = a.planar && b.planar && dot(a.normal, b.normal) > 1 - 1e-9 &&
+                 std::abs(a.offset - b.offset) <= tolerance;
+    out.normal = a.normal;
+    out.offset = a.offset;
+    return out;
+}
+} // namespace
+
+NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
+                               const std::vector<PatchPolygon>& polygons,
+                               const radfmt::LinkData& tree)
+    : mesh_(mesh), polygons_(polygons), tree_(tree), nodes_(tree.nodes.size()) {
+    tolerance_ = 1e-9 * bounds(mesh.vertices).diagonal();
+    first_share_.resize(mesh.patches.size(), 1.0);
+    for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
+        const auto& g = polygons[p];
+        if (g.count == 4) {
+            const double a0 = triangle_area(g.corners[0], g.corners[1], g.corners[2]);
+            const double a1 = triangle_area(g.corners[0], g.corners[2], g.corners[3]);
+            first_share_[p] = a0 + a1 > 0 ? a0 / (a0 + a1) : 1.0;
+        }
+    }
+    area_before_.assign(tree.leaf_order.size() + 1, 0.0);
+    for (std::size_t k = 0; k < tree.leaf_order.size(); ++k)
+        area_before_[k + 1] = area_before_[k] + mesh.patches[tree.leaf_order[k]].area;
+    // Children come after their parents: from the last node back, children are done first.
+    for (std::size_t i = tree.nodes.size(); i-- > 0;) {
+        const auto& n = tree.nodes[i];
+        if (n.left != radfmt::kNoNode) {
+            nodes_[i] = merged(nodes_[n.left], nodes_[n.right], tolerance_);
+            continue;
+        }
+        const auto& patch = mesh.patches[tree.leaf_order[n.first]];
+        auto& leaf = nodes_[i];
+        leaf.area = patch.area;
+        for (const auto& corner : polygons[tree.leaf_order[n.first]].points()) leaf.box.add(corner);
+        leaf.planar = true;
+        leaf.normal = patch.normal;
+        leaf.offset = dot(patch.normal, patch.centroid);
+    }
+}
+
+NodePoint NodeGeometries::point(std::uint32_t node, double u, double v, double w) const {
+    const auto& n = tree_.nodes[node];
+    const double lo = area_before_[n.first], hi = area_before_[n.first + n.count];
+    const double target = lo + u * (hi - lo);
+    // The last patch that starts at or before the target.
+    const auto begin = area_before_.begin() + n.first + 1;
+    const auto end = area_before_.begin() + n.first + n.count;
+    const auto k =
+        n.first + static_cast<std::uint32_t>(std::upper_bound(begin, end, target) - begin);
+    const auto patch = tree_.leaf_order[k];
+    const auto& g = polygons_[patch];
+    const double share = first_share_[patch];
+    // w picks the fan triangle of a quad by area, then serves again within it.
+    std::size_t triangle = 0;
+    double within = w;
+    if (g.count == 4) {
+        if (w < share) {
+            within = w / share;
+        } else {
+            triangle = 1;
+            within = (w - share) / (1 - share);
+        }
+    }
+    const double su = std::sqrt(v);
+    const Vec3& a = g.corners[0];
+    const Vec3& b = g.corners[triangle + 1];
+    const Vec3& c = g.corners[triangle + 2];
+    const Vec3 p = a * (1 - su) + b * (su * (1 - within)) + c * (su * within);
+    return {p, mesh_.patches[patch].normal};
+}
+
+bool NodeGeometries::all_behind(std::uint32_t a, std::uint32_t b) const {
+    const auto& plane = nodes_[a];
+    if (!plane.planar) return false;
+    const auto& box = nodes_[b].box;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p{(corner & 1) ? box.hi[0] : box.lo[0], (corner & 2) ? box.hi[1] : box.lo[1],
+                     (corner & 4) ? box.hi[2] : box.lo[2]};
+        if (dot(plane.normal, p) - plane.offset > tolerance_) return false;
+    }
+    return true;
+}
+
+} // namespace rad::hierarchy

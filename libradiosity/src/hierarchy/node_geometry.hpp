@@ -1,0 +1,46 @@
+// What the link oracle knows of each node of the patch tree: area, box, plane when its
+// patches share one, and area-uniform points (internal header).
+#pragma once
+#include "radiosity/formfactor_method.hpp"
+#include "radiosity/vec.hpp"
+
+#include <vector>
+
+namespace rad::hierarchy {
+
+struct NodeGeometry {
+    double area = 0;
+    Box box; // of its patches' corners
+    bool planar = false;
+    Vec3 normal{};     // when planar: every patch's normal
+    double offset = 0; // when planar: the plane dot(normal, x) = offset
+};
+
+// A point of a node, with the normal of the patch it lies on.
+struct NodePoint {
+    Vec3 point;
+    Vec3 normal;
+};
+
+class NodeGeometries {
+  public:
+    NodeGeometries(const radfmt::MeshData& mesh, const std::vector<PatchPolygon>& polygons,
+                   const radfmt::LinkData& tree);
+    const NodeGeometry& operator[](std::size_t node) const { return nodes_[node]; }
+    // The area-uniform point of `node` for (u, v, w) in [0,1)^3: u picks the patch by area
+    // (stratify it to spread points over the node), v and w the point within it.
+    NodePoint point(std::uint32_t node, double u, double v, double w) const;
+    // True when nothing of `b` lies strictly in front of planar node `a`'s plane.
+    bool all_behind(std::uint32_t a, std::uint32_t b) const;
+
+  private:
+    const radfmt::MeshData& mesh_;
+    const std::vector<PatchPolygon>& polygons_;
+    const radfmt::LinkData& tree_;
+    std::vector<NodeGeometry> nodes_;
+    std::vector<double> area_before_; // per position in leaf order (+1): the areas before it
+    std::vector<double> first_share_; // per patch: its first fan triangle's share of its area
+    double tolerance_ = 0;            // lengths below this are rounding
+};
+
+} // namespace rad::hierarchy

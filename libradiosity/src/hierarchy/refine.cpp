@@ -1,0 +1,320 @@
+// compute_links: links refined top down from the root's interaction with itself. A pair of
+// nodes is linked when the oracle says its transfer is smooth enough to treat as one number:
+// its estimated form factor, in whichever direction is larger, at most epsilon, and more so
+// when visibility varies across the pair; otherwise the larger node is split. Two patches
+// are linked by the analytic method's integral.
+#include "formfactor/sampling.hpp"
+#include "hierarchy/node_geometry.hpp"
+#include "radiosity/hierarchy.hpp"
+#include "radiosity/rays.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace rad {
+
+namespace {
+using hierarchy::NodeGeometries;
+using hierarchy::NodePoint;
+
+struct Link {
+    std::uint32_t receiver, source;
+    float factor;
+};
+
+struct ThreadWork {
+    std::vector<Link> links;
+    HierarchyStats stats;
+};
+
+// Below this many patches in a pair, its refinement runs on the thread that found it.
+constexpr std::uint32_t kSerialPatches = 64;
+constexpr int kPatchPairPoints = 16;
+// How much a side's uneven facing adds to the oracle's estimate.
+constexpr double kSpreadWeight = 4;
+
+class LinkRefiner {
+  public:
+    LinkRefiner(const FormFactorContext& context, const radfmt::LinkData& tree,
+                const HierarchyOptions& options)
+        : context_(context), tree_(tree), geometry_(context.mesh, context.polygons, tree),
+          options_(options), samples_(std::max(1, options.samples)) {
+        // Two patches: the analytic method's default quadrature (16 points, 64 when close).
+        const int m = ff::points_per_axis(kPatchPairPoints);
+        ff::gauss_legendre(m, nodes_, weights_);
+        ff::gauss_legendre(2 * m, close_nodes_, close_weights_);
+    }
+
+    // Every interaction between patches of `node`.
+    void refine_within(std::uint32_t node) {
+        const auto& n = tree_.nodes[node];
+        if (n.left == radfmt::kNoNode) return; // a flat patch does not see itself
+        run_both([&] { refine_within(n.left); },
+                 [&] {
+                     refine_within(n.right);
+                     refine_pair(n.left, n.right);
+                 },
+                 n.count);
+    }
+
+    // The links, by receiver then source, into the tree's arrays.
+    void collect(radfmt::LinkData& out, HierarchyStats& stats) {
+        std::vector<Link> all;
+        for (auto& work : work_) {
+            all.insert(all.end(), work.links.begin(), work.links.end());
+            work.links = {};
+            stats.pairs += work.stats.pairs;
+            stats.culled += work.stats.culled;
+            stats.rays += work.stats.rays;
+            stats.leaf_links += work.stats.leaf_links;
+        }
+        std::sort(all.begin(), all.end(), [](const Link& a, const Link& b) {
+            return a.receiver < b.receiver || (a.receiver == b.receiver && a.source < b.source);
+        });
+        out.link_start.assign(out.nodes.size() + 1, 0);
+        out.source.resize(all.size());
+        out.factor.resize(all.size());
+        for (std::size_t l = 0; l < all.size(); ++l) {
+            ++out.link_start[all[l].receiver + 1];
+            out.source[l] = all[l].source;
+            out.factor[l] = all[l].factor;
+        }
+        for (std::size_t i = 0; i < out.nodes.size(); ++i)
+            out.link_start[i + 1] += out.link_start[i];
+    }
+
+  private:
+    template <class A, class B> void run_both(A&& a, B&& b, std::uint64_t patches) {
+        if (patches < kSerialPatches) {
+            a();
+            b();
+        } else {
+            tbb::parallel_invoke(a, b);
+        }
+    }
+
+    bool is_leaf(std::uint32_t node) const { return tree_.nodes[node].left == radfmt::kNoNode; }
+
+    // The directions of a pair: light into a (a link a <- b) and into b.
+    static constexpr unsigned kIntoA = 1, kIntoB = 2;
+
+    // Patches a and b see each other through nodes a and b (disjoint); `wanted` says which
+    // directions still need links. A link's receiver must be flat: a node receives one
+    // irradiance for all its patches, wrong for those turned another way (a cluster may be
+    // a source: its mean radiosity, with each sample's own cosine).
+    void refine_pair(std::uint32_t a, std::uint32_t b, unsigned wanted = kIntoA | kIntoB) {
+        auto& work = work_.local();
+        ++work.stats.pairs;
+        if (geometry_.all_behind(a, b) || geometry_.all_behind(b, a)) {
+            ++work.stats.culled;
+            return;
+        }
+        Rng rng(options_.seed, (std::uint64_t(a) << 32) | b);
+        if (is_leaf(a) && is_leaf(b)) return link_patches(a, b, wanted, rng, work);
+        const PairEstimate estimate = estimate_pair(a, b, rng);
+        // Each direction's form factor, grown by how unevenly its receiver faces the source.
+        const double f_ab = estimate.unoccluded;
+        const double f_ba = f_ab * geometry_[a].area / geometry_[b].area;
+        const double error_a = f_ab * (1 + kSpreadWeight * estimate.spread_a);
+        const double error_b = f_ba * (1 + kSpreadWeight * estimate.spread_b);
+        // No sample pair faced each other: a small facing part may have been missed. Dropped
+        // only when it could not matter (bounded by each node's solid angle seen from the
+        // other at their boxes' distance).
+        if (f_ab <= 0) {
+            if (largest_possible(a, b) > options_.epsilon) split(a, b, wanted);
+            return;
+        }
+        unsigned ready = 0;
+        if ((wanted & kIntoA) && geometry_[a].planar && error_a <= options_.epsilon)
+            ready |= kIntoA;
+        if ((wanted & kIntoB) && geometry_[b].planar && error_b <= options_.epsilon)
+            ready |= kIntoB;
+        if (ready) {
+            // The link's value from samples of its own: those that decided to link are biased
+            // low (a pair whose draw came out high was split instead).
+            const auto [factor, visible] = trace_pair(estimate_pair(a, b, rng), work);
+            // Visibility that varies across the pair (a shadow's edge) counts up to double.
+            const double varies = visible > 0 && visible < 1 ? 1 + 4 * visible * (1 - visible) : 1;
+            if (error_a * varies > options_.epsilon) ready &= ~kIntoA;
+            if (error_b * varies > options_.epsilon) ready &= ~kIntoB;
+            add_links(a, b, factor, ready, work);
+        }
+        if (wanted & ~ready) split(a, b, wanted & ~ready);
+    }
+
+    // Refines the children of one node against the other for the directions left: a
+    // receiver that is not flat is split, else the larger node.
+    void split(std::uint32_t a, std::uint32_t b, unsigned directions) {
+        bool split_a;
+        if ((directions & kIntoA) && !geometry_[a].planar)
+            split_a = true;
+        else if ((directions & kIntoB) && !geometry_[b].planar)
+            split_a = false;
+        else
+            split_a = !is_leaf(a) && (is_leaf(b) || geometry_[a].area >= geometry_[b].area);
+        const auto& n = tree_.nodes[split_a ? a : b];
+        const auto patches = std::uint64_t(tree_.nodes[a].count) + tree_.nodes[b].count;
+        if (split_a)
+            run_both([&] { refine_pair(n.left, b, directions); },
+                     [&] { refine_pair(n.right, b, directions); }, patches);
+        else
+            run_both([&] { refine_pair(a, n.left, directions); },
+                     [&] { refine_pair(a, n.right, directions); }, patches);
+    }
+
+    struct PairEstimate {
+        std::vector<NodePoint> from, to;
+        // Per side, the spread (largest less smallest) of its points' cosines towards the
+        // other node's centre: 0 for a flat node far away, up to 1 for a cluster.
+        double spread_a = 0, spread_b = 0;
+        std::vector<double> kernel; // per sample pair: cos cos A_b / (pi r^2)
+        double unoccluded = 0;      // F_ab without occlusion: the kernels' mean
+    };
+
+    // Stratified sample pairs of a and b and the unoccluded kernel between them, each pair
+    // standing for all of b: an unbiased estimate of F_ab. Near pairs, where it varies
+    // wildly, come out large and are refined.
+    PairEstimate estimate_pair(std::uint32_t a, std::uint32_t b, Rng& rng) const {
+        PairEstimate e;
+        const double area_b = geometry_[b].area;
+        std::vector<int> strata(samples_);
+        for (int k = 0; k < samples_; ++k) strata[k] = k;
+        for (int k = samples_ - 1; k > 0; --k)
+            std::swap(strata[k], strata[static_cast<int>(rng.uniform() * (k + 1))]);
+        for (int k = 0; k < samples_; ++k) {
+            const double ua = (k + rng.uniform()) / samples_;
+            const double ub = (strata[k] + rng.uniform()) / samples_;
+            const auto x = geometry_.point(a, ua, rng.uniform(), rng.uniform());
+            const auto y = geometry_.point(b, ub, rng.uniform(), rng.uniform());
+            const Vec3 d = y.point - x.point;
+            const double r2 = dot(d, d);
+            const double r = std::sqrt(r2);
+            const double ca = r > 0 ? dot(x.normal, d) / r : 0;
+            const double cb = r > 0 ? -dot(y.normal, d) / r : 0;
+            const double kernel =
+                ca > 0 && cb > 0 ? ca * cb * area_b / (ff::kPi * r2 + area_b / samples_) : 0.0;
+            e.from.push_back(x);
+            e.to.push_back(y);
+            e.kernel.push_back(kernel);
+            e.unoccluded += kernel;
+        }
+        e.unoccluded /= samples_;
+        e.spread_a = cosine_spread(e.from, geometry_[b].box.centre());
+        e.spread_b = cosine_spread(e.to, geometry_[a].box.centre());
+        return e;
+    }
+
+    // The most F_ab or F_ba can be: the other node's area over pi d^2, d the distance
+    // between the nodes' boxes.
+    double largest_possible(std::uint32_t a, std::uint32_t b) const {
+        const auto& ba = geometry_[a].box;
+        const auto& bb = geometry_[b].box;
+        double d2 = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double gap = std::max({0.0, ba.lo[c] - bb.hi[c], bb.lo[c] - ba.hi[c]});
+            d2 += gap * gap;
+        }
+        if (d2 <= 0) return 1e300;
+        return std::max(geometry_[a].area, geometry_[b].area) / (ff::kPi * d2);
+    }
+
+    static double cosine_spread(const std::vector<NodePoint>& points, const Vec3& towards) {
+        double lo = 1, hi = 0;
+        for (const auto& p : points) {
+            const double c = std::max(0.0, dot(p.normal, normalized(towards - p.point)));
+            lo = std::min(lo, c);
+            hi = std::max(hi, c);
+        }
+        return std::max(0.0, hi - lo);
+    }
+
+    // F_ab with occlusion, and the visible fraction of the pairs that face each other.
+    std::pair<double, double> trace_pair(const PairEstimate& e, ThreadWork& work) const {
+        double factor = 0;
+        int facing = 0, seen = 0;
+        for (std::size_t k = 0; k < e.kernel.size(); ++k) {
+            if (e.kernel[k] <= 0) continue;
+            ++facing;
+            ++work.stats.rays;
+            if (context_.scene.visible(e.from[k].point, e.to[k].point)) {
+                ++seen;
+                factor += e.kernel[k];
+            }
+        }
+        return {factor / samples_, facing ? double(seen) / facing : 0.0};
+    }
+
+    void link_patches(std::uint32_t a, std::uint32_t b, unsigned directions, Rng& rng,
+                      ThreadWork& work) const {
+        const auto p = tree_.leaf_order[tree_.nodes[a].first];
+        const auto q = tree_.leaf_order[tree_.nodes[b].first];
+        const auto& polygon = context_.polygons[p];
+        const double area = context_.mesh.patches[p].area;
+        const auto samples = ff::gauss_samples(polygon, area, nodes_, weights_);
+        const auto close = ff::gauss_samples(polygon, area, close_nodes_, close_weights_);
+        const double f =
+            ff::analytic_pair_form_factor(context_, p, q, samples, close, 1, rng, work.stats.rays);
+        if (f <= 0) return;
+        work.stats.leaf_links += std::popcount(directions);
+        add_links(a, b, f, directions, work);
+    }
+
+    // Links in `directions`, reciprocal: A_a F_ab = A_b F_ba.
+    void add_links(std::uint32_t a, std::uint32_t b, double factor_ab, unsigned directions,
+                   ThreadWork& work) const {
+        if (!(factor_ab > 0)) return;
+        const double factor_ba = factor_ab * geometry_[a].area / geometry_[b].area;
+        if (directions & kIntoA) work.links.push_back({a, b, static_cast<float>(factor_ab)});
+        if (directions & kIntoB) work.links.push_back({b, a, static_cast<float>(factor_ba)});
+    }
+
+    const FormFactorContext& context_;
+    const radfmt::LinkData& tree_;
+    NodeGeometries geometry_;
+    HierarchyOptions options_;
+    int samples_;
+    std::vector<double> nodes_, weights_, close_nodes_, close_weights_;
+    tbb::enumerable_thread_specific<ThreadWork> work_;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+} // namespace
+
+radfmt::LinkData compute_links(const radfmt::MeshData& mesh, const HierarchyOptions& options,
+                               HierarchyStats* stats) {
+    HierarchyStats local;
+    auto start = std::chrono::steady_clock::now();
+    auto tree = build_patch_tree(mesh);
+    local.tree_seconds = seconds_since(start);
+    if (!mesh.patches.empty()) {
+        start = std::chrono::steady_clock::now();
+        const RayScene scene(mesh);
+        const FormFactorContext context(mesh, scene);
+        LinkRefiner refiner(context, tree, options);
+        refiner.refine_within(0);
+        refiner.collect(tree, local);
+        local.link_seconds = seconds_since(start);
+    }
+    if (stats) *stats = local;
+    return tree;
+}
+
+std::vector<std::pair<std::string, std::string>>
+link_header_fields(const HierarchyOptions& options) {
+    char epsilon[32];
+    std::snprintf(epsilon, sizeof epsilon, "%.9g", options.epsilon);
+    return {{"method", "hierarchical"},
+            {"epsilon", epsilon},
+            {"samples", std::to_string(options.samples)},
+            {"seed", std::to_string(options.seed)}};
+}
+
+} // namespace rad
