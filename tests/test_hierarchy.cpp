@@ -1,0 +1,223 @@
+// Hierarchical form factors (rad-ff --method hierarchical) and the solve over their links,
+// against closed forms, a furnace, reciprocity, the analytic matrix and themselves.
+#include "helpers.hpp"
+#include "radfmt/container.hpp"
+#include "radiosity/formfactor.hpp"
+#include "radiosity/hierarchy.hpp"
+#include "radiosity/progress.hpp"
+#include "radiosity/solver.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+
+using namespace testing_helpers;
+using Catch::Matchers::Contains;
+
+namespace {
+// Two unit squares facing each other: the first at z = 0 (normal +z), the second at `gap`
+// above (normal -z) or, with `perpendicular`, standing on the first's edge x = 1 (normal -x).
+radfmt::MeshData two_squares(bool perpendicular, double gap, double max_edge) {
+    std::string obj;
+    int count = 0;
+    append_obj_face(obj, count, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, "grey", "floor");
+    if (perpendicular)
+        append_obj_face(obj, count, {{1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}}, "grey", "wall");
+    else
+        append_obj_face(obj, count, {{0, 0, gap}, {0, 1, gap}, {1, 1, gap}, {1, 0, gap}}, "grey",
+                        "ceiling");
+    return mesh_from_obj(obj, max_edge);
+}
+
+// The mean row sum of the patches of `group`: their form factor to everything else.
+double group_form_factor(const radfmt::MeshData& mesh, const radfmt::LinkData& links,
+                         const std::string& group) {
+    const auto sums = rad::link_row_sums(links);
+    double weighted = 0, area = 0;
+    for (std::size_t p = 0; p < mesh.patches.size(); ++p)
+        if (mesh.groups[mesh.patches[p].group] == group) {
+            weighted += mesh.patches[p].area * sums[p];
+            area += mesh.patches[p].area;
+        }
+    return weighted / area;
+}
+
+rad::Channels solve(const radfmt::MeshData& mesh, const rad::TransportOperator& op,
+                    const rad::Channels& emission, const std::string& method = "gs") {
+    rad::SolveControl control;
+    control.max_iterations = 500;
+    control.tolerance = 1e-10;
+    (void)mesh;
+    return rad::solver(method).solve(op, emission, control).radiosity;
+}
+
+// Patch-to-patch F from links: each link spread over its source's patches by area.
+std::map<std::pair<std::uint32_t, std::uint32_t>, double> expand(const radfmt::MeshData& mesh,
+                                                                 const radfmt::LinkData& links) {
+    std::vector<double> node_area(links.nodes.size(), 0);
+    for (std::size_t i = links.nodes.size(); i-- > 0;) {
+        const auto& n = links.nodes[i];
+        for (auto k = n.first; k < n.first + n.count; ++k)
+            node_area[i] += mesh.patches[links.leaf_order[k]].area;
+    }
+    std::map<std::pair<std::uint32_t, std::uint32_t>, double> f;
+    for (std::size_t r = 0; r < links.nodes.size(); ++r)
+        for (auto l = links.link_start[r]; l < links.link_start[r + 1]; ++l) {
+            const auto& receiver = links.nodes[r];
+            const auto& source = links.nodes[links.source[l]];
+            for (auto a = receiver.first; a < receiver.first + receiver.count; ++a)
+                for (auto b = source.first; b < source.first + source.count; ++b) {
+                    const auto q = links.leaf_order[b];
+                    f[{links.leaf_order[a], q}] +=
+                        links.factor[l] * mesh.patches[q].area / node_area[links.source[l]];
+                }
+        }
+    return f;
+}
+} // namespace
+
+TEST_CASE("hierarchical: parallel and perpendicular squares match Howell's closed forms") {
+    // 16 x 16 patches a square: links join blocks of them, the sum must still be the whole.
+    const auto parallel = two_squares(false, 1.0, 1.0 / 16);
+    const auto links = rad::compute_links(parallel, {});
+    // The matrix has 2 x 256 x 256 non-zeros.
+    CHECK(links.links() < 2 * 256 * 256 / 5);
+    CHECK(group_form_factor(parallel, links, "floor") ==
+          Approx(rad::parallel_rectangles_form_factor(1, 1, 1)).epsilon(0.01));
+
+    const auto perpendicular = two_squares(true, 0, 1.0 / 16);
+    const auto links_p = rad::compute_links(perpendicular, {});
+    CHECK(group_form_factor(perpendicular, links_p, "floor") ==
+          Approx(rad::perpendicular_rectangles_form_factor(1, 1, 1)).epsilon(0.01));
+}
+
+TEST_CASE("hierarchical: a closed box is a furnace, B = E / (1 - rho) everywhere") {
+    const auto mesh = mesh_from_obj(cube_obj(), 1.0 / 8); // 384 patches
+    const auto links = rad::compute_links(mesh, {});
+    const auto sums = rad::link_row_sums(links);
+    double mean = 0;
+    // Per patch within the sampling of its cluster links (64 pairs each), on average exact.
+    for (double s : sums) {
+        CHECK(s == Approx(1).margin(0.06));
+        mean += s / double(sums.size());
+    }
+    CHECK(mean == Approx(1).margin(0.01));
+    const auto op = rad::make_operator(mesh, links); // grey: rho 0.5
+    rad::Channels emission(mesh.patches.size(), 3);
+    for (auto& e : emission.values) e = 1;
+    for (const char* method : {"gs", "jacobi"}) {
+        const auto b = solve(mesh, op, emission, method);
+        for (double value : b.values) CHECK(value == Approx(2).epsilon(0.06));
+    }
+}
+
+TEST_CASE("hierarchical: links are reciprocal, patch to patch") {
+    const auto mesh = mesh_from_obj(cube_obj(), 1.0 / 6);
+    const auto links = rad::compute_links(mesh, {});
+    const auto f = expand(mesh, links);
+    double total = 0, asymmetry = 0;
+    for (const auto& [pq, value] : f) {
+        const auto [p, q] = pq;
+        const auto back = f.find({q, p});
+        const double a = mesh.patches[p].area * value;
+        const double b = back == f.end() ? 0.0 : mesh.patches[q].area * back->second;
+        total += a;
+        asymmetry += std::abs(a - b);
+    }
+    // Exact where both directions were linked at one pair of nodes; where only one side was
+    // split further, the two estimates differ by their sampling.
+    CHECK(asymmetry / total < 0.05);
+}
+
+TEST_CASE("hierarchical: converges to the analytic solution as epsilon shrinks", "[slow]") {
+    const auto mesh = cornell_mesh(0.05);
+    rad::FormFactorOptions analytic;
+    analytic.method = "analytic";
+    const auto ff = rad::compute_form_factors(mesh, rad::resolve_form_factor_options(analytic));
+    const auto emission = rad::emission_of(mesh);
+    const auto reference = solve(mesh, rad::make_operator(mesh, ff), emission);
+    std::vector<double> errors;
+    std::vector<std::uint64_t> link_counts;
+    for (double epsilon : {3e-2, 1e-2, 1e-3}) {
+        rad::HierarchyOptions options;
+        options.epsilon = epsilon;
+        const auto links = rad::compute_links(mesh, options);
+        const auto b = solve(mesh, rad::make_operator(mesh, links), emission);
+        double se = 0, sr = 0;
+        for (std::size_t i = 0; i < b.values.size(); ++i) {
+            const double area = mesh.patches[i / 3].area;
+            se += area * std::pow(b.values[i] - reference.values[i], 2);
+            sr += area * std::pow(reference.values[i], 2);
+        }
+        errors.push_back(std::sqrt(se / sr));
+        link_counts.push_back(links.links());
+    }
+    INFO("rms errors " << errors[0] << " " << errors[1] << " " << errors[2]);
+    CHECK(errors[1] < errors[0]);
+    CHECK(errors[2] < errors[1]);
+    CHECK(errors[2] < 0.005);
+    CHECK(link_counts[0] < link_counts[1]);
+    CHECK(link_counts[1] < link_counts[2]);
+}
+
+TEST_CASE("hierarchical: light groups superpose, and any thread count gives the same links") {
+    const auto mesh = cornell_mesh(0.1);
+    radfmt::LinkData one, two;
+    {
+        rad::ThreadLimit limit(1);
+        one = rad::compute_links(mesh, {});
+    }
+    {
+        rad::ThreadLimit limit(2);
+        two = rad::compute_links(mesh, {});
+    }
+    CHECK(one.leaf_order == two.leaf_order);
+    CHECK(one.link_start == two.link_start);
+    CHECK(one.source == two.source);
+    CHECK(one.factor == two.factor);
+
+    // Two halves of the emission solved as 6 channels, against their sum as 3.
+    const auto op = rad::make_operator(mesh, one);
+    const auto emission = rad::emission_of(mesh);
+    rad::Channels halves(mesh.patches.size(), 6);
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            halves.at(i, c) = 0.25 * emission.at(i, c);
+            halves.at(i, 3 + c) = 0.75 * emission.at(i, c);
+        }
+    const auto together = solve(mesh, op, emission);
+    const auto apart = solve(mesh, op, halves);
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            CHECK(apart.at(i, c) + apart.at(i, 3 + c) ==
+                  Approx(together.at(i, c)).epsilon(1e-6).margin(1e-12));
+}
+
+TEST_CASE("links files: written and read back whole; a broken tree is refused") {
+    const auto mesh = mesh_from_obj(cube_obj(), 0.5);
+    const auto links = rad::compute_links(mesh, {});
+    const auto dir = temp_dir("links");
+    radfmt::Header header;
+    radfmt::write_links(dir / "a.links", header, links);
+    const auto back = radfmt::read_links(dir / "a.links");
+    CHECK(back.leaf_order == links.leaf_order);
+    CHECK(back.link_start == links.link_start);
+    CHECK(back.source == links.source);
+    CHECK(back.factor == links.factor);
+    REQUIRE(back.nodes.size() == links.nodes.size());
+
+    auto broken = links;
+    broken.nodes[0].left = 0; // a node its own child
+    radfmt::write_links(dir / "b.links", header, broken);
+    CHECK_THROWS_WITH(radfmt::read_links(dir / "b.links"), Contains("out of order"));
+    broken = links;
+    broken.source[0] = static_cast<std::uint32_t>(links.nodes.size());
+    radfmt::write_links(dir / "c.links", header, broken);
+    CHECK_THROWS_WITH(radfmt::read_links(dir / "c.links"), Contains("a node that does not exist"));
+    broken = links;
+    broken.leaf_order[1] = broken.leaf_order[0];
+    radfmt::write_links(dir / "d.links", header, broken);
+    CHECK_THROWS_WITH(radfmt::read_links(dir / "d.links"), Contains("permutation"));
+    fs::remove_all(dir);
+}
