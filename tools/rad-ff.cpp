@@ -73,10 +73,11 @@ void write_hierarchical(const std::string& input, const radfmt::MeshData& mesh,
     std::fprintf(
         stderr,
         "rad-ff: hierarchical: %zu patches, %zu nodes, %llu links (%.1f a patch, %llu "
-        "between two patches), %llu pairs examined (%llu facing away), %llu rays; tree "
-        "%.3f s, links %.3f s\n",
+        "between two patches; %llu node pairs by contour integral), %llu pairs examined (%llu "
+        "facing away), %llu rays; tree %.3f s, links %.3f s\n",
         mesh.patches.size(), links.nodes.size(), static_cast<unsigned long long>(links.links()),
         double(links.links()) / n, static_cast<unsigned long long>(stats.leaf_links),
+        static_cast<unsigned long long>(stats.outline_pairs),
         static_cast<unsigned long long>(stats.pairs), static_cast<unsigned long long>(stats.culled),
         static_cast<unsigned long long>(stats.rays), stats.tree_seconds, stats.link_seconds);
 }

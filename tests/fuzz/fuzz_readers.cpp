@@ -17,6 +17,7 @@
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
+#include "radiosity/hierarchy.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/scene.hpp"
@@ -243,6 +244,17 @@ void use_form_factors(const radfmt::MeshData& mesh, const radfmt::FormFactorData
         rad::solver(method).solve(op, rad::emission_of(mesh), control);
 }
 
+// A links file is trusted by the sweep once read: every index it follows must be checked.
+void use_links(const radfmt::MeshData& mesh, const radfmt::LinkData& links) {
+    if (links.patch_count != mesh.patches.size()) return;
+    const auto op = rad::make_operator(mesh, links);
+    rad::SolveControl control;
+    control.max_iterations = 3;
+    for (const char* method : {"gs", "jacobi"})
+        rad::solver(method).solve(op, rad::emission_of(mesh), control);
+    rad::link_row_sums(links);
+}
+
 void use_radiosity(const radfmt::MeshData& mesh, const radfmt::RadiosityData& rad_data) {
     const auto values = rad_data.group_count() ? rad::mix_light_groups(rad_data, {}, false, "rad")
                                                : rad_data.radiosity;
@@ -256,7 +268,7 @@ int main(int argc, char** argv) {
     if (argc < 2) {
         std::cerr << "usage: fuzz_readers DATA_DIR [--iterations N] [--seconds S] [--seed K] "
                      "[--kind NAME[,NAME...]] [--min-cases N]\n  kinds: mesh formfactors "
-                     "radiosity obj mtl gltf glb ply plyb dae stl fbx\n";
+                     "links radiosity obj mtl gltf glb ply plyb dae stl fbx\n";
         return 1;
     }
     const fs::path data = argv[1];
@@ -312,6 +324,7 @@ int main(int argc, char** argv) {
         ff_header.set(key, value);
     radfmt::write_form_factors(dir / "seed.ff", ff_header, ff);
     radfmt::write_radiosity(dir / "seed.rad", header, rad::radiosity_data(solution, {}));
+    radfmt::write_links(dir / "seed.links", header, rad::compute_links(mesh, {}));
     // A second radiosity seed with light groups (version 2's extra arrays).
     rad::Channels grouped(mesh.patches.size(), 6);
     for (auto& v : grouped.values) v = 0.25;
@@ -376,6 +389,10 @@ int main(int argc, char** argv) {
              use_form_factors(mesh_copy, radfmt::read_form_factors(
                                              p, nullptr, radfmt::FormFactorLayout::compact));
          }},
+        {"links",
+         {read_bytes(dir / "seed.links")},
+         false,
+         [&](const fs::path& p) { use_links(mesh_copy, radfmt::read_links(p)); }},
         {"radiosity",
          {read_bytes(dir / "seed.rad"), read_bytes(dir / "seed-groups.rad")},
          false,

@@ -30,10 +30,11 @@ struct HierarchyOptions {
 };
 
 struct HierarchyStats {
-    std::uint64_t pairs = 0;      // node pairs the oracle examined
-    std::uint64_t culled = 0;     // of those, pairs facing away (no rays)
-    std::uint64_t rays = 0;       // visibility rays cast
-    std::uint64_t leaf_links = 0; // links between two patches (both directions)
+    std::uint64_t pairs = 0;         // node pairs the oracle examined
+    std::uint64_t culled = 0;        // of those, pairs facing away (no rays)
+    std::uint64_t rays = 0;          // visibility rays cast
+    std::uint64_t leaf_links = 0;    // links between two patches (both directions)
+    std::uint64_t outline_pairs = 0; // other node pairs valued by a contour integral
     double tree_seconds = 0, link_seconds = 0;
 };
 

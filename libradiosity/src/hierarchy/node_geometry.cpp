@@ -1,5 +1,8 @@
 #include "hierarchy/node_geometry.hpp"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_2.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -21,6 +24,26 @@ NodeGeometry merged(const NodeGeometry& a, const NodeGeometry& b, double toleran
                  std::abs(a.offset - b.offset) <= tolerance;
     out.normal = a.normal;
     out.offset = a.offset;
+    return out;
+}
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+double polygon_area(std::span<const Vec3> polygon) {
+    Vec3 sum{0, 0, 0};
+    for (std::size_t k = 0; k + 2 < polygon.size(); ++k)
+        sum = sum + cross(polygon[k + 1] - polygon[0], polygon[k + 2] - polygon[0]);
+    return 0.5 * length(sum);
+}
+
+// The convex hull of points on the plane with unit normal `normal`, as 3D points.
+std::vector<Vec3> planar_hull(const std::vector<Vec3>& points, const Vec3& normal) {
+    const Vec3 u = orthogonal(normal), v = cross(normal, u);
+    const Vec3 origin = points.front();
+    std::vector<Kernel::Point_2> flat, hull;
+    for (const auto& p : points) flat.emplace_back(dot(p - origin, u), dot(p - origin, v));
+    CGAL::convex_hull_2(flat.begin(), flat.end(), std::back_inserter(hull));
+    std::vector<Vec3> out;
+    for (const auto& h : hull) out.push_back(origin + u * h.x() + v * h.y());
     return out;
 }
 } // namespace
@@ -57,6 +80,34 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
         leaf.normal = patch.normal;
         leaf.offset = dot(patch.normal, patch.centroid);
     }
+    outline_start_.assign(tree.nodes.size(), 0);
+    outline_size_.assign(tree.nodes.size(), 0);
+    for (std::size_t i = tree.nodes.size(); i-- > 0;) add_outline(static_cast<std::uint32_t>(i));
+}
+
+// A leaf's outline is its patch; a parent's the hull of its children's, kept when that hull
+// has the parent's area (its patches fill it).
+void NodeGeometries::add_outline(std::uint32_t node) {
+    const auto& n = tree_.nodes[node];
+    const auto& geometry = nodes_[node];
+    if (!geometry.planar) return;
+    std::vector<Vec3> polygon;
+    if (n.left == radfmt::kNoNode) {
+        const auto points = polygons_[tree_.leaf_order[n.first]].points();
+        polygon.assign(points.begin(), points.end());
+    } else {
+        if (outline_size_[n.left] == 0 || outline_size_[n.right] == 0) return;
+        std::vector<Vec3> corners;
+        for (const auto child : {n.left, n.right})
+            for (const auto& p : outline(child)) corners.push_back(p);
+        polygon = planar_hull(corners, geometry.normal);
+    }
+    if (polygon.size() < 3 || polygon.size() > kMaxOutline ||
+        std::abs(polygon_area(polygon) - geometry.area) > 1e-6 * geometry.area)
+        return;
+    outline_start_[node] = static_cast<std::uint32_t>(outline_points_.size());
+    outline_size_[node] = static_cast<std::uint8_t>(polygon.size());
+    outline_points_.insert(outline_points_.end(), polygon.begin(), polygon.end());
 }
 
 NodePoint NodeGeometries::point(std::uint32_t node, double u, double v, double w) const {

@@ -4,6 +4,7 @@
 #include "radiosity/formfactor_method.hpp"
 #include "radiosity/vec.hpp"
 
+#include <span>
 #include <vector>
 
 namespace rad::hierarchy {
@@ -32,8 +33,16 @@ class NodeGeometries {
     NodePoint point(std::uint32_t node, double u, double v, double w) const;
     // True when nothing of `b` lies strictly in front of planar node `a`'s plane.
     bool all_behind(std::uint32_t a, std::uint32_t b) const;
+    // The outline of a flat node whose patches fill a convex polygon (a block of a patch
+    // grid is a rectangle), so that form factors to it are one contour integral; empty when
+    // its patches do not (not flat, not convex, or an outline of over kMaxOutline corners).
+    std::span<const Vec3> outline(std::uint32_t node) const {
+        return {outline_points_.data() + outline_start_[node], outline_size_[node]};
+    }
+    static constexpr std::size_t kMaxOutline = 16;
 
   private:
+    void add_outline(std::uint32_t node);
     const radfmt::MeshData& mesh_;
     const std::vector<PatchPolygon>& polygons_;
     const radfmt::LinkData& tree_;
@@ -41,6 +50,9 @@ class NodeGeometries {
     std::vector<double> area_before_; // per position in leaf order (+1): the areas before it
     std::vector<double> first_share_; // per patch: its first fan triangle's share of its area
     double tolerance_ = 0;            // lengths below this are rounding
+    std::vector<std::uint32_t> outline_start_;
+    std::vector<std::uint8_t> outline_size_;
+    std::vector<Vec3> outline_points_;
 };
 
 } // namespace rad::hierarchy

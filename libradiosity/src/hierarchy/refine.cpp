@@ -36,6 +36,8 @@ struct ThreadWork {
 // Below this many patches in a pair, its refinement runs on the thread that found it.
 constexpr std::uint32_t kSerialPatches = 64;
 constexpr int kPatchPairPoints = 16;
+// Points on the receiving side of a contour-integral link value.
+constexpr int kOutlinePoints = 16;
 // How much a side's uneven facing adds to the oracle's estimate.
 constexpr double kSpreadWeight = 4;
 
@@ -73,6 +75,7 @@ class LinkRefiner {
             stats.culled += work.stats.culled;
             stats.rays += work.stats.rays;
             stats.leaf_links += work.stats.leaf_links;
+            stats.outline_pairs += work.stats.outline_pairs;
         }
         std::sort(all.begin(), all.end(), [](const Link& a, const Link& b) {
             return a.receiver < b.receiver || (a.receiver == b.receiver && a.source < b.source);
@@ -138,12 +141,14 @@ class LinkRefiner {
         if (ready) {
             // The link's value from samples of its own: those that decided to link are biased
             // low (a pair whose draw came out high was split instead).
-            const auto [factor, visible] = trace_pair(estimate_pair(a, b, rng), work);
+            const auto traced = trace_pair(estimate_pair(a, b, rng), work);
+            const double visible = traced.visible;
+            const auto value = link_factor(a, b, traced, rng, work);
             // Visibility that varies across the pair (a shadow's edge) counts up to double.
             const double varies = visible > 0 && visible < 1 ? 1 + 4 * visible * (1 - visible) : 1;
-            if (error_a * varies > options_.epsilon) ready &= ~kIntoA;
-            if (error_b * varies > options_.epsilon) ready &= ~kIntoB;
-            add_links(a, b, factor, ready, work);
+            if (std::max(error_a, value.spread_a) * varies > options_.epsilon) ready &= ~kIntoA;
+            if (std::max(error_b, value.spread_b) * varies > options_.epsilon) ready &= ~kIntoB;
+            add_links(a, b, value.factor, ready, work);
         }
         if (wanted & ~ready) split(a, b, wanted & ~ready);
     }
@@ -234,20 +239,86 @@ class LinkRefiner {
         return std::max(0.0, hi - lo);
     }
 
-    // F_ab with occlusion, and the visible fraction of the pairs that face each other.
-    std::pair<double, double> trace_pair(const PairEstimate& e, ThreadWork& work) const {
-        double factor = 0;
+    struct Traced {
+        double factor = 0;   // F_ab with occlusion, from the sample pairs alone
+        double visible = 0;  // the fraction of facing pairs that see each other
+        double weighted = 0; // the same, each pair weighted by its kernel
+    };
+    Traced trace_pair(const PairEstimate& e, ThreadWork& work) const {
+        Traced t;
         int facing = 0, seen = 0;
+        double total = 0;
         for (std::size_t k = 0; k < e.kernel.size(); ++k) {
             if (e.kernel[k] <= 0) continue;
             ++facing;
             ++work.stats.rays;
+            total += e.kernel[k];
             if (context_.scene.visible(e.from[k].point, e.to[k].point)) {
                 ++seen;
-                factor += e.kernel[k];
+                t.factor += e.kernel[k];
             }
         }
-        return {factor / samples_, facing ? double(seen) / facing : 0.0};
+        t.visible = facing ? double(seen) / facing : 0.0;
+        t.weighted = total > 0 ? t.factor / total : 0.0;
+        t.factor /= samples_;
+        return t;
+    }
+
+    // A link's F_ab, and how much the form factor varies over the receiving side's points
+    // (largest less smallest, for the side whose points were integrated from; 0 otherwise):
+    // a receiver gets one irradiance, so what varies over it is the link's error.
+    struct LinkValue {
+        double factor = 0;
+        double spread_a = 0, spread_b = 0;
+    };
+
+    // When either node fills a convex outline, its exact contour integral from points of the
+    // other (the larger node's outline, when both have one) times the traced pairs'
+    // visibility; else the traced pairs' own estimate.
+    LinkValue link_factor(std::uint32_t a, std::uint32_t b, const Traced& traced, Rng& rng,
+                          ThreadWork& work) const {
+        const bool outline_a = !geometry_.outline(a).empty();
+        const bool outline_b = !geometry_.outline(b).empty();
+        if (outline_a || outline_b) ++work.stats.outline_pairs;
+        LinkValue value;
+        if (outline_b && (!outline_a || geometry_[b].area >= geometry_[a].area)) {
+            const auto f = outline_form_factor(a, b, rng);
+            value.factor = f.mean * traced.weighted;
+            value.spread_a = f.spread;
+        } else if (outline_a) {
+            const auto f = outline_form_factor(b, a, rng);
+            value.factor = f.mean * traced.weighted * geometry_[b].area / geometry_[a].area;
+            value.spread_b = f.spread;
+        } else {
+            value.factor = traced.factor;
+        }
+        return value;
+    }
+
+    struct OutlineFactor {
+        double mean = 0, spread = 0;
+    };
+    // F from node `from` to flat node `to`, unoccluded: over stratified points of `from`,
+    // the point-to-polygon form factor of `to`'s outline clipped to each point's front.
+    OutlineFactor outline_form_factor(std::uint32_t from, std::uint32_t to, Rng& rng) const {
+        const auto outline = geometry_.outline(to);
+        const auto& plane = geometry_[to];
+        std::vector<Vec3> clipped;
+        double sum = 0, lo = 1e300, hi = 0;
+        for (int k = 0; k < kOutlinePoints; ++k) {
+            const auto x = geometry_.point(from, (k + rng.uniform()) / kOutlinePoints,
+                                           rng.uniform(), rng.uniform());
+            double f = 0;
+            if (dot(plane.normal, x.point) - plane.offset > 0) { // in front of its plane
+                ff::clip_to_front(outline, x.point, x.normal, clipped);
+                if (clipped.size() >= 3)
+                    f = point_to_polygon_form_factor(x.point, x.normal, clipped);
+            }
+            sum += f;
+            lo = std::min(lo, f);
+            hi = std::max(hi, f);
+        }
+        return {sum / kOutlinePoints, hi - lo};
     }
 
     void link_patches(std::uint32_t a, std::uint32_t b, unsigned directions, Rng& rng,
