@@ -23,6 +23,8 @@ double analytic_pair_form_factor(const FormFactorContext& context, std::size_t i
         length(pj.centroid - pi.centroid) < 2 * std::max(context.diameter[i], context.diameter[j]);
     double f = 0;
     for (const auto& s : close ? samples_close : samples) {
+        // A point of i behind j's plane sees j's back (i crosses j's plane): nothing.
+        if (dot(s.point - pj.centroid, pj.normal) <= 0) continue;
         // Visible fraction from this point: rays to area-uniform points of j, weighted by
         // the kernel cos cos / r^2 so that the parts of j that matter most count most (exact
         // when all or none are visible).

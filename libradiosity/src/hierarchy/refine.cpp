@@ -36,6 +36,13 @@ struct ThreadWork {
 // Below this many patches in a pair, its refinement runs on the thread that found it.
 constexpr std::uint32_t kSerialPatches = 64;
 constexpr int kPatchPairPoints = 16;
+// A flat node of at most this many patches that fills no convex outline is integrated patch
+// by patch.
+constexpr std::uint32_t kFewPatches = 16;
+// Sample pairs that decide whether a pair of nodes is linked; a pair whose sampled form
+// factor is over kClearly times epsilon in every direction wanted is split at once.
+constexpr int kDecisionSamples = 16;
+constexpr double kClearly = 4;
 // Points on the receiving side of a contour-integral link value.
 constexpr int kOutlinePoints = 16;
 // How much a side's uneven facing adds to the oracle's estimate.
@@ -120,15 +127,30 @@ class LinkRefiner {
         }
         Rng rng(options_.seed, (std::uint64_t(a) << 32) | b);
         if (is_leaf(a) && is_leaf(b)) return link_patches(a, b, wanted, rng, work);
-        const PairEstimate estimate = estimate_pair(a, b, rng);
-        // Each direction's form factor, grown by how unevenly its receiver faces the source.
-        const double f_ab = estimate.unoccluded;
-        const double f_ba = f_ab * geometry_[a].area / geometry_[b].area;
-        const double error_a = f_ab * (1 + kSpreadWeight * estimate.spread_a);
-        const double error_b = f_ba * (1 + kSpreadWeight * estimate.spread_b);
-        // No sample pair faced each other: a small facing part may have been missed. Dropped
-        // only when it could not matter (bounded by each node's solid angle seen from the
-        // other at their boxes' distance).
+        const PairEstimate estimate = estimate_pair(a, b, rng, kDecisionSamples);
+        const double area_ratio = geometry_[a].area / geometry_[b].area;
+        // Every direction wanted far above epsilon (or into a receiver that is not flat):
+        // split at once, without integrating.
+        const double sampled_a = estimate.unoccluded, sampled_b = sampled_a * area_ratio;
+        const bool split_a = !geometry_[a].planar || sampled_a > kClearly * options_.epsilon;
+        const bool split_b = !geometry_[b].planar || sampled_b > kClearly * options_.epsilon;
+        if ((!(wanted & kIntoA) || split_a) && (!(wanted & kIntoB) || split_b))
+            return split(a, b, wanted);
+        const auto exact = exact_form_factor(a, b, rng, work);
+        // Sampled alone, a near pair is not trusted (see near).
+        if (!exact.known && (geometry_[a].planar || geometry_[b].planar) && near(a, b))
+            return split(a, b, wanted);
+        const double f_ab = exact.known ? exact.factor : estimate.unoccluded;
+        const double f_ba = f_ab * area_ratio;
+        // Each direction's form factor, grown by how unevenly its receiver faces the source,
+        // or how much it varies over the receiver's points where those were integrated from.
+        const double error_a =
+            std::max(f_ab * (1 + kSpreadWeight * estimate.spread_a), exact.spread_a);
+        const double error_b =
+            std::max(f_ba * (1 + kSpreadWeight * estimate.spread_b), exact.spread_b);
+        // Nothing faces: a small facing part may have been missed between the samples.
+        // Dropped only when it could not matter (bounded by each node's solid angle seen from
+        // the other at their boxes' distance).
         if (f_ab <= 0) {
             if (largest_possible(a, b) > options_.epsilon) split(a, b, wanted);
             return;
@@ -139,18 +161,37 @@ class LinkRefiner {
         if ((wanted & kIntoB) && geometry_[b].planar && error_b <= options_.epsilon)
             ready |= kIntoB;
         if (ready) {
-            // The link's value from samples of its own: those that decided to link are biased
-            // low (a pair whose draw came out high was split instead).
-            const auto traced = trace_pair(estimate_pair(a, b, rng), work);
+            // Visibility (and a sampled value) from samples of their own: those that decided
+            // to link are biased low (a pair whose draw came out high was split instead).
+            const auto traced = trace_pair(estimate_pair(a, b, rng, samples_), work);
             const double visible = traced.visible;
-            const auto value = link_factor(a, b, traced, rng, work);
+            const double value_ab =
+                exact.known ? exact_form_factor(a, b, rng, work).factor * traced.weighted
+                            : traced.factor;
+            const double value_ba = value_ab * area_ratio;
             // Visibility that varies across the pair (a shadow's edge) counts up to double.
             const double varies = visible > 0 && visible < 1 ? 1 + 4 * visible * (1 - visible) : 1;
-            if (std::max(error_a, value.spread_a) * varies > options_.epsilon) ready &= ~kIntoA;
-            if (std::max(error_b, value.spread_b) * varies > options_.epsilon) ready &= ~kIntoB;
-            add_links(a, b, value.factor, ready, work);
+            // A sampled value must pass the test the estimate passed: a near sample pair the
+            // estimate missed shows here, and the pair is split rather than linked with it.
+            if (std::max(error_a, value_ab) * varies > options_.epsilon) ready &= ~kIntoA;
+            if (std::max(error_b, value_ba) * varies > options_.epsilon) ready &= ~kIntoB;
+            add_links(a, b, value_ab, ready, work);
         }
         if (wanted & ~ready) split(a, b, wanted & ~ready);
+    }
+
+    // Nodes nearer each other than half the larger one's size: a near part of one may fill
+    // much of the other's view, and a few samples miss it.
+    bool near(std::uint32_t a, std::uint32_t b) const {
+        const auto& ba = geometry_[a].box;
+        const auto& bb = geometry_[b].box;
+        double d2 = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double gap = std::max({0.0, ba.lo[c] - bb.hi[c], bb.lo[c] - ba.hi[c]});
+            d2 += gap * gap;
+        }
+        const double size = 0.5 * std::max(ba.diagonal(), bb.diagonal());
+        return d2 < size * size;
     }
 
     // Refines the children of one node against the other for the directions left: a
@@ -185,16 +226,16 @@ class LinkRefiner {
     // Stratified sample pairs of a and b and the unoccluded kernel between them, each pair
     // standing for all of b: an unbiased estimate of F_ab. Near pairs, where it varies
     // wildly, come out large and are refined.
-    PairEstimate estimate_pair(std::uint32_t a, std::uint32_t b, Rng& rng) const {
+    PairEstimate estimate_pair(std::uint32_t a, std::uint32_t b, Rng& rng, int samples) const {
         PairEstimate e;
         const double area_b = geometry_[b].area;
-        std::vector<int> strata(samples_);
-        for (int k = 0; k < samples_; ++k) strata[k] = k;
-        for (int k = samples_ - 1; k > 0; --k)
+        std::vector<int> strata(samples);
+        for (int k = 0; k < samples; ++k) strata[k] = k;
+        for (int k = samples - 1; k > 0; --k)
             std::swap(strata[k], strata[static_cast<int>(rng.uniform() * (k + 1))]);
-        for (int k = 0; k < samples_; ++k) {
-            const double ua = (k + rng.uniform()) / samples_;
-            const double ub = (strata[k] + rng.uniform()) / samples_;
+        for (int k = 0; k < samples; ++k) {
+            const double ua = (k + rng.uniform()) / samples;
+            const double ub = (strata[k] + rng.uniform()) / samples;
             const auto x = geometry_.point(a, ua, rng.uniform(), rng.uniform());
             const auto y = geometry_.point(b, ub, rng.uniform(), rng.uniform());
             const Vec3 d = y.point - x.point;
@@ -203,13 +244,13 @@ class LinkRefiner {
             const double ca = r > 0 ? dot(x.normal, d) / r : 0;
             const double cb = r > 0 ? -dot(y.normal, d) / r : 0;
             const double kernel =
-                ca > 0 && cb > 0 ? ca * cb * area_b / (ff::kPi * r2 + area_b / samples_) : 0.0;
+                ca > 0 && cb > 0 ? ca * cb * area_b / (ff::kPi * r2 + area_b / samples) : 0.0;
             e.from.push_back(x);
             e.to.push_back(y);
             e.kernel.push_back(kernel);
             e.unoccluded += kernel;
         }
-        e.unoccluded /= samples_;
+        e.unoccluded /= samples;
         e.spread_a = cosine_spread(e.from, geometry_[b].box.centre());
         e.spread_b = cosine_spread(e.to, geometry_[a].box.centre());
         return e;
@@ -260,39 +301,36 @@ class LinkRefiner {
         }
         t.visible = facing ? double(seen) / facing : 0.0;
         t.weighted = total > 0 ? t.factor / total : 0.0;
-        t.factor /= samples_;
+        t.factor /= double(e.kernel.size());
         return t;
     }
 
-    // A link's F_ab, and how much the form factor varies over the receiving side's points
-    // (largest less smallest, for the side whose points were integrated from; 0 otherwise):
-    // a receiver gets one irradiance, so what varies over it is the link's error.
-    struct LinkValue {
+    // F_ab unoccluded, exact when either node is integrable: the contour integrals from
+    // points of the other (the larger node's, when both are), with how
+    // much it varies over those points (largest less smallest, on that side).
+    struct ExactFactor {
+        bool known = false;
         double factor = 0;
         double spread_a = 0, spread_b = 0;
     };
-
-    // When either node fills a convex outline, its exact contour integral from points of the
-    // other (the larger node's outline, when both have one) times the traced pairs'
-    // visibility; else the traced pairs' own estimate.
-    LinkValue link_factor(std::uint32_t a, std::uint32_t b, const Traced& traced, Rng& rng,
-                          ThreadWork& work) const {
-        const bool outline_a = !geometry_.outline(a).empty();
-        const bool outline_b = !geometry_.outline(b).empty();
-        if (outline_a || outline_b) ++work.stats.outline_pairs;
-        LinkValue value;
+    ExactFactor exact_form_factor(std::uint32_t a, std::uint32_t b, Rng& rng,
+                                  ThreadWork& work) const {
+        const bool outline_a = integrable(a);
+        const bool outline_b = integrable(b);
+        ExactFactor exact;
+        if (!outline_a && !outline_b) return exact;
+        ++work.stats.outline_pairs;
+        exact.known = true;
         if (outline_b && (!outline_a || geometry_[b].area >= geometry_[a].area)) {
             const auto f = outline_form_factor(a, b, rng);
-            value.factor = f.mean * traced.weighted;
-            value.spread_a = f.spread;
-        } else if (outline_a) {
-            const auto f = outline_form_factor(b, a, rng);
-            value.factor = f.mean * traced.weighted * geometry_[b].area / geometry_[a].area;
-            value.spread_b = f.spread;
+            exact.factor = f.mean;
+            exact.spread_a = f.spread;
         } else {
-            value.factor = traced.factor;
+            const auto f = outline_form_factor(b, a, rng);
+            exact.factor = f.mean * geometry_[b].area / geometry_[a].area;
+            exact.spread_b = f.spread;
         }
-        return value;
+        return exact;
     }
 
     struct OutlineFactor {
@@ -300,6 +338,19 @@ class LinkRefiner {
     };
     // F from node `from` to flat node `to`, unoccluded: over stratified points of `from`,
     // the point-to-polygon form factor of `to`'s outline clipped to each point's front.
+    static double clipped_form_factor(const NodePoint& x, std::span<const Vec3> polygon,
+                                      std::vector<Vec3>& clipped) {
+        ff::clip_to_front(polygon, x.point, x.normal, clipped);
+        return clipped.size() >= 3 ? point_to_polygon_form_factor(x.point, x.normal, clipped) : 0.0;
+    }
+
+    // Whether F to `node` is a sum of contour integrals: a flat node that fills a convex
+    // outline, or has few patches.
+    bool integrable(std::uint32_t node) const {
+        return !geometry_.outline(node).empty() ||
+               (geometry_[node].planar && tree_.nodes[node].count <= kFewPatches);
+    }
+
     OutlineFactor outline_form_factor(std::uint32_t from, std::uint32_t to, Rng& rng) const {
         const auto outline = geometry_.outline(to);
         const auto& plane = geometry_[to];
@@ -310,9 +361,14 @@ class LinkRefiner {
                                            rng.uniform(), rng.uniform());
             double f = 0;
             if (dot(plane.normal, x.point) - plane.offset > 0) { // in front of its plane
-                ff::clip_to_front(outline, x.point, x.normal, clipped);
-                if (clipped.size() >= 3)
-                    f = point_to_polygon_form_factor(x.point, x.normal, clipped);
+                if (!outline.empty()) {
+                    f = clipped_form_factor(x, outline, clipped);
+                } else { // a few patches that fill no convex outline: each of them
+                    const auto& n = tree_.nodes[to];
+                    for (auto k2 = n.first; k2 < n.first + n.count; ++k2)
+                        f += clipped_form_factor(
+                            x, context_.polygons[tree_.leaf_order[k2]].points(), clipped);
+                }
             }
             sum += f;
             lo = std::min(lo, f);
@@ -321,10 +377,13 @@ class LinkRefiner {
         return {sum / kOutlinePoints, hi - lo};
     }
 
+    // Two patches: the analytic integral from the smaller one's points (the larger's form
+    // factor would be multiplied up by the ratio of their areas, its error with it).
     void link_patches(std::uint32_t a, std::uint32_t b, unsigned directions, Rng& rng,
                       ThreadWork& work) const {
-        const auto p = tree_.leaf_order[tree_.nodes[a].first];
-        const auto q = tree_.leaf_order[tree_.nodes[b].first];
+        const bool from_a = geometry_[a].area <= geometry_[b].area;
+        const auto p = tree_.leaf_order[tree_.nodes[from_a ? a : b].first];
+        const auto q = tree_.leaf_order[tree_.nodes[from_a ? b : a].first];
         const auto& polygon = context_.polygons[p];
         const double area = context_.mesh.patches[p].area;
         const auto samples = ff::gauss_samples(polygon, area, nodes_, weights_);
@@ -333,7 +392,7 @@ class LinkRefiner {
             ff::analytic_pair_form_factor(context_, p, q, samples, close, 1, rng, work.stats.rays);
         if (f <= 0) return;
         work.stats.leaf_links += std::popcount(directions);
-        add_links(a, b, f, directions, work);
+        add_links(a, b, from_a ? f : f * geometry_[b].area / geometry_[a].area, directions, work);
     }
 
     // Links in `directions`, reciprocal: A_a F_ab = A_b F_ba.
