@@ -43,6 +43,9 @@ constexpr std::uint32_t kFewPatches = 16;
 // factor is over kClearly times epsilon in every direction wanted is split at once.
 constexpr int kDecisionSamples = 16;
 constexpr double kClearly = 4;
+// A link valued from sample pairs alone (no node integrable) carries at most this share of
+// epsilon: its value is noisier than an integral's.
+constexpr double kSampledShare = 0.25;
 // Points on the receiving side of a contour-integral link value.
 constexpr int kOutlinePoints = 16;
 // How much a side's uneven facing adds to the oracle's estimate.
@@ -173,8 +176,10 @@ class LinkRefiner {
             const double varies = visible > 0 && visible < 1 ? 1 + 4 * visible * (1 - visible) : 1;
             // A sampled value must pass the test the estimate passed: a near sample pair the
             // estimate missed shows here, and the pair is split rather than linked with it.
-            if (std::max(error_a, value_ab) * varies > options_.epsilon) ready &= ~kIntoA;
-            if (std::max(error_b, value_ba) * varies > options_.epsilon) ready &= ~kIntoB;
+            // A value from samples alone carries their noise: it is kept to a smaller share.
+            const double limit = exact.known ? options_.epsilon : kSampledShare * options_.epsilon;
+            if (std::max(error_a, value_ab) * varies > limit) ready &= ~kIntoA;
+            if (std::max(error_b, value_ba) * varies > limit) ready &= ~kIntoB;
             add_links(a, b, value_ab, ready, work);
         }
         if (wanted & ~ready) split(a, b, wanted & ~ready);
