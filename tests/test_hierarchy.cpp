@@ -94,7 +94,9 @@ TEST_CASE("hierarchical: parallel and perpendicular squares match Howell's close
 
 TEST_CASE("hierarchical: a closed box is a furnace, B = E / (1 - rho) everywhere") {
     const auto mesh = mesh_from_obj(cube_obj(), 1.0 / 8); // 384 patches
-    const auto links = rad::compute_links(mesh, {});
+    rad::HierarchyOptions options;
+    options.epsilon = 3e-3; // finer than the default: row sums within a few percent
+    const auto links = rad::compute_links(mesh, options);
     const auto sums = rad::link_row_sums(links);
     double mean = 0;
     // Per patch within the sampling of its cluster links (64 pairs each), on average exact.
@@ -114,7 +116,9 @@ TEST_CASE("hierarchical: a closed box is a furnace, B = E / (1 - rho) everywhere
 
 TEST_CASE("hierarchical: links are reciprocal, patch to patch") {
     const auto mesh = mesh_from_obj(cube_obj(), 1.0 / 6);
-    const auto links = rad::compute_links(mesh, {});
+    rad::HierarchyOptions options;
+    options.epsilon = 3e-3;
+    const auto links = rad::compute_links(mesh, options);
     const auto f = expand(mesh, links);
     double total = 0, asymmetry = 0;
     for (const auto& [pq, value] : f) {

@@ -65,7 +65,7 @@ void write_hierarchical(const std::string& input, const radfmt::MeshData& mesh,
     const auto links = rad::compute_links(mesh, options, &stats);
     const radfmt::Parent parents[] = {{input, &mesh_header}};
     auto header = radfmt::derived_header(rad::tool_version("rad-ff"), command, parents);
-    for (const auto& [key, value] : rad::link_header_fields(options)) header.set(key, value);
+    for (const auto& [key, value] : rad::link_header_fields(options, mesh)) header.set(key, value);
     header.set("mesh_geometry_hash", mesh.geometry_hash());
     radfmt::write_links(output, header, links);
     if (quiet) return;

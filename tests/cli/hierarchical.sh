@@ -7,7 +7,7 @@ cornell_mesh 0.1
 cmp -s <("$BIN/rad-info" --csv "$TMP/c.links") <("$BIN/rad-info" --csv "$TMP/c2.links") || fail "links differ between 1 and 2 threads"
 "$BIN/rad-info" "$TMP/c.links" | grep -q "kind:      links" || fail "rad-info names the kind"
 "$BIN/rad-info" "$TMP/c.links" | grep -q "method = hierarchical" || fail "header records the method"
-"$BIN/rad-info" "$TMP/c.links" | grep -q "epsilon = 0.003" || fail "header records epsilon"
+"$BIN/rad-info" "$TMP/c.links" | grep -q "epsilon = 0.01" || fail "header records epsilon"
 # The chain: solve (gs, jacobi), then shade as any .rad.
 "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.links" -o "$TMP/gs.rad" -q || fail "solve gs over links"
 "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.links" -o "$TMP/jacobi.rad" --method jacobi -q || fail "solve jacobi over links"
@@ -25,6 +25,12 @@ PY
 "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.links" -o "$TMP/groups.rad" --light-groups --log "$TMP/log.csv" -q || fail "light groups over links"
 "$BIN/rad-info" "$TMP/groups.rad" | grep -q "light group" || fail "groups stored"
 [ "$(head -1 "$TMP/log.csv")" = "iteration,residual,power_r,power_g,power_b,seconds" ] || fail "log over links"
+# Links are refined finer for the mesh's emitters: a material made to emit at solve time is warned about.
+"$BIN/rad-info" "$TMP/c.links" | grep -q "emitters = light" || fail "header records the emitters"
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.links" -o "$TMP/white.rad" --emission white=1,1,1 -q 2> "$TMP/warn.txt" || fail "solve with a new emitter"
+grep -q "material 'white' emits" "$TMP/warn.txt" || fail "no warning for an emitter the links were not refined for"
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.links" -o "$TMP/white.rad" --emission light=1,1,1 -q 2> "$TMP/warn.txt"
+! grep -q "emits, but" "$TMP/warn.txt" || fail "warned about the mesh's own emitter"
 # Refusals: a stale file, shooting solvers, shards and estimates.
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/other.mesh" --max-edge 0.2 -q
 expect_error "c.links is stale" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/other.mesh" "$TMP/c.links" -o "$TMP/x.rad"

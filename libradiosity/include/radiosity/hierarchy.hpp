@@ -15,10 +15,11 @@ namespace rad {
 
 // A link carries light into node i from node j when F_ij, the share of i's view that j
 // fills (grown by up to 5x when i's patches face j unevenly, and up to 2x when visibility
-// varies across the pair), is at most epsilon; else a node is split. On the Cornell box at
-// 5144 patches, 3e-3 gives 150 links a patch (1/16 of the matrix), surfaces within 0.6% of
-// the analytic solution; 1e-2 gives 36 (1/68), within 0.8% but blocky to look at.
-inline constexpr double kDefaultLinkEpsilon = 3e-3;
+// varies across the pair), is at most epsilon (a 64th of it when j holds an emitter); else a
+// node is split. On the Cornell box at 5144 patches (bench/hierarchical), 1e-2 gives about
+// 60 links a patch (1/40 of the analytic matrix's non-zeros), every surface's mean within 1%
+// of the analytic solution and 3.6% rms per patch; 3e-3 about 170 (1/14), 0.6% and 2.1%.
+inline constexpr double kDefaultLinkEpsilon = 1e-2;
 inline constexpr int kDefaultLinkSamples = 64;
 
 struct HierarchyOptions {
@@ -47,9 +48,15 @@ radfmt::LinkData build_patch_tree(const radfmt::MeshData& mesh);
 radfmt::LinkData compute_links(const radfmt::MeshData& mesh, const HierarchyOptions& options,
                                HierarchyStats* stats = nullptr);
 
-// The header fields that say how a links file was computed.
-std::vector<std::pair<std::string, std::string>>
-link_header_fields(const HierarchyOptions& options);
+// The header fields that say how a links file was computed, and for which emitters (the
+// materials of `mesh` that emit: light from them is linked finer).
+std::vector<std::pair<std::string, std::string>> link_header_fields(const HierarchyOptions& options,
+                                                                    const radfmt::MeshData& mesh);
+
+// The materials that emit in `mesh` (after any overrides) but were not emitters when
+// `links_header` was computed: their light travels over links refined as for any surface.
+std::vector<std::string> emitters_not_refined_for(const radfmt::Header& links_header,
+                                                  const radfmt::MeshData& mesh);
 
 // Per patch, its row sum of F through the hierarchy: the factors of the links its leaf and
 // every node above it gather over (1 in a closed scene).

@@ -20,6 +20,7 @@ NodeGeometry merged(const NodeGeometry& a, const NodeGeometry& b, double toleran
     out.box = a.box;
     out.box.add(b.box.lo);
     out.box.add(b.box.hi);
+    out.emits = a.emits || b.emits;
     out.planar = a.planar && b.planar && dot(a.normal, b.normal) > 1 - 1e-9 &&
                  std::abs(a.offset - b.offset) <= tolerance;
     out.normal = a.normal;
@@ -77,6 +78,7 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
         leaf.area = patch.area;
         for (const auto& corner : polygons[tree.leaf_order[n.first]].points()) leaf.box.add(corner);
         leaf.planar = true;
+        leaf.emits = mesh.materials[patch.material].emits();
         leaf.normal = patch.normal;
         leaf.offset = dot(patch.normal, patch.centroid);
     }

@@ -13,8 +13,9 @@ struct NodeGeometry {
     double area = 0;
     Box box; // of its patches' corners
     bool planar = false;
-    Vec3 normal{};     // when planar: every patch's normal
-    double offset = 0; // when planar: the plane dot(normal, x) = offset
+    Vec3 normal{};      // when planar: every patch's normal
+    double offset = 0;  // when planar: the plane dot(normal, x) = offset
+    bool emits = false; // some patch of it is of a material that emits in the mesh
 };
 
 // A point of a node, with the normal of the patch it lies on.

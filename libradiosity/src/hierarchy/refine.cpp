@@ -46,6 +46,10 @@ constexpr double kClearly = 4;
 // A link valued from sample pairs alone (no node integrable) carries at most this share of
 // epsilon: its value is noisier than an integral's.
 constexpr double kSampledShare = 0.25;
+// Light from a node with an emitter (a material that emits in the mesh) is kept to this
+// share of epsilon: a lamp is tens of times brighter than what it lights, and a link's error
+// is its form factor's times the source's radiosity.
+constexpr double kEmitterShare = 1.0 / 64;
 // Points on the receiving side of a contour-integral link value.
 constexpr int kOutlinePoints = 16;
 // How much a side's uneven facing adds to the oracle's estimate.
@@ -135,8 +139,12 @@ class LinkRefiner {
         // Every direction wanted far above epsilon (or into a receiver that is not flat):
         // split at once, without integrating.
         const double sampled_a = estimate.unoccluded, sampled_b = sampled_a * area_ratio;
-        const bool split_a = !geometry_[a].planar || sampled_a > kClearly * options_.epsilon;
-        const bool split_b = !geometry_[b].planar || sampled_b > kClearly * options_.epsilon;
+        const double clearly_a =
+            kClearly * options_.epsilon * (geometry_[b].emits ? kEmitterShare : 1);
+        const double clearly_b =
+            kClearly * options_.epsilon * (geometry_[a].emits ? kEmitterShare : 1);
+        const bool split_a = !geometry_[a].planar || sampled_a > clearly_a;
+        const bool split_b = !geometry_[b].planar || sampled_b > clearly_b;
         if ((!(wanted & kIntoA) || split_a) && (!(wanted & kIntoB) || split_b))
             return split(a, b, wanted);
         const auto exact = exact_form_factor(a, b, rng, work);
@@ -158,11 +166,14 @@ class LinkRefiner {
             if (largest_possible(a, b) > options_.epsilon) split(a, b, wanted);
             return;
         }
+        // Light from an emitter is kept to a smaller share of epsilon (see kEmitterShare).
+        const double epsilon_a =
+            geometry_[b].emits ? kEmitterShare * options_.epsilon : options_.epsilon;
+        const double epsilon_b =
+            geometry_[a].emits ? kEmitterShare * options_.epsilon : options_.epsilon;
         unsigned ready = 0;
-        if ((wanted & kIntoA) && geometry_[a].planar && error_a <= options_.epsilon)
-            ready |= kIntoA;
-        if ((wanted & kIntoB) && geometry_[b].planar && error_b <= options_.epsilon)
-            ready |= kIntoB;
+        if ((wanted & kIntoA) && geometry_[a].planar && error_a <= epsilon_a) ready |= kIntoA;
+        if ((wanted & kIntoB) && geometry_[b].planar && error_b <= epsilon_b) ready |= kIntoB;
         if (ready) {
             // Visibility (and a sampled value) from samples of their own: those that decided
             // to link are biased low (a pair whose draw came out high was split instead).
@@ -177,9 +188,9 @@ class LinkRefiner {
             // A sampled value must pass the test the estimate passed: a near sample pair the
             // estimate missed shows here, and the pair is split rather than linked with it.
             // A value from samples alone carries their noise: it is kept to a smaller share.
-            const double limit = exact.known ? options_.epsilon : kSampledShare * options_.epsilon;
-            if (std::max(error_a, value_ab) * varies > limit) ready &= ~kIntoA;
-            if (std::max(error_b, value_ba) * varies > limit) ready &= ~kIntoB;
+            const double share = exact.known ? 1.0 : kSampledShare;
+            if (std::max(error_a, value_ab) * varies > share * epsilon_a) ready &= ~kIntoA;
+            if (std::max(error_b, value_ba) * varies > share * epsilon_b) ready &= ~kIntoB;
             add_links(a, b, value_ab, ready, work);
         }
         if (wanted & ~ready) split(a, b, wanted & ~ready);
@@ -442,14 +453,39 @@ radfmt::LinkData compute_links(const radfmt::MeshData& mesh, const HierarchyOpti
     return tree;
 }
 
-std::vector<std::pair<std::string, std::string>>
-link_header_fields(const HierarchyOptions& options) {
+namespace {
+std::vector<std::string> emitting_materials(const radfmt::MeshData& mesh) {
+    std::vector<bool> used(mesh.materials.size(), false);
+    for (const auto& p : mesh.patches) used[p.material] = true;
+    std::vector<std::string> names;
+    for (std::size_t m = 0; m < mesh.materials.size(); ++m)
+        if (used[m] && mesh.materials[m].emits()) names.push_back(mesh.materials[m].name);
+    return names;
+}
+} // namespace
+
+std::vector<std::pair<std::string, std::string>> link_header_fields(const HierarchyOptions& options,
+                                                                    const radfmt::MeshData& mesh) {
     char epsilon[32];
     std::snprintf(epsilon, sizeof epsilon, "%.9g", options.epsilon);
+    std::string emitters;
+    for (const auto& name : emitting_materials(mesh))
+        emitters += (emitters.empty() ? "" : ",") + name;
     return {{"method", "hierarchical"},
             {"epsilon", epsilon},
             {"samples", std::to_string(options.samples)},
-            {"seed", std::to_string(options.seed)}};
+            {"seed", std::to_string(options.seed)},
+            {"emitters", emitters}};
+}
+
+std::vector<std::string> emitters_not_refined_for(const radfmt::Header& links_header,
+                                                  const radfmt::MeshData& mesh) {
+    const auto* recorded = links_header.find("emitters");
+    const std::string list = "," + (recorded ? *recorded : std::string()) + ",";
+    std::vector<std::string> out;
+    for (const auto& name : emitting_materials(mesh))
+        if (list.find("," + name + ",") == std::string::npos) out.push_back(name);
+    return out;
 }
 
 } // namespace rad
