@@ -157,6 +157,10 @@ int main(int argc, char** argv) {
                    "other is at most this (smaller: more links, closer to the full matrix)")
         ->capture_default_str()
         ->check(rad::tool::finite_range(1e-9, 1));
+    app.add_option("--emitters", hierarchy.emitters,
+                   "hierarchical: materials to link as emitters (finer) besides those that emit "
+                   "in the mesh, comma-separated: for a lamp made to emit at solve time")
+        ->delimiter(',');
     app.add_option("--seed", options.seed, "Seed for every random choice")->capture_default_str();
     rad::tool::add_threads_option(app, threads);
     app.add_option("--max-memory", max_memory,

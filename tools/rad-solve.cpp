@@ -197,8 +197,9 @@ int main(int argc, char** argv) {
             for (const auto& name : rad::emitters_not_refined_for(ff_header, mesh))
                 std::cerr << "rad-solve: warning: material '" << name << "' emits, but " << ff_path
                           << " was refined for the emitters of its mesh, not for it: its direct "
-                             "light arrives over coarser links (rad-ff --method hierarchical on "
-                             "a mesh where it emits refines for it)\n";
+                             "light arrives over coarser links (rad-ff --method hierarchical "
+                             "--emitters "
+                          << name << " refines for it)\n";
         for (const auto& warning : warnings) std::cerr << "rad-solve: warning: " << warning << '\n';
 
         auto control = rad::stop_rule(solver, request, mesh.patches.size());

@@ -31,6 +31,11 @@ PY
 grep -q "material 'white' emits" "$TMP/warn.txt" || fail "no warning for an emitter the links were not refined for"
 "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.links" -o "$TMP/white.rad" --emission light=1,1,1 -q 2> "$TMP/warn.txt"
 ! grep -q "emits, but" "$TMP/warn.txt" || fail "warned about the mesh's own emitter"
+# --emitters refines for a material made to emit at solve time: no warning then.
+"$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/w.links" --method hierarchical --emitters white -q
+"$BIN/rad-info" "$TMP/w.links" | grep "emitters = " | grep -q "white" || fail "--emitters recorded"
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/w.links" -o "$TMP/white.rad" --emission white=1,1,1 -q 2> "$TMP/warn.txt"
+! grep -q "emits, but" "$TMP/warn.txt" || fail "warned although --emitters named the material"
 # Refusals: a stale file, shooting solvers, shards and estimates.
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/other.mesh" --max-edge 0.2 -q
 expect_error "c.links is stale" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/other.mesh" "$TMP/c.links" -o "$TMP/x.rad"

@@ -28,6 +28,9 @@ struct HierarchyOptions {
     // between two patches is the analytic method's: 16 points on the receiver, a ray each).
     int samples = kDefaultLinkSamples;
     std::uint64_t seed = 1;
+    // Materials whose light is linked as an emitter's besides those that emit in the mesh
+    // (rad-ff --emitters): for one that will be made to emit at solve time.
+    std::vector<std::string> emitters = {};
 };
 
 struct HierarchyStats {
@@ -49,7 +52,8 @@ radfmt::LinkData compute_links(const radfmt::MeshData& mesh, const HierarchyOpti
                                HierarchyStats* stats = nullptr);
 
 // The header fields that say how a links file was computed, and for which emitters (the
-// materials of `mesh` that emit: light from them is linked finer).
+// materials of `mesh` that emit or are named in options.emitters: their light is linked
+// finer).
 std::vector<std::pair<std::string, std::string>> link_header_fields(const HierarchyOptions& options,
                                                                     const radfmt::MeshData& mesh);
 

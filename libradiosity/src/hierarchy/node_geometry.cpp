@@ -51,7 +51,7 @@ std::vector<Vec3> planar_hull(const std::vector<Vec3>& points, const Vec3& norma
 
 NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
                                const std::vector<PatchPolygon>& polygons,
-                               const radfmt::LinkData& tree)
+                               const radfmt::LinkData& tree, const std::vector<bool>& emitter)
     : mesh_(mesh), polygons_(polygons), tree_(tree), nodes_(tree.nodes.size()) {
     tolerance_ = 1e-9 * bounds(mesh.vertices).diagonal();
     first_share_.resize(mesh.patches.size(), 1.0);
@@ -78,7 +78,7 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
         leaf.area = patch.area;
         for (const auto& corner : polygons[tree.leaf_order[n.first]].points()) leaf.box.add(corner);
         leaf.planar = true;
-        leaf.emits = mesh.materials[patch.material].emits();
+        leaf.emits = emitter[patch.material];
         leaf.normal = patch.normal;
         leaf.offset = dot(patch.normal, patch.centroid);
     }

@@ -23,6 +23,28 @@ namespace {
 using hierarchy::NodeGeometries;
 using hierarchy::NodePoint;
 
+// Per material: emits in the mesh, or is named in options.emitters.
+std::vector<bool> emitter_materials(const radfmt::MeshData& mesh, const HierarchyOptions& options) {
+    std::vector<bool> out(mesh.materials.size(), false);
+    for (std::size_t m = 0; m < mesh.materials.size(); ++m) {
+        out[m] = mesh.materials[m].emits();
+        for (const auto& name : options.emitters)
+            if (name == mesh.materials[m].name) out[m] = true;
+    }
+    return out;
+}
+
+// The names of the materials used by a patch for which `emitter` holds.
+std::vector<std::string> emitter_names(const radfmt::MeshData& mesh,
+                                       const std::vector<bool>& emitter) {
+    std::vector<bool> used(mesh.materials.size(), false);
+    for (const auto& p : mesh.patches) used[p.material] = true;
+    std::vector<std::string> names;
+    for (std::size_t m = 0; m < mesh.materials.size(); ++m)
+        if (used[m] && emitter[m]) names.push_back(mesh.materials[m].name);
+    return names;
+}
+
 struct Link {
     std::uint32_t receiver, source;
     float factor;
@@ -59,7 +81,8 @@ class LinkRefiner {
   public:
     LinkRefiner(const FormFactorContext& context, const radfmt::LinkData& tree,
                 const HierarchyOptions& options)
-        : context_(context), tree_(tree), geometry_(context.mesh, context.polygons, tree),
+        : context_(context), tree_(tree),
+          geometry_(context.mesh, context.polygons, tree, emitter_materials(context.mesh, options)),
           options_(options), samples_(std::max(1, options.samples)) {
         // Two patches: the analytic method's default quadrature (16 points, 64 when close).
         const int m = ff::points_per_axis(kPatchPairPoints);
@@ -453,23 +476,12 @@ radfmt::LinkData compute_links(const radfmt::MeshData& mesh, const HierarchyOpti
     return tree;
 }
 
-namespace {
-std::vector<std::string> emitting_materials(const radfmt::MeshData& mesh) {
-    std::vector<bool> used(mesh.materials.size(), false);
-    for (const auto& p : mesh.patches) used[p.material] = true;
-    std::vector<std::string> names;
-    for (std::size_t m = 0; m < mesh.materials.size(); ++m)
-        if (used[m] && mesh.materials[m].emits()) names.push_back(mesh.materials[m].name);
-    return names;
-}
-} // namespace
-
 std::vector<std::pair<std::string, std::string>> link_header_fields(const HierarchyOptions& options,
                                                                     const radfmt::MeshData& mesh) {
     char epsilon[32];
     std::snprintf(epsilon, sizeof epsilon, "%.9g", options.epsilon);
     std::string emitters;
-    for (const auto& name : emitting_materials(mesh))
+    for (const auto& name : emitter_names(mesh, emitter_materials(mesh, options)))
         emitters += (emitters.empty() ? "" : ",") + name;
     return {{"method", "hierarchical"},
             {"epsilon", epsilon},
@@ -483,7 +495,9 @@ std::vector<std::string> emitters_not_refined_for(const radfmt::Header& links_he
     const auto* recorded = links_header.find("emitters");
     const std::string list = "," + (recorded ? *recorded : std::string()) + ",";
     std::vector<std::string> out;
-    for (const auto& name : emitting_materials(mesh))
+    std::vector<bool> emits(mesh.materials.size());
+    for (std::size_t m = 0; m < mesh.materials.size(); ++m) emits[m] = mesh.materials[m].emits();
+    for (const auto& name : emitter_names(mesh, emits))
         if (list.find("," + name + ",") == std::string::npos) out.push_back(name);
     return out;
 }
