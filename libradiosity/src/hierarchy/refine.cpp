@@ -219,9 +219,8 @@ class LinkRefiner {
         if (wanted & ~ready) split(a, b, wanted & ~ready);
     }
 
-    // Nodes nearer each other than half the larger one's size: a near part of one may fill
-    // much of the other's view, and a few samples miss it.
-    bool near(std::uint32_t a, std::uint32_t b) const {
+    // The squared distance between the boxes of nodes a and b (0 when they overlap).
+    double gap_squared(std::uint32_t a, std::uint32_t b) const {
         const auto& ba = geometry_[a].box;
         const auto& bb = geometry_[b].box;
         double d2 = 0;
@@ -229,7 +228,15 @@ class LinkRefiner {
             const double gap = std::max({0.0, ba.lo[c] - bb.hi[c], bb.lo[c] - ba.hi[c]});
             d2 += gap * gap;
         }
-        const double size = 0.5 * std::max(ba.diagonal(), bb.diagonal());
+        return d2;
+    }
+
+    // Nodes nearer each other than half the larger one's size: a near part of one may fill
+    // much of the other's view, and a few samples miss it.
+    bool near(std::uint32_t a, std::uint32_t b) const {
+        const double d2 = gap_squared(a, b);
+        const double size =
+            0.5 * std::max(geometry_[a].box.diagonal(), geometry_[b].box.diagonal());
         return d2 < size * size;
     }
 
@@ -298,13 +305,7 @@ class LinkRefiner {
     // The most F_ab or F_ba can be: the other node's area over pi d^2, d the distance
     // between the nodes' boxes.
     double largest_possible(std::uint32_t a, std::uint32_t b) const {
-        const auto& ba = geometry_[a].box;
-        const auto& bb = geometry_[b].box;
-        double d2 = 0;
-        for (int c = 0; c < 3; ++c) {
-            const double gap = std::max({0.0, ba.lo[c] - bb.hi[c], bb.lo[c] - ba.hi[c]});
-            d2 += gap * gap;
-        }
+        const double d2 = gap_squared(a, b);
         if (d2 <= 0) return 1e300;
         return std::max(geometry_[a].area, geometry_[b].area) / (ff::kPi * d2);
     }
