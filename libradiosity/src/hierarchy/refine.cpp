@@ -1,8 +1,9 @@
-// compute_links: links refined top down from the root's interaction with itself. A pair of
-// nodes is linked when the oracle says its transfer is smooth enough to treat as one number:
-// its estimated form factor, in whichever direction is larger, at most epsilon, and more so
-// when visibility varies across the pair; otherwise the larger node is split. Two patches
-// are linked by the analytic method's integral.
+// compute_links: links refined top down from the root's interaction with itself. A direction
+// of a pair of nodes is linked when the oracle says its transfer is smooth enough to treat as
+// one number: its form factor (sampled, or integrated where a node allows it), grown by how
+// unevenly the receiver faces the source and by varying visibility, at most epsilon (less for
+// light from an emitter); otherwise a node is split. Two patches are linked by the analytic
+// method's integral.
 #include "formfactor/sampling.hpp"
 #include "hierarchy/node_geometry.hpp"
 #include "radiosity/hierarchy.hpp"
@@ -159,15 +160,14 @@ class LinkRefiner {
         if (is_leaf(a) && is_leaf(b)) return link_patches(a, b, wanted, rng, work);
         const PairEstimate estimate = estimate_pair(a, b, rng, kDecisionSamples);
         const double area_ratio = geometry_[a].area / geometry_[b].area;
+        // Light from an emitter is kept to a smaller share of epsilon (see kEmitterShare).
+        const double epsilon_a = options_.epsilon * (geometry_[b].emits ? kEmitterShare : 1);
+        const double epsilon_b = options_.epsilon * (geometry_[a].emits ? kEmitterShare : 1);
         // Every direction wanted far above epsilon (or into a receiver that is not flat):
         // split at once, without integrating.
         const double sampled_a = estimate.unoccluded, sampled_b = sampled_a * area_ratio;
-        const double clearly_a =
-            kClearly * options_.epsilon * (geometry_[b].emits ? kEmitterShare : 1);
-        const double clearly_b =
-            kClearly * options_.epsilon * (geometry_[a].emits ? kEmitterShare : 1);
-        const bool split_a = !geometry_[a].planar || sampled_a > clearly_a;
-        const bool split_b = !geometry_[b].planar || sampled_b > clearly_b;
+        const bool split_a = !geometry_[a].planar || sampled_a > kClearly * epsilon_a;
+        const bool split_b = !geometry_[b].planar || sampled_b > kClearly * epsilon_b;
         if ((!(wanted & kIntoA) || split_a) && (!(wanted & kIntoB) || split_b))
             return split(a, b, wanted);
         const auto exact = exact_form_factor(a, b, rng, work);
@@ -189,11 +189,6 @@ class LinkRefiner {
             if (largest_possible(a, b) > options_.epsilon) split(a, b, wanted);
             return;
         }
-        // Light from an emitter is kept to a smaller share of epsilon (see kEmitterShare).
-        const double epsilon_a =
-            geometry_[b].emits ? kEmitterShare * options_.epsilon : options_.epsilon;
-        const double epsilon_b =
-            geometry_[a].emits ? kEmitterShare * options_.epsilon : options_.epsilon;
         unsigned ready = 0;
         if ((wanted & kIntoA) && geometry_[a].planar && error_a <= epsilon_a) ready |= kIntoA;
         if ((wanted & kIntoB) && geometry_[b].planar && error_b <= epsilon_b) ready |= kIntoB;
@@ -346,8 +341,8 @@ class LinkRefiner {
     }
 
     // F_ab unoccluded, exact when either node is integrable: the contour integrals from
-    // points of the other (the larger node's, when both are), with how
-    // much it varies over those points (largest less smallest, on that side).
+    // points of the other (the larger node's, when both are), with how much it varies over
+    // those points (largest less smallest, on that side).
     struct ExactFactor {
         bool known = false;
         double factor = 0;
@@ -355,13 +350,13 @@ class LinkRefiner {
     };
     ExactFactor exact_form_factor(std::uint32_t a, std::uint32_t b, Rng& rng,
                                   ThreadWork& work) const {
-        const bool outline_a = integrable(a);
-        const bool outline_b = integrable(b);
+        const bool integrable_a = integrable(a);
+        const bool integrable_b = integrable(b);
         ExactFactor exact;
-        if (!outline_a && !outline_b) return exact;
+        if (!integrable_a && !integrable_b) return exact;
         ++work.stats.outline_pairs;
         exact.known = true;
-        if (outline_b && (!outline_a || geometry_[b].area >= geometry_[a].area)) {
+        if (integrable_b && (!integrable_a || geometry_[b].area >= geometry_[a].area)) {
             const auto f = outline_form_factor(a, b, rng);
             exact.factor = f.mean;
             exact.spread_a = f.spread;
@@ -373,11 +368,7 @@ class LinkRefiner {
         return exact;
     }
 
-    struct OutlineFactor {
-        double mean = 0, spread = 0;
-    };
-    // F from node `from` to flat node `to`, unoccluded: over stratified points of `from`,
-    // the point-to-polygon form factor of `to`'s outline clipped to each point's front.
+    // The form factor from point x to `polygon` clipped to x's front.
     static double clipped_form_factor(const NodePoint& x, std::span<const Vec3> polygon,
                                       std::vector<Vec3>& clipped) {
         ff::clip_to_front(polygon, x.point, x.normal, clipped);
@@ -391,6 +382,12 @@ class LinkRefiner {
                (geometry_[node].planar && tree_.nodes[node].count <= kFewPatches);
     }
 
+    struct OutlineFactor {
+        double mean = 0, spread = 0;
+    };
+    // F from node `from` to integrable node `to`, unoccluded: over stratified points of
+    // `from`, the point-to-polygon form factor of `to`'s outline (or of each of its patches)
+    // clipped to each point's front.
     OutlineFactor outline_form_factor(std::uint32_t from, std::uint32_t to, Rng& rng) const {
         const auto outline = geometry_.outline(to);
         const auto& plane = geometry_[to];
