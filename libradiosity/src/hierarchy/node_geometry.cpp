@@ -1,5 +1,7 @@
 #include "hierarchy/node_geometry.hpp"
 
+#include "formfactor/sampling.hpp"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_2.h>
 
@@ -9,10 +11,6 @@
 namespace rad::hierarchy {
 
 namespace {
-double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) {
-    return 0.5 * length(cross(b - a, c - a));
-}
-
 // Two planar nodes on one plane make a planar parent.
 NodeGeometry merged(const NodeGeometry& a, const NodeGeometry& b, double tolerance) {
     NodeGeometry out;
@@ -54,37 +52,31 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
                                const radfmt::LinkData& tree, const std::vector<bool>& emitter)
     : mesh_(mesh), polygons_(polygons), tree_(tree), nodes_(tree.nodes.size()) {
     tolerance_ = 1e-9 * bounds(mesh.vertices).diagonal();
-    first_share_.resize(mesh.patches.size(), 1.0);
-    for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-        const auto& g = polygons[p];
-        if (g.count == 4) {
-            const double a0 = triangle_area(g.corners[0], g.corners[1], g.corners[2]);
-            const double a1 = triangle_area(g.corners[0], g.corners[2], g.corners[3]);
-            first_share_[p] = a0 + a1 > 0 ? a0 / (a0 + a1) : 1.0;
-        }
-    }
+    first_share_.reserve(mesh.patches.size());
+    for (const auto& g : polygons) first_share_.push_back(ff::fan_cdf(g.points()).front());
     area_before_.assign(tree.leaf_order.size() + 1, 0.0);
     for (std::size_t k = 0; k < tree.leaf_order.size(); ++k)
         area_before_[k + 1] = area_before_[k] + mesh.patches[tree.leaf_order[k]].area;
+    outline_start_.assign(tree.nodes.size(), 0);
+    outline_size_.assign(tree.nodes.size(), 0);
     // Children come after their parents: from the last node back, children are done first.
     for (std::size_t i = tree.nodes.size(); i-- > 0;) {
         const auto& n = tree.nodes[i];
         if (n.left != radfmt::kNoNode) {
             nodes_[i] = merged(nodes_[n.left], nodes_[n.right], tolerance_);
-            continue;
+        } else {
+            const auto& patch = mesh.patches[tree.leaf_order[n.first]];
+            auto& leaf = nodes_[i];
+            leaf.area = patch.area;
+            for (const auto& corner : polygons[tree.leaf_order[n.first]].points())
+                leaf.box.add(corner);
+            leaf.planar = true;
+            leaf.emits = emitter[patch.material];
+            leaf.normal = patch.normal;
+            leaf.offset = dot(patch.normal, patch.centroid);
         }
-        const auto& patch = mesh.patches[tree.leaf_order[n.first]];
-        auto& leaf = nodes_[i];
-        leaf.area = patch.area;
-        for (const auto& corner : polygons[tree.leaf_order[n.first]].points()) leaf.box.add(corner);
-        leaf.planar = true;
-        leaf.emits = emitter[patch.material];
-        leaf.normal = patch.normal;
-        leaf.offset = dot(patch.normal, patch.centroid);
+        add_outline(static_cast<std::uint32_t>(i));
     }
-    outline_start_.assign(tree.nodes.size(), 0);
-    outline_size_.assign(tree.nodes.size(), 0);
-    for (std::size_t i = tree.nodes.size(); i-- > 0;) add_outline(static_cast<std::uint32_t>(i));
 }
 
 // A leaf's outline is its patch; a parent's the hull of its children's, kept when that hull
@@ -123,24 +115,12 @@ NodePoint NodeGeometries::point(std::uint32_t node, double u, double v, double w
         n.first + static_cast<std::uint32_t>(std::upper_bound(begin, end, target) - begin);
     const auto patch = tree_.leaf_order[k];
     const auto& g = polygons_[patch];
-    const double share = first_share_[patch];
     // w picks the fan triangle of a quad by area, then serves again within it.
-    std::size_t triangle = 0;
-    double within = w;
-    if (g.count == 4) {
-        if (w < share) {
-            within = w / share;
-        } else {
-            triangle = 1;
-            within = (w - share) / (1 - share);
-        }
-    }
-    const double su = std::sqrt(v);
-    const Vec3& a = g.corners[0];
-    const Vec3& b = g.corners[triangle + 1];
-    const Vec3& c = g.corners[triangle + 2];
-    const Vec3 p = a * (1 - su) + b * (su * (1 - within)) + c * (su * within);
-    return {p, mesh_.patches[patch].normal};
+    const double cdf[2] = {first_share_[patch], 1.0};
+    double within = 0;
+    const auto triangle =
+        ff::pick_fan_triangle(std::span<const double>(cdf, std::size_t(g.count - 2)), w, &within);
+    return {ff::fan_triangle_point(g.points(), triangle, v, within), mesh_.patches[patch].normal};
 }
 
 bool NodeGeometries::all_behind(std::uint32_t a, std::uint32_t b) const {

@@ -50,7 +50,7 @@ class NodeGeometries {
     const radfmt::LinkData& tree_;
     std::vector<NodeGeometry> nodes_;
     std::vector<double> area_before_; // per position in leaf order (+1): the areas before it
-    std::vector<double> first_share_; // per patch: its first fan triangle's share of its area
+    std::vector<double> first_share_; // per patch: its fan_cdf's first entry (1 for a triangle)
     double tolerance_ = 0;            // lengths below this are rounding
     std::vector<std::uint32_t> outline_start_;
     std::vector<std::uint8_t> outline_size_;
