@@ -1,7 +1,7 @@
-// build_patch_tree: the patches of each plane and material together, split at the median of their
-// centroids, longest side first (on a surface's patch grid: blocks of 2 x 1 and 2 x 2
-// patches, the pyramid over the grid); above the planes, clusters of nearby planes split
-// the same way.
+// build_patch_tree: the patches of each plane and material together, split at the median of
+// their centroids, longest side first (on a surface's patch grid: blocks of 2 x 1 and 2 x 2
+// patches, the pyramid over the grid); above the planes, clusters of nearby planes split the
+// same way.
 #include "radiosity/hierarchy.hpp"
 #include "radiosity/vec.hpp"
 
@@ -14,6 +14,26 @@
 namespace rad {
 
 namespace {
+// Puts the lower half of ids[0, count) by position along the longest side of their
+// positions' box first (ties broken by id: the same split on every run); returns the half.
+template <class Position>
+std::uint32_t split_at_median(std::vector<std::uint32_t>::iterator ids, std::uint32_t count,
+                              const Position& position) {
+    Box box;
+    for (std::uint32_t k = 0; k < count; ++k) box.add(position(ids[k]));
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
+    const std::uint32_t half = count / 2;
+    // nth_element's order within each half is deterministic for a given input, and the
+    // splits below put it in order: the tree is the same on every run.
+    std::nth_element(ids, ids + half, ids + count, [&](std::uint32_t a, std::uint32_t b) {
+        const double ca = position(a)[axis], cb = position(b)[axis];
+        return ca < cb || (ca == cb && a < b);
+    });
+    return half;
+}
+
 struct TreeBuilder {
     const radfmt::MeshData& mesh;
     radfmt::LinkData& tree;
@@ -34,17 +54,9 @@ struct TreeBuilder {
         }
         const auto index = static_cast<std::uint32_t>(tree.nodes.size());
         tree.nodes.push_back({placed, 0, radfmt::kNoNode, radfmt::kNoNode});
-        Box box;
-        for (std::uint32_t k = first; k < first + count; ++k) box.add(plane_centre[plane_order[k]]);
-        int axis = 0;
-        for (int a = 1; a < 3; ++a)
-            if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
-        const std::uint32_t half = count / 2;
-        auto begin = plane_order.begin() + first;
-        std::nth_element(begin, begin + half, begin + count, [&](std::uint32_t a, std::uint32_t b) {
-            const double ca = plane_centre[a][axis], cb = plane_centre[b][axis];
-            return ca < cb || (ca == cb && a < b);
-        });
+        const std::uint32_t half = split_at_median(
+            plane_order.begin() + first, count,
+            [&](std::uint32_t plane) -> const Vec3& { return plane_centre[plane]; });
         const auto left = build_planes(first, half);
         const auto right = build_planes(first + half, count - half);
         auto& node = tree.nodes[index];
@@ -54,37 +66,14 @@ struct TreeBuilder {
         return index;
     }
 
-    // The longest side of the centroids' box of leaf_order[first, first + count).
-    int longest_axis(std::uint32_t first, std::uint32_t count) const {
-        radfmt::Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-        for (std::uint32_t k = first; k < first + count; ++k) {
-            const auto& c = mesh.patches[tree.leaf_order[k]].centroid;
-            for (int a = 0; a < 3; ++a) {
-                lo[a] = std::min(lo[a], c[a]);
-                hi[a] = std::max(hi[a], c[a]);
-            }
-        }
-        int axis = 0;
-        for (int a = 1; a < 3; ++a)
-            if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
-        return axis;
-    }
-
     // Node for leaf_order[first, first + count), its subtree after it (depth first).
     std::uint32_t build(std::uint32_t first, std::uint32_t count) {
         const auto index = static_cast<std::uint32_t>(tree.nodes.size());
         tree.nodes.push_back({first, count, radfmt::kNoNode, radfmt::kNoNode});
         if (count == 1) return index;
-        const int axis = longest_axis(first, count);
-        const std::uint32_t half = count / 2;
-        // Ties broken by patch number: the split is the same on every run.
-        auto begin = tree.leaf_order.begin() + first;
-        std::nth_element(begin, begin + half, begin + count, [&](std::uint32_t a, std::uint32_t b) {
-            const double ca = mesh.patches[a].centroid[axis], cb = mesh.patches[b].centroid[axis];
-            return ca < cb || (ca == cb && a < b);
-        });
-        // Within each half the order is left to the split below it; nth_element's own order
-        // of the halves is deterministic for a given input, so the tree is too.
+        const std::uint32_t half = split_at_median(
+            tree.leaf_order.begin() + first, count,
+            [&](std::uint32_t patch) -> const Vec3& { return mesh.patches[patch].centroid; });
         const auto left = build(first, half);
         const auto right = build(first + half, count - half);
         tree.nodes[index].left = left;
