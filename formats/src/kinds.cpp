@@ -1,5 +1,6 @@
 #include "radfmt/kinds.hpp"
 
+#include "body_checks.hpp"
 #include "compact_rows.hpp"
 #include "links.hpp"
 
@@ -31,14 +32,16 @@ namespace {
 bool finite(const Vec3& p) {
     return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
-// The header's count of `key` must be what the body holds.
-void require_count(const Header& header, const char* key, std::uint64_t count, BodyReader& r) {
+} // namespace
+
+void detail::require_count(const Header& header, const char* key, std::uint64_t count,
+                           BodyReader& r) {
     const auto* value = header.find(key);
     if (value && *value != std::to_string(count))
         r.fail(std::string("the header says ") + key + "=" + *value + " but the body holds " +
                std::to_string(count));
 }
-} // namespace
+using detail::require_count;
 
 static std::string number(double value) {
     char text[64];

@@ -3,6 +3,8 @@
 // trust the tree.
 #include "links.hpp"
 
+#include "body_checks.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -100,15 +102,9 @@ LinkData read_links(const fs::path& path, Header* header_out) {
     links.factor = r.array<float>(count, "link factors");
     r.expect_end();
     if (links.patch_count >= kNoNode) r.fail("too many patches");
-    for (const auto& [key, value] :
-         {std::pair<const char*, std::uint64_t>{"patches", links.patch_count},
-          {"nodes", nodes},
-          {"links", count}}) {
-        const auto* recorded = r.header().find(key);
-        if (recorded && *recorded != std::to_string(value))
-            r.fail(std::string("the header says ") + key + "=" + *recorded +
-                   " but the body holds " + std::to_string(value));
-    }
+    detail::require_count(r.header(), "patches", links.patch_count, r);
+    detail::require_count(r.header(), "nodes", nodes, r);
+    detail::require_count(r.header(), "links", count, r);
     check_leaf_order(links, r);
     check_tree(links, r);
     check_links(links, r);

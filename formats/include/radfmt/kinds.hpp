@@ -109,6 +109,7 @@ enum class FormFactorLayout { plain, compact };
 struct LinkNode {
     std::uint32_t first = 0, count = 0; // its patches: leaf_order[first, first + count)
     std::uint32_t left = 0, right = 0;  // children (kNoNode for a leaf, a single patch)
+    bool operator==(const LinkNode&) const = default;
 };
 inline constexpr std::uint32_t kNoNode = std::numeric_limits<std::uint32_t>::max();
 
