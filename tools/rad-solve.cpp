@@ -3,7 +3,6 @@
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
-#include "radiosity/hierarchy.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/solver.hpp"
@@ -191,15 +190,9 @@ int main(int argc, char** argv) {
         for (const auto& [key, value] : overrides.fields) header.set(key, value);
         const auto warnings =
             transport.hierarchical
-                ? rad::solve_warnings(mesh, transport.links, ff_path, request.row_sum_tolerance)
+                ? rad::solve_warnings(mesh, transport.links, ff_header, ff_path,
+                                      request.row_sum_tolerance)
                 : rad::solve_warnings(mesh, transport.matrix, ff_path, request.row_sum_tolerance);
-        if (transport.hierarchical)
-            for (const auto& name : rad::emitters_not_refined_for(ff_header, mesh))
-                std::cerr << "rad-solve: warning: material '" << name << "' emits, but " << ff_path
-                          << " was refined for the emitters of its mesh, not for it: its direct "
-                             "light arrives over coarser links (rad-ff --method hierarchical "
-                             "--emitters "
-                          << name << " refines for it)\n";
         for (const auto& warning : warnings) std::cerr << "rad-solve: warning: " << warning << '\n';
 
         auto control = rad::stop_rule(solver, request, mesh.patches.size());

@@ -75,9 +75,12 @@ RowSumReport check_row_sums(const radfmt::LinkData& links, double tolerance);
 std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh,
                                         const radfmt::FormFactorData& ff,
                                         const std::string& ff_path, double row_sum_tolerance);
-// Over links, rows are checked against 1 + max(tolerance, kLinkRowSumSlack).
+// Over links: first a line per material that emits but was no emitter when `links_header`
+// was computed (its light travels over coarser links); rows are checked against
+// 1 + max(tolerance, kLinkRowSumSlack).
 inline constexpr double kLinkRowSumSlack = 0.3;
 std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh, const radfmt::LinkData& links,
+                                        const radfmt::Header& links_header,
                                         const std::string& ff_path, double row_sum_tolerance);
 
 // The stopping rule for `request` on `patches` patches: --sweeps into shots, the solver's

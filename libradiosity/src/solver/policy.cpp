@@ -215,14 +215,23 @@ std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh,
 }
 
 std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh, const radfmt::LinkData& links,
+                                        const radfmt::Header& links_header,
                                         const std::string& ff_path, double row_sum_tolerance) {
+    std::vector<std::string> out;
+    for (const auto& name : emitters_not_refined_for(links_header, mesh))
+        out.push_back("material '" + name + "' emits, but " + ff_path +
+                      " was refined for the emitters of its mesh, not for it: its direct light "
+                      "arrives over coarser links (rad-ff --method hierarchical --emitters " +
+                      name + " refines for it)");
     // A patch's row through links is the mean row of each block above it, not its own: a
     // patch beside a wall, which fills half its view, gets its own links to the wall and its
     // blocks' mean links beside them (up to 1.27 on the living room fixture at the default
     // epsilon, its solution within 0.7% rms of analytic). A broken file shows far beyond.
     const double tolerance = std::max(row_sum_tolerance, kLinkRowSumSlack);
-    return warnings_of(mesh, check_row_sums(links, tolerance), ff_path, tolerance,
-                       "use more --samples or a smaller --epsilon");
+    for (auto& line : warnings_of(mesh, check_row_sums(links, tolerance), ff_path, tolerance,
+                                  "use more --samples or a smaller --epsilon"))
+        out.push_back(std::move(line));
+    return out;
 }
 
 SolveControl stop_rule(const Solver& solver, const SolveRequest& request, std::size_t patches) {

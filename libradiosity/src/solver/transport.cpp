@@ -16,9 +16,10 @@ std::vector<radfmt::Rgb> to_rgb(const Channels& values, std::size_t first_channe
     return out;
 }
 
-TransportOperator make_operator(const radfmt::MeshData& mesh, const radfmt::FormFactorData& ff) {
+namespace {
+// The patches' areas and reflectances, without F.
+TransportOperator patch_operator(const radfmt::MeshData& mesh) {
     TransportOperator op;
-    op.form_factors = &ff;
     op.colours = 3;
     op.area.reserve(mesh.patches.size());
     op.reflectance.reserve(3 * mesh.patches.size());
@@ -28,11 +29,16 @@ TransportOperator make_operator(const radfmt::MeshData& mesh, const radfmt::Form
     }
     return op;
 }
+} // namespace
+
+TransportOperator make_operator(const radfmt::MeshData& mesh, const radfmt::FormFactorData& ff) {
+    auto op = patch_operator(mesh);
+    op.form_factors = &ff;
+    return op;
+}
 
 TransportOperator make_operator(const radfmt::MeshData& mesh, const radfmt::LinkData& links) {
-    radfmt::FormFactorData none;
-    auto op = make_operator(mesh, none);
-    op.form_factors = nullptr;
+    auto op = patch_operator(mesh);
     auto hierarchy = std::make_shared<LinkTransport>();
     hierarchy->links = &links;
     hierarchy->parent.assign(links.nodes.size(), radfmt::kNoNode);
