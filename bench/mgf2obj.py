@@ -105,7 +105,7 @@ class Converter:
     def __init__(self, qcdivs):
         self.qcdivs = qcdivs
         self.colours, self.materials, self.vertices = {}, {}, {}
-        self.material, self.colour = None, (1 / 3, 1 / 3)
+        self.material = None
         self.instances = [identity()]  # the transforms in effect: every instance
         self.stack = []
         self.groups = []
