@@ -171,8 +171,10 @@ class LinkRefiner {
         if ((!(wanted & kIntoA) || split_a) && (!(wanted & kIntoB) || split_b))
             return split(a, b, wanted);
         const auto exact = exact_form_factor(a, b, rng, work);
-        // Sampled alone, a near pair is not trusted (see near).
-        if (!exact.known && (geometry_[a].planar || geometry_[b].planar) && near(a, b))
+        // Sampled alone, or integrated from points of the larger node, a near pair is not
+        // trusted (see near): a few points of the larger miss the part of it near the other.
+        if ((!exact.known || exact.from_larger) && (geometry_[a].planar || geometry_[b].planar) &&
+            near(a, b))
             return split(a, b, wanted);
         const double f_ab = exact.known ? exact.factor : estimate.unoccluded;
         const double f_ba = f_ab * area_ratio;
@@ -340,11 +342,12 @@ class LinkRefiner {
         return t;
     }
 
-    // F_ab unoccluded, exact when either node is integrable: the contour integrals from
-    // points of the other (the larger node's, when both are), with how much it varies over
-    // those points (largest less smallest, on that side).
+    // F_ab unoccluded, exact when either node is integrable: the contour integrals over its
+    // outline (the larger one's, when both are) from points of the other, with how much it
+    // varies over those points (largest less smallest, on that side).
     struct ExactFactor {
         bool known = false;
+        bool from_larger = false; // integrated from the points of the larger node
         double factor = 0;
         double spread_a = 0, spread_b = 0;
     };
@@ -360,10 +363,12 @@ class LinkRefiner {
             const auto f = outline_form_factor(a, b, rng);
             exact.factor = f.mean;
             exact.spread_a = f.spread;
+            exact.from_larger = geometry_[a].area > geometry_[b].area;
         } else {
             const auto f = outline_form_factor(b, a, rng);
             exact.factor = f.mean * geometry_[b].area / geometry_[a].area;
             exact.spread_b = f.spread;
+            exact.from_larger = geometry_[b].area > geometry_[a].area;
         }
         return exact;
     }
