@@ -1,6 +1,7 @@
 #include "hierarchy/node_geometry.hpp"
 
 #include "formfactor/sampling.hpp"
+#include "hierarchy/surfaces.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_2.h>
@@ -11,7 +12,7 @@
 namespace rad::hierarchy {
 
 namespace {
-// Two planar nodes on one plane make a planar parent.
+// Two planar nodes on one plane make a planar parent; two parts of one surface, one surface.
 NodeGeometry merged(const NodeGeometry& a, const NodeGeometry& b, double tolerance) {
     NodeGeometry out;
     out.area = a.area + b.area;
@@ -23,6 +24,8 @@ NodeGeometry merged(const NodeGeometry& a, const NodeGeometry& b, double toleran
                  std::abs(a.offset - b.offset) <= tolerance;
     out.normal = a.normal;
     out.offset = a.offset;
+    out.one_surface = a.one_surface && b.one_surface && a.surface == b.surface;
+    out.surface = a.surface;
     return out;
 }
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -59,6 +62,7 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
         area_before_[k + 1] = area_before_[k] + mesh.patches[tree.leaf_order[k]].area;
     outline_start_.assign(tree.nodes.size(), 0);
     outline_size_.assign(tree.nodes.size(), 0);
+    const auto surface = connected_surfaces(mesh);
     // Children come after their parents: from the last node back, children are done first.
     for (std::size_t i = tree.nodes.size(); i-- > 0;) {
         const auto& n = tree.nodes[i];
@@ -74,6 +78,8 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
             leaf.emits = emitter[patch.material];
             leaf.normal = patch.normal;
             leaf.offset = dot(patch.normal, patch.centroid);
+            leaf.one_surface = true;
+            leaf.surface = surface[tree.leaf_order[n.first]];
         }
         add_outline(static_cast<std::uint32_t>(i));
     }

@@ -16,6 +16,10 @@ struct NodeGeometry {
     Vec3 normal{};      // when planar: every patch's normal
     double offset = 0;  // when planar: the plane dot(normal, x) = offset
     bool emits = false; // some patch of it is of a material that emits in the mesh
+    // Its patches are (part of) one connected surface (connected_surfaces): it may receive
+    // a link, one irradiance for all of them.
+    bool one_surface = false;
+    std::uint32_t surface = 0; // when one_surface: which
 };
 
 // A point of a node, with the normal of the patch it lies on.

@@ -146,9 +146,11 @@ class LinkRefiner {
     static constexpr unsigned kIntoA = 1, kIntoB = 2;
 
     // Patches a and b see each other through nodes a and b (disjoint); `wanted` says which
-    // directions still need links. A link's receiver must be flat: a node receives one
-    // irradiance for all its patches, wrong for those turned another way (a cluster may be
-    // a source: its mean radiosity, with each sample's own cosine).
+    // directions still need links. A link's receiver must be (part of) one surface: a node
+    // receives one irradiance for all its patches, wrong for those turned another way or
+    // standing apart, which see other things (a cluster may be a source: its mean radiosity,
+    // with each sample's own cosine).
+    bool receives(std::uint32_t node) const { return geometry_[node].one_surface; }
     void refine_pair(std::uint32_t a, std::uint32_t b, unsigned wanted = kIntoA | kIntoB) {
         auto& work = work_.local();
         ++work.stats.pairs;
@@ -163,11 +165,11 @@ class LinkRefiner {
         // Light from an emitter is kept to a smaller share of epsilon (see kEmitterShare).
         const double epsilon_a = options_.epsilon * (geometry_[b].emits ? kEmitterShare : 1);
         const double epsilon_b = options_.epsilon * (geometry_[a].emits ? kEmitterShare : 1);
-        // Every direction wanted far above epsilon (or into a receiver that is not flat):
+        // Every direction wanted far above epsilon (or into a node that cannot receive):
         // split at once, without integrating.
         const double sampled_a = estimate.unoccluded, sampled_b = sampled_a * area_ratio;
-        const bool split_a = !geometry_[a].planar || sampled_a > kClearly * epsilon_a;
-        const bool split_b = !geometry_[b].planar || sampled_b > kClearly * epsilon_b;
+        const bool split_a = !receives(a) || sampled_a > kClearly * epsilon_a;
+        const bool split_b = !receives(b) || sampled_b > kClearly * epsilon_b;
         if ((!(wanted & kIntoA) || split_a) && (!(wanted & kIntoB) || split_b))
             return split(a, b, wanted);
         const auto exact = exact_form_factor(a, b, rng, work);
@@ -192,8 +194,8 @@ class LinkRefiner {
             return;
         }
         unsigned ready = 0;
-        if ((wanted & kIntoA) && geometry_[a].planar && error_a <= epsilon_a) ready |= kIntoA;
-        if ((wanted & kIntoB) && geometry_[b].planar && error_b <= epsilon_b) ready |= kIntoB;
+        if ((wanted & kIntoA) && receives(a) && error_a <= epsilon_a) ready |= kIntoA;
+        if ((wanted & kIntoB) && receives(b) && error_b <= epsilon_b) ready |= kIntoB;
         if (ready) {
             // Visibility (and a sampled value) from samples of their own: those that decided
             // to link are biased low (a pair whose draw came out high was split instead).
@@ -238,12 +240,12 @@ class LinkRefiner {
     }
 
     // Refines the children of one node against the other for the directions left: a
-    // receiver that is not flat is split, else the larger node.
+    // receiver that cannot receive is split, else the larger node.
     void split(std::uint32_t a, std::uint32_t b, unsigned directions) {
         bool split_a;
-        if ((directions & kIntoA) && !geometry_[a].planar)
+        if ((directions & kIntoA) && !receives(a))
             split_a = true;
-        else if ((directions & kIntoB) && !geometry_[b].planar)
+        else if ((directions & kIntoB) && !receives(b))
             split_a = false;
         else
             split_a = !is_leaf(a) && (is_leaf(b) || geometry_[a].area >= geometry_[b].area);

@@ -1,7 +1,8 @@
-// build_patch_tree: the patches of each plane and material together, split at the median of
-// their centroids, longest side first (on a surface's patch grid: blocks of 2 x 1 and 2 x 2
-// patches, the pyramid over the grid); above the planes, clusters of nearby planes split the
-// same way.
+// build_patch_tree: the patches of each surface (connected, on one plane, of one material)
+// together, split at the median of their centroids, longest side first (on a surface's patch
+// grid: blocks of 2 x 1 and 2 x 2 patches, the pyramid over the grid); above the surfaces,
+// clusters of nearby surfaces split the same way.
+#include "hierarchy/surfaces.hpp"
 #include "radiosity/hierarchy.hpp"
 #include "radiosity/vec.hpp"
 
@@ -37,16 +38,16 @@ std::uint32_t split_at_median(std::vector<std::uint32_t>::iterator ids, std::uin
 struct TreeBuilder {
     const radfmt::MeshData& mesh;
     radfmt::LinkData& tree;
-    std::vector<std::vector<std::uint32_t>> planes; // the patches of each plane
-    std::vector<Vec3> plane_centre;                 // per plane: its patches' mean centroid
-    std::vector<std::uint32_t> plane_order;         // planes, as the upper tree splits them
-    std::uint32_t placed = 0;                       // patches put into leaf_order so far
+    std::vector<std::vector<std::uint32_t>> surfaces; // the patches of each surface
+    std::vector<Vec3> surface_centre;                 // per surface: its patches' mean centroid
+    std::vector<std::uint32_t> surface_order;         // surfaces, as the upper tree splits them
+    std::uint32_t placed = 0;                         // patches put into leaf_order so far
 
-    // Node over the planes plane_order[first, first + count), built depth first: their
+    // Node over the surfaces surface_order[first, first + count), built depth first: their
     // patches go into leaf_order in the order the tree visits them.
-    std::uint32_t build_planes(std::uint32_t first, std::uint32_t count) {
+    std::uint32_t build_surfaces(std::uint32_t first, std::uint32_t count) {
         if (count == 1) {
-            const auto& patches = planes[plane_order[first]];
+            const auto& patches = surfaces[surface_order[first]];
             std::copy(patches.begin(), patches.end(), tree.leaf_order.begin() + placed);
             placed += static_cast<std::uint32_t>(patches.size());
             return build(placed - static_cast<std::uint32_t>(patches.size()),
@@ -55,10 +56,10 @@ struct TreeBuilder {
         const auto index = static_cast<std::uint32_t>(tree.nodes.size());
         tree.nodes.push_back({placed, 0, radfmt::kNoNode, radfmt::kNoNode});
         const std::uint32_t half = split_at_median(
-            plane_order.begin() + first, count,
-            [&](std::uint32_t plane) -> const Vec3& { return plane_centre[plane]; });
-        const auto left = build_planes(first, half);
-        const auto right = build_planes(first + half, count - half);
+            surface_order.begin() + first, count,
+            [&](std::uint32_t surface) -> const Vec3& { return surface_centre[surface]; });
+        const auto left = build_surfaces(first, half);
+        const auto right = build_surfaces(first + half, count - half);
         auto& node = tree.nodes[index];
         node.count = placed - node.first;
         node.left = left;
@@ -82,34 +83,22 @@ struct TreeBuilder {
     }
 };
 
-// The patches by material and plane (normal and offset rounded to a millionth of the
-// scene's size), in order of their first patch. A material of its own keeps a lamp out of
-// the blocks of the ceiling around it: a block's radiosity is its mean, and a link carries
-// it as one number.
-void group_by_plane(const radfmt::MeshData& mesh, TreeBuilder& builder) {
-    const double size = std::max(bounds(mesh.vertices).diagonal(), 1e-300);
-    std::map<std::tuple<std::uint32_t, long long, long long, long long, long long>, std::uint32_t>
-        index;
+// The patches by surface (connected, one plane and material), in order of their first patch.
+// A material of its own keeps a lamp out of the blocks of the ceiling around it: a block's
+// radiosity is its mean, and a link carries it as one number.
+void group_by_surface(const radfmt::MeshData& mesh, TreeBuilder& builder) {
+    const auto surface = hierarchy::connected_surfaces(mesh);
     for (std::uint32_t p = 0; p < mesh.patches.size(); ++p) {
-        const auto& patch = mesh.patches[p];
-        auto q = [](double v, double step) {
-            return static_cast<long long>(std::llround(v / step));
-        };
-        const auto key = std::make_tuple(patch.material, q(patch.normal[0], 1e-6),
-                                         q(patch.normal[1], 1e-6), q(patch.normal[2], 1e-6),
-                                         q(dot(patch.normal, patch.centroid), 1e-6 * size));
-        const auto [it, added] =
-            index.emplace(key, static_cast<std::uint32_t>(builder.planes.size()));
-        if (added) builder.planes.emplace_back();
-        builder.planes[it->second].push_back(p);
+        if (surface[p] == builder.surfaces.size()) builder.surfaces.emplace_back();
+        builder.surfaces[surface[p]].push_back(p);
     }
-    for (const auto& patches : builder.planes) {
+    for (const auto& patches : builder.surfaces) {
         Vec3 sum{0, 0, 0};
         for (const auto p : patches) sum = sum + mesh.patches[p].centroid;
-        builder.plane_centre.push_back(sum * (1.0 / double(patches.size())));
+        builder.surface_centre.push_back(sum * (1.0 / double(patches.size())));
     }
-    builder.plane_order.resize(builder.planes.size());
-    std::iota(builder.plane_order.begin(), builder.plane_order.end(), 0u);
+    builder.surface_order.resize(builder.surfaces.size());
+    std::iota(builder.surface_order.begin(), builder.surface_order.end(), 0u);
 }
 } // namespace
 
@@ -124,8 +113,8 @@ radfmt::LinkData build_patch_tree(const radfmt::MeshData& mesh) {
     }
     tree.nodes.reserve(2 * mesh.patches.size() - 1);
     TreeBuilder builder{mesh, tree, {}, {}, {}, 0};
-    group_by_plane(mesh, builder);
-    builder.build_planes(0, static_cast<std::uint32_t>(builder.planes.size()));
+    group_by_surface(mesh, builder);
+    builder.build_surfaces(0, static_cast<std::uint32_t>(builder.surfaces.size()));
     tree.link_start.assign(tree.nodes.size() + 1, 0);
     return tree;
 }
