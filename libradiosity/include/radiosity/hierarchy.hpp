@@ -42,8 +42,9 @@ struct HierarchyStats {
     double tree_seconds = 0, link_seconds = 0;
 };
 
-// The tree alone (no links): patches split at the median of their centroids along the
-// longest side of their box, down to single patches; deterministic.
+// The tree alone (no links): each surface's patches (connected, on one plane, of one
+// material) split at the median of their centroids along the longest side of their box,
+// down to single patches, and the surfaces clustered above the same way; deterministic.
 radfmt::LinkData build_patch_tree(const radfmt::MeshData& mesh);
 
 // The tree and its links, in parallel (TBB) and byte-identical for any thread count: every

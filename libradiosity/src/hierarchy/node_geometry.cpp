@@ -1,7 +1,6 @@
 #include "hierarchy/node_geometry.hpp"
 
 #include "formfactor/sampling.hpp"
-#include "hierarchy/surfaces.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_2.h>
@@ -52,7 +51,8 @@ std::vector<Vec3> planar_hull(const std::vector<Vec3>& points, const Vec3& norma
 
 NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
                                const std::vector<PatchPolygon>& polygons,
-                               const radfmt::LinkData& tree, const std::vector<bool>& emitter)
+                               const radfmt::LinkData& tree, const std::vector<bool>& emitter,
+                               const std::vector<std::uint32_t>& surface)
     : mesh_(mesh), polygons_(polygons), tree_(tree), nodes_(tree.nodes.size()) {
     tolerance_ = 1e-9 * bounds(mesh.vertices).diagonal();
     first_share_.reserve(mesh.patches.size());
@@ -62,7 +62,6 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
         area_before_[k + 1] = area_before_[k] + mesh.patches[tree.leaf_order[k]].area;
     outline_start_.assign(tree.nodes.size(), 0);
     outline_size_.assign(tree.nodes.size(), 0);
-    const auto surface = connected_surfaces(mesh);
     // Children come after their parents: from the last node back, children are done first.
     for (std::size_t i = tree.nodes.size(); i-- > 0;) {
         const auto& n = tree.nodes[i];

@@ -30,9 +30,11 @@ struct NodePoint {
 
 class NodeGeometries {
   public:
-    // `emitter`: per material, whether light from it is linked as from an emitter.
+    // `emitter`: per material, whether light from it is linked as from an emitter;
+    // `surface`: per patch, its surface (connected_surfaces).
     NodeGeometries(const radfmt::MeshData& mesh, const std::vector<PatchPolygon>& polygons,
-                   const radfmt::LinkData& tree, const std::vector<bool>& emitter);
+                   const radfmt::LinkData& tree, const std::vector<bool>& emitter,
+                   const std::vector<std::uint32_t>& surface);
     const NodeGeometry& operator[](std::size_t node) const { return nodes_[node]; }
     // The area-uniform point of `node` for (u, v, w) in [0,1)^3: u picks the patch by area
     // (stratify it to spread points over the node), v and w the point within it.

@@ -6,6 +6,7 @@
 // method's integral.
 #include "formfactor/sampling.hpp"
 #include "hierarchy/node_geometry.hpp"
+#include "hierarchy/surfaces.hpp"
 #include "radiosity/hierarchy.hpp"
 #include "radiosity/rays.hpp"
 
@@ -81,9 +82,10 @@ constexpr double kSpreadWeight = 4;
 class LinkRefiner {
   public:
     LinkRefiner(const FormFactorContext& context, const radfmt::LinkData& tree,
-                const HierarchyOptions& options)
+                const std::vector<std::uint32_t>& surface, const HierarchyOptions& options)
         : context_(context), tree_(tree),
-          geometry_(context.mesh, context.polygons, tree, emitter_materials(context.mesh, options)),
+          geometry_(context.mesh, context.polygons, tree, emitter_materials(context.mesh, options),
+                    surface),
           options_(options), samples_(std::max(1, options.samples)) {
         // Two patches: the analytic method's default quadrature (16 points, 64 when close).
         const int m = ff::points_per_axis(kPatchPairPoints);
@@ -466,13 +468,14 @@ radfmt::LinkData compute_links(const radfmt::MeshData& mesh, const HierarchyOpti
                                HierarchyStats* stats) {
     HierarchyStats local;
     auto start = std::chrono::steady_clock::now();
-    auto tree = build_patch_tree(mesh);
+    const auto surface = hierarchy::connected_surfaces(mesh); // for the tree and the refiner
+    auto tree = hierarchy::build_surface_tree(mesh, surface);
     local.tree_seconds = seconds_since(start);
     if (!mesh.patches.empty()) {
         start = std::chrono::steady_clock::now();
         const RayScene scene(mesh);
         const FormFactorContext context(mesh, scene);
-        LinkRefiner refiner(context, tree, options);
+        LinkRefiner refiner(context, tree, surface, options);
         refiner.refine_within(0);
         refiner.collect(tree, local);
         local.link_seconds = seconds_since(start);
@@ -500,9 +503,7 @@ std::vector<std::string> emitters_not_refined_for(const radfmt::Header& links_he
     const auto* recorded = links_header.find("emitters");
     const std::string list = "," + (recorded ? *recorded : std::string()) + ",";
     std::vector<std::string> out;
-    std::vector<bool> emits(mesh.materials.size());
-    for (std::size_t m = 0; m < mesh.materials.size(); ++m) emits[m] = mesh.materials[m].emits();
-    for (const auto& name : emitter_names(mesh, emits))
+    for (const auto& name : emitter_names(mesh, emitter_materials(mesh, HierarchyOptions{})))
         if (list.find("," + name + ",") == std::string::npos) out.push_back(name);
     return out;
 }

@@ -39,8 +39,8 @@ std::vector<std::uint32_t> connected_surfaces(const radfmt::MeshData& mesh) {
     // Union-find over patches: patches of one plane that share a corner are joined.
     std::vector<std::uint32_t> parent(mesh.patches.size());
     std::iota(parent.begin(), parent.end(), 0u);
-    std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>>
-        corners; // vertex, plane, patch
+    // (vertex, plane, patch) per corner: sorted, a plane's patches at one vertex are adjacent.
+    std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> corners;
     for (std::uint32_t p = 0; p < mesh.patches.size(); ++p)
         for (int c = 0; c < mesh.patches[p].corner_count(); ++c)
             corners.emplace_back(mesh.patches[p].corners[c], plane[p], p);

@@ -14,4 +14,9 @@ namespace rad::hierarchy {
 // are two surfaces: what one sees, the other may not.
 std::vector<std::uint32_t> connected_surfaces(const radfmt::MeshData& mesh);
 
+// build_patch_tree over surfaces already found (`surface`: connected_surfaces(mesh)), for
+// callers that need them again.
+radfmt::LinkData build_surface_tree(const radfmt::MeshData& mesh,
+                                    const std::vector<std::uint32_t>& surface);
+
 } // namespace rad::hierarchy

@@ -86,8 +86,8 @@ struct TreeBuilder {
 // The patches by surface (connected, one plane and material), in order of their first patch.
 // A material of its own keeps a lamp out of the blocks of the ceiling around it: a block's
 // radiosity is its mean, and a link carries it as one number.
-void group_by_surface(const radfmt::MeshData& mesh, TreeBuilder& builder) {
-    const auto surface = hierarchy::connected_surfaces(mesh);
+void group_by_surface(const radfmt::MeshData& mesh, const std::vector<std::uint32_t>& surface,
+                      TreeBuilder& builder) {
     for (std::uint32_t p = 0; p < mesh.patches.size(); ++p) {
         if (surface[p] == builder.surfaces.size()) builder.surfaces.emplace_back();
         builder.surfaces[surface[p]].push_back(p);
@@ -102,7 +102,8 @@ void group_by_surface(const radfmt::MeshData& mesh, TreeBuilder& builder) {
 }
 } // namespace
 
-radfmt::LinkData build_patch_tree(const radfmt::MeshData& mesh) {
+radfmt::LinkData hierarchy::build_surface_tree(const radfmt::MeshData& mesh,
+                                               const std::vector<std::uint32_t>& surface) {
     radfmt::LinkData tree;
     tree.patch_count = mesh.patches.size();
     tree.leaf_order.resize(mesh.patches.size());
@@ -113,10 +114,14 @@ radfmt::LinkData build_patch_tree(const radfmt::MeshData& mesh) {
     }
     tree.nodes.reserve(2 * mesh.patches.size() - 1);
     TreeBuilder builder{mesh, tree, {}, {}, {}, 0};
-    group_by_surface(mesh, builder);
+    group_by_surface(mesh, surface, builder);
     builder.build_surfaces(0, static_cast<std::uint32_t>(builder.surfaces.size()));
     tree.link_start.assign(tree.nodes.size() + 1, 0);
     return tree;
+}
+
+radfmt::LinkData build_patch_tree(const radfmt::MeshData& mesh) {
+    return hierarchy::build_surface_tree(mesh, hierarchy::connected_surfaces(mesh));
 }
 
 std::vector<double> link_row_sums(const radfmt::LinkData& links) {
