@@ -4,6 +4,8 @@ python3 surface_scenes.py KIND OUT.obj
   quad      the back wall as one quad
   two       as two triangles
   fan       as a fan of 64 thin triangles from one corner
+  tjoined   as a quad on the left half and two on the right half, one above the other: the
+            corner they share lies on the left quad's side (a T-junction, no shared corner)
   twice     as one quad facing in and a copy facing out (a wrongly facing copy)
   sheet     the quad wall, and a sheet in the middle of the room drawn once each way
   outward   every face of the room facing out, with a box on the floor and a small box on it
@@ -96,6 +98,10 @@ def room(kind):
         v.extend(rim)
         for k in range(len(rim) - 1):
             faces.append(("back", [base + 1, base + 2 + k, base + 3 + k]))
+    elif kind == "tjoined":
+        quad("back", (0, 0, 0), (W / 2, 0, 0), (W / 2, H, 0), (0, H, 0))
+        quad("back", (W / 2, 0, 0), (W, 0, 0), (W, H / 2, 0), (W / 2, H / 2, 0))
+        quad("back", (W / 2, H / 2, 0), (W, H / 2, 0), (W, H, 0), (W / 2, H, 0))
     elif kind == "holed":
         holed_wall(v, faces)
         quad("shelf", (0, 1, 1), (0, 1, 1.06), (3, 1, 1.06), (3, 1, 1))

@@ -19,16 +19,19 @@ print(sum(float(p['area']) * float(r['b_r']) for p, r in rows) / area)
 PY
 }
 
-# 1. The back wall as one quad, two triangles or a fan of 64 slivers: the same grid, the same light.
-for kind in quad two fan; do
+# 1. The back wall as one quad, two triangles, a fan of 64 slivers or three quads meeting at a
+# T-junction: one region, the same grid, the same light.
+regions() { grep -o "as [0-9]* planar region(s)" "$1"; }
+for kind in quad two fan tjoined; do
   python3 "$GEN" $kind $kind.obj || fail "generate $kind"
   "$BIN/rad-mesh" $kind.obj -o $kind.mesh --max-edge 0.25 2> $kind.err || fail "mesh $kind: $(cat $kind.err)"
   "$BIN/rad-ff" $kind.mesh -o $kind.ff --method hemisphere --rays 2000 -q || fail "ff $kind"
   "$BIN/rad-solve" $kind.mesh $kind.ff -o $kind.rad -q || fail "solve $kind"
 done
 quad=$(patches quad.err)
-for kind in two fan; do
+for kind in two fan tjoined; do
   n=$(patches $kind.err)
+  [ "$(regions $kind.err)" = "$(regions quad.err)" ] || fail "$kind: $(regions $kind.err), the quad wall $(regions quad.err)"
   echo "back wall as $kind: $n patches (quad: $quad)"
   python3 -c "import sys; sys.exit(not abs($n - $quad) <= 0.05 * $quad)" || fail "$kind: $n patches against the quad's $quad"
   a=$(group_mean quad.mesh quad.rad back); b=$(group_mean $kind.mesh $kind.rad back)

@@ -1,4 +1,5 @@
 // Pass 1 of mesh_surfaces: faces grouped into planar regions.
+#include "point_buckets.hpp"
 #include "regions.hpp"
 
 #include <cmath>
@@ -9,18 +10,51 @@ namespace rad::surfaces {
 
 namespace {
 
-// Faces around each welded edge.
-std::unordered_map<EdgeKey, std::vector<std::uint32_t>>
-faces_by_edge(const radfmt::MeshData& faces, const std::vector<std::uint32_t>& weld) {
-    std::unordered_map<EdgeKey, std::vector<std::uint32_t>> by_edge;
-    for (std::uint32_t f = 0; f < faces.patches.size(); ++f) {
-        const auto& p = faces.patches[f];
+// Each face's welded edges split where another point lies on them (a neighbour's corner partway
+// along the edge: a T-junction), as sub-edges keyed by their ends, in CSR form: faces that
+// share a sub-edge touch along it, whether or not their corners meet there.
+struct FaceSubEdges {
+    std::vector<std::size_t>
+        start; // faces + 1: face f's sub-edges in keys[start[f] .. start[f + 1])
+    std::vector<EdgeKey> keys;
+};
+
+FaceSubEdges split_face_edges(const radfmt::MeshData& faces, const std::vector<std::uint32_t>& weld,
+                              const Points& points, double tolerance) {
+    std::vector<std::uint32_t> ids(points.position.size());
+    for (std::uint32_t k = 0; k < ids.size(); ++k) ids[k] = k;
+    const PointBuckets buckets(ids, points);
+    std::unordered_map<EdgeKey, std::vector<EdgeKey>> split; // each welded edge once
+    FaceSubEdges out;
+    out.start.reserve(faces.patches.size() + 1);
+    out.start.push_back(0);
+    for (const auto& p : faces.patches) {
         const int n = p.corner_count();
         for (int k = 0; k < n; ++k) {
             const auto a = weld[p.corners[k]], b = weld[p.corners[(k + 1) % n]];
-            if (a != b) by_edge[edge_key(a, b)].push_back(f);
+            if (a == b) continue;
+            auto [it, fresh] = split.try_emplace(edge_key(a, b));
+            if (fresh) {
+                auto previous = a;
+                for (const auto c : buckets.on_segment(a, b, tolerance))
+                    it->second.push_back(edge_key(previous, c)), previous = c;
+                it->second.push_back(edge_key(previous, b));
+            }
+            out.keys.insert(out.keys.end(), it->second.begin(), it->second.end());
         }
+        out.start.push_back(out.keys.size());
     }
+    return out;
+}
+
+// Faces along each sub-edge.
+std::unordered_map<EdgeKey, std::vector<std::uint32_t>> faces_by_edge(const FaceSubEdges& edges) {
+    std::unordered_map<EdgeKey, std::vector<std::uint32_t>> by_edge;
+    for (std::uint32_t f = 0; f + 1 < edges.start.size(); ++f)
+        for (auto k = edges.start[f]; k < edges.start[f + 1]; ++k) {
+            auto& list = by_edge[edges.keys[k]];
+            if (list.empty() || list.back() != f) list.push_back(f);
+        }
     return by_edge;
 }
 
@@ -38,8 +72,9 @@ Plane plane_of(const radfmt::Patch& seed) {
 std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
                                         const std::vector<std::uint32_t>& weld,
                                         const Points& points, const SurfaceOptions& options,
-                                        double scene_size) {
-    const auto by_edge = faces_by_edge(faces, weld);
+                                        double scene_size, double tolerance) {
+    const auto sub_edges = split_face_edges(faces, weld, points, tolerance);
+    const auto by_edge = faces_by_edge(sub_edges);
     const double min_cos = std::cos(options.angle_tolerance * 3.14159265358979323846 / 180);
     const double max_offset = options.plane_tolerance * scene_size;
     std::vector<std::uint32_t> region_of(faces.patches.size(), kNone);
@@ -68,17 +103,12 @@ std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
             const auto f = todo.front();
             todo.pop();
             region.faces.push_back(f);
-            const auto& p = faces.patches[f];
-            const int n = p.corner_count();
-            for (int k = 0; k < n; ++k) {
-                const auto a = weld[p.corners[k]], b = weld[p.corners[(k + 1) % n]];
-                if (a == b) continue;
-                for (const auto g : by_edge.at(edge_key(a, b)))
+            for (auto k = sub_edges.start[f]; k < sub_edges.start[f + 1]; ++k)
+                for (const auto g : by_edge.at(sub_edges.keys[k]))
                     if (region_of[g] == kNone && joins(faces.patches[g])) {
                         region_of[g] = id;
                         todo.push(g);
                     }
-            }
         }
         regions.push_back(std::move(region));
     }

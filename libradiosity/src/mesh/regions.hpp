@@ -109,12 +109,13 @@ struct Region {
     bool contains(const Point2& p) const;
 };
 
-// Pass 1: faces connected across welded edges, with the same group and material, whose
-// normals agree and whose corners lie in the seed face's plane, are one region.
+// Pass 1: faces connected across welded edges, or along an edge that a neighbour's corner
+// splits (a T-junction, a point within `tolerance` of the edge), with the same group and
+// material, whose normals agree and whose corners lie in the seed face's plane, are one region.
 std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
                                         const std::vector<std::uint32_t>& weld,
                                         const Points& points, const SurfaceOptions& options,
-                                        double scene_size);
+                                        double scene_size, double tolerance);
 
 // Pass 2: the region's outline (edges between its inside and outside, holes included), from a
 // constrained triangulation of its faces' edges; crossings of overlapping faces become points.

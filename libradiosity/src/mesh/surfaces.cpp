@@ -104,7 +104,7 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     const double tolerance = 1e-7 * size;
 
     begin_stage(options.stages, "planar regions");
-    auto regions = surfaces::find_planar_regions(faces, weld, points, options, size);
+    auto regions = surfaces::find_planar_regions(faces, weld, points, options, size, tolerance);
     double cells = 0;
     for (auto& region : regions) {
         region.cell = cell_side(faces, region.group, options);
