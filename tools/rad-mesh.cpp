@@ -54,14 +54,15 @@ void print_summary(const radfmt::MeshData& mesh, const rad::MeshReport& report) 
     std::fprintf(stderr,
                  "rad-mesh: %zu face(s) as %zu planar region(s): %zu grid cell(s), %zu "
                  "triangle(s) along outlines; aspect <= 3: %.1f%% of the patches where the "
-                 "region is a tenth of a cell thick or more (%.1f%% of those in regions a cell "
+                 "region is a tenth of a cell thick or more (%.1f%% of those where it is a cell "
                  "thick or more; worst %.3g), %zu patch(es) where it is thinner, %zu under a "
-                 "tenth of a cell elsewhere; %zu outline point(s) left out where smoothing "
-                 "stops (T-vertices)\n",
+                 "tenth of a cell beside an outline piece that short, %zu under a tenth of a "
+                 "cell elsewhere; %zu outline point(s) left out where smoothing stops "
+                 "(T-vertices)\n",
                  s.faces, s.regions, s.cells, s.band_triangles,
                  100 * s.shape.fraction_aspect_at_most_3,
                  100 * s.shape.fraction_wide_aspect_at_most_3, s.shape.worst_aspect, s.shape.thin,
-                 s.shape.specks, s.t_vertices);
+                 s.shape.specks_at_detail, s.shape.specks, s.t_vertices);
 }
 // What the command line says.
 struct MeshArgs {

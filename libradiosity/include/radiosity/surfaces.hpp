@@ -48,16 +48,21 @@ struct ShapeStats {
     double fraction_wide_aspect_at_most_3 = 1; // of the patches of wide regions
     double worst_aspect = 1;                   // of the patches not thin
     std::size_t thin = 0;                      // patches where the region is thin, not counted
-    std::size_t specks = 0; // patches not thin whose longest edge is under a tenth of a cell
+    // Patches not thin whose longest edge is under a tenth of a cell: beside an outline piece
+    // that short (within a tenth of a cell of it: the input's notches and steps), and elsewhere.
+    std::size_t specks_at_detail = 0;
+    std::size_t specks = 0;
 };
 double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
 // The same with the corners read from `vertices` (a mesh's, or points a mesh is being made of).
 double patch_aspect(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch);
 double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
 // Over the patches not thin (`classes` by patch; patches past its end are wide); `cells` gives
-// each patch's cell side (patches past its end are not counted as specks).
+// each patch's cell side (patches past its end are not counted as specks); `at_detail` marks
+// the specks beside an outline piece under a tenth of a cell.
 ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClass>& classes = {},
-                       const std::vector<double>& cells = {});
+                       const std::vector<double>& cells = {},
+                       const std::vector<bool>& at_detail = {});
 
 struct SurfaceReport {
     std::size_t faces = 0, regions = 0;

@@ -194,13 +194,14 @@ void emit(const Region& region, const Points& points, radfmt::MeshData& mesh,
     mesh.patches.push_back(p);
 }
 
-// Points of one straight run of outline, off their line by rounding alone, make slivers of no
-// area outside the pieces: not part of the region.
-bool has_area(const Point2& a, const Point2& b, const Point2& c) {
+// Points of one straight run of outline, off their line by rounding alone (a glTF's floats),
+// make slivers outside the pieces: a triangle no higher than the tolerance that decides which
+// points are on a line has no area worth a patch, and is not part of the region.
+bool has_area(const Point2& a, const Point2& b, const Point2& c, double tolerance) {
     const double twice_area = std::abs(CGAL::area(a, b, c)) * 2;
     const double longest = std::max(
         {CGAL::squared_distance(a, b), CGAL::squared_distance(b, c), CGAL::squared_distance(c, a)});
-    return twice_area > 1e-9 * longest;
+    return twice_area > std::max(tolerance, 1e-9 * std::sqrt(longest)) * std::sqrt(longest);
 }
 
 double band_area(const BandCDT& cdt) {
@@ -216,7 +217,8 @@ double band_area(const BandCDT& cdt) {
 // grid nodes well inside it as extra points, refined until no triangle has an angle under
 // about 20 degrees or an edge over a cell, where that needs no point on the band's outline.
 void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<EdgeKey>& band,
-                      Points& points, radfmt::MeshData& mesh, SurfaceReport& report) {
+                      Points& points, radfmt::MeshData& mesh, SurfaceReport& report,
+                      double tolerance) {
     BandCDT cdt;
     auto insert = [&](std::uint32_t id, const XY& xy) {
         const auto v = cdt.insert(Point2(xy[0], xy[1]));
@@ -250,7 +252,8 @@ void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<
             const auto &a = f->vertex(0)->point(), &b = f->vertex(1)->point(),
                        &d = f->vertex(2)->point();
             const auto c = CGAL::centroid(a, b, d);
-            in = region.contains(c) && !grid.full_at({c.x(), c.y()}) && has_area(a, b, d);
+            in =
+                region.contains(c) && !grid.full_at({c.x(), c.y()}) && has_area(a, b, d, tolerance);
         }
         f->set_in_domain(in);
     }
@@ -269,8 +272,8 @@ void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<
         if (v->info().id == kNone)
             v->info().id = points.add(region.plane.to_3d(v->point().x(), v->point().y()));
     for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-        if (!f->is_in_domain() ||
-            !has_area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()))
+        if (!f->is_in_domain() || !has_area(f->vertex(0)->point(), f->vertex(1)->point(),
+                                            f->vertex(2)->point(), tolerance))
             continue;
         // The same in space (a point of a run that leaves the region's plane by its tolerance).
         const Vec3 &p0 = points.position[f->vertex(0)->info().id],
@@ -278,7 +281,9 @@ void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<
                    &p2 = points.position[f->vertex(2)->info().id];
         const double longest =
             std::max({dot(p1 - p0, p1 - p0), dot(p2 - p1, p2 - p1), dot(p0 - p2, p0 - p2)});
-        if (!(length(cross(p1 - p0, p2 - p0)) > 1e-9 * longest)) continue;
+        const double twice_area = length(cross(p1 - p0, p2 - p0));
+        if (!(twice_area > std::max(tolerance, 1e-9 * std::sqrt(longest)) * std::sqrt(longest)))
+            continue;
         emit(region, points, mesh,
              {f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id});
         ++report.band_triangles;
@@ -320,7 +325,7 @@ void grid_quadrilateral(const Region& region, Points& points, radfmt::MeshData& 
 // The region's whole cells as quads, and the band between them and the outline.
 void mesh_cells_and_band(const Region& region, RegionGrid& grid,
                          const std::unordered_set<EdgeKey>& pieces, Points& points,
-                         radfmt::MeshData& mesh, SurfaceReport& report) {
+                         radfmt::MeshData& mesh, SurfaceReport& report, double tolerance) {
     std::unordered_set<EdgeKey> band(pieces.begin(), pieces.end());
     auto toggle = [&](EdgeKey e) {
         if (!band.erase(e)) band.insert(e);
@@ -345,7 +350,7 @@ void mesh_cells_and_band(const Region& region, RegionGrid& grid,
     if (band.empty()) return;
     std::vector<EdgeKey> ordered(band.begin(), band.end());
     std::sort(ordered.begin(), ordered.end()); // the same triangulation whatever the hash order
-    triangulate_band(region, grid, ordered, points, mesh, report);
+    triangulate_band(region, grid, ordered, points, mesh, report, tolerance);
 }
 
 // Rounds of giving cells to the band: enough for a cell's neighbours to follow it.
@@ -409,7 +414,7 @@ void grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
         RegionGrid trial_grid = grid;
         radfmt::MeshData trial;
         SurfaceReport counts;
-        mesh_cells_and_band(region, trial_grid, pieces, points, trial, counts);
+        mesh_cells_and_band(region, trial_grid, pieces, points, trial, counts, tolerance);
         std::vector<std::array<std::size_t, 2>> cells;
         if (round < kMaxBandRounds) cells = cells_at_bad_triangles(trial_grid, trial, points);
         if (cells.empty()) {

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <queue>
 
 namespace rad::surfaces {
@@ -79,34 +80,88 @@ double region_thickness(const Region& region, const Points& points, double enoug
 
 namespace rad::surfaces {
 
-std::vector<double> local_thickness(const Region& region, const Points& points,
-                                    const radfmt::MeshData& mesh, std::size_t first) {
-    const OutlineDistance distance(region, points);
-    // Candidate disks: centred on the patches' centroids and their edges' midpoints, as large
-    // as the outline lets them be.
-    std::vector<Probe> disks;
-    auto add = [&](const Vec3& p) {
-        const auto xy = region.plane.to_2d(p);
-        const auto probe = distance.probe({xy[0], xy[1]}, 0);
-        if (probe.distance > 0) disks.push_back(probe);
-    };
-    for (std::size_t k = first; k < mesh.patches.size(); ++k) {
-        const auto& patch = mesh.patches[k];
+namespace {
+
+// Candidate disks of one region's patches, found by the patches' centroids in squares of a
+// cell: a disk holding a point of a region no wider than a cell there is centred within one
+// cell of it, and its patch's centroid within two.
+class PatchDisks {
+  public:
+    PatchDisks(const Region& region, const Points& points, const radfmt::MeshData& mesh,
+               std::size_t first)
+        : distance_(region, points), region_(region), points_(points), mesh_(mesh), first_(first),
+          side_(region.cell), disks_(mesh.patches.size() - first) {
+        for (std::size_t k = first; k < mesh.patches.size(); ++k)
+            by_square_.emplace_back(square_of(centroid_xy(k)), k);
+        std::sort(by_square_.begin(), by_square_.end());
+    }
+    // The widest candidate disk that holds patch k's centroid (0: none).
+    double widest_at(std::size_t k) {
+        const auto xy = centroid_xy(k);
+        const auto [i, j] = square_of(xy);
+        double widest = 0;
+        for (auto di = -2; di <= 2; ++di)
+            for (auto dj = -2; dj <= 2; ++dj) {
+                auto it = std::lower_bound(by_square_.begin(), by_square_.end(),
+                                           std::pair{Square{i + di, j + dj}, std::size_t(0)});
+                for (; it != by_square_.end() && it->first == Square{i + di, j + dj}; ++it)
+                    for (const auto& disk : disks_of(it->second))
+                        if (std::hypot(xy[0] - disk.centre[0], xy[1] - disk.centre[1]) <=
+                            disk.distance)
+                            widest = std::max(widest, 2 * disk.distance);
+            }
+        return widest;
+    }
+
+  private:
+    using Square = std::array<std::int64_t, 2>;
+    Point2d centroid_xy(std::size_t k) const {
+        const auto xy = region_.plane.to_2d(mesh_.patches[k].centroid);
+        return {xy[0], xy[1]};
+    }
+    Square square_of(const Point2d& xy) const {
+        return {std::int64_t(std::floor(xy[0] / side_)), std::int64_t(std::floor(xy[1] / side_))};
+    }
+    // Disks centred on patch k's centroid and its edges' midpoints, as large as the outline
+    // lets them be (computed once, when first asked for).
+    const std::vector<Probe>& disks_of(std::size_t k) {
+        auto& disks = disks_[k - first_];
+        if (disks) return *disks;
+        disks.emplace();
+        auto add = [&](const Vec3& p) {
+            const auto xy = region_.plane.to_2d(p);
+            const auto probe = distance_.probe({xy[0], xy[1]}, 0);
+            if (probe.distance > 0) disks->push_back(probe);
+        };
+        const auto& patch = mesh_.patches[k];
         add(patch.centroid);
         const int n = patch.corner_count();
         for (int c = 0; c < n; ++c)
-            add((points.position[patch.corners[c]] + points.position[patch.corners[(c + 1) % n]]) *
+            add((points_.position[patch.corners[c]] +
+                 points_.position[patch.corners[(c + 1) % n]]) *
                 0.5);
+        return *disks;
     }
-    std::vector<double> thickness;
-    for (std::size_t k = first; k < mesh.patches.size(); ++k) {
-        const auto xy = region.plane.to_2d(mesh.patches[k].centroid);
-        double widest = 0;
-        for (const auto& disk : disks)
-            if (std::hypot(xy[0] - disk.centre[0], xy[1] - disk.centre[1]) <= disk.distance)
-                widest = std::max(widest, 2 * disk.distance);
-        thickness.push_back(widest);
-    }
+    OutlineDistance distance_;
+    const Region& region_;
+    const Points& points_;
+    const radfmt::MeshData& mesh_;
+    std::size_t first_;
+    double side_;
+    std::vector<std::optional<std::vector<Probe>>> disks_;
+    std::vector<std::pair<Square, std::size_t>> by_square_;
+};
+
+} // namespace
+
+std::vector<double> local_thickness(const Region& region, const Points& points,
+                                    const radfmt::MeshData& mesh, std::size_t first,
+                                    const std::vector<bool>& wanted) {
+    std::vector<double> thickness(mesh.patches.size() - first, 1e300);
+    if (!(region.cell > 0)) return thickness;
+    PatchDisks disks(region, points, mesh, first);
+    for (std::size_t k = first; k < mesh.patches.size(); ++k)
+        if (wanted.empty() || wanted[k - first]) thickness[k - first] = disks.widest_at(k);
     return thickness;
 }
 

@@ -150,11 +150,14 @@ std::size_t relax_outline_points(std::vector<Region>& regions, const Points& poi
 std::size_t refine_outline_pieces(std::vector<Region>& regions, Points& points, double tolerance,
                                   int rounds);
 
-// For each of mesh's patches from `first` on (the region's), the diameter of the largest circle
-// inside the region that holds its centroid, among circles centred on the patches' centroids
-// and edge midpoints: how thin the region is where the patch lies.
+// For each of mesh's patches from `first` on (the region's) marked in `wanted` (all when
+// empty), the diameter of the largest circle inside the region that holds its centroid, among
+// circles centred on nearby patches' centroids and edge midpoints (within two cells): how thin
+// the region is where the patch lies. Patches not wanted, and all of a region with no cell,
+// get 1e300.
 std::vector<double> local_thickness(const Region& region, const Points& points,
-                                    const radfmt::MeshData& mesh, std::size_t first);
+                                    const radfmt::MeshData& mesh, std::size_t first,
+                                    const std::vector<bool>& wanted = {});
 
 // Pass 4: the region's grid cells as quads and the band between them and its outline as
 // triangles, appended to `mesh` (whose vertices are `points`, patches facing the region's way).

@@ -71,18 +71,78 @@ double width_or_thickness(const surfaces::Region& region, const surfaces::Points
     return thickness < enough ? thickness : side;
 }
 
+// Whether a patch of a wide region may lie where the region is thinner: a band triangle of
+// aspect over 3, or one under a tenth of a cell (a wide region's cells are neither).
+bool suspect_in_wide_region(const radfmt::Patch& patch, const surfaces::Points& points,
+                            double cell) {
+    if (patch_aspect(points.position, patch) > 3) return true;
+    const int n = patch.corner_count();
+    for (int k = 0; k < n; ++k)
+        if (length(points.position[patch.corners[(k + 1) % n]] -
+                   points.position[patch.corners[k]]) >= cell / 10)
+            return false;
+    return true;
+}
+
+double segment_distance_3d(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 d = b - a;
+    const double len2 = dot(d, d);
+    const double t = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0;
+    return length(a + d * t - p);
+}
+
+// Marks the region's patches under a tenth of a cell (mesh's from `first` on) that lie within
+// a tenth of a cell of an outline piece that short: well-shaped triangles beside a notch or a
+// step of the input's outline must be about its size.
+void mark_specks_at_detail(const surfaces::Region& region, const surfaces::Points& points,
+                           const radfmt::MeshData& mesh, std::size_t first,
+                           std::vector<bool>& at_detail) {
+    at_detail.resize(mesh.patches.size(), false);
+    const double small = region.cell / 10;
+    std::vector<std::array<Vec3, 2>> short_pieces;
+    for (const auto& [a, b] : region.pieces)
+        if (length(points.position[b] - points.position[a]) < small)
+            short_pieces.push_back({points.position[a], points.position[b]});
+    if (short_pieces.empty()) return;
+    for (std::size_t k = first; k < mesh.patches.size(); ++k) {
+        const auto& patch = mesh.patches[k];
+        const int n = patch.corner_count();
+        bool speck = true;
+        for (int c = 0; c < n && speck; ++c)
+            speck = length(points.position[patch.corners[(c + 1) % n]] -
+                           points.position[patch.corners[c]]) < small;
+        if (!speck) continue;
+        for (int c = 0; c < n && !at_detail[k]; ++c)
+            for (const auto& [a, b] : short_pieces)
+                if (segment_distance_3d(points.position[patch.corners[c]], a, b) < small) {
+                    at_detail[k] = true;
+                    break;
+                }
+    }
+}
+
 // The width class of each of the region's patches (mesh's from `first` on): the region's, or
-// thinner where the region is thinner (a thin tab on a narrow region).
+// thinner where the region is thinner there: a thin tab of a narrow region (under half its
+// width), a narrow or thin part of a wide one (a sliver of a table top between two outlines).
 void classify_patches(const surfaces::Region& region, const surfaces::Points& points,
                       const radfmt::MeshData& mesh, std::size_t first,
                       std::vector<WidthClass>& classes, std::vector<double>& cells) {
     const auto whole = width_class(region.cell, region.width);
     classes.resize(mesh.patches.size(), whole);
     cells.resize(mesh.patches.size(), region.cell);
-    if (whole != WidthClass::Narrow) return; // wide regions are gridded whole, thin ones thin
-    const auto local = surfaces::local_thickness(region, points, mesh, first);
+    if (whole == WidthClass::Thin) return;
+    std::vector<bool> wanted; // a narrow region's patches all; a wide one's where suspect
+    if (whole == WidthClass::Wide) {
+        wanted.resize(mesh.patches.size() - first);
+        bool any = false;
+        for (std::size_t k = first; k < mesh.patches.size(); ++k)
+            any |= wanted[k - first] = suspect_in_wide_region(mesh.patches[k], points, region.cell);
+        if (!any) return;
+    }
+    const double thinner = whole == WidthClass::Wide ? region.cell : region.width / 2;
+    const auto local = surfaces::local_thickness(region, points, mesh, first, wanted);
     for (std::size_t k = 0; k < local.size(); ++k)
-        if (local[k] < region.width / 2) // much thinner there: a tab, a strip
+        if (local[k] < thinner)
             classes[first + k] = std::max(whole, width_class(region.cell, local[k]));
 }
 
@@ -140,6 +200,7 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     mesh.materials = faces.materials;
     std::vector<WidthClass> classes;
     std::vector<double> cell_of_patch;
+    std::vector<bool> at_detail;
     for (std::size_t r = 0; r < regions.size(); ++r) {
         const auto& region = regions[r];
         if (r % 1024 == 0) stage_fraction(options.stages, double(r) / regions.size());
@@ -148,9 +209,10 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
         // Where a region is thinner than a tenth of a cell its patches are slivers by its own
         // shape; where under a cell, it is cut across into near-square patches.
         classify_patches(region, points, mesh, first, classes, cell_of_patch);
+        mark_specks_at_detail(region, points, mesh, first, at_detail);
     }
     mesh.vertices = points.position;
-    rep.shape = shape_stats(mesh, classes, cell_of_patch);
+    rep.shape = shape_stats(mesh, classes, cell_of_patch, at_detail);
     drop_unused_vertices(mesh);
     if (mesh.patches.size() >= radfmt::kNoVertex)
         throw InputError("too many patches for 32-bit indices");
@@ -189,7 +251,7 @@ double patch_aspect(std::span<const Vec3> vertices, const radfmt::Patch& patch) 
 }
 
 ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClass>& classes,
-                       const std::vector<double>& cells) {
+                       const std::vector<double>& cells, const std::vector<bool>& at_detail) {
     ShapeStats stats;
     std::size_t good[2] = {0, 0}, counted[2] = {0, 0};
     stats.worst_aspect = 0;
@@ -205,7 +267,8 @@ ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClas
         ++counted[0], good[0] += fine; // a tenth of a cell thick or more
         if (c == WidthClass::Wide) ++counted[1], good[1] += fine;
         stats.worst_aspect = std::max(stats.worst_aspect, a);
-        if (k < cells.size() && longest_edge(mesh, patch) < cells[k] / 10) ++stats.specks;
+        if (k < cells.size() && longest_edge(mesh, patch) < cells[k] / 10)
+            ++(k < at_detail.size() && at_detail[k] ? stats.specks_at_detail : stats.specks);
     }
     stats.fraction_aspect_at_most_3 = counted[0] ? double(good[0]) / double(counted[0]) : 1;
     stats.fraction_wide_aspect_at_most_3 = counted[1] ? double(good[1]) / double(counted[1]) : 1;
