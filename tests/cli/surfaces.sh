@@ -224,6 +224,31 @@ import csv, sys
 area = sum(float(p['area']) for p in csv.DictReader(sys.stdin) if p['group'] == 'frame')
 assert abs(area - (2 * 1 - 1.96 * 0.96)) < 1e-9, area
 " || fail "frame area"
+# 13. A disc drawn as a fan of 1000 slivers, in a scene 4 km across: each rim point lies within
+# the on-a-line tolerance (1e-7 of the scene's size, 0.4 mm) of its neighbours' chord (0.2 mm
+# off it), so the outline's runs walked all round the rim as one straight run and the disc
+# vanished (0 patches, nothing said). A run is cut where it bends past the tolerance as a whole
+# (its area is now within 2.2e-5 of the 1000-gon's).
+python3 - <<'PY' > disc.obj
+import math
+n = 1000
+print("v 0 0 0")
+for k in range(n + 1):
+    a = 2 * math.pi * k / n
+    print("v %.9f 0 %.9f" % (10 * math.cos(a), 10 * math.sin(a)))
+print("g disc")
+for k in range(n):
+    print("f 1 %d %d" % (k + 3, k + 2))
+print("v 3000 3000 0\nv 3010 3000 0\nv 3000 3010 0\ng far\nf %d %d %d" % (n + 3, n + 4, n + 5))
+PY
+"$BIN/rad-mesh" disc.obj -o disc.mesh 2> disc.err || fail "disc: $(cat disc.err)"
+"$BIN/rad-info" --csv disc.mesh | python3 -c "
+import csv, math, sys
+area = sum(float(p['area']) for p in csv.DictReader(sys.stdin) if p['group'] == 'disc')
+exact = 0.5 * 1000 * 100 * math.sin(2 * math.pi / 1000)
+# Chords replace arcs no farther than the tolerance from them: at most 0.4 mm x the rim.
+assert abs(area - exact) < 0.00043 * 2 * math.pi * 10, (area, exact)
+" || fail "the disc's area is not kept: $(grep patches disc.err)"
 # The same input gives the same mesh whatever the process's memory layout: the output's name
 # and the environment's size move the heap, and the outline of a region that needed a
 # triangulation came in the order CGAL's edge iterator found it (by address): the cut of

@@ -130,6 +130,53 @@ std::vector<std::uint32_t> walk_run(std::size_t e, const Runs& runs, const Point
     return back;
 }
 
+// A walked chain cut where it bends past the tolerance as a whole (Douglas-Peucker): each of
+// its points lies within the tolerance of its neighbours' line, but such points can still turn
+// a full circle (a disc drawn as 10,000 slivers: each rim point 2e-6 off its neighbours' chord).
+// A closed chain is first cut at its point farthest from its start.
+std::vector<std::vector<std::uint32_t>> straight_parts(const std::vector<std::uint32_t>& chain,
+                                                       const Points& points, double tolerance) {
+    const auto at = [&](std::size_t k) { return points.position[chain[k]]; };
+    const auto off_line = [&](std::size_t k, std::size_t i, std::size_t j) {
+        const Vec3 d = at(j) - at(i);
+        const double len2 = dot(d, d);
+        if (!(len2 > 0)) return length(at(k) - at(i));
+        const double t = std::clamp(dot(at(k) - at(i), d) / len2, 0.0, 1.0);
+        return length(at(i) + d * t - at(k));
+    };
+    const std::size_t last = chain.size() - 1;
+    std::vector<char> keep(chain.size(), 0);
+    keep[0] = keep[last] = 1;
+    std::vector<std::pair<std::size_t, std::size_t>> todo{{0, last}};
+    if (chain.front() == chain.back() && last > 1) {
+        std::size_t far = 1;
+        for (std::size_t k = 2; k < last; ++k)
+            if (length(at(k) - at(0)) > length(at(far) - at(0))) far = k;
+        keep[far] = 1;
+        todo = {{0, far}, {far, last}};
+    }
+    while (!todo.empty()) {
+        const auto [i, j] = todo.back();
+        todo.pop_back();
+        std::size_t worst = i;
+        double worst_off = tolerance;
+        for (std::size_t k = i + 1; k < j; ++k)
+            if (const double off = off_line(k, i, j); off > worst_off) worst_off = off, worst = k;
+        if (worst == i) continue;
+        keep[worst] = 1;
+        todo.emplace_back(i, worst);
+        todo.emplace_back(worst, j);
+    }
+    std::vector<std::vector<std::uint32_t>> parts;
+    std::size_t start = 0;
+    for (std::size_t k = 1; k <= last; ++k)
+        if (keep[k]) {
+            parts.emplace_back(chain.begin() + start, chain.begin() + k + 1);
+            start = k;
+        }
+    return parts;
+}
+
 struct Run {
     std::vector<std::uint32_t> chain;   // the points from one kept end to the other
     std::vector<std::uint32_t> regions; // on either side
@@ -199,18 +246,21 @@ std::vector<Run> find_runs(const std::vector<std::vector<std::array<std::uint32_
             if (a == b) continue;
             const auto e = incidence.index(edge_key(a, b));
             if (seen[e]) continue;
-            Run run;
-            run.chain = walk_run(e, incidence, points, tolerance, seen);
-            for (std::size_t k = 0; k + 1 < run.chain.size(); ++k)
-                run_of[incidence.index(edge_key(run.chain[k], run.chain[k + 1]))] = runs.size();
-            dropped += run.chain.size() - 2;
             const auto on = incidence.regions_of(e);
-            run.regions.assign(on.begin(), on.end());
-            for (const auto region : run.regions)
-                if (regions[region].piece > 0)
-                    run.cell = run.cell > 0 ? std::min(run.cell, regions[region].piece)
-                                            : regions[region].piece;
-            runs.push_back(std::move(run));
+            const auto walked = walk_run(e, incidence, points, tolerance, seen);
+            for (auto& chain : straight_parts(walked, points, tolerance)) {
+                Run run;
+                run.chain = std::move(chain);
+                for (std::size_t k = 0; k + 1 < run.chain.size(); ++k)
+                    run_of[incidence.index(edge_key(run.chain[k], run.chain[k + 1]))] = runs.size();
+                dropped += run.chain.size() - 2;
+                run.regions.assign(on.begin(), on.end());
+                for (const auto region : run.regions)
+                    if (regions[region].piece > 0)
+                        run.cell = run.cell > 0 ? std::min(run.cell, regions[region].piece)
+                                                : regions[region].piece;
+                runs.push_back(std::move(run));
+            }
         }
     runs_of_region.assign(split.size(), {});
     for (std::uint32_t r = 0; r < split.size(); ++r) {
