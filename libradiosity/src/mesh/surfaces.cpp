@@ -1,6 +1,7 @@
 // mesh_surfaces: the passes of planar regions in order, and the shape statistics.
 #include "radiosity/surfaces.hpp"
 
+#include "polygon2d.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/stages.hpp"
@@ -71,25 +72,78 @@ double width_or_thickness(const surfaces::Region& region, const surfaces::Points
     return thickness < enough ? thickness : side;
 }
 
-// Whether a patch of a wide region may lie where the region is thinner: a band triangle of
-// aspect over 3, or one under a tenth of a cell (a wide region's cells are neither).
-bool suspect_in_wide_region(const radfmt::Patch& patch, const surfaces::Points& points,
-                            double cell) {
-    if (patch_aspect(points.position, patch) > 3) return true;
+// Whether every edge of the patch is shorter than `limit`.
+bool all_edges_under(const radfmt::Patch& patch, const surfaces::Points& points, double limit) {
     const int n = patch.corner_count();
     for (int k = 0; k < n; ++k)
-        if (length(points.position[patch.corners[(k + 1) % n]] -
-                   points.position[patch.corners[k]]) >= cell / 10)
+        if (!(length(points.position[patch.corners[(k + 1) % n]] -
+                     points.position[patch.corners[k]]) < limit))
             return false;
     return true;
 }
 
-double segment_distance_3d(const Vec3& p, const Vec3& a, const Vec3& b) {
-    const Vec3 d = b - a;
-    const double len2 = dot(d, d);
-    const double t = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0;
-    return length(a + d * t - p);
+// Whether a patch of a wide region may lie where the region is thinner: a band triangle of
+// aspect over 3, or one under a tenth of a cell (a wide region's cells are neither).
+bool suspect_in_wide_region(const radfmt::Patch& patch, const surfaces::Points& points,
+                            double cell) {
+    return patch_aspect(points.position, patch) > 3 || all_edges_under(patch, points, cell / 10);
 }
+
+// A region's outline pieces shorter than `small`, in squares of that side in its plane: those
+// within `small` of a point are in the 3 x 3 squares around it.
+class ShortPieces {
+  public:
+    ShortPieces(const surfaces::Region& region, const surfaces::Points& points, double small)
+        : region_(region), small_(small) {
+        for (const auto& [a, b] : region.pieces) {
+            const auto pa = xy(points.position[a]), pb = xy(points.position[b]);
+            if (!(std::hypot(pb[0] - pa[0], pb[1] - pa[1]) < small)) continue;
+            const auto index = static_cast<std::uint32_t>(pieces_.size());
+            pieces_.push_back({pa, pb});
+            const auto lo = square({std::min(pa[0], pb[0]), std::min(pa[1], pb[1])});
+            const auto hi = square({std::max(pa[0], pb[0]), std::max(pa[1], pb[1])});
+            for (auto i = lo[0]; i <= hi[0]; ++i)
+                for (auto j = lo[1]; j <= hi[1]; ++j) by_square_.push_back({{i, j}, index});
+        }
+        std::sort(by_square_.begin(), by_square_.end());
+    }
+    bool empty() const { return pieces_.empty(); }
+    // Whether a piece lies within `small` of p.
+    bool near(const Vec3& p) const {
+        const auto q = xy(p);
+        const auto centre = square(q);
+        for (auto i = centre[0] - 1; i <= centre[0] + 1; ++i)
+            for (auto j = centre[1] - 1; j <= centre[1] + 1; ++j) {
+                auto it = std::lower_bound(by_square_.begin(), by_square_.end(), Entry{{i, j}, 0});
+                for (; it != by_square_.end() && it->square == Square{i, j}; ++it) {
+                    const auto& [a, b] = pieces_[it->piece];
+                    if (segment_distance(q, a, b) < small_) return true;
+                }
+            }
+        return false;
+    }
+
+  private:
+    using Square = std::array<std::int64_t, 2>;
+    struct Entry {
+        Square square;
+        std::uint32_t piece;
+        bool operator<(const Entry& o) const {
+            return square < o.square || (square == o.square && piece < o.piece);
+        }
+    };
+    Point2d xy(const Vec3& p) const {
+        const auto v = region_.plane.to_2d(p);
+        return {v[0], v[1]};
+    }
+    Square square(const Point2d& p) const {
+        return {std::int64_t(std::floor(p[0] / small_)), std::int64_t(std::floor(p[1] / small_))};
+    }
+    const surfaces::Region& region_;
+    double small_;
+    std::vector<std::array<Point2d, 2>> pieces_;
+    std::vector<Entry> by_square_;
+};
 
 // Marks the region's patches under a tenth of a cell (mesh's from `first` on) that lie within
 // a tenth of a cell of an outline piece that short: well-shaped triangles beside a notch or a
@@ -98,26 +152,14 @@ void mark_specks_at_detail(const surfaces::Region& region, const surfaces::Point
                            const radfmt::MeshData& mesh, std::size_t first,
                            std::vector<bool>& at_detail) {
     at_detail.resize(mesh.patches.size(), false);
-    const double small = region.cell / 10;
-    std::vector<std::array<Vec3, 2>> short_pieces;
-    for (const auto& [a, b] : region.pieces)
-        if (length(points.position[b] - points.position[a]) < small)
-            short_pieces.push_back({points.position[a], points.position[b]});
+    if (!(region.cell > 0)) return;
+    const ShortPieces short_pieces(region, points, region.cell / 10);
     if (short_pieces.empty()) return;
     for (std::size_t k = first; k < mesh.patches.size(); ++k) {
         const auto& patch = mesh.patches[k];
-        const int n = patch.corner_count();
-        bool speck = true;
-        for (int c = 0; c < n && speck; ++c)
-            speck = length(points.position[patch.corners[(c + 1) % n]] -
-                           points.position[patch.corners[c]]) < small;
-        if (!speck) continue;
-        for (int c = 0; c < n && !at_detail[k]; ++c)
-            for (const auto& [a, b] : short_pieces)
-                if (segment_distance_3d(points.position[patch.corners[c]], a, b) < small) {
-                    at_detail[k] = true;
-                    break;
-                }
+        if (!all_edges_under(patch, points, region.cell / 10)) continue;
+        for (int c = 0; c < patch.corner_count() && !at_detail[k]; ++c)
+            at_detail[k] = short_pieces.near(points.position[patch.corners[c]]);
     }
 }
 
