@@ -57,6 +57,7 @@ double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
 // The same with the corners read from `vertices` (a mesh's, or points a mesh is being made of).
 double patch_aspect(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch);
 double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
+double longest_edge(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch);
 // Over the patches not thin (`classes` by patch; patches past its end are wide); `cells` gives
 // each patch's cell side (patches past its end are not counted as specks); `at_detail` marks
 // the specks beside an outline piece under a tenth of a cell.

@@ -196,12 +196,17 @@ void emit(const Region& region, const Points& points, radfmt::MeshData& mesh,
 
 // Points of one straight run of outline, off their line by rounding alone (a glTF's floats),
 // make slivers outside the pieces: a triangle no higher than the tolerance that decides which
-// points are on a line has no area worth a patch, and is not part of the region.
+// points are on a line has no area worth a patch, and is not part of the region. From twice
+// its area and its longest edge squared.
+bool higher_than_tolerance(double twice_area, double longest_squared, double tolerance) {
+    const double longest = std::sqrt(longest_squared);
+    return twice_area > std::max(tolerance, 1e-9 * longest) * longest;
+}
+
 bool has_area(const Point2& a, const Point2& b, const Point2& c, double tolerance) {
-    const double twice_area = std::abs(CGAL::area(a, b, c)) * 2;
     const double longest = std::max(
         {CGAL::squared_distance(a, b), CGAL::squared_distance(b, c), CGAL::squared_distance(c, a)});
-    return twice_area > std::max(tolerance, 1e-9 * std::sqrt(longest)) * std::sqrt(longest);
+    return higher_than_tolerance(std::abs(CGAL::area(a, b, c)) * 2, longest, tolerance);
 }
 
 double band_area(const BandCDT& cdt) {
@@ -281,9 +286,7 @@ void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<
                    &p2 = points.position[f->vertex(2)->info().id];
         const double longest =
             std::max({dot(p1 - p0, p1 - p0), dot(p2 - p1, p2 - p1), dot(p0 - p2, p0 - p2)});
-        const double twice_area = length(cross(p1 - p0, p2 - p0));
-        if (!(twice_area > std::max(tolerance, 1e-9 * std::sqrt(longest)) * std::sqrt(longest)))
-            continue;
+        if (!higher_than_tolerance(length(cross(p1 - p0, p2 - p0)), longest, tolerance)) continue;
         emit(region, points, mesh,
              {f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id});
         ++report.band_triangles;

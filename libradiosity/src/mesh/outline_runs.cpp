@@ -246,19 +246,21 @@ std::vector<Run> find_runs(const std::vector<std::vector<std::array<std::uint32_
             if (a == b) continue;
             const auto e = incidence.index(edge_key(a, b));
             if (seen[e]) continue;
+            // The regions on either side, and their shortest piece: the same for every part.
+            Run along;
             const auto on = incidence.regions_of(e);
+            along.regions.assign(on.begin(), on.end());
+            for (const auto region : along.regions)
+                if (regions[region].piece > 0)
+                    along.cell = along.cell > 0 ? std::min(along.cell, regions[region].piece)
+                                                : regions[region].piece;
             const auto walked = walk_run(e, incidence, points, tolerance, seen);
             for (auto& chain : straight_parts(walked, points, tolerance)) {
-                Run run;
+                Run run = along;
                 run.chain = std::move(chain);
                 for (std::size_t k = 0; k + 1 < run.chain.size(); ++k)
                     run_of[incidence.index(edge_key(run.chain[k], run.chain[k + 1]))] = runs.size();
                 dropped += run.chain.size() - 2;
-                run.regions.assign(on.begin(), on.end());
-                for (const auto region : run.regions)
-                    if (regions[region].piece > 0)
-                        run.cell = run.cell > 0 ? std::min(run.cell, regions[region].piece)
-                                                : regions[region].piece;
                 runs.push_back(std::move(run));
             }
         }

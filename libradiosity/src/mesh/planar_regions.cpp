@@ -14,8 +14,8 @@ namespace {
 // along the edge: a T-junction), as sub-edges keyed by their ends, in CSR form: faces that
 // share a sub-edge touch along it, whether or not their corners meet there.
 struct FaceSubEdges {
-    std::vector<std::size_t>
-        start; // faces + 1: face f's sub-edges in keys[start[f] .. start[f + 1])
+    // faces + 1 entries: face f's sub-edges are keys[start[f] .. start[f + 1]).
+    std::vector<std::size_t> start;
     std::vector<EdgeKey> keys;
 };
 

@@ -6,6 +6,7 @@
 // split while it might hold a point farther from the outline than the best found.
 #include "polygon2d.hpp"
 #include "regions.hpp"
+#include "square_index.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -90,37 +91,30 @@ class PatchDisks {
     PatchDisks(const Region& region, const Points& points, const radfmt::MeshData& mesh,
                std::size_t first)
         : distance_(region, points), region_(region), points_(points), mesh_(mesh), first_(first),
-          side_(region.cell), disks_(mesh.patches.size() - first) {
-        for (std::size_t k = first; k < mesh.patches.size(); ++k)
-            by_square_.emplace_back(square_of(centroid_xy(k)), k);
-        std::sort(by_square_.begin(), by_square_.end());
+          disks_(mesh.patches.size() - first), by_square_(region.cell) {
+        for (std::size_t k = first; k < mesh.patches.size(); ++k) {
+            const auto xy = centroid_xy(k);
+            by_square_.insert(xy, xy, static_cast<std::uint32_t>(k));
+        }
+        by_square_.freeze();
     }
     // The widest candidate disk that holds patch k's centroid (0: none).
     double widest_at(std::size_t k) {
         const auto xy = centroid_xy(k);
-        const auto [i, j] = square_of(xy);
         double widest = 0;
-        for (auto di = -2; di <= 2; ++di)
-            for (auto dj = -2; dj <= 2; ++dj) {
-                auto it = std::lower_bound(by_square_.begin(), by_square_.end(),
-                                           std::pair{Square{i + di, j + dj}, std::size_t(0)});
-                for (; it != by_square_.end() && it->first == Square{i + di, j + dj}; ++it)
-                    for (const auto& disk : disks_of(it->second))
-                        if (std::hypot(xy[0] - disk.centre[0], xy[1] - disk.centre[1]) <=
-                            disk.distance)
-                            widest = std::max(widest, 2 * disk.distance);
-            }
+        by_square_.find_near(xy, 2, [&](std::uint32_t patch) {
+            for (const auto& disk : disks_of(patch))
+                if (std::hypot(xy[0] - disk.centre[0], xy[1] - disk.centre[1]) <= disk.distance)
+                    widest = std::max(widest, 2 * disk.distance);
+            return false;
+        });
         return widest;
     }
 
   private:
-    using Square = std::array<std::int64_t, 2>;
     Point2d centroid_xy(std::size_t k) const {
         const auto xy = region_.plane.to_2d(mesh_.patches[k].centroid);
         return {xy[0], xy[1]};
-    }
-    Square square_of(const Point2d& xy) const {
-        return {std::int64_t(std::floor(xy[0] / side_)), std::int64_t(std::floor(xy[1] / side_))};
     }
     // Disks centred on patch k's centroid and its edges' midpoints, as large as the outline
     // lets them be (computed once, when first asked for).
@@ -147,9 +141,8 @@ class PatchDisks {
     const Points& points_;
     const radfmt::MeshData& mesh_;
     std::size_t first_;
-    double side_;
     std::vector<std::optional<std::vector<Probe>>> disks_;
-    std::vector<std::pair<Square, std::size_t>> by_square_;
+    SquareIndex by_square_; // the patches by their centroids' squares of a cell
 };
 
 } // namespace

@@ -6,6 +6,7 @@
 #include "radiosity/scene.hpp"
 #include "radiosity/stages.hpp"
 #include "regions.hpp"
+#include "square_index.hpp"
 #include "weld.hpp"
 
 #include <algorithm>
@@ -72,21 +73,12 @@ double width_or_thickness(const surfaces::Region& region, const surfaces::Points
     return thickness < enough ? thickness : side;
 }
 
-// Whether every edge of the patch is shorter than `limit`.
-bool all_edges_under(const radfmt::Patch& patch, const surfaces::Points& points, double limit) {
-    const int n = patch.corner_count();
-    for (int k = 0; k < n; ++k)
-        if (!(length(points.position[patch.corners[(k + 1) % n]] -
-                     points.position[patch.corners[k]]) < limit))
-            return false;
-    return true;
-}
-
 // Whether a patch of a wide region may lie where the region is thinner: a band triangle of
 // aspect over 3, or one under a tenth of a cell (a wide region's cells are neither).
 bool suspect_in_wide_region(const radfmt::Patch& patch, const surfaces::Points& points,
                             double cell) {
-    return patch_aspect(points.position, patch) > 3 || all_edges_under(patch, points, cell / 10);
+    return patch_aspect(points.position, patch) > 3 ||
+           longest_edge(points.position, patch) < cell / 10;
 }
 
 // A region's outline pieces shorter than `small`, in squares of that side in its plane: those
@@ -94,55 +86,35 @@ bool suspect_in_wide_region(const radfmt::Patch& patch, const surfaces::Points& 
 class ShortPieces {
   public:
     ShortPieces(const surfaces::Region& region, const surfaces::Points& points, double small)
-        : region_(region), small_(small) {
+        : region_(region), small_(small), index_(small) {
         for (const auto& [a, b] : region.pieces) {
             const auto pa = xy(points.position[a]), pb = xy(points.position[b]);
             if (!(std::hypot(pb[0] - pa[0], pb[1] - pa[1]) < small)) continue;
-            const auto index = static_cast<std::uint32_t>(pieces_.size());
+            index_.insert({std::min(pa[0], pb[0]), std::min(pa[1], pb[1])},
+                          {std::max(pa[0], pb[0]), std::max(pa[1], pb[1])},
+                          static_cast<std::uint32_t>(pieces_.size()));
             pieces_.push_back({pa, pb});
-            const auto lo = square({std::min(pa[0], pb[0]), std::min(pa[1], pb[1])});
-            const auto hi = square({std::max(pa[0], pb[0]), std::max(pa[1], pb[1])});
-            for (auto i = lo[0]; i <= hi[0]; ++i)
-                for (auto j = lo[1]; j <= hi[1]; ++j) by_square_.push_back({{i, j}, index});
         }
-        std::sort(by_square_.begin(), by_square_.end());
+        index_.freeze();
     }
     bool empty() const { return pieces_.empty(); }
     // Whether a piece lies within `small` of p.
     bool near(const Vec3& p) const {
         const auto q = xy(p);
-        const auto centre = square(q);
-        for (auto i = centre[0] - 1; i <= centre[0] + 1; ++i)
-            for (auto j = centre[1] - 1; j <= centre[1] + 1; ++j) {
-                auto it = std::lower_bound(by_square_.begin(), by_square_.end(), Entry{{i, j}, 0});
-                for (; it != by_square_.end() && it->square == Square{i, j}; ++it) {
-                    const auto& [a, b] = pieces_[it->piece];
-                    if (segment_distance(q, a, b) < small_) return true;
-                }
-            }
-        return false;
+        return index_.find_near(q, 1, [&](std::uint32_t piece) {
+            return segment_distance(q, pieces_[piece][0], pieces_[piece][1]) < small_;
+        });
     }
 
   private:
-    using Square = std::array<std::int64_t, 2>;
-    struct Entry {
-        Square square;
-        std::uint32_t piece;
-        bool operator<(const Entry& o) const {
-            return square < o.square || (square == o.square && piece < o.piece);
-        }
-    };
     Point2d xy(const Vec3& p) const {
         const auto v = region_.plane.to_2d(p);
         return {v[0], v[1]};
     }
-    Square square(const Point2d& p) const {
-        return {std::int64_t(std::floor(p[0] / small_)), std::int64_t(std::floor(p[1] / small_))};
-    }
     const surfaces::Region& region_;
     double small_;
     std::vector<std::array<Point2d, 2>> pieces_;
-    std::vector<Entry> by_square_;
+    SquareIndex index_;
 };
 
 // Marks the region's patches under a tenth of a cell (mesh's from `first` on) that lie within
@@ -157,7 +129,7 @@ void mark_specks_at_detail(const surfaces::Region& region, const surfaces::Point
     if (short_pieces.empty()) return;
     for (std::size_t k = first; k < mesh.patches.size(); ++k) {
         const auto& patch = mesh.patches[k];
-        if (!all_edges_under(patch, points, region.cell / 10)) continue;
+        if (!(longest_edge(points.position, patch) < region.cell / 10)) continue;
         for (int c = 0; c < patch.corner_count() && !at_detail[k]; ++c)
             at_detail[k] = short_pieces.near(points.position[patch.corners[c]]);
     }
@@ -262,11 +234,15 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
 }
 
 double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
+    return longest_edge(mesh.vertices, patch);
+}
+
+double longest_edge(std::span<const Vec3> vertices, const radfmt::Patch& patch) {
     const int n = patch.corner_count();
     double longest = 0;
     for (int k = 0; k < n; ++k)
-        longest = std::max(longest, length(mesh.vertices[patch.corners[(k + 1) % n]] -
-                                           mesh.vertices[patch.corners[k]]));
+        longest = std::max(
+            longest, length(vertices[patch.corners[(k + 1) % n]] - vertices[patch.corners[k]]));
     return longest;
 }
 
