@@ -153,11 +153,11 @@ std::size_t refine_outline_pieces(std::vector<Region>& regions, Points& points, 
 // For each of mesh's patches from `first` on (the region's) marked in `wanted` (all when
 // empty), the diameter of the largest circle inside the region that holds its centroid, among
 // circles centred on nearby patches' centroids and edge midpoints (within two cells): how thin
-// the region is where the patch lies. Patches not wanted, and all of a region with no cell,
-// get 1e300.
+// the region is where the patch lies; once a circle at least `enough` wide is found, that one.
+// Patches not wanted, and all of a region with no cell, get 1e300.
 std::vector<double> local_thickness(const Region& region, const Points& points,
                                     const radfmt::MeshData& mesh, std::size_t first,
-                                    const std::vector<bool>& wanted = {});
+                                    const std::vector<bool>& wanted = {}, double enough = 1e300);
 
 // Pass 4: the region's grid cells as quads and the band between them and its outline as
 // triangles, appended to `mesh` (whose vertices are `points`, patches facing the region's way).

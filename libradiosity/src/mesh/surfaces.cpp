@@ -154,7 +154,7 @@ void classify_patches(const surfaces::Region& region, const surfaces::Points& po
         if (!any) return;
     }
     const double thinner = whole == WidthClass::Wide ? region.cell : region.width / 2;
-    const auto local = surfaces::local_thickness(region, points, mesh, first, wanted);
+    const auto local = surfaces::local_thickness(region, points, mesh, first, wanted, thinner);
     for (std::size_t k = 0; k < local.size(); ++k)
         if (local[k] < thinner)
             classes[first + k] = std::max(whole, width_class(region.cell, local[k]));
