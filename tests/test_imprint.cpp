@@ -174,4 +174,22 @@ TEST_CASE("for_each_overlapping_pair finds exactly the overlapping pairs", "[imp
             if (overlap(boxes[a], boxes[b])) expected.insert({a, b});
     CHECK(expected.size() > 5000);
     CHECK(found == expected);
+
+    // Grouped (every other row of floor tiles a group, the rest in none): the same pairs but
+    // those of one group.
+    std::vector<std::uint32_t> groups(boxes.size(), rad::kNoGroup);
+    for (std::uint32_t b = 0; b < 1600; ++b)
+        if ((b / 40) % 2 == 0) groups[b] = b / 40;
+    std::set<std::pair<std::uint32_t, std::uint32_t>> found_grouped, expected_grouped;
+    rad::for_each_overlapping_pair(
+        boxes,
+        [&](std::uint32_t a, std::uint32_t b) {
+            REQUIRE(a < b);
+            REQUIRE(found_grouped.insert({a, b}).second);
+        },
+        groups);
+    for (const auto& [a, b] : expected)
+        if (groups[a] == rad::kNoGroup || groups[a] != groups[b]) expected_grouped.insert({a, b});
+    CHECK(expected_grouped.size() < expected.size() - 500);
+    CHECK(found_grouped == expected_grouped);
 }

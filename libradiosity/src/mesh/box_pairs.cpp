@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace rad {
 
@@ -35,7 +36,12 @@ double cell_side(const std::vector<Box>& boxes, const Box& all) {
 } // namespace
 
 void for_each_overlapping_pair(const std::vector<Box>& boxes,
-                               const std::function<void(std::uint32_t, std::uint32_t)>& visit) {
+                               const std::function<void(std::uint32_t, std::uint32_t)>& visit,
+                               const std::vector<std::uint32_t>& groups) {
+    auto group = [&](std::uint32_t b) { return groups.empty() ? kNoGroup : groups[b]; };
+    auto one_group = [&](std::uint32_t a, std::uint32_t b) {
+        return group(a) != kNoGroup && group(a) == group(b);
+    };
     Box all;
     for (const auto& b : boxes)
         if (!empty(b)) all.add(b.lo), all.add(b.hi);
@@ -50,7 +56,8 @@ void for_each_overlapping_pair(const std::vector<Box>& boxes,
     // Each box in every cell it overlaps; boxes over more than kMostCells go on a list of
     // their own, tried against every box.
     constexpr std::uint64_t kMostCells = 64;
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> entries;
+    // (cell, group, box): a cell's boxes of one group next to each other, skipped together.
+    std::vector<std::tuple<std::uint64_t, std::uint32_t, std::uint32_t>> entries;
     std::vector<std::uint32_t> large;
     for (std::uint32_t b = 0; b < boxes.size(); ++b) {
         if (empty(boxes[b])) continue;
@@ -63,30 +70,44 @@ void for_each_overlapping_pair(const std::vector<Box>& boxes,
         }
         for (auto i = lo[0]; i <= hi[0]; ++i)
             for (auto j = lo[1]; j <= hi[1]; ++j)
-                for (auto k = lo[2]; k <= hi[2]; ++k) entries.emplace_back(key(i, j, k), b);
+                for (auto k = lo[2]; k <= hi[2]; ++k)
+                    entries.emplace_back(key(i, j, k), group(b), b);
     }
     std::sort(entries.begin(), entries.end());
+    auto cell_of = [](const auto& entry) { return std::get<0>(entry); };
+    auto box_of = [](const auto& entry) { return std::get<2>(entry); };
     for (std::size_t start = 0; start < entries.size();) {
         std::size_t end = start;
-        while (end < entries.size() && entries[end].first == entries[start].first) ++end;
-        for (auto x = start; x < end; ++x)
-            for (auto y = x + 1; y < end; ++y) {
-                const auto a = entries[x].second, b = entries[y].second;
+        while (end < entries.size() && cell_of(entries[end]) == cell_of(entries[start])) ++end;
+        std::size_t block_end = start; // the end of x's group's entries in this cell
+        for (auto x = start; x < end; ++x) {
+            if (x == block_end) {
+                const auto g = std::get<1>(entries[x]);
+                for (block_end = x + 1;
+                     g != kNoGroup && block_end < end && std::get<1>(entries[block_end]) == g;)
+                    ++block_end;
+                if (g == kNoGroup) block_end = x + 1;
+            }
+            for (auto y = std::max(x + 1, block_end); y < end; ++y) {
+                const auto a = box_of(entries[x]), b = box_of(entries[y]);
                 if (!overlap(boxes[a], boxes[b])) continue;
                 // Once: in the cell holding the lower corner of the two boxes' overlap.
                 Vec3 corner;
                 for (int k = 0; k < 3; ++k) corner[k] = std::max(boxes[a].lo[k], boxes[b].lo[k]);
-                if (key(cell(corner, 0), cell(corner, 1), cell(corner, 2)) != entries[start].first)
+                if (key(cell(corner, 0), cell(corner, 1), cell(corner, 2)) !=
+                    cell_of(entries[start]))
                     continue;
                 visit(std::min(a, b), std::max(a, b));
             }
+        }
         start = end;
     }
     std::sort(large.begin(), large.end());
     for (std::size_t x = 0; x < large.size(); ++x)
         for (std::uint32_t b = 0; b < boxes.size(); ++b) {
             const auto a = large[x];
-            if (b == a || empty(boxes[b]) || !overlap(boxes[a], boxes[b])) continue;
+            if (b == a || one_group(a, b) || empty(boxes[b]) || !overlap(boxes[a], boxes[b]))
+                continue;
             // A pair of two large boxes once, from the first.
             if (std::binary_search(large.begin(), large.end(), b) && b < a) continue;
             visit(std::min(a, b), std::max(a, b));

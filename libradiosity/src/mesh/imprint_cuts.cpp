@@ -136,6 +136,27 @@ bool reaches_plane(const Scene& scene, std::uint32_t p, std::uint32_t q, double 
     return (above && below) || on >= 2;
 }
 
+// Each face's welded corner that most faces have (the lowest of equals): faces with the same
+// one share a corner, so the broad phase need not pair them (a fan's slivers all have its
+// hub).
+std::vector<std::uint32_t> busiest_corners(const Scene& scene,
+                                           const std::vector<std::uint32_t>& welded) {
+    std::vector<std::uint32_t> faces_at;
+    for (const auto& poly : scene.polygons)
+        for (const auto v : poly.vertices) {
+            if (welded[v] >= faces_at.size()) faces_at.resize(welded[v] + 1, 0);
+            ++faces_at[welded[v]];
+        }
+    std::vector<std::uint32_t> busiest(scene.polygons.size(), kNoGroup);
+    for (std::size_t f = 0; f < scene.polygons.size(); ++f)
+        for (const auto v : scene.polygons[f].vertices) {
+            const auto w = welded[v], b = busiest[f];
+            if (b == kNoGroup || faces_at[w] > faces_at[b] || (faces_at[w] == faces_at[b] && w < b))
+                busiest[f] = w;
+        }
+    return busiest;
+}
+
 // Candidate pairs: faces whose boxes overlap within `tol` (for_each_overlapping_pair), not
 // of one object (no welded corner in common), each as (a face, one that reaches its plane).
 // Faces of no area take no part. Sorted, so they do not depend on the order the pairs are
@@ -151,14 +172,17 @@ touching_pairs(const Scene& scene, const std::vector<std::uint32_t>& welded, dou
         for (int k = 0; k < 3; ++k) boxes[f].lo[k] -= tol / 2, boxes[f].hi[k] += tol / 2;
     }
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-    for_each_overlapping_pair(boxes, [&](std::uint32_t a, std::uint32_t b) {
-        // One object (or two faces meeting at an edge): a welded corner in common.
-        for (const auto u : scene.polygons[a].vertices)
-            for (const auto v : scene.polygons[b].vertices)
-                if (welded[u] == welded[v]) return;
-        if (reaches_plane(scene, a, b, tol, points)) pairs.emplace_back(a, b);
-        if (reaches_plane(scene, b, a, tol, points)) pairs.emplace_back(b, a);
-    });
+    for_each_overlapping_pair(
+        boxes,
+        [&](std::uint32_t a, std::uint32_t b) {
+            // One object (or two faces meeting at an edge): a welded corner in common.
+            for (const auto u : scene.polygons[a].vertices)
+                for (const auto v : scene.polygons[b].vertices)
+                    if (welded[u] == welded[v]) return;
+            if (reaches_plane(scene, a, b, tol, points)) pairs.emplace_back(a, b);
+            if (reaches_plane(scene, b, a, tol, points)) pairs.emplace_back(b, a);
+        },
+        busiest_corners(scene, welded));
     std::sort(pairs.begin(), pairs.end());
     return pairs;
 }
