@@ -183,6 +183,19 @@ at_least "${tenth:-0}" 97 && at_least "${wide:-0}" 97 || fail "living room shape
 # 1.7e-4.
 slivers=$("$BIN/rad-info" --csv lr.mesh | awk -F, 'NR > 1 && $4 < 1e-6' | wc -l)
 [ "$slivers" = 0 ] || fail "living room: $slivers patch(es) under 1e-6 m^2 (slivers of rounding)"
+# Four of its wall regions are faces drawn partly over each other: meshed as the area they
+# cover, which is said, with what it costs: the faces' own sum (--surfaces faces) less the
+# regions' area.
+"$BIN/rad-mesh" "$SRC/tests/data/living-room/living_room.glb" -o lr-faces.mesh --surfaces faces 2> lr-faces.err ||
+  fail "living room, faces: $(cat lr-faces.err)"
+total_area() { sed -n 's/^rad-mesh: .* patches, .* total area \([0-9.]*\),.*/\1/p' "$1"; }
+merged=$(sed -n 's/.*merged: \([0-9]*\) planar region(s) of faces drawn partly over each other meshed as the area they cover, \([0-9.e+-]*\) less.*/\1 \2/p' lr.err)
+python3 -c "
+import sys
+regions, said = '$merged'.split() or ('0', '0')
+lost = $(total_area lr-faces.err) - $(total_area lr.err)
+sys.exit(not (regions == '4' and abs(float(said) - lost) < 1e-3 and lost > 1))
+" || fail "living room: overlapping faces not reported as merged ('$merged'; $(grep -c merged lr.err) line(s))"
 "$BIN/rad-mesh" "$SRC/tests/data/pandora-cut/pandora-cut.obj" -o pc.mesh 2> pc.err || fail "pandora cut: $(cat pc.err)"
 read -r tenth wide < <(shape_share pc.err)
 echo "pandora cut: aspect <= 3 for $tenth% (a tenth of a cell thick or more), $wide% (a cell thick)"

@@ -71,6 +71,10 @@ struct SurfaceReport {
     std::size_t band_triangles = 0;   // triangles between the cells and a region's outline
     std::size_t dropped_vertices = 0; // collinear outline points no other region needs
     std::size_t t_vertices = 0;       // points a region left out where smoothing stops anyway
+    // Regions whose faces overlap in part (copies are gone before): meshed as their union,
+    // which is this much less than the faces' sum.
+    std::size_t overlapped_regions = 0;
+    double overlap_area = 0;
     ShapeStats shape;
 };
 

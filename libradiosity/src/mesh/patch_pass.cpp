@@ -44,6 +44,18 @@ void report_faces(const Scene& scene, const SubdivisionReport& faces, MeshReport
                        " degenerate (zero-area) face(s)");
 }
 
+// Regions of faces drawn partly over each other, meshed as what they cover.
+void report_overlaps(const SurfaceReport& surfaces, MeshReport& report) {
+    if (!surfaces.overlapped_regions) return;
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "merged: %zu planar region(s) of faces drawn partly over each other meshed as "
+                  "the area they cover, %.6g less than the faces' sum (--surfaces faces keeps "
+                  "every face)",
+                  surfaces.overlapped_regions, surfaces.overlap_area);
+    report.add(MeshReport::Kind::Change, text);
+}
+
 // The default limit from the scene's size: the diagonal of the used vertices' bounding box.
 SubdivisionOptions resolve_limits(const Scene& scene, SubdivisionOptions limits,
                                   MeshReport& report) {
@@ -82,6 +94,7 @@ radfmt::MeshData patch_pass(Scene& scene, const MeshOptions& options, MeshReport
         mesh = subdivide(scene, limits, &faces);
     }
     report_faces(scene, faces, report);
+    report_overlaps(report.surfaces, report);
     return mesh;
 }
 

@@ -222,4 +222,27 @@ void trace_outline(Region& region, const radfmt::MeshData& faces,
     }
 }
 
+double area_beyond_union(const Region& region, const radfmt::MeshData& faces,
+                         const std::vector<std::uint32_t>& weld, const Points& points) {
+    if (!region.cdt) return 0;
+    // Both in the plane's 2D: a face's own area is that of its corners off the plane.
+    double sum = 0, covered = 0;
+    for (const auto f : region.faces) {
+        const auto& p = faces.patches[f];
+        std::array<Point2, 4> xy;
+        for (int k = 0; k < p.corner_count(); ++k) {
+            const auto q = region.plane.to_2d(points.position[weld[p.corners[k]]]);
+            xy[k] = Point2(q[0], q[1]);
+        }
+        sum += std::abs(CGAL::area(xy[0], xy[1], xy[2]));
+        if (p.corner_count() == 4) sum += std::abs(CGAL::area(xy[0], xy[2], xy[3]));
+    }
+    const auto& cdt = *region.cdt;
+    for (auto face = cdt.finite_faces_begin(); face != cdt.finite_faces_end(); ++face)
+        if (face->info().inside)
+            covered += std::abs(CGAL::area(face->vertex(0)->point(), face->vertex(1)->point(),
+                                           face->vertex(2)->point()));
+    return sum - covered > 1e-6 * sum ? sum - covered : 0; // past rounding
+}
+
 } // namespace rad::surfaces

@@ -122,6 +122,12 @@ std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
 void trace_outline(Region& region, const radfmt::MeshData& faces,
                    const std::vector<std::uint32_t>& weld, Points& points);
 
+// How much the region's faces' areas add up to more than the area they cover (0 where they
+// tile it, or the difference is rounding: under a millionth of the sum): faces drawn partly
+// over each other.
+double area_beyond_union(const Region& region, const radfmt::MeshData& faces,
+                         const std::vector<std::uint32_t>& weld, const Points& points);
+
 // The shorter side of the region's minimum-area rectangle (from its outline edges).
 double region_width(const Region& region, const Points& points);
 
