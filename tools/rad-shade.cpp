@@ -16,229 +16,283 @@
 #include <cstdio>
 #include <iostream>
 
-int main(int argc, char** argv) {
-    CLI::App app{"Render per-patch radiosity from a camera (Radiance view options) to a linear\n"
-                 "float OpenEXR image, with optional sRGB PNG preview and vertex-coloured PLY."};
+namespace {
+
+// What the command line says.
+struct ShadeArgs {
     std::string mesh_path, rad_path, output, view_text, view_file, smooth = "crease", png, ply;
     int width = 512, height = 512, aa = 2, threads = 0;
     double exposure = 0, crease = 30;
     bool flat = false, albedo = false, quiet = false;
-    app.add_option("MESH", mesh_path, "Patch mesh from rad-mesh")->required();
-    app.add_option("RADIOSITY", rad_path, "Radiosity from rad-solve (not needed with --albedo)");
-    app.add_option("-o,--output", output, "Output OpenEXR image")->required();
-    app.add_option("--view", view_text,
+    std::vector<std::string> mix;
+    bool mix_only = false, layers = false;
+    std::string backfaces = "show", max_memory;
+    int gather = 0, shadow_rays = 32;
+};
+
+// The inputs, the camera and the image's size.
+void add_image_options(CLI::App& app, ShadeArgs& a) {
+    app.add_option("MESH", a.mesh_path, "Patch mesh from rad-mesh")->required();
+    app.add_option("RADIOSITY", a.rad_path, "Radiosity from rad-solve (not needed with --albedo)");
+    app.add_option("-o,--output", a.output, "Output OpenEXR image")->required();
+    app.add_option("--view", a.view_text,
                    "Radiance view options, e.g. \"-vp 0 1 3 -vd 0 0 -1 -vu 0 1 0 -vh 40 -vv 40\"");
-    app.add_option("--view-file", view_file,
+    app.add_option("--view-file", a.view_file,
                    "File with Radiance view options (e.g. scenes/cornell/cornell.vf)");
-    app.add_option("-x,--width", width, "Image width in pixels")
+    app.add_option("-x,--width", a.width, "Image width in pixels")
         ->capture_default_str()
         ->check(CLI::Range(1, 16384));
-    app.add_option("-y,--height", height, "Image height in pixels")
+    app.add_option("-y,--height", a.height, "Image height in pixels")
         ->capture_default_str()
         ->check(CLI::Range(1, 16384));
-    app.add_option("--aa", aa, "Supersampling: N x N samples per pixel")
+    app.add_option("--aa", a.aa, "Supersampling: N x N samples per pixel")
         ->capture_default_str()
         ->check(CLI::Range(1, 8));
-    app.add_flag("--flat", flat, "One colour per patch (same as --smooth flat)");
-    app.add_option("--smooth", smooth,
+    app.add_option("--max-memory", a.max_memory,
+                   "Refuse to start when the images would need more memory than this (e.g. 4G; "
+                   "default: 80% of physical memory)");
+    rad::tool::add_threads_option(app, a.threads);
+    app.add_flag("-q,--quiet", a.quiet, "No summary");
+}
+
+// How patches become colours, and the extra outputs.
+void add_look_options(CLI::App& app, ShadeArgs& a) {
+    app.add_flag("--flat", a.flat, "One colour per patch (same as --smooth flat)");
+    app.add_option("--smooth", a.smooth,
                    "crease: area-weighted, not across material or group boundaries or sharp "
                    "edges (each surface keeps its own colour); average: vertex = mean of "
                    "adjacent patches (the paper's, which mixes colours where surfaces meet); "
                    "area: area-weighted; flat")
         ->capture_default_str()
         ->check(CLI::IsMember({"average", "area", "crease", "flat"}));
-    app.add_option("--crease-angle", crease,
+    app.add_option("--crease-angle", a.crease,
                    "crease: largest normal angle smoothed across (degrees)")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 180));
-    app.add_flag("--albedo", albedo,
+    app.add_flag("--albedo", a.albedo,
                  "Show reflectance colours only, flat (the paper's Figure 1(a) and 4)");
-    app.add_option("--png", png, "Also write an sRGB tone-mapped PNG preview");
-    app.add_option("--ply", ply, "Also write the smoothed mesh with vertex colours as PLY");
-    app.add_option("--exposure", exposure,
+    app.add_option("--png", a.png, "Also write an sRGB tone-mapped PNG preview");
+    app.add_option("--ply", a.ply, "Also write the smoothed mesh with vertex colours as PLY");
+    app.add_option("--exposure", a.exposure,
                    "Linear multiplier for PNG/PLY (default, or 0: from the solution, the same "
                    "for every view: 0.85 over the luminance that 99% of the area of the "
                    "surfaces that do not emit stays below; --albedo: from the image)")
         ->check(rad::tool::finite_range(0, 1e30));
-    rad::tool::add_threads_option(app, threads);
-    std::vector<std::string> mix;
-    bool mix_only = false, layers = false;
-    app.add_option("--mix", mix,
-                   "Weight a light group (rad-solve --light-groups): NAME=s, or NAME=r,g,b to "
-                   "recolour it (repeatable; groups not named keep weight 1)");
-    app.add_flag("--mix-only", mix_only, "Groups not named in --mix are off (weight 0)");
-    app.add_flag("--layers", layers,
-                 "Also write one EXR layer per light group (<group>.R/G/B, each at weight 1, "
-                 "for relighting in a compositor) next to the mixed image");
-    std::string backfaces = "show";
-    app.add_option("--backfaces", backfaces,
+    app.add_option("--backfaces", a.backfaces,
                    "Faces seen from behind (the side of a one-sided patch that gets no light): "
                    "show them as they are, or mark them in magenta (a face-orientation overlay)")
         ->capture_default_str()
         ->check(CLI::IsMember({"show", "mark"}));
-    std::string max_memory;
-    int gather = 0, shadow_rays = 32;
-    app.add_option("--gather", gather,
+}
+
+// Light groups and the final gather.
+void add_light_options(CLI::App& app, ShadeArgs& a) {
+    app.add_option("--mix", a.mix,
+                   "Weight a light group (rad-solve --light-groups): NAME=s, or NAME=r,g,b to "
+                   "recolour it (repeatable; groups not named keep weight 1)");
+    app.add_flag("--mix-only", a.mix_only, "Groups not named in --mix are off (weight 0)");
+    app.add_flag("--layers", a.layers,
+                 "Also write one EXR layer per light group (<group>.R/G/B, each at weight 1, "
+                 "for relighting in a compositor) next to the mixed image");
+    app.add_option("--gather", a.gather,
                    "Final gather: each sample is E + rho x the irradiance gathered at the "
                    "visible point with this many indirect rays (direct light sampled on the "
                    "emitters): sharp shadows, no blotches; slower (0: off)")
         ->check(CLI::Range(0, 1000000));
-    app.add_option("--shadow-rays", shadow_rays,
+    app.add_option("--shadow-rays", a.shadow_rays,
                    "--gather: shadow rays per sample for the direct light, shared among the "
                    "lights (emitting patches, and patches lit so brightly that rays landing "
                    "on them would be fireflies) by what each contributes")
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
-    app.add_option("--max-memory", max_memory,
-                   "Refuse to start when the images would need more memory than this (e.g. 4G; "
-                   "default: 80% of physical memory)");
-    app.add_flag("-q,--quiet", quiet, "No summary");
+}
+
+// Combinations that cannot work, refused before anything is read.
+void check_combinations(const ShadeArgs& a) {
+    if (a.view_text.empty() && a.view_file.empty())
+        throw rad::InputError("give a camera with --view or --view-file");
+    if (a.albedo && (!a.mix.empty() || a.mix_only || a.layers))
+        throw rad::InputError("--mix, --mix-only and --layers need a radiosity file, not "
+                              "--albedo");
+    if (!a.albedo && a.rad_path.empty())
+        throw rad::InputError("give a radiosity file (or use --albedo)");
+}
+
+// What is shaded: the mesh, a value per patch (radiosity mixed from its light groups, or the
+// reflectance for --albedo), the chain of commands that made them.
+struct ShadeInputs {
+    radfmt::MeshData mesh;
+    radfmt::Header mesh_header, rad_header;
+    radfmt::RadiosityData radiosity;
+    std::vector<radfmt::Rgb> values;
+    std::vector<std::string> chain;
+};
+
+ShadeInputs read_inputs(const ShadeArgs& a) {
+    ShadeInputs in;
+    in.mesh = radfmt::read_mesh(a.mesh_path, &in.mesh_header);
+    in.chain = in.mesh_header.chain();
+    if (a.albedo) {
+        for (const auto& p : in.mesh.patches)
+            in.values.push_back(in.mesh.materials[p.material].reflectance);
+        return in;
+    }
+    in.radiosity = radfmt::read_radiosity(a.rad_path, &in.rad_header);
+    in.values = rad::mix_light_groups(in.radiosity, a.mix, a.mix_only, a.rad_path);
+    if (a.layers && in.radiosity.group_count() == 0)
+        throw rad::InputError(a.rad_path + " has no light groups for --layers (solve with "
+                                           "rad-solve --light-groups)");
+    radfmt::require_same_geometry(a.rad_path, in.rad_header, in.values.size(), a.mesh_path, in.mesh,
+                                  "run rad-ff and rad-solve on " + a.mesh_path + " again");
+    in.chain = in.rad_header.chain();
+    return in;
+}
+
+// Checked before rendering: a huge -x/-y/--aa must not eat the machine first.
+void check_memory(const ShadeArgs& a, std::size_t group_count) {
+    const std::uint64_t limit = rad::tool::memory_limit(a.max_memory);
+    const int images = 1 + (a.layers ? static_cast<int>(group_count) : 0);
+    const auto need = rad::estimate_render_memory(a.width, a.height, a.aa, images);
+    if (need <= limit) return;
+    std::string message = "a " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                          " image at --aa " + std::to_string(a.aa);
+    if (images > 1) message += " with " + std::to_string(images - 1) + " layers";
+    message += " needs about " + rad::human_bytes(double(need)) + ", more than --max-memory " +
+               rad::human_bytes(double(limit)) + " (use a smaller -x/-y or --aa)";
+    throw rad::InputError(message);
+}
+
+// The image: smoothed patch colours, or the final gather from the solution as solved.
+rad::Image render_image(const ShadeArgs& a, const ShadeInputs& in, const rad::View& view,
+                        const radfmt::MeshData& solved, rad::Smoothing mode,
+                        const std::vector<std::array<radfmt::Rgb, 4>>& corners) {
+    if (a.gather <= 0) return rad::render(in.mesh, corners, view, a.width, a.height, a.aa);
+    if (a.albedo || !a.mix.empty() || a.mix_only || a.layers)
+        throw rad::InputError("--gather shades a solution as solved: not with --albedo, "
+                              "--mix, --mix-only or --layers");
+    rad::GatherOptions options;
+    options.rays = a.gather;
+    options.shadow_rays = a.shadow_rays;
+    options.smoothing = mode;
+    options.crease_deg = a.crease;
+    const rad::Gatherer gatherer(solved, in.values, options);
+    return rad::render_gathered(gatherer, view, a.width, a.height, a.aa, a.quiet);
+}
+
+// A warning when much of the image shows the backs of surfaces.
+void warn_back_faces(const ShadeArgs& a, const rad::Image& image) {
+    const double back_share = double(image.back_face_pixels) / (double(a.width) * a.height);
+    if (back_share > 0.01)
+        std::fprintf(stderr,
+                     "rad-shade: warning: %.1f%% of the image shows the back of surfaces "
+                     "(they get no light from this side: they probably face the wrong way%s; "
+                     "see rad-mesh --orient fix, --flip, --two-sided)\n",
+                     100 * back_share,
+                     a.backfaces == "mark" ? ", marked in magenta"
+                                           : ", --backfaces mark shows where");
+}
+
+// The EXR's attributes: where the image came from.
+std::map<std::string, std::string> exr_attributes(const ShadeArgs& a, const ShadeInputs& in,
+                                                  int argc, char** argv) {
+    std::map<std::string, std::string> attributes;
+    std::string provenance;
+    for (std::size_t i = 0; i < in.chain.size(); ++i)
+        provenance += std::to_string(i + 1) + ". " + in.chain[i] + "\n";
+    provenance +=
+        std::to_string(in.chain.size() + 1) + ". " + radfmt::command_line(argc, argv) + "\n";
+    attributes["radiosity:provenance"] = provenance;
+    attributes["radiosity:tool"] = rad::tool_version("rad-shade");
+    attributes["radiosity:mesh"] = a.mesh_path + " " + in.mesh_header.file_hash;
+    if (!a.albedo) attributes["radiosity:radiosity"] = a.rad_path + " " + in.rad_header.file_hash;
+    attributes["radiosity:units"] = a.albedo ? "reflectance" : "radiosity W/m^2 (linear)";
+    if (!a.mix.empty() || a.mix_only) {
+        std::string text;
+        for (const auto& m : a.mix) text += (text.empty() ? "" : " ") + m;
+        attributes["radiosity:mix"] = (a.mix_only ? "only " : "") + text;
+    }
+    return attributes;
+}
+
+// One image per light group for --layers, each at weight 1.
+std::vector<rad::Image> render_layers(const ShadeArgs& a, const ShadeInputs& in,
+                                      const rad::View& view, rad::Smoothing mode) {
+    std::vector<rad::Image> images;
+    if (!a.layers) return images;
+    images.reserve(in.radiosity.group_count());
+    for (std::size_t g = 0; g < in.radiosity.group_count(); ++g) {
+        std::vector<radfmt::Rgb> group_values(in.radiosity.radiosity.size());
+        for (std::size_t i = 0; i < group_values.size(); ++i)
+            group_values[i] = in.radiosity.of_group(i, g);
+        images.push_back(rad::render(in.mesh,
+                                     rad::corner_colours(in.mesh, group_values, mode, a.crease),
+                                     view, a.width, a.height, a.aa));
+    }
+    return images;
+}
+
+int shade(ShadeArgs& a, int argc, char** argv) {
+    rad::tool::check_outputs({a.mesh_path, a.rad_path},
+                             {{"-o", a.output}, {"--png", a.png}, {"--ply", a.ply}});
+    // The image, its preview and the PLY land together or not at all.
+    radfmt::OutputBatch outputs;
+    rad::ThreadLimit thread_limit(a.threads);
+    check_combinations(a);
+    rad::View view = a.view_file.empty() ? rad::View{} : rad::read_view_file(a.view_file);
+    if (!a.view_text.empty()) view = rad::parse_view(a.view_text, rad::FileLoc{"--view"}, view);
+    const auto in = read_inputs(a);
+    if (a.albedo) a.flat = true;
+    check_memory(a, in.radiosity.group_count());
+    const auto mode = a.flat ? rad::Smoothing::Flat : rad::parse_smoothing(a.smooth);
+    const auto corners = rad::corner_colours(in.mesh, in.values, mode, a.crease);
+    // E and rho as solved (rad-solve's overrides are in the file's header): for the gather
+    // and the exposure.
+    radfmt::MeshData solved;
+    if (!a.albedo) {
+        solved = in.mesh;
+        rad::apply_recorded_overrides(solved, in.rad_header);
+    }
+    rad::Image image = render_image(a, in, view, solved, mode, corners);
+    if (image.covered_pixels == 0)
+        throw rad::InputError("the view sees no geometry of " + a.mesh_path +
+                              " (camera outside looking away, or inside an object facing "
+                              "nothing)");
+    // Exposure from the solution (every view of it alike; lamps in view do not set it), or
+    // for albedo from the image; then the overlay in full magenta at that exposure.
+    double scale = a.exposure;
+    if (!(scale > 0) && !a.albedo) scale = rad::solution_exposure(solved, in.values);
+    if (!(scale > 0)) scale = rad::auto_exposure(image);
+    if (a.backfaces == "mark") rad::mark_back_faces(image, {1 / scale, 0, 1 / scale});
+    warn_back_faces(a, image);
+
+    const auto group_images = render_layers(a, in, view, mode);
+    std::vector<rad::ImageLayer> exr_layers;
+    for (std::size_t g = 0; g < group_images.size(); ++g)
+        exr_layers.push_back({in.radiosity.group_names[g], &group_images[g]});
+    rad::write_exr(a.output, image, exr_attributes(a, in, argc, argv), exr_layers);
+    if (!a.png.empty()) rad::write_png(a.png, image, scale);
+    if (!a.ply.empty()) rad::write_ply(a.ply, in.mesh, corners, scale);
+    outputs.commit();
+    if (!a.quiet)
+        std::fprintf(stderr, "rad-shade: wrote %s (%dx%d, %s%s), exposure %.4g\n", a.output.c_str(),
+                     a.width, a.height,
+                     a.albedo ? "albedo"
+                     : a.flat ? "flat"
+                              : a.smooth.c_str(),
+                     a.png.empty() ? "" : ", png", scale);
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Render per-patch radiosity from a camera (Radiance view options) to a linear\n"
+                 "float OpenEXR image, with optional sRGB PNG preview and vertex-coloured PLY."};
+    ShadeArgs args;
+    add_image_options(app, args);
+    add_look_options(app, args);
+    add_light_options(app, args);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
     rad::tool::restart_with_huge_pages(argv);
-
-    return rad::tool::run_tool("rad-shade", [&] {
-        rad::tool::check_outputs({mesh_path, rad_path},
-                                 {{"-o", output}, {"--png", png}, {"--ply", ply}});
-        // The image, its preview and the PLY land together or not at all.
-        radfmt::OutputBatch outputs;
-        rad::ThreadLimit thread_limit(threads);
-        if (view_text.empty() && view_file.empty())
-            throw rad::InputError("give a camera with --view or --view-file");
-        rad::View view = view_file.empty() ? rad::View{} : rad::read_view_file(view_file);
-        if (!view_text.empty()) view = rad::parse_view(view_text, rad::FileLoc{"--view"}, view);
-
-        radfmt::Header mesh_header, rad_header;
-        const auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
-        std::vector<radfmt::Rgb> values;
-        radfmt::RadiosityData radiosity;
-        std::vector<std::string> chain = mesh_header.chain();
-        if (albedo && (!mix.empty() || mix_only || layers))
-            throw rad::InputError("--mix, --mix-only and --layers need a radiosity file, not "
-                                  "--albedo");
-        if (albedo) {
-            for (const auto& p : mesh.patches)
-                values.push_back(mesh.materials[p.material].reflectance);
-            flat = true;
-        } else {
-            if (rad_path.empty()) throw rad::InputError("give a radiosity file (or use --albedo)");
-            radiosity = radfmt::read_radiosity(rad_path, &rad_header);
-            values = rad::mix_light_groups(radiosity, mix, mix_only, rad_path);
-            if (layers && radiosity.group_count() == 0)
-                throw rad::InputError(rad_path + " has no light groups for --layers (solve with "
-                                                 "rad-solve --light-groups)");
-            radfmt::require_same_geometry(rad_path, rad_header, values.size(), mesh_path, mesh,
-                                          "run rad-ff and rad-solve on " + mesh_path + " again");
-            chain = rad_header.chain();
-        }
-        // Checked before rendering: a huge -x/-y/--aa must not eat the machine first.
-        const std::uint64_t limit = rad::tool::memory_limit(max_memory);
-        const int images = 1 + (layers ? static_cast<int>(radiosity.group_count()) : 0);
-        const auto need = rad::estimate_render_memory(width, height, aa, images);
-        if (need > limit) {
-            std::string message = "a ";
-            message += std::to_string(width);
-            message += "x";
-            message += std::to_string(height);
-            message += " image at --aa ";
-            message += std::to_string(aa);
-            if (images > 1) {
-                message += " with ";
-                message += std::to_string(images - 1);
-                message += " layers";
-            }
-            message += " needs about " + rad::human_bytes(double(need)) +
-                       ", more than --max-memory " + rad::human_bytes(double(limit)) +
-                       " (use a smaller -x/-y or --aa)";
-            throw rad::InputError(message);
-        }
-        const auto mode = flat ? rad::Smoothing::Flat : rad::parse_smoothing(smooth);
-        const auto corners = rad::corner_colours(mesh, values, mode, crease);
-        // E and rho as solved (rad-solve's overrides are in the file's header): for the gather
-        // and the exposure.
-        radfmt::MeshData solved;
-        if (!albedo) {
-            solved = mesh;
-            rad::apply_recorded_overrides(solved, rad_header);
-        }
-        rad::Image image;
-        if (gather > 0) {
-            if (albedo || !mix.empty() || mix_only || layers)
-                throw rad::InputError("--gather shades a solution as solved: not with --albedo, "
-                                      "--mix, --mix-only or --layers");
-            rad::GatherOptions options;
-            options.rays = gather;
-            options.shadow_rays = shadow_rays;
-            options.smoothing = mode;
-            options.crease_deg = crease;
-            const rad::Gatherer gatherer(solved, values, options);
-            image = rad::render_gathered(gatherer, view, width, height, aa, quiet);
-        } else {
-            image = rad::render(mesh, corners, view, width, height, aa);
-        }
-        if (image.covered_pixels == 0)
-            throw rad::InputError(
-                "the view sees no geometry of " + mesh_path +
-                " (camera outside looking away, or inside an object facing nothing)");
-
-        // Exposure from the solution (every view of it alike; lamps in view do not set it), or
-        // for albedo from the image; then the overlay in full magenta at that exposure.
-        double scale = exposure;
-        if (!(scale > 0) && !albedo) scale = rad::solution_exposure(solved, values);
-        if (!(scale > 0)) scale = rad::auto_exposure(image);
-        if (backfaces == "mark") rad::mark_back_faces(image, {1 / scale, 0, 1 / scale});
-        const double back_share = double(image.back_face_pixels) / (double(width) * height);
-        if (back_share > 0.01)
-            std::fprintf(stderr,
-                         "rad-shade: warning: %.1f%% of the image shows the back of surfaces "
-                         "(they get no light from this side: they probably face the wrong way%s; "
-                         "see rad-mesh --orient fix, --flip, --two-sided)\n",
-                         100 * back_share,
-                         backfaces == "mark" ? ", marked in magenta"
-                                             : ", --backfaces mark shows where");
-
-        std::map<std::string, std::string> attributes;
-        std::string provenance;
-        for (std::size_t i = 0; i < chain.size(); ++i)
-            provenance += std::to_string(i + 1) + ". " + chain[i] + "\n";
-        provenance +=
-            std::to_string(chain.size() + 1) + ". " + radfmt::command_line(argc, argv) + "\n";
-        attributes["radiosity:provenance"] = provenance;
-        attributes["radiosity:tool"] = rad::tool_version("rad-shade");
-        attributes["radiosity:mesh"] = mesh_path + " " + mesh_header.file_hash;
-        if (!albedo) attributes["radiosity:radiosity"] = rad_path + " " + rad_header.file_hash;
-        attributes["radiosity:units"] = albedo ? "reflectance" : "radiosity W/m^2 (linear)";
-        // One image per light group for --layers, each at weight 1.
-        std::vector<rad::Image> group_images;
-        std::vector<rad::ImageLayer> exr_layers;
-        if (layers) {
-            group_images.reserve(radiosity.group_count());
-            for (std::size_t g = 0; g < radiosity.group_count(); ++g) {
-                std::vector<radfmt::Rgb> group_values(radiosity.radiosity.size());
-                for (std::size_t i = 0; i < group_values.size(); ++i)
-                    group_values[i] = radiosity.of_group(i, g);
-                group_images.push_back(
-                    rad::render(mesh, rad::corner_colours(mesh, group_values, mode, crease), view,
-                                width, height, aa));
-            }
-            for (std::size_t g = 0; g < group_images.size(); ++g)
-                exr_layers.push_back({radiosity.group_names[g], &group_images[g]});
-        }
-        if (!mix.empty() || mix_only) {
-            std::string text;
-            for (const auto& m : mix) text += (text.empty() ? "" : " ") + m;
-            attributes["radiosity:mix"] = (mix_only ? "only " : "") + text;
-        }
-        rad::write_exr(output, image, attributes, exr_layers);
-        if (!png.empty()) rad::write_png(png, image, scale);
-        if (!ply.empty()) rad::write_ply(ply, mesh, corners, scale);
-        outputs.commit();
-        if (!quiet)
-            std::fprintf(stderr, "rad-shade: wrote %s (%dx%d, %s%s), exposure %.4g\n",
-                         output.c_str(), width, height,
-                         albedo ? "albedo"
-                         : flat ? "flat"
-                                : smooth.c_str(),
-                         png.empty() ? "" : ", png", scale);
-        return 0;
-    });
+    return rad::tool::run_tool("rad-shade", [&] { return shade(args, argc, argv); });
 }
