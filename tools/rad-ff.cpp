@@ -81,46 +81,51 @@ void write_hierarchical(const std::string& input, const radfmt::MeshData& mesh,
         static_cast<unsigned long long>(stats.pairs), static_cast<unsigned long long>(stats.culled),
         static_cast<unsigned long long>(stats.rays), stats.tree_seconds, stats.link_seconds);
 }
-} // namespace
 
-int main(int argc, char** argv) {
-    CLI::App app{
-        "Compute the form factors F_ij between every pair of patches of a mesh (ray-cast\n"
-        "visibility with Embree, rows in parallel) and write the sparse form-factor file."};
-    std::string output, max_memory;
+// What the command line says.
+struct FfArgs {
+    std::string output, max_memory, rows;
     rad::FormFactorOptions options;
+    rad::HierarchyOptions hierarchy;
     int threads = 0;
-    std::string method_help;
-    for (const auto* m : rad::form_factor_methods())
-        method_help += std::string(method_help.empty() ? "" : "; ") + std::string(m->name()) +
-                       ": " + std::string(m->summary());
     std::vector<std::string> inputs;
-    std::string rows;
-    bool merge = false;
-    app.add_option("MESH", inputs,
+    bool merge = false, estimate_only = false;
+    CLI::Option *rows_option = nullptr, *output_option = nullptr;
+};
+
+// The inputs, the output, sharding and merging.
+void add_file_options(CLI::App& app, FfArgs& a) {
+    app.add_option("MESH", a.inputs,
                    "Patch mesh from rad-mesh (with --merge: the part files to join)")
         ->required();
-    auto* rows_option =
-        app.add_option("--rows", rows,
+    a.rows_option =
+        app.add_option("--rows", a.rows,
                        "Compute only these rows and write a part file: A:B (rows A to B, B "
                        "excluded) or K/N (shard K of N, from 0, e.g. $SLURM_ARRAY_TASK_ID/16); "
                        "rad-ff --merge joins the parts");
-    app.add_flag("--merge", merge,
+    app.add_flag("--merge", a.merge,
                  "Join part files (rad-ff --rows) of one mesh and options into the form-factor "
                  "file one run would have written, byte for byte; every row exactly once");
-    bool estimate_only = false;
-    auto* output_option = app.add_option("-o,--output", output, "Output form-factor file");
-    app.add_flag("--estimate", estimate_only,
+    a.output_option = app.add_option("-o,--output", a.output, "Output form-factor file");
+    app.add_flag("--estimate", a.estimate_only,
                  "Measure a few rows, say how long the run would take (and, for an O(n^2) "
                  "method, what hemisphere would take), and stop: no output, no -o needed. "
                  "Without it, rad-ff says so before runs of over 10 s")
         ->excludes("--merge");
+}
+
+// --method and what each method takes.
+void add_method_options(CLI::App& app, FfArgs& a) {
+    std::string method_help;
+    for (const auto* m : rad::form_factor_methods())
+        method_help += std::string(method_help.empty() ? "" : "; ") + std::string(m->name()) +
+                       ": " + std::string(m->summary());
     auto method_names = rad::form_factor_method_names();
     method_names.push_back("auto");
     method_names.push_back("hierarchical");
     method_help += "; hierarchical: links between a tree of patch blocks and clusters, O(n) "
                    "instead of n^2 (writes a links file; rad-solve --method gs or jacobi)";
-    rad::HierarchyOptions hierarchy;
+    auto& options = a.options;
     options.method = "auto";
     app.add_option("--method", options.method,
                    "auto (the default): analytic up to " +
@@ -152,154 +157,205 @@ int main(int argc, char** argv) {
                    "patch's centre, aliasing small far patches)")
         ->capture_default_str()
         ->check(CLI::IsMember({"spread", "centre"}));
-    app.add_option("--epsilon", hierarchy.epsilon,
+    app.add_option("--epsilon", a.hierarchy.epsilon,
                    "hierarchical: link two nodes when the larger of their form factors to each "
                    "other is at most this (smaller: more links, closer to the full matrix)")
         ->capture_default_str()
         ->check(rad::tool::finite_range(1e-9, 1));
-    app.add_option("--emitters", hierarchy.emitters,
+    app.add_option("--emitters", a.hierarchy.emitters,
                    "hierarchical: materials to link as emitters (finer) besides those that emit "
                    "in the mesh, comma-separated: for a lamp made to emit at solve time")
         ->delimiter(',');
-    app.add_option("--seed", options.seed, "Seed for every random choice")->capture_default_str();
-    rad::tool::add_threads_option(app, threads);
-    app.add_option("--max-memory", max_memory,
+}
+
+// The seed, threads, memory and quiet.
+void add_run_options(CLI::App& app, FfArgs& a) {
+    app.add_option("--seed", a.options.seed, "Seed for every random choice")->capture_default_str();
+    rad::tool::add_threads_option(app, a.threads);
+    app.add_option("--max-memory", a.max_memory,
                    "Refuse to start when the estimated memory exceeds this (e.g. 4G; default: "
                    "80% of physical memory)");
-    app.add_flag("-q,--quiet", options.quiet, "No progress and no summary");
+    app.add_flag("-q,--quiet", a.options.quiet, "No progress and no summary");
+}
+
+// --merge: the parts joined into the file one run would have written.
+int merge_parts(const FfArgs& a) {
+    if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
+    const auto merged =
+        rad::merge_form_factor_parts(a.inputs, a.output, rad::tool::memory_limit(a.max_memory));
+    if (!a.options.quiet)
+        std::fprintf(stderr, "rad-ff: merged %zu part(s): %llu rows, %llu non-zeros\n",
+                     a.inputs.size(), static_cast<unsigned long long>(merged.rows),
+                     static_cast<unsigned long long>(merged.nonzeros));
+    return 0;
+}
+
+// --method auto: analytic or hemisphere by the patch count, and why.
+void choose_method(rad::FormFactorOptions& options, std::size_t patches) {
+    if (options.method != "auto") return;
+    options.method = rad::automatic_form_factor_method(patches);
+    const std::string why =
+        options.method == "analytic"
+            ? "exact; above " + std::to_string(rad::kAutoAnalyticPatches) +
+                  " patches hemisphere, whose rays grow as n, not analytic's pairs as n^2"
+            : "rays, O(n); analytic's pairs grow as n^2: --method analytic insists";
+    if (!options.quiet)
+        std::fprintf(stderr, "rad-ff: --method auto: %s for %zu patches (%s)\n",
+                     options.method.c_str(), patches, why.c_str());
+}
+
+// Refuses a run whose estimated memory is past the limit, saying what to change.
+void check_memory(const std::string& input, const radfmt::MeshData& mesh,
+                  const rad::FormFactorOptions& options, std::uint64_t need, std::uint64_t limit) {
+    if (need <= limit) return;
+    throw rad::InputError(
+        input + ": " + options.method + " form factors for " + std::to_string(mesh.patches.size()) +
+        " patches need up to " + rad::human_bytes(double(need)) + ", more than --max-memory " +
+        rad::human_bytes(double(limit)) +
+        (options.method == "hemisphere" ? " (use fewer --rays or a coarser mesh)"
+         : options.method == "hemicube" ? " (use a lower --resolution or a coarser mesh)"
+                                        : " (use --method hemisphere or a coarser mesh)"));
+}
+
+// A whole matrix is encoded as its rows come (formfactors version 3: the spool holds what
+// the file will); a part keeps the plain arrays.
+std::optional<std::uint64_t> compact_encoding(const FfArgs& a) {
+    if (!a.rows.empty()) return std::nullopt;
+    radfmt::Header fields;
+    for (const auto& [key, value] : rad::form_factor_header_fields(a.options))
+        fields.set(key, value);
+    return radfmt::formfactors_hit_denominator(fields);
+}
+
+// The form-factor file, or a part of one for --rows.
+void write_rows(const FfArgs& a, const radfmt::MeshData& mesh, const radfmt::Header& mesh_header,
+                radfmt::FormFactorSpool& ff, rad::RowRange range, const rad::FormFactorStats& stats,
+                int argc, char** argv) {
+    const auto& input = a.inputs.front();
+    const radfmt::Parent parents[] = {{input, &mesh_header}};
+    auto header = radfmt::derived_header(rad::tool_version("rad-ff"),
+                                         radfmt::command_line(argc, argv), parents);
+    for (const auto& [key, value] : rad::form_factor_header_fields(a.options))
+        header.set(key, value);
+    header.set("mesh_geometry_hash", mesh.geometry_hash());
+    header.set("rays_started_inside", std::to_string(stats.rays_started_inside));
+    if (!a.rows.empty()) {
+        // A part: the merge checks the parts against each other and writes the command
+        // one run would have had.
+        header.set("unsharded_command", rad::unsharded_command(argc, argv));
+        radfmt::write_form_factor_part(a.output, header, ff, range.begin, range.end);
+    } else {
+        radfmt::write_form_factors(a.output, header, ff);
+    }
+}
+
+// Warnings go out even with --quiet: a wrong-facing surface spoils every solve.
+void warn_back_faces(const FfArgs& a, const radfmt::MeshData& mesh,
+                     const radfmt::FormFactorSpool& ff, const rad::FormFactorStats& stats) {
+    const auto& input = a.inputs.front();
+    if (stats.rays_started_inside)
+        std::fprintf(stderr,
+                     "rad-ff: warning: %s: %llu ray(s) from %zu patch(es) met a back face "
+                     "within their own patch's size: those patches are partly under or "
+                     "inside other geometry (a contact not imprinted: rad-mesh imprints "
+                     "unless --no-imprint; a lamp's back a hair below a ceiling), or beside a "
+                     "surface facing away; that part of them sees nothing\n",
+                     input.c_str(), static_cast<unsigned long long>(stats.rays_started_inside),
+                     stats.patches_started_inside);
+    // (A part sees its own rows only: the groups' warnings need them all.)
+    if (a.rows.empty())
+        for (const auto& line : rad::back_face_warnings(mesh, ff.back_fraction(), stats))
+            std::fprintf(stderr, "rad-ff: warning: %s: %s\n", input.c_str(), line.c_str());
+}
+
+void print_summary(const FfArgs& a, const radfmt::FormFactorSpool& ff,
+                   const rad::FormFactorStats& stats, std::uint64_t limit, int threads) {
+    if (a.options.quiet) return;
+    if (ff.spilled())
+        std::fprintf(stderr, "rad-ff: the rows beyond --max-memory (%s) waited on disk in %s\n",
+                     rad::human_bytes(double(limit)).c_str(),
+                     radfmt::FormFactorSpool::folder_for(a.output).c_str());
+    std::fprintf(stderr,
+                 "rad-ff: %llu patches, %llu non-zeros, %llu rays in %.3f s (%.3g rays/s "
+                 "while tracing, %d threads), row sums mean %.5f max %.5f\n",
+                 static_cast<unsigned long long>(ff.patch_count()),
+                 static_cast<unsigned long long>(ff.nonzeros()),
+                 static_cast<unsigned long long>(stats.rays_cast), stats.seconds,
+                 stats.trace_seconds > 0 ? stats.rays_cast / stats.trace_seconds : 0.0, threads,
+                 stats.mean_row_sum, stats.max_row_sum);
+}
+
+// The arguments that need each other, checked before the mesh is read.
+void check_arguments(const FfArgs& a) {
+    if (a.output_option->count() == 0 && !a.estimate_only)
+        throw rad::InputError("--output is required (or --estimate, to measure only)");
+    if (!a.estimate_only) rad::tool::check_outputs(a.inputs, {{"-o", a.output}});
+}
+
+int form_factors(FfArgs& a, int argc, char** argv) {
+    check_arguments(a);
+    if (a.merge) return merge_parts(a);
+    if (a.inputs.size() != 1)
+        throw rad::InputError("give one mesh (several inputs are for --merge)");
+    if (a.rows_option->count() > 0 && a.rows.empty())
+        throw rad::InputError("--rows is empty: give A:B or K/N (leave --rows out for "
+                              "every row)");
+    const auto& input = a.inputs.front();
+    const std::uint64_t limit = rad::tool::memory_limit(a.max_memory);
+    rad::ThreadLimit thread_limit(a.threads);
+    radfmt::Header mesh_header;
+    const auto mesh = radfmt::read_mesh(input, &mesh_header);
+    if (mesh.patches.empty()) throw rad::InputError(input + ": mesh has no patches");
+    auto& options = a.options;
+    choose_method(options, mesh.patches.size());
+    rad::check_ray_precision(mesh.vertices, input);
+    if (options.method == "hierarchical") {
+        if (!a.rows.empty() || a.estimate_only)
+            throw rad::InputError("--method hierarchical refines links from the whole tree: "
+                                  "it takes neither --rows nor --estimate");
+        a.hierarchy.samples = options.samples > 0 ? options.samples : rad::kDefaultLinkSamples;
+        a.hierarchy.seed = options.seed;
+        write_hierarchical(input, mesh, mesh_header, a.hierarchy, a.output,
+                           radfmt::command_line(argc, argv), options.quiet);
+        return 0;
+    }
+    options = rad::resolve_form_factor_options(options);
+    const auto need = rad::estimate_form_factor_memory(mesh, options);
+    check_memory(input, mesh, options, need, limit);
+    const auto range =
+        a.rows.empty() ? rad::RowRange{} : rad::parse_rows(a.rows, mesh.patches.size());
+    if (a.estimate_only) {
+        say_estimate(mesh, options, range, true);
+        return 0;
+    }
+    if (!options.quiet) say_estimate(mesh, options, range, false);
+    // The rows are packed into the file's arrays as they are computed; what would not fit
+    // within --max-memory waits on disk beside the output.
+    rad::FormFactorStats stats;
+    radfmt::FormFactorSpool ff(mesh.patches.size(), radfmt::FormFactorSpool::folder_for(a.output),
+                               limit - need, compact_encoding(a));
+    rad::compute_form_factor_rows(
+        mesh, options,
+        [&](std::size_t, rad::FormFactorEntries row, float back_fraction) {
+            ff.add_row(row, back_fraction);
+        },
+        &stats, range);
+    write_rows(a, mesh, mesh_header, ff, range, stats, argc, argv);
+    warn_back_faces(a, mesh, ff, stats);
+    print_summary(a, ff, stats, limit, thread_limit.threads());
+    return 0;
+}
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "Compute the form factors F_ij between every pair of patches of a mesh (ray-cast\n"
+        "visibility with Embree, rows in parallel) and write the sparse form-factor file."};
+    FfArgs args;
+    add_file_options(app, args);
+    add_method_options(app, args);
+    add_run_options(app, args);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
     rad::tool::restart_with_huge_pages(argv);
-
-    return rad::tool::run_tool("rad-ff", [&] {
-        if (output_option->count() == 0 && !estimate_only)
-            throw rad::InputError("--output is required (or --estimate, to measure only)");
-        if (!estimate_only) rad::tool::check_outputs(inputs, {{"-o", output}});
-        if (merge) {
-            if (!rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
-            const auto merged =
-                rad::merge_form_factor_parts(inputs, output, rad::tool::memory_limit(max_memory));
-            if (!options.quiet)
-                std::fprintf(stderr, "rad-ff: merged %zu part(s): %llu rows, %llu non-zeros\n",
-                             inputs.size(), static_cast<unsigned long long>(merged.rows),
-                             static_cast<unsigned long long>(merged.nonzeros));
-            return 0;
-        }
-        if (inputs.size() != 1)
-            throw rad::InputError("give one mesh (several inputs are for --merge)");
-        if (rows_option->count() > 0 && rows.empty())
-            throw rad::InputError("--rows is empty: give A:B or K/N (leave --rows out for "
-                                  "every row)");
-        const auto& input = inputs.front();
-        const std::uint64_t limit = rad::tool::memory_limit(max_memory);
-        rad::ThreadLimit thread_limit(threads);
-        radfmt::Header mesh_header;
-        const auto mesh = radfmt::read_mesh(input, &mesh_header);
-        if (mesh.patches.empty()) throw rad::InputError(input + ": mesh has no patches");
-        if (options.method == "auto") {
-            options.method = rad::automatic_form_factor_method(mesh.patches.size());
-            const std::string why =
-                options.method == "analytic"
-                    ? "exact; above " + std::to_string(rad::kAutoAnalyticPatches) +
-                          " patches hemisphere, whose rays grow as n, not analytic's pairs as n^2"
-                    : "rays, O(n); analytic's pairs grow as n^2: --method analytic insists";
-            if (!options.quiet)
-                std::fprintf(stderr, "rad-ff: --method auto: %s for %zu patches (%s)\n",
-                             options.method.c_str(), mesh.patches.size(), why.c_str());
-        }
-        rad::check_ray_precision(mesh.vertices, input);
-        if (options.method == "hierarchical") {
-            if (!rows.empty() || estimate_only)
-                throw rad::InputError("--method hierarchical refines links from the whole tree: "
-                                      "it takes neither --rows nor --estimate");
-            hierarchy.samples = options.samples > 0 ? options.samples : rad::kDefaultLinkSamples;
-            hierarchy.seed = options.seed;
-            write_hierarchical(input, mesh, mesh_header, hierarchy, output,
-                               radfmt::command_line(argc, argv), options.quiet);
-            return 0;
-        }
-        options = rad::resolve_form_factor_options(options);
-        const auto need = rad::estimate_form_factor_memory(mesh, options);
-        if (need > limit)
-            throw rad::InputError(
-                input + ": " + options.method + " form factors for " +
-                std::to_string(mesh.patches.size()) + " patches need up to " +
-                rad::human_bytes(double(need)) + ", more than --max-memory " +
-                rad::human_bytes(double(limit)) +
-                (options.method == "hemisphere" ? " (use fewer --rays or a coarser mesh)"
-                 : options.method == "hemicube" ? " (use a lower --resolution or a coarser mesh)"
-                                                : " (use --method hemisphere or a coarser mesh)"));
-
-        const auto range =
-            rows.empty() ? rad::RowRange{} : rad::parse_rows(rows, mesh.patches.size());
-        if (estimate_only) {
-            say_estimate(mesh, options, range, true);
-            return 0;
-        }
-        if (!options.quiet) say_estimate(mesh, options, range, false);
-        rad::FormFactorStats stats;
-        // The rows are packed into the file's arrays as they are computed; what would not
-        // fit within --max-memory waits on disk beside the output.
-        // A whole matrix is encoded as its rows come (formfactors version 3: the spool holds
-        // what the file will); a part keeps the plain arrays.
-        std::optional<std::uint64_t> compact;
-        if (rows.empty()) {
-            radfmt::Header fields;
-            for (const auto& [key, value] : rad::form_factor_header_fields(options))
-                fields.set(key, value);
-            compact = radfmt::formfactors_hit_denominator(fields);
-        }
-        radfmt::FormFactorSpool ff(mesh.patches.size(), radfmt::FormFactorSpool::folder_for(output),
-                                   limit - need, compact);
-        rad::compute_form_factor_rows(
-            mesh, options,
-            [&](std::size_t, rad::FormFactorEntries row, float back_fraction) {
-                ff.add_row(row, back_fraction);
-            },
-            &stats, range);
-
-        const radfmt::Parent parents[] = {{input, &mesh_header}};
-        auto header = radfmt::derived_header(rad::tool_version("rad-ff"),
-                                             radfmt::command_line(argc, argv), parents);
-        for (const auto& [key, value] : rad::form_factor_header_fields(options))
-            header.set(key, value);
-        header.set("mesh_geometry_hash", mesh.geometry_hash());
-        header.set("rays_started_inside", std::to_string(stats.rays_started_inside));
-        if (!rows.empty()) {
-            // A part: the merge checks the parts against each other and writes the command
-            // one run would have had.
-            header.set("unsharded_command", rad::unsharded_command(argc, argv));
-            radfmt::write_form_factor_part(output, header, ff, range.begin, range.end);
-        } else {
-            radfmt::write_form_factors(output, header, ff);
-        }
-        // Warnings go out even with --quiet: a wrong-facing surface spoils every solve.
-        if (stats.rays_started_inside)
-            std::fprintf(stderr,
-                         "rad-ff: warning: %s: %llu ray(s) from %zu patch(es) met a back face "
-                         "within their own patch's size: those patches are partly under or "
-                         "inside other geometry (a contact not imprinted: rad-mesh imprints "
-                         "unless --no-imprint; a lamp's back a hair below a ceiling), or beside a "
-                         "surface facing away; that part of them sees nothing\n",
-                         input.c_str(), static_cast<unsigned long long>(stats.rays_started_inside),
-                         stats.patches_started_inside);
-        // (A part sees its own rows only: the groups' warnings need them all.)
-        if (rows.empty())
-            for (const auto& line : rad::back_face_warnings(mesh, ff.back_fraction(), stats))
-                std::fprintf(stderr, "rad-ff: warning: %s: %s\n", input.c_str(), line.c_str());
-        if (!options.quiet && ff.spilled())
-            std::fprintf(stderr, "rad-ff: the rows beyond --max-memory (%s) waited on disk in %s\n",
-                         rad::human_bytes(double(limit)).c_str(),
-                         radfmt::FormFactorSpool::folder_for(output).c_str());
-        if (!options.quiet) {
-            std::fprintf(stderr,
-                         "rad-ff: %llu patches, %llu non-zeros, %llu rays in %.3f s (%.3g rays/s "
-                         "while tracing, %d threads), row sums mean %.5f max %.5f\n",
-                         static_cast<unsigned long long>(ff.patch_count()),
-                         static_cast<unsigned long long>(ff.nonzeros()),
-                         static_cast<unsigned long long>(stats.rays_cast), stats.seconds,
-                         stats.trace_seconds > 0 ? stats.rays_cast / stats.trace_seconds : 0.0,
-                         thread_limit.threads(), stats.mean_row_sum, stats.max_row_sum);
-        }
-        return 0;
-    });
+    return rad::tool::run_tool("rad-ff", [&] { return form_factors(args, argc, argv); });
 }
