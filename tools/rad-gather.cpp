@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -192,26 +193,26 @@ void print_work_plane(const std::vector<double>& lux, long without_value) {
                  count, without_value, low, mean, high, mean > 0 ? low / mean : 0.0);
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
-    CLI::App app{
-        "Final gather: the irradiance (W/m^2, the units of radiosity) arriving at points of a\n"
-        "solved scene, or their illuminance in lux. Reads 'x y z dx dy dz' lines (position\n"
-        "and the direction the sensor faces; the input of Radiance's rtrace -I) from standard\n"
-        "input or --points, and writes one 'r g b' line per point line, in order, streaming.\n"
-        "Blank lines and # comments are skipped. Direct light is sampled on the emitters\n"
-        "(exact point-to-polygon form factor x the fraction shadow rays see), indirect light\n"
-        "with cosine-weighted rays taking the smoothed reflected radiosity where they land."};
+// What the command line says.
+struct GatherArgs {
     std::string mesh_path, rad_path, points_path, output, grid_text, png, smooth = "crease";
     rad::GatherOptions options;
     bool lux = false, header = false, keep_going = false, quiet = false;
     double lux_max = 0;
     int threads = 0;
-    app.add_option("MESH", mesh_path, "Patch mesh from rad-mesh")->required();
-    app.add_option("RADIOSITY", rad_path, "Radiosity from rad-solve for this mesh")->required();
-    app.add_option("--points", points_path, "Read the points from this file (default: stdin)");
-    app.add_option("-o,--output", output, "Write to this file (default: stdout)");
+};
+
+// The inputs and outputs.
+void add_file_options(CLI::App& app, GatherArgs& a) {
+    app.add_option("MESH", a.mesh_path, "Patch mesh from rad-mesh")->required();
+    app.add_option("RADIOSITY", a.rad_path, "Radiosity from rad-solve for this mesh")->required();
+    app.add_option("--points", a.points_path, "Read the points from this file (default: stdin)");
+    app.add_option("-o,--output", a.output, "Write to this file (default: stdout)");
+}
+
+// How the light is gathered.
+void add_gather_options(CLI::App& app, GatherArgs& a) {
+    auto& options = a.options;
     app.add_option("--rays", options.rays,
                    "Indirect light: cosine-weighted rays per point (0: direct light only)")
         ->capture_default_str()
@@ -227,186 +228,251 @@ int main(int argc, char** argv) {
                  "Indirect light as the exact point-to-polygon sum over every patch (with "
                  "shadow rays for visibility) instead of rays: no ray noise, cost grows with "
                  "the patches; for small scenes");
-    app.add_flag("--lux", lux,
+}
+
+// What is written, and the work plane.
+void add_output_options(CLI::App& app, GatherArgs& a) {
+    app.add_flag("--lux", a.lux,
                  "Write illuminance in lux, one number per line: 179 lm/W x (0.265 R + 0.670 G "
                  "+ 0.065 B), Radiance's convention");
-    app.add_flag("--header", header, "Start the output with a '#' provenance line");
-    app.add_flag("--keep-going", keep_going,
+    app.add_flag("--header", a.header, "Start the output with a '#' provenance line");
+    app.add_flag("--keep-going", a.keep_going,
                  "Write 'nan nan nan' for a point that cannot be gathered (bad line, zero "
                  "direction, inside an object) and go on, instead of stopping there");
-    app.add_option("--smooth", smooth,
+    app.add_option("--smooth", a.smooth,
                    "How the radiosity where a ray lands is interpolated: crease, area, average "
                    "or flat (as rad-shade)")
         ->capture_default_str();
-    app.add_option("--crease-angle", options.crease_deg, "crease: largest angle smoothed over")
+    app.add_option("--crease-angle", a.options.crease_deg, "crease: largest angle smoothed over")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 180));
-    app.add_option("--grid", grid_text,
+    app.add_option("--grid", a.grid_text,
                    "Instead of reading points: upward sensors on a work plane, \"x0 z0 x1 z1 y "
                    "nx nz\" (cell centres, height y, rows of constant z from z0, x fastest); "
                    "sensors inside furniture have no value (nan, grey in the PNG, counted), and "
                    "the summary gives Emin, Eavg, Emax and U0 = Emin/Eavg of the others");
-    app.add_option("--png", png,
+    app.add_option("--png", a.png,
                    "With --grid: also write a false-colour PNG of the illuminance (lux) with a "
                    "legend");
-    app.add_option("--lux-max", lux_max,
+    app.add_option("--lux-max", a.lux_max,
                    "--png: the legend's top (lux), the same for every plane drawn with it "
                    "(default: a round number at or above the plane's largest value; values "
                    "above it get the top colour)")
         ->check(rad::tool::finite_range(0, 1e30));
-    app.add_option("--seed", options.seed, "Seed; each point has its own stream (seed, index)")
+    app.add_option("--seed", a.options.seed, "Seed; each point has its own stream (seed, index)")
         ->capture_default_str();
-    rad::tool::add_threads_option(app, threads);
-    app.add_flag("-q,--quiet", quiet, "No progress and no summary");
+    rad::tool::add_threads_option(app, a.threads);
+    app.add_flag("-q,--quiet", a.quiet, "No progress and no summary");
+}
+
+// Combinations that cannot work.
+void check_combinations(const GatherArgs& a) {
+    if (a.lux_max > 0 && a.png.empty())
+        throw rad::InputError("--lux-max scales the --png of a --grid: give --png FILE");
+    if (!a.png.empty() && a.grid_text.empty())
+        throw rad::InputError("--png draws a --grid: give --grid \"x0 z0 x1 z1 y nx nz\"");
+    if (!a.grid_text.empty() && !a.points_path.empty())
+        throw rad::InputError("give --grid or --points, not both");
+}
+
+// Streams blocks of sensors: parsed, gathered in parallel, written in order; keeps what the
+// summary and the work plane's picture need.
+class GatherRun {
+  public:
+    GatherRun(const GatherArgs& args, const rad::Gatherer& gatherer, const rad::Box& scene_box,
+              SensorSource& source, std::string source_name, std::uint64_t total)
+        : args_(args), gatherer_(gatherer), scene_box_(scene_box), source_(source),
+          source_name_(std::move(source_name)), progress_("rad-gather", total, args.quiet) {}
+
+    void stream(std::FILE* out, const std::string& header_line) {
+        if (!header_line.empty()) std::fprintf(out, "%s\n", header_line.c_str());
+        std::vector<Sensor> block;
+        constexpr std::size_t kBlock = 4096;
+        while (block.clear(), source_.next(block, kBlock)) {
+            gather(block);
+            write(block, out);
+            written_ += static_cast<long>(block.size());
+            if (std::ferror(out)) {
+                if (out == stdout && rad::tool::stdout_reader_gone())
+                    return; // `| head`: a normal end, as for every tool
+                throw rad::SystemError("cannot write the output: " +
+                                       std::string(std::strerror(errno)));
+            }
+        }
+    }
+    void finish() { progress_.finish(); }
+    long written() const { return written_; }
+    long problems() const { return problems_; }
+    const std::string& first_problem() const { return first_problem_; }
+    const std::vector<double>& grid_lux() const { return grid_lux_; }
+
+  private:
+    void gather(std::vector<Sensor>& block) {
+        tbb::parallel_for(std::size_t(0), block.size(), [&](std::size_t k) {
+            auto& s = block[k];
+            if (s.problem.empty()) s.problem = out_of_reach(s.position, scene_box_);
+            if (!s.problem.empty()) return;
+            s.result =
+                gatherer_.gather(s.position, s.direction, static_cast<std::uint64_t>(written_ + k));
+            if (s.result.sees_backs(args_.options.max_back_fraction)) {
+                char text[200];
+                std::snprintf(text, sizeof text,
+                              "%.0f%% of the surfaces the point sees show their back: it is "
+                              "inside an object, behind a surface, or faces into one (move it "
+                              "off the surface, or turn it)",
+                              100 * s.result.back_fraction);
+                s.problem = text;
+            }
+            progress_.advance(1);
+        });
+    }
+    void write(const std::vector<Sensor>& block, std::FILE* out) {
+        const bool grid = !args_.grid_text.empty();
+        for (const auto& s : block) {
+            if (!s.problem.empty()) {
+                const std::string where = source_name_ + ":" + std::to_string(s.line);
+                if (!args_.keep_going)
+                    throw rad::InputError(where + ": " + s.problem +
+                                          " (--keep-going writes nan and goes on)");
+                if (problems_++ == 0) first_problem_ = where + ": " + s.problem;
+                std::fputs(args_.lux ? "nan\n" : "nan nan nan\n", out);
+                if (grid) grid_lux_.push_back(std::nan(""));
+                continue;
+            }
+            const auto h = s.result.total();
+            const double value = rad::lux(h);
+            if (grid) grid_lux_.push_back(value);
+            if (args_.lux)
+                std::fprintf(out, "%.6g\n", value);
+            else
+                std::fprintf(out, "%.6g %.6g %.6g\n", h[0], h[1], h[2]);
+        }
+    }
+
+    const GatherArgs& args_;
+    const rad::Gatherer& gatherer_;
+    const rad::Box& scene_box_;
+    SensorSource& source_;
+    std::string source_name_;
+    rad::Progress progress_;
+    long written_ = 0, problems_ = 0;
+    std::string first_problem_;
+    std::vector<double> grid_lux_; // for --png
+};
+
+// Runs `write` on stdout, or on a temporary file that becomes `output` when it is all there.
+void write_output(const std::string& output, const std::function<void(std::FILE*)>& write) {
+    if (output.empty()) {
+        write(stdout); // run_tool checks what reached stdout
+        return;
+    }
+    radfmt::write_atomically(output, [&](const std::filesystem::path& temp) {
+        std::FILE* out = std::fopen(temp.c_str(), "w");
+        if (!out)
+            throw rad::SystemError(output + ": cannot open for writing: " + std::strerror(errno));
+        try {
+            write(out);
+        } catch (...) {
+            std::fclose(out);
+            throw;
+        }
+        if (std::fclose(out) != 0)
+            throw rad::SystemError(output + ": cannot write: " + std::strerror(errno));
+    });
+}
+
+// The problems met (or the work plane's figures), then the summary.
+void report(const GatherArgs& a, const GatherRun& run, double seconds) {
+    if (!a.grid_text.empty()) {
+        print_work_plane(run.grid_lux(), run.problems());
+    } else if (run.problems()) {
+        std::fprintf(stderr,
+                     "rad-gather: warning: %ld point(s) could not be gathered and were written "
+                     "as nan; the first: %s\n",
+                     run.problems(), run.first_problem().c_str());
+    }
+    if (a.quiet) return;
+    const long written = run.written();
+    std::fprintf(stderr,
+                 "rad-gather: %ld point(s) in %.3f s (%.0f/s), %s indirect, %d shadow ray(s) per "
+                 "point\n",
+                 written, seconds, seconds > 0 ? written / seconds : 0.0,
+                 a.options.exact ? "exact" : (std::to_string(a.options.rays) + " rays").c_str(),
+                 a.options.shadow_rays);
+}
+
+int gather(GatherArgs& a, int argc, char** argv) {
+    rad::tool::check_outputs({a.mesh_path, a.rad_path, a.points_path},
+                             {{"-o", a.output}, {"--png", a.png}});
+    check_combinations(a);
+    const auto grid = a.grid_text.empty() ? Grid{} : parse_grid(a.grid_text);
+    // A work plane runs through furniture: a sensor inside it has no value, not an error.
+    if (!a.grid_text.empty()) a.keep_going = true;
+    a.options.smoothing = rad::parse_smoothing(a.smooth);
+    rad::ThreadLimit thread_limit(a.threads);
+    radfmt::OutputBatch outputs;
+
+    radfmt::Header mesh_header, rad_header;
+    auto mesh = radfmt::read_mesh(a.mesh_path, &mesh_header);
+    const auto solution = radfmt::read_radiosity(a.rad_path, &rad_header);
+    radfmt::require_same_geometry(a.rad_path, rad_header, solution.radiosity.size(), a.mesh_path,
+                                  mesh, "run rad-ff and rad-solve on " + a.mesh_path + " again");
+    // E and rho as solved (rad-solve --emission/--reflectance overrides included).
+    rad::apply_recorded_overrides(mesh, rad_header);
+    const rad::Gatherer gatherer(mesh, solution.radiosity, a.options);
+    const rad::Box scene_box = rad::bounds(mesh.vertices);
+
+    std::ifstream points_file;
+    if (!a.points_path.empty()) {
+        points_file.open(a.points_path);
+        if (!points_file) throw rad::InputError(a.points_path + ": cannot open the points file");
+    }
+    std::unique_ptr<SensorSource> source;
+    if (!a.grid_text.empty())
+        source = std::make_unique<GridSource>(grid);
+    else
+        source = std::make_unique<LineSource>(a.points_path.empty() ? std::cin : points_file);
+    const std::string source_name = !a.grid_text.empty()    ? "--grid"
+                                    : a.points_path.empty() ? "<stdin>"
+                                                            : a.points_path;
+    std::string header_line;
+    if (a.header)
+        header_line = "# " + rad::tool_version("rad-gather") + ": " +
+                      radfmt::command_line(argc, argv) + "; mesh " + a.mesh_path + " " +
+                      mesh_header.file_hash + "; radiosity " + a.rad_path + " " +
+                      rad_header.file_hash +
+                      "; columns: " + (a.lux ? "illuminance (lux)" : "irradiance r g b (W/m^2)");
+
+    const auto start = std::chrono::steady_clock::now();
+    GatherRun run(a, gatherer, scene_box, *source, source_name,
+                  a.grid_text.empty() ? 0 : std::uint64_t(grid.nx) * grid.nz);
+    write_output(a.output, [&](std::FILE* out) { run.stream(out, header_line); });
+    run.finish();
+    if (!a.png.empty())
+        rad::write_false_colour_png(a.png, run.grid_lux(), static_cast<int>(grid.nx),
+                                    static_cast<int>(grid.nz), "lux",
+                                    "illuminance (lux) at y = " + number_text(grid.y), a.lux_max);
+    outputs.commit();
+    report(a, run, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "Final gather: the irradiance (W/m^2, the units of radiosity) arriving at points of a\n"
+        "solved scene, or their illuminance in lux. Reads 'x y z dx dy dz' lines (position\n"
+        "and the direction the sensor faces; the input of Radiance's rtrace -I) from standard\n"
+        "input or --points, and writes one 'r g b' line per point line, in order, streaming.\n"
+        "Blank lines and # comments are skipped. Direct light is sampled on the emitters\n"
+        "(exact point-to-polygon form factor x the fraction shadow rays see), indirect light\n"
+        "with cosine-weighted rays taking the smoothed reflected radiosity where they land."};
+    GatherArgs args;
+    add_file_options(app, args);
+    add_gather_options(app, args);
+    add_output_options(app, args);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
     rad::tool::restart_with_huge_pages(argv);
-
-    return rad::tool::run_tool("rad-gather", [&] {
-        rad::tool::check_outputs({mesh_path, rad_path, points_path},
-                                 {{"-o", output}, {"--png", png}});
-        if (lux_max > 0 && png.empty())
-            throw rad::InputError("--lux-max scales the --png of a --grid: give --png FILE");
-        if (!png.empty() && grid_text.empty())
-            throw rad::InputError("--png draws a --grid: give --grid \"x0 z0 x1 z1 y nx nz\"");
-        if (!grid_text.empty() && !points_path.empty())
-            throw rad::InputError("give --grid or --points, not both");
-        const auto grid = grid_text.empty() ? Grid{} : parse_grid(grid_text);
-        // A work plane runs through furniture: a sensor inside it has no value, not an error.
-        if (!grid_text.empty()) keep_going = true;
-        options.smoothing = rad::parse_smoothing(smooth);
-        rad::ThreadLimit thread_limit(threads);
-        radfmt::OutputBatch outputs;
-
-        radfmt::Header mesh_header, rad_header;
-        auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
-        const auto solution = radfmt::read_radiosity(rad_path, &rad_header);
-        radfmt::require_same_geometry(rad_path, rad_header, solution.radiosity.size(), mesh_path,
-                                      mesh, "run rad-ff and rad-solve on " + mesh_path + " again");
-        // E and rho as solved (rad-solve --emission/--reflectance overrides included).
-        rad::apply_recorded_overrides(mesh, rad_header);
-        const rad::Gatherer gatherer(mesh, solution.radiosity, options);
-        const rad::Box scene_box = rad::bounds(mesh.vertices);
-
-        std::ifstream points_file;
-        if (!points_path.empty()) {
-            points_file.open(points_path);
-            if (!points_file) throw rad::InputError(points_path + ": cannot open the points file");
-        }
-        const std::string source_name = !grid_text.empty()    ? "--grid"
-                                        : points_path.empty() ? "<stdin>"
-                                                              : points_path;
-        std::unique_ptr<SensorSource> source;
-        if (!grid_text.empty())
-            source = std::make_unique<GridSource>(grid);
-        else
-            source = std::make_unique<LineSource>(points_path.empty() ? std::cin : points_file);
-
-        std::vector<double> grid_lux; // for --png
-        long written = 0, problems = 0;
-        std::string first_problem;
-        const auto start = std::chrono::steady_clock::now();
-        rad::Progress progress("rad-gather",
-                               grid_text.empty() ? 0 : std::uint64_t(grid.nx) * grid.nz, quiet);
-        // Streams blocks of points: parsed, gathered in parallel, written in order.
-        auto run = [&](std::FILE* out) {
-            if (header) {
-                std::string line = "# " + rad::tool_version("rad-gather") + ": " +
-                                   radfmt::command_line(argc, argv) + "; mesh " + mesh_path + " " +
-                                   mesh_header.file_hash + "; radiosity " + rad_path + " " +
-                                   rad_header.file_hash + "; columns: ";
-                line += lux ? "illuminance (lux)" : "irradiance r g b (W/m^2)";
-                std::fprintf(out, "%s\n", line.c_str());
-            }
-            std::vector<Sensor> block;
-            constexpr std::size_t kBlock = 4096;
-            while (block.clear(), source->next(block, kBlock)) {
-                tbb::parallel_for(std::size_t(0), block.size(), [&](std::size_t k) {
-                    auto& s = block[k];
-                    if (s.problem.empty()) s.problem = out_of_reach(s.position, scene_box);
-                    if (!s.problem.empty()) return;
-                    s.result = gatherer.gather(s.position, s.direction,
-                                               static_cast<std::uint64_t>(written + k));
-                    if (s.result.sees_backs(options.max_back_fraction)) {
-                        char text[200];
-                        std::snprintf(text, sizeof text,
-                                      "%.0f%% of the surfaces the point sees show their back: "
-                                      "it is inside an object, behind a surface, or faces into "
-                                      "one (move it off the surface, or turn it)",
-                                      100 * s.result.back_fraction);
-                        s.problem = text;
-                    }
-                    progress.advance(1);
-                });
-                for (const auto& s : block) {
-                    if (!s.problem.empty()) {
-                        const std::string where = source_name + ":" + std::to_string(s.line);
-                        if (!keep_going)
-                            throw rad::InputError(where + ": " + s.problem +
-                                                  " (--keep-going writes nan and goes on)");
-                        if (problems++ == 0) first_problem = where + ": " + s.problem;
-                        std::fputs(lux ? "nan\n" : "nan nan nan\n", out);
-                        if (!grid_text.empty()) grid_lux.push_back(std::nan(""));
-                        continue;
-                    }
-                    const auto h = s.result.total();
-                    const double value = rad::lux(h);
-                    if (!grid_text.empty()) grid_lux.push_back(value);
-                    if (lux)
-                        std::fprintf(out, "%.6g\n", value);
-                    else
-                        std::fprintf(out, "%.6g %.6g %.6g\n", h[0], h[1], h[2]);
-                }
-                written += static_cast<long>(block.size());
-                if (std::ferror(out)) {
-                    if (out == stdout && rad::tool::stdout_reader_gone())
-                        return; // `| head`: a normal end, as for every tool
-                    throw rad::SystemError("cannot write the output: " +
-                                           std::string(std::strerror(errno)));
-                }
-            }
-        };
-        if (output.empty()) {
-            run(stdout); // run_tool checks what reached stdout
-        } else {
-            radfmt::write_atomically(output, [&](const std::filesystem::path& temp) {
-                std::FILE* out = std::fopen(temp.c_str(), "w");
-                if (!out)
-                    throw rad::SystemError(output +
-                                           ": cannot open for writing: " + std::strerror(errno));
-                try {
-                    run(out);
-                } catch (...) {
-                    std::fclose(out);
-                    throw;
-                }
-                if (std::fclose(out) != 0)
-                    throw rad::SystemError(output + ": cannot write: " + std::strerror(errno));
-            });
-        }
-        progress.finish();
-        if (!png.empty())
-            rad::write_false_colour_png(png, grid_lux, static_cast<int>(grid.nx),
-                                        static_cast<int>(grid.nz), "lux",
-                                        "illuminance (lux) at y = " + number_text(grid.y), lux_max);
-        outputs.commit();
-        if (!grid_text.empty()) {
-            print_work_plane(grid_lux, problems);
-        } else if (problems) {
-            std::fprintf(stderr,
-                         "rad-gather: warning: %ld point(s) could not be gathered and were "
-                         "written as nan; the first: %s\n",
-                         problems, first_problem.c_str());
-        }
-        if (!quiet) {
-            const double seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            std::fprintf(stderr,
-                         "rad-gather: %ld point(s) in %.3f s (%.0f/s), %s indirect, %d shadow "
-                         "ray(s) per point\n",
-                         written, seconds, seconds > 0 ? written / seconds : 0.0,
-                         options.exact ? "exact" : (std::to_string(options.rays) + " rays").c_str(),
-                         options.shadow_rays);
-        }
-        return 0;
-    });
+    return rad::tool::run_tool("rad-gather", [&] { return gather(args, argc, argv); });
 }
