@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <set>
 #include <sstream>
@@ -86,27 +87,29 @@ Transport read_transport(const std::string& ff_path, const std::string& mesh_pat
     return t;
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
-    CLI::App app{
-        "Solve B_i = E_i + rho_i sum_j F_ij B_j per RGB channel from a cached form-factor\n"
-        "file and write the per-patch radiosity. Materials can be overridden at solve time,\n"
-        "so new light colours or reflectances never need rad-ff again."};
+// What the command line says.
+struct SolveArgs {
     std::string mesh_path, ff_path, output, log_path, snapshot, snapshot_at;
     rad::SolveRequest request;
     long snapshot_every = 0;
-    bool quiet = false, verbose = false;
+    bool quiet = false, verbose = false, light_groups = false;
+    std::vector<std::string> group_specs;
+    CLI::Option* tolerance_option = nullptr;
+};
+
+// The files, the method and when it stops.
+void add_solve_options(CLI::App& app, SolveArgs& a) {
     std::string method_help;
     for (const auto* s : rad::solvers())
         method_help += std::string(method_help.empty() ? "" : "; ") + std::string(s->name()) +
                        ": " + std::string(s->summary());
-    app.add_option("MESH", mesh_path, "Patch mesh from rad-mesh")->required();
-    app.add_option("FORMFACTORS", ff_path,
+    auto& request = a.request;
+    app.add_option("MESH", a.mesh_path, "Patch mesh from rad-mesh")->required();
+    app.add_option("FORMFACTORS", a.ff_path,
                    "Form-factor file (or links file, rad-ff --method hierarchical) from rad-ff for "
                    "this mesh")
         ->required();
-    app.add_option("-o,--output", output, "Output radiosity file")->required();
+    app.add_option("-o,--output", a.output, "Output radiosity file")->required();
     app.add_option("--method", request.method, method_help)
         ->capture_default_str()
         ->check(CLI::IsMember(rad::solver_names()));
@@ -117,19 +120,29 @@ int main(int argc, char** argv) {
     app.add_option("--sweeps", request.sweeps,
                    "pr/apr: stop after this many sweeps-equivalent (x patches shots)")
         ->check(rad::tool::finite_range(0, 1e6));
-    app.add_option("--tolerance", request.tolerance,
-                   "Stop when the relative change of a sweep (gs/jacobi) or the unshot power "
-                   "fraction (pr/apr) falls below this")
-        ->capture_default_str()
-        ->check(rad::tool::finite_range(0, 1));
-    app.add_option("--log", log_path,
+    a.tolerance_option =
+        app.add_option("--tolerance", request.tolerance,
+                       "Stop when the relative change of a sweep (gs/jacobi) or the unshot power "
+                       "fraction (pr/apr) falls below this")
+            ->capture_default_str()
+            ->check(rad::tool::finite_range(0, 1));
+}
+
+// The log and the snapshots.
+void add_record_options(CLI::App& app, SolveArgs& a) {
+    app.add_option("--log", a.log_path,
                    "Write iteration,residual,power_r,power_g,power_b,seconds as CSV");
-    app.add_option("--snapshot", snapshot,
+    app.add_option("--snapshot", a.snapshot,
                    "Write the state after chosen iterations to this pattern (with %d)");
-    app.add_option("--snapshot-at", snapshot_at,
+    app.add_option("--snapshot-at", a.snapshot_at,
                    "Comma-separated iterations to snapshot, e.g. 1,4,10");
-    app.add_option("--snapshot-every", snapshot_every, "Snapshot every k iterations")
+    app.add_option("--snapshot-every", a.snapshot_every, "Snapshot every k iterations")
         ->check(CLI::Range(0L, 1000000000000L));
+}
+
+// Materials overridden at solve time, light groups and the rest.
+void add_material_options(CLI::App& app, SolveArgs& a) {
+    auto& request = a.request;
     app.add_option("--emission", request.emission_overrides,
                    "Override a material's exitance: MATERIAL=r,g,b (W/m^2)");
     app.add_option("--reflectance", request.reflectance_overrides,
@@ -139,138 +152,177 @@ int main(int argc, char** argv) {
     app.add_option("--row-sum-tolerance", request.row_sum_tolerance,
                    "Warn when a form-factor row sums above 1 + this")
         ->capture_default_str();
-    bool light_groups = false;
-    std::vector<std::string> group_specs;
-    app.add_flag("--light-groups", light_groups,
+    app.add_flag("--light-groups", a.light_groups,
                  "Solve each light group on its own, in one run (a multi-channel solve that "
                  "reads each row of F once), and store every group's radiosity, so that "
                  "rad-shade --mix can switch, dim and recolour them without another solve. A "
                  "group is each emitting material unless --group says otherwise");
-    app.add_option("--group", group_specs,
+    app.add_option("--group", a.group_specs,
                    "Define a light group: NAME=MATERIAL[,MATERIAL...] (repeatable; implies "
                    "--light-groups; emitting materials in no group get one each)");
     app.add_flag("--force", request.force,
                  "Solve even with a reflectance >= 1 (convergence not guaranteed)");
-    app.add_flag("-q,--quiet", quiet, "No summary");
-    app.add_flag("-v,--verbose", verbose, "Log every iteration to stderr");
+    app.add_flag("-q,--quiet", a.quiet, "No summary");
+    app.add_flag("-v,--verbose", a.verbose, "Log every iteration to stderr");
+}
+
+// Which iterations are written as snapshots, and where.
+struct Snapshots {
+    std::string pattern;
+    std::set<long> at;
+    long every = 0;
+    bool wanted(long iteration) const {
+        return !pattern.empty() && (at.count(iteration) || (every > 0 && iteration % every == 0));
+    }
+};
+
+Snapshots parse_snapshots(const SolveArgs& a) {
+    if (!a.snapshot.empty()) snapshot_path(a.snapshot, 0); // validates the pattern first
+    return {a.snapshot, parse_iteration_list(a.snapshot_at), a.snapshot_every};
+}
+
+void check_snapshots(const Snapshots& snapshots) {
+    if (!snapshots.pattern.empty() && snapshots.at.empty() && snapshots.every <= 0)
+        throw rad::InputError("--snapshot needs --snapshot-at or --snapshot-every");
+    if (snapshots.pattern.empty() && (!snapshots.at.empty() || snapshots.every > 0))
+        throw rad::InputError("--snapshot-at/--snapshot-every need --snapshot PATTERN");
+}
+
+// The power of a state as RGB: with groups, their sum.
+std::array<double, 3> rgb_power(const std::vector<double>& power) {
+    std::array<double, 3> sum{0, 0, 0};
+    for (std::size_t c = 0; c < power.size(); ++c) sum[c % 3] += power[c];
+    return sum;
+}
+
+// What each iteration is told to: a line of the log (kept in `log`) and of --verbose, and
+// the snapshot when one is wanted (the displayed state is made only then).
+std::function<void(const rad::IterationRecord&, const std::function<rad::Channels()>&)>
+iteration_observer(const SolveArgs& a, const Snapshots& snapshots, const radfmt::Header& header,
+                   const std::vector<rad::LightGroup>& groups, std::ostringstream& log) {
+    return [&a, &snapshots, &header, &groups,
+            &log](const rad::IterationRecord& r, const std::function<rad::Channels()>& displayed) {
+        char line[200];
+        const auto power = rgb_power(r.power);
+        std::snprintf(line, sizeof line, "%ld,%.9g,%.9g,%.9g,%.9g,%.6f\n", r.iteration, r.residual,
+                      power[0], power[1], power[2], r.seconds);
+        if (!a.log_path.empty()) log << line;
+        if (a.verbose) std::cerr << "rad-solve: " << line;
+        if (!snapshots.wanted(r.iteration)) return;
+        auto snap = header;
+        snap.set("iterations", std::to_string(r.iteration));
+        snap.set("snapshot", "yes");
+        radfmt::write_radiosity(snapshot_path(snapshots.pattern, r.iteration), snap,
+                                rad::radiosity_data(displayed(), groups));
+    };
+}
+
+void write_log(const std::string& log_path, const std::string& text) {
+    radfmt::write_atomically(log_path, [&](const std::filesystem::path& temp) {
+        std::ofstream out(temp);
+        out << text;
+        out.close(); // a full disk may only show when the last bytes go out
+        if (out.fail())
+            throw rad::SystemError(log_path + ": cannot write: " + std::strerror(errno));
+    });
+}
+
+void print_summary(const SolveArgs& a, const rad::Solver& solver, const rad::SolveResult& result,
+                   const rad::SolveControl& control, const std::array<double, 3>& power,
+                   const std::vector<rad::LightGroup>& groups) {
+    if (a.quiet) return;
+    std::fprintf(
+        stderr, "rad-solve: %s, %ld %s, %s %.3g%s, power %.6g %.6g %.6g W\n",
+        a.request.method.c_str(), result.iterations, solver.shooting() ? "shots" : "sweeps",
+        solver.shooting() ? "unshot fraction" : "residual", result.residual,
+        control.tolerance > 0 && !result.converged ? " (not converged: iteration limit)" : "",
+        power[0], power[1], power[2]);
+    if (groups.empty()) return;
+    std::string names;
+    for (const auto& g : groups) names += " " + g.name;
+    std::fprintf(stderr, "rad-solve: %zu light group(s):%s\n", groups.size(), names.c_str());
+}
+
+// Warnings about the transport (row sums, unlit or wrongly facing groups), before solving.
+void warn_transport(const SolveArgs& a, const radfmt::MeshData& mesh, const Transport& transport) {
+    const auto warnings =
+        transport.hierarchical
+            ? rad::solve_warnings(mesh, transport.links, transport.header, a.ff_path,
+                                  a.request.row_sum_tolerance)
+            : rad::solve_warnings(mesh, transport.matrix, a.ff_path, a.request.row_sum_tolerance);
+    for (const auto& warning : warnings) std::cerr << "rad-solve: warning: " << warning << '\n';
+}
+
+int solve(SolveArgs& a, int argc, char** argv) {
+    const auto snapshots = parse_snapshots(a);
+    rad::tool::check_outputs(
+        {a.mesh_path, a.ff_path}, {{"-o", a.output}, {"--log", a.log_path}},
+        {{"--snapshot", a.snapshot, [&](long iteration) { return snapshots.wanted(iteration); }}});
+    // All outputs (the result, the log, every snapshot) land together or not at all.
+    radfmt::OutputBatch outputs;
+    auto& request = a.request;
+    request.tolerance_given = a.tolerance_option->count() > 0;
+    const auto& solver = rad::solver(request.method);
+    radfmt::Header mesh_header;
+    auto mesh = radfmt::read_mesh(a.mesh_path, &mesh_header);
+    // The materials first: a refusal comes before the (large) form factors are read. The
+    // override fields are kept to go into the header once it exists.
+    radfmt::Header overrides;
+    rad::apply_material_overrides(mesh, request, overrides);
+    rad::check_reflectances(mesh, request.force);
+    const auto transport = read_transport(a.ff_path, a.mesh_path, mesh);
+    if (transport.hierarchical && solver.shooting())
+        throw rad::InputError(a.ff_path +
+                              " holds links (rad-ff --method hierarchical): pr and apr shoot "
+                              "along rows of F, which links do not have; use --method gs or "
+                              "jacobi");
+
+    const radfmt::Parent parents[] = {{a.mesh_path, &mesh_header}, {a.ff_path, &transport.header}};
+    auto header = radfmt::derived_header(rad::tool_version("rad-solve"),
+                                         radfmt::command_line(argc, argv), parents);
+    for (const auto& [key, value] : overrides.fields) header.set(key, value);
+    warn_transport(a, mesh, transport);
+    auto control = rad::stop_rule(solver, request, mesh.patches.size());
+    check_snapshots(snapshots);
+    rad::record_solve_inputs(header, request, transport.geometry_hash, transport.header);
+
+    const auto op = transport.hierarchical ? rad::make_operator(mesh, transport.links)
+                                           : rad::make_operator(mesh, transport.matrix);
+    std::vector<rad::LightGroup> groups;
+    if (a.light_groups || !a.group_specs.empty()) {
+        groups = rad::light_groups(mesh, a.group_specs);
+        rad::record_light_groups(header, mesh, groups);
+    }
+    const auto emission =
+        groups.empty() ? rad::emission_of(mesh) : rad::grouped_emission(mesh, groups);
+    std::ostringstream log;
+    log << "iteration,residual,power_r,power_g,power_b,seconds\n";
+    // Only observe iterations when asked to (a line per shot for pr/apr).
+    if (!a.log_path.empty() || a.verbose || !a.snapshot.empty())
+        control.on_iteration = iteration_observer(a, snapshots, header, groups, log);
+    const auto result = solver.solve(op, emission, control);
+    rad::record_solve_result(header, solver, result);
+    check_finite_solution(result.radiosity, mesh);
+    radfmt::write_radiosity(a.output, header, rad::radiosity_data(result.radiosity, groups));
+    if (!a.log_path.empty()) write_log(a.log_path, log.str());
+    outputs.commit();
+    print_summary(a, solver, result, control,
+                  rgb_power(rad::total_power(op.area, result.radiosity)), groups);
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "Solve B_i = E_i + rho_i sum_j F_ij B_j per RGB channel from a cached form-factor\n"
+        "file and write the per-patch radiosity. Materials can be overridden at solve time,\n"
+        "so new light colours or reflectances never need rad-ff again."};
+    SolveArgs args;
+    add_solve_options(app, args);
+    add_record_options(app, args);
+    add_material_options(app, args);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
     rad::tool::restart_with_huge_pages(argv);
-
-    return rad::tool::run_tool("rad-solve", [&] {
-        if (!snapshot.empty()) snapshot_path(snapshot, 0); // validates the pattern first
-        const auto snapshot_iterations = parse_iteration_list(snapshot_at);
-        rad::tool::check_outputs({mesh_path, ff_path}, {{"-o", output}, {"--log", log_path}},
-                                 {{"--snapshot", snapshot, [&](long iteration) {
-                                       return snapshot_iterations.count(iteration) > 0 ||
-                                              (snapshot_every > 0 &&
-                                               iteration % snapshot_every == 0);
-                                   }}});
-        // All outputs (the result, the log, every snapshot) land together or not at all.
-        radfmt::OutputBatch outputs;
-        request.tolerance_given = app.count("--tolerance") > 0;
-        const auto& solver = rad::solver(request.method);
-        radfmt::Header mesh_header;
-        auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
-        // The materials first: a refusal comes before the (large) form factors are read. The
-        // override fields are kept to go into the header once it exists.
-        radfmt::Header overrides;
-        rad::apply_material_overrides(mesh, request, overrides);
-        rad::check_reflectances(mesh, request.force);
-        const auto transport = read_transport(ff_path, mesh_path, mesh);
-        const auto& ff_header = transport.header;
-        if (transport.hierarchical && solver.shooting())
-            throw rad::InputError(ff_path +
-                                  " holds links (rad-ff --method hierarchical): pr "
-                                  "and apr shoot along rows of F, which links do not have; use "
-                                  "--method gs or jacobi");
-
-        const radfmt::Parent parents[] = {{mesh_path, &mesh_header}, {ff_path, &ff_header}};
-        auto header = radfmt::derived_header(rad::tool_version("rad-solve"),
-                                             radfmt::command_line(argc, argv), parents);
-        for (const auto& [key, value] : overrides.fields) header.set(key, value);
-        const auto warnings =
-            transport.hierarchical
-                ? rad::solve_warnings(mesh, transport.links, ff_header, ff_path,
-                                      request.row_sum_tolerance)
-                : rad::solve_warnings(mesh, transport.matrix, ff_path, request.row_sum_tolerance);
-        for (const auto& warning : warnings) std::cerr << "rad-solve: warning: " << warning << '\n';
-
-        auto control = rad::stop_rule(solver, request, mesh.patches.size());
-        if (!snapshot.empty() && snapshot_iterations.empty() && snapshot_every <= 0)
-            throw rad::InputError("--snapshot needs --snapshot-at or --snapshot-every");
-        if (snapshot.empty() && (!snapshot_iterations.empty() || snapshot_every > 0))
-            throw rad::InputError("--snapshot-at/--snapshot-every need --snapshot PATTERN");
-        rad::record_solve_inputs(header, request, transport.geometry_hash, ff_header);
-
-        const auto op = transport.hierarchical ? rad::make_operator(mesh, transport.links)
-                                               : rad::make_operator(mesh, transport.matrix);
-        std::vector<rad::LightGroup> groups;
-        if (light_groups || !group_specs.empty()) {
-            groups = rad::light_groups(mesh, group_specs);
-            rad::record_light_groups(header, mesh, groups);
-        }
-        const auto emission =
-            groups.empty() ? rad::emission_of(mesh) : rad::grouped_emission(mesh, groups);
-        // The power of a state as RGB: with groups, their sum.
-        auto rgb_power = [](const std::vector<double>& power) {
-            std::array<double, 3> sum{0, 0, 0};
-            for (std::size_t c = 0; c < power.size(); ++c) sum[c % 3] += power[c];
-            return sum;
-        };
-        std::ostringstream log;
-        log << "iteration,residual,power_r,power_g,power_b,seconds\n";
-        // Only observe iterations when asked to (a line per shot for pr/apr); the displayed
-        // state is made only for a snapshot.
-        if (!log_path.empty() || verbose || !snapshot.empty())
-            control.on_iteration = [&](const rad::IterationRecord& r,
-                                       const std::function<rad::Channels()>& displayed) {
-                char line[200];
-                const auto power = rgb_power(r.power);
-                std::snprintf(line, sizeof line, "%ld,%.9g,%.9g,%.9g,%.9g,%.6f\n", r.iteration,
-                              r.residual, power[0], power[1], power[2], r.seconds);
-                if (!log_path.empty()) log << line;
-                if (verbose) std::cerr << "rad-solve: " << line;
-                if (!snapshot.empty() &&
-                    (snapshot_iterations.count(r.iteration) ||
-                     (snapshot_every > 0 && r.iteration % snapshot_every == 0))) {
-                    auto snap = header;
-                    snap.set("iterations", std::to_string(r.iteration));
-                    snap.set("snapshot", "yes");
-                    radfmt::write_radiosity(snapshot_path(snapshot, r.iteration), snap,
-                                            rad::radiosity_data(displayed(), groups));
-                }
-            };
-        const auto result = solver.solve(op, emission, control);
-        rad::record_solve_result(header, solver, result);
-        check_finite_solution(result.radiosity, mesh);
-        radfmt::write_radiosity(output, header, rad::radiosity_data(result.radiosity, groups));
-        if (!log_path.empty()) {
-            const auto text = log.str();
-            radfmt::write_atomically(log_path, [&](const std::filesystem::path& temp) {
-                std::ofstream out(temp);
-                out << text;
-                out.close(); // a full disk may only show when the last bytes go out
-                if (out.fail())
-                    throw rad::SystemError(log_path + ": cannot write: " + std::strerror(errno));
-            });
-        }
-        outputs.commit();
-        if (!quiet) {
-            const auto power = rgb_power(rad::total_power(op.area, result.radiosity));
-            std::fprintf(
-                stderr, "rad-solve: %s, %ld %s, %s %.3g%s, power %.6g %.6g %.6g W\n",
-                request.method.c_str(), result.iterations, solver.shooting() ? "shots" : "sweeps",
-                solver.shooting() ? "unshot fraction" : "residual", result.residual,
-                control.tolerance > 0 && !result.converged ? " (not converged: iteration limit)"
-                                                           : "",
-                power[0], power[1], power[2]);
-            if (!groups.empty()) {
-                std::string names;
-                for (const auto& g : groups) names += " " + g.name;
-                std::fprintf(stderr, "rad-solve: %zu light group(s):%s\n", groups.size(),
-                             names.c_str());
-            }
-        }
-        return 0;
-    });
+    return rad::tool::run_tool("rad-solve", [&] { return solve(args, argc, argv); });
 }
