@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 
@@ -111,6 +112,59 @@ TEST_CASE("polygons with more than four vertices and concave quads are triangula
         total += p.area;
     }
     CHECK(total == Approx(3 + 1.1).epsilon(1e-12)); // hexagon 3, concave quad 1.1 (shoelace)
+}
+
+// OBJ text: a polygon of `n` corners at radius r (alternating with r_odd when given) in the
+// plane z = 0, counter-clockwise, then a triangle after it.
+std::string polygon_then_triangle(int n, double r, double r_odd) {
+    std::string obj;
+    char line[128];
+    for (int k = 0; k < n; ++k) {
+        const double a = 2 * 3.141592653589793 * k / n, radius = k % 2 ? r_odd : r;
+        std::snprintf(line, sizeof line, "v %.9f %.9f 0\n", radius * std::cos(a),
+                      radius * std::sin(a));
+        obj += line;
+    }
+    obj += "usemtl grey\nf";
+    for (int k = 1; k <= n; ++k) {
+        std::snprintf(line, sizeof line, " %d", k);
+        obj += line;
+    }
+    std::snprintf(line, sizeof line, "\nv 20 0 0\nv 22 0 0\nv 20 2 0\nf %d %d %d\n", n + 1, n + 2,
+                  n + 3);
+    obj += line;
+    return obj;
+}
+
+// The shoelace area of the first `n` vertices of a mesh's scene.
+double shoelace(const std::vector<rad::Vec3>& v, int n) {
+    double twice = 0;
+    for (int k = 0; k < n; ++k) twice += v[k][0] * v[(k + 1) % n][1] - v[(k + 1) % n][0] * v[k][1];
+    return twice / 2;
+}
+
+TEST_CASE("faces of hundreds of corners are read whole and triangulated") {
+    // tinyobjloader keeps a face's corner count in a byte: a face of 300 corners read as 44,
+    // and the triangle after it began inside it. A star of 1,000 corners is past what ear
+    // clipping does quickly (constrained Delaunay).
+    for (const auto& [n, r_odd] : {std::pair{300, 5.0}, std::pair{1000, 3.0}}) {
+        const auto obj = polygon_then_triangle(n, 5, r_odd);
+        const auto scene = scene_from_obj(obj);
+        REQUIRE(scene.polygons.size() == 2);
+        CHECK(scene.polygons[0].vertices.size() == std::size_t(n));
+        CHECK(scene.polygons[1].vertices == std::vector<std::uint32_t>{std::uint32_t(n),
+                                                                       std::uint32_t(n + 1),
+                                                                       std::uint32_t(n + 2)});
+        const double polygon = shoelace(scene.vertices, n);
+        const auto mesh = mesh_from_obj(obj);
+        double total = 0;
+        for (const auto& p : mesh.patches) {
+            CHECK(p.normal[2] == Approx(1));
+            total += p.area;
+        }
+        CHECK(total == Approx(polygon + 2).epsilon(1e-9));
+        CHECK(mesh.patches.size() == std::size_t(n - 2 + 1));
+    }
 }
 
 namespace {

@@ -63,6 +63,9 @@ struct Library {
 
 struct LintResult {
     std::vector<int> face_lines;
+    // Each face's corners: tinyobjloader keeps a face's count in a byte, so a face of 500
+    // corners reads as 244 and every face after it starts in the wrong place.
+    std::vector<int> face_corners;
     std::vector<std::pair<int, std::string>> usemtl; // line, material name as tinyobj reads it
     std::vector<int> faces_without_material;         // before any usemtl
     std::vector<Library> libraries;
@@ -204,7 +207,8 @@ void lint_vertex(Words& words, const FileLoc& where) {
 
 // An `f` line after its keyword: at least three corners, each naming a vertex (and any vt or
 // vn) defined before it.
-void lint_face(Words& words, const FileLoc& where, bool strict, LintResult& result) {
+// Checks a face's corners; returns how many it has.
+int lint_face(Words& words, const FileLoc& where, bool strict, LintResult& result) {
     std::string_view token;
     int corners = 0;
     while (words.next(token)) {
@@ -227,6 +231,7 @@ void lint_face(Words& words, const FileLoc& where, bool strict, LintResult& resu
     if (corners < 3)
         throw InputError(where, "face has " + std::to_string(corners) +
                                     " vertices; at least 3 are needed");
+    return corners;
 }
 
 LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
@@ -256,7 +261,7 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
         } else if (keyword == "vn") {
             ++result.normal_count;
         } else if (keyword == "f") {
-            lint_face(words, where, options.strict, result);
+            result.face_corners.push_back(lint_face(words, where, options.strict, result));
             if (!have_material) {
                 if (options.strict)
                     throw InputError(where, "face has no material (put 'usemtl NAME' before it, "
@@ -572,6 +577,29 @@ Polygon polygon_of(const tinyobj::shape_t& shape, std::size_t offset, int count,
     return poly;
 }
 
+// A face's corner count: the lint's, as tinyobjloader keeps only its low byte (the two are
+// checked to agree there). Without the lint's faces matched one to one, a face of more than
+// 255 corners cannot be read.
+int face_corners(const fs::path& path, const LintResult& lint, bool lines_match,
+                 std::size_t face_number, unsigned char parsed) {
+    if (!lines_match) {
+        for (std::size_t k = 0; k < lint.face_corners.size(); ++k)
+            if (lint.face_corners[k] > 255)
+                throw InputError(FileLoc{path.string(), lint.face_lines[k]},
+                                 "face of " + std::to_string(lint.face_corners[k]) +
+                                     " corners: the OBJ reader takes 255 at most here (split "
+                                     "the face, or export it triangulated)");
+        return parsed;
+    }
+    const int corners = lint.face_corners[face_number];
+    if ((corners & 0xff) != parsed)
+        throw InternalError(path.string() + ": face at line " +
+                            std::to_string(lint.face_lines[face_number]) + " has " +
+                            std::to_string(corners) + " corners, the OBJ reader saw " +
+                            std::to_string(parsed));
+    return corners;
+}
+
 // The shapes' faces as the scene's polygons, with their groups, lines and materials.
 void add_polygons(const fs::path& path, const ParsedObj& parsed, const LintResult& lint,
                   std::size_t library_materials, const SceneOptions& options, Scene& scene,
@@ -589,7 +617,8 @@ void add_polygons(const fs::path& path, const ParsedObj& parsed, const LintResul
         if (group == scene.groups.size()) scene.groups.push_back(group_name);
         std::size_t offset = 0;
         for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_number) {
-            const int count = shape.mesh.num_face_vertices[f];
+            const int count = face_corners(path, lint, lines_match, face_number,
+                                           shape.mesh.num_face_vertices[f]);
             Polygon poly = polygon_of(shape, offset, count, parsed.attrib);
             offset += count;
             poly.group = group;

@@ -1,5 +1,6 @@
 // Step 1 of subdivide: the scene's faces cleaned into triangles and convex quads.
 #include "radiosity/error.hpp"
+#include "polygon_triangulation.hpp"
 #include "subdivide_parts.hpp"
 
 #include <algorithm>
@@ -18,47 +19,6 @@ double elongation(const Vec3& a, const Vec3& b, const Vec3& c) {
     return twice_area > 0 ? longest / twice_area : 1e300;
 }
 constexpr double kBandedElongation = 4;
-
-// Ear clipping in the polygon's plane; polygons here are planar and simple.
-std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec3>& pts,
-                                                      const std::vector<std::uint32_t>& ids,
-                                                      const Vec3& normal) {
-    std::vector<std::size_t> remaining(pts.size());
-    std::iota(remaining.begin(), remaining.end(), 0);
-    std::vector<std::array<std::uint32_t, 3>> out;
-    auto convex = [&](std::size_t a, std::size_t b, std::size_t c) {
-        return dot(cross(pts[b] - pts[a], pts[c] - pts[b]), normal) > 0;
-    };
-    auto inside = [&](const Vec3& p, std::size_t a, std::size_t b, std::size_t c) {
-        const double d1 = dot(cross(pts[b] - pts[a], p - pts[a]), normal);
-        const double d2 = dot(cross(pts[c] - pts[b], p - pts[b]), normal);
-        const double d3 = dot(cross(pts[a] - pts[c], p - pts[c]), normal);
-        return d1 >= 0 && d2 >= 0 && d3 >= 0;
-    };
-    std::size_t guard = 0;
-    while (remaining.size() > 3 && guard++ < 10 * pts.size() * pts.size()) {
-        const std::size_t m = remaining.size();
-        bool clipped = false;
-        for (std::size_t i = 0; i < m && !clipped; ++i) {
-            const auto a = remaining[(i + m - 1) % m], b = remaining[i], c = remaining[(i + 1) % m];
-            if (!convex(a, b, c)) continue;
-            bool ear = true;
-            for (auto o : remaining)
-                if (o != a && o != b && o != c && inside(pts[o], a, b, c)) {
-                    ear = false;
-                    break;
-                }
-            if (!ear) continue;
-            out.push_back({ids[a], ids[b], ids[c]});
-            remaining.erase(remaining.begin() + static_cast<long>(i));
-            clipped = true;
-        }
-        if (!clipped) break; // numerically stuck: fall back to a fan for the rest
-    }
-    for (std::size_t i = 1; i + 1 < remaining.size(); ++i)
-        out.push_back({ids[remaining[0]], ids[remaining[i]], ids[remaining[i + 1]]});
-    return out;
-}
 
 // A face's corners with repeats dropped, and its plane: how far its corners leave it.
 struct FaceShape {
@@ -125,7 +85,7 @@ class ElementMaker {
             add(poly, planar, f.normal, {ids[0], ids[1], ids[2], ids[3]});
         } else {
             if (planar) ++report_.polygons_triangulated;
-            for (const auto& t : triangulate(f.pts, ids, f.normal))
+            for (const auto& t : triangulate_polygon(f.pts, ids, f.normal))
                 add(poly, planar, f.normal, {t[0], t[1], t[2]});
         }
     }
