@@ -262,6 +262,32 @@ exact = 0.5 * 1000 * 100 * math.sin(2 * math.pi / 1000)
 # Chords replace arcs no farther than the tolerance from them: at most 0.4 mm x the rim.
 assert abs(area - exact) < 0.00043 * 2 * math.pi * 10, (area, exact)
 " || fail "the disc's area is not kept: $(grep patches disc.err)"
+# Stacks are refused, not meshed for minutes: 150 copies of one triangle, each nudged out of
+# the others' plane by up to 1e-4 (one region whose edges cross 10^5 times: 88 s and 2.5 GB
+# before), and 400 strips crossing at one point in one plane (each centroid under all of
+# them). Exit 1, a message naming the file, no mesh written.
+python3 - <<'PY'
+import math, random
+random.seed(1)
+with open("stack.obj", "w") as out:
+    for k in range(150):
+        e = 1e-4 * random.random()
+        out.write(f"v {e} 0 0\nv 1 0 {e}\nv 0 {e} 1\nf {3 * k + 1} {3 * k + 2} {3 * k + 3}\n")
+with open("strips.obj", "w") as out:
+    for k in range(400):
+        a = math.pi * k / 400
+        c, s, w = math.cos(a), math.sin(a), 0.01
+        for x, z in ((-10 * c - w * s, -10 * s + w * c), (-10 * c + w * s, -10 * s - w * c),
+                     (10 * c + w * s, 10 * s - w * c), (10 * c - w * s, 10 * s + w * c)):
+            out.write(f"v {x} 0 {z}\n")
+        out.write(f"f {4 * k + 1} {4 * k + 2} {4 * k + 3} {4 * k + 4}\n")
+PY
+for scene in stack strips; do
+  code=0
+  "$BIN/rad-mesh" $scene.obj -o $scene.mesh 2> $scene.err || code=$?
+  [ "$code" = 1 ] && [ ! -e $scene.mesh ] && grep -q "^rad-mesh: error: $scene.obj.*not a surface" $scene.err ||
+    fail "$scene: exit $code, $(cat $scene.err)"
+done
 # The same input gives the same mesh whatever the process's memory layout: the output's name
 # and the environment's size move the heap, and the outline of a region that needed a
 # triangulation came in the order CGAL's edge iterator found it (by address): the cut of

@@ -3,6 +3,7 @@
 // surface with a wrongly facing copy (the copy dropped, by what each side's rays meet).
 #include "radiosity/coincident.hpp"
 
+#include "radiosity/error.hpp"
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 
@@ -231,6 +232,18 @@ class CentroidGrid {
     std::vector<std::size_t> start_, ranks_; // the squares' centroids, by rank
 };
 
+// A face's centroid under more faces than this is in a stack of copies, not a surface: the
+// pairs of a stack grow as its square (20,000 nudged copies of one triangle ran out of time
+// and memory here), and their outlines' crossings too, later.
+constexpr std::uint32_t kMostFacesOver = 256;
+
+[[noreturn]] void refuse_stack(const Scene& scene, std::size_t face) {
+    throw InputError(face_location(scene, scene.polygons[face].line) +
+                     ": this face lies under more than " + std::to_string(kMostFacesOver) +
+                     " other faces of its plane: a stack of copies, not a surface (remove the "
+                     "copies, e.g. merge vertices by distance and delete duplicate faces)");
+}
+
 // The pairs of one plane's faces where one's centroid lies inside the other (beyond
 // `tolerance` from its outline), each as (the face first by its box's lower u, the other), in
 // that order. The centroids are looked up in a grid by the squares each outline covers, not
@@ -244,12 +257,15 @@ overlapping_pairs(const Scene& scene, const std::vector<FacePlane>& planes,
     });
     const CentroidGrid grid(planes, faces);
     std::vector<std::pair<std::size_t, std::size_t>> ranks; // positions in `faces`
+    std::vector<std::uint32_t> covering(faces.size(), 0);   // the faces over each centroid
     for (std::size_t j = 0; j < faces.size(); ++j) {
         const auto outline = outline_of(scene, planes[faces[j]], faces[j]);
         grid.for_each_centroid_over(outline, tolerance, [&](std::size_t i) {
-            if (i != j &&
-                inside(outline, CentroidGrid::centroid_of(planes[faces[i]]), tolerance, false))
-                ranks.emplace_back(std::min(i, j), std::max(i, j));
+            if (i == j ||
+                !inside(outline, CentroidGrid::centroid_of(planes[faces[i]]), tolerance, false))
+                return;
+            ranks.emplace_back(std::min(i, j), std::max(i, j));
+            if (++covering[i] > kMostFacesOver) refuse_stack(scene, faces[i]);
         });
     }
     std::sort(ranks.begin(), ranks.end());

@@ -119,8 +119,11 @@ std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
 
 // Pass 2: the region's outline (edges between its inside and outside, holes included), from a
 // constrained triangulation of its faces' edges; crossings of overlapping faces become points.
+// Refuses a region whose faces' edges cross at many more points than they have corners
+// (`source` names the file): a stack of copies.
 void trace_outline(Region& region, const radfmt::MeshData& faces,
-                   const std::vector<std::uint32_t>& weld, Points& points);
+                   const std::vector<std::uint32_t>& weld, Points& points,
+                   const std::string& source);
 
 // How much the region's faces' areas add up to more than the area they cover (0 where they
 // tile it, or the difference is rounding: under a millionth of the sum): faces drawn partly

@@ -197,7 +197,7 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     }
     begin_stage(options.stages, "outlines");
     for (auto& region : regions) {
-        surfaces::trace_outline(region, faces, weld, points);
+        surfaces::trace_outline(region, faces, weld, points, options.source);
         const double beyond = surfaces::area_beyond_union(region, faces, weld, points);
         if (beyond > 0) ++rep.overlapped_regions, rep.overlap_area += beyond;
         region.width = width_or_thickness(region, points);
