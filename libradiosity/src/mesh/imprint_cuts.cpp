@@ -136,6 +136,15 @@ bool reaches_plane(const Scene& scene, std::uint32_t p, std::uint32_t q, double 
     return (above && below) || on >= 2;
 }
 
+// One object (or two faces meeting at an edge): a welded corner in common.
+bool shares_welded_corner(const Scene& scene, const std::vector<std::uint32_t>& welded,
+                          std::uint32_t a, std::uint32_t b) {
+    for (const auto u : scene.polygons[a].vertices)
+        for (const auto v : scene.polygons[b].vertices)
+            if (welded[u] == welded[v]) return true;
+    return false;
+}
+
 // Each face's welded corner that most faces have (the lowest of equals): faces with the same
 // one share a corner, so the broad phase need not pair them (a fan's slivers all have its
 // hub).
@@ -157,32 +166,76 @@ std::vector<std::uint32_t> busiest_corners(const Scene& scene,
     return busiest;
 }
 
-// Candidate pairs: faces whose boxes overlap within `tol` (for_each_overlapping_pair), not
-// of one object (no welded corner in common), each as (a face, one that reaches its plane).
-// Faces of no area take no part. Sorted, so they do not depend on the order the pairs are
-// found in.
+// The boxes of a face's pieces: slabs across its box's longest axis, as many as its box is
+// larger than the face (up to 16). The box of a sliver lying diagonally is mostly empty: a
+// cylinder's cap drawn as a fan put every sliver's box over the side's quads, and their pairs
+// grew as the square of the segments.
+void piece_boxes(const std::vector<Vec3>& points, double tol, std::vector<Box>& out) {
+    out.clear();
+    const Box whole = bounds(points);
+    const Vec3 extent = whole.hi - whole.lo;
+    int axis = 0;
+    for (int c = 1; c < 3; ++c)
+        if (extent[c] > extent[axis]) axis = c;
+    const double box_area = extent[0] * extent[1] + extent[1] * extent[2] + extent[2] * extent[0];
+    const double area = 0.5 * length(newell_normal(points));
+    const int pieces =
+        static_cast<int>(std::clamp(std::floor(std::sqrt(box_area / (4 * area))), 1.0, 16.0));
+    for (int k = 0; k < pieces; ++k) {
+        const double lo = whole.lo[axis] + extent[axis] * k / pieces;
+        const double hi =
+            k + 1 == pieces ? whole.hi[axis] : whole.lo[axis] + extent[axis] * (k + 1) / pieces;
+        Box box;
+        // The polygon's edges clipped to the slab lo..hi: their ends inside it.
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const Vec3& a = points[i];
+            const Vec3& b = points[(i + 1) % points.size()];
+            const double da = a[axis], db = b[axis];
+            if (da >= lo && da <= hi) box.add(a);
+            if ((da < lo) != (db < lo) && da != db) box.add(a + (b - a) * ((lo - da) / (db - da)));
+            if ((da > hi) != (db > hi) && da != db) box.add(a + (b - a) * ((hi - da) / (db - da)));
+        }
+        for (int c = 0; c < 3; ++c) box.lo[c] -= tol / 2, box.hi[c] += tol / 2;
+        out.push_back(box);
+    }
+}
+
+// Candidate pairs: faces whose pieces' boxes overlap within `tol` (for_each_overlapping_pair),
+// not of one object (no welded corner in common), each as (a face, one that reaches its
+// plane). Faces of no area take no part. Sorted, so they do not depend on the order the pairs
+// are found in.
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
 touching_pairs(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol) {
-    std::vector<Box> boxes(scene.polygons.size()); // empty for faces without area
+    std::vector<Box> boxes, pieces;
+    std::vector<std::uint32_t> face_of; // each box's face
     std::vector<Vec3> points;
+    const auto busiest = busiest_corners(scene, welded);
+    std::vector<std::uint32_t> groups;
     for (std::uint32_t f = 0; f < scene.polygons.size(); ++f) {
         corners_of(scene, f, points);
         if (points.size() < 3 || !(length(newell_normal(points)) > 0)) continue;
-        boxes[f] = bounds(points);
-        for (int k = 0; k < 3; ++k) boxes[f].lo[k] -= tol / 2, boxes[f].hi[k] += tol / 2;
+        piece_boxes(points, tol, pieces);
+        for (const auto& box : pieces)
+            boxes.push_back(box), face_of.push_back(f), groups.push_back(busiest[f]);
     }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    std::vector<std::uint64_t> candidates;
     for_each_overlapping_pair(
         boxes,
         [&](std::uint32_t a, std::uint32_t b) {
-            // One object (or two faces meeting at an edge): a welded corner in common.
-            for (const auto u : scene.polygons[a].vertices)
-                for (const auto v : scene.polygons[b].vertices)
-                    if (welded[u] == welded[v]) return;
-            if (reaches_plane(scene, a, b, tol, points)) pairs.emplace_back(a, b);
-            if (reaches_plane(scene, b, a, tol, points)) pairs.emplace_back(b, a);
+            const auto fa = face_of[a], fb = face_of[b];
+            if (fa != fb)
+                candidates.push_back((std::uint64_t(std::min(fa, fb)) << 32) | std::max(fa, fb));
         },
-        busiest_corners(scene, welded));
+        groups);
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (const auto key : candidates) {
+        const auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key);
+        if (shares_welded_corner(scene, welded, a, b)) continue;
+        if (reaches_plane(scene, a, b, tol, points)) pairs.emplace_back(a, b);
+        if (reaches_plane(scene, b, a, tol, points)) pairs.emplace_back(b, a);
+    }
     std::sort(pairs.begin(), pairs.end());
     return pairs;
 }
