@@ -170,17 +170,21 @@ std::vector<std::uint32_t> busiest_corners(const Scene& scene,
 // larger than the face (up to 16). The box of a sliver lying diagonally is mostly empty: a
 // cylinder's cap drawn as a fan put every sliver's box over the side's quads, and their pairs
 // grew as the square of the segments.
-void piece_boxes(const std::vector<Vec3>& points, double tol, std::vector<Box>& out) {
+void piece_boxes(const std::vector<Vec3>& points, double area, double tol, std::vector<Box>& out) {
     out.clear();
-    const Box whole = bounds(points);
+    Box whole = bounds(points);
     const Vec3 extent = whole.hi - whole.lo;
     int axis = 0;
     for (int c = 1; c < 3; ++c)
         if (extent[c] > extent[axis]) axis = c;
     const double box_area = extent[0] * extent[1] + extent[1] * extent[2] + extent[2] * extent[0];
-    const double area = 0.5 * length(newell_normal(points));
     const int pieces =
         static_cast<int>(std::clamp(std::floor(std::sqrt(box_area / (4 * area))), 1.0, 16.0));
+    if (pieces == 1) { // the whole box: most faces
+        for (int c = 0; c < 3; ++c) whole.lo[c] -= tol / 2, whole.hi[c] += tol / 2;
+        out.push_back(whole);
+        return;
+    }
     for (int k = 0; k < pieces; ++k) {
         const double lo = whole.lo[axis] + extent[axis] * k / pieces;
         const double hi =
@@ -207,35 +211,42 @@ void piece_boxes(const std::vector<Vec3>& points, double tol, std::vector<Box>& 
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
 touching_pairs(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol) {
     std::vector<Box> boxes, pieces;
-    std::vector<std::uint32_t> face_of; // each box's face
+    std::vector<std::uint32_t> face_of;                    // each box's face
+    std::vector<bool> split(scene.polygons.size(), false); // faces of several boxes
     std::vector<Vec3> points;
     const auto busiest = busiest_corners(scene, welded);
     std::vector<std::uint32_t> groups;
     for (std::uint32_t f = 0; f < scene.polygons.size(); ++f) {
         corners_of(scene, f, points);
-        if (points.size() < 3 || !(length(newell_normal(points)) > 0)) continue;
-        piece_boxes(points, tol, pieces);
+        const double area = points.size() < 3 ? 0 : 0.5 * length(newell_normal(points));
+        if (!(area > 0)) continue;
+        piece_boxes(points, area, tol, pieces);
+        split[f] = pieces.size() > 1;
         for (const auto& box : pieces)
             boxes.push_back(box), face_of.push_back(f), groups.push_back(busiest[f]);
     }
-    std::vector<std::uint64_t> candidates;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    auto add_if_reaching = [&](std::uint32_t a, std::uint32_t b) {
+        if (reaches_plane(scene, a, b, tol, points)) pairs.emplace_back(a, b);
+        if (reaches_plane(scene, b, a, tol, points)) pairs.emplace_back(b, a);
+    };
+    // A pair of whole boxes is met once; one with a split face maybe more often: kept aside.
+    std::vector<std::uint64_t> again;
     for_each_overlapping_pair(
         boxes,
         [&](std::uint32_t a, std::uint32_t b) {
             const auto fa = face_of[a], fb = face_of[b];
-            if (fa != fb)
-                candidates.push_back((std::uint64_t(std::min(fa, fb)) << 32) | std::max(fa, fb));
+            if (fa == fb || shares_welded_corner(scene, welded, fa, fb)) return;
+            if (!split[fa] && !split[fb])
+                add_if_reaching(std::min(fa, fb), std::max(fa, fb));
+            else
+                again.push_back((std::uint64_t(std::min(fa, fb)) << 32) | std::max(fa, fb));
         },
         groups);
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-    for (const auto key : candidates) {
-        const auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key);
-        if (shares_welded_corner(scene, welded, a, b)) continue;
-        if (reaches_plane(scene, a, b, tol, points)) pairs.emplace_back(a, b);
-        if (reaches_plane(scene, b, a, tol, points)) pairs.emplace_back(b, a);
-    }
+    std::sort(again.begin(), again.end());
+    again.erase(std::unique(again.begin(), again.end()), again.end());
+    for (const auto key : again)
+        add_if_reaching(static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key));
     std::sort(pairs.begin(), pairs.end());
     return pairs;
 }
