@@ -2,6 +2,7 @@
 #include "point_buckets.hpp"
 #include "regions.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <queue>
 #include <unordered_map>
@@ -24,7 +25,39 @@ FaceSubEdges split_face_edges(const radfmt::MeshData& faces, const std::vector<s
     std::vector<std::uint32_t> ids(points.position.size());
     for (std::uint32_t k = 0; k < ids.size(); ++k) ids[k] = k;
     const PointBuckets buckets(ids, points);
-    std::unordered_map<EdgeKey, std::vector<EdgeKey>> split; // each welded edge once
+    // Each welded edge once (sorted keys, not a map of vectors: a hall of 5e6 triangles has
+    // 7.5 million edges), its sub-edges in a flat list, in the direction of the first face
+    // that has it.
+    struct FaceEdge {
+        EdgeKey key;
+        std::uint32_t face, from, to;
+        bool operator<(const FaceEdge& o) const {
+            return std::pair(key, face) < std::pair(o.key, o.face);
+        }
+    };
+    std::vector<FaceEdge> found;
+    for (std::uint32_t f = 0; f < faces.patches.size(); ++f) {
+        const auto& p = faces.patches[f];
+        for (int k = 0, n = p.corner_count(); k < n; ++k) {
+            const auto a = weld[p.corners[k]], b = weld[p.corners[(k + 1) % n]];
+            if (a != b) found.push_back({edge_key(a, b), f, a, b});
+        }
+    }
+    std::stable_sort(found.begin(), found.end());
+    std::vector<EdgeKey> edges;
+    std::vector<std::size_t> first{0}; // edge e's sub-edges: first[e] .. first[e + 1]
+    std::vector<EdgeKey> sub_edges;
+    for (std::size_t i = 0; i < found.size(); ++i) {
+        if (i > 0 && found[i].key == found[i - 1].key) continue;
+        edges.push_back(found[i].key);
+        const auto a = found[i].from, b = found[i].to;
+        auto previous = a;
+        for (const auto c : buckets.on_segment(a, b, tolerance))
+            sub_edges.push_back(edge_key(previous, c)), previous = c;
+        sub_edges.push_back(edge_key(previous, b));
+        first.push_back(sub_edges.size());
+    }
+    std::vector<FaceEdge>().swap(found);
     FaceSubEdges out;
     out.start.reserve(faces.patches.size() + 1);
     out.start.push_back(0);
@@ -33,30 +66,37 @@ FaceSubEdges split_face_edges(const radfmt::MeshData& faces, const std::vector<s
         for (int k = 0; k < n; ++k) {
             const auto a = weld[p.corners[k]], b = weld[p.corners[(k + 1) % n]];
             if (a == b) continue;
-            auto [it, fresh] = split.try_emplace(edge_key(a, b));
-            if (fresh) {
-                auto previous = a;
-                for (const auto c : buckets.on_segment(a, b, tolerance))
-                    it->second.push_back(edge_key(previous, c)), previous = c;
-                it->second.push_back(edge_key(previous, b));
-            }
-            out.keys.insert(out.keys.end(), it->second.begin(), it->second.end());
+            const auto e = static_cast<std::size_t>(
+                std::lower_bound(edges.begin(), edges.end(), edge_key(a, b)) - edges.begin());
+            out.keys.insert(out.keys.end(), sub_edges.begin() + static_cast<long>(first[e]),
+                            sub_edges.begin() + static_cast<long>(first[e + 1]));
         }
         out.start.push_back(out.keys.size());
     }
     return out;
 }
 
-// Faces along each sub-edge.
-std::unordered_map<EdgeKey, std::vector<std::uint32_t>> faces_by_edge(const FaceSubEdges& edges) {
-    std::unordered_map<EdgeKey, std::vector<std::uint32_t>> by_edge;
-    for (std::uint32_t f = 0; f + 1 < edges.start.size(); ++f)
-        for (auto k = edges.start[f]; k < edges.start[f + 1]; ++k) {
-            auto& list = by_edge[edges.keys[k]];
-            if (list.empty() || list.back() != f) list.push_back(f);
-        }
-    return by_edge;
-}
+// Faces along each sub-edge: (sub-edge, face) sorted, so a sub-edge's faces are a run in
+// ascending order. (A map of a vector a sub-edge made 15 million small vectors on a hall of
+// 5e6 triangles.)
+class FacesByEdge {
+  public:
+    explicit FacesByEdge(const FaceSubEdges& edges) {
+        entries_.reserve(edges.keys.size());
+        for (std::uint32_t f = 0; f + 1 < edges.start.size(); ++f)
+            for (auto k = edges.start[f]; k < edges.start[f + 1]; ++k)
+                entries_.emplace_back(edges.keys[k], f);
+        std::sort(entries_.begin(), entries_.end());
+        entries_.erase(std::unique(entries_.begin(), entries_.end()), entries_.end());
+    }
+    template <class Visit> void for_each_face(EdgeKey key, Visit&& visit) const {
+        auto it = std::lower_bound(entries_.begin(), entries_.end(), std::pair{key, 0u});
+        for (; it != entries_.end() && it->first == key; ++it) visit(it->second);
+    }
+
+  private:
+    std::vector<std::pair<EdgeKey, std::uint32_t>> entries_;
+};
 
 Plane plane_of(const radfmt::Patch& seed) {
     Plane plane;
@@ -74,7 +114,7 @@ std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
                                         const Points& points, const SurfaceOptions& options,
                                         double scene_size, double tolerance) {
     const auto sub_edges = split_face_edges(faces, weld, points, tolerance);
-    const auto by_edge = faces_by_edge(sub_edges);
+    const FacesByEdge by_edge(sub_edges);
     const double min_cos = std::cos(options.angle_tolerance * 3.14159265358979323846 / 180);
     const double max_offset = options.plane_tolerance * scene_size;
     std::vector<std::uint32_t> region_of(faces.patches.size(), kNone);
@@ -104,11 +144,12 @@ std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
             todo.pop();
             region.faces.push_back(f);
             for (auto k = sub_edges.start[f]; k < sub_edges.start[f + 1]; ++k)
-                for (const auto g : by_edge.at(sub_edges.keys[k]))
+                by_edge.for_each_face(sub_edges.keys[k], [&](std::uint32_t g) {
                     if (region_of[g] == kNone && joins(faces.patches[g])) {
                         region_of[g] = id;
                         todo.push(g);
                     }
+                });
         }
         regions.push_back(std::move(region));
     }
