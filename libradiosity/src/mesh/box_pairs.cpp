@@ -81,12 +81,11 @@ void for_each_overlapping_pair(const std::vector<Box>& boxes,
         while (end < entries.size() && cell_of(entries[end]) == cell_of(entries[start])) ++end;
         std::size_t block_end = start; // the end of x's group's entries in this cell
         for (auto x = start; x < end; ++x) {
-            if (x == block_end) {
+            if (x == block_end) { // x starts a group's run (a box of no group: a run of one)
                 const auto g = std::get<1>(entries[x]);
                 for (block_end = x + 1;
                      g != kNoGroup && block_end < end && std::get<1>(entries[block_end]) == g;)
                     ++block_end;
-                if (g == kNoGroup) block_end = x + 1;
             }
             for (auto y = std::max(x + 1, block_end); y < end; ++y) {
                 const auto a = box_of(entries[x]), b = box_of(entries[y]);

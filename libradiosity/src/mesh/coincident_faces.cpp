@@ -8,6 +8,7 @@
 #include "radiosity/rays.hpp"
 
 #include "polygon2d.hpp"
+#include "slab_points.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -207,23 +208,9 @@ class CentroidGrid {
     static std::pair<double, double> x_extent(const std::vector<std::array<double, 2>>& outline,
                                               double y0, double y1) {
         double xlo = 1e300, xhi = -1e300;
-        for (std::size_t k = 0; k < outline.size(); ++k) {
-            const auto& p = outline[k];
-            const auto& q = outline[(k + 1) % outline.size()];
-            const double dy = q[1] - p[1];
-            double t0 = 0, t1 = 1; // the part of p-q inside the band
-            if (dy == 0) {
-                if (p[1] < y0 || p[1] > y1) continue;
-            } else {
-                const double ta = (y0 - p[1]) / dy, tb = (y1 - p[1]) / dy;
-                t0 = std::max(t0, std::min(ta, tb)), t1 = std::min(t1, std::max(ta, tb));
-                if (t0 > t1) continue;
-            }
-            for (const double t : {t0, t1}) {
-                const double x = p[0] + t * (q[0] - p[0]);
-                xlo = std::min(xlo, x), xhi = std::max(xhi, x);
-            }
-        }
+        for_each_slab_point(outline, 1, y0, y1, [&](const std::array<double, 2>& p) {
+            xlo = std::min(xlo, p[0]), xhi = std::max(xhi, p[0]);
+        });
         return {xlo, xhi};
     }
     std::array<double, 2> lo_{1e300, 1e300}, hi_{-1e300, -1e300};

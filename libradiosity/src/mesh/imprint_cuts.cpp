@@ -1,6 +1,7 @@
 // Contact imprinting, step 1: where other faces touch or cross each face (its cut lines).
 #include "box_pairs.hpp"
 #include "imprint_parts.hpp"
+#include "slab_points.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -172,7 +173,7 @@ std::vector<std::uint32_t> busiest_corners(const Scene& scene,
 // grew as the square of the segments.
 void piece_boxes(const std::vector<Vec3>& points, double area, double tol, std::vector<Box>& out) {
     out.clear();
-    Box whole = bounds(points);
+    const Box whole = bounds(points);
     const Vec3 extent = whole.hi - whole.lo;
     int axis = 0;
     for (int c = 1; c < 3; ++c)
@@ -180,28 +181,20 @@ void piece_boxes(const std::vector<Vec3>& points, double area, double tol, std::
     const double box_area = extent[0] * extent[1] + extent[1] * extent[2] + extent[2] * extent[0];
     const int pieces =
         static_cast<int>(std::clamp(std::floor(std::sqrt(box_area / (4 * area))), 1.0, 16.0));
-    if (pieces == 1) { // the whole box: most faces
-        for (int c = 0; c < 3; ++c) whole.lo[c] -= tol / 2, whole.hi[c] += tol / 2;
-        out.push_back(whole);
-        return;
-    }
-    for (int k = 0; k < pieces; ++k) {
-        const double lo = whole.lo[axis] + extent[axis] * k / pieces;
-        const double hi =
-            k + 1 == pieces ? whole.hi[axis] : whole.lo[axis] + extent[axis] * (k + 1) / pieces;
-        Box box;
-        // The polygon's edges clipped to the slab lo..hi: their ends inside it.
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            const Vec3& a = points[i];
-            const Vec3& b = points[(i + 1) % points.size()];
-            const double da = a[axis], db = b[axis];
-            if (da >= lo && da <= hi) box.add(a);
-            if ((da < lo) != (db < lo) && da != db) box.add(a + (b - a) * ((lo - da) / (db - da)));
-            if ((da > hi) != (db > hi) && da != db) box.add(a + (b - a) * ((hi - da) / (db - da)));
+    if (pieces == 1) {
+        out.push_back(whole); // most faces
+    } else {
+        for (int k = 0; k < pieces; ++k) {
+            const double lo = whole.lo[axis] + extent[axis] * k / pieces;
+            const double hi =
+                k + 1 == pieces ? whole.hi[axis] : whole.lo[axis] + extent[axis] * (k + 1) / pieces;
+            Box box;
+            for_each_slab_point(points, axis, lo, hi, [&](const Vec3& p) { box.add(p); });
+            out.push_back(box);
         }
-        for (int c = 0; c < 3; ++c) box.lo[c] -= tol / 2, box.hi[c] += tol / 2;
-        out.push_back(box);
     }
+    for (auto& box : out)
+        for (int c = 0; c < 3; ++c) box.lo[c] -= tol / 2, box.hi[c] += tol / 2;
 }
 
 // Candidate pairs: faces whose pieces' boxes overlap within `tol` (for_each_overlapping_pair),
