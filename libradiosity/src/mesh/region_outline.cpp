@@ -217,12 +217,21 @@ void trace_outline(Region& region, const radfmt::MeshData& faces,
         triangles.push_back({xy[0], xy[1], xy[2]});
         if (n == 4) triangles.push_back({xy[0], xy[2], xy[3]});
     }
+    // The faces' areas in the plane, against the area they cover: more where faces are drawn
+    // partly over each other (past rounding: a millionth of the sum).
+    double sum = 0, covered = 0;
+    for (const auto& t : triangles)
+        sum += std::abs(CGAL::area(Point2(t[0][0], t[0][1]), Point2(t[1][0], t[1][1]),
+                                   Point2(t[2][0], t[2][1])));
     const TriangleBuckets buckets(std::move(triangles));
     for (auto face = cdt.finite_faces_begin(); face != cdt.finite_faces_end(); ++face) {
-        const auto c = CGAL::centroid(face->vertex(0)->point(), face->vertex(1)->point(),
-                                      face->vertex(2)->point());
+        const auto &a = face->vertex(0)->point(), &b = face->vertex(1)->point(),
+                   &d = face->vertex(2)->point();
+        const auto c = CGAL::centroid(a, b, d);
         face->info().inside = buckets.contains(c.x(), c.y());
+        if (face->info().inside) covered += std::abs(CGAL::area(a, b, d));
     }
+    if (sum - covered > 1e-6 * sum) region.area_beyond_union = sum - covered;
     // Points made where overlapping faces' edges cross get ids of their own.
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
         if (v->info().id == kNone)
@@ -240,29 +249,6 @@ void trace_outline(Region& region, const radfmt::MeshData& faces,
                 {face->vertex(cdt.ccw(k))->info().id, face->vertex(cdt.cw(k))->info().id});
         }
     }
-}
-
-double area_beyond_union(const Region& region, const radfmt::MeshData& faces,
-                         const std::vector<std::uint32_t>& weld, const Points& points) {
-    if (!region.cdt) return 0;
-    // Both in the plane's 2D: a face's own area is that of its corners off the plane.
-    double sum = 0, covered = 0;
-    for (const auto f : region.faces) {
-        const auto& p = faces.patches[f];
-        std::array<Point2, 4> xy;
-        for (int k = 0; k < p.corner_count(); ++k) {
-            const auto q = region.plane.to_2d(points.position[weld[p.corners[k]]]);
-            xy[k] = Point2(q[0], q[1]);
-        }
-        sum += std::abs(CGAL::area(xy[0], xy[1], xy[2]));
-        if (p.corner_count() == 4) sum += std::abs(CGAL::area(xy[0], xy[2], xy[3]));
-    }
-    const auto& cdt = *region.cdt;
-    for (auto face = cdt.finite_faces_begin(); face != cdt.finite_faces_end(); ++face)
-        if (face->info().inside)
-            covered += std::abs(CGAL::area(face->vertex(0)->point(), face->vertex(1)->point(),
-                                           face->vertex(2)->point()));
-    return sum - covered > 1e-6 * sum ? sum - covered : 0; // past rounding
 }
 
 } // namespace rad::surfaces

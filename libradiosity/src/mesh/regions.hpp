@@ -101,7 +101,11 @@ struct Region {
     std::unique_ptr<CDT> cdt;
     std::unique_ptr<SideIndex> sides;
     std::vector<std::array<std::uint32_t, 2>> outline; // boundary edges, before the runs
-    std::vector<std::array<std::uint32_t, 2>> pieces;  // boundary pieces, after the runs
+    // How much the faces' areas add up to more than the area they cover (from the outline's
+    // triangulation; 0 where they tile it, or the difference is rounding): faces drawn partly
+    // over each other.
+    double area_beyond_union = 0;
+    std::vector<std::array<std::uint32_t, 2>> pieces; // boundary pieces, after the runs
     // A region whose outline is four straight runs around a convex quadrilateral, with equal
     // piece counts on opposite sides: its sides' points counter-clockwise (side k from corner
     // k to corner k+1), gridded bilinearly into quads.
@@ -124,12 +128,6 @@ std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
 void trace_outline(Region& region, const radfmt::MeshData& faces,
                    const std::vector<std::uint32_t>& weld, Points& points,
                    const std::string& source);
-
-// How much the region's faces' areas add up to more than the area they cover (0 where they
-// tile it, or the difference is rounding: under a millionth of the sum): faces drawn partly
-// over each other.
-double area_beyond_union(const Region& region, const radfmt::MeshData& faces,
-                         const std::vector<std::uint32_t>& weld, const Points& points);
 
 // The shorter side of the region's minimum-area rectangle (from its outline edges).
 double region_width(const Region& region, const Points& points);

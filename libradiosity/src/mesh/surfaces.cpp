@@ -198,8 +198,8 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     begin_stage(options.stages, "outlines");
     for (auto& region : regions) {
         surfaces::trace_outline(region, faces, weld, points, options.source);
-        const double beyond = surfaces::area_beyond_union(region, faces, weld, points);
-        if (beyond > 0) ++rep.overlapped_regions, rep.overlap_area += beyond;
+        if (region.area_beyond_union > 0)
+            ++rep.overlapped_regions, rep.overlap_area += region.area_beyond_union;
         region.width = width_or_thickness(region, points);
         region.piece = piece_length(region.cell, region.width);
     }
