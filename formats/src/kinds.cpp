@@ -599,8 +599,9 @@ constexpr KindInfo kKinds[] = {
     {Kind::Radiosity, "radiosity", "radiosity solution", 2, 1,
      "patch,b_r,b_g,b_b (with light groups: patch,group,b_r,b_g,b_b)", radiosity_csv,
      radiosity_summary},
-    {Kind::Links, "links", "link hierarchy (hierarchical form factors)", 1, 1,
-     "node,first,count,source,f", detail::links_csv, detail::links_summary},
+    {Kind::Links, "links", "link hierarchy (hierarchical form factors)", 2, 2,
+     "node,first,count,source,f,r0,r1,r2,r3,s0,s1,s2,s3 (shares in 65535ths)", detail::links_csv,
+     detail::links_summary},
 };
 
 } // namespace

@@ -12,6 +12,26 @@
 namespace radfmt {
 namespace fs = std::filesystem;
 
+std::array<std::uint32_t, 4> share_slots(const LinkData& links, std::size_t node) {
+    std::array<std::uint32_t, 4> slots{kNoNode, kNoNode, kNoNode, kNoNode};
+    const auto& n = links.nodes[node];
+    if (n.left == kNoNode) {
+        slots[0] = static_cast<std::uint32_t>(node);
+        return slots;
+    }
+    for (int side = 0; side < 2; ++side) {
+        const auto child = side ? n.right : n.left;
+        const auto& c = links.nodes[child];
+        if (c.left == kNoNode) {
+            slots[2 * side] = child;
+        } else {
+            slots[2 * side] = c.left;
+            slots[2 * side + 1] = c.right;
+        }
+    }
+    return slots;
+}
+
 void write_links(const fs::path& path, Header header, const LinkData& links) {
     header.kind = Kind::Links;
     header.set("patches", std::to_string(links.patch_count));
@@ -26,6 +46,8 @@ void write_links(const fs::path& path, Header header, const LinkData& links) {
     w.u64(links.links());
     w.array(links.source);
     w.array(links.factor);
+    w.array(links.receiver_share);
+    w.array(links.source_share);
     write_file(path, std::move(header), w);
 }
 
@@ -72,6 +94,22 @@ void check_tree(const LinkData& links, BodyReader& r) {
         if (!has_parent[i]) r.fail("node " + std::to_string(i) + " has no parent");
 }
 
+// A node's shares sum to kShareTotal and leave the slots it does not have empty.
+void check_shares(const LinkData& links, std::size_t node, const LinkShares& shares, BodyReader& r,
+                  std::uint64_t link, const char* side) {
+    const auto slots = share_slots(links, node);
+    std::uint32_t sum = 0;
+    for (int k = 0; k < 4; ++k) {
+        if (slots[k] == kNoNode && shares[k] != 0)
+            r.fail("link " + std::to_string(link) + " has a " + side +
+                   " share for a part its node does not have");
+        sum += shares[k];
+    }
+    if (sum != kShareTotal)
+        r.fail("link " + std::to_string(link) + "'s " + side + " shares do not sum to " +
+               std::to_string(kShareTotal));
+}
+
 void check_links(const LinkData& links, BodyReader& r) {
     const auto& start = links.link_start;
     if (start.size() != links.nodes.size() + 1 || start.front() != 0 ||
@@ -85,6 +123,11 @@ void check_links(const LinkData& links, BodyReader& r) {
         if (!(links.factor[l] >= 0 && std::isfinite(links.factor[l])))
             r.fail("link " + std::to_string(l) + " has a factor that is negative or not finite");
     }
+    for (std::size_t i = 0; i < links.nodes.size(); ++i)
+        for (auto l = start[i]; l < start[i + 1]; ++l) {
+            check_shares(links, i, links.receiver_share[l], r, l, "receiver");
+            check_shares(links, links.source[l], links.source_share[l], r, l, "source");
+        }
 }
 } // namespace
 
@@ -97,9 +140,12 @@ LinkData read_links(const fs::path& path, Header* header_out) {
     const auto nodes = r.count(sizeof(LinkNode), "nodes");
     links.nodes = r.array<LinkNode>(nodes, "nodes");
     links.link_start = r.array<std::uint64_t>(nodes + 1, "link starts");
-    const auto count = r.count(sizeof(std::uint32_t) + sizeof(float), "links");
+    const auto count =
+        r.count(sizeof(std::uint32_t) + sizeof(float) + 2 * sizeof(LinkShares), "links");
     links.source = r.array<std::uint32_t>(count, "link sources");
     links.factor = r.array<float>(count, "link factors");
+    links.receiver_share = r.array<LinkShares>(count, "link receiver shares");
+    links.source_share = r.array<LinkShares>(count, "link source shares");
     r.expect_end();
     if (links.patch_count >= kNoNode) r.fail("too many patches");
     detail::require_count(r.header(), "patches", links.patch_count, r);
@@ -115,13 +161,16 @@ LinkData read_links(const fs::path& path, Header* header_out) {
 namespace detail {
 void links_csv(const fs::path& path, std::ostream& out) {
     const auto links = read_links(path);
-    out << "node,first,count,source,f\n";
-    char line[160];
+    out << "node,first,count,source,f,r0,r1,r2,r3,s0,s1,s2,s3\n";
+    char line[240];
     for (std::size_t i = 0; i < links.nodes.size(); ++i) {
         const auto& n = links.nodes[i];
         for (auto l = links.link_start[i]; l < links.link_start[i + 1]; ++l) {
-            std::snprintf(line, sizeof line, "%zu,%u,%u,%u,%.9g\n", i, n.first, n.count,
-                          links.source[l], double(links.factor[l]));
+            const auto& r = links.receiver_share[l];
+            const auto& s = links.source_share[l];
+            std::snprintf(line, sizeof line, "%zu,%u,%u,%u,%.9g,%u,%u,%u,%u,%u,%u,%u,%u\n", i,
+                          n.first, n.count, links.source[l], double(links.factor[l]), r[0], r[1],
+                          r[2], r[3], s[0], s[1], s[2], s[3]);
             out << line;
         }
         if (!out) return;

@@ -252,7 +252,7 @@ void use_links(const radfmt::MeshData& mesh, const radfmt::LinkData& links) {
     control.max_iterations = 3;
     for (const char* method : {"gs", "jacobi"})
         rad::solver(method).solve(op, rad::emission_of(mesh), control);
-    rad::link_row_sums(links);
+    rad::link_row_sums(mesh, links);
 }
 
 void use_radiosity(const radfmt::MeshData& mesh, const radfmt::RadiosityData& rad_data) {

@@ -113,18 +113,32 @@ struct LinkNode {
 };
 inline constexpr std::uint32_t kNoNode = std::numeric_limits<std::uint32_t>::max();
 
+// Where a link's light goes within its receiver and comes from within its source: the
+// share of the pair's transfer through each of a node's parts two levels down (slots 0 and 1
+// under its left child, 2 and 3 under its right; a child that is a single patch is slot 0 or
+// 2 alone, a single patch slot 0), in 65535ths that sum to 65535. A link to a block then gives
+// each quarter of it its own irradiance, and weights the source's quarters by how much each
+// sends, where one number per link would spread the block's mean over all of it.
+using LinkShares = std::array<std::uint16_t, 4>;
+inline constexpr std::uint32_t kShareTotal = 65535;
+
 struct LinkData {
     std::uint64_t patch_count = 0;
     std::vector<std::uint32_t> leaf_order; // the patches in tree order
     // In depth-first order: nodes[0] is the root, every node comes after its parent and a
     // left subtree before its right sibling.
     std::vector<LinkNode> nodes;
-    std::vector<std::uint64_t> link_start; // per node + 1: the links the node gathers over
-    std::vector<std::uint32_t> source;     // the node the light comes from
-    std::vector<float> factor;             // F: the node's mean form factor to the source
+    std::vector<std::uint64_t> link_start;  // per node + 1: the links the node gathers over
+    std::vector<std::uint32_t> source;      // the node the light comes from
+    std::vector<float> factor;              // F: the node's mean form factor to the source
+    std::vector<LinkShares> receiver_share; // per link: its light's share into each part
+    std::vector<LinkShares> source_share;   // per link: each part's share of what it sends
     std::uint64_t links() const { return source.size(); }
     bool is_leaf(std::size_t node) const { return nodes[node].left == kNoNode; }
 };
+
+// The nodes of `node`'s share slots (see LinkShares), kNoNode where it has none.
+std::array<std::uint32_t, 4> share_slots(const LinkData& links, std::size_t node);
 
 void write_links(const std::filesystem::path& path, Header header, const LinkData& links);
 LinkData read_links(const std::filesystem::path& path, Header* header_out = nullptr);

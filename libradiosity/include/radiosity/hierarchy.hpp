@@ -64,7 +64,8 @@ std::vector<std::string> emitters_not_refined_for(const radfmt::Header& links_he
                                                   const radfmt::MeshData& mesh);
 
 // Per patch, its row sum of F through the hierarchy: the factors of the links its leaf and
-// every node above it gather over (1 in a closed scene).
-std::vector<double> link_row_sums(const radfmt::LinkData& links);
+// every node above it gather over, each as it reaches the patch's part of the node (1 in a
+// closed scene).
+std::vector<double> link_row_sums(const radfmt::MeshData& mesh, const radfmt::LinkData& links);
 
 } // namespace rad

@@ -69,7 +69,8 @@ struct RowSumReport {
 };
 RowSumReport check_row_sums(const radfmt::FormFactorData& ff, double tolerance);
 // The same through a link hierarchy: a patch's row is its node's links and its ancestors'.
-RowSumReport check_row_sums(const radfmt::LinkData& links, double tolerance);
+RowSumReport check_row_sums(const radfmt::MeshData& mesh, const radfmt::LinkData& links,
+                            double tolerance);
 
 // Warnings a solve of `mesh` over `ff` deserves (no emitter, heavy rows), as message lines.
 std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh,

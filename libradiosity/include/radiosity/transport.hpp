@@ -4,6 +4,7 @@
 #pragma once
 #include "radfmt/kinds.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -34,8 +35,9 @@ std::vector<radfmt::Rgb> to_rgb(const Channels& values, std::size_t first_channe
 // node: its parent and area.
 struct LinkTransport {
     const radfmt::LinkData* links = nullptr;
-    std::vector<std::uint32_t> parent; // per node; the root's is kNoNode
-    std::vector<double> area;          // per node: its patches' area
+    std::vector<std::uint32_t> parent;               // per node; the root's is kNoNode
+    std::vector<double> area;                        // per node: its patches' area
+    std::vector<std::array<std::uint32_t, 4>> slots; // per node: radfmt::share_slots
 };
 
 // B = E + diag(rho) F B, F given as rows (form_factors) or as links (hierarchy). Channel c of a

@@ -18,6 +18,8 @@ NodeGeometry merged(const NodeGeometry& a, const NodeGeometry& b, double toleran
     out.box = a.box;
     out.box.add(b.box.lo);
     out.box.add(b.box.hi);
+    out.centroid = out.area > 0 ? (a.centroid * a.area + b.centroid * b.area) * (1 / out.area)
+                                : (a.centroid + b.centroid) * 0.5;
     out.emits = a.emits || b.emits;
     out.planar = a.planar && b.planar && dot(a.normal, b.normal) > 1 - 1e-9 &&
                  std::abs(a.offset - b.offset) <= tolerance;
@@ -71,6 +73,7 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
             const auto& patch = mesh.patches[tree.leaf_order[n.first]];
             auto& leaf = nodes_[i];
             leaf.area = patch.area;
+            leaf.centroid = patch.centroid;
             for (const auto& corner : polygons[tree.leaf_order[n.first]].points())
                 leaf.box.add(corner);
             leaf.planar = true;

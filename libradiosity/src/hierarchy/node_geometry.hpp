@@ -11,7 +11,8 @@ namespace rad::hierarchy {
 
 struct NodeGeometry {
     double area = 0;
-    Box box; // of its patches' corners
+    Box box;         // of its patches' corners
+    Vec3 centroid{}; // of its patches' area
     bool planar = false;
     Vec3 normal{};      // when planar: every patch's normal
     double offset = 0;  // when planar: the plane dot(normal, x) = offset

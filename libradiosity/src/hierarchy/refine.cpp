@@ -5,6 +5,7 @@
 // light from an emitter); otherwise a node is split. Two patches are linked by the analytic
 // method's integral.
 #include "formfactor/sampling.hpp"
+#include "hierarchy/link_shares.hpp"
 #include "hierarchy/node_geometry.hpp"
 #include "hierarchy/surfaces.hpp"
 #include "radiosity/hierarchy.hpp"
@@ -22,6 +23,7 @@
 namespace rad {
 
 namespace {
+using hierarchy::kWholeShare;
 using hierarchy::NodeGeometries;
 using hierarchy::NodePoint;
 
@@ -50,6 +52,12 @@ std::vector<std::string> emitter_names(const radfmt::MeshData& mesh,
 struct Link {
     std::uint32_t receiver, source;
     float factor;
+    radfmt::LinkShares receiver_share, source_share;
+};
+
+// Where a pair's transfer passes through each node (hierarchy::link_shares).
+struct PairShares {
+    radfmt::LinkShares a = kWholeShare, b = kWholeShare;
 };
 
 struct ThreadWork {
@@ -123,10 +131,14 @@ class LinkRefiner {
         out.link_start.assign(out.nodes.size() + 1, 0);
         out.source.resize(all.size());
         out.factor.resize(all.size());
+        out.receiver_share.resize(all.size());
+        out.source_share.resize(all.size());
         for (std::size_t l = 0; l < all.size(); ++l) {
             ++out.link_start[all[l].receiver + 1];
             out.source[l] = all[l].source;
             out.factor[l] = all[l].factor;
+            out.receiver_share[l] = all[l].receiver_share;
+            out.source_share[l] = all[l].source_share;
         }
         for (std::size_t i = 0; i < out.nodes.size(); ++i)
             out.link_start[i + 1] += out.link_start[i];
@@ -201,7 +213,8 @@ class LinkRefiner {
         if (ready) {
             // Visibility (and a sampled value) from samples of their own: those that decided
             // to link are biased low (a pair whose draw came out high was split instead).
-            const auto traced = trace_pair(estimate_pair(a, b, rng, samples_), work);
+            const auto sampled = estimate_pair(a, b, rng, samples_);
+            const auto traced = trace_pair(sampled, work);
             const double visible = traced.visible;
             const double value_ab =
                 exact.known ? exact_form_factor(a, b, rng, work).factor * traced.weighted
@@ -215,7 +228,7 @@ class LinkRefiner {
             const double share = exact.known ? 1.0 : kSampledShare;
             if (std::max(error_a, value_ab) * varies > share * epsilon_a) ready &= ~kIntoA;
             if (std::max(error_b, value_ba) * varies > share * epsilon_b) ready &= ~kIntoB;
-            add_links(a, b, value_ab, ready, work);
+            add_links(a, b, value_ab, ready, shares(a, b, sampled, traced), work);
         }
         if (wanted & ~ready) split(a, b, wanted & ~ready);
     }
@@ -263,6 +276,7 @@ class LinkRefiner {
 
     struct PairEstimate {
         std::vector<NodePoint> from, to;
+        std::vector<double> from_u, to_u; // where each point was drawn (NodeGeometries::point)
         // Per side, the spread (largest less smallest) of its points' cosines towards the
         // other node's centre: 0 for a flat node far away, up to 1 for a cluster.
         double spread_a = 0, spread_b = 0;
@@ -294,6 +308,8 @@ class LinkRefiner {
                 ca > 0 && cb > 0 ? ca * cb * area_b / (ff::kPi * r2 + area_b / samples) : 0.0;
             e.from.push_back(x);
             e.to.push_back(y);
+            e.from_u.push_back(ua);
+            e.to_u.push_back(ub);
             e.kernel.push_back(kernel);
             e.unoccluded += kernel;
         }
@@ -322,12 +338,14 @@ class LinkRefiner {
     }
 
     struct Traced {
-        double factor = 0;   // F_ab with occlusion, from the sample pairs alone
-        double visible = 0;  // the fraction of facing pairs that see each other
-        double weighted = 0; // the same, each pair weighted by its kernel
+        double factor = 0;              // F_ab with occlusion, from the sample pairs alone
+        double visible = 0;             // the fraction of facing pairs that see each other
+        double weighted = 0;            // the same, each pair weighted by its kernel
+        std::vector<std::uint8_t> seen; // per sample pair
     };
     Traced trace_pair(const PairEstimate& e, ThreadWork& work) const {
         Traced t;
+        t.seen.assign(e.kernel.size(), 0);
         int facing = 0, seen = 0;
         double total = 0;
         for (std::size_t k = 0; k < e.kernel.size(); ++k) {
@@ -337,6 +355,7 @@ class LinkRefiner {
             total += e.kernel[k];
             if (context_.scene.visible(e.from[k].point, e.to[k].point)) {
                 ++seen;
+                t.seen[k] = 1;
                 t.factor += e.kernel[k];
             }
         }
@@ -438,16 +457,26 @@ class LinkRefiner {
             ff::analytic_pair_form_factor(context_, p, q, samples, close, 1, rng, work.stats.rays);
         if (f <= 0) return;
         work.stats.leaf_links += std::popcount(directions);
-        add_links(a, b, from_a ? f : f * geometry_[b].area / geometry_[a].area, directions, work);
+        add_links(a, b, from_a ? f : f * geometry_[b].area / geometry_[a].area, directions, {},
+                  work);
     }
 
-    // Links in `directions`, reciprocal: A_a F_ab = A_b F_ba.
+    // Each node's shares of the pair's transfer, from the traced sample pairs.
+    PairShares shares(std::uint32_t a, std::uint32_t b, const PairEstimate& e,
+                      const Traced& traced) const {
+        return {hierarchy::link_shares(tree_, geometry_, a, b, {e.from_u, e.kernel, traced.seen}),
+                hierarchy::link_shares(tree_, geometry_, b, a, {e.to_u, e.kernel, traced.seen})};
+    }
+
+    // Links in `directions`, reciprocal: A_a F_ab = A_b F_ba, part by part.
     void add_links(std::uint32_t a, std::uint32_t b, double factor_ab, unsigned directions,
-                   ThreadWork& work) const {
+                   const PairShares& shares, ThreadWork& work) const {
         if (!(factor_ab > 0)) return;
         const double factor_ba = factor_ab * geometry_[a].area / geometry_[b].area;
-        if (directions & kIntoA) work.links.push_back({a, b, static_cast<float>(factor_ab)});
-        if (directions & kIntoB) work.links.push_back({b, a, static_cast<float>(factor_ba)});
+        if (directions & kIntoA)
+            work.links.push_back({a, b, static_cast<float>(factor_ab), shares.a, shares.b});
+        if (directions & kIntoB)
+            work.links.push_back({b, a, static_cast<float>(factor_ba), shares.b, shares.a});
     }
 
     const FormFactorContext& context_;

@@ -1,7 +1,9 @@
 // A sweep over a link hierarchy (Hanrahan et al.'s gather with push-pull): pull B up the
-// tree (a node's B is its patches' area-weighted mean), gather over each node's links, push
-// what a node gathers down to every patch under it. Gauss-Seidel pulls each new patch value
-// into the nodes above it at once, so later gathers see it; Jacobi reads the sweep's start.
+// tree (a node's B is its patches' area-weighted mean), gather over each node's links (a
+// link reads its source's parts, each by its share, and delivers to its receiver's parts,
+// each by its share), push what a node receives down to every patch under it. Gauss-Seidel pulls
+// each new patch value into the nodes above it at once, so later gathers see it; Jacobi reads the
+// sweep's start.
 #include "sweep.hpp"
 
 #include <cmath>
@@ -30,6 +32,43 @@ std::vector<double> pull(const LinkTransport& h, const Channels& b) {
     }
     return node_b;
 }
+
+// What a link sends: its source's parts' radiosity, each weighted by its share.
+void link_source(const LinkTransport& h, std::uint64_t l, const std::vector<double>& node_b,
+                 std::size_t channels, double* out) {
+    const auto& links = *h.links;
+    const auto& slots = h.slots[links.source[l]];
+    const auto& share = links.source_share[l];
+    for (std::size_t c = 0; c < channels; ++c) out[c] = 0;
+    for (int k = 0; k < 4; ++k) {
+        if (share[k] == 0) continue;
+        const double w = share[k] * (1.0 / radfmt::kShareTotal);
+        const double* from = node_b.data() + std::size_t(slots[k]) * channels;
+        for (std::size_t c = 0; c < channels; ++c) out[c] += w * from[c];
+    }
+}
+
+// Node i's links: what each delivers, into i itself when it is a patch, else into its parts
+// (nodes below i, whose `down` is complete only when they are reached).
+void gather_links(const LinkTransport& h, std::size_t i, const std::vector<double>& node_b,
+                  std::size_t channels, std::vector<double>& down, std::vector<double>& sent) {
+    const auto& links = *h.links;
+    const auto& slots = h.slots[i];
+    for (auto l = links.link_start[i]; l < links.link_start[i + 1]; ++l) {
+        link_source(h, l, node_b, channels, sent.data());
+        const double f = links.factor[l];
+        const auto& share = links.receiver_share[l];
+        for (int k = 0; k < 4; ++k) {
+            if (share[k] == 0) continue;
+            // The part's share of the transfer over its share of the area.
+            const double part = h.area[slots[k]];
+            const double g =
+                f * share[k] * (1.0 / radfmt::kShareTotal) * (part > 0 ? h.area[i] / part : 1.0);
+            double* into = down.data() + std::size_t(slots[k]) * channels;
+            for (std::size_t c = 0; c < channels; ++c) into[c] += g * sent[c];
+        }
+    }
+}
 } // namespace
 
 std::pair<double, double> link_sweep(const TransportOperator& op, const Channels& emission,
@@ -38,21 +77,18 @@ std::pair<double, double> link_sweep(const TransportOperator& op, const Channels
     const auto& links = *h.links;
     const std::size_t channels = b.channels;
     auto node_b = pull(h, b);
-    // What each node has gathered, its own links and every node's above it.
+    // What each node receives: every node's above it (what a node receives, all its patches
+    // do) and what links sent to it as a part of the node they arrive at.
     std::vector<double> down(links.nodes.size() * channels, 0.0);
-    std::vector<double> value(channels);
+    std::vector<double> value(channels), sent(channels);
     double change = 0, magnitude = 0;
     for (std::size_t i = 0; i < links.nodes.size(); ++i) {
         double* g = down.data() + i * channels;
         if (h.parent[i] != radfmt::kNoNode) {
             const double* above = down.data() + std::size_t(h.parent[i]) * channels;
-            for (std::size_t c = 0; c < channels; ++c) g[c] = above[c];
+            for (std::size_t c = 0; c < channels; ++c) g[c] += above[c];
         }
-        for (auto l = links.link_start[i]; l < links.link_start[i + 1]; ++l) {
-            const double f = links.factor[l];
-            const double* from = node_b.data() + std::size_t(links.source[l]) * channels;
-            for (std::size_t c = 0; c < channels; ++c) g[c] += f * from[c];
-        }
+        gather_links(h, i, node_b, channels, down, sent);
         const auto& n = links.nodes[i];
         if (n.left != radfmt::kNoNode) continue;
         const std::size_t patch = links.leaf_order[n.first];

@@ -198,9 +198,10 @@ std::vector<std::string> warnings_of(const radfmt::MeshData& mesh, const RowSumR
 }
 } // namespace
 
-RowSumReport check_row_sums(const radfmt::LinkData& links, double tolerance) {
+RowSumReport check_row_sums(const radfmt::MeshData& mesh, const radfmt::LinkData& links,
+                            double tolerance) {
     RowSumReport report;
-    for (const double sum : link_row_sums(links)) {
+    for (const double sum : link_row_sums(mesh, links)) {
         if (sum > 1 + tolerance) ++report.rows_above;
         report.largest = std::max(report.largest, sum);
     }
@@ -228,7 +229,7 @@ std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh, const radf
     // blocks' mean links beside them (up to 1.27 on the living room fixture at the default
     // epsilon, its solution within 0.7% rms of analytic). A broken file shows far beyond.
     const double tolerance = std::max(row_sum_tolerance, kLinkRowSumSlack);
-    for (auto& line : warnings_of(mesh, check_row_sums(links, tolerance), ff_path, tolerance,
+    for (auto& line : warnings_of(mesh, check_row_sums(mesh, links, tolerance), ff_path, tolerance,
                                   "use more --samples or a smaller --epsilon"))
         out.push_back(std::move(line));
     return out;

@@ -53,6 +53,9 @@ TransportOperator make_operator(const radfmt::MeshData& mesh, const radfmt::Link
             hierarchy->area[i] = hierarchy->area[n.left] + hierarchy->area[n.right];
         }
     }
+    hierarchy->slots.reserve(links.nodes.size());
+    for (std::size_t i = 0; i < links.nodes.size(); ++i)
+        hierarchy->slots.push_back(radfmt::share_slots(links, i));
     op.hierarchy = std::move(hierarchy);
     return op;
 }
