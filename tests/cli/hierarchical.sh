@@ -7,7 +7,7 @@ cornell_mesh 0.1
 cmp -s <("$BIN/rad-info" --csv "$TMP/c.links") <("$BIN/rad-info" --csv "$TMP/c2.links") || fail "links differ between 1 and 2 threads"
 "$BIN/rad-info" "$TMP/c.links" | grep -q "kind:      links" || fail "rad-info names the kind"
 "$BIN/rad-info" "$TMP/c.links" | grep -q "method = hierarchical" || fail "header records the method"
-"$BIN/rad-info" "$TMP/c.links" | grep -q "epsilon = 0.01" || fail "header records epsilon"
+"$BIN/rad-info" "$TMP/c.links" | grep -q "epsilon = 0.02" || fail "header records epsilon"
 # The chain: solve (gs, jacobi), then shade as any .rad.
 "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.links" -o "$TMP/gs.rad" -q || fail "solve gs over links"
 "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.links" -o "$TMP/jacobi.rad" --method jacobi -q || fail "solve jacobi over links"
