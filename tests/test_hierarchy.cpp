@@ -63,6 +63,15 @@ std::vector<double> node_areas(const radfmt::MeshData& mesh, const radfmt::LinkD
     return area;
 }
 
+// The analytic matrix of `mesh` and its solution.
+std::pair<radfmt::FormFactorData, rad::Channels> analytic_solution(const radfmt::MeshData& mesh) {
+    rad::FormFactorOptions analytic;
+    analytic.method = "analytic";
+    auto ff = rad::compute_form_factors(mesh, rad::resolve_form_factor_options(analytic));
+    auto b = solve(mesh, rad::make_operator(mesh, ff), rad::emission_of(mesh));
+    return {std::move(ff), std::move(b)};
+}
+
 // Patch-to-patch F from links: each link's share into each part of its receiver (over the
 // part's share of the area), from each part of its source (spread over the part by area).
 std::map<std::pair<std::uint32_t, std::uint32_t>, double> expand(const radfmt::MeshData& mesh,
@@ -198,11 +207,8 @@ TEST_CASE("hierarchical: links are reciprocal, patch to patch") {
 
 TEST_CASE("hierarchical: converges to the analytic solution as epsilon shrinks", "[slow]") {
     const auto mesh = cornell_mesh(0.05);
-    rad::FormFactorOptions analytic;
-    analytic.method = "analytic";
-    const auto ff = rad::compute_form_factors(mesh, rad::resolve_form_factor_options(analytic));
+    const auto [ff, reference] = analytic_solution(mesh);
     const auto emission = rad::emission_of(mesh);
-    const auto reference = solve(mesh, rad::make_operator(mesh, ff), emission);
     std::vector<double> errors;
     std::vector<std::uint64_t> link_counts;
     for (double epsilon : {3e-2, 1e-2, 1e-3}) {
@@ -233,11 +239,8 @@ TEST_CASE("hierarchical: a link reaches its receiver's parts and reads its sourc
     // ceiling above the lit floor came out 1% dark and the per-patch rms 5% at 1/100 of the
     // analytic matrix's non-zeros (bench/hierarchical). Parts two levels down carry their own.
     const auto mesh = cornell_mesh(0.03);
-    rad::FormFactorOptions analytic;
-    analytic.method = "analytic";
-    const auto ff = rad::compute_form_factors(mesh, rad::resolve_form_factor_options(analytic));
+    const auto [ff, reference] = analytic_solution(mesh);
     const auto emission = rad::emission_of(mesh);
-    const auto reference = solve(mesh, rad::make_operator(mesh, ff), emission);
     rad::HierarchyOptions options;
     options.epsilon = 3e-2;
     const auto links = rad::compute_links(mesh, options);

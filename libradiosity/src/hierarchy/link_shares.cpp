@@ -51,6 +51,7 @@ radfmt::LinkShares quantized(std::array<double, 4> weight,
             weight[s] = slots[s] != radfmt::kNoNode ? geometry[slots[s]].area : 0;
         total = 0;
         for (const double w : weight) total += w;
+        if (!(total > 0)) return kWholeShare; // parts of no area: slot 0 takes it
     }
     radfmt::LinkShares out{};
     std::uint32_t sum = 0;
