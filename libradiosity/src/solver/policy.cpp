@@ -224,10 +224,10 @@ std::vector<std::string> solve_warnings(const radfmt::MeshData& mesh, const radf
                       " was refined for the emitters of its mesh, not for it: its direct light "
                       "arrives over coarser links (rad-ff --method hierarchical --emitters " +
                       name + " refines for it)");
-    // A patch's row through links is the mean row of each block above it, not its own: a
-    // patch beside a wall, which fills half its view, gets its own links to the wall and its
-    // blocks' mean links beside them (up to 1.27 on the living room fixture at the default
-    // epsilon, its solution within 0.7% rms of analytic). A broken file shows far beyond.
+    // A patch's row through links is its quarter's share of each block above it, not its
+    // own: a patch beside a wall, which fills half its view, gets its own links to the wall
+    // and its blocks' links beside them (up to 1.34 on the living room fixture at the default
+    // epsilon, its solution within 1.2% rms of analytic). A broken file shows far beyond.
     const double tolerance = std::max(row_sum_tolerance, kLinkRowSumSlack);
     for (auto& line : warnings_of(mesh, check_row_sums(mesh, links, tolerance), ff_path, tolerance,
                                   "use more --samples or a smaller --epsilon"))
