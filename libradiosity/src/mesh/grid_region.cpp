@@ -2,6 +2,7 @@
 // grid and the outline.
 #include "polygon2d.hpp"
 #include "regions.hpp"
+#include "square_index.hpp"
 
 #include <CGAL/Delaunay_mesh_face_base_2.h>
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
@@ -108,6 +109,7 @@ class RegionGrid {
     // Nodes off the outline are usable when inside and a third of a cell from the outline.
     void classify_nodes(const std::unordered_set<EdgeKey>& pieces) {
         const double margin = 0.3 * std::min(du_, dv_);
+        index_pieces(margin);
         for (std::size_t j = 0; j <= nv_; ++j)
             for (std::size_t i = 0; i <= nu_; ++i)
                 node_ok_[node(i, j)] = matched(i, j) || well_inside(node_xy(i, j), margin);
@@ -143,11 +145,30 @@ class RegionGrid {
             block(fli, flj);
         }
     }
+    // The pieces in squares of a cell's side (or a quarter of the longest piece's box, where
+    // pieces are longer than cells: a sliver region), each in every square its box grown by
+    // `margin` touches: a point within `margin` of a piece finds it in its own square. (Trying
+    // every piece for every node was quadratic: 145 s of rad-mesh for the Cornell box at 4e6
+    // patches.)
+    void index_pieces(double margin) {
+        double longest = 0;
+        for (const auto& [a, b] : piece_xy_)
+            longest = std::max({longest, std::abs(a[0] - b[0]), std::abs(a[1] - b[1])});
+        piece_index_ =
+            SquareIndex(std::max({std::min(du_, dv_), (longest + 2 * margin) / 4, 1e-300}));
+        for (std::size_t k = 0; k < piece_xy_.size(); ++k) {
+            const auto& [a, b] = piece_xy_[k];
+            piece_index_.insert({std::min(a[0], b[0]) - margin, std::min(a[1], b[1]) - margin},
+                                {std::max(a[0], b[0]) + margin, std::max(a[1], b[1]) + margin},
+                                static_cast<std::uint32_t>(k));
+        }
+        piece_index_.freeze();
+    }
     bool well_inside(const XY& p, double margin) const {
         if (!region_.contains(Point2(p[0], p[1]))) return false;
-        for (std::size_t k = 0; k < region_.pieces.size(); ++k)
-            if (segment_distance(p, piece_xy_[k][0], piece_xy_[k][1]) < margin) return false;
-        return true;
+        return !piece_index_.find_near(p, 0, [&](std::uint32_t k) {
+            return segment_distance(p, piece_xy_[k][0], piece_xy_[k][1]) < margin;
+        });
     }
     bool cell_is_whole(std::size_t i, std::size_t j, const std::unordered_set<EdgeKey>& pieces,
                        double margin) const {
@@ -173,6 +194,7 @@ class RegionGrid {
     const Region& region_;
     GridFrame frame_;
     std::vector<std::array<XY, 2>> piece_xy_; // the region's outline pieces in its plane
+    SquareIndex piece_index_{1.0};            // of piece_xy_, by classify_nodes
     std::size_t nu_ = 1, nv_ = 1;
     double du_ = 1, dv_ = 1;
     std::vector<std::uint32_t> node_id_;
