@@ -53,16 +53,6 @@ rad::Channels solve(const radfmt::MeshData& mesh, const rad::TransportOperator& 
     return rad::solver(method).solve(op, emission, control).radiosity;
 }
 
-std::vector<double> node_areas(const radfmt::MeshData& mesh, const radfmt::LinkData& links) {
-    std::vector<double> area(links.nodes.size(), 0);
-    for (std::size_t i = 0; i < links.nodes.size(); ++i) {
-        const auto& n = links.nodes[i];
-        for (auto k = n.first; k < n.first + n.count; ++k)
-            area[i] += mesh.patches[links.leaf_order[k]].area;
-    }
-    return area;
-}
-
 // The analytic matrix of `mesh` and its solution.
 std::pair<radfmt::FormFactorData, rad::Channels> analytic_solution(const radfmt::MeshData& mesh) {
     rad::FormFactorOptions analytic;
@@ -76,7 +66,7 @@ std::pair<radfmt::FormFactorData, rad::Channels> analytic_solution(const radfmt:
 // part's share of the area), from each part of its source (spread over the part by area).
 std::map<std::pair<std::uint32_t, std::uint32_t>, double> expand(const radfmt::MeshData& mesh,
                                                                  const radfmt::LinkData& links) {
-    const auto area = node_areas(mesh, links);
+    const auto area = rad::link_node_areas(mesh, links);
     std::map<std::pair<std::uint32_t, std::uint32_t>, double> f;
     for (std::size_t r = 0; r < links.nodes.size(); ++r)
         for (auto l = links.link_start[r]; l < links.link_start[r + 1]; ++l) {
@@ -84,13 +74,13 @@ std::map<std::pair<std::uint32_t, std::uint32_t>, double> expand(const radfmt::M
             const auto from = radfmt::share_slots(links, links.source[l]);
             for (int i = 0; i < 4; ++i)
                 for (int j = 0; j < 4; ++j) {
-                    const double share = double(links.receiver_share[l][i]) *
-                                         links.source_share[l][j] / radfmt::kShareTotal /
-                                         radfmt::kShareTotal;
-                    if (share == 0) continue;
+                    if (links.receiver_share[l][i] == 0 || links.source_share[l][j] == 0) continue;
                     const auto& receiver = links.nodes[into[i]];
                     const auto& source = links.nodes[from[j]];
-                    const double g = links.factor[l] * share * area[r] / area[into[i]];
+                    const double g =
+                        rad::delivered_factor(links.factor[l], links.receiver_share[l][i], area[r],
+                                              area[into[i]]) *
+                        links.source_share[l][j] / radfmt::kShareTotal;
                     for (auto a = receiver.first; a < receiver.first + receiver.count; ++a)
                         for (auto b = source.first; b < source.first + source.count; ++b) {
                             const auto q = links.leaf_order[b];
@@ -103,7 +93,7 @@ std::map<std::pair<std::uint32_t, std::uint32_t>, double> expand(const radfmt::M
 
 // The links with every share by area: what a link did when it carried one number.
 radfmt::LinkData shares_by_area(const radfmt::MeshData& mesh, radfmt::LinkData links) {
-    const auto area = node_areas(mesh, links);
+    const auto area = rad::link_node_areas(mesh, links);
     auto by_area = [&](std::size_t node) {
         const auto slots = radfmt::share_slots(links, node);
         radfmt::LinkShares out{};

@@ -94,10 +94,10 @@ void check_tree(const LinkData& links, BodyReader& r) {
         if (!has_parent[i]) r.fail("node " + std::to_string(i) + " has no parent");
 }
 
-// A node's shares sum to kShareTotal and leave the slots it does not have empty.
-void check_shares(const LinkData& links, std::size_t node, const LinkShares& shares, BodyReader& r,
-                  std::uint64_t link, const char* side) {
-    const auto slots = share_slots(links, node);
+// A node's shares (its slots: share_slots) sum to kShareTotal and leave the slots it does
+// not have empty.
+void check_shares(const std::array<std::uint32_t, 4>& slots, const LinkShares& shares,
+                  BodyReader& r, std::uint64_t link, const char* side) {
     std::uint32_t sum = 0;
     for (int k = 0; k < 4; ++k) {
         if (slots[k] == kNoNode && shares[k] != 0)
@@ -123,11 +123,14 @@ void check_links(const LinkData& links, BodyReader& r) {
         if (!(links.factor[l] >= 0 && std::isfinite(links.factor[l])))
             r.fail("link " + std::to_string(l) + " has a factor that is negative or not finite");
     }
-    for (std::size_t i = 0; i < links.nodes.size(); ++i)
+    for (std::size_t i = 0; i < links.nodes.size(); ++i) {
+        const auto slots = share_slots(links, i);
         for (auto l = start[i]; l < start[i + 1]; ++l) {
-            check_shares(links, i, links.receiver_share[l], r, l, "receiver");
-            check_shares(links, links.source[l], links.source_share[l], r, l, "source");
+            check_shares(slots, links.receiver_share[l], r, l, "receiver");
+            check_shares(share_slots(links, links.source[l]), links.source_share[l], r, l,
+                         "source");
         }
+    }
 }
 } // namespace
 

@@ -64,6 +64,18 @@ std::vector<std::pair<std::string, std::string>> link_header_fields(const Hierar
 std::vector<std::string> emitters_not_refined_for(const radfmt::Header& links_header,
                                                   const radfmt::MeshData& mesh);
 
+// Per node of `links`, the area of its patches.
+std::vector<double> link_node_areas(const radfmt::MeshData& mesh, const radfmt::LinkData& links);
+
+// A link's factor as it reaches one part of its receiver (radfmt::LinkShares): the part's
+// share of the transfer over its share of the node's area (the node's factor where the part
+// has no area).
+inline double delivered_factor(double factor, std::uint16_t share, double node_area,
+                               double part_area) {
+    return factor * share * (1.0 / radfmt::kShareTotal) *
+           (part_area > 0 ? node_area / part_area : 1.0);
+}
+
 // Per patch, its row sum of F through the hierarchy: the factors of the links its leaf and
 // every node above it gather over, each as it reaches the patch's part of the node (1 in a
 // closed scene).

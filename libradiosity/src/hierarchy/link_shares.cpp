@@ -80,17 +80,11 @@ radfmt::LinkShares link_shares(const radfmt::LinkData& tree, const NodeGeometrie
         slot_end[s] = before / geometry[node].area;
     }
     const auto visible = slot_visibility(slot_end, samples);
-    double seen = 0, facing = 0;
-    for (std::size_t k = 0; k < samples.u.size(); ++k) {
-        facing += samples.kernel[k];
-        if (samples.seen[k]) seen += samples.kernel[k];
-    }
-    const double pair_visible = facing > 0 ? seen / facing : 1.0;
     std::array<double, 4> weight{};
     for (int s = 0; s < 4; ++s) {
         if (slots[s] == radfmt::kNoNode) continue;
         weight[s] = part_factor(geometry[slots[s]], geometry[other]) *
-                    (visible[s] >= 0 ? visible[s] : pair_visible);
+                    (visible[s] >= 0 ? visible[s] : samples.visible);
     }
     return quantized(weight, slots, geometry);
 }

@@ -11,11 +11,12 @@ namespace rad::hierarchy {
 
 // What the rays of a pair saw from one side's points: per sample, where in [0,1) the point
 // was drawn along the node's leaf order (the u of NodeGeometries::point), its kernel, and
-// whether it saw its partner.
+// whether it saw its partner; and the kernel-weighted share of the pairs that were seen.
 struct SideSamples {
     std::span<const double> u;
     std::span<const double> kernel;
     std::span<const std::uint8_t> seen;
+    double visible = 1;
 };
 
 // Per share slot of `node` (radfmt::share_slots), the share of the pair's transfer with

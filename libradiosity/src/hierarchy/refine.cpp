@@ -507,8 +507,11 @@ class LinkRefiner {
     // Each node's shares of the pair's transfer, from the traced sample pairs.
     PairShares shares(std::uint32_t a, std::uint32_t b, const PairEstimate& e,
                       const Traced& traced) const {
-        return {hierarchy::link_shares(tree_, geometry_, a, b, {e.from_u, e.kernel, traced.seen}),
-                hierarchy::link_shares(tree_, geometry_, b, a, {e.to_u, e.kernel, traced.seen})};
+        const double visible = traced.facing > 0 ? traced.weighted : 1.0;
+        return {hierarchy::link_shares(tree_, geometry_, a, b,
+                                       {e.from_u, e.kernel, traced.seen, visible}),
+                hierarchy::link_shares(tree_, geometry_, b, a,
+                                       {e.to_u, e.kernel, traced.seen, visible})};
     }
 
     // Links in `directions`, reciprocal: A_a F_ab = A_b F_ba, part by part.

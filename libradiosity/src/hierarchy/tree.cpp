@@ -124,13 +124,19 @@ radfmt::LinkData build_patch_tree(const radfmt::MeshData& mesh) {
     return hierarchy::build_surface_tree(mesh, hierarchy::connected_surfaces(mesh));
 }
 
-std::vector<double> link_row_sums(const radfmt::MeshData& mesh, const radfmt::LinkData& links) {
+std::vector<double> link_node_areas(const radfmt::MeshData& mesh, const radfmt::LinkData& links) {
+    // Children come after their parents: from the last node back, a node's children are done.
     std::vector<double> area(links.nodes.size(), 0.0);
     for (std::size_t i = links.nodes.size(); i-- > 0;) {
         const auto& n = links.nodes[i];
         area[i] = n.left == radfmt::kNoNode ? mesh.patches[links.leaf_order[n.first]].area
                                             : area[n.left] + area[n.right];
     }
+    return area;
+}
+
+std::vector<double> link_row_sums(const radfmt::MeshData& mesh, const radfmt::LinkData& links) {
+    const auto area = link_node_areas(mesh, links);
     // Down the tree (parents come first): a node's sum is its parent's plus what links at it
     // or above it delivered to it as a part (a part's share of F over its share of the area).
     std::vector<double> node_sum(links.nodes.size(), 0.0);
@@ -138,13 +144,10 @@ std::vector<double> link_row_sums(const radfmt::MeshData& mesh, const radfmt::Li
     for (std::size_t i = 0; i < links.nodes.size(); ++i) {
         const auto slots = radfmt::share_slots(links, i);
         for (auto l = links.link_start[i]; l < links.link_start[i + 1]; ++l)
-            for (int k = 0; k < 4; ++k) {
-                if (links.receiver_share[l][k] == 0) continue;
-                const double part = area[slots[k]];
-                node_sum[slots[k]] += links.factor[l] * links.receiver_share[l][k] /
-                                      double(radfmt::kShareTotal) *
-                                      (part > 0 ? area[i] / part : 1.0);
-            }
+            for (int k = 0; k < 4; ++k)
+                if (links.receiver_share[l][k] != 0)
+                    node_sum[slots[k]] += delivered_factor(
+                        links.factor[l], links.receiver_share[l][k], area[i], area[slots[k]]);
         const auto& n = links.nodes[i];
         if (n.left == radfmt::kNoNode) {
             patch_sum[links.leaf_order[n.first]] = node_sum[i];

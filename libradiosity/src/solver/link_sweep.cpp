@@ -6,6 +6,8 @@
 // sweep's start.
 #include "sweep.hpp"
 
+#include "radiosity/hierarchy.hpp"
+
 #include <cmath>
 
 namespace rad::solve_impl {
@@ -60,10 +62,7 @@ void gather_links(const LinkTransport& h, std::size_t i, const std::vector<doubl
         const auto& share = links.receiver_share[l];
         for (int k = 0; k < 4; ++k) {
             if (share[k] == 0) continue;
-            // The part's share of the transfer over its share of the area.
-            const double part = h.area[slots[k]];
-            const double g =
-                f * share[k] * (1.0 / radfmt::kShareTotal) * (part > 0 ? h.area[i] / part : 1.0);
+            const double g = delivered_factor(f, share[k], h.area[i], h.area[slots[k]]);
             double* into = down.data() + std::size_t(slots[k]) * channels;
             for (std::size_t c = 0; c < channels; ++c) into[c] += g * sent[c];
         }

@@ -1,5 +1,7 @@
 #include "radiosity/transport.hpp"
 
+#include "radiosity/hierarchy.hpp"
+
 namespace rad {
 
 Channels to_channels(std::span<const radfmt::Rgb> rgb) {
@@ -42,17 +44,12 @@ TransportOperator make_operator(const radfmt::MeshData& mesh, const radfmt::Link
     auto hierarchy = std::make_shared<LinkTransport>();
     hierarchy->links = &links;
     hierarchy->parent.assign(links.nodes.size(), radfmt::kNoNode);
-    hierarchy->area.assign(links.nodes.size(), 0.0);
-    // Children come after their parents: from the last node back, a node's children are done.
-    for (std::size_t i = links.nodes.size(); i-- > 0;) {
+    for (std::size_t i = 0; i < links.nodes.size(); ++i) {
         const auto& n = links.nodes[i];
-        if (n.left == radfmt::kNoNode) {
-            hierarchy->area[i] = op.area[links.leaf_order[n.first]];
-        } else {
+        if (n.left != radfmt::kNoNode)
             hierarchy->parent[n.left] = hierarchy->parent[n.right] = static_cast<std::uint32_t>(i);
-            hierarchy->area[i] = hierarchy->area[n.left] + hierarchy->area[n.right];
-        }
     }
+    hierarchy->area = link_node_areas(mesh, links);
     hierarchy->slots.reserve(links.nodes.size());
     for (std::size_t i = 0; i < links.nodes.size(); ++i)
         hierarchy->slots.push_back(radfmt::share_slots(links, i));
