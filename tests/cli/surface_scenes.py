@@ -18,6 +18,10 @@ python3 surface_scenes.py KIND OUT.obj
             whose joints are 5 mm apart in pairs: points a wall's band cannot mesh well
   frame     a picture frame of 2 cm strips around a 1 m opening, standing in the room (one
             region, thin everywhere though its rectangle is a metre wide)
+  posts     two posts standing on the floor, 1.5 cm and 20 cm square (their footprints are
+            holes in the floor once imprinted)
+  baseboard a block 1 m long, 1 cm deep and 10 cm tall standing on the floor against the back
+            wall (short steps in the floor's outline at its ends)
 python3 surface_scenes.py gltf CORNELL.obj OUT.gltf
   the OBJ's faces as glTF triangles, one mesh per material (Kd as base colour, Ke as emission)
 """
@@ -57,6 +61,15 @@ def holed_wall(v, faces):
         for q in range(len(ids) - 1):
             faces.append(("back", [base + 1 + k, ids[q], ids[q + 1]]))
         faces.append(("back", [base + 1 + k, ids[-1], base + 1 + (k + 1) % n]))
+
+
+def block(quad, x0, x1, y0, y1, z0, z1):
+    """A block standing on y = y0: its top and four sides, facing out."""
+    quad("box", (x0, y1, z0), (x0, y1, z1), (x1, y1, z1), (x1, y1, z0))
+    quad("box", (x0, y0, z0), (x0, y1, z0), (x1, y1, z0), (x1, y0, z0))
+    quad("box", (x1, y0, z1), (x1, y1, z1), (x0, y1, z1), (x0, y0, z1))
+    quad("box", (x0, y0, z1), (x0, y1, z1), (x0, y1, z0), (x0, y0, z0))
+    quad("box", (x1, y0, z0), (x1, y1, z0), (x1, y1, z1), (x1, y0, z1))
 
 
 def room(kind):
@@ -134,6 +147,11 @@ def room(kind):
         quad("box", (a1, y0, b1), (a1, y1, b1), (a0, y1, b1), (a0, y0, b1))
         quad("box", (a0, y0, b1), (a0, y1, b1), (a0, y1, b0), (a0, y0, b0))
         quad("box", (a1, y0, b0), (a1, y1, b0), (a1, y1, b1), (a1, y0, b1))
+    if kind == "posts":
+        for x0, z0, side in ((1.0, 1.0, 0.015), (2.5, 1.5, 0.2)):
+            block(quad, x0, x0 + side, 0.0, 0.5, z0, z0 + side)
+    if kind == "baseboard":
+        block(quad, 1.0, 2.0, 0.0, 0.1, 0.0, 0.01)
     if kind == "beam":  # a closed box from x = 3 to 5, through the right wall at x = 4
         x0, x1, y0, y1, z0, z1 = 3.0, 5.0, 1.0, 1.4, 1.3, 1.7
         quad("beam", (x0, y1, z0), (x0, y1, z1), (x1, y1, z1), (x1, y1, z0))

@@ -71,6 +71,11 @@ struct SurfaceReport {
     std::size_t band_triangles = 0;   // triangles between the cells and a region's outline
     std::size_t dropped_vertices = 0; // collinear outline points no other region needs
     std::size_t t_vertices = 0;       // points a region left out where smoothing stops anyway
+    // Where something rises from a region (a pipe through a floor, a pillar's foot): holes under
+    // a tenth of a cell across filled, and reflex corners of short steps cut off (within a
+    // twentieth of a cell), and the ground the regions gained by both.
+    std::size_t holes_filled = 0, bends_cut = 0;
+    double area_covered = 0;
     // Regions whose faces overlap in part (copies are gone before): meshed as their union,
     // which is this much less than the faces' sum.
     std::size_t overlapped_regions = 0;

@@ -1,4 +1,4 @@
-// Pass 3b of mesh_surfaces: outline pieces split where a region's band needs them.
+// Pass 3c of mesh_surfaces: outline pieces split where a region's band needs them.
 //
 // A region's band is meshed without splitting its outline pieces (they are shared with the
 // regions on the other side), so a piece that a bad triangle's circumcentre encroaches leaves

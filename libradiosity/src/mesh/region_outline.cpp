@@ -1,4 +1,5 @@
 // Pass 2 of mesh_surfaces: a region's outline from the constrained triangulation of its faces.
+#include "polygon2d.hpp"
 #include "regions.hpp"
 
 #include "radiosity/error.hpp"
@@ -170,6 +171,11 @@ bool outline_of_a_tiling(Region& region, const radfmt::MeshData& faces,
 
 } // namespace
 
+static bool in_faces(const CDT& cdt, const Point2& p) {
+    const auto face = cdt.locate(p);
+    return face != nullptr && !cdt.is_infinite(face) && face->info().inside;
+}
+
 // A region whose faces' edges cross one another more than a surface's would.
 [[noreturn]] void refuse_crossings(const Region& region, const radfmt::MeshData& faces,
                                    const std::string& source) {
@@ -180,10 +186,29 @@ bool outline_of_a_tiling(Region& region, const radfmt::MeshData& faces,
                      "copies, or mesh with --surfaces faces)");
 }
 
+void cover(Region& region, std::vector<XY> polygon) {
+    region.outline = region.pieces;
+    // A hair larger than itself: a point on the side it shares with the faces (a band
+    // triangle's centroid can lie there) is inside one or the other.
+    XY centre{0, 0};
+    for (const auto& q : polygon) centre[0] += q[0], centre[1] += q[1];
+    centre[0] /= double(polygon.size()), centre[1] /= double(polygon.size());
+    for (auto& q : polygon)
+        for (int i = 0; i < 2; ++i) q[i] = centre[i] + (q[i] - centre[i]) * (1 + 1e-6);
+    Region::Covered c{{1e300, 1e300}, {-1e300, -1e300}, std::move(polygon)};
+    for (const auto& q : c.polygon)
+        for (int i = 0; i < 2; ++i)
+            c.lo[i] = std::min(c.lo[i], q[i]), c.hi[i] = std::max(c.hi[i], q[i]);
+    region.covered.push_back(std::move(c));
+}
+
 bool Region::contains(const Point2& p) const {
-    if (sides) return sides->contains(p.x(), p.y());
-    const auto face = cdt->locate(p);
-    return face != nullptr && !cdt->is_infinite(face) && face->info().inside;
+    if (sides ? sides->contains(p.x(), p.y()) : in_faces(*cdt, p)) return true;
+    for (const auto& c : covered)
+        if (p.x() >= c.lo[0] && p.x() <= c.hi[0] && p.y() >= c.lo[1] && p.y() <= c.hi[1] &&
+            point_in_polygon({p.x(), p.y()}, c.polygon))
+            return true;
+    return false;
 }
 
 void trace_outline(Region& region, const radfmt::MeshData& faces,

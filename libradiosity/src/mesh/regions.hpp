@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 namespace rad::surfaces {
@@ -100,6 +101,13 @@ struct Region {
     // A region whose faces tile it (no overlaps) has none: its sides tell instead.
     std::unique_ptr<CDT> cdt;
     std::unique_ptr<SideIndex> sides;
+    // Ground outside its faces that the region covers (passes 3a, 3b): holes filled, corners
+    // cut off, each with its box.
+    struct Covered {
+        XY lo{}, hi{};
+        std::vector<XY> polygon;
+    };
+    std::vector<Covered> covered;
     std::vector<std::array<std::uint32_t, 2>> outline; // boundary edges, before the runs
     // How much the faces' areas add up to more than the area they cover (from the outline's
     // triangulation; 0 where they tile it, or the difference is rounding): faces drawn partly
@@ -142,15 +150,56 @@ double region_thickness(const Region& region, const Points& points, double enoug
 // than the smallest cell of the regions along it. Returns the points dropped.
 std::size_t split_outline_runs(std::vector<Region>& regions, Points& points, double tolerance);
 
-// Pass 3a: in each region not gridded as a quadrilateral, a piece shorter than a tenth of a cell
-// is merged with its straight neighbour across a point the region may leave out: one where
-// every other region is never smoothed together with it (another material or group, or a bend
-// past rad-shade's default crease angle). The merged pieces stay within the region's piece
-// length. Returns the points left out (T-vertices).
-std::size_t relax_outline_points(std::vector<Region>& regions, const Points& points,
-                                 double tolerance);
+// Which regions meet each region along its outline (its pieces as they stand when made), and
+// whether what meets it there rises from its plane: every other region there has a normal
+// further from the region's, either way, than rad-shade's crease angle (a wall on a floor, a
+// pipe through it), and there is one. Ground a region covers past such a piece lies behind or
+// inside what rises there.
+class RisingWalls {
+  public:
+    explicit RisingWalls(const std::vector<Region>& regions);
+    // The regions whose pieces end at p (sorted, once each).
+    const std::vector<std::uint32_t>& regions_at(std::uint32_t p) const { return at_point_.at(p); }
+    bool around_point(std::uint32_t self, std::uint32_t p) const;
+    bool along_piece(std::uint32_t self, std::uint32_t a, std::uint32_t b) const;
 
-// Pass 3b: each region gridded on trial (pass 4); the outline piece that a bad band triangle
+  private:
+    bool all_rise(std::uint32_t self, const std::vector<std::uint32_t>& others) const;
+    const std::vector<Region>& regions_;
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> at_point_;
+    std::unordered_map<EdgeKey, std::vector<std::uint32_t>> at_piece_;
+};
+
+// The region covers `polygon` (outside its faces, inside its pieces now): its outline becomes
+// its pieces, and points in the polygon are inside it.
+void cover(Region& region, std::vector<XY> polygon);
+
+// What passes 3a and 3b changed besides straight stretches, for the summary.
+struct OutlineGrowth {
+    std::size_t holes = 0;  // holes filled
+    std::size_t points = 0; // bends cut off
+    double area = 0;        // the area the regions gained
+};
+
+// Pass 3a: a hole of a region under a tenth of its cell across (its box's diagonal), where
+// something rises along all of its pieces and at all of its points (RisingWalls), is filled:
+// patches around a hole that small would be its size (specks), for light its area cannot
+// change.
+void fill_small_holes(std::vector<Region>& regions, const Points& points, OutlineGrowth& growth);
+
+// Pass 3b: in each region not gridded as a quadrilateral, a piece shorter than a tenth of a cell
+// is merged with its neighbour across a point the region may leave out: along a straight
+// stretch, where every other region is never smoothed together with it (another material or
+// group, or a bend past rad-shade's default crease angle); at a bend that turns the outline
+// into the region (a reflex corner) no more than a twentieth of a cell from the merged piece,
+// where something rises at the point and along both pieces (RisingWalls) and no other point of
+// the region lies in the corner cut off. The merged pieces stay within the region's piece length.
+// Returns the points left out on straight stretches (T-vertices); bends cut off are counted in
+// `growth`.
+std::size_t relax_outline_points(std::vector<Region>& regions, const Points& points,
+                                 double tolerance, OutlineGrowth& growth);
+
+// Pass 3c: each region gridded on trial (pass 4); the outline piece that a bad band triangle
 // lies on, or whose diametral circle holds its circumcentre, is halved for every region that
 // has it (never below a twentieth of a cell), and those regions tried again, up to `rounds`
 // times. Returns the points added.

@@ -206,7 +206,12 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     begin_stage(options.stages, "outline runs");
     rep.regions = regions.size();
     rep.dropped_vertices = surfaces::split_outline_runs(regions, points, tolerance);
-    rep.t_vertices = surfaces::relax_outline_points(regions, points, tolerance);
+    surfaces::OutlineGrowth growth;
+    surfaces::fill_small_holes(regions, points, growth);
+    rep.t_vertices = surfaces::relax_outline_points(regions, points, tolerance, growth);
+    rep.holes_filled = growth.holes;
+    rep.bends_cut = growth.points;
+    rep.area_covered = growth.area;
     begin_stage(options.stages, "outline refinement");
     surfaces::refine_outline_pieces(regions, points, tolerance, 6);
     begin_stage(options.stages, "grids");
