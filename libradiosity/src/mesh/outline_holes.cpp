@@ -114,6 +114,7 @@ void fill_small_holes(std::vector<Region>& regions, const Points& points, Outlin
             if (!drop[k]) kept.push_back(region.pieces[k]);
         region.pieces = std::move(kept);
         for (auto& polygon : filled) cover(region, std::move(polygon));
+        region.outline = region.pieces;
     }
 }
 

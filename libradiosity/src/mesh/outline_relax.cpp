@@ -225,6 +225,7 @@ std::size_t relax_region(Region& region, std::uint32_t self, const std::vector<R
     }
     if (left_out || bends) region.pieces = chain.live_pieces();
     for (const auto& corner : chain.corners()) cover(region, corner);
+    if (bends) region.outline = region.pieces;
     growth.points += bends;
     return left_out;
 }

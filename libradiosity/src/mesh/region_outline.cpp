@@ -187,7 +187,6 @@ static bool in_faces(const CDT& cdt, const Point2& p) {
 }
 
 void cover(Region& region, std::vector<XY> polygon) {
-    region.outline = region.pieces;
     // A hair larger than itself: a point on the side it shares with the faces (a band
     // triangle's centroid can lie there) is inside one or the other.
     XY centre{0, 0};

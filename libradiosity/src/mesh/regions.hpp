@@ -170,8 +170,8 @@ class RisingWalls {
     std::unordered_map<EdgeKey, std::vector<std::uint32_t>> at_piece_;
 };
 
-// The region covers `polygon` (outside its faces, inside its pieces now): its outline becomes
-// its pieces, and points in the polygon are inside it.
+// The region covers `polygon` (outside its faces, inside its pieces now): points in it are
+// inside the region. (Its outline, once all is covered, is its pieces.)
 void cover(Region& region, std::vector<XY> polygon);
 
 // What passes 3a and 3b changed besides straight stretches, for the summary.
