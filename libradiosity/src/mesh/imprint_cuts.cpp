@@ -1,6 +1,7 @@
 // Contact imprinting, step 1: where other faces touch or cross each face (its cut lines).
 #include "box_pairs.hpp"
 #include "imprint_parts.hpp"
+#include "polygon2d.hpp"
 #include "slab_points.hpp"
 
 #include <algorithm>
@@ -9,10 +10,6 @@
 #include <unordered_map>
 
 namespace rad::imprinting {
-
-double cross2(const XY& o, const XY& a, const XY& b) {
-    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-}
 
 bool convex(const std::vector<XY>& poly) {
     const std::size_t n = poly.size();

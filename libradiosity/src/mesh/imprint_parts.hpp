@@ -37,7 +37,6 @@ struct Segment {
     XY a, b;
 };
 
-double cross2(const XY& o, const XY& a, const XY& b);
 bool convex(const std::vector<XY>& poly);
 
 // The faces that other objects' faces touch or cross, with their planes (planar within

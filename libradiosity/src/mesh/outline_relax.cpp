@@ -12,6 +12,7 @@
 // pipe's hole) and everything else at the corner rises from the region's plane, the region
 // may cut the corner off by up to a twentieth of a cell: the ground it gains lies under or
 // inside what rises there, and the specks a short step needs are gone.
+#include "polygon2d.hpp"
 #include "regions.hpp"
 
 #include <algorithm>
@@ -27,12 +28,12 @@ namespace {
 
 // rad-shade's default crease angle: smoothing stops at a bend sharper than this.
 constexpr double kCreaseDegrees = 30;
+const double kCosCrease = std::cos(kCreaseDegrees * std::numbers::pi / 180);
 
 // Whether crease smoothing never mixes the two regions' patches.
 bool never_smoothed_together(const Region& a, const Region& b) {
-    const double cos_crease = std::cos(kCreaseDegrees * std::numbers::pi / 180);
     return a.material != b.material || a.group != b.group ||
-           dot(a.plane.normal, b.plane.normal) < cos_crease;
+           dot(a.plane.normal, b.plane.normal) < kCosCrease;
 }
 
 // One region's pieces with their ends' neighbours: merges two pieces meeting at a point.
@@ -126,9 +127,6 @@ class PieceChain {
         for (const auto k : at_.at(a))
             if (alive_[k] && far_end(k, a) == b) return true;
         return false;
-    }
-    static double cross2(const XY& o, const XY& a, const XY& b) {
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
     }
     static bool inside_triangle(const XY& q, const XY& a, const XY& b, const XY& c) {
         const double d1 = cross2(a, b, q), d2 = cross2(b, c, q), d3 = cross2(c, a, q);
@@ -245,11 +243,10 @@ RisingWalls::RisingWalls(const std::vector<Region>& regions) : regions_(regions)
 }
 
 bool RisingWalls::all_rise(std::uint32_t self, const std::vector<std::uint32_t>& others) const {
-    const double cos_crease = std::cos(kCreaseDegrees * std::numbers::pi / 180);
     bool any = false;
     for (const auto r : others) {
         if (r == self) continue;
-        if (std::abs(dot(regions_[self].plane.normal, regions_[r].plane.normal)) >= cos_crease)
+        if (std::abs(dot(regions_[self].plane.normal, regions_[r].plane.normal)) >= kCosCrease)
             return false;
         any = true;
     }

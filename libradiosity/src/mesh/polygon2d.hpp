@@ -9,6 +9,11 @@ namespace rad {
 
 using Point2d = std::array<double, 2>;
 
+// Twice the signed area of the triangle o, a, b: > 0 when a to b turns left seen from o.
+inline double cross2(const Point2d& o, const Point2d& a, const Point2d& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
 // Even-odd test (ray crossing); a point on the outline may come out either way.
 inline bool point_in_polygon(const Point2d& p, const std::vector<Point2d>& poly) {
     bool inside = false;

@@ -154,6 +154,12 @@ bool SideIndex::contains(double x, double y) const {
 
 namespace {
 
+// Whether p lies in one of the region's faces (their triangulation's inside).
+bool in_faces(const CDT& cdt, const Point2& p) {
+    const auto face = cdt.locate(p);
+    return face != nullptr && !cdt.is_infinite(face) && face->info().inside;
+}
+
 // A region whose faces tile it: its sides are its outline, and they tell what is inside.
 bool outline_of_a_tiling(Region& region, const radfmt::MeshData& faces,
                          const std::vector<std::uint32_t>& weld, const Points& points) {
@@ -170,11 +176,6 @@ bool outline_of_a_tiling(Region& region, const radfmt::MeshData& faces,
 }
 
 } // namespace
-
-static bool in_faces(const CDT& cdt, const Point2& p) {
-    const auto face = cdt.locate(p);
-    return face != nullptr && !cdt.is_infinite(face) && face->info().inside;
-}
 
 // A region whose faces' edges cross one another more than a surface's would.
 [[noreturn]] void refuse_crossings(const Region& region, const radfmt::MeshData& faces,

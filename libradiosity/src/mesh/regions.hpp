@@ -108,7 +108,8 @@ struct Region {
         std::vector<XY> polygon;
     };
     std::vector<Covered> covered;
-    std::vector<std::array<std::uint32_t, 2>> outline; // boundary edges, before the runs
+    // Boundary edges, before the runs; its pieces once it has covered ground (passes 3a, 3b).
+    std::vector<std::array<std::uint32_t, 2>> outline;
     // How much the faces' areas add up to more than the area they cover (from the outline's
     // triangulation; 0 where they tile it, or the difference is rounding): faces drawn partly
     // over each other.
