@@ -22,6 +22,8 @@ python3 surface_scenes.py KIND OUT.obj
             holes in the floor once imprinted)
   baseboard a block 1 m long, 1 cm deep and 10 cm tall standing on the floor against the back
             wall (short steps in the floor's outline at its ends)
+  rug       a rug (its own material) lying in the floor's plane, 2 m x 1.5 m, whose far side
+            steps by 3 cm halfway along: a step where nothing rises, in both regions' outlines
 python3 surface_scenes.py gltf CORNELL.obj OUT.gltf
   the OBJ's faces as glTF triangles, one mesh per material (Kd as base colour, Ke as emission)
 """
@@ -89,6 +91,12 @@ def room(kind):
         joints = sorted({0.0, W} | {round(x + d, 6) for x in (0.5, 1.3, 2.1, 2.9, 3.5) for d in (0, 0.005)})
         for k, (x0, x1) in enumerate(zip(joints, joints[1:])):
             add("tile" + "ab"[k % 2], (x0, 0, 0), (x0, 0, 0.3), (x1, 0, 0.3), (x1, 0, 0))
+    elif kind == "rug":  # the floor around the rug as five rectangles (x0, x1, z0, z1)
+        step = 2.53
+        for x0, x1, z0, z1 in ((0, 1, 0, D), (3, W, 0, D), (1, 3, 0, 1), (1, 2, step, D), (2, 3, 2.5, D)):
+            add("floor", (x0, 0, z0), (x0, 0, z1), (x1, 0, z1), (x1, 0, z0))
+        add("rug", (1, 0, 1), (1, 0, 2.5), (3, 0, 2.5), (3, 0, 1))
+        add("rug", (1, 0, 2.5), (1, 0, step), (2, 0, step), (2, 0, 2.5))
     else:
         add("floor", (0, 0, 0), (0, 0, D), (W, 0, D), (W, 0, 0))
     add("ceiling", (0, H, 0), (W, H, 0), (W, H, D), (0, H, D))
@@ -178,7 +186,8 @@ def write_obj(path, v, faces):
             out.write("f " + " ".join(map(str, idx)) + "\n")
     colours = {"floor": "0.6 0.6 0.6", "ceiling": "0.7 0.7 0.7", "left": "0.6 0.2 0.2",
                "right": "0.2 0.6 0.2", "front": "0.5 0.5 0.5", "back": "0.5 0.5 0.7",
-               "sheet": "0.5 0.5 0.5", "box": "0.5 0.5 0.5", "beam": "0.5 0.5 0.5", "shelf": "0.5 0.5 0.5", "light": "0.5 0.5 0.5"}
+               "sheet": "0.5 0.5 0.5", "box": "0.5 0.5 0.5", "beam": "0.5 0.5 0.5", "shelf": "0.5 0.5 0.5", "light": "0.5 0.5 0.5",
+               "rug": "0.3 0.3 0.6"}
     with open(mtl, "w") as out:
         for mat, kd in colours.items():
             out.write(f"newmtl {mat}\nKd {kd}\n")

@@ -67,8 +67,9 @@ ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClas
 
 struct SurfaceReport {
     std::size_t faces = 0, regions = 0;
-    std::size_t cells = 0;            // full grid cells: quads
-    std::size_t band_triangles = 0;   // triangles between the cells and a region's outline
+    std::size_t cells = 0;          // full grid cells: quads
+    std::size_t band_triangles = 0; // triangles between the cells and a region's outline
+    std::size_t joined = 0; // quads of two band triangles: a speck or a sliver and its neighbour
     std::size_t dropped_vertices = 0; // collinear outline points no other region needs
     std::size_t t_vertices = 0;       // points a region left out where smoothing stops anyway
     // Where something rises from a region (a pipe through a floor, a pillar's foot): holes under
@@ -91,7 +92,8 @@ struct SurfaceReport {
 // other region there is smoothed with it (T-vertices where crease smoothing stops). Inside,
 // a cell whose corners are at least a third of a cell from the outline (or on an outline
 // point) is a quad; the band between those cells and the outline is a constrained Delaunay
-// triangulation (CGAL) of their corners and the outline points.
+// triangulation (CGAL) of their corners and the outline points, whose specks and slivers are
+// joined with a neighbour into a convex quad where that makes one of aspect at most 3.
 radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptions& options,
                                SurfaceReport* report = nullptr);
 

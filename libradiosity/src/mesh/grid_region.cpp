@@ -347,6 +347,25 @@ void grid_quadrilateral(const Region& region, Points& points, radfmt::MeshData& 
         }
 }
 
+// grid_quadrilateral unless a cell's aspect is over 3 (a quadrilateral far from a
+// parallelogram): then nothing is added, and the region is gridded as any other.
+bool grid_shapely_quadrilateral(const Region& region, Points& points, radfmt::MeshData& mesh,
+                                SurfaceReport& report) {
+    const auto kept = points.position.size();
+    radfmt::MeshData trial;
+    SurfaceReport counts;
+    grid_quadrilateral(region, points, trial, counts);
+    if (!std::all_of(trial.patches.begin(), trial.patches.end(), [&](const auto& patch) {
+            return patch_aspect(points.position, patch) <= 3;
+        })) {
+        points.position.resize(kept);
+        return false;
+    }
+    mesh.patches.insert(mesh.patches.end(), trial.patches.begin(), trial.patches.end());
+    report.cells += counts.cells;
+    return true;
+}
+
 // The region's whole cells as quads, and the band between them and the outline.
 void mesh_cells_and_band(const Region& region, RegionGrid& grid,
                          const std::unordered_set<EdgeKey>& pieces, Points& points,
@@ -412,10 +431,8 @@ std::vector<std::array<std::size_t, 2>> cells_at_bad_triangles(const RegionGrid&
 
 void grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
                  SurfaceReport& report, double tolerance) {
-    if (!region.quad_sides.empty()) {
-        grid_quadrilateral(region, points, mesh, report);
+    if (!region.quad_sides.empty() && grid_shapely_quadrilateral(region, points, mesh, report))
         return;
-    }
     std::vector<std::uint32_t> ids;
     for (const auto& [a, b] : region.pieces) ids.push_back(a), ids.push_back(b);
     std::sort(ids.begin(), ids.end());
@@ -443,9 +460,12 @@ void grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
         std::vector<std::array<std::size_t, 2>> cells;
         if (round < kMaxBandRounds) cells = cells_at_bad_triangles(trial_grid, trial, points);
         if (cells.empty()) {
+            counts.joined = join_triangles(region, points, trial, 0);
+            counts.band_triangles -= 2 * counts.joined;
             mesh.patches.insert(mesh.patches.end(), trial.patches.begin(), trial.patches.end());
             report.cells += counts.cells;
             report.band_triangles += counts.band_triangles;
+            report.joined += counts.joined;
             break;
         }
         points.position.resize(kept);

@@ -91,9 +91,10 @@ void find_pieces_to_split(const Region& region, Points& points, double tolerance
     std::unordered_set<EdgeKey> pieces;
     for (const auto& [a, b] : region.pieces) pieces.insert(edge_key(a, b));
     const auto circles = piece_circles(region, points);
-    // Halving stops at a twentieth of a cell: well-shaped triangles next to an outline feature
-    // that small must be about its size (a game map's brush steps); slivers there would not.
-    const double shortest = region.cell / 20;
+    // Halving stops at a tenth of a cell: well-shaped triangles beside shorter pieces would be
+    // specks. A sliver left beside a piece too short to halve is joined with its neighbour into
+    // a quad (join_triangles) where that makes one of good shape.
+    const double shortest = region.cell / 10;
     for (const auto& patch : trial.patches) {
         if (patch.corner_count() != 3 || patch_aspect(points.position, patch) <= 3) continue;
         if (const auto key = piece_to_split(region, pieces, circles, points, patch, shortest))

@@ -202,7 +202,7 @@ std::size_t relax_outline_points(std::vector<Region>& regions, const Points& poi
 
 // Pass 3c: each region gridded on trial (pass 4); the outline piece that a bad band triangle
 // lies on, or whose diametral circle holds its circumcentre, is halved for every region that
-// has it (never below a twentieth of a cell), and those regions tried again, up to `rounds`
+// has it (never below a tenth of a cell), and those regions tried again, up to `rounds`
 // times. Returns the points added.
 std::size_t refine_outline_pieces(std::vector<Region>& regions, Points& points, double tolerance,
                                   int rounds);
@@ -219,8 +219,17 @@ std::vector<double> local_thickness(const Region& region, const Points& points,
 // Pass 4: the region's grid cells as quads and the band between them and its outline as
 // triangles, appended to `mesh` (whose vertices are `points`, patches facing the region's way).
 // A cell with a corner on a band triangle of aspect over 3 is given to the band (the band's
-// refinement may not split the cells' sides), for up to two rounds.
+// refinement may not split the cells' sides), for up to two rounds; then join_triangles. A
+// quadrilateral region is gridded bilinearly unless a cell would have an aspect over 3.
 void grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
                  SurfaceReport& report, double tolerance);
+
+// Pass 4's last step, on the region's patches (mesh's from `first` on; none with no cell): a
+// triangle that is a speck (every edge under a tenth of a cell: beside the outline's short
+// pieces) or a sliver (aspect over 3) is joined with a neighbouring triangle not a speck into
+// one strictly convex quad, where that quad's aspect is at most 3 (the lowest such). Returns the
+// quads made.
+std::size_t join_triangles(const Region& region, const Points& points, radfmt::MeshData& mesh,
+                           std::size_t first);
 
 } // namespace rad::surfaces
