@@ -5,6 +5,7 @@
 // triangles must be about its size (specks), and beside a piece too short to halve (pass 3c
 // stops at a tenth of a cell) the mesher leaves slivers. Either, with the triangle across one of
 // its sides, is often a convex quad of good shape: a patch with a short side along the detail.
+#include "polygon2d.hpp"
 #include "regions.hpp"
 
 #include <algorithm>
@@ -22,9 +23,10 @@ bool strictly_convex(const std::array<XY, 4>& q) {
     int sign = 0;
     for (int k = 0; k < 4; ++k) {
         const XY &a = q[k], &b = q[(k + 1) % 4], &c = q[(k + 2) % 4];
-        const double ux = b[0] - a[0], uy = b[1] - a[1], vx = c[0] - b[0], vy = c[1] - b[1];
-        const double turn = ux * vy - uy * vx;
-        if (std::abs(turn) <= 1e-9 * std::hypot(ux, uy) * std::hypot(vx, vy)) return false;
+        const double turn = cross2(a, b, c);
+        if (std::abs(turn) <=
+            1e-9 * std::hypot(b[0] - a[0], b[1] - a[1]) * std::hypot(c[0] - b[0], c[1] - b[1]))
+            return false;
         const int s = turn > 0 ? 1 : -1;
         if (sign != 0 && s != sign) return false;
         sign = s;
