@@ -24,6 +24,9 @@ python3 surface_scenes.py KIND OUT.obj
             wall (short steps in the floor's outline at its ends)
   rug       a rug (its own material) lying in the floor's plane, 2 m x 1.5 m, whose far side
             steps by 3 cm halfway along: a step where nothing rises, in both regions' outlines
+  columns   round columns of 40 sides (5 cm across, and 12 cm) standing on the floor, their tops
+            drawn as fans from their centres: outlines of short pieces round a region a fifth
+            of a 25 cm cell across, and a hole in the floor round each
 python3 surface_scenes.py gltf CORNELL.obj OUT.gltf
   the OBJ's faces as glTF triangles, one mesh per material (Kd as base colour, Ke as emission)
 """
@@ -72,6 +75,21 @@ def block(quad, x0, x1, y0, y1, z0, z1):
     quad("box", (x1, y0, z1), (x1, y1, z1), (x0, y1, z1), (x0, y0, z1))
     quad("box", (x0, y0, z1), (x0, y1, z1), (x0, y1, z0), (x0, y0, z0))
     quad("box", (x1, y0, z0), (x1, y1, z0), (x1, y1, z1), (x1, y0, z1))
+
+
+def column(v, faces, cx, cz, radius, height, sides):
+    """A round column standing on the floor: its sides and its top as a fan from its centre."""
+    base = len(v)
+    for k in range(sides):
+        a = 2 * math.pi * k / sides
+        x, z = cx + radius * math.cos(a), cz - radius * math.sin(a)
+        v.extend([(x, 0, z), (x, height, z)])
+    v.append((cx, height, cz))
+    for k in range(sides):
+        b0, t0 = base + 1 + 2 * k, base + 2 + 2 * k
+        b1, t1 = base + 1 + 2 * ((k + 1) % sides), base + 2 + 2 * ((k + 1) % sides)
+        faces.append(("column", [b0, b1, t1, t0]))
+        faces.append(("column", [len(v), t0, t1]))
 
 
 def room(kind):
@@ -160,6 +178,9 @@ def room(kind):
             block(quad, x0, x0 + side, 0.0, 0.5, z0, z0 + side)
     if kind == "baseboard":
         block(quad, 1.0, 2.0, 0.0, 0.1, 0.0, 0.01)
+    if kind == "columns":
+        for cx, cz, radius in ((1.0, 1.5, 0.025), (3.0, 1.5, 0.06)):
+            column(v, faces, cx, cz, radius, 1.2, 40)
     if kind == "beam":  # a closed box from x = 3 to 5, through the right wall at x = 4
         x0, x1, y0, y1, z0, z1 = 3.0, 5.0, 1.0, 1.4, 1.3, 1.7
         quad("beam", (x0, y1, z0), (x0, y1, z1), (x1, y1, z1), (x1, y1, z0))

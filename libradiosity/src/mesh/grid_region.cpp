@@ -27,33 +27,50 @@ using BandCDT =
 
 // CGAL's size and angle criteria, plus: a triangle whose aspect (longest edge over shortest
 // height) is over 3 is bad. An angle bound alone lets obtuse triangles of 25-30 degree corners
-// through, whose aspect reaches 5.
+// through, whose aspect reaches 5. But a triangle whose circumcircle is under a fifth of a cell
+// across is left as it is, however it is shaped: refining it would add its circumcentre, under a
+// tenth of a cell from its corners. Beside the outline's short pieces (a column's round top of 40
+// sides, a notch) that refinement went on down to the pieces' size: dozens of specks where a few
+// triangles, thin or not, cover the same ground.
 struct BandCriteria : CGAL::Delaunay_mesh_size_criteria_2<BandCDT> {
     using Base = CGAL::Delaunay_mesh_size_criteria_2<BandCDT>;
-    using Base::Base;
+    explicit BandCriteria(double cell) : Base(0.125, cell), smallest_circumradius_(cell / 10) {}
     struct Is_bad : Base::Is_bad {
-        using Base::Is_bad::Is_bad;
+        Is_bad(double aspect_bound, double size_bound, const BandCDT::Geom_traits& geometry,
+               double smallest_circumradius)
+            : Base::Is_bad(aspect_bound, size_bound, geometry),
+              smallest_circumradius_squared(smallest_circumradius * smallest_circumradius) {}
         CGAL::Mesh_2::Face_badness operator()(const Quality q) const {
             return Base::Is_bad::operator()(q);
         }
         CGAL::Mesh_2::Face_badness operator()(const BandCDT::Face_handle& face, Quality& q) const {
-            const auto badness = Base::Is_bad::operator()(face, q);
-            if (badness != CGAL::Mesh_2::NOT_BAD) return badness;
             const auto &a = face->vertex(0)->point(), &b = face->vertex(1)->point(),
                        &c = face->vertex(2)->point();
+            const double ab = CGAL::squared_distance(a, b), bc = CGAL::squared_distance(b, c),
+                         ca = CGAL::squared_distance(c, a);
             const double twice_area = std::abs(2 * CGAL::area(a, b, c));
-            const double longest =
-                std::max({CGAL::squared_distance(a, b), CGAL::squared_distance(b, c),
-                          CGAL::squared_distance(c, a)});
+            // The circumradius R = |ab| |bc| |ca| / (4 area): R^2 < r^2 without roots.
+            if (twice_area > 0 &&
+                ab * bc * ca < smallest_circumradius_squared * 4 * twice_area * twice_area) {
+                q = Quality(1, 0); // not bad, and not in the queue's way
+                return CGAL::Mesh_2::NOT_BAD;
+            }
+            const auto badness = Base::Is_bad::operator()(face, q);
+            if (badness != CGAL::Mesh_2::NOT_BAD) return badness;
+            const double longest = std::max({ab, bc, ca});
             const double aspect = twice_area > 0 ? longest / twice_area : 1e300;
             if (aspect <= kMaxAspect) return CGAL::Mesh_2::NOT_BAD;
             q.first =
                 std::min(q.first, 0.999 * this->B * (kMaxAspect / aspect) * (kMaxAspect / aspect));
             return CGAL::Mesh_2::BAD;
         }
+        double smallest_circumradius_squared;
     };
-    Is_bad is_bad_object() const { return Is_bad(this->bound(), this->size_bound(), this->traits); }
+    Is_bad is_bad_object() const {
+        return Is_bad(this->bound(), this->size_bound(), this->traits, smallest_circumradius_);
+    }
     static constexpr double kMaxAspect = 3;
+    double smallest_circumradius_; // of a triangle refined
 };
 
 // The grid over one region: which nodes lie on outline points, which are well inside, which
@@ -286,7 +303,7 @@ void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<
     }
     if (region.cell > 0) {
         CGAL::Delaunay_mesher_no_edge_refinement_2<BandCDT, BandCriteria> mesher(
-            cdt, BandCriteria(0.125, region.cell));
+            cdt, BandCriteria(region.cell));
         mesher.init(true);
         // The aspect bound is past what Delaunay refinement is proven to reach: a budget of
         // points, a few for every cell of the band and every constrained edge.
