@@ -58,6 +58,8 @@ double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
 double patch_aspect(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch);
 double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
 double longest_edge(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch);
+// A speck: every edge under a tenth of `cell` (the patch's cell side).
+bool is_speck(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch, double cell);
 // Over the patches not thin (`classes` by patch; patches past its end are wide); `cells` gives
 // each patch's cell side (patches past its end are not counted as specks); `at_detail` marks
 // the specks beside an outline piece under a tenth of a cell.

@@ -92,7 +92,7 @@ std::size_t join_triangles(const Region& region, const Points& points, radfmt::M
                                                    std::array<std::size_t, 2>{i, kNoPatch});
             if (!fresh) it->second[1] = i;
         }
-        speck[i] = longest_edge(points.position, p) < region.cell / 10;
+        speck[i] = is_speck(points.position, p, region.cell);
         if (speck[i] || patch_aspect(points.position, p) > 3) wanted.push_back(i);
     }
     std::size_t joined = 0;

@@ -77,8 +77,7 @@ double width_or_thickness(const surfaces::Region& region, const surfaces::Points
 // aspect over 3, or one under a tenth of a cell (a wide region's cells are neither).
 bool suspect_in_wide_region(const radfmt::Patch& patch, const surfaces::Points& points,
                             double cell) {
-    return patch_aspect(points.position, patch) > 3 ||
-           longest_edge(points.position, patch) < cell / 10;
+    return patch_aspect(points.position, patch) > 3 || is_speck(points.position, patch, cell);
 }
 
 // A region's outline pieces shorter than `small`, in squares of that side in its plane: those
@@ -129,7 +128,7 @@ void mark_specks_at_detail(const surfaces::Region& region, const surfaces::Point
     if (short_pieces.empty()) return;
     for (std::size_t k = first; k < mesh.patches.size(); ++k) {
         const auto& patch = mesh.patches[k];
-        if (!(longest_edge(points.position, patch) < region.cell / 10)) continue;
+        if (!is_speck(points.position, patch, region.cell)) continue;
         for (int c = 0; c < patch.corner_count() && !at_detail[k]; ++c)
             at_detail[k] = short_pieces.near(points.position[patch.corners[c]]);
     }
@@ -253,6 +252,10 @@ double longest_edge(std::span<const Vec3> vertices, const radfmt::Patch& patch) 
     return longest;
 }
 
+bool is_speck(std::span<const Vec3> vertices, const radfmt::Patch& patch, double cell) {
+    return longest_edge(vertices, patch) < cell / 10;
+}
+
 double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
     return patch_aspect(mesh.vertices, patch);
 }
@@ -292,7 +295,7 @@ ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClas
         ++counted[0], good[0] += fine; // a tenth of a cell thick or more
         if (c == WidthClass::Wide) ++counted[1], good[1] += fine;
         stats.worst_aspect = std::max(stats.worst_aspect, a);
-        if (k < cells.size() && longest_edge(mesh, patch) < cells[k] / 10)
+        if (k < cells.size() && is_speck(mesh.vertices, patch, cells[k]))
             ++(k < at_detail.size() && at_detail[k] ? stats.specks_at_detail : stats.specks);
     }
     stats.fraction_aspect_at_most_3 = counted[0] ? double(good[0]) / double(counted[0]) : 1;
