@@ -333,6 +333,16 @@ echo "columns: $(patches columns.err) patches, $((specks)) specks, aspect <= 3 f
 column_area() { "$BIN/rad-info" --csv "$1" | awk -F, '$2 == "column" { a += $4 } END { printf "%.12f", a }'; }
 python3 -c "import sys; sys.exit(not abs($(column_area columns.mesh) - $(column_area columns-faces.mesh)) < 1e-9)" || fail "columns: area not kept"
 
+# 17. Nor is one whose circumcentre would land under a tenth of a cell from a point already in
+# the band (hidden behind the outline from the triangle, or another centre of a rim whose points
+# are nearly on one circle). zdm2's round cap at (-268, 283, 242), cut with the faces around it
+# and the map's size kept (tests/data/zdm2-cap): 5 specks there before, none now.
+"$BIN/rad-mesh" "$SRC/tests/data/zdm2-cap/zdm2-cap.obj" -o cap.mesh 2> cap.err || fail "zdm2 cap: $(cat cap.err)"
+grep -q "max-edge 55.41 (the scene's size 1108" cap.err || fail "zdm2 cap: the map's size not kept: $(grep max-edge cap.err)"
+echo "zdm2 cap: $(patches cap.err) patches"
+grep -q " 0 under a tenth of a cell beside an outline piece that short, 0 under a tenth of a cell elsewhere" cap.err ||
+  fail "zdm2 cap: $(grep planar cap.err)"
+
 # Stacks are refused, not meshed for minutes: 150 copies of one triangle, each nudged out of
 # the others' plane by up to 1e-4 (one region whose edges cross 10^5 times: 88 s and 2.5 GB
 # before), and 400 strips crossing at one point in one plane (each centroid under all of

@@ -31,15 +31,19 @@ using BandCDT =
 // across is left as it is, however it is shaped: refining it would add its circumcentre, under a
 // tenth of a cell from its corners. Beside the outline's short pieces (a column's round top of 40
 // sides, a notch) that refinement went on down to the pieces' size: dozens of specks where a few
-// triangles, thin or not, cover the same ground.
+// triangles, thin or not, cover the same ground. Nor is a triangle refined for its shape whose
+// circumcentre would land under a tenth of a cell from a point already there (one of zdm2's round
+// caps got five specks of three such centres).
 struct BandCriteria : CGAL::Delaunay_mesh_size_criteria_2<BandCDT> {
     using Base = CGAL::Delaunay_mesh_size_criteria_2<BandCDT>;
-    explicit BandCriteria(double cell) : Base(0.125, cell), smallest_circumradius_(cell / 10) {}
+    BandCriteria(double cell, const BandCDT& cdt)
+        : Base(0.125, cell), smallest_circumradius_(cell / 10), cdt_(&cdt) {}
     struct Is_bad : Base::Is_bad {
         Is_bad(double aspect_bound, double size_bound, const BandCDT::Geom_traits& geometry,
-               double smallest_circumradius)
+               double smallest_circumradius, const BandCDT* triangulation)
             : Base::Is_bad(aspect_bound, size_bound, geometry),
-              smallest_circumradius_squared(smallest_circumradius * smallest_circumradius) {}
+              smallest_circumradius_squared(smallest_circumradius * smallest_circumradius),
+              cdt(triangulation) {}
         CGAL::Mesh_2::Face_badness operator()(const Quality q) const {
             return Base::Is_bad::operator()(q);
         }
@@ -55,22 +59,46 @@ struct BandCriteria : CGAL::Delaunay_mesh_size_criteria_2<BandCDT> {
                 q = Quality(1, 0); // not bad, and not in the queue's way
                 return CGAL::Mesh_2::NOT_BAD;
             }
-            const auto badness = Base::Is_bad::operator()(face, q);
-            if (badness != CGAL::Mesh_2::NOT_BAD) return badness;
-            const double longest = std::max({ab, bc, ca});
-            const double aspect = twice_area > 0 ? longest / twice_area : 1e300;
-            if (aspect <= kMaxAspect) return CGAL::Mesh_2::NOT_BAD;
-            q.first =
-                std::min(q.first, 0.999 * this->B * (kMaxAspect / aspect) * (kMaxAspect / aspect));
-            return CGAL::Mesh_2::BAD;
+            auto badness = Base::Is_bad::operator()(face, q);
+            if (badness == CGAL::Mesh_2::NOT_BAD) {
+                const double longest = std::max({ab, bc, ca});
+                const double aspect = twice_area > 0 ? longest / twice_area : 1e300;
+                if (aspect <= kMaxAspect) return CGAL::Mesh_2::NOT_BAD;
+                q.first = std::min(q.first,
+                                   0.999 * this->B * (kMaxAspect / aspect) * (kMaxAspect / aspect));
+                badness = CGAL::Mesh_2::BAD;
+            }
+            // A triangle too large is refined wherever its circumcentre lands.
+            if (badness == CGAL::Mesh_2::BAD && circumcentre_near_a_point(a, b, c)) {
+                q = Quality(1, 0);
+                return CGAL::Mesh_2::NOT_BAD;
+            }
+            return badness;
+        }
+        // Where the circumcentre would land under a tenth of a cell from a point already there
+        // (hidden from the triangle behind the outline, or a second centre of a rim whose
+        // points are nearly on one circle), refining would make a speck.
+        bool circumcentre_near_a_point(const Point2& a, const Point2& b, const Point2& c) const {
+            if (CGAL::collinear(a, b, c)) return false;
+            const Point2 centre = CGAL::circumcenter(a, b, c);
+            const auto f = cdt->locate(centre);
+            if (cdt->is_infinite(f)) return false;
+            for (int k = 0; k < 3; ++k)
+                if (CGAL::squared_distance(f->vertex(k)->point(), centre) <
+                    smallest_circumradius_squared)
+                    return true;
+            return false;
         }
         double smallest_circumradius_squared;
+        const BandCDT* cdt;
     };
     Is_bad is_bad_object() const {
-        return Is_bad(this->bound(), this->size_bound(), this->traits, smallest_circumradius_);
+        return Is_bad(this->bound(), this->size_bound(), this->traits, smallest_circumradius_,
+                      cdt_);
     }
     static constexpr double kMaxAspect = 3;
     double smallest_circumradius_; // of a triangle refined
+    const BandCDT* cdt_;
 };
 
 // The grid over one region: which nodes lie on outline points, which are well inside, which
@@ -303,7 +331,7 @@ void triangulate_band(const Region& region, RegionGrid& grid, const std::vector<
     }
     if (region.cell > 0) {
         CGAL::Delaunay_mesher_no_edge_refinement_2<BandCDT, BandCriteria> mesher(
-            cdt, BandCriteria(region.cell));
+            cdt, BandCriteria(region.cell, cdt));
         mesher.init(true);
         // The aspect bound is past what Delaunay refinement is proven to reach: a budget of
         // points, a few for every cell of the band and every constrained edge.
