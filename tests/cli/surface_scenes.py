@@ -24,6 +24,9 @@ python3 surface_scenes.py KIND OUT.obj
             wall (short steps in the floor's outline at its ends)
   rug       a rug (its own material) lying in the floor's plane, 2 m x 1.5 m, whose far side
             steps by 3 cm halfway along: a step where nothing rises, in both regions' outlines
+  neck      a strip 3 cm high and 2 m long standing in the room, 2 cm high for 20 cm in its
+            middle (a notch from its top): a region a little over a tenth of a 25 cm cell
+            wide, under a tenth at its neck
   columns   round columns of 40 sides (5 cm across, and 12 cm) standing on the floor, their tops
             drawn as fans from their centres: outlines of short pieces round a region a fifth
             of a 25 cm cell across, and a hole in the floor round each
@@ -156,6 +159,11 @@ def room(kind):
         quad("frame", (o[2], o[1], 1.5), (o[2], o[3], 1.5), (i[2], i[3], 1.5), (i[2], i[1], 1.5))
         quad("frame", (o[2], o[3], 1.5), (o[0], o[3], 1.5), (i[0], i[3], 1.5), (i[2], i[3], 1.5))
         quad("frame", (o[0], o[3], 1.5), (o[0], o[1], 1.5), (i[0], i[1], 1.5), (i[0], i[3], 1.5))
+    if kind == "neck":  # x 1..3, y 1..1.03 at z = 1.5, facing +z; 2 cm high for x 1.9..2.1
+        base = len(v)
+        v.extend([(1, 1, 1.5), (3, 1, 1.5), (3, 1.03, 1.5), (2.1, 1.03, 1.5), (2.1, 1.02, 1.5),
+                  (1.9, 1.02, 1.5), (1.9, 1.03, 1.5), (1, 1.03, 1.5)])
+        faces.append(("neck", [base + k for k in range(1, 9)]))
     if kind == "sheet":
         quad("sheet", (1, 0.5, 1.5), (3, 0.5, 1.5), (3, 1.5, 1.5), (1, 1.5, 1.5))
         reversed_quad("sheet", (1, 0.5, 1.5), (3, 0.5, 1.5), (3, 1.5, 1.5), (1, 1.5, 1.5))

@@ -38,9 +38,9 @@ struct SurfaceOptions {
 // diameter of the largest circle inside it, where under half that: frames, rings) against its
 // cell: wide (a cell or more: near-square patches of a cell), narrow (a tenth of a cell or more:
 // cut across into near-square patches twice its width long) or thin (a trim or sill: patches as
-// thin as the region, a cell long). A narrow region's patch is thin where the region is that
-// thin there: the largest circle inside it around the patch is under a tenth of a cell and
-// under half the region's width (a thin tab or strip of a wider region).
+// thin as the region, a cell long). A patch of a wider region is thin where the region is that
+// thin there: no circle a tenth of a cell across inside the region holds its centroid (a tab or
+// a neck of a narrow region, a sliver between two outlines, the tip of an acute corner).
 enum class WidthClass : std::uint8_t { Wide, Narrow, Thin }; // in order of thinness
 WidthClass width_class(double cell, double width);           // no cell (0): wide
 struct ShapeStats {

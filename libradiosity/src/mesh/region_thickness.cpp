@@ -181,6 +181,35 @@ class PatchDisks {
     SquareIndex by_square_; // the patches by their centroids' squares of a cell
 };
 
+// Whether a circle of radius r inside the region holds `point`: iff some centre within r of
+// the point lies r or more from the outline, inside (a larger circle holding it holds such a
+// one, centred on the way from the point to its own centre). Branch and bound over squares
+// around the point: the distance is 1-Lipschitz, so a square's centre bounds its points' by its
+// half diagonal. Squares under `precision` that cannot tell count as no.
+bool circle_holds(const OutlineDistance& distance, const Point2d& point, double r,
+                  double precision) {
+    std::priority_queue<Probe> queue;
+    queue.push(distance.probe(point, r));
+    for (int probes = 0; !queue.empty() && probes < 20000; ++probes) {
+        const Probe p = queue.top();
+        queue.pop();
+        const double dx = p.centre[0] - point[0], dy = p.centre[1] - point[1];
+        if (dx * dx + dy * dy <= r * r && p.distance >= r) return true;
+        if (p.bound() < r) return false; // no square left can reach r
+        if (p.half < precision) continue;
+        const double h = p.half / 2;
+        for (const double ox : {-h, h})
+            for (const double oy : {-h, h}) {
+                const Point2d c{p.centre[0] + ox, p.centre[1] + oy};
+                const double ex = std::max(0.0, std::abs(c[0] - point[0]) - h),
+                             ey = std::max(0.0, std::abs(c[1] - point[1]) - h);
+                if (ex * ex + ey * ey <= r * r) // it may hold a centre within r
+                    queue.push(distance.probe(c, h));
+            }
+    }
+    return false;
+}
+
 } // namespace
 
 std::vector<double> local_thickness(const Region& region, const Points& points,
@@ -192,6 +221,19 @@ std::vector<double> local_thickness(const Region& region, const Points& points,
     for (std::size_t k = first; k < mesh.patches.size(); ++k)
         if (wanted.empty() || wanted[k - first]) thickness[k - first] = disks.widest_at(k, enough);
     return thickness;
+}
+
+std::vector<bool> held_by_circle(const Region& region, const Points& points,
+                                 const radfmt::MeshData& mesh, std::size_t first, double diameter) {
+    std::vector<bool> held(mesh.patches.size() - first, true);
+    if (!(diameter > 0)) return held;
+    const OutlineDistance distance(region, points);
+    if (distance.sides().empty()) return held;
+    for (std::size_t k = first; k < mesh.patches.size(); ++k) {
+        const auto xy = region.plane.to_2d(mesh.patches[k].centroid);
+        held[k - first] = circle_holds(distance, {xy[0], xy[1]}, diameter / 2, diameter / 200);
+    }
+    return held;
 }
 
 } // namespace rad::surfaces

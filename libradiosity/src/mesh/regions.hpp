@@ -216,6 +216,13 @@ std::vector<double> local_thickness(const Region& region, const Points& points,
                                     const radfmt::MeshData& mesh, std::size_t first,
                                     const std::vector<bool>& wanted = {}, double enough = 1e300);
 
+// For each of mesh's patches from `first` on (the region's), whether a circle `diameter` across
+// inside the region holds its centroid: exactly (to a two-hundredth of the diameter), where
+// local_thickness only tries circles centred at nearby patches. No: the region is thinner than
+// that where the patch lies.
+std::vector<bool> held_by_circle(const Region& region, const Points& points,
+                                 const radfmt::MeshData& mesh, std::size_t first, double diameter);
+
 // Pass 4: the region's grid cells as quads and the band between them and its outline as
 // triangles, appended to `mesh` (whose vertices are `points`, patches facing the region's way).
 // A cell with a corner on a band triangle of aspect over 3 is given to the band (the band's

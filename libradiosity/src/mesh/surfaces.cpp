@@ -134,9 +134,27 @@ void mark_specks_at_detail(const surfaces::Region& region, const surfaces::Point
     }
 }
 
+// Marks the patches of a wide region (mesh's from `first` on) that lie where it is under a
+// cell wide as narrow: the largest circle inside the region around the patch, among those
+// local_thickness tries, is under a cell (a strip between two outlines).
+void mark_narrow_parts(const surfaces::Region& region, const surfaces::Points& points,
+                       const radfmt::MeshData& mesh, std::size_t first,
+                       std::vector<WidthClass>& classes) {
+    std::vector<bool> wanted(mesh.patches.size() - first);
+    bool any = false;
+    for (std::size_t k = first; k < mesh.patches.size(); ++k)
+        any |= wanted[k - first] = suspect_in_wide_region(mesh.patches[k], points, region.cell);
+    if (!any) return;
+    const auto local = surfaces::local_thickness(region, points, mesh, first, wanted, region.cell);
+    for (std::size_t k = 0; k < local.size(); ++k)
+        if (local[k] < region.cell) classes[first + k] = WidthClass::Narrow;
+}
+
 // The width class of each of the region's patches (mesh's from `first` on): the region's, or
-// thinner where the region is thinner there: a thin tab of a narrow region (under half its
-// width), a narrow or thin part of a wide one (a sliver of a table top between two outlines).
+// thinner where the region is thinner there. Thin where no circle a tenth of a cell across
+// inside the region holds the patch's centroid, decided exactly (a tab or a strip of a wider
+// region, a notch's neck, the tip of an acute corner); else narrow where a wide region is under
+// a cell wide.
 void classify_patches(const surfaces::Region& region, const surfaces::Points& points,
                       const radfmt::MeshData& mesh, std::size_t first,
                       std::vector<WidthClass>& classes, std::vector<double>& cells) {
@@ -144,19 +162,10 @@ void classify_patches(const surfaces::Region& region, const surfaces::Points& po
     classes.resize(mesh.patches.size(), whole);
     cells.resize(mesh.patches.size(), region.cell);
     if (whole == WidthClass::Thin) return;
-    std::vector<bool> wanted; // a narrow region's patches all; a wide one's where suspect
-    if (whole == WidthClass::Wide) {
-        wanted.resize(mesh.patches.size() - first);
-        bool any = false;
-        for (std::size_t k = first; k < mesh.patches.size(); ++k)
-            any |= wanted[k - first] = suspect_in_wide_region(mesh.patches[k], points, region.cell);
-        if (!any) return;
-    }
-    const double thinner = whole == WidthClass::Wide ? region.cell : region.width / 2;
-    const auto local = surfaces::local_thickness(region, points, mesh, first, wanted, thinner);
-    for (std::size_t k = 0; k < local.size(); ++k)
-        if (local[k] < thinner)
-            classes[first + k] = std::max(whole, width_class(region.cell, local[k]));
+    if (whole == WidthClass::Wide) mark_narrow_parts(region, points, mesh, first, classes);
+    const auto held = surfaces::held_by_circle(region, points, mesh, first, region.cell / 10);
+    for (std::size_t k = 0; k < held.size(); ++k)
+        if (!held[k]) classes[first + k] = WidthClass::Thin;
 }
 
 } // namespace
