@@ -185,7 +185,8 @@ class PatchDisks {
 // the point lies r or more from the outline, inside (a larger circle holding it holds such a
 // one, centred on the way from the point to its own centre). Branch and bound over squares
 // around the point: the distance is 1-Lipschitz, so a square's centre bounds its points' by its
-// half diagonal. Squares under `precision` that cannot tell count as no.
+// half diagonal. Squares under `precision` that cannot tell count as no, as does a search past
+// 20,000 probes (neither seen on the fixtures).
 bool circle_holds(const OutlineDistance& distance, const Point2d& point, double r,
                   double precision) {
     std::priority_queue<Probe> queue;
@@ -231,7 +232,7 @@ std::vector<bool> held_by_circle(const Region& region, const Points& points,
     if (distance.sides().empty()) return held;
     for (std::size_t k = first; k < mesh.patches.size(); ++k) {
         const auto xy = region.plane.to_2d(mesh.patches[k].centroid);
-        held[k - first] = circle_holds(distance, {xy[0], xy[1]}, diameter / 2, diameter / 200);
+        held[k - first] = circle_holds(distance, {xy[0], xy[1]}, diameter / 2, diameter / 20000);
     }
     return held;
 }

@@ -217,7 +217,7 @@ std::vector<double> local_thickness(const Region& region, const Points& points,
                                     const std::vector<bool>& wanted = {}, double enough = 1e300);
 
 // For each of mesh's patches from `first` on (the region's), whether a circle `diameter` across
-// inside the region holds its centroid: exactly (to a two-hundredth of the diameter), where
+// inside the region holds its centroid: exactly (to 1/20,000 of the diameter), where
 // local_thickness only tries circles centred at nearby patches. No: the region is thinner than
 // that where the patch lies.
 std::vector<bool> held_by_circle(const Region& region, const Points& points,
