@@ -227,8 +227,7 @@ TEST_CASE("irradiance: albedo times what falls on a patch, plus its emission, gi
         if (result.irradiance.state[t] != rad::Lightmap::kChart) continue;
         ++texels;
         bool found = false;
-        for (const auto& v : h)
-            found = found || result.irradiance.rgb[3 * t + 1] == float(v[1]);
+        for (const auto& v : h) found = found || result.irradiance.rgb[3 * t + 1] == float(v[1]);
         CHECK(found);
     }
     CHECK(texels > 256 * 256 / 4); // six walls fill over half the atlas

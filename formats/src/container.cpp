@@ -520,11 +520,10 @@ static ParsedHeader parse_header(std::string_view bytes, const std::string& path
     if (!have_kind) throw FormatError(path + ": corrupt header: no kind");
     if (h.version > kind_version(h.kind) || h.version < kind_info(h.kind).oldest_version) {
         const auto& info = kind_info(h.kind);
-        const std::string reads =
-            info.oldest_version == info.version
-                ? "version " + std::to_string(info.version)
-                : "versions " + std::to_string(info.oldest_version) + " to " +
-                      std::to_string(info.version);
+        const std::string reads = info.oldest_version == info.version
+                                      ? "version " + std::to_string(info.version)
+                                      : "versions " + std::to_string(info.oldest_version) + " to " +
+                                            std::to_string(info.version);
         throw FormatError(path + ": " + std::string(kind_name(h.kind)) + " format version " +
                           std::to_string(h.version) + " is not supported (this build reads " +
                           reads + "): write it again with this build's tools");

@@ -125,7 +125,6 @@ void apply_texture(const aiScene& scene, const aiMaterial& material, aiTextureTy
     report.textures_averaged.push_back(out.name + ": " + texture_name);
 }
 
-
 // One assimp material as the scene's: base colour (or diffuse) and its texture's mean as the
 // reflectance, emissive times its strength as the emission.
 radfmt::Material material_of(const aiScene& ai, unsigned m, double strength, const fs::path& path,

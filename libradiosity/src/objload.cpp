@@ -617,8 +617,8 @@ void add_polygons(const fs::path& path, const ParsedObj& parsed, const LintResul
         if (group == scene.groups.size()) scene.groups.push_back(group_name);
         std::size_t offset = 0;
         for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_number) {
-            const int count = face_corners(path, lint, lines_match, face_number,
-                                           shape.mesh.num_face_vertices[f]);
+            const int count =
+                face_corners(path, lint, lines_match, face_number, shape.mesh.num_face_vertices[f]);
             Polygon poly = polygon_of(shape, offset, count, parsed.attrib);
             offset += count;
             poly.group = group;

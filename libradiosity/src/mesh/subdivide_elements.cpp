@@ -1,6 +1,6 @@
 // Step 1 of subdivide: the scene's faces cleaned into triangles and convex quads.
-#include "radiosity/error.hpp"
 #include "polygon_triangulation.hpp"
+#include "radiosity/error.hpp"
 #include "subdivide_parts.hpp"
 
 #include <algorithm>
