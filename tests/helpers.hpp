@@ -51,6 +51,35 @@ inline std::string cube_obj(double s = 1.0, const std::string& material = "grey"
            "g right\nf 2 6 8 4\n"; // x=1, normal -x
 }
 
+// Patch 0: a polygon patch at z = 0 facing up, of `outline`'s corners (x, y), star-shaped from
+// the first; patch 1: the 2 x 2 square [0, 2]^2 at z = 1 facing down, a quad.
+inline radfmt::MeshData polygon_under_square(const std::vector<std::array<double, 2>>& outline,
+                                             double area, const radfmt::Vec3& centroid) {
+    radfmt::MeshData m;
+    m.groups = {"g"};
+    m.materials = {{"grey", {0.5, 0.5, 0.5}, {0, 0, 0}}};
+    std::vector<std::uint32_t> corners;
+    for (const auto& [x, y] : outline) {
+        corners.push_back(static_cast<std::uint32_t>(m.vertices.size()));
+        m.vertices.push_back({x, y, 0});
+    }
+    radfmt::Patch polygon;
+    m.set_corners(polygon, corners, true);
+    polygon.area = area;
+    polygon.centroid = centroid;
+    polygon.normal = {0, 0, 1};
+    const auto top = static_cast<std::uint32_t>(m.vertices.size());
+    for (const auto& [x, y] : std::vector<std::array<double, 2>>{{0, 0}, {0, 2}, {2, 2}, {2, 0}})
+        m.vertices.push_back({x, y, 1});
+    radfmt::Patch square;
+    square.corners = {top, top + 1, top + 2, top + 3};
+    square.area = 4;
+    square.centroid = {1, 1, 1};
+    square.normal = {0, 0, -1};
+    m.patches = {polygon, square};
+    return m;
+}
+
 inline radfmt::MeshData mesh_from_obj(const std::string& obj, double max_edge = 0) {
     rad::SubdivisionOptions options;
     options.max_edge = max_edge;

@@ -205,6 +205,43 @@ TEST_CASE("glb: header, chunks, counts and colours as written") {
     }
 }
 
+TEST_CASE("a polygon patch, not convex, bakes as the surface it covers") {
+    // An L of 3 m^2 (a polygon patch) under a 2 x 2 m square (a quad).
+    const auto mesh = polygon_under_square({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, 3,
+                                           {5.0 / 6, 5.0 / 6, 0});
+    const std::vector<radfmt::Rgb> b{{0.25, 0.5, 0.75}, {1, 1, 1}};
+    const auto charts = rad::build_charts(mesh, 20);
+    REQUIRE(charts.size() == 2);
+    REQUIRE(charts[0].patches == std::vector<std::uint32_t>{0});
+    CHECK(charts[0].corner_uv[0].size() == 6);
+    const auto layout = rad::pack_atlas(charts, 256, 0, 2);
+    const auto map = rad::render_lightmap(mesh, charts, layout,
+                                          rad::corner_colours(mesh, b, rad::Smoothing::Flat));
+    double texels = 0, sum = 0;
+    const double texel_area = 1 / (layout.texels_per_metre * layout.texels_per_metre);
+    for (std::size_t t = 0; t < map.state.size(); ++t)
+        if (map.state[t] == rad::Lightmap::kChart && map.rgb[3 * t + 2] < 0.9f) {
+            texels += texel_area;
+            sum += map.rgb[3 * t + 2] * texel_area;
+        }
+    // Texel centres in the L, not in its bounding square (4 m^2): its area to a texel row.
+    CHECK(texels == Approx(3).epsilon(0.03));
+    CHECK(sum / texels == Approx(0.75).epsilon(1e-6));
+    // The glb: the L as the 4 triangles of its fan, the square as 2.
+    rad::BakeOptions options;
+    options.smoothing = rad::Smoothing::Flat;
+    auto result = rad::bake(mesh, b, {}, options);
+    result.scene.generator = "test";
+    const auto glb = rad::baked_glb(result.scene);
+    std::uint32_t json_size;
+    std::memcpy(&json_size, glb.data() + 12, 4);
+    const auto doc =
+        nlohmann::json::parse(std::string(glb.begin() + 20, glb.begin() + 20 + json_size));
+    const auto& prim = doc["meshes"][0]["primitives"][0];
+    CHECK(doc["accessors"][prim["indices"].get<int>()]["count"] == (4 + 2) * 3);
+    CHECK(doc["accessors"][prim["attributes"]["POSITION"].get<int>()]["count"] == 6 + 4);
+}
+
 TEST_CASE("irradiance: albedo times what falls on a patch, plus its emission, gives B back") {
     auto mesh = cube_mesh();
     mesh.materials[0].reflectance = {0.5, 0.25, 0.0}; // a channel that reflects nothing

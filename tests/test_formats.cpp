@@ -93,6 +93,93 @@ TEST_CASE("mesh files round-trip with header and provenance") {
     CHECK(body_at % 64 == 0);
 }
 
+namespace {
+// small_mesh with an L-shaped hexagon (star-shaped from its corner 0, not convex) as patch 2.
+radfmt::MeshData mesh_with_polygon() {
+    auto m = small_mesh();
+    const std::uint32_t first = static_cast<std::uint32_t>(m.vertices.size());
+    for (const auto& [x, y] :
+         std::vector<std::array<double, 2>>{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}})
+        m.vertices.push_back({x, y, 5});
+    radfmt::Patch l;
+    const std::vector<std::uint32_t> corners{first,     first + 1, first + 2,
+                                             first + 3, first + 4, first + 5};
+    m.set_corners(l, corners, true);
+    l.area = 3;
+    l.centroid = {5.0 / 6, 5.0 / 6, 5};
+    l.normal = {0, 0, 1};
+    m.patches.push_back(l);
+    return m;
+}
+} // namespace
+
+TEST_CASE("polygon patches: version 2 round-trips them, a mesh without is version 1 as before") {
+    const auto dir = temp_dir("polygons");
+    const auto mesh = mesh_with_polygon();
+    radfmt::write_mesh(dir / "p.mesh", header_for("rad-mesh"), mesh);
+    radfmt::Header h;
+    const auto back = radfmt::read_mesh(dir / "p.mesh", &h);
+    CHECK(h.version == 2);
+    CHECK(h.get("polygons", "") == "1");
+    REQUIRE(back.patches.size() == 3);
+    CHECK(back.patches[2].is_polygon());
+    CHECK(back.patches[2].corner_count() == 6);
+    const auto corners = back.corners(2);
+    CHECK(std::vector<std::uint32_t>(corners.begin(), corners.end()) ==
+          std::vector<std::uint32_t>{4, 5, 6, 7, 8, 9});
+    CHECK(back.corners(0).size() == 4);
+    CHECK(back.corners(1).size() == 3);
+    CHECK(back.geometry_hash() == mesh.geometry_hash());
+    CHECK(h.get("geometry_hash", "") == mesh.geometry_hash());
+    // The hash sees the polygon's corners: the same slots over other corners differ.
+    auto moved = mesh;
+    std::swap(moved.polygon_corners[1], moved.polygon_corners[5]);
+    CHECK(moved.geometry_hash() != mesh.geometry_hash());
+    // rad-info's line counts it.
+    radfmt::Header ignored;
+    CHECK_THAT(radfmt::kind_info(radfmt::Kind::Mesh).summary(dir / "p.mesh", ignored),
+               Contains("3 patches (1 quads, 1 polygons, 1 triangles)"));
+
+    // Without polygons: version 1 and the body of before (no polygon array), so the files and
+    // form-factor caches of every mesh made before stay valid byte for byte.
+    radfmt::write_mesh(dir / "q.mesh", header_for("rad-mesh"), small_mesh());
+    radfmt::Header h1;
+    radfmt::read_mesh(dir / "q.mesh", &h1);
+    CHECK(h1.version == 1);
+    CHECK(h1.find("polygons") == nullptr);
+    CHECK(h1.body_size ==
+          8 + 4 * 24 + 8 + 2 * (16 + 4 + 4 + 8 + 24 + 24) + 8 + 2 * 16 + 8 + 2 * (16 + 48));
+}
+
+TEST_CASE("polygon patches that consumers could not split are refused") {
+    const auto dir = temp_dir("polygons");
+    auto error = [&](const std::function<void(radfmt::MeshData&)>& spoil) {
+        auto mesh = mesh_with_polygon();
+        spoil(mesh);
+        radfmt::write_mesh(dir / "bad.mesh", header_for("rad-mesh"), mesh);
+        try {
+            radfmt::read_mesh(dir / "bad.mesh");
+        } catch (const radfmt::FormatError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    CHECK(error([](auto&) {}) == "no error");
+    // Listed from (1, 2), a neighbour of the reflex corner, its fan overlaps itself.
+    CHECK_THAT(error([](auto& m) {
+                   std::rotate(m.polygon_corners.begin(), m.polygon_corners.begin() + 4,
+                               m.polygon_corners.end());
+               }),
+               Contains("bad.mesh") && Contains("polygon patch 2 is not star-shaped") &&
+                   Contains("wound backwards"));
+    CHECK_THAT(error([](auto& m) { m.patches[2].corners[1] = 7; }),
+               Contains("patch 2 is a polygon of corners 0 to 7 of 6"));
+    CHECK_THAT(error([](auto& m) { m.patches[2].corners[1] = 3; }),
+               Contains("a polygon has 4 corners or more"));
+    CHECK_THAT(error([](auto& m) { m.polygon_corners[2] = 99; }),
+               Contains("polygon corner 2 refers to vertex 99 of 10"));
+}
+
 TEST_CASE("form-factor and radiosity files round-trip") {
     const auto dir = temp_dir("formats");
     radfmt::FormFactorData ff;

@@ -97,6 +97,28 @@ TEST_CASE("every method matches the closed forms for parallel and perpendicular 
     }
 }
 
+TEST_CASE("every method takes a polygon patch as the surface it covers, convex or not") {
+    const double f = rad::parallel_rectangles_form_factor(2, 2, 1);
+    // The 2 x 2 square drawn with a corner in the middle of each side (straight corners).
+    const auto square = polygon_under_square(
+        {{0, 0}, {1, 0}, {2, 0}, {2, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}}, 4, {1, 1, 0});
+    // An L: the square without its quadrant [1, 2]^2. Each quadrant sees the square above as
+    // the whole does (by symmetry), so F(L -> top) = f and by reciprocity F(top -> L) = 3f/4.
+    const auto ell = polygon_under_square({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, 3,
+                                          {5.0 / 6, 5.0 / 6, 0});
+    for (const auto& method : rad::form_factor_method_names()) {
+        const int rays = method == "hemisphere" ? 65536 : 0;
+        const int resolution = method == "hemicube" ? 100 : 0;
+        CAPTURE(method);
+        const auto a = compute(square, method, 0, rays, 1, 1, resolution);
+        CHECK(entry(a, 0, 1) == Approx(f).epsilon(tolerance_of(method)));
+        CHECK(entry(a, 1, 0) == Approx(f).epsilon(tolerance_of(method)));
+        const auto b = compute(ell, method, 0, rays, 1, 1, resolution);
+        CHECK(entry(b, 0, 1) == Approx(f).epsilon(tolerance_of(method)));
+        CHECK(entry(b, 1, 0) == Approx(0.75 * f).epsilon(tolerance_of(method)));
+    }
+}
+
 TEST_CASE("the error falls as samples and rays grow") {
     const auto mesh = perpendicular(1, 1, 1);
     const double exact = rad::perpendicular_rectangles_form_factor(1, 1, 1);

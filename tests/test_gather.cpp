@@ -74,6 +74,45 @@ TEST_CASE("on the axis of a lone emitting square the gather is E x the closed fo
     }
 }
 
+TEST_CASE("a polygon patch, not convex, lights and reflects as the surface it covers") {
+    // The lamp of the test above without its quadrant x, z > 0, as one L-shaped polygon patch
+    // facing down: from a point on the axis each quadrant is a quarter of the square, so the L
+    // gives 3/4 of its form factor. Lit (E), its light is direct; reflecting (B - E = 2), the
+    // indirect rays find it, landing on the triangles of its fan.
+    radfmt::MeshData mesh;
+    mesh.groups = {"g"};
+    mesh.materials = {{"lamp", {0, 0, 0}, {10, 20, 40}}, {"white", {0.5, 0.5, 0.5}, {0, 0, 0}}};
+    std::vector<std::uint32_t> ids;
+    for (const auto& [x, z] : std::vector<std::array<double, 2>>{
+             {-0.5, -0.5}, {0.5, -0.5}, {0.5, 0}, {0, 0}, {0, 0.5}, {-0.5, 0.5}}) {
+        ids.push_back(static_cast<std::uint32_t>(mesh.vertices.size()));
+        mesh.vertices.push_back({x, 0.5, z});
+    }
+    radfmt::Patch ell;
+    mesh.set_corners(ell, ids, true);
+    ell.area = 0.75;
+    ell.centroid = {-1.0 / 12, 0.5, -1.0 / 12};
+    ell.normal = {0, -1, 0};
+    mesh.patches = {ell};
+    const double f = 0.75 * axis_square(0.5, 0.5);
+    {
+        const rad::Gatherer gatherer(mesh, emission_only(mesh), {});
+        const auto e = gatherer.gather({0, 0, 0}, {0, 1, 0}, 7);
+        CHECK(e.direct[0] == Approx(10 * f).epsilon(1e-3));
+        CHECK(e.direct[2] == Approx(40 * f).epsilon(1e-3));
+    }
+    mesh.patches[0].material = 1;
+    rad::GatherOptions options;
+    options.rays = 16384;
+    const std::vector<rad::Rgb> two{rad::Rgb{2, 2, 2}};
+    const rad::Gatherer gatherer(mesh, two, options);
+    const auto e = gatherer.gather({0, 0, 0}, {0, 1, 0}, 3);
+    CHECK(e.direct[0] == 0);
+    // 16,384 stratified rays: over 40 points' seeds within 0.18% (rms 0.095%), so 2% is far
+    // outside the noise, and a polygon hit where its fan is not would show.
+    CHECK(e.indirect[0] == Approx(2 * f).epsilon(0.02));
+}
+
 TEST_CASE("a blocker casts a full shadow, and half a blocker half of one") {
     // Black blockers at height 0.25 facing down, over all of the lamp or over x < 0.
     const std::string full = kLamp + "v -2 0.25 -2\nv -2 0.25 2\nv 2 0.25 2\nv 2 0.25 -2\n"

@@ -153,6 +153,17 @@ TEST_CASE("hierarchical: parallel and perpendicular squares match Howell's close
           Approx(rad::perpendicular_rectangles_form_factor(1, 1, 1)).epsilon(0.01));
 }
 
+TEST_CASE("hierarchical: a polygon patch, not convex, is the surface it covers") {
+    // An L (the 2 x 2 square without its quadrant [1, 2]^2) under a 2 x 2 square: each
+    // quadrant sees the square as the whole does, so F(L -> top) = f, F(top -> L) = 3f/4.
+    const double f = rad::parallel_rectangles_form_factor(2, 2, 1);
+    const auto ell = polygon_under_square({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, 3,
+                                          {5.0 / 6, 5.0 / 6, 0});
+    const auto sums = rad::link_row_sums(ell, rad::compute_links(ell, {}));
+    CHECK(sums[0] == Approx(f).epsilon(0.01));
+    CHECK(sums[1] == Approx(0.75 * f).epsilon(0.01));
+}
+
 TEST_CASE("hierarchical: a closed box is a furnace, B = E / (1 - rho) everywhere") {
     const auto mesh = mesh_from_obj(cube_obj(), 1.0 / 8); // 384 patches
     rad::HierarchyOptions options;

@@ -55,6 +55,48 @@ TEST_CASE("a quad filling the view shows the interpolated vertex values") {
         CHECK(pixel(image, x, y) == Approx(expected(x, y)).margin(1e-5));
 }
 
+TEST_CASE("a polygon patch, not convex, is drawn as the surface it covers") {
+    // An L at z = -1 filling the view but for its upper right quadrant, star-shaped from its
+    // first corner, with the corner values 1 + x + 2y: a linear value, which any correct split
+    // into triangles shows exactly at every pixel it covers.
+    radfmt::MeshData mesh;
+    mesh.groups = {"g"};
+    mesh.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}}};
+    rad::CornerColours corners;
+    std::vector<std::uint32_t> ids;
+    for (const auto& [x, y] :
+         std::vector<std::array<double, 2>>{{-1, -1}, {1, -1}, {1, 0}, {0, 0}, {0, 1}, {-1, 1}}) {
+        ids.push_back(static_cast<std::uint32_t>(mesh.vertices.size()));
+        mesh.vertices.push_back({x, y, -1});
+        const double value = 1 + x + 2 * y;
+        corners.polygon_corners.push_back(Rgb{value, value, value});
+    }
+    radfmt::Patch ell;
+    mesh.set_corners(ell, ids, true);
+    ell.area = 3;
+    ell.centroid = {-1.0 / 6, -1.0 / 6, -1};
+    ell.normal = {0, 0, 1};
+    mesh.patches = {ell};
+    corners.patches.resize(1);
+    const int n = 64;
+    const auto image = rad::render(mesh, corners, straight_view(), n, n, 1);
+    CHECK(image.covered_pixels == 3 * n * n / 4);
+    for (int y = 0; y < n; y += 3)
+        for (int x = 0; x < n; x += 3) {
+            const double sx = (x + 0.5) / n * 2 - 1, sy = 1 - (y + 0.5) / n * 2;
+            CAPTURE(x, y);
+            CHECK(pixel(image, x, y) ==
+                  Approx(sx > 0 && sy > 0 ? 0 : 1 + sx + 2 * sy).margin(1e-5));
+        }
+    // Smoothing gives a polygon's corners their values as any patch's.
+    const auto flat = rad::corner_colours(mesh, {Rgb{3, 3, 3}}, rad::Smoothing::Flat);
+    const auto area = rad::corner_colours(mesh, {Rgb{3, 3, 3}}, rad::Smoothing::Area);
+    for (std::size_t k = 0; k < 6; ++k) {
+        CHECK(flat.at(mesh, 0, k) == Rgb{3, 3, 3});
+        CHECK(area.at(mesh, 0, k) == Rgb{3, 3, 3});
+    }
+}
+
 TEST_CASE("interpolation is perspective-correct") {
     // A plane receding in depth, coloured by its own depth: every pixel must show the depth
     // where its ray meets the plane (screen-space interpolation would not).

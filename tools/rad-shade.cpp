@@ -165,7 +165,7 @@ void check_memory(const ShadeArgs& a, std::size_t group_count) {
 // The image: smoothed patch colours, or the final gather from the solution as solved.
 rad::Image render_image(const ShadeArgs& a, const ShadeInputs& in, const rad::View& view,
                         const radfmt::MeshData& solved, rad::Smoothing mode,
-                        const std::vector<std::array<radfmt::Rgb, 4>>& corners) {
+                        const rad::CornerColours& corners) {
     if (a.gather <= 0) return rad::render(in.mesh, corners, view, a.width, a.height, a.aa);
     if (a.albedo || !a.mix.empty() || a.mix_only || a.layers)
         throw rad::InputError("--gather shades a solution as solved: not with --albedo, "

@@ -25,7 +25,26 @@ std::string MeshData::geometry_hash() const {
     w.array(vertices);
     w.u64(patches.size());
     for (const auto& p : patches) w.array(std::span<const std::uint32_t>(p.corners));
+    // Only a mesh with polygons hashes their corners: a mesh without keeps its hash.
+    if (!polygon_corners.empty()) w.array(polygon_corners);
     return "xxh64:" + hash_hex(w.hash());
+}
+
+void MeshData::set_corners(Patch& patch, std::span<const std::uint32_t> list, bool as_polygon) {
+    if (list.size() < 3) throw std::logic_error("a patch needs 3 corners or more");
+    if (!as_polygon && list.size() <= 4) {
+        patch.corners = {kNoVertex, kNoVertex, kNoVertex, kNoVertex};
+        std::copy(list.begin(), list.end(), patch.corners.begin());
+        return;
+    }
+    patch.corners = {static_cast<std::uint32_t>(polygon_corners.size()),
+                     static_cast<std::uint32_t>(list.size()), kNoVertex, kPolygon};
+    polygon_corners.insert(polygon_corners.end(), list.begin(), list.end());
+}
+
+std::size_t MeshData::polygon_count() const {
+    return static_cast<std::size_t>(std::count_if(patches.begin(), patches.end(),
+                                                  [](const Patch& p) { return p.is_polygon(); }));
 }
 
 namespace {
@@ -51,6 +70,51 @@ static std::string number(double value) {
 
 // ---- mesh ----
 
+namespace {
+// A triangle or quad refers to vertices; a polygon to a run of at least 4 of the polygon
+// corners (fewer would be a triangle).
+void check_patch_corners(const Patch& p, std::size_t i, std::uint64_t vertices,
+                         std::uint64_t polygon_corners, BodyReader& r) {
+    if (p.is_polygon()) {
+        if (p.corners[1] < 4 || p.corners[2] != kNoVertex ||
+            std::uint64_t(p.corners[0]) + p.corners[1] > polygon_corners)
+            r.fail("patch " + std::to_string(i) + " is a polygon of corners " +
+                   std::to_string(p.corners[0]) + " to " +
+                   std::to_string(std::uint64_t(p.corners[0]) + p.corners[1]) + " of " +
+                   std::to_string(polygon_corners) + " (a polygon has 4 corners or more)");
+        return;
+    }
+    for (int k = 0; k < 4; ++k)
+        if (p.corners[k] >= vertices && !(k == 3 && p.corners[k] == kNoVertex))
+            r.fail("patch " + std::to_string(i) + " refers to vertex " +
+                   std::to_string(p.corners[k]) + " of " + std::to_string(vertices));
+}
+// Every polygon's fan from corner 0 must cover it: no fan triangle wound against the patch
+// (beyond rounding: a millionth of the patch's area), so consumers may split it so.
+void check_polygon_fans(const MeshData& mesh, BodyReader& r) {
+    auto minus = [](const Vec3& a, const Vec3& b) {
+        return Vec3{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    };
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const auto& p = mesh.patches[i];
+        if (!p.is_polygon()) continue;
+        const auto corners = mesh.corners(p);
+        const Vec3& o = mesh.vertices[corners[0]];
+        for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
+            const Vec3 a = minus(mesh.vertices[corners[k]], o);
+            const Vec3 b = minus(mesh.vertices[corners[k + 1]], o);
+            const double signed_area = 0.5 * (p.normal[0] * (a[1] * b[2] - a[2] * b[1]) +
+                                              p.normal[1] * (a[2] * b[0] - a[0] * b[2]) +
+                                              p.normal[2] * (a[0] * b[1] - a[1] * b[0]));
+            if (signed_area < -1e-6 * p.area)
+                r.fail("polygon patch " + std::to_string(i) +
+                       " is not star-shaped from its first corner (fan triangle " +
+                       std::to_string(k - 1) + " is wound backwards)");
+        }
+    }
+}
+} // namespace
+
 void write_mesh(const fs::path& path, Header header, const MeshData& mesh) {
     header.kind = Kind::Mesh;
     header.set("patches", std::to_string(mesh.patches.size()));
@@ -59,6 +123,11 @@ void write_mesh(const fs::path& path, Header header, const MeshData& mesh) {
     header.set("materials", std::to_string(mesh.materials.size()));
     header.set("total_area", number(mesh.total_area()));
     header.set("geometry_hash", mesh.geometry_hash());
+    // Version 2 adds the polygons' corners; a mesh without polygons is written as version 1,
+    // byte for byte what it was before polygons existed.
+    const bool polygons = !mesh.polygon_corners.empty();
+    header.version = polygons ? 2 : 1;
+    if (polygons) header.set("polygons", std::to_string(mesh.polygon_count()));
 
     const auto n = mesh.patches.size();
     std::vector<std::uint32_t> corners(4 * n), group(n), material(n);
@@ -84,6 +153,10 @@ void write_mesh(const fs::path& path, Header header, const MeshData& mesh) {
     w.array(area);
     w.array(centroid);
     w.array(normal);
+    if (polygons) {
+        w.u64(mesh.polygon_corners.size());
+        w.array(mesh.polygon_corners);
+    }
     w.u64(mesh.groups.size());
     for (const auto& g : mesh.groups) w.string(g);
     w.u64(mesh.materials.size());
@@ -108,6 +181,10 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
     const auto area = r.array<double>(n, "patch areas");
     const auto centroid = r.array<double>(3 * n, "patch centroids");
     const auto normal = r.array<double>(3 * n, "patch normals");
+    if (r.header().version >= 2) {
+        const auto nc = r.count(4, "polygon corners");
+        mesh.polygon_corners = r.array<std::uint32_t>(nc, "polygon corners");
+    }
     const auto ng = r.count(8, "groups");
     for (std::uint64_t i = 0; i < ng; ++i) mesh.groups.push_back(r.string());
     const auto nm = r.count(8 + 48, "materials");
@@ -135,15 +212,15 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
                   std::isfinite(m.emission[k])))
                 r.fail("material '" + m.name +
                        "' has a negative or non-finite reflectance or emission");
+    for (std::size_t c = 0; c < mesh.polygon_corners.size(); ++c)
+        if (mesh.polygon_corners[c] >= nv)
+            r.fail("polygon corner " + std::to_string(c) + " refers to vertex " +
+                   std::to_string(mesh.polygon_corners[c]) + " of " + std::to_string(nv));
     mesh.patches.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         auto& p = mesh.patches[i];
-        for (int k = 0; k < 4; ++k) {
-            p.corners[k] = corners[4 * i + k];
-            if ((p.corners[k] >= nv && !(k == 3 && p.corners[k] == kNoVertex)))
-                r.fail("patch " + std::to_string(i) + " refers to vertex " +
-                       std::to_string(p.corners[k]) + " of " + std::to_string(nv));
-        }
+        for (int k = 0; k < 4; ++k) p.corners[k] = corners[4 * i + k];
+        check_patch_corners(p, i, nv, mesh.polygon_corners.size(), r);
         p.group = group[i];
         p.material = material[i];
         if (p.group >= ng || p.material >= nm)
@@ -161,6 +238,7 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
                    " has a non-positive area, a non-finite centroid or a normal that is not "
                    "unit length");
     }
+    check_polygon_fans(mesh, r);
     if (header_out) *header_out = r.take_header();
     return mesh;
 }
@@ -471,11 +549,11 @@ void mesh_csv(const fs::path& path, std::ostream& out) {
         const auto& m = mesh.materials[p.material];
         std::snprintf(line, sizeof line,
                       "%zu,%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%."
-                      "10g,%.10g,%.10g\n",
+                      "10g,%.10g,%.10g,%d\n",
                       i, mesh.groups[p.group].c_str(), m.name.c_str(), p.area, p.centroid[0],
                       p.centroid[1], p.centroid[2], p.normal[0], p.normal[1], p.normal[2],
                       m.reflectance[0], m.reflectance[1], m.reflectance[2], m.emission[0],
-                      m.emission[1], m.emission[2]);
+                      m.emission[1], m.emission[2], p.corner_count());
         out << line;
         if (!out) return; // the reader went away (closed pipe): stop writing
     }
@@ -483,11 +561,16 @@ void mesh_csv(const fs::path& path, std::ostream& out) {
 
 std::string mesh_summary(const fs::path& path, Header& header) {
     const auto mesh = read_mesh(path, &header);
-    std::size_t quads = 0;
-    for (const auto& p : mesh.patches) quads += p.corner_count() == 4;
+    std::size_t quads = 0, polygons = 0;
+    for (const auto& p : mesh.patches) {
+        polygons += p.is_polygon();
+        quads += !p.is_polygon() && p.corner_count() == 4;
+    }
+    const std::string with_polygons =
+        polygons ? std::to_string(polygons) + " polygons, " : std::string();
     return std::to_string(mesh.patches.size()) + " patches (" + std::to_string(quads) + " quads, " +
-           std::to_string(mesh.patches.size() - quads) + " triangles), " +
-           std::to_string(mesh.vertices.size()) + " vertices";
+           with_polygons + std::to_string(mesh.patches.size() - quads - polygons) +
+           " triangles), " + std::to_string(mesh.vertices.size()) + " vertices";
 }
 
 void form_factor_rows_csv(const FormFactorData& ff, std::ostream& out);
@@ -589,8 +672,8 @@ std::string radiosity_summary(const fs::path& path, Header& header) {
 }
 
 constexpr KindInfo kKinds[] = {
-    {Kind::Mesh, "mesh", "patch mesh", 1, 1,
-     "patch,group,material,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b", mesh_csv,
+    {Kind::Mesh, "mesh", "patch mesh", 2, 1,
+     "patch,group,material,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b,corners", mesh_csv,
      mesh_summary},
     {Kind::FormFactors, "formfactors", "form-factor matrix", 3, 1, "row,col,f", form_factor_csv,
      form_factor_summary},

@@ -1,6 +1,7 @@
 #include "radiosity/rays.hpp"
 
 #include "radiosity/error.hpp"
+#include "radiosity/patch_geometry.hpp"
 #include "radiosity/two_sided.hpp"
 
 #include <embree3/rtcore.h>
@@ -19,6 +20,9 @@ struct RayScene::Impl {
     RTCScene scene = nullptr;
     std::vector<Vec3> normals;                        // per patch
     std::vector<std::vector<std::uint32_t>> patch_of; // per geometry: primitive -> patch
+    // Per geometry: primitive -> which of its polygon patch's triangles (patch_triangles) it
+    // is; empty for a geometry without polygons.
+    std::vector<std::vector<std::int32_t>> piece_of;
     // Embree reports errors through a callback; the first one is kept and raised after the
     // call that caused it, with Embree's own message.
     std::mutex error_mutex;
@@ -49,6 +53,41 @@ extern "C" void keep_facing_side(const RTCFilterFunctionNArguments* args) {
                               RTCRayN_dir_z(args->ray, args->N, i) * n[2];
         if (facing >= 0) args->valid[i] = 0;
     }
+}
+
+// Embree quads for `patches`: one per triangle or quad patch (a triangle's last corner
+// repeating its third, Embree's own encoding), one per triangle of a polygon patch.
+struct RayPrimitives {
+    std::vector<std::array<std::uint32_t, 4>> corners;
+    std::vector<std::uint32_t> patch;
+    std::vector<std::int32_t> piece; // empty when no patch is a polygon
+};
+
+RayPrimitives ray_primitives(const radfmt::MeshData& mesh,
+                             const std::vector<std::uint32_t>& patches) {
+    RayPrimitives out;
+    out.corners.reserve(patches.size());
+    out.patch.reserve(patches.size());
+    for (const auto i : patches) {
+        const auto& p = mesh.patches[i];
+        if (!p.is_polygon()) {
+            const int n = p.corner_count();
+            out.corners.push_back({p.corners[0], p.corners[1], p.corners[2], p.corners[n - 1]});
+            out.patch.push_back(i);
+            if (!out.piece.empty()) out.piece.push_back(-1);
+            continue;
+        }
+        if (out.piece.empty()) out.piece.assign(out.patch.size(), -1);
+        const auto corners = mesh.corners(p);
+        const auto triangles = patch_triangles(mesh, i);
+        for (std::size_t t = 0; t < triangles.size(); ++t) {
+            const auto& [a, b, c] = triangles[t];
+            out.corners.push_back({corners[a], corners[b], corners[c], corners[c]});
+            out.patch.push_back(i);
+            out.piece.push_back(static_cast<std::int32_t>(t));
+        }
+    }
+    return out;
 }
 
 extern "C" void record_embree_error(void* user, RTCError code, const char* message) {
@@ -134,18 +173,16 @@ double RayScene::add_geometry(const radfmt::MeshData& mesh, RayBuild build) {
         auto* vertices = static_cast<float*>(
             rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                     3 * sizeof(float), mesh.vertices.size()));
+        auto primitives = ray_primitives(mesh, *patches);
         auto* indices = static_cast<unsigned*>(
             rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
-                                    4 * sizeof(unsigned), patches->size()));
+                                    4 * sizeof(unsigned), primitives.corners.size()));
         if (!vertices || !indices) impl_->raise_if_failed("allocating the ray scene's geometry");
         for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
             for (int k = 0; k < 3; ++k)
                 vertices[3 * v + k] = static_cast<float>(mesh.vertices[v][k] - centre_[k]);
-        for (std::size_t q = 0; q < patches->size(); ++q) {
-            const auto& p = mesh.patches[(*patches)[q]];
-            for (int k = 0; k < 4; ++k)
-                indices[4 * q + k] = p.corners[k < p.corner_count() ? k : 2];
-        }
+        for (std::size_t q = 0; q < primitives.corners.size(); ++q)
+            for (int k = 0; k < 4; ++k) indices[4 * q + k] = primitives.corners[q][k];
         if (patches == &two_sided) {
             rtcSetGeometryUserData(geometry, impl_.get());
             rtcSetGeometryIntersectFilterFunction(geometry, keep_facing_side);
@@ -153,8 +190,10 @@ double RayScene::add_geometry(const radfmt::MeshData& mesh, RayBuild build) {
         rtcCommitGeometry(geometry);
         const unsigned id = rtcAttachGeometry(impl_->scene, geometry);
         rtcReleaseGeometry(geometry);
-        if (impl_->patch_of.size() <= id) impl_->patch_of.resize(id + 1);
-        impl_->patch_of[id] = *patches;
+        if (impl_->patch_of.size() <= id)
+            impl_->patch_of.resize(id + 1), impl_->piece_of.resize(id + 1);
+        impl_->patch_of[id] = std::move(primitives.patch);
+        impl_->piece_of[id] = std::move(primitives.piece);
     }
     return box.diagonal();
 }
@@ -219,6 +258,8 @@ RayScene::Hit RayScene::trace(const Vec3& origin, const Vec3& direction) const {
     Hit hit;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
     hit.patch = impl_->patch_of[rh.hit.geomID][rh.hit.primID];
+    const auto& pieces = impl_->piece_of[rh.hit.geomID];
+    if (!pieces.empty()) hit.piece = pieces[rh.hit.primID];
     // Embree's geometric normal follows the corners' winding, as the patch normal does
     // (checked: they agreed on 11M rays), and comes with the hit: no lookup of the patch.
     hit.front =

@@ -7,7 +7,7 @@ out=$("$BIN/rad-info" "$TMP/c.rad") || fail "rad-info on a radiosity file"
 grep -q "kind:      radiosity" <<<"$out" || fail "kind line"
 grep -q "1. rad-mesh" <<<"$out" && grep -q "2. rad-ff" <<<"$out" && grep -q "3. rad-solve.*(this file)" <<<"$out" || fail "provenance chain: $out"
 grep -q "xxh64:.*c.ff" <<<"$out" || fail "input hashes"
-[ "$("$BIN/rad-info" --csv "$TMP/c.mesh" | head -1)" = "patch,group,material,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b" ] || fail "mesh csv header"
+[ "$("$BIN/rad-info" --csv "$TMP/c.mesh" | head -1)" = "patch,group,material,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b,corners" ] || fail "mesh csv header"
 [ "$("$BIN/rad-info" --csv "$TMP/c.ff" | head -1)" = "row,col,f" ] || fail "ff csv header"
 [ "$("$BIN/rad-info" --csv "$TMP/c.rad" | head -1)" = "patch,b_r,b_g,b_b" ] || fail "rad csv header"
 patches=$("$BIN/rad-info" --csv "$TMP/c.mesh" | tail -n +2 | wc -l)
@@ -15,7 +15,7 @@ patches=$("$BIN/rad-info" --csv "$TMP/c.mesh" | tail -n +2 | wc -l)
 # grep -q exits at its first match; rad-info must treat the closed pipe as a normal end
 # (exit 0, no message), so this holds under pipefail every time, not four runs in five.
 for run in 1 2 3 4 5; do
-  "$BIN/rad-info" --csv "$TMP/c.mesh" | grep -q ",light,.*,40,32,20$" || fail "light material with Ke in CSV (run $run)"
+  "$BIN/rad-info" --csv "$TMP/c.mesh" | grep -q ",light,.*,40,32,20,4$" || fail "light material with Ke in CSV (run $run)"
 done
 "$BIN/rad-info" --csv "$TMP/c.ff" 2>"$TMP/pipe.err" | head -1 >/dev/null
 [ "${PIPESTATUS[0]}" -eq 0 ] || fail "rad-info exits non-zero when its reader closes the pipe"

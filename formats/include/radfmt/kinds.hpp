@@ -39,8 +39,16 @@ struct Material {
     bool emits() const { return emission[0] > 0 || emission[1] > 0 || emission[2] > 0; }
 };
 
-// A patch is a planar triangle or quad over shared vertices (corner 3 is kNoVertex for
-// triangles); area, centroid and unit normal are stored so no consumer recomputes them.
+// Corner 3 of a polygon patch: its corners are listed in MeshData::polygon_corners.
+inline constexpr std::uint32_t kPolygon = kNoVertex - 1;
+
+// A patch is a planar triangle, convex quad or polygon over shared vertices; area, centroid
+// and unit normal are stored so no consumer recomputes them. A triangle's corner 3 is
+// kNoVertex. A polygon (of 4 or more corners: what the mesher makes of a speck and the
+// neighbour it joins) is simple and star-shaped from its corner 0, so the fan of triangles
+// {0, k, k + 1} covers it, each wound as the patch or flat; it holds {first, count,
+// kNoVertex, kPolygon}, its corners being MeshData::polygon_corners[first, first + count):
+// read them with MeshData::corners.
 struct Patch {
     std::array<std::uint32_t, 4> corners{kNoVertex, kNoVertex, kNoVertex, kNoVertex};
     std::uint32_t group = 0;
@@ -48,7 +56,10 @@ struct Patch {
     double area = 0;
     Vec3 centroid{};
     Vec3 normal{};
-    int corner_count() const { return corners[3] == kNoVertex ? 3 : 4; }
+    bool is_polygon() const { return corners[3] == kPolygon; }
+    int corner_count() const {
+        return is_polygon() ? static_cast<int>(corners[1]) : corners[3] == kNoVertex ? 3 : 4;
+    }
 };
 
 struct MeshData {
@@ -56,6 +67,26 @@ struct MeshData {
     std::vector<Patch> patches;
     std::vector<std::string> groups;
     std::vector<Material> materials;
+    std::vector<std::uint32_t> polygon_corners; // the corners of the polygon patches
+
+    // A patch's corners in order (counter-clockwise seen from its normal's side).
+    std::span<const std::uint32_t> corners(const Patch& patch) const {
+        if (patch.is_polygon())
+            return {polygon_corners.data() + patch.corners[0], patch.corners[1]};
+        return {patch.corners.data(), static_cast<std::size_t>(patch.corner_count())};
+    }
+    std::span<const std::uint32_t> corners(std::size_t patch) const {
+        return corners(patches[patch]);
+    }
+    std::span<std::uint32_t> corners(Patch& patch) {
+        if (patch.is_polygon())
+            return {polygon_corners.data() + patch.corners[0], patch.corners[1]};
+        return {patch.corners.data(), static_cast<std::size_t>(patch.corner_count())};
+    }
+    // Makes `patch` a polygon of `corners` (appended to polygon_corners), or a triangle or
+    // quad when there are 3 or 4 of them and `as_polygon` is false.
+    void set_corners(Patch& patch, std::span<const std::uint32_t> corners, bool as_polygon);
+    std::size_t polygon_count() const;
 
     double total_area() const;
     // Hash of the geometry alone (vertices and patch corners): form factors depend only on

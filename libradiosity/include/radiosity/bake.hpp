@@ -2,6 +2,7 @@
 // atlas (charts of the mesh's surfaces packed into one texture).
 #pragma once
 #include "radfmt/kinds.hpp"
+#include "radiosity/smoothing.hpp"
 #include "radiosity/vec.hpp"
 
 #include <array>
@@ -19,7 +20,7 @@ struct Chart {
     std::vector<std::uint32_t> patches;
     // Per patch (in `patches` order) and corner: position in the chart's plane, metres,
     // relative to the chart's lower corner (so every coordinate is >= 0).
-    std::vector<std::array<std::array<double, 2>, 4>> corner_uv;
+    std::vector<std::vector<std::array<double, 2>>> corner_uv;
     double width = 0, height = 0; // extent in metres
 };
 // Every patch lands in exactly one chart; charts come in order of their first patch.
@@ -52,27 +53,26 @@ struct Lightmap {
 // rectangle's other texels with the value of their nearest chart texel (8-connected distance),
 // so bilinear filtering near a chart's edge never reads another chart or black.
 Lightmap render_lightmap(const radfmt::MeshData& mesh, const std::vector<Chart>& charts,
-                         const AtlasLayout& layout,
-                         const std::vector<std::array<Rgb, 4>>& corner_colours);
+                         const AtlasLayout& layout, const CornerColours& corner_colours);
 
 // Texture coordinate (glTF: 0..1, v down) of each patch corner in the atlas.
-std::vector<std::array<std::array<float, 2>, 4>>
+std::vector<std::vector<std::array<float, 2>>>
 atlas_uv(const radfmt::MeshData& mesh, const std::vector<Chart>& charts, const AtlasLayout& layout);
 
 // Each patch corner's position in its chart, metres (TEXCOORD_0: for tiling textures at a
 // known scale; glTF wants a TEXCOORD_0 where there is a TEXCOORD_1).
-std::vector<std::array<std::array<float, 2>, 4>> chart_uv(const radfmt::MeshData& mesh,
-                                                          const std::vector<Chart>& charts);
+std::vector<std::vector<std::array<float, 2>>> chart_uv(const radfmt::MeshData& mesh,
+                                                        const std::vector<Chart>& charts);
 
 // What goes into a glb. Colours are display values (radiosity times exposure, linear), clamped
 // to [0, 1] when written.
 struct BakeScene {
     const radfmt::MeshData* mesh = nullptr;
     // Vertex colours (COLOR_0) per patch corner; empty with a lightmap.
-    std::vector<std::array<Rgb, 4>> corner_colours;
+    CornerColours corner_colours;
     // With a lightmap: TEXCOORD_0 (chart metres) and TEXCOORD_1 (atlas) per patch corner and
     // the atlas as PNG bytes (sRGB).
-    std::vector<std::array<std::array<float, 2>, 4>> surface_uv, lightmap_uv;
+    std::vector<std::vector<std::array<float, 2>>> surface_uv, lightmap_uv;
     std::vector<std::uint8_t> lightmap_png;
     // Further lightmaps (one per light group), as PNG bytes, named; the glb lists them in
     // asset.extras.radiosity.light_groups with their image indices.

@@ -16,11 +16,16 @@
 
 namespace rad {
 
-// One patch as a polygon of 3 or 4 corners.
+// One patch as its corners: a triangle's or quad's in `corners`, a polygon's (star-shaped
+// from its corner 0, see radfmt::Patch) in the context's `polygon_points` from `more`.
 struct PatchPolygon {
     std::array<Vec3, 4> corners;
     int count;
-    std::span<const Vec3> points() const { return {corners.data(), static_cast<size_t>(count)}; }
+    const Vec3* more = nullptr;
+    std::span<const Vec3> points() const {
+        return {more ? more : corners.data(), static_cast<size_t>(count)};
+    }
+    bool is_polygon() const { return more != nullptr; }
 };
 
 // What every method may use, built once per mesh.
@@ -28,6 +33,7 @@ struct FormFactorContext {
     const radfmt::MeshData& mesh;
     const RayScene& scene;
     std::vector<PatchPolygon> polygons; // per patch
+    std::vector<Vec3> polygon_points;   // the corners of the polygon patches
     std::vector<double> diameter;       // per patch: its longest corner-to-corner distance
     double epsilon;                     // the ray scene's offset, relative to the scene size
     // Per patch, the key of its random streams: a hash of its corners, so a patch gets the

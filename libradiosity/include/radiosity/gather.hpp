@@ -78,18 +78,18 @@ class Gatherer {
     // (`surface`, its geometric normal) go into it, and count as nothing.
     Irradiance gather(const Vec3& point, const Vec3& normal, const Vec3& surface,
                       std::uint64_t index) const;
-    // The normal at (u, v) of a patch interpolated from its corners (smoothed over
+    // The normal where a ray hit a patch, interpolated from its corners (smoothed over
     // neighbours of its material within the crease angle; the patch's own when flat).
-    Vec3 shading_normal(std::size_t patch, double u, double v) const;
+    Vec3 shading_normal(const RayScene::Hit& hit) const;
 
     const radfmt::MeshData& mesh() const { return mesh_; }
     const RayScene& scene() const { return *scene_; }
     // Patches sampled as lights because they reflect so much (see bright_factor).
     std::size_t bright_patches() const;
-    // The radiosity of patch `patch` at its parameters (u, v), interpolated as rad-shade.
-    Rgb radiosity_at(std::size_t patch, double u, double v) const;
+    // The radiosity where a ray hit a patch, interpolated as rad-shade.
+    Rgb radiosity_at(const RayScene::Hit& hit) const;
     // The reflected part B - E, interpolated the same way.
-    Rgb reflected_at(std::size_t patch, double u, double v) const;
+    Rgb reflected_at(const RayScene::Hit& hit) const;
 
   private:
     struct Seen;
@@ -112,13 +112,13 @@ class Gatherer {
     const radfmt::MeshData& mesh_;
     GatherOptions options_;
     std::unique_ptr<RayScene> scene_;
-    std::vector<Rgb> emission_;                         // E per patch
-    std::vector<std::array<Rgb, 4>> total_corners_;     // B at the corners
-    std::vector<std::array<Rgb, 4>> reflected_corners_; // B - E at the corners
-    std::vector<Rgb> reflected_flat_;                   // B - E per patch
-    std::vector<std::uint8_t> bright_;                  // lit so much it is a light
-    std::unique_ptr<gather::LightTree> lights_;         // emitters and bright patches
-    std::vector<std::array<Rgb, 4>> corner_normals_;    // smoothed normals at the corners
+    std::vector<Rgb> emission_;                 // E per patch
+    CornerColours total_corners_;               // B at the corners
+    CornerColours reflected_corners_;           // B - E at the corners
+    std::vector<Rgb> reflected_flat_;           // B - E per patch
+    std::vector<std::uint8_t> bright_;          // lit so much it is a light
+    std::unique_ptr<gather::LightTree> lights_; // emitters and bright patches
+    CornerColours corner_normals_;              // smoothed normals at the corners
 };
 
 // Luminous efficacy of Radiance's white (lm/W) and its RGB luminance weights: illuminance

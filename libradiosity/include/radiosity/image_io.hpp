@@ -35,8 +35,8 @@ void write_png_rgb8(const std::string& path, int width, int height,
 // The same PNG as bytes in memory (for a glb's embedded images).
 std::vector<std::uint8_t> encode_png_rgb8(int width, int height,
                                           const std::vector<std::uint8_t>& pixels);
-void write_ply(const std::string& path, const radfmt::MeshData& mesh,
-               const std::vector<std::array<Rgb, 4>>& corners, double exposure);
+void write_ply(const std::string& path, const radfmt::MeshData& mesh, const CornerColours& corners,
+               double exposure);
 std::uint8_t to_srgb8(double linear);
 
 } // namespace rad

@@ -1,6 +1,7 @@
 // A z-buffer rasteriser of the patch mesh with per-corner colours.
 #pragma once
 #include "radfmt/kinds.hpp"
+#include "radiosity/smoothing.hpp"
 #include "radiosity/vec.hpp"
 #include "radiosity/view.hpp"
 
@@ -28,8 +29,8 @@ struct Image {
 // writers' copies (EXR, PNG).
 std::uint64_t estimate_render_memory(int width, int height, int supersampling, int images);
 
-Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners,
-             const View& view, int width, int height, int supersampling);
+Image render(const radfmt::MeshData& mesh, const CornerColours& corners, const View& view,
+             int width, int height, int supersampling);
 
 // Paints the pixels that mostly show back faces in `colour` (rad-shade --backfaces mark).
 void mark_back_faces(Image& image, const Rgb& colour);

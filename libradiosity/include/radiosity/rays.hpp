@@ -49,11 +49,13 @@ class RayScene {
     std::int64_t first_hit(const Vec3& origin, const Vec3& direction, bool& front) const;
     // The same, with where the ray met the patch: its parameters (u along corner 1 - corner
     // 0, v along corner 3 - corner 0 for a quad, bilinear; barycentric weights of corners 1
-    // and 2 for a triangle) and the distance.
+    // and 2 for a triangle; for a polygon, those of the second and third corner of its
+    // triangle `piece`, patch_triangles' numbering) and the distance.
     struct Hit {
         std::int64_t patch = -1; // -1: the ray escaped
         bool front = false;
         double u = 0, v = 0, distance = 0;
+        std::int32_t piece = -1; // polygons only
     };
     Hit trace(const Vec3& origin, const Vec3& direction) const;
     double epsilon() const { return epsilon_; }

@@ -38,9 +38,11 @@ BakeResult bake(const radfmt::MeshData& mesh, const std::vector<Rgb>& radiosity,
     result.scene.mesh = &mesh;
     auto corners = corner_colours(mesh, radiosity, options.smoothing, options.crease_deg);
     if (options.lightmap_size == 0) {
-        for (auto& patch : corners)
+        for (auto& patch : corners.patches)
             for (auto& c : patch)
                 for (auto& channel : c) channel *= options.exposure;
+        for (auto& c : corners.polygon_corners)
+            for (auto& channel : c) channel *= options.exposure;
         result.scene.corner_colours = std::move(corners);
         return result;
     }

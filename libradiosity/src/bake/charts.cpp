@@ -22,10 +22,10 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
 EdgeMap patches_by_edge(const radfmt::MeshData& mesh) {
     EdgeMap edges;
     for (std::uint32_t i = 0; i < mesh.patches.size(); ++i) {
-        const auto& p = mesh.patches[i];
-        const int n = p.corner_count();
-        for (int k = 0; k < n; ++k)
-            edges[edge_key(p.corners[k], p.corners[(k + 1) % n])].push_back(i);
+        const auto corners = mesh.corners(i);
+        const auto n = corners.size();
+        for (std::size_t k = 0; k < n; ++k)
+            edges[edge_key(corners[k], corners[(k + 1) % n])].push_back(i);
     }
     return edges;
 }
@@ -39,10 +39,10 @@ std::vector<std::uint32_t> grow_chart(const radfmt::MeshData& mesh, const EdgeMa
     std::vector<std::uint32_t> chart{seed};
     taken[seed] = true;
     for (std::size_t next = 0; next < chart.size(); ++next) {
-        const auto& p = mesh.patches[chart[next]];
-        const int n = p.corner_count();
-        for (int k = 0; k < n; ++k) {
-            for (const auto j : edges.at(edge_key(p.corners[k], p.corners[(k + 1) % n]))) {
+        const auto corners = mesh.corners(chart[next]);
+        const auto n = corners.size();
+        for (std::size_t k = 0; k < n; ++k) {
+            for (const auto j : edges.at(edge_key(corners[k], corners[(k + 1) % n]))) {
                 const auto& q = mesh.patches[j];
                 if (taken[j] || q.material != first.material || q.group != first.group ||
                     dot(q.normal, first.normal) < min_cos)
@@ -58,8 +58,9 @@ std::vector<std::uint32_t> grow_chart(const radfmt::MeshData& mesh, const EdgeMa
 // Lays the chart's corners into the seed patch's plane, axes along its first edge.
 Chart flatten_chart(const radfmt::MeshData& mesh, std::vector<std::uint32_t> patches) {
     const auto& seed = mesh.patches[patches.front()];
-    const Vec3 origin = mesh.vertices[seed.corners[0]];
-    const Vec3 edge = mesh.vertices[seed.corners[1]] - origin;
+    const auto seed_corners = mesh.corners(patches.front());
+    const Vec3 origin = mesh.vertices[seed_corners[0]];
+    const Vec3 edge = mesh.vertices[seed_corners[1]] - origin;
     const Vec3 u = normalized(edge - seed.normal * dot(edge, seed.normal));
     const Vec3 v = cross(seed.normal, u);
     Chart chart;
@@ -67,18 +68,17 @@ Chart flatten_chart(const radfmt::MeshData& mesh, std::vector<std::uint32_t> pat
     double lo[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
     double hi[2] = {std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
     for (std::size_t i = 0; i < patches.size(); ++i) {
-        const auto& p = mesh.patches[patches[i]];
-        for (int k = 0; k < p.corner_count(); ++k) {
-            const Vec3 d = mesh.vertices[p.corners[k]] - origin;
+        for (const auto corner : mesh.corners(patches[i])) {
+            const Vec3 d = mesh.vertices[corner] - origin;
             const std::array<double, 2> uv{dot(d, u), dot(d, v)};
-            chart.corner_uv[i][k] = uv;
+            chart.corner_uv[i].push_back(uv);
             for (int a = 0; a < 2; ++a)
                 lo[a] = std::min(lo[a], uv[a]), hi[a] = std::max(hi[a], uv[a]);
         }
     }
-    for (std::size_t i = 0; i < patches.size(); ++i)
-        for (int k = 0; k < mesh.patches[patches[i]].corner_count(); ++k)
-            for (int a = 0; a < 2; ++a) chart.corner_uv[i][k][a] -= lo[a];
+    for (auto& patch : chart.corner_uv)
+        for (auto& uv : patch)
+            for (int a = 0; a < 2; ++a) uv[a] -= lo[a];
     chart.width = hi[0] - lo[0];
     chart.height = hi[1] - lo[1];
     chart.patches = std::move(patches);

@@ -93,11 +93,11 @@ struct Corner {
     float value[4];
 };
 
-// Appends a patch (as one or two triangles, split from corner 0 as rad-shade draws it).
+// Appends a patch as the fan of triangles from its corner 0 (as rad-shade draws it).
 void add_patch(PrimitiveData& prim, const radfmt::MeshData& mesh, const radfmt::Patch& patch,
-               const std::array<Corner, 4>& corners, int width) {
-    std::array<std::uint32_t, 4> ids{};
-    for (int k = 0; k < patch.corner_count(); ++k) {
+               const std::vector<Corner>& corners, int width) {
+    std::vector<std::uint32_t> ids(corners.size());
+    for (std::size_t k = 0; k < corners.size(); ++k) {
         std::array<std::uint32_t, 8> key{};
         const float f[7] = {float(patch.normal[0]), float(patch.normal[1]), float(patch.normal[2]),
                             corners[k].value[0],    corners[k].value[1],    corners[k].value[2],
@@ -113,9 +113,8 @@ void add_patch(PrimitiveData& prim, const radfmt::MeshData& mesh, const radfmt::
         for (int a = 0; a < 3; ++a) prim.normal.push_back(float(patch.normal[a]));
         for (int a = 0; a < width; ++a) prim.value.push_back(corners[k].value[a]);
     }
-    prim.indices.insert(prim.indices.end(), {ids[0], ids[1], ids[2]});
-    if (patch.corner_count() == 4)
-        prim.indices.insert(prim.indices.end(), {ids[0], ids[2], ids[3]});
+    for (std::size_t k = 1; k + 1 < ids.size(); ++k)
+        prim.indices.insert(prim.indices.end(), {ids[0], ids[k], ids[k + 1]});
 }
 
 // The scene's own material for an engine: base colour = reflectance, emission as emissive
@@ -157,12 +156,13 @@ std::map<std::pair<std::uint32_t, bool>, PrimitiveData> collect_primitives(const
     std::map<std::pair<std::uint32_t, bool>, PrimitiveData> primitives;
     for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
         const auto& patch = mesh.patches[i];
-        std::array<Corner, 4> corners{};
-        for (int k = 0; k < patch.corner_count(); ++k) {
-            corners[k].mesh_vertex = patch.corners[k];
+        const auto ids = mesh.corners(i);
+        std::vector<Corner> corners(ids.size());
+        for (std::size_t k = 0; k < ids.size(); ++k) {
+            corners[k].mesh_vertex = ids[k];
             for (int a = 0; a < width; ++a)
                 corners[k].value[a] =
-                    !lightmap ? float(std::clamp(scene.corner_colours[i][k][a], 0.0, 1.0))
+                    !lightmap ? float(std::clamp(scene.corner_colours.at(mesh, i, k)[a], 0.0, 1.0))
                     : a < 2   ? scene.lightmap_uv[i][k][a]
                               : scene.surface_uv[i][k][a - 2];
         }

@@ -15,7 +15,7 @@ struct TexelPoint {
     Rgb colour;
 };
 
-TexelPoint corner_texel(const Chart& chart, std::size_t i, int k, const AtlasLayout& layout,
+TexelPoint corner_texel(const Chart& chart, std::size_t i, std::size_t k, const AtlasLayout& layout,
                         std::size_t chart_index, const Rgb& colour) {
     const auto& o = layout.origin[chart_index];
     return {o[0] + layout.padding + chart.corner_uv[i][k][0] * layout.texels_per_metre,
@@ -90,8 +90,7 @@ void fill_rectangle(Lightmap& map, const std::array<int, 2>& origin,
 } // namespace
 
 Lightmap render_lightmap(const radfmt::MeshData& mesh, const std::vector<Chart>& charts,
-                         const AtlasLayout& layout,
-                         const std::vector<std::array<Rgb, 4>>& corner_colours) {
+                         const AtlasLayout& layout, const CornerColours& corner_colours) {
     Lightmap map;
     map.size = layout.size;
     map.rgb.assign(std::size_t(map.size) * map.size * 3, 0.0f);
@@ -100,17 +99,18 @@ Lightmap render_lightmap(const radfmt::MeshData& mesh, const std::vector<Chart>&
         const Chart& chart = charts[c];
         for (std::size_t i = 0; i < chart.patches.size(); ++i) {
             const auto patch = chart.patches[i];
-            const int n = mesh.patches[patch].corner_count();
-            std::array<TexelPoint, 4> t;
-            for (int k = 0; k < n; ++k)
-                t[k] = corner_texel(chart, i, k, layout, c, corner_colours[patch][k]);
-            // As rad-shade draws a quad: two triangles from corner 0.
-            int covered = rasterise_triangle(map, t[0], t[1], t[2]);
-            if (n == 4) covered += rasterise_triangle(map, t[0], t[2], t[3]);
+            const auto n = mesh.corners(patch).size();
+            std::vector<TexelPoint> t(n);
+            for (std::size_t k = 0; k < n; ++k)
+                t[k] = corner_texel(chart, i, k, layout, c, corner_colours.at(mesh, patch, k));
+            // As rad-shade draws a quad or polygon: its fan of triangles from corner 0.
+            int covered = 0;
+            for (std::size_t k = 1; k + 1 < n; ++k)
+                covered += rasterise_triangle(map, t[0], t[k], t[k + 1]);
             if (covered > 0) continue;
             // A patch thinner than a texel: its centre's texel carries it.
             TexelPoint mid{0, 0, {}};
-            for (int k = 0; k < n; ++k) {
+            for (std::size_t k = 0; k < n; ++k) {
                 mid.x += t[k].x / n;
                 mid.y += t[k].y / n;
                 for (int ch = 0; ch < 3; ++ch) mid.colour[ch] += t[k].colour[ch] / n;
@@ -126,15 +126,16 @@ Lightmap render_lightmap(const radfmt::MeshData& mesh, const std::vector<Chart>&
     return map;
 }
 
-std::vector<std::array<std::array<float, 2>, 4>> atlas_uv(const radfmt::MeshData& mesh,
-                                                          const std::vector<Chart>& charts,
-                                                          const AtlasLayout& layout) {
-    std::vector<std::array<std::array<float, 2>, 4>> uv(mesh.patches.size());
+std::vector<std::vector<std::array<float, 2>>> atlas_uv(const radfmt::MeshData& mesh,
+                                                        const std::vector<Chart>& charts,
+                                                        const AtlasLayout& layout) {
+    std::vector<std::vector<std::array<float, 2>>> uv(mesh.patches.size());
     for (std::size_t c = 0; c < charts.size(); ++c) {
         const Chart& chart = charts[c];
         for (std::size_t i = 0; i < chart.patches.size(); ++i) {
             const auto patch = chart.patches[i];
-            for (int k = 0; k < mesh.patches[patch].corner_count(); ++k) {
+            uv[patch].resize(mesh.corners(patch).size());
+            for (std::size_t k = 0; k < uv[patch].size(); ++k) {
                 const auto t = corner_texel(chart, i, k, layout, c, Rgb{});
                 uv[patch][k] = {static_cast<float>(t.x / layout.size),
                                 static_cast<float>(t.y / layout.size)};
@@ -144,14 +145,13 @@ std::vector<std::array<std::array<float, 2>, 4>> atlas_uv(const radfmt::MeshData
     return uv;
 }
 
-std::vector<std::array<std::array<float, 2>, 4>> chart_uv(const radfmt::MeshData& mesh,
-                                                          const std::vector<Chart>& charts) {
-    std::vector<std::array<std::array<float, 2>, 4>> uv(mesh.patches.size());
+std::vector<std::vector<std::array<float, 2>>> chart_uv(const radfmt::MeshData& mesh,
+                                                        const std::vector<Chart>& charts) {
+    std::vector<std::vector<std::array<float, 2>>> uv(mesh.patches.size());
     for (const Chart& chart : charts)
         for (std::size_t i = 0; i < chart.patches.size(); ++i)
-            for (int k = 0; k < mesh.patches[chart.patches[i]].corner_count(); ++k)
-                uv[chart.patches[i]][k] = {static_cast<float>(chart.corner_uv[i][k][0]),
-                                           static_cast<float>(chart.corner_uv[i][k][1])};
+            for (const auto& [u, v] : chart.corner_uv[i])
+                uv[chart.patches[i]].push_back({static_cast<float>(u), static_cast<float>(v)});
     return uv;
 }
 

@@ -6,16 +6,17 @@
 
 namespace rad::ff {
 
-double analytic_pair_form_factor(const FormFactorContext& context, std::size_t i, std::size_t j,
-                                 std::span<const Sample> samples,
-                                 std::span<const Sample> samples_close, int visibility_rays,
-                                 Rng& rng, std::uint64_t& rays) {
-    if (!context.in_front(i, j) || !context.in_front(j, i)) return 0;
+namespace {
+// The rule for `part` of patch j, convex (j itself, or a triangle of a polygon's fan).
+double convex_part_form_factor(const FormFactorContext& context, std::size_t i, std::size_t j,
+                               std::span<const Vec3> part, std::span<const Sample> samples,
+                               std::span<const Sample> samples_close, int visibility_rays, Rng& rng,
+                               std::uint64_t& rays) {
     const auto& pi = context.mesh.patches[i];
     const auto& pj = context.mesh.patches[j];
     // Patch i is planar: clipping j to i's front half-space is the same for every sample
     // point of i, so it is done once per pair.
-    const auto clipped = clip_to_front(context.polygons[j].points(), pi.centroid, pi.normal);
+    const auto clipped = clip_to_front(part, pi.centroid, pi.normal);
     if (clipped.size() < 3) return 0;
     const auto cdf = fan_cdf(clipped);
     const int vis = visibility_rays;
@@ -46,6 +47,25 @@ double analytic_pair_form_factor(const FormFactorContext& context, std::size_t i
             f += s.weight * (total > 0 ? seen / total : 0.0) *
                  point_to_polygon_form_factor(s.point, pi.normal, clipped);
     }
+    return f;
+}
+} // namespace
+
+double analytic_pair_form_factor(const FormFactorContext& context, std::size_t i, std::size_t j,
+                                 std::span<const Sample> samples,
+                                 std::span<const Sample> samples_close, int visibility_rays,
+                                 Rng& rng, std::uint64_t& rays) {
+    if (!context.in_front(i, j) || !context.in_front(j, i)) return 0;
+    const auto& gj = context.polygons[j];
+    if (!gj.is_polygon())
+        return convex_part_form_factor(context, i, j, gj.points(), samples, samples_close,
+                                       visibility_rays, rng, rays);
+    // A polygon need not be convex, and clipped it need not be star-shaped: its fan's
+    // triangles are summed, each clipped and sampled for visibility on its own.
+    double f = 0;
+    for (const auto& triangle : fan_triangles(gj))
+        f += convex_part_form_factor(context, i, j, triangle.points(), samples, samples_close,
+                                     visibility_rays, rng, rays);
     return f;
 }
 

@@ -31,28 +31,38 @@ FormFactorContext::FormFactorContext(const radfmt::MeshData& mesh_, const RaySce
     for (int c = 0; c < 3; ++c) size = std::max(size, box.hi[c] - box.lo[c]);
     const double steps = size > 0 ? 0x1.0p20 / size : 1.0;
     stream_key.resize(n);
+    polygon_points.reserve(mesh.polygon_corners.size());
+    for (const auto v : mesh.polygon_corners) polygon_points.push_back(mesh.vertices[v]);
     for (std::size_t i = 0; i < n; ++i) {
         const auto& p = mesh.patches[i];
         PatchPolygon g{};
         g.count = p.corner_count();
-        for (int k = 0; k < g.count; ++k) g.corners[k] = mesh.vertices[p.corners[k]];
+        if (p.is_polygon())
+            g.more = polygon_points.data() + p.corners[0];
+        else
+            for (int k = 0; k < g.count; ++k) g.corners[k] = mesh.vertices[p.corners[k]];
+        const auto points = g.points();
         for (int a = 0; a < g.count; ++a)
             for (int b = a + 1; b < g.count; ++b)
-                diameter[i] = std::max(diameter[i], length(g.corners[a] - g.corners[b]));
-        std::uint64_t cells[12] = {};
+                diameter[i] = std::max(diameter[i], length(points[a] - points[b]));
+        // 12 cells for a triangle or quad (zeros after its corners), 3 a corner for a polygon.
+        std::array<std::uint64_t, 12> few{};
+        std::vector<std::uint64_t> many(p.is_polygon() ? 3 * g.count : 0);
+        std::uint64_t* cells = p.is_polygon() ? many.data() : few.data();
         for (int k = 0; k < g.count; ++k)
             for (int c = 0; c < 3; ++c)
                 cells[3 * k + c] =
-                    static_cast<std::uint64_t>(std::llround((g.corners[k][c] - box.lo[c]) * steps));
-        stream_key[i] = radfmt::hash_bytes(cells, sizeof cells);
+                    static_cast<std::uint64_t>(std::llround((points[k][c] - box.lo[c]) * steps));
+        stream_key[i] = radfmt::hash_bytes(cells, (p.is_polygon() ? many.size() : few.size()) *
+                                                      sizeof(std::uint64_t));
         polygons.push_back(g);
     }
 }
 
 bool FormFactorContext::in_front(std::size_t i, std::size_t j) const {
     const auto& pi = mesh.patches[i];
-    for (int k = 0; k < polygons[j].count; ++k)
-        if (dot(polygons[j].corners[k] - pi.centroid, pi.normal) > epsilon) return true;
+    for (const auto& corner : polygons[j].points())
+        if (dot(corner - pi.centroid, pi.normal) > epsilon) return true;
     return false;
 }
 

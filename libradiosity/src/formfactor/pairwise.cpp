@@ -96,8 +96,7 @@ class PairwiseKernel final : public RowKernel {
         // patches come before j.
         const std::uint64_t row_seed = row_rng.next();
         const std::size_t n = mesh.patches.size();
-        CellGrid grid;             // j's m x m cells
-        std::vector<Vec3> clipped; // a cell's part in front of i's sample
+        CellGrid grid; // j's m x m cells
         for (std::size_t j = 0; j < n; ++j) {
             if (j == i || !context_.in_front(i, j) || !context_.in_front(j, i)) continue;
             const auto& pj = mesh.patches[j];
@@ -110,34 +109,50 @@ class PairwiseKernel final : public RowKernel {
             const bool far = length(pj.centroid - pi.centroid) >
                              4 * std::max(context_.diameter[i], context_.diameter[j]);
             const int m = far ? m_far_ : m_near_;
-            grid.set_patch(gj, m);
+            const auto& sample_points = far ? samples_far : samples;
             double f = 0;
-            for (const auto& s : far ? samples_far : samples) {
-                grid.set_sample(s.point, pi.normal);
-                for (int a = 0; a < m; ++a)
-                    for (int b = 0; b < m; ++b) {
-                        const bool whole = grid.in_front(a, b);
-                        if (!whole) {
-                            clip_to_front(grid.cell(a, b), s.point, pi.normal, clipped);
-                            if (clipped.size() < 3) continue;
-                        }
-                        double jac = 0;
-                        const Vec3 target =
-                            patch_point(gj, (a + rng.uniform()) / m, (b + rng.uniform()) / m, jac);
-                        if (dot(target - s.point, pi.normal) <= 0) continue;
-                        ++rays;
-                        if (!context_.scene.visible(s.point, target)) continue;
-                        f += s.weight *
-                             (whole ? grid.form_factor(a, b)
-                                    : point_to_polygon_form_factor(s.point, pi.normal, clipped));
-                    }
-            }
+            // A polygon is the sum of its fan's triangles, each with its own grid of cells.
+            if (gj.is_polygon())
+                for (const auto& triangle : fan_triangles(gj))
+                    f += cells_form_factor(triangle, m, sample_points, pi, grid, rng, rays);
+            else
+                f = cells_form_factor(gj, m, sample_points, pi, grid, rng, rays);
             if (f > 0) row.emplace_back(static_cast<std::uint32_t>(j), static_cast<float>(f));
         }
         return rays;
     }
 
   private:
+    // The form factor from i's `samples` to patch (or part) g's m x m cells, one ray each.
+    double cells_form_factor(const PatchPolygon& g, int m, std::span<const Sample> samples,
+                             const radfmt::Patch& pi, CellGrid& grid, Rng& rng,
+                             std::uint64_t& rays) const {
+        std::vector<Vec3> clipped; // a cell's part in front of i's sample
+        grid.set_patch(g, m);
+        double f = 0;
+        for (const auto& s : samples) {
+            grid.set_sample(s.point, pi.normal);
+            for (int a = 0; a < m; ++a)
+                for (int b = 0; b < m; ++b) {
+                    const bool whole = grid.in_front(a, b);
+                    if (!whole) {
+                        clip_to_front(grid.cell(a, b), s.point, pi.normal, clipped);
+                        if (clipped.size() < 3) continue;
+                    }
+                    double jac = 0;
+                    const Vec3 target =
+                        patch_point(g, (a + rng.uniform()) / m, (b + rng.uniform()) / m, jac);
+                    if (dot(target - s.point, pi.normal) <= 0) continue;
+                    ++rays;
+                    if (!context_.scene.visible(s.point, target)) continue;
+                    f += s.weight *
+                         (whole ? grid.form_factor(a, b)
+                                : point_to_polygon_form_factor(s.point, pi.normal, clipped));
+                }
+        }
+        return f;
+    }
+
     const FormFactorContext& context_;
     int m_near_ = 1, m_far_ = 1;
     std::vector<double> nodes_, weights_, far_nodes_, far_weights_;

@@ -27,6 +27,14 @@ void gauss_legendre(int m, std::vector<double>& nodes, std::vector<double>& weig
     }
 }
 
+std::vector<PatchPolygon> fan_triangles(const PatchPolygon& g) {
+    const auto points = g.points();
+    std::vector<PatchPolygon> out;
+    for (std::size_t k = 1; k + 1 < points.size(); ++k)
+        out.push_back({{points[0], points[k], points[k + 1], Vec3{}}, 3});
+    return out;
+}
+
 Vec3 patch_point(const PatchPolygon& g, double s, double t, double& jacobian) {
     const auto& c = g.corners;
     if (g.count == 4) {
@@ -45,6 +53,12 @@ Vec3 patch_point(const PatchPolygon& g, double s, double t, double& jacobian) {
 std::vector<Sample> gauss_samples(const PatchPolygon& g, double area,
                                   const std::vector<double>& nodes,
                                   const std::vector<double>& weights) {
+    if (g.is_polygon()) {
+        std::vector<Sample> out;
+        for (const auto& triangle : fan_triangles(g))
+            for (const auto& s : gauss_samples(triangle, area, nodes, weights)) out.push_back(s);
+        return out;
+    }
     std::vector<Sample> out;
     for (std::size_t a = 0; a < nodes.size(); ++a)
         for (std::size_t b = 0; b < nodes.size(); ++b) {

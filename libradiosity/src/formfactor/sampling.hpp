@@ -23,10 +23,15 @@ struct Sample {
 };
 
 // A point of the patch for (s,t) in [0,1]^2 and the area the unit square maps to there:
-// bilinear for quads, the collapsed (Duffy) square for triangles.
+// bilinear for quads, the collapsed (Duffy) square for triangles. Not for polygons: take
+// their fan_triangles.
 Vec3 patch_point(const PatchPolygon& g, double s, double t, double& jacobian);
 
-// Quadrature points (Gauss-Legendre product rule) for smooth integrands.
+// A polygon's fan from its corner 0 as triangles (a triangle or quad: the same split).
+std::vector<PatchPolygon> fan_triangles(const PatchPolygon& g);
+
+// Quadrature points (Gauss-Legendre product rule) for smooth integrands; on a polygon, the
+// rule on each triangle of its fan (weights still summing to 1).
 std::vector<Sample> gauss_samples(const PatchPolygon& g, double area,
                                   const std::vector<double>& nodes,
                                   const std::vector<double>& weights);

@@ -4,6 +4,7 @@
 #include "gather/light_tree.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
+#include "radiosity/patch_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -64,13 +65,15 @@ double Gatherer::form_factor_to(const Vec3& point, const Vec3& normal, std::size
     // over the patch had its form factor as 1, or 0.5 on an edge.
     if (dot(normal, p.normal) > 0.999) {
         double off = 0;
-        for (int k = 0; k < p.corner_count(); ++k)
-            off = std::max(off, std::abs(dot(mesh_.vertices[p.corners[k]] - point, normal)));
+        for (const auto v : mesh_.corners(p))
+            off = std::max(off, std::abs(dot(mesh_.vertices[v] - point, normal)));
         if (off <= 1e-6 * std::sqrt(p.area)) return 0;
     }
-    Vec3 corners[4];
-    for (int k = 0; k < p.corner_count(); ++k) corners[k] = mesh_.vertices[p.corners[k]];
-    ff::clip_to_front(std::span<const Vec3>(corners, p.corner_count()), point, normal, clipped);
+    // Clipping a polygon that is not convex may leave pairs of opposite edges along the
+    // plane: they cancel in the contour integral.
+    std::array<Vec3, 4> few;
+    std::vector<Vec3> many;
+    ff::clip_to_front(patch_points(mesh_, patch, few, many), point, normal, clipped);
     if (clipped.size() < 3) return 0;
     const double f = point_to_polygon_form_factor(point, normal, clipped);
     return f > 0 ? f : 0;
@@ -82,12 +85,16 @@ double Gatherer::visible_fraction(const Vec3& point, const Vec3& normal, std::si
                                   const std::vector<Vec3>& clipped, int rays, Rng& rng) const {
     if (rays <= 0) return 1;
     const auto& p = mesh_.patches[patch];
-    const auto cdf = ff::fan_cdf(clipped);
+    // A polygon clipped need not be star-shaped, so its fan could reach outside it: the
+    // points are drawn on the whole polygon, where those behind the point weigh nothing.
+    const auto whole = p.is_polygon() ? patch_points(mesh_, patch) : std::vector<Vec3>();
+    const std::span<const Vec3> region = p.is_polygon() ? std::span<const Vec3>(whole) : clipped;
+    const auto cdf = ff::fan_cdf(region);
     const double offset = rng.uniform();
     KernelTally tally;
     for (int s = 0; s < rays; ++s) {
         const Vec3 q =
-            ff::uniform_point(clipped, cdf, stratum(s, rays, offset), rng.uniform(), rng.uniform());
+            ff::uniform_point(region, cdf, stratum(s, rays, offset), rng.uniform(), rng.uniform());
         tally.add(point, normal, q, p.normal,
                   [&](const Vec3& at) { return scene_->visible(point, at); });
     }
@@ -96,10 +103,9 @@ double Gatherer::visible_fraction(const Vec3& point, const Vec3& normal, std::si
 
 // An area-uniform point of the whole patch, `u` (in [0, 1)) choosing where along its fan.
 Vec3 Gatherer::point_on_light(std::size_t patch, double u, Rng& rng) const {
-    const auto& p = mesh_.patches[patch];
-    Vec3 corners[4];
-    for (int k = 0; k < p.corner_count(); ++k) corners[k] = mesh_.vertices[p.corners[k]];
-    const std::span<const Vec3> polygon(corners, p.corner_count());
+    std::array<Vec3, 4> few;
+    std::vector<Vec3> many;
+    const auto polygon = patch_points(mesh_, patch, few, many);
     const auto cdf = ff::fan_cdf(polygon);
     return ff::uniform_point(polygon, cdf, u, rng.uniform(), rng.uniform());
 }

@@ -26,12 +26,25 @@ Vec3 stratified_direction(const Vec3& n, const Vec3& tu, const Vec3& tv, int r, 
     return cosine_direction(n, tu, tv, u, v);
 }
 
-Rgb interpolate(const std::array<Rgb, 4>& c, int corners, double u, double v) {
+// The corner values at a hit: bilinear on a quad, barycentric on a triangle or on the
+// polygon's fan triangle the ray met.
+Rgb interpolate(const radfmt::MeshData& mesh, const CornerColours& c, const RayScene::Hit& hit) {
+    const auto patch = static_cast<std::size_t>(hit.patch);
+    const double u = hit.u, v = hit.v;
     Rgb out;
+    if (mesh.patches[patch].is_polygon()) {
+        const auto piece = static_cast<std::size_t>(std::max(0, hit.piece));
+        const auto &c0 = c.at(mesh, patch, 0), &c1 = c.at(mesh, patch, piece + 1),
+                   &c2 = c.at(mesh, patch, piece + 2);
+        for (int k = 0; k < 3; ++k) out[k] = (1 - u - v) * c0[k] + u * c1[k] + v * c2[k];
+        return out;
+    }
+    const auto& q = c[patch];
+    const bool triangle = mesh.patches[patch].corner_count() == 3;
     for (int k = 0; k < 3; ++k)
-        out[k] = corners == 3 ? (1 - u - v) * c[0][k] + u * c[1][k] + v * c[2][k]
-                              : (1 - u) * (1 - v) * c[0][k] + u * (1 - v) * c[1][k] +
-                                    u * v * c[2][k] + (1 - u) * v * c[3][k];
+        out[k] = triangle ? (1 - u - v) * q[0][k] + u * q[1][k] + v * q[2][k]
+                          : (1 - u) * (1 - v) * q[0][k] + u * (1 - v) * q[1][k] + u * v * q[2][k] +
+                                (1 - u) * v * q[3][k];
     return out;
 }
 } // namespace
@@ -96,19 +109,19 @@ void Gatherer::build_light_tree() {
     lights_ = std::make_unique<gather::LightTree>(mesh_, std::move(lights));
 }
 
-Vec3 Gatherer::shading_normal(std::size_t patch, double u, double v) const {
-    const auto c = interpolate(corner_normals_[patch], mesh_.patches[patch].corner_count(), u, v);
+Vec3 Gatherer::shading_normal(const RayScene::Hit& hit) const {
+    const auto c = interpolate(mesh_, corner_normals_, hit);
     const Vec3 n{c[0], c[1], c[2]};
     const double len = length(n);
-    return len > 0 ? n * (1 / len) : mesh_.patches[patch].normal;
+    return len > 0 ? n * (1 / len) : mesh_.patches[static_cast<std::size_t>(hit.patch)].normal;
 }
 
-Rgb Gatherer::radiosity_at(std::size_t patch, double u, double v) const {
-    return interpolate(total_corners_[patch], mesh_.patches[patch].corner_count(), u, v);
+Rgb Gatherer::radiosity_at(const RayScene::Hit& hit) const {
+    return interpolate(mesh_, total_corners_, hit);
 }
 
-Rgb Gatherer::reflected_at(std::size_t patch, double u, double v) const {
-    return interpolate(reflected_corners_[patch], mesh_.patches[patch].corner_count(), u, v);
+Rgb Gatherer::reflected_at(const RayScene::Hit& hit) const {
+    return interpolate(mesh_, reflected_corners_, hit);
 }
 
 Rgb Gatherer::exact_indirect(const Vec3& point, const Vec3& normal, std::uint64_t index) const {
@@ -153,7 +166,7 @@ Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, const Vec3& s
             continue;
         }
         if (bright_[static_cast<std::size_t>(hit.patch)]) continue; // a light: direct()
-        const auto b = reflected_at(static_cast<std::size_t>(hit.patch), hit.u, hit.v);
+        const auto b = reflected_at(hit);
         for (int k = 0; k < 3; ++k) sum[k] += b[k];
     }
     out.hit_fraction = double(hits) / rays;

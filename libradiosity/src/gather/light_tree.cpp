@@ -55,7 +55,7 @@ LightTree::Node LightTree::summarise(const radfmt::MeshData& mesh, std::uint32_t
     for (std::uint32_t i = first; i < first + count; ++i) {
         const auto& light = lights_[i];
         const auto& p = mesh.patches[light.patch];
-        for (int k = 0; k < p.corner_count(); ++k) box.add(mesh.vertices[p.corners[k]]);
+        for (const auto v : mesh.corners(p)) box.add(mesh.vertices[v]);
         const double power = brightness(light.radiosity) * p.area;
         node.power += power;
         weighted_centre = weighted_centre + p.centroid * power;

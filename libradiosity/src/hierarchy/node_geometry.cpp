@@ -123,11 +123,13 @@ NodePoint NodeGeometries::point(std::uint32_t node, double u, double v, double w
         n.first + static_cast<std::uint32_t>(std::upper_bound(begin, end, target) - begin);
     const auto patch = tree_.leaf_order[k];
     const auto& g = polygons_[patch];
-    // w picks the fan triangle of a quad by area, then serves again within it.
-    const double cdf[2] = {first_share_[patch], 1.0};
+    // w picks the fan triangle of a quad (or polygon) by area, then serves again within it.
+    const double quad_cdf[2] = {first_share_[patch], 1.0};
+    const auto polygon_cdf = g.is_polygon() ? ff::fan_cdf(g.points()) : std::vector<double>();
+    const auto cdf = g.is_polygon() ? std::span<const double>(polygon_cdf)
+                                    : std::span<const double>(quad_cdf, std::size_t(g.count - 2));
     double within = 0;
-    const auto triangle =
-        ff::pick_fan_triangle(std::span<const double>(cdf, std::size_t(g.count - 2)), w, &within);
+    const auto triangle = ff::pick_fan_triangle(cdf, w, &within);
     return {ff::fan_triangle_point(g.points(), triangle, v, within), mesh_.patches[patch].normal};
 }
 

@@ -42,8 +42,7 @@ std::vector<std::uint32_t> connected_surfaces(const radfmt::MeshData& mesh) {
     // (vertex, plane, patch) per corner: sorted, a plane's patches at one vertex are adjacent.
     std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> corners;
     for (std::uint32_t p = 0; p < mesh.patches.size(); ++p)
-        for (int c = 0; c < mesh.patches[p].corner_count(); ++c)
-            corners.emplace_back(mesh.patches[p].corners[c], plane[p], p);
+        for (const auto v : mesh.corners(p)) corners.emplace_back(v, plane[p], p);
     std::sort(corners.begin(), corners.end());
     for (std::size_t k = 1; k < corners.size(); ++k) {
         const auto& [vertex, on, p] = corners[k];

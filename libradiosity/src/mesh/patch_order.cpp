@@ -58,9 +58,9 @@ void order_patches_by_locality(radfmt::MeshData& mesh) {
     std::vector<std::uint32_t> new_index(mesh.vertices.size(), radfmt::kNoVertex);
     std::vector<radfmt::Vec3> vertices;
     vertices.reserve(mesh.vertices.size());
-    for (auto& p : patches)
-        for (auto& corner : p.corners) {
-            if (corner == radfmt::kNoVertex) continue;
+    mesh.patches = std::move(patches);
+    for (auto& p : mesh.patches)
+        for (auto& corner : mesh.corners(p)) {
             if (new_index[corner] == radfmt::kNoVertex) {
                 new_index[corner] = static_cast<std::uint32_t>(vertices.size());
                 vertices.push_back(mesh.vertices[corner]);
@@ -69,7 +69,6 @@ void order_patches_by_locality(radfmt::MeshData& mesh) {
         }
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
         if (new_index[v] == radfmt::kNoVertex) vertices.push_back(mesh.vertices[v]);
-    mesh.patches = std::move(patches);
     mesh.vertices = std::move(vertices);
 }
 

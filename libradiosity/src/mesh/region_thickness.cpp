@@ -165,10 +165,10 @@ class PatchDisks {
         };
         const auto& patch = mesh_.patches[k];
         add(patch.centroid);
-        const int n = patch.corner_count();
-        for (int c = 0; c < n; ++c)
-            add((points_.position[patch.corners[c]] +
-                 points_.position[patch.corners[(c + 1) % n]]) *
+        const auto corners = mesh_.corners(patch);
+        for (std::size_t c = 0; c < corners.size(); ++c)
+            add((points_.position[corners[c]] +
+                 points_.position[corners[(c + 1) % corners.size()]]) *
                 0.5);
         return *disks;
     }

@@ -69,9 +69,8 @@ Topology analyze_topology(const radfmt::MeshData& mesh) {
     const auto twins = find_twins(mesh);
     for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
         if (twins[i] >= 0 && static_cast<std::size_t>(twins[i]) < i) continue;
-        const auto& p = mesh.patches[i];
         std::vector<OMesh::VertexHandle> face;
-        for (int k = 0; k < p.corner_count(); ++k) face.push_back(handles[p.corners[k]]);
+        for (const auto v : mesh.corners(i)) face.push_back(handles[v]);
         if (!om.add_face(face).is_valid()) ++topo.rejected_patches;
     }
     omerr().enable();

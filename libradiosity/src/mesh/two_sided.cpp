@@ -13,7 +13,7 @@ namespace {
 // The corner positions of a patch, sorted: the same for a patch and its reverse.
 std::vector<radfmt::Vec3> corner_key(const radfmt::MeshData& mesh, const radfmt::Patch& p) {
     std::vector<radfmt::Vec3> key;
-    for (int k = 0; k < p.corner_count(); ++k) key.push_back(mesh.vertices[p.corners[k]]);
+    for (const auto v : mesh.corners(p)) key.push_back(mesh.vertices[v]);
     std::sort(key.begin(), key.end());
     return key;
 }
@@ -68,8 +68,9 @@ TwoSidedReport make_two_sided(radfmt::MeshData& mesh, const std::vector<std::str
         if (twins[i] >= 0 || !(group_selected[front.group] || material_selected[front.material]))
             continue;
         radfmt::Patch back = front;
-        const int n = front.corner_count();
-        for (int k = 0; k < n; ++k) back.corners[k] = front.corners[n - 1 - k];
+        const auto corners = mesh.corners(front);
+        const std::vector<std::uint32_t> reversed(corners.rbegin(), corners.rend());
+        mesh.set_corners(back, reversed, front.is_polygon());
         back.normal = front.normal * -1.0;
         const auto& material = mesh.materials[front.material];
         if (material.emits() && !emission_on_both_sides) {

@@ -50,8 +50,7 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
                     const auto& material = mesh.materials[patch.material];
                     const Vec3 point = view.position + ray * hit.distance;
                     const std::uint64_t index = std::uint64_t(y * ss + sy) * W + (x * ss + sx);
-                    const auto normal =
-                        gatherer.shading_normal(static_cast<std::size_t>(hit.patch), hit.u, hit.v);
+                    const auto normal = gatherer.shading_normal(hit);
                     const auto h = gatherer.gather(point, normal, patch.normal, index).total();
                     for (int c = 0; c < 3; ++c)
                         sum[c] += material.emission[c] + material.reflectance[c] * h[c];

@@ -175,12 +175,12 @@ std::vector<std::uint8_t> encode_png_rgb8(int width, int height,
     return out;
 }
 
-void write_ply(const std::string& path, const radfmt::MeshData& mesh,
-               const std::vector<std::array<Rgb, 4>>& corners, double exposure) {
+void write_ply(const std::string& path, const radfmt::MeshData& mesh, const CornerColours& corners,
+               double exposure) {
     radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
         std::ofstream out(temp);
         std::size_t vertex_count = 0;
-        for (const auto& p : mesh.patches) vertex_count += p.corner_count();
+        for (const auto& p : mesh.patches) vertex_count += std::size_t(p.corner_count());
         // Each patch corner gets its own vertex: crease-aware smoothing gives one vertex
         // different colours on different sides of an edge.
         out << "ply\nformat ascii 1.0\ncomment radiosity rad-shade: colours are smoothed "
@@ -194,10 +194,10 @@ void write_ply(const std::string& path, const radfmt::MeshData& mesh,
             << "\nproperty list uchar int vertex_indices\nend_header\n";
         out.precision(9);
         for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
-            const auto& p = mesh.patches[i];
-            for (int k = 0; k < p.corner_count(); ++k) {
-                const auto& v = mesh.vertices[p.corners[k]];
-                const auto& c = corners[i][k];
+            const auto ids = mesh.corners(i);
+            for (std::size_t k = 0; k < ids.size(); ++k) {
+                const auto& v = mesh.vertices[ids[k]];
+                const auto& c = corners.at(mesh, i, k);
                 out << v[0] << ' ' << v[1] << ' ' << v[2] << ' ' << int(to_srgb8(c[0] * exposure))
                     << ' ' << int(to_srgb8(c[1] * exposure)) << ' '
                     << int(to_srgb8(c[2] * exposure)) << ' ' << c[0] << ' ' << c[1] << ' ' << c[2]

@@ -39,73 +39,98 @@ std::uint64_t estimate_render_memory(int width, int height, int supersampling, i
     return pixels * ss * ss * 21 + pixels * std::max(1, images) * (16 + 16);
 }
 
-Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>& corners,
-             const View& view, int width, int height, int supersampling) {
-    const int ss = std::max(1, supersampling);
-    const int W = width * ss, H = height * ss;
-    const Vec3 dir = normalized(view.direction);
-    const Vec3 right = normalized(cross(dir, view.up));
-    const Vec3 up = cross(right, dir);
-    const double tan_h = std::tan(0.5 * view.horizontal_deg * kDeg),
-                 tan_v = std::tan(0.5 * view.vertical_deg * kDeg);
-    double extent = 0;
-    for (const auto& v : mesh.vertices) extent = std::max(extent, length(v - view.position));
-    const double near = std::max(1e-9, 1e-5 * extent);
+namespace {
 
-    struct CamPoint {
-        Vec3 p; // camera space: x right, y up, z depth
-        Rgb c;
-    };
+// A camera's frame and the frame buffer's size (supersampled).
+struct Camera {
+    Vec3 position, dir, right, up;
+    double tan_h, tan_v, near;
+    int W, H;
+};
+
+struct CamPoint {
+    Vec3 p; // camera space: x right, y up, z depth
+    Rgb c;
+};
+
+// A convex polygon in camera space, clipped against the near plane (so geometry behind the
+// eye never projects), projected and split into screen triangles.
+void add_screen_triangles(const std::vector<CamPoint>& poly, const Camera& cam, bool back,
+                          std::vector<ScreenTriangle>& triangles) {
+    std::vector<CamPoint> clipped;
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+        const auto& a = poly[k];
+        const auto& b = poly[(k + 1) % poly.size()];
+        if (a.p[2] >= cam.near) clipped.push_back(a);
+        if ((a.p[2] >= cam.near) != (b.p[2] >= cam.near)) {
+            const double t = (cam.near - a.p[2]) / (b.p[2] - a.p[2]);
+            CamPoint m;
+            m.p = a.p + (b.p - a.p) * t;
+            for (int c = 0; c < 3; ++c) m.c[c] = a.c[c] + (b.c[c] - a.c[c]) * t;
+            clipped.push_back(m);
+        }
+    }
+    if (clipped.size() < 3) return;
+    std::vector<ScreenVertex> screen;
+    for (const auto& cp : clipped) {
+        const double inv_z = 1.0 / cp.p[2];
+        ScreenVertex sv;
+        sv.x = (cp.p[0] * inv_z / cam.tan_h + 1) * 0.5 * cam.W;
+        sv.y = (1 - cp.p[1] * inv_z / cam.tan_v) * 0.5 * cam.H;
+        sv.inv_z = inv_z;
+        for (int c = 0; c < 3; ++c) sv.colour_over_z[c] = cp.c[c] * inv_z;
+        screen.push_back(sv);
+    }
+    for (std::size_t k = 1; k + 1 < screen.size(); ++k) {
+        ScreenTriangle t{{screen[0], screen[k], screen[k + 1]}, 0, 0, back};
+        t.min_y = std::min({t.v[0].y, t.v[1].y, t.v[2].y});
+        t.max_y = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
+        if (t.max_y < 0 || t.min_y > cam.H) continue;
+        triangles.push_back(t);
+    }
+}
+
+// Every patch the camera may see as screen triangles. A polygon need not be convex: it is
+// drawn as its fan's triangles, each clipped alone.
+std::vector<ScreenTriangle> screen_triangles(const radfmt::MeshData& mesh,
+                                             const CornerColours& corners, const Camera& cam) {
     const auto twins = find_twins(mesh);
     std::vector<ScreenTriangle> triangles;
     for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
         const auto& patch = mesh.patches[i];
         // The camera is behind the patch's plane: it sees the back. Of a two-sided pair only
         // the side facing the camera is drawn.
-        const bool back = dot(patch.normal, patch.centroid - view.position) > 0;
+        const bool back = dot(patch.normal, patch.centroid - cam.position) > 0;
         if (back && twins[i] >= 0) continue;
         std::vector<CamPoint> poly;
-        for (int k = 0; k < patch.corner_count(); ++k) {
-            const Vec3 d = mesh.vertices[patch.corners[k]] - view.position;
-            poly.push_back({{dot(d, right), dot(d, up), dot(d, dir)}, corners[i][k]});
+        const auto ids = mesh.corners(i);
+        for (std::size_t k = 0; k < ids.size(); ++k) {
+            const Vec3 d = mesh.vertices[ids[k]] - cam.position;
+            poly.push_back(
+                {{dot(d, cam.right), dot(d, cam.up), dot(d, cam.dir)}, corners.at(mesh, i, k)});
         }
-        // Clip against the near plane so geometry behind the eye never projects.
-        std::vector<CamPoint> clipped;
-        for (std::size_t k = 0; k < poly.size(); ++k) {
-            const auto& a = poly[k];
-            const auto& b = poly[(k + 1) % poly.size()];
-            if (a.p[2] >= near) clipped.push_back(a);
-            if ((a.p[2] >= near) != (b.p[2] >= near)) {
-                const double t = (near - a.p[2]) / (b.p[2] - a.p[2]);
-                CamPoint m;
-                m.p = a.p + (b.p - a.p) * t;
-                for (int c = 0; c < 3; ++c) m.c[c] = a.c[c] + (b.c[c] - a.c[c]) * t;
-                clipped.push_back(m);
-            }
+        if (!patch.is_polygon()) {
+            add_screen_triangles(poly, cam, back, triangles);
+            continue;
         }
-        if (clipped.size() < 3) continue;
-        std::vector<ScreenVertex> screen;
-        for (const auto& cp : clipped) {
-            const double inv_z = 1.0 / cp.p[2];
-            ScreenVertex sv;
-            sv.x = (cp.p[0] * inv_z / tan_h + 1) * 0.5 * W;
-            sv.y = (1 - cp.p[1] * inv_z / tan_v) * 0.5 * H;
-            sv.inv_z = inv_z;
-            for (int c = 0; c < 3; ++c) sv.colour_over_z[c] = cp.c[c] * inv_z;
-            screen.push_back(sv);
-        }
-        for (std::size_t k = 1; k + 1 < screen.size(); ++k) {
-            ScreenTriangle t{{screen[0], screen[k], screen[k + 1]}, 0, 0, back};
-            t.min_y = std::min({t.v[0].y, t.v[1].y, t.v[2].y});
-            t.max_y = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
-            if (t.max_y < 0 || t.min_y > H) continue;
-            triangles.push_back(t);
-        }
+        for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+            add_screen_triangles({poly[0], poly[k], poly[k + 1]}, cam, back, triangles);
     }
+    return triangles;
+}
 
-    std::vector<float> hi(static_cast<std::size_t>(W) * H * 3, 0.0f);
-    std::vector<double> depth(static_cast<std::size_t>(W) * H, 0.0); // stores 1/z; 0 = empty
-    std::vector<std::uint8_t> shows_back(static_cast<std::size_t>(W) * H, 0);
+// The supersampled frame: colour, 1/z (0 where empty) and whether a back shows.
+struct Frame {
+    std::vector<float> hi;
+    std::vector<double> depth;
+    std::vector<std::uint8_t> shows_back;
+};
+
+Frame rasterise(const std::vector<ScreenTriangle>& triangles, int W, int H) {
+    Frame f;
+    f.hi.assign(static_cast<std::size_t>(W) * H * 3, 0.0f);
+    f.depth.assign(static_cast<std::size_t>(W) * H, 0.0);
+    f.shows_back.assign(static_cast<std::size_t>(W) * H, 0);
     const int band = 16;
     tbb::parallel_for(0, (H + band - 1) / band, [&](int b) {
         const int y0 = b * band, y1 = std::min(H, y0 + band);
@@ -129,18 +154,23 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
                     if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;
                     const double inv_z = w0 * a.inv_z + w1 * bb.inv_z + w2 * c.inv_z;
                     const std::size_t at = static_cast<std::size_t>(y) * W + x;
-                    if (inv_z <= depth[at]) continue;
-                    depth[at] = inv_z;
-                    shows_back[at] = t.back;
+                    if (inv_z <= f.depth[at]) continue;
+                    f.depth[at] = inv_z;
+                    f.shows_back[at] = t.back;
                     for (int ch = 0; ch < 3; ++ch)
-                        hi[3 * at + ch] = static_cast<float>((w0 * a.colour_over_z[ch] +
-                                                              w1 * bb.colour_over_z[ch] +
-                                                              w2 * c.colour_over_z[ch]) /
-                                                             inv_z);
+                        f.hi[3 * at + ch] = static_cast<float>((w0 * a.colour_over_z[ch] +
+                                                                w1 * bb.colour_over_z[ch] +
+                                                                w2 * c.colour_over_z[ch]) /
+                                                               inv_z);
                 }
         }
     });
+    return f;
+}
 
+// The frame averaged down to the image, with its coverage and back-face counts.
+Image resolve(const Frame& f, int width, int height, int ss) {
+    const int W = width * ss;
     Image image;
     image.width = width;
     image.height = height;
@@ -155,9 +185,9 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
                 for (int sx = 0; sx < ss; ++sx) {
                     const std::size_t at =
                         static_cast<std::size_t>(y * ss + sy) * W + (x * ss + sx);
-                    covered = covered || depth[at] > 0;
-                    back_samples += shows_back[at];
-                    for (int c = 0; c < 3; ++c) sum[c] += hi[3 * at + c];
+                    covered = covered || f.depth[at] > 0;
+                    back_samples += f.shows_back[at];
+                    for (int c = 0; c < 3; ++c) sum[c] += f.hi[3 * at + c];
                 }
             image.covered_pixels += covered;
             const float back_share = static_cast<float>(back_samples) / float(ss * ss);
@@ -168,6 +198,27 @@ Image render(const radfmt::MeshData& mesh, const std::vector<std::array<Rgb, 4>>
                     static_cast<float>(sum[c] / (ss * ss));
         }
     return image;
+}
+
+} // namespace
+
+Image render(const radfmt::MeshData& mesh, const CornerColours& corners, const View& view,
+             int width, int height, int supersampling) {
+    const int ss = std::max(1, supersampling);
+    Camera cam;
+    cam.W = width * ss;
+    cam.H = height * ss;
+    cam.position = view.position;
+    cam.dir = normalized(view.direction);
+    cam.right = normalized(cross(cam.dir, view.up));
+    cam.up = cross(cam.right, cam.dir);
+    cam.tan_h = std::tan(0.5 * view.horizontal_deg * kDeg);
+    cam.tan_v = std::tan(0.5 * view.vertical_deg * kDeg);
+    double extent = 0;
+    for (const auto& v : mesh.vertices) extent = std::max(extent, length(v - view.position));
+    cam.near = std::max(1e-9, 1e-5 * extent);
+    const auto triangles = screen_triangles(mesh, corners, cam);
+    return resolve(rasterise(triangles, cam.W, cam.H), width, height, ss);
 }
 
 void mark_back_faces(Image& image, const Rgb& colour) {

@@ -22,26 +22,30 @@ Smoothing parse_smoothing(const std::string& name) {
     throw InputError("unknown smoothing '" + name + "' (use average, area, crease or flat)");
 }
 
-std::vector<std::array<Rgb, 4>> corner_colours(const radfmt::MeshData& mesh,
-                                               const std::vector<Rgb>& patch, Smoothing mode,
-                                               double crease_deg) {
+CornerColours corner_colours(const radfmt::MeshData& mesh, const std::vector<Rgb>& patch,
+                             Smoothing mode, double crease_deg) {
     const std::size_t n = mesh.patches.size();
-    std::vector<std::array<Rgb, 4>> out(n);
+    CornerColours out;
+    out.patches.resize(n);
+    out.polygon_corners.resize(mesh.polygon_corners.size());
     if (mode == Smoothing::Flat) {
-        for (std::size_t i = 0; i < n; ++i) out[i].fill(patch[i]);
+        for (std::size_t i = 0; i < n; ++i) {
+            out[i].fill(patch[i]);
+            for (std::size_t k = 0; k < mesh.corners(i).size(); ++k) out.at(mesh, i, k) = patch[i];
+        }
         return out;
     }
     std::vector<std::vector<std::uint32_t>> around(mesh.vertices.size());
     for (std::size_t i = 0; i < n; ++i)
-        for (int k = 0; k < mesh.patches[i].corner_count(); ++k)
-            around[mesh.patches[i].corners[k]].push_back(static_cast<std::uint32_t>(i));
+        for (const auto v : mesh.corners(i)) around[v].push_back(static_cast<std::uint32_t>(i));
     const double cos_crease = std::cos(crease_deg * kDeg);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
         const auto& p = mesh.patches[i];
-        for (int k = 0; k < p.corner_count(); ++k) {
+        const auto corners = mesh.corners(i);
+        for (std::size_t k = 0; k < corners.size(); ++k) {
             Rgb sum{0, 0, 0};
             double weight = 0;
-            for (auto q : around[p.corners[k]]) {
+            for (auto q : around[corners[k]]) {
                 const auto& pq = mesh.patches[q];
                 // A patch facing the opposite way at the same corner is the other side of a
                 // sheet (a two-sided surface): its light is on the other side, never mixed.
@@ -54,9 +58,13 @@ std::vector<std::array<Rgb, 4>> corner_colours(const radfmt::MeshData& mesh,
                 for (int c = 0; c < 3; ++c) sum[c] += w * patch[q][c];
                 weight += w;
             }
-            for (int c = 0; c < 3; ++c) out[i][k][c] = weight > 0 ? sum[c] / weight : patch[i][c];
+            auto& value = out.at(mesh, i, k);
+            for (int c = 0; c < 3; ++c) value[c] = weight > 0 ? sum[c] / weight : patch[i][c];
         }
-        if (p.corner_count() == 3) out[i][3] = out[i][2];
+        if (p.is_polygon())
+            for (std::size_t k = 0; k < 4; ++k) out[i][k] = out.at(mesh, i, k);
+        else if (p.corner_count() == 3)
+            out[i][3] = out[i][2];
     });
     return out;
 }
