@@ -55,15 +55,17 @@ void print_summary(const radfmt::MeshData& mesh, const rad::MeshReport& report) 
         stderr,
         "rad-mesh: %zu face(s) as %zu planar region(s): %zu grid cell(s), %zu "
         "triangle(s) along outlines (and %zu quad(s) of a speck or a sliver joined with its "
-        "neighbour); aspect <= 3: %.1f%% of the patches where the "
+        "neighbour; %zu more speck(s) joined with a neighbour into one patch, %zu of them "
+        "polygons); aspect <= 3: %.1f%% of the patches where the "
         "region is a tenth of a cell thick or more (%.1f%% of those where it is a cell "
         "thick or more; worst %.3g), %zu patch(es) where it is thinner, %zu under a "
         "tenth of a cell beside an outline piece that short, %zu under a tenth of a "
         "cell elsewhere; %zu outline point(s) left out where smoothing stops "
         "(T-vertices)\n",
-        s.faces, s.regions, s.cells, s.band_triangles, s.joined,
-        100 * s.shape.fraction_aspect_at_most_3, 100 * s.shape.fraction_wide_aspect_at_most_3,
-        s.shape.worst_aspect, s.shape.thin, s.shape.specks_at_detail, s.shape.specks, s.t_vertices);
+        s.faces, s.regions, s.cells, s.band_triangles, s.joined, s.specks_joined,
+        mesh.polygon_count(), 100 * s.shape.fraction_aspect_at_most_3,
+        100 * s.shape.fraction_wide_aspect_at_most_3, s.shape.worst_aspect, s.shape.thin,
+        s.shape.specks_at_detail, s.shape.specks, s.t_vertices);
 }
 // What the command line says.
 struct MeshArgs {

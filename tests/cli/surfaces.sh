@@ -306,7 +306,7 @@ python3 -c "import sys; sys.exit(not abs($a - $b) <= 0.005 * $a)" || fail "baseb
 # into up to 16 triangles (551 specks); now none.
 python3 "$GEN" rug rug.obj
 "$BIN/rad-mesh" rug.obj -o rug.mesh --max-edge 0.25 2> rug.err || fail "rug: $(cat rug.err)"
-grep -q "(and [1-9][0-9]* quad(s) of a speck or a sliver joined with its neighbour); aspect <= 3: 100.0% .* 0 under a tenth of a cell beside an outline piece that short, 0 under a tenth of a cell elsewhere" rug.err ||
+grep -q "(and [1-9][0-9]* quad(s) of a speck or a sliver joined with its neighbour; 0 more speck(s) joined with a neighbour into one patch, 0 of them polygons); aspect <= 3: 100.0% .* 0 under a tenth of a cell beside an outline piece that short, 0 under a tenth of a cell elsewhere" rug.err ||
   fail "rug: $(grep planar rug.err)"
 "$BIN/rad-info" --csv rug.mesh | python3 -c "
 import csv, sys
@@ -323,14 +323,15 @@ grep -q "aspect <= 3: 100.0% .* 0 under a tenth of a cell beside an outline piec
 # circumcentre would be under a tenth of a cell from its corners). Two round columns of 40 sides,
 # 5 and 12 cm across (a fifth and a half of the 25 cm cell), their tops drawn as fans: before,
 # their tops were refined down to the size of their 4 and 9 mm sides, 151 specks in 1,665
-# patches; now 29 in 1,568, still 95% of aspect <= 3 or more, and the columns' area that of
-# their faces.
+# patches; then 29 in 1,568, still 95% of aspect <= 3 or more, and the columns' area that of
+# their faces. The 29 beside the rims' short sides now join a neighbour each (into a quad, or
+# a polygon patch where no quad will do): 1,539 patches, none a speck.
 python3 "$GEN" columns columns.obj
 "$BIN/rad-mesh" columns.obj -o columns.mesh --max-edge 0.25 2> columns.err || fail "columns: $(cat columns.err)"
 read -r tenth wide < <(shape_share columns.err)
 specks=$(specks columns.err)
 echo "columns: $(patches columns.err) patches, $specks specks, aspect <= 3 for $tenth%"
-[ "${specks:-999}" -le 40 ] && [ "$(patches columns.err)" -le 1600 ] && at_least "${tenth:-0}" 95 ||
+[ "${specks:-999}" -eq 0 ] && [ "$(patches columns.err)" -le 1539 ] && at_least "${tenth:-0}" 95 ||
   fail "columns: $(grep planar columns.err)"
 "$BIN/rad-mesh" columns.obj -o columns-faces.mesh --surfaces faces --max-edge none 2> columns-faces.err ||
   fail "columns, faces: $(cat columns-faces.err)"
@@ -341,13 +342,15 @@ python3 -c "import sys; sys.exit(not abs($(column_area columns.mesh) - $(column_
 # the band (hidden behind the outline from the triangle, or another centre of a rim whose points
 # are nearly on one circle). zdm2's round cap at (-268, 283, 242), cut with the faces around it
 # and the map's size kept (tests/data/zdm2-cap): three refinement points side by side at the
-# cap's centre before, 436 patches, 6 specks, aspect <= 3 for 76.7%; now 433, 5 and 82.5%.
+# cap's centre before, 436 patches, 6 specks, aspect <= 3 for 76.7%; then 433, 5 and 82.5%.
+# With specks joined into their neighbours (polygon patches) 428 patches, none a speck, 94.3%
+# (without the rule: 430 and 89.2%).
 "$BIN/rad-mesh" "$SRC/tests/data/zdm2-cap/zdm2-cap.obj" -o cap.mesh 2> cap.err || fail "zdm2 cap: $(cat cap.err)"
 grep -q "max-edge 55.41 (the scene's size 1108" cap.err || fail "zdm2 cap: the map's size not kept: $(grep max-edge cap.err)"
 read -r tenth wide < <(shape_share cap.err)
 specks=$(specks cap.err)
 echo "zdm2 cap: $(patches cap.err) patches, $specks specks, aspect <= 3 for $tenth%"
-[ "${specks:-999}" -le 5 ] && [ "$(patches cap.err)" -le 433 ] && at_least "${tenth:-0}" 80 ||
+[ "${specks:-999}" -eq 0 ] && [ "$(patches cap.err)" -le 428 ] && at_least "${tenth:-0}" 92 ||
   fail "zdm2 cap: $(grep planar cap.err)"
 
 # 18. Where the region is thinner than a tenth of a cell is decided exactly: no circle a tenth of
@@ -363,6 +366,50 @@ in_neck=$("$BIN/rad-info" --csv neck.mesh | awk -F, '$2 == "neck" && $5 > 1.9025
 echo "neck: $in_neck patches in the neck"
 [ "$in_neck" -gt 0 ] && grep -q " $in_neck patch(es) where it is thinner" neck.err ||
   fail "neck: not the $in_neck patches in the neck counted thin: $(grep planar neck.err)"
+
+# 19. The specks joined into polygon patches go through the whole chain: the zdm2 cap's mesh
+# (section 17) is format version 2 with its polygons counted; its form factors by the
+# analytic method and by hemisphere rays agree on the polygons' rows and columns as on every
+# other patch; it solves, shades (flat and smoothed, with a PLY), gathers and bakes.
+"$BIN/rad-info" cap.mesh > cap.info
+grep -q "kind: *mesh (patch mesh), version 2" cap.info && grep -q "(.* quads, 2 polygons, .* triangles)" cap.info ||
+  fail "zdm2 cap: not a version 2 mesh with 2 polygons: $(cat cap.info)"
+"$BIN/rad-info" --csv cap.mesh > cap.csv
+"$BIN/rad-ff" cap.mesh -o cap-analytic.ff --method analytic -q 2>/dev/null || fail "zdm2 cap: analytic form factors"
+"$BIN/rad-ff" cap.mesh -o cap-hemisphere.ff --method hemisphere --rays 65536 -q 2>/dev/null || fail "zdm2 cap: hemisphere"
+"$BIN/rad-info" --csv cap-analytic.ff > cap-analytic.csv
+"$BIN/rad-info" --csv cap-hemisphere.ff > cap-hemisphere.csv
+python3 - <<'PY' || fail "zdm2 cap: polygon rows or columns disagree between methods"
+import csv, collections
+mesh = list(csv.DictReader(open("cap.csv")))
+area = [float(p["area"]) for p in mesh]
+polygons = [int(p["patch"]) for p in mesh if int(p["corners"]) > 4]
+assert len(polygons) == 2, polygons
+def sums(name):
+    row, col = collections.defaultdict(float), collections.defaultdict(float)
+    for e in csv.DictReader(open(name)):
+        i, j, f = int(e["row"]), int(e["col"]), float(e["f"])
+        row[i] += f
+        col[j] += area[i] * f
+    return row, col
+(ra, ca), (rh, ch) = sums("cap-analytic.csv"), sums("cap-hemisphere.csv")
+for p in polygons:
+    # What the polygon sees, and the light it receives from all (area x F into it, by
+    # reciprocity its area x what it sees): within 2% between an exact integral over its fan
+    # and rays cast from points of it.
+    assert ra[p] > 0.1 and abs(rh[p] / ra[p] - 1) < 0.02, (p, ra[p], rh[p])
+    assert abs(ch[p] / ca[p] - 1) < 0.02, (p, ca[p], ch[p])
+    assert abs(ca[p] / (area[p] * ra[p]) - 1) < 0.02, (p, ca[p], area[p] * ra[p])
+PY
+"$BIN/rad-solve" cap.mesh cap-analytic.ff -o cap.rad --emission slot752=10 -q 2>/dev/null || fail "zdm2 cap: solve"
+view="-vp -267 283 150 -vd 0 0 1 -vu 0 1 0 -vh 60 -vv 60"
+"$BIN/rad-shade" cap.mesh cap.rad -o cap.exr --view "$view" -x 96 -y 96 --ply cap.ply -q 2>/dev/null &&
+  "$BIN/rad-shade" cap.mesh cap.rad -o cap-flat.exr --view "$view" -x 96 -y 96 --flat -q 2>/dev/null ||
+  fail "zdm2 cap: shade"
+grep -q "^element face $(($(wc -l < cap.csv) - 1))$" cap.ply || fail "zdm2 cap: PLY faces"
+echo "-267 283 200 0 0 1" | "$BIN/rad-gather" cap.mesh cap.rad --rays 256 > cap.gather 2>/dev/null &&
+  awk '{ exit !($1 > 0) }' cap.gather || fail "zdm2 cap: gather: $(cat cap.gather)"
+"$BIN/rad-bake" cap.mesh cap.rad -o cap.glb --lightmap 256 -q 2>/dev/null || fail "zdm2 cap: bake"
 
 # Stacks are refused, not meshed for minutes: 150 copies of one triangle, each nudged out of
 # the others' plane by up to 1e-4 (one region whose edges cross 10^5 times: 88 s and 2.5 GB

@@ -54,12 +54,18 @@ struct ShapeStats {
     std::size_t specks = 0;
 };
 double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
-// The same with the corners read from `vertices` (a mesh's, or points a mesh is being made of).
-double patch_aspect(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch);
+// The same with the corners read from `vertices` (a mesh's, or points a mesh is being made of)
+// and a polygon's from `polygon_corners` (a mesh's). A polygon's aspect is its diameter^2 /
+// (2 x area): a triangle's measure (longest side over shortest height) for a triangle, 1 for
+// a square.
+double patch_aspect(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch,
+                    std::span<const std::uint32_t> polygon_corners = {});
 double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch);
-double longest_edge(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch);
+double longest_edge(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch,
+                    std::span<const std::uint32_t> polygon_corners = {});
 // A speck: every edge under a tenth of `cell` (the patch's cell side).
-bool is_speck(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch, double cell);
+bool is_speck(std::span<const radfmt::Vec3> vertices, const radfmt::Patch& patch, double cell,
+              std::span<const std::uint32_t> polygon_corners = {});
 // Over the patches not thin (`classes` by patch; patches past its end are wide); `cells` gives
 // each patch's cell side (patches past its end are not counted as specks); `at_detail` marks
 // the specks beside an outline piece under a tenth of a cell.
@@ -72,6 +78,7 @@ struct SurfaceReport {
     std::size_t cells = 0;          // full grid cells: quads
     std::size_t band_triangles = 0; // triangles between the cells and a region's outline
     std::size_t joined = 0; // quads of two band triangles: a speck or a sliver and its neighbour
+    std::size_t specks_joined = 0;    // specks joined with a neighbour into a quad or polygon
     std::size_t dropped_vertices = 0; // collinear outline points no other region needs
     std::size_t t_vertices = 0;       // points a region left out where smoothing stops anyway
     // Where something rises from a region (a pipe through a floor, a pillar's foot): holes under

@@ -239,4 +239,13 @@ void grid_region(const Region& region, Points& points, radfmt::MeshData& mesh,
 std::size_t join_triangles(const Region& region, const Points& points, radfmt::MeshData& mesh,
                            std::size_t first);
 
+// After the patches' classes are known (`classes`, by patch): each speck of the region
+// (mesh's patches from `first` on) that is not where the region is thin joins the neighbour
+// across one of its sides into one patch whose outline is star-shaped from a corner (of at
+// most 12 corners; a quad when that is four strictly convex, else a polygon patch), choosing
+// a join that is no speck, then the lowest diameter^2 / (2 x area). A join still a speck may
+// join again. Returns the specks joined.
+std::size_t merge_specks(const Region& region, const Points& points, radfmt::MeshData& mesh,
+                         std::size_t first, const std::vector<WidthClass>& classes);
+
 } // namespace rad::surfaces

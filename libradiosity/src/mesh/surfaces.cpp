@@ -44,13 +44,26 @@ WidthClass width_class(double cell, double width) {
 
 namespace {
 
+// The polygons' corners listed again in the patches' order, without those of polygons that
+// joined another speck since.
+void compact_polygon_corners(radfmt::MeshData& mesh) {
+    if (mesh.polygon_corners.empty()) return;
+    radfmt::MeshData compact;
+    for (auto& p : mesh.patches) {
+        if (!p.is_polygon()) continue;
+        const auto corners = mesh.corners(p);
+        const std::vector<std::uint32_t> list(corners.begin(), corners.end());
+        compact.set_corners(p, list, true);
+    }
+    mesh.polygon_corners = std::move(compact.polygon_corners);
+}
+
 // Vertices renumbered to those the patches use, in order of first use.
 void drop_unused_vertices(radfmt::MeshData& mesh) {
     std::vector<std::uint32_t> new_id(mesh.vertices.size(), surfaces::kNone);
     std::vector<Vec3> kept;
     for (auto& p : mesh.patches)
-        for (int k = 0; k < p.corner_count(); ++k) {
-            auto& c = p.corners[k];
+        for (auto& c : mesh.corners(p)) {
             if (new_id[c] == surfaces::kNone) {
                 new_id[c] = static_cast<std::uint32_t>(kept.size());
                 kept.push_back(mesh.vertices[c]);
@@ -75,9 +88,10 @@ double width_or_thickness(const surfaces::Region& region, const surfaces::Points
 
 // Whether a patch of a wide region may lie where the region is thinner: a band triangle of
 // aspect over 3, or one under a tenth of a cell (a wide region's cells are neither).
-bool suspect_in_wide_region(const radfmt::Patch& patch, const surfaces::Points& points,
-                            double cell) {
-    return patch_aspect(points.position, patch) > 3 || is_speck(points.position, patch, cell);
+bool suspect_in_wide_region(const radfmt::Patch& patch, const surfaces::Points& points, double cell,
+                            std::span<const std::uint32_t> polygon_corners) {
+    return patch_aspect(points.position, patch, polygon_corners) > 3 ||
+           is_speck(points.position, patch, cell, polygon_corners);
 }
 
 // A region's outline pieces shorter than `small`, in squares of that side in its plane: those
@@ -128,9 +142,9 @@ void mark_specks_at_detail(const surfaces::Region& region, const surfaces::Point
     if (short_pieces.empty()) return;
     for (std::size_t k = first; k < mesh.patches.size(); ++k) {
         const auto& patch = mesh.patches[k];
-        if (!is_speck(points.position, patch, region.cell)) continue;
-        for (int c = 0; c < patch.corner_count() && !at_detail[k]; ++c)
-            at_detail[k] = short_pieces.near(points.position[patch.corners[c]]);
+        if (!is_speck(points.position, patch, region.cell, mesh.polygon_corners)) continue;
+        for (const auto c : mesh.corners(patch))
+            at_detail[k] = at_detail[k] || short_pieces.near(points.position[c]);
     }
 }
 
@@ -143,7 +157,8 @@ void mark_narrow_parts(const surfaces::Region& region, const surfaces::Points& p
     std::vector<bool> wanted(mesh.patches.size() - first);
     bool any = false;
     for (std::size_t k = first; k < mesh.patches.size(); ++k)
-        any |= wanted[k - first] = suspect_in_wide_region(mesh.patches[k], points, region.cell);
+        any |= wanted[k - first] =
+            suspect_in_wide_region(mesh.patches[k], points, region.cell, mesh.polygon_corners);
     if (!any) return;
     const auto local = surfaces::local_thickness(region, points, mesh, first, wanted, region.cell);
     for (std::size_t k = 0; k < local.size(); ++k)
@@ -238,8 +253,15 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
         // Where a region is thinner than a tenth of a cell its patches are slivers by its own
         // shape; where under a cell, it is cut across into near-square patches.
         classify_patches(region, points, mesh, first, classes, cell_of_patch);
+        if (const auto joined = surfaces::merge_specks(region, points, mesh, first, classes)) {
+            rep.specks_joined += joined;
+            classes.resize(first);
+            cell_of_patch.resize(first);
+            classify_patches(region, points, mesh, first, classes, cell_of_patch);
+        }
         mark_specks_at_detail(region, points, mesh, first, at_detail);
     }
+    compact_polygon_corners(mesh);
     mesh.vertices = points.position;
     rep.shape = shape_stats(mesh, classes, cell_of_patch, at_detail);
     drop_unused_vertices(mesh);
@@ -248,28 +270,48 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     return mesh;
 }
 
+namespace {
+std::span<const std::uint32_t> corners_of(const radfmt::Patch& patch,
+                                          std::span<const std::uint32_t> polygon_corners) {
+    if (patch.is_polygon()) return polygon_corners.subspan(patch.corners[0], patch.corners[1]);
+    return {patch.corners.data(), static_cast<std::size_t>(patch.corner_count())};
+}
+} // namespace
+
 double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
-    return longest_edge(mesh.vertices, patch);
+    return longest_edge(mesh.vertices, patch, mesh.polygon_corners);
 }
 
-double longest_edge(std::span<const Vec3> vertices, const radfmt::Patch& patch) {
-    const int n = patch.corner_count();
+double longest_edge(std::span<const Vec3> vertices, const radfmt::Patch& patch,
+                    std::span<const std::uint32_t> polygon_corners) {
+    const auto corners = corners_of(patch, polygon_corners);
+    const std::size_t n = corners.size();
     double longest = 0;
-    for (int k = 0; k < n; ++k)
-        longest = std::max(
-            longest, length(vertices[patch.corners[(k + 1) % n]] - vertices[patch.corners[k]]));
+    for (std::size_t k = 0; k < n; ++k)
+        longest = std::max(longest, length(vertices[corners[(k + 1) % n]] - vertices[corners[k]]));
     return longest;
 }
 
-bool is_speck(std::span<const Vec3> vertices, const radfmt::Patch& patch, double cell) {
-    return longest_edge(vertices, patch) < cell / 10;
+bool is_speck(std::span<const Vec3> vertices, const radfmt::Patch& patch, double cell,
+              std::span<const std::uint32_t> polygon_corners) {
+    return longest_edge(vertices, patch, polygon_corners) < cell / 10;
 }
 
 double patch_aspect(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
-    return patch_aspect(mesh.vertices, patch);
+    return patch_aspect(mesh.vertices, patch, mesh.polygon_corners);
 }
 
-double patch_aspect(std::span<const Vec3> vertices, const radfmt::Patch& patch) {
+double patch_aspect(std::span<const Vec3> vertices, const radfmt::Patch& patch,
+                    std::span<const std::uint32_t> polygon_corners) {
+    if (!(patch.area > 0)) return 1e300;
+    if (patch.is_polygon()) {
+        const auto corners = corners_of(patch, polygon_corners);
+        double diameter = 0;
+        for (std::size_t a = 0; a < corners.size(); ++a)
+            for (std::size_t b = a + 1; b < corners.size(); ++b)
+                diameter = std::max(diameter, length(vertices[corners[a]] - vertices[corners[b]]));
+        return diameter * diameter / (2 * patch.area);
+    }
     const int n = patch.corner_count();
     std::array<Vec3, 4> c;
     for (int k = 0; k < n; ++k) c[k] = vertices[patch.corners[k]];
@@ -279,7 +321,6 @@ double patch_aspect(std::span<const Vec3> vertices, const radfmt::Patch& patch) 
         side[k] = length(c[(k + 1) % n] - c[k]);
         longest = std::max(longest, side[k]);
     }
-    if (!(patch.area > 0)) return 1e300;
     if (n == 3) return longest * longest / (2 * patch.area);
     // A quad's heights: its area over the mean length of each pair of opposite sides.
     const double h1 = patch.area / std::max(1e-300, 0.5 * (side[0] + side[2]));
@@ -304,7 +345,7 @@ ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClas
         ++counted[0], good[0] += fine; // a tenth of a cell thick or more
         if (c == WidthClass::Wide) ++counted[1], good[1] += fine;
         stats.worst_aspect = std::max(stats.worst_aspect, a);
-        if (k < cells.size() && is_speck(mesh.vertices, patch, cells[k]))
+        if (k < cells.size() && is_speck(mesh.vertices, patch, cells[k], mesh.polygon_corners))
             ++(k < at_detail.size() && at_detail[k] ? stats.specks_at_detail : stats.specks);
     }
     stats.fraction_aspect_at_most_3 = counted[0] ? double(good[0]) / double(counted[0]) : 1;
