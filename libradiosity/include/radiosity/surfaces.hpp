@@ -102,7 +102,8 @@ struct SurfaceReport {
 // a cell whose corners are at least a third of a cell from the outline (or on an outline
 // point) is a quad; the band between those cells and the outline is a constrained Delaunay
 // triangulation (CGAL) of their corners and the outline points, whose specks and slivers are
-// joined with a neighbour into a convex quad where that makes one of aspect at most 3.
+// joined with a neighbour into a convex quad where that makes one of aspect at most 3. A speck
+// still left, where the region is not thin, joins a neighbour into a polygon patch (or a quad).
 radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptions& options,
                                SurfaceReport* report = nullptr);
 
