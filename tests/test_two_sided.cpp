@@ -157,3 +157,20 @@ TEST_CASE("--two-sided selects groups, materials or all; emitters' backs do not 
     REQUIRE(both.patches.size() == n + 1);
     CHECK(both.materials[both.patches.back().material].name == "lamp");
 }
+
+TEST_CASE("a polygon patch's back keeps its first corner, so it stays star-shaped from it") {
+    auto mesh = polygon_under_square({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, 3,
+                                     {5.0 / 6, 5.0 / 6, 0});
+    REQUIRE(rad::make_two_sided(mesh, {"all"}, false).back_patches == 2);
+    const auto& back = mesh.patches[2];
+    REQUIRE(back.is_polygon());
+    const auto front = mesh.corners(0), reversed = mesh.corners(2);
+    CHECK(std::vector<std::uint32_t>(reversed.begin(), reversed.end()) ==
+          std::vector<std::uint32_t>{front[0], front[5], front[4], front[3], front[2], front[1]});
+    CHECK(back.normal == radfmt::Vec3{0, 0, -1});
+    CHECK(rad::find_twins(mesh)[0] == 2);
+    // The reader checks the fan from the first corner: the back is written and read back.
+    const auto path = temp_dir("two-sided") / "p.mesh";
+    radfmt::write_mesh(path, {}, mesh);
+    CHECK(radfmt::read_mesh(path).polygon_count() == 2);
+}

@@ -68,8 +68,11 @@ TwoSidedReport make_two_sided(radfmt::MeshData& mesh, const std::vector<std::str
         if (twins[i] >= 0 || !(group_selected[front.group] || material_selected[front.material]))
             continue;
         radfmt::Patch back = front;
+        // Wound the other way; a polygon from the same first corner, the one it is
+        // star-shaped from.
         const auto corners = mesh.corners(front);
-        const std::vector<std::uint32_t> reversed(corners.rbegin(), corners.rend());
+        std::vector<std::uint32_t> reversed(corners.rbegin(), corners.rend());
+        if (front.is_polygon()) std::rotate(reversed.begin(), reversed.end() - 1, reversed.end());
         mesh.set_corners(back, reversed, front.is_polygon());
         back.normal = front.normal * -1.0;
         const auto& material = mesh.materials[front.material];
