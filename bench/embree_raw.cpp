@@ -19,6 +19,13 @@ int main(int argc, char** argv) {
         return 1;
     }
     const auto mesh = radfmt::read_mesh(argv[1]);
+    if (mesh.polygon_count() > 0) { // the baseline is one Embree quad a patch
+        std::fprintf(stderr,
+                     "bench-embree-raw: %s has polygon patches; give it a mesh of "
+                     "triangles and quads (the bench's boxes)\n",
+                     argv[1]);
+        return 1;
+    }
     const long rays_per_patch = std::atol(argv[2]);
 
     RTCDevice device = rtcNewDevice(nullptr);
