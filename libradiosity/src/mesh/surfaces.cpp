@@ -183,6 +183,37 @@ void classify_patches(const surfaces::Region& region, const surfaces::Points& po
         if (!held[k]) classes[first + k] = WidthClass::Thin;
 }
 
+// Pass 4 over every region: its patches (over `points`), classified, its specks joined, and
+// the shapes' summary in the report.
+radfmt::MeshData grid_regions(const std::vector<surfaces::Region>& regions,
+                              surfaces::Points& points, const SurfaceOptions& options,
+                              double tolerance, SurfaceReport& rep) {
+    radfmt::MeshData mesh;
+    std::vector<WidthClass> classes;
+    std::vector<double> cell_of_patch;
+    std::vector<bool> at_detail;
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        const auto& region = regions[r];
+        if (r % 1024 == 0) stage_fraction(options.stages, double(r) / regions.size());
+        const auto first = mesh.patches.size();
+        surfaces::grid_region(region, points, mesh, rep, tolerance);
+        // Where a region is thinner than a tenth of a cell its patches are slivers by its own
+        // shape; where under a cell, it is cut across into near-square patches.
+        classify_patches(region, points, mesh, first, classes, cell_of_patch);
+        if (const auto joined = surfaces::merge_specks(region, points, mesh, first, classes)) {
+            rep.specks_joined += joined;
+            classes.resize(first);
+            cell_of_patch.resize(first);
+            classify_patches(region, points, mesh, first, classes, cell_of_patch);
+        }
+        mark_specks_at_detail(region, points, mesh, first, at_detail);
+    }
+    compact_polygon_corners(mesh);
+    mesh.vertices = points.position;
+    rep.shape = shape_stats(mesh, classes, cell_of_patch, at_detail);
+    return mesh;
+}
+
 } // namespace
 
 radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptions& options,
@@ -238,32 +269,9 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     begin_stage(options.stages, "outline refinement");
     surfaces::refine_outline_pieces(regions, points, tolerance, 6);
     begin_stage(options.stages, "grids");
-
-    radfmt::MeshData mesh;
+    auto mesh = grid_regions(regions, points, options, tolerance, rep);
     mesh.groups = faces.groups;
     mesh.materials = faces.materials;
-    std::vector<WidthClass> classes;
-    std::vector<double> cell_of_patch;
-    std::vector<bool> at_detail;
-    for (std::size_t r = 0; r < regions.size(); ++r) {
-        const auto& region = regions[r];
-        if (r % 1024 == 0) stage_fraction(options.stages, double(r) / regions.size());
-        const auto first = mesh.patches.size();
-        surfaces::grid_region(region, points, mesh, rep, tolerance);
-        // Where a region is thinner than a tenth of a cell its patches are slivers by its own
-        // shape; where under a cell, it is cut across into near-square patches.
-        classify_patches(region, points, mesh, first, classes, cell_of_patch);
-        if (const auto joined = surfaces::merge_specks(region, points, mesh, first, classes)) {
-            rep.specks_joined += joined;
-            classes.resize(first);
-            cell_of_patch.resize(first);
-            classify_patches(region, points, mesh, first, classes, cell_of_patch);
-        }
-        mark_specks_at_detail(region, points, mesh, first, at_detail);
-    }
-    compact_polygon_corners(mesh);
-    mesh.vertices = points.position;
-    rep.shape = shape_stats(mesh, classes, cell_of_patch, at_detail);
     drop_unused_vertices(mesh);
     if (mesh.patches.size() >= radfmt::kNoVertex)
         throw InputError("too many patches for 32-bit indices");
