@@ -138,6 +138,14 @@ std::size_t merge_specks(const Region& region, const Points& points, radfmt::Mes
                          std::size_t first, const std::vector<WidthClass>& classes) {
     if (!(region.cell > 0)) return 0;
     const std::size_t n = mesh.patches.size();
+    auto joinable = [&](std::size_t s) {
+        return classes[s] != WidthClass::Thin &&
+               is_speck(points.position, mesh.patches[s], region.cell, mesh.polygon_corners);
+    };
+    // Most regions have none: no map of their sides (a grid of 10^7 cells would need gigabytes).
+    bool any = false;
+    for (std::size_t s = first; s < n && !any; ++s) any = joinable(s);
+    if (!any) return 0;
     PatchesBySide by_side;
     std::vector<char> gone(n, 0);
     for (std::size_t i = first; i < n; ++i) add_sides(by_side, mesh.corners(i), i);
@@ -146,9 +154,7 @@ std::size_t merge_specks(const Region& region, const Points& points, radfmt::Mes
     for (bool again = true; again;) {
         again = false;
         for (std::size_t s = first; s < n; ++s) {
-            if (gone[s] || classes[s] == WidthClass::Thin ||
-                !is_speck(points.position, mesh.patches[s], region.cell, mesh.polygon_corners))
-                continue;
+            if (gone[s] || !joinable(s)) continue;
             const auto join = best_join(region, points, mesh, s, by_side);
             if (join.partner == kNoPatch) continue;
             remove_sides(by_side, mesh.corners(s));
