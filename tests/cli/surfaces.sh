@@ -205,6 +205,8 @@ sys.exit(not (regions == '4' and abs(float(said) - lost) < 1e-3 and lost > 1))
 read -r tenth wide < <(shape_share pc.err)
 echo "pandora cut: aspect <= 3 for $tenth% (a tenth of a cell thick or more), $wide% (a cell thick)"
 at_least "${tenth:-0}" 97 && at_least "${wide:-0}" 97 || fail "pandora cut shapes: $(grep planar pc.err)"
+# Its 12 specks (beside the input's notches and steps) each joined a neighbour: none is left.
+[ "$(specks pc.err)" = 0 ] || fail "pandora cut: specks left: $(grep planar pc.err)"
 # A shelf 6 cm deep at a 25 cm cell (a region a quarter of a cell wide) is cut across into
 # near-square patches, not into 25 x 6 cm strips (aspect 4.2); the holed wall stays a grid.
 python3 "$GEN" holed holed.obj
