@@ -113,6 +113,42 @@ TEST_CASE("a polygon patch, not convex, lights and reflects as the surface it co
     CHECK(e.indirect[0] == Approx(2 * f).epsilon(0.02));
 }
 
+TEST_CASE("a ray's hit on a polygon patch takes the values of the fan triangle it met") {
+    // The L (patch 0, B = 1) and a triangle beside it sharing its corners (2, 0) and (2, 1)
+    // (patch 1, B = 3): smoothed by area, those two corners hold (3 x 1 + 0.5 x 3) / 3.5, the
+    // L's others 1. A hit is interpolated over the fan triangle {0, k, k + 1} it lies in.
+    radfmt::MeshData mesh;
+    mesh.groups = {"g"};
+    mesh.materials = {{"white", {0.5, 0.5, 0.5}, {0, 0, 0}}};
+    mesh.vertices = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {3, 0, 0}};
+    radfmt::Patch ell, side;
+    const std::vector<std::uint32_t> ids{0, 1, 2, 3, 4, 5};
+    mesh.set_corners(ell, ids, true);
+    ell.area = 3;
+    ell.centroid = {5.0 / 6, 5.0 / 6, 0};
+    ell.normal = {0, 0, 1};
+    side.corners = {1, 6, 2, radfmt::kNoVertex};
+    side.area = 0.5;
+    side.centroid = {7.0 / 3, 1.0 / 3, 0};
+    side.normal = {0, 0, 1};
+    mesh.patches = {ell, side};
+    rad::GatherOptions options;
+    options.smoothing = rad::Smoothing::Area;
+    const std::vector<rad::Rgb> b{rad::Rgb{1, 1, 1}, rad::Rgb{3, 3, 3}};
+    const rad::Gatherer gatherer(mesh, b, options);
+    const double shared = 4.5 / 3.5;
+    // (1.8, 0.5) lies in fan triangle 0, (0, 0)-(2, 0)-(2, 1), at weights 0.1, 0.4, 0.5;
+    // (1.2, 0.9) in triangle 1, (0, 0)-(2, 1)-(1, 1), at 0.1, 0.3, 0.6; (0.5, 1.5) in
+    // triangle 2, (0, 0)-(1, 1)-(1, 2), where every corner holds 1.
+    for (const auto& [x, y, expected] : std::vector<std::array<double, 3>>{
+             {1.8, 0.5, 0.1 + 0.9 * shared}, {1.2, 0.9, 0.7 + 0.3 * shared}, {0.5, 1.5, 1}}) {
+        const auto hit = gatherer.scene().trace({x, y, 1}, {0, 0, -1});
+        CAPTURE(x, y);
+        REQUIRE(hit.patch == 0);
+        CHECK(gatherer.radiosity_at(hit)[0] == Approx(expected).epsilon(1e-5));
+    }
+}
+
 TEST_CASE("a blocker casts a full shadow, and half a blocker half of one") {
     // Black blockers at height 0.25 facing down, over all of the lamp or over x < 0.
     const std::string full = kLamp + "v -2 0.25 -2\nv -2 0.25 2\nv 2 0.25 2\nv 2 0.25 -2\n"
