@@ -62,6 +62,14 @@ struct Patch {
     }
 };
 
+// A patch's corners in order (counter-clockwise seen from its normal's side): its own for a
+// triangle or quad, a polygon's in `polygon_corners` (its mesh's).
+inline std::span<const std::uint32_t>
+patch_corners(const Patch& patch, std::span<const std::uint32_t> polygon_corners) {
+    if (patch.is_polygon()) return polygon_corners.subspan(patch.corners[0], patch.corners[1]);
+    return {patch.corners.data(), static_cast<std::size_t>(patch.corner_count())};
+}
+
 struct MeshData {
     std::vector<Vec3> vertices;
     std::vector<Patch> patches;
@@ -69,19 +77,16 @@ struct MeshData {
     std::vector<Material> materials;
     std::vector<std::uint32_t> polygon_corners; // the corners of the polygon patches
 
-    // A patch's corners in order (counter-clockwise seen from its normal's side).
+    // A patch's corners in order (patch_corners); the mutable one to renumber them.
     std::span<const std::uint32_t> corners(const Patch& patch) const {
-        if (patch.is_polygon())
-            return {polygon_corners.data() + patch.corners[0], patch.corners[1]};
-        return {patch.corners.data(), static_cast<std::size_t>(patch.corner_count())};
+        return patch_corners(patch, polygon_corners);
     }
     std::span<const std::uint32_t> corners(std::size_t patch) const {
         return corners(patches[patch]);
     }
     std::span<std::uint32_t> corners(Patch& patch) {
-        if (patch.is_polygon())
-            return {polygon_corners.data() + patch.corners[0], patch.corners[1]};
-        return {patch.corners.data(), static_cast<std::size_t>(patch.corner_count())};
+        const auto view = patch_corners(patch, polygon_corners);
+        return {const_cast<std::uint32_t*>(view.data()), view.size()};
     }
     // Makes `patch` a polygon of `corners` (appended to polygon_corners), or a triangle or
     // quad when there are 3 or 4 of them and `as_polygon` is false.

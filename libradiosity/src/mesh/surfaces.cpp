@@ -278,21 +278,13 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     return mesh;
 }
 
-namespace {
-std::span<const std::uint32_t> corners_of(const radfmt::Patch& patch,
-                                          std::span<const std::uint32_t> polygon_corners) {
-    if (patch.is_polygon()) return polygon_corners.subspan(patch.corners[0], patch.corners[1]);
-    return {patch.corners.data(), static_cast<std::size_t>(patch.corner_count())};
-}
-} // namespace
-
 double longest_edge(const radfmt::MeshData& mesh, const radfmt::Patch& patch) {
     return longest_edge(mesh.vertices, patch, mesh.polygon_corners);
 }
 
 double longest_edge(std::span<const Vec3> vertices, const radfmt::Patch& patch,
                     std::span<const std::uint32_t> polygon_corners) {
-    const auto corners = corners_of(patch, polygon_corners);
+    const auto corners = radfmt::patch_corners(patch, polygon_corners);
     const std::size_t n = corners.size();
     double longest = 0;
     for (std::size_t k = 0; k < n; ++k)
@@ -313,7 +305,7 @@ double patch_aspect(std::span<const Vec3> vertices, const radfmt::Patch& patch,
                     std::span<const std::uint32_t> polygon_corners) {
     if (!(patch.area > 0)) return 1e300;
     if (patch.is_polygon()) {
-        const auto corners = corners_of(patch, polygon_corners);
+        const auto corners = radfmt::patch_corners(patch, polygon_corners);
         double diameter = 0;
         for (std::size_t a = 0; a < corners.size(); ++a)
             for (std::size_t b = a + 1; b < corners.size(); ++b)
