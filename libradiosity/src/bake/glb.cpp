@@ -2,6 +2,7 @@
 #include "radfmt/container.hpp"
 #include "radiosity/bake.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/patch_geometry.hpp"
 #include "radiosity/two_sided.hpp"
 
 #include <nlohmann/json.hpp>
@@ -93,16 +94,17 @@ struct Corner {
     float value[4];
 };
 
-// Appends a patch as the fan of triangles from its corner 0 (as rad-shade draws it).
-void add_patch(PrimitiveData& prim, const radfmt::MeshData& mesh, const radfmt::Patch& patch,
+// Appends patch `i` as the fan of triangles from its corner 0 (as rad-shade draws it).
+void add_patch(PrimitiveData& prim, const radfmt::MeshData& mesh, std::size_t i,
                const std::vector<Corner>& corners, int width) {
+    const auto& patch = mesh.patches[i];
     std::vector<std::uint32_t> ids(corners.size());
     for (std::size_t k = 0; k < corners.size(); ++k) {
         std::array<std::uint32_t, 8> key{};
         const float f[7] = {float(patch.normal[0]), float(patch.normal[1]), float(patch.normal[2]),
                             corners[k].value[0],    corners[k].value[1],    corners[k].value[2],
                             corners[k].value[3]};
-        for (int i = 0; i < 7; ++i) key[i] = std::bit_cast<std::uint32_t>(f[i]);
+        for (int j = 0; j < 7; ++j) key[j] = std::bit_cast<std::uint32_t>(f[j]);
         key[7] = corners[k].mesh_vertex;
         const auto [at, fresh] =
             prim.index_of.emplace(key, static_cast<std::uint32_t>(prim.position.size() / 3));
@@ -113,8 +115,8 @@ void add_patch(PrimitiveData& prim, const radfmt::MeshData& mesh, const radfmt::
         for (int a = 0; a < 3; ++a) prim.normal.push_back(float(patch.normal[a]));
         for (int a = 0; a < width; ++a) prim.value.push_back(corners[k].value[a]);
     }
-    for (std::size_t k = 1; k + 1 < ids.size(); ++k)
-        prim.indices.insert(prim.indices.end(), {ids[0], ids[k], ids[k + 1]});
+    for (const auto& [a, b, c] : patch_triangles(mesh, i))
+        prim.indices.insert(prim.indices.end(), {ids[a], ids[b], ids[c]});
 }
 
 // The scene's own material for an engine: base colour = reflectance, emission as emissive
@@ -166,7 +168,7 @@ std::map<std::pair<std::uint32_t, bool>, PrimitiveData> collect_primitives(const
                     : a < 2   ? scene.lightmap_uv[i][k][a]
                               : scene.surface_uv[i][k][a - 2];
         }
-        add_patch(primitives[{patch.material, twins[i] >= 0}], mesh, patch, corners, width);
+        add_patch(primitives[{patch.material, twins[i] >= 0}], mesh, i, corners, width);
     }
     return primitives;
 }

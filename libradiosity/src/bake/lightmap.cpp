@@ -1,6 +1,7 @@
 // Rendering smoothed radiosity into the atlas: texel centres interpolated inside each patch,
 // then each chart's rectangle filled outward from its texels.
 #include "radiosity/bake.hpp"
+#include "radiosity/patch_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -105,8 +106,8 @@ Lightmap render_lightmap(const radfmt::MeshData& mesh, const std::vector<Chart>&
                 t[k] = corner_texel(chart, i, k, layout, c, corner_colours.at(mesh, patch, k));
             // As rad-shade draws a quad or polygon: its fan of triangles from corner 0.
             int covered = 0;
-            for (std::size_t k = 1; k + 1 < n; ++k)
-                covered += rasterise_triangle(map, t[0], t[k], t[k + 1]);
+            for (const auto& [a, b, d] : patch_triangles(mesh, patch))
+                covered += rasterise_triangle(map, t[a], t[b], t[d]);
             if (covered > 0) continue;
             // A patch thinner than a texel: its centre's texel carries it.
             TexelPoint mid{0, 0, {}};

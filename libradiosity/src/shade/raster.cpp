@@ -2,6 +2,7 @@
 // supersampling, in parallel row bands.
 #include "radiosity/raster.hpp"
 
+#include "radiosity/patch_geometry.hpp"
 #include "radiosity/two_sided.hpp"
 
 #include <tbb/parallel_for.h>
@@ -113,8 +114,8 @@ std::vector<ScreenTriangle> screen_triangles(const radfmt::MeshData& mesh,
             add_screen_triangles(poly, cam, back, triangles);
             continue;
         }
-        for (std::size_t k = 1; k + 1 < poly.size(); ++k)
-            add_screen_triangles({poly[0], poly[k], poly[k + 1]}, cam, back, triangles);
+        for (const auto& [a, b, c] : patch_triangles(mesh, i))
+            add_screen_triangles({poly[a], poly[b], poly[c]}, cam, back, triangles);
     }
     return triangles;
 }
