@@ -17,10 +17,11 @@ constexpr std::size_t kNoPatch = ~std::size_t(0);
 // Past this many corners a polygon is a shape no patch should be: the speck stays.
 constexpr std::size_t kMaxPolygonCorners = 12;
 
-// The region's patches by directed side (a -> b as the patch winds).
-using PatchesBySide = std::unordered_map<EdgeKey, std::size_t>;
+// The region's patches by directed side (a -> b as the patch winds): not an EdgeKey, whose
+// smaller point comes first, since a side and its neighbour's are the two directions.
+using PatchesBySide = std::unordered_map<std::uint64_t, std::size_t>;
 
-EdgeKey directed(std::uint32_t a, std::uint32_t b) {
+std::uint64_t directed(std::uint32_t a, std::uint32_t b) {
     return (std::uint64_t(a) << 32) | b;
 }
 
