@@ -51,6 +51,25 @@ inline std::string cube_obj(double s = 1.0, const std::string& material = "grey"
            "g right\nf 2 6 8 4\n"; // x=1, normal -x
 }
 
+// Appends to `m` a polygon patch over new vertices at `corners` (star-shaped from the first),
+// with the area, centroid and normal given (worked out by the test, not from its corners).
+inline void add_polygon_patch(radfmt::MeshData& m, const std::vector<radfmt::Vec3>& corners,
+                              double area, const radfmt::Vec3& centroid, const radfmt::Vec3& normal,
+                              std::uint32_t material = 0) {
+    std::vector<std::uint32_t> ids;
+    for (const auto& corner : corners) {
+        ids.push_back(static_cast<std::uint32_t>(m.vertices.size()));
+        m.vertices.push_back(corner);
+    }
+    radfmt::Patch polygon;
+    m.set_corners(polygon, ids, true);
+    polygon.material = material;
+    polygon.area = area;
+    polygon.centroid = centroid;
+    polygon.normal = normal;
+    m.patches.push_back(polygon);
+}
+
 // Patch 0: a polygon patch at z = 0 facing up, of `outline`'s corners (x, y), star-shaped from
 // the first; patch 1: the 2 x 2 square [0, 2]^2 at z = 1 facing down, a quad.
 inline radfmt::MeshData polygon_under_square(const std::vector<std::array<double, 2>>& outline,
@@ -58,16 +77,9 @@ inline radfmt::MeshData polygon_under_square(const std::vector<std::array<double
     radfmt::MeshData m;
     m.groups = {"g"};
     m.materials = {{"grey", {0.5, 0.5, 0.5}, {0, 0, 0}}};
-    std::vector<std::uint32_t> corners;
-    for (const auto& [x, y] : outline) {
-        corners.push_back(static_cast<std::uint32_t>(m.vertices.size()));
-        m.vertices.push_back({x, y, 0});
-    }
-    radfmt::Patch polygon;
-    m.set_corners(polygon, corners, true);
-    polygon.area = area;
-    polygon.centroid = centroid;
-    polygon.normal = {0, 0, 1};
+    std::vector<radfmt::Vec3> corners;
+    for (const auto& [x, y] : outline) corners.push_back({x, y, 0});
+    add_polygon_patch(m, corners, area, centroid, {0, 0, 1});
     const auto top = static_cast<std::uint32_t>(m.vertices.size());
     for (const auto& [x, y] : std::vector<std::array<double, 2>>{{0, 0}, {0, 2}, {2, 2}, {2, 0}})
         m.vertices.push_back({x, y, 1});
@@ -76,7 +88,7 @@ inline radfmt::MeshData polygon_under_square(const std::vector<std::array<double
     square.area = 4;
     square.centroid = {1, 1, 1};
     square.normal = {0, 0, -1};
-    m.patches = {polygon, square};
+    m.patches.push_back(square);
     return m;
 }
 

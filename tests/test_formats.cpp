@@ -97,18 +97,8 @@ namespace {
 // small_mesh with an L-shaped hexagon (star-shaped from its corner 0, not convex) as patch 2.
 radfmt::MeshData mesh_with_polygon() {
     auto m = small_mesh();
-    const std::uint32_t first = static_cast<std::uint32_t>(m.vertices.size());
-    for (const auto& [x, y] :
-         std::vector<std::array<double, 2>>{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}})
-        m.vertices.push_back({x, y, 5});
-    radfmt::Patch l;
-    const std::vector<std::uint32_t> corners{first,     first + 1, first + 2,
-                                             first + 3, first + 4, first + 5};
-    m.set_corners(l, corners, true);
-    l.area = 3;
-    l.centroid = {5.0 / 6, 5.0 / 6, 5};
-    l.normal = {0, 0, 1};
-    m.patches.push_back(l);
+    add_polygon_patch(m, {{0, 0, 5}, {2, 0, 5}, {2, 1, 5}, {1, 1, 5}, {1, 2, 5}, {0, 2, 5}}, 3,
+                      {5.0 / 6, 5.0 / 6, 5}, {0, 0, 1});
     return m;
 }
 } // namespace

@@ -82,18 +82,11 @@ TEST_CASE("a polygon patch, not convex, lights and reflects as the surface it co
     radfmt::MeshData mesh;
     mesh.groups = {"g"};
     mesh.materials = {{"lamp", {0, 0, 0}, {10, 20, 40}}, {"white", {0.5, 0.5, 0.5}, {0, 0, 0}}};
-    std::vector<std::uint32_t> ids;
+    std::vector<radfmt::Vec3> outline;
     for (const auto& [x, z] : std::vector<std::array<double, 2>>{
-             {-0.5, -0.5}, {0.5, -0.5}, {0.5, 0}, {0, 0}, {0, 0.5}, {-0.5, 0.5}}) {
-        ids.push_back(static_cast<std::uint32_t>(mesh.vertices.size()));
-        mesh.vertices.push_back({x, 0.5, z});
-    }
-    radfmt::Patch ell;
-    mesh.set_corners(ell, ids, true);
-    ell.area = 0.75;
-    ell.centroid = {-1.0 / 12, 0.5, -1.0 / 12};
-    ell.normal = {0, -1, 0};
-    mesh.patches = {ell};
+             {-0.5, -0.5}, {0.5, -0.5}, {0.5, 0}, {0, 0}, {0, 0.5}, {-0.5, 0.5}})
+        outline.push_back({x, 0.5, z});
+    add_polygon_patch(mesh, outline, 0.75, {-1.0 / 12, 0.5, -1.0 / 12}, {0, -1, 0});
     const double f = 0.75 * axis_square(0.5, 0.5);
     {
         const rad::Gatherer gatherer(mesh, emission_only(mesh), {});
@@ -120,18 +113,15 @@ TEST_CASE("a ray's hit on a polygon patch takes the values of the fan triangle i
     radfmt::MeshData mesh;
     mesh.groups = {"g"};
     mesh.materials = {{"white", {0.5, 0.5, 0.5}, {0, 0, 0}}};
-    mesh.vertices = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {3, 0, 0}};
-    radfmt::Patch ell, side;
-    const std::vector<std::uint32_t> ids{0, 1, 2, 3, 4, 5};
-    mesh.set_corners(ell, ids, true);
-    ell.area = 3;
-    ell.centroid = {5.0 / 6, 5.0 / 6, 0};
-    ell.normal = {0, 0, 1};
+    add_polygon_patch(mesh, {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}, 3,
+                      {5.0 / 6, 5.0 / 6, 0}, {0, 0, 1});
+    mesh.vertices.push_back({3, 0, 0});
+    radfmt::Patch side;
     side.corners = {1, 6, 2, radfmt::kNoVertex};
     side.area = 0.5;
     side.centroid = {7.0 / 3, 1.0 / 3, 0};
     side.normal = {0, 0, 1};
-    mesh.patches = {ell, side};
+    mesh.patches.push_back(side);
     rad::GatherOptions options;
     options.smoothing = rad::Smoothing::Area;
     const std::vector<rad::Rgb> b{rad::Rgb{1, 1, 1}, rad::Rgb{3, 3, 3}};

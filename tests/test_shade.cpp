@@ -63,20 +63,14 @@ TEST_CASE("a polygon patch, not convex, is drawn as the surface it covers") {
     mesh.groups = {"g"};
     mesh.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}}};
     rad::CornerColours corners;
-    std::vector<std::uint32_t> ids;
+    std::vector<radfmt::Vec3> outline;
     for (const auto& [x, y] :
          std::vector<std::array<double, 2>>{{-1, -1}, {1, -1}, {1, 0}, {0, 0}, {0, 1}, {-1, 1}}) {
-        ids.push_back(static_cast<std::uint32_t>(mesh.vertices.size()));
-        mesh.vertices.push_back({x, y, -1});
+        outline.push_back({x, y, -1});
         const double value = 1 + x + 2 * y;
         corners.polygon_corners.push_back(Rgb{value, value, value});
     }
-    radfmt::Patch ell;
-    mesh.set_corners(ell, ids, true);
-    ell.area = 3;
-    ell.centroid = {-1.0 / 6, -1.0 / 6, -1};
-    ell.normal = {0, 0, 1};
-    mesh.patches = {ell};
+    add_polygon_patch(mesh, outline, 3, {-1.0 / 6, -1.0 / 6, -1}, {0, 0, 1});
     corners.patches.resize(1);
     const int n = 64;
     const auto image = rad::render(mesh, corners, straight_view(), n, n, 1);

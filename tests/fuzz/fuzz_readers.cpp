@@ -13,6 +13,7 @@
 //
 //   fuzz_readers DATA_DIR [--iterations N] [--seconds S] [--seed K] [--kind NAME[,NAME...]]
 //                [--min-cases N]
+#include "../helpers.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
@@ -223,29 +224,6 @@ bool expected_refusal(const std::function<void()>& body, Tally& tally, std::stri
 }
 
 // Uses what a reader accepted, as the tools would.
-// A mesh of version 2: an L-shaped polygon patch (not convex, star-shaped from its first
-// corner) under a square quad.
-radfmt::MeshData polygon_mesh() {
-    radfmt::MeshData m;
-    m.groups = {"g"};
-    m.materials = {{"grey", {0.5, 0.5, 0.5}, {0, 0, 0}}, {"lamp", {0, 0, 0}, {10, 10, 10}}};
-    m.vertices = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0},
-                  {0, 2, 0}, {0, 0, 1}, {0, 2, 1}, {2, 2, 1}, {2, 0, 1}};
-    radfmt::Patch ell, square;
-    const std::vector<std::uint32_t> corners{0, 1, 2, 3, 4, 5};
-    m.set_corners(ell, corners, true);
-    ell.area = 3;
-    ell.centroid = {5.0 / 6, 5.0 / 6, 0};
-    ell.normal = {0, 0, 1};
-    square.corners = {6, 7, 8, 9};
-    square.material = 1;
-    square.area = 4;
-    square.centroid = {1, 1, 1};
-    square.normal = {0, 0, -1};
-    m.patches = {ell, square};
-    return m;
-}
-
 void use_mesh(const radfmt::MeshData& mesh) {
     if (mesh.patches.empty()) return;
     rad::check_ray_precision(mesh.vertices, "mesh");
@@ -348,7 +326,12 @@ int main(int argc, char** argv) {
     radfmt::write_form_factors(dir / "seed.ff", ff_header, ff);
     radfmt::write_radiosity(dir / "seed.rad", header, rad::radiosity_data(solution, {}));
     radfmt::write_links(dir / "seed.links", header, rad::compute_links(mesh, {}));
-    radfmt::write_mesh(dir / "seed-polygon.mesh", header, polygon_mesh());
+    // A mesh of version 2: an L-shaped polygon patch (not convex, star-shaped from its first
+    // corner) under a square quad.
+    radfmt::write_mesh(
+        dir / "seed-polygon.mesh", header,
+        testing_helpers::polygon_under_square({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, 3,
+                                              {5.0 / 6, 5.0 / 6, 0}));
     // A second radiosity seed with light groups (version 2's extra arrays).
     rad::Channels grouped(mesh.patches.size(), 6);
     for (auto& v : grouped.values) v = 0.25;
