@@ -1,0 +1,95 @@
+#include "photometry/text_lines.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+namespace rad::photometry {
+
+std::string quoted(std::string_view text) {
+    constexpr std::size_t kShown = 60;
+    std::string out = "'";
+    for (const char c : text.substr(0, kShown))
+        out += (static_cast<unsigned char>(c) < 32 || c == 127) ? '?' : c;
+    return out + (text.size() > kShown ? "...'" : "'");
+}
+
+std::vector<std::string_view> split_lines(std::string_view text) {
+    std::vector<std::string_view> lines;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] != '\n' && text[i] != '\r') continue;
+        lines.push_back(text.substr(start, i - start));
+        if (text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+        start = i + 1;
+    }
+    if (start < text.size()) lines.push_back(text.substr(start));
+    return lines;
+}
+
+bool parse_number(std::string_view token, double& value) {
+    if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+    if (token.empty()) return false;
+    // "69." and ".5" are numbers in these files; from_chars takes both.
+    const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+    return error == std::errc() && end == token.data() + token.size() && std::isfinite(value);
+}
+
+TokenCursor::TokenCursor(std::vector<std::string_view> lines, std::size_t first_line,
+                         std::string file)
+    : lines_(std::move(lines)), line_(first_line), file_(std::move(file)) {}
+
+bool TokenCursor::next_token(std::string_view& token) {
+    const auto separator = [](char c) {
+        return c == ' ' || c == '\t' || c == ',' || c == '\f' || c == '\v';
+    };
+    while (line_ < lines_.size()) {
+        const auto& line = lines_[line_];
+        while (pos_ < line.size() && separator(line[pos_])) ++pos_;
+        if (pos_ < line.size()) {
+            const auto start = pos_;
+            while (pos_ < line.size() && !separator(line[pos_])) ++pos_;
+            token = line.substr(start, pos_ - start);
+            return true;
+        }
+        ++line_;
+        pos_ = 0;
+    }
+    return false;
+}
+
+double TokenCursor::number(const std::string& what) {
+    std::string_view token;
+    if (!next_token(token))
+        fail("the file ends where " + what + " should be (truncated?)");
+    double value = 0;
+    if (!parse_number(token, value)) fail("expected " + what + ", found " + quoted(token));
+    return value;
+}
+
+long TokenCursor::count(const std::string& what, long low, long high) {
+    const double value = number(what);
+    if (value != std::floor(value) || value < double(low) || value > double(high))
+        fail(what + " must be a whole number from " + std::to_string(low) + " to " +
+             std::to_string(high) + ", not " + std::to_string(value));
+    return static_cast<long>(value);
+}
+
+bool TokenCursor::at_end() {
+    std::string_view token;
+    const auto line = line_;
+    const auto pos = pos_;
+    const bool more = next_token(token);
+    if (more) {
+        // Put the token back: at_end only looks.
+        line_ = line;
+        pos_ = pos;
+    }
+    return !more;
+}
+
+void TokenCursor::fail(const std::string& message) const {
+    throw InputError(where(), message);
+}
+
+} // namespace rad::photometry

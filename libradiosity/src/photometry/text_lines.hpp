@@ -1,0 +1,47 @@
+// Reading photometric text with line numbers (internal header): lines split on LF, CR LF or
+// CR; numbers as whole tokens (blanks or commas between), so "12x" or "1.2.3" is refused.
+#pragma once
+#include "radiosity/error.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rad::photometry {
+
+// A quoted prefix of a line for a message: never the whole of a huge line.
+std::string quoted(std::string_view text);
+
+// The text's lines without their line ends.
+std::vector<std::string_view> split_lines(std::string_view text);
+
+// A finite number that is the whole of `token`, or false.
+bool parse_number(std::string_view token, double& value);
+
+// Numbers read token by token across lines, each knowing its line.
+class TokenCursor {
+  public:
+    TokenCursor(std::vector<std::string_view> lines, std::size_t first_line, std::string file);
+    // The next number; `what` names it in the error when it is missing or not a number.
+    double number(const std::string& what);
+    // A number that must be a whole count within [low, high].
+    long count(const std::string& what, long low, long high);
+    bool at_end();
+    // The line of the last token read (past the end: the last line).
+    FileLoc where() const {
+        const auto last = lines_.empty() ? 0 : lines_.size() - 1;
+        return {file_, static_cast<int>(std::min(line_, last) + 1)};
+    }
+    [[noreturn]] void fail(const std::string& message) const;
+
+  private:
+    bool next_token(std::string_view& token);
+    std::vector<std::string_view> lines_;
+    std::size_t line_;
+    std::size_t pos_ = 0;
+    std::string file_;
+};
+
+} // namespace rad::photometry

@@ -1,0 +1,210 @@
+// Photometric files: every public fixture read and integrated, malformed files refused with
+// FILE:LINE, interpolation and symmetry against values worked out by hand.
+#include "radiosity/photometry.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+using Catch::Detail::Approx;
+namespace fs = std::filesystem;
+
+namespace {
+const fs::path kData = fs::path(RADIOSITY_SOURCE_DIR) / "tests/data/photometry";
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+rad::Photometry read(const std::string& file) {
+    return rad::parse_photometry(slurp(kData / file), file, nullptr);
+}
+
+// The message of the InputError `text` gives, or "" when it is read.
+std::string refusal(const std::string& text, const std::string& name = "bad.ies") {
+    try {
+        rad::parse_photometry(text, name, nullptr);
+    } catch (const rad::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+} // namespace
+
+TEST_CASE("every public photometric fixture reads and integrates to its stated flux") {
+    struct Expect {
+        const char* file;
+        rad::PhotometricType type;
+        double flux;      // lm the file states or implies; 0: not stated (absolute)
+        double tolerance; // relative
+    };
+    // EULUMDAT states lamps x LORL; relative IES files their lamp lumens, which bound the
+    // integral (their LOR, not given in the file, is the ratio).
+    const Expect fixtures[] = {
+        {"eulumdat-rs_floor_uplight_Isym0.ldt", rad::PhotometricType::C, 20000 * 0.7233, 0.02},
+        {"eulumdat-ugr_sample_09_Isym1.ldt", rad::PhotometricType::C, 13729 * 1.00, 0.02},
+        // Its intensities integrate to 2.1% over its LORL (checked by a brute-force sum): warned.
+        {"eulumdat-rs_projector_Isym2.ldt", rad::PhotometricType::C, 6500 * 0.7771, 0.025},
+        {"eulumdat-rs_road_luminaire_Isym3.ldt", rad::PhotometricType::C, 33200 * 0.8442, 0.02},
+        {"eulumdat-ugr_sample_01_Isym4.ldt", rad::PhotometricType::C, 12334 * 1.00, 0.02},
+    };
+    for (const auto& f : fixtures) {
+        INFO(f.file);
+        const auto p = read(f.file);
+        CHECK(p.type == f.type);
+        CHECK(p.flux() == Approx(f.flux).epsilon(f.tolerance));
+        CHECK(rad::flux_warnings(p).empty() == (std::string(f.file) != "eulumdat-rs_projector_Isym2.ldt"));
+    }
+    for (const char* file :
+         {"luxcore_ASA_15M_R2.ies", "photon-v2_ERCO_Panarc_corridor_1.ies",
+          "photon-v2_Lithonia_KBD8_bollard_9.IES", "photon-v2_Halo_L1768_wallwasher.ies",
+          "eulumdat-rs_TILT_TEST_SYNTHETIC.ies", "eulumdat-rs_ABSOLUTE_LED.ies",
+          "appleseed_test_iesparser_2_typeB_ACP.ies", "photompy_tilt_include_v19.ies",
+          "threejs_BEGA_84659K4_h90-270.ies"}) {
+        INFO(file);
+        const auto p = read(file);
+        const double flux = p.flux();
+        CHECK(flux > 0);
+        // The synthetic TILT file's intensities make 323% of its lamp: warned, as it should be.
+        const bool synthetic = std::string(file) == "eulumdat-rs_TILT_TEST_SYNTHETIC.ies";
+        CHECK(rad::flux_warnings(p).empty() == !synthetic);
+        if (p.lamp_lumens > 0 && !synthetic) CHECK(flux <= 1.02 * p.lamp_lumens);
+    }
+    // The BEGA file is absolute; its label says 9600 lm: the 90-270 layout mirrored right.
+    CHECK(read("threejs_BEGA_84659K4_h90-270.ies").flux() == Approx(9600).epsilon(0.001));
+    // Editions and systems as the files say.
+    CHECK(read("photompy_tilt_include_v19.ies").edition == "LM-63-2019");
+    CHECK(read("photon-v2_Lithonia_KBD8_bollard_9.IES").edition == "LM-63-1991");
+    CHECK(read("appleseed_test_iesparser_2_typeB_ACP.ies").type == rad::PhotometricType::B);
+    const auto tilted = read("eulumdat-rs_TILT_TEST_SYNTHETIC.ies");
+    REQUIRE(tilted.tilt.angles.size() == 4);
+    CHECK(tilted.tilt.factor(45) == Approx(0.9));
+    CHECK(tilted.tilt.factor(67.5) == Approx(0.85));
+    CHECK(tilted.tilt.factor(135) == Approx(0.9));
+}
+
+namespace {
+// A small valid IES file: type C, 3 vertical angles, 2 planes 0 and 90 (quadrant symmetric).
+std::string small_ies(const std::string& numbers =
+                          "1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 "
+                          "60 5\n",
+                      const std::string& tilt = "TILT=NONE\n") {
+    return "IESNA:LM-63-2002\n[TEST] unit\n" + tilt + numbers;
+}
+} // namespace
+
+TEST_CASE("interpolation is bilinear in the angles and symmetric parts are mirrored") {
+    const auto p = rad::parse_ies(small_ies(), "q.ies", nullptr);
+    CHECK(p.intensity(0, 0) == Approx(100));
+    CHECK(p.intensity(0, 22.5) == Approx(90));
+    CHECK(p.intensity(90, 45) == Approx(60));
+    CHECK(p.intensity(45, 45) == Approx(70));  // halfway between the planes
+    CHECK(p.intensity(180, 45) == Approx(80)); // 0-90 mirrored: C180 is C0
+    CHECK(p.intensity(270, 45) == Approx(60));
+    CHECK(p.intensity(315, 45) == Approx(70));
+    CHECK(p.intensity(0, 120) == 0); // past the last vertical angle
+    CHECK(p.length == Approx(0.1)); // metres (units 2)
+    // Feet (units 1): the roadway luminaire's 1.24 ft opening.
+    CHECK(read("luxcore_ASA_15M_R2.ies").length == Approx(1.24 * 0.3048));
+    // A negative width is round: the ERCO luminaire's 0.262 m disc.
+    const auto erco = read("photon-v2_ERCO_Panarc_corridor_1.ies");
+    CHECK(erco.round);
+    CHECK(erco.length == Approx(0.262));
+}
+
+TEST_CASE("a cosine distribution integrates to pi times its peak") {
+    // I = 1000 cos(gamma) on gamma 0-90 at 1 degree, one plane.
+    std::string text = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 91 1 1 2 0 0 0\n1 1 0\n";
+    for (int g = 0; g <= 90; ++g) text += std::to_string(g) + " ";
+    text += "\n0\n";
+    char value[32];
+    for (int g = 0; g <= 90; ++g) {
+        std::snprintf(value, sizeof value, "%.6f ", 1000 * std::cos(g * std::numbers::pi / 180));
+        text += value;
+    }
+    const auto p = rad::parse_ies(text, "cos.ies", nullptr);
+    CHECK(p.flux() == Approx(1000 * std::numbers::pi).epsilon(1e-4));
+    CHECK(p.downward_flux() == Approx(p.flux()));
+}
+
+TEST_CASE("malformed photometric files are refused with FILE:LINE and what is wrong") {
+    struct Bad {
+        std::string name, text, says;
+    };
+    const std::string ldt = slurp(kData / "eulumdat-ugr_sample_09_Isym1.ldt");
+    const auto ldt_with = [&](int line, const std::string& value) {
+        std::stringstream in(ldt);
+        std::string out, l;
+        for (int n = 1; std::getline(in, l); ++n) out += (n == line ? value : l) + "\n";
+        return out;
+    };
+    const Bad cases[] = {
+        {"mdl.ies", slurp(kData / "MALFORMED_mdl-sdk_test_file_format_error.ies"),
+         "mdl.ies:3: expected the number of lamps, found 'file'"},
+        {"notilt.ies", "IESNA:LM-63-2002\n[TEST] x\n1 1000 1 3 2 1 2 0 0 0\n", "notilt.ies:3: no TILT= line"},
+        {"short.ies", small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100\n"),
+         "short.ies:9: the file ends where candela value 5 of 6 should be"},
+        {"long.ies", small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5 7\n"),
+         "long.ies:9: numbers left over"},
+        {"order.ies", small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 90 45\n0 90\n100 80 10\n100 60 5\n"),
+         "order.ies:6: vertical angles must increase"},
+        {"neg.ies", small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 -80 10\n100 60 5\n"),
+         "neg.ies:8: a negative candela value"},
+        {"layout.ies", small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 45\n100 80 10\n100 60 5\n"),
+         "layout.ies:7: horizontal angles from 0.000000 to 45.000000"},
+        {"type.ies", small_ies("1 1000 1 3 2 4 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5\n"),
+         "type.ies:4: the photometric type (1 = C, 2 = B, 3 = A) must be a whole number from 1 to 3"},
+        {"lumens.ies", small_ies("1 0 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5\n"),
+         "lumens.ies:4: lumens per lamp must be positive, or -1"},
+        {"tiltfile.ies", small_ies(), ""}, // placeholder replaced below
+        {"tiltshort.ies", small_ies("", "TILT=INCLUDE\n1\n3\n0 45 90\n1 0.9\n"),
+         "tiltshort.ies:7: the file ends where a TILT multiplier should be"},
+        {"empty.ies", "", "empty.ies: empty file"},
+        {"isym.ldt", ldt_with(3, "5"), "isym.ldt:3: Isym (the symmetry, 0 to 4) must be"},
+        {"mc.ldt", ldt_with(4, "many"), "mc.ldt:4: expected Mc (the number of C-planes), found 'many'"},
+        {"negative.ldt", ldt_with(110, "-3"), "negative.ldt:110: a negative intensity"},
+        {"cut.ldt", ldt.substr(0, ldt.size() / 2), "cut.ldt:"},
+        {"truncated.ldt", "\n1\n1\n", "truncated.ldt:3: the file ends where line 4"},
+    };
+    for (const auto& c : cases) {
+        if (c.says.empty()) continue;
+        INFO(c.name);
+        const auto message = refusal(c.text, c.name);
+        CHECK(message.rfind(c.says, 0) == 0);
+        if (message.rfind(c.says, 0) != 0) WARN(message);
+    }
+    // A TILT file is read through the reader the caller gives (the scene's folder boundary
+    // is the caller's): without one, refused with the line that names it.
+    CHECK(refusal(small_ies("", "TILT=lamp.tlt\n"), "t.ies")
+              .rfind("t.ies:3: TILT=lamp.tlt names a file", 0) == 0);
+    const auto with_file = rad::parse_ies(
+        small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5\n",
+                  "TILT=lamp.tlt\n"),
+        "t.ies", [](const std::string& name, const rad::FileLoc&) {
+            CHECK(name == "lamp.tlt");
+            return std::string("1\n2\n0 90\n1 0.5\n");
+        });
+    CHECK(with_file.tilt.factor(45) == Approx(0.75));
+}
+
+TEST_CASE("a colour temperature's tint keeps the luminance and warms or cools the light") {
+    for (const double k : {2700.0, 4000.0, 6500.0}) {
+        const auto t = rad::cct_tint(k);
+        CHECK(0.265 * t[0] + 0.670 * t[1] + 0.065 * t[2] == Approx(1));
+    }
+    CHECK(rad::cct_tint(2700)[0] > rad::cct_tint(2700)[2]); // warm: more red than blue
+    CHECK(rad::cct_tint(10000)[2] > rad::cct_tint(10000)[0]);
+    // Radiance's white is equal energy (about 5455 K on the locus): near grey.
+    const auto e = rad::cct_tint(5455);
+    CHECK(e[0] == Approx(1).epsilon(0.05));
+    CHECK(e[2] == Approx(1).epsilon(0.08));
+    CHECK_THROWS_AS(rad::cct_tint(500), rad::InputError);
+}
