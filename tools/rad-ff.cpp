@@ -5,7 +5,9 @@
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/formfactor_method.hpp"
+#include "radiosity/gather.hpp"
 #include "radiosity/hierarchy.hpp"
+#include "radiosity/luminaires.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/rays.hpp"
@@ -84,7 +86,7 @@ void write_hierarchical(const std::string& input, const radfmt::MeshData& mesh,
 
 // What the command line says.
 struct FfArgs {
-    std::string output, max_memory, rows;
+    std::string output, max_memory, rows, luminaires;
     rad::FormFactorOptions options;
     rad::HierarchyOptions hierarchy;
     int threads = 0;
@@ -107,6 +109,11 @@ void add_file_options(CLI::App& app, FfArgs& a) {
                  "Join part files (rad-ff --rows) of one mesh and options into the form-factor "
                  "file one run would have written, byte for byte; every row exactly once");
     a.output_option = app.add_option("-o,--output", a.output, "Output form-factor file");
+    app.add_option("--luminaires", a.luminaires,
+                   "A luminaire layout (CSV: name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,"
+                   "maintenance,group; photometric files IES or EULUMDAT beside it): write each "
+                   "luminaire's direct light on every patch to -o (a .lum file for rad-solve "
+                   "--direct) instead of form factors");
     app.add_flag("--estimate", a.estimate_only,
                  "Measure a few rows, say how long the run would take (and, for an O(n^2) "
                  "method, what hemisphere would take), and stop: no output, no -o needed. "
@@ -292,8 +299,69 @@ void check_arguments(const FfArgs& a) {
     if (!a.estimate_only) rad::tool::check_outputs(a.inputs, {{"-o", a.output}});
 }
 
+// Lumens a group's direct light brings to the patches: sum of lux x area in m^2.
+double lumens_received(const radfmt::MeshData& mesh, const radfmt::LuminaireData& lum,
+                       std::size_t group, double metres_per_unit) {
+    double total = 0;
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i)
+        total += rad::lux(lum.of(i, group)) * mesh.patches[i].area;
+    return total * metres_per_unit * metres_per_unit;
+}
+
+void print_direct_summary(const radfmt::MeshData& mesh, const rad::LuminaireSet& set,
+                          const radfmt::LuminaireData& lum, const rad::DirectLightStats& stats) {
+    double emitted = 0, received = 0;
+    for (const auto& l : set.luminaires) emitted += set.flux(l);
+    for (std::size_t g = 0; g < lum.groups.size(); ++g)
+        received += lumens_received(mesh, lum, g, set.metres_per_unit);
+    std::fprintf(stderr,
+                 "rad-ff: %zu luminaire(s) from %zu photometric file(s) in %zu light group(s): "
+                 "%.6g lm emitted (%.6g W at %g lm/W), %.6g lm reach the patches; %llu rays "
+                 "in %.3f s\n",
+                 set.luminaires.size(), set.photometries.size(), set.groups.size(), emitted,
+                 emitted / rad::kRadianceEfficacy, rad::kRadianceEfficacy, received,
+                 static_cast<unsigned long long>(stats.rays), stats.seconds);
+}
+
+// --luminaires: each luminaire's direct light per patch, into a .lum file.
+int direct_light(FfArgs& a, int argc, char** argv) {
+    if (a.merge || !a.rows.empty() || a.estimate_only)
+        throw rad::InputError("--luminaires takes neither --merge, --rows nor --estimate");
+    if (a.inputs.size() != 1) throw rad::InputError("give one mesh with --luminaires");
+    rad::ThreadLimit thread_limit(a.threads);
+    const auto& input = a.inputs.front();
+    radfmt::Header mesh_header;
+    const auto mesh = radfmt::read_mesh(input, &mesh_header);
+    if (mesh.patches.empty()) throw rad::InputError(input + ": mesh has no patches");
+    rad::check_ray_precision(mesh.vertices, input);
+    const auto sources = rad::read_luminaire_sources(a.luminaires);
+    const auto set = rad::build_luminaires(sources, rad::metres_per_unit(mesh_header));
+    for (const auto& w : set.warnings) std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());
+    const rad::RayScene scene(mesh);
+    for (const auto& w : rad::enclosed_luminaire_warnings(set, scene, a.luminaires))
+        std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());
+    rad::DirectLightStats stats;
+    radfmt::LuminaireData lum{sources.layout_name, sources.layout_text, sources.files, set.groups,
+                              mesh.patches.size(),
+                              rad::patch_direct_light(mesh, set, scene, 0, mesh.patches.size(), &stats)};
+    // The inputs: the mesh, the layout and every file it names, so Make and the chain see a
+    // changed photometric file.
+    std::vector<radfmt::Parent> parents{{input, &mesh_header}, {a.luminaires, nullptr}};
+    const auto folder = std::filesystem::path(a.luminaires).parent_path();
+    for (const auto& f : sources.files) parents.push_back({folder / f.first, nullptr});
+    auto header = radfmt::derived_header(rad::tool_version("rad-ff"),
+                                         radfmt::command_line(argc, argv), parents);
+    header.set("mesh_geometry_hash", mesh.geometry_hash());
+    header.set("metres_per_unit", std::to_string(set.metres_per_unit));
+    header.set("luminaires", std::to_string(set.luminaires.size()));
+    radfmt::write_luminaires(a.output, header, lum);
+    if (!a.options.quiet) print_direct_summary(mesh, set, lum, stats);
+    return 0;
+}
+
 int form_factors(FfArgs& a, int argc, char** argv) {
     check_arguments(a);
+    if (!a.luminaires.empty()) return direct_light(a, argc, argv);
     if (a.merge) return merge_parts(a);
     if (a.inputs.size() != 1)
         throw rad::InputError("give one mesh (several inputs are for --merge)");

@@ -74,7 +74,7 @@ struct MeshArgs {
     double planarity = 1e-3, max_patches = 2e7;
     bool quiet = false, timings = false, strict = false;
     std::string patch_order = "morton", default_reflectance, orient = "warn";
-    std::string surfaces = "regions", import_memory;
+    std::string surfaces = "regions", import_memory, unit = "m";
     rad::SceneOptions scene;
     std::vector<std::string> mtl_paths, flip, two_sided;
     bool two_sided_emission = false, no_imprint = false;
@@ -92,6 +92,11 @@ void add_scene_options(CLI::App& app, MeshArgs& a) {
                    "allows); repeat as GROUP=L for a per-group limit (default: the scene's "
                    "size, its bounding box's diagonal, over 20)");
     app.add_option("--max-area", a.max_area, "Largest patch area; repeat as GROUP=A per group");
+    app.add_option("--unit", a.unit,
+                   "The scene's length unit, recorded in the mesh: luminaires' candela become "
+                   "lux through it (a scene drawn in millimetres: mm)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"m", "cm", "mm", "ft", "in"}));
     app.add_option("--max-patches", a.max_patches,
                    "Refuse (before subdividing) when the limits would make more patches than "
                    "this")
@@ -257,8 +262,9 @@ int main(int argc, char** argv) {
         stages.begin("writing " + std::filesystem::path(a.output).filename().string());
         std::vector<radfmt::Parent> sources{{a.input, nullptr}};
         for (const auto& mtl : scene.material_files) sources.push_back({mtl, nullptr});
-        const auto header = radfmt::derived_header(rad::tool_version("rad-mesh"),
-                                                   radfmt::command_line(argc, argv), sources);
+        auto header = radfmt::derived_header(rad::tool_version("rad-mesh"),
+                                             radfmt::command_line(argc, argv), sources);
+        header.set("unit", a.unit);
         radfmt::write_mesh(a.output, header, mesh);
         stages.finish();
         if (a.timings)

@@ -3,7 +3,9 @@
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/gather.hpp"
 #include "radiosity/light_groups.hpp"
+#include "radiosity/luminaires.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/solver.hpp"
 #include "radiosity/version.hpp"
@@ -89,7 +91,7 @@ Transport read_transport(const std::string& ff_path, const std::string& mesh_pat
 
 // What the command line says.
 struct SolveArgs {
-    std::string mesh_path, ff_path, output, log_path, snapshot, snapshot_at;
+    std::string mesh_path, ff_path, output, log_path, snapshot, snapshot_at, direct_path;
     rad::SolveRequest request;
     long snapshot_every = 0;
     bool quiet = false, verbose = false, light_groups = false;
@@ -160,6 +162,9 @@ void add_material_options(CLI::App& app, SolveArgs& a) {
     app.add_option("--group", a.group_specs,
                    "Define a light group: NAME=MATERIAL[,MATERIAL...] (repeatable; implies "
                    "--light-groups; emitting materials in no group get one each)");
+    app.add_option("--direct", a.direct_path,
+                   "Luminaires' direct light from rad-ff --luminaires (.lum): the first bounce, "
+                   "one light group per layout group (implies --light-groups)");
     app.add_flag("--force", request.force,
                  "Solve even with a reflectance >= 1 (convergence not guaranteed)");
     app.add_flag("-q,--quiet", a.quiet, "No summary");
@@ -229,14 +234,16 @@ void write_log(const std::string& log_path, const std::string& text) {
 
 void print_summary(const SolveArgs& a, const rad::Solver& solver, const rad::SolveResult& result,
                    const rad::SolveControl& control, const std::array<double, 3>& power,
-                   const std::vector<rad::LightGroup>& groups) {
+                   const std::vector<rad::LightGroup>& groups, double metres_per_unit) {
     if (a.quiet) return;
+    const double lumens = rad::lux(radfmt::Rgb{{power[0], power[1], power[2]}}) *
+                          metres_per_unit * metres_per_unit;
     std::fprintf(
-        stderr, "rad-solve: %s, %ld %s, %s %.3g%s, power %.6g %.6g %.6g W\n",
+        stderr, "rad-solve: %s, %ld %s, %s %.3g%s, power %.6g %.6g %.6g W (%.6g lm)\n",
         a.request.method.c_str(), result.iterations, solver.shooting() ? "shots" : "sweeps",
         solver.shooting() ? "unshot fraction" : "residual", result.residual,
         control.tolerance > 0 && !result.converged ? " (not converged: iteration limit)" : "",
-        power[0], power[1], power[2]);
+        power[0], power[1], power[2], lumens);
     if (groups.empty()) return;
     std::string names;
     for (const auto& g : groups) names += " " + g.name;
@@ -250,13 +257,59 @@ void warn_transport(const SolveArgs& a, const radfmt::MeshData& mesh, const Tran
             ? rad::solve_warnings(mesh, transport.links, transport.header, a.ff_path,
                                   a.request.row_sum_tolerance)
             : rad::solve_warnings(mesh, transport.matrix, a.ff_path, a.request.row_sum_tolerance);
-    for (const auto& warning : warnings) std::cerr << "rad-solve: warning: " << warning << '\n';
+    for (const auto& warning : warnings)
+        if (a.direct_path.empty() || warning.rfind("no patch emits", 0) != 0)
+            std::cerr << "rad-solve: warning: " << warning << '\n';
+}
+
+// --direct: the luminaires' groups first, each emitting rho x its direct irradiance (the first
+// bounce), then the material groups `emission` holds (none: empty). Says the luminaires' flux.
+rad::Channels add_direct_light(const SolveArgs& a, const radfmt::MeshData& mesh,
+                               const radfmt::Header& mesh_header, radfmt::Header& header,
+                               std::vector<rad::LightGroup>& groups, rad::Channels emission) {
+    radfmt::Header lum_header;
+    const auto lum = radfmt::read_luminaires(a.direct_path, &lum_header);
+    radfmt::require_same_geometry(a.direct_path, lum_header, lum.patch_count, a.mesh_path, mesh,
+                                  "run rad-ff --luminaires on " + a.mesh_path + " again");
+    const std::size_t lum_groups = lum.groups.size(), others = groups.size();
+    for (const auto& name : lum.groups)
+        for (const auto& g : groups)
+            if (g.name == name)
+                throw rad::InputError(a.direct_path + ": light group '" + name +
+                                      "' is also an emitting material's group: name the "
+                                      "layout's group differently");
+    rad::Channels e(mesh.patches.size(), 3 * (lum_groups + others));
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const auto& rho = mesh.materials[mesh.patches[i].material].reflectance;
+        for (std::size_t g = 0; g < lum_groups; ++g)
+            for (std::size_t c = 0; c < 3; ++c) e.at(i, 3 * g + c) = rho[c] * lum.of(i, g)[c];
+        for (std::size_t c = 0; c < 3 * others; ++c) e.at(i, 3 * lum_groups + c) = emission.at(i, c);
+    }
+    std::vector<rad::LightGroup> all;
+    for (const auto& name : lum.groups) {
+        all.push_back({name, {}});
+        header.set("light_group." + name, "luminaires of " + a.direct_path);
+    }
+    all.insert(all.end(), groups.begin(), groups.end());
+    groups = std::move(all);
+    header.set("direct", a.direct_path);
+    if (!a.quiet) {
+        const auto set = rad::build_luminaires(
+            {lum.layout_name, lum.layout_text, lum.files}, rad::metres_per_unit(mesh_header));
+        double emitted = 0;
+        for (const auto& l : set.luminaires) emitted += set.flux(l);
+        std::fprintf(stderr, "rad-solve: %zu luminaire(s) in %zu light group(s): %.6g lm (%.6g W "
+                             "at %g lm/W)\n",
+                     set.luminaires.size(), lum_groups, emitted, emitted / rad::kRadianceEfficacy,
+                     rad::kRadianceEfficacy);
+    }
+    return e;
 }
 
 int solve(SolveArgs& a, int argc, char** argv) {
     const auto snapshots = parse_snapshots(a);
     rad::tool::check_outputs(
-        {a.mesh_path, a.ff_path}, {{"-o", a.output}, {"--log", a.log_path}},
+        {a.mesh_path, a.ff_path, a.direct_path}, {{"-o", a.output}, {"--log", a.log_path}},
         {{"--snapshot", a.snapshot, [&](long iteration) { return snapshots.wanted(iteration); }}});
     // All outputs (the result, the log, every snapshot) land together or not at all.
     radfmt::OutputBatch outputs;
@@ -277,7 +330,8 @@ int solve(SolveArgs& a, int argc, char** argv) {
                               "along rows of F, which links do not have; use --method gs or "
                               "jacobi");
 
-    const radfmt::Parent parents[] = {{a.mesh_path, &mesh_header}, {a.ff_path, &transport.header}};
+    std::vector<radfmt::Parent> parents{{a.mesh_path, &mesh_header}, {a.ff_path, &transport.header}};
+    if (!a.direct_path.empty()) parents.push_back({a.direct_path, nullptr}); // hashed from disk
     auto header = radfmt::derived_header(rad::tool_version("rad-solve"),
                                          radfmt::command_line(argc, argv), parents);
     for (const auto& [key, value] : overrides.fields) header.set(key, value);
@@ -289,12 +343,15 @@ int solve(SolveArgs& a, int argc, char** argv) {
     const auto op = transport.hierarchical ? rad::make_operator(mesh, transport.links)
                                            : rad::make_operator(mesh, transport.matrix);
     std::vector<rad::LightGroup> groups;
-    if (a.light_groups || !a.group_specs.empty()) {
+    if (a.light_groups || !a.group_specs.empty() ||
+        (!a.direct_path.empty() && rad::any_emitter(mesh))) {
         groups = rad::light_groups(mesh, a.group_specs);
         rad::record_light_groups(header, mesh, groups);
     }
-    const auto emission =
-        groups.empty() ? rad::emission_of(mesh) : rad::grouped_emission(mesh, groups);
+    auto emission = groups.empty() ? rad::emission_of(mesh) : rad::grouped_emission(mesh, groups);
+    if (!a.direct_path.empty())
+        emission = add_direct_light(a, mesh, mesh_header, header, groups,
+                                    groups.empty() ? rad::Channels() : std::move(emission));
     std::ostringstream log;
     log << "iteration,residual,power_r,power_g,power_b,seconds\n";
     // Only observe iterations when asked to (a line per shot for pr/apr).
@@ -307,7 +364,8 @@ int solve(SolveArgs& a, int argc, char** argv) {
     if (!a.log_path.empty()) write_log(a.log_path, log.str());
     outputs.commit();
     print_summary(a, solver, result, control,
-                  rgb_power(rad::total_power(op.area, result.radiosity)), groups);
+                  rgb_power(rad::total_power(op.area, result.radiosity)), groups,
+                  rad::metres_per_unit(mesh_header));
     return 0;
 }
 

@@ -685,6 +685,9 @@ constexpr KindInfo kKinds[] = {
     {Kind::Links, "links", "link hierarchy (hierarchical form factors)", 2, 2,
      "node,first,count,source,f,r0,r1,r2,r3,s0,s1,s2,s3 (shares in 65535ths)", detail::links_csv,
      detail::links_summary},
+    {Kind::Luminaires, "luminaires", "luminaires' direct light per patch (rad-ff --luminaires)", 1,
+     1, "patch,group,e_r,e_g,e_b (direct irradiance, W/m^2)", detail::luminaires_csv,
+     detail::luminaires_summary},
 };
 
 } // namespace

@@ -1,4 +1,4 @@
-// The links kind's CSV and summary, for the kind table in kinds.cpp (internal header).
+// The links and luminaires kinds' CSV and summary, for the kind table in kinds.cpp (internal header).
 #pragma once
 #include "radfmt/kinds.hpp"
 
@@ -7,4 +7,6 @@
 namespace radfmt::detail {
 void links_csv(const std::filesystem::path& path, std::ostream& out);
 std::string links_summary(const std::filesystem::path& path, Header& header);
+void luminaires_csv(const std::filesystem::path& path, std::ostream& out);
+std::string luminaires_summary(const std::filesystem::path& path, Header& header);
 } // namespace radfmt::detail

@@ -283,6 +283,22 @@ std::uint64_t formfactors_hit_denominator(const Header& header);
 void write_form_factor_part(const std::filesystem::path& path, Header header, FormFactorSpool& ff,
                             std::uint64_t rows_begin, std::uint64_t rows_end);
 
+// A luminaires file (rad-ff --luminaires, .lum): the layout and the photometric files it was
+// made from (their text, by their paths relative to the layout's folder), the light groups,
+// and per patch and group the mean direct irradiance (W/m^2, RGB) the luminaires give it.
+struct LuminaireData {
+    std::string layout_name, layout_text;
+    std::vector<std::pair<std::string, std::string>> files;
+    std::vector<std::string> groups;
+    std::uint64_t patch_count = 0;
+    std::vector<Rgb> irradiance; // patch-major: irradiance[i * groups + g]
+    const Rgb& of(std::size_t patch, std::size_t group) const {
+        return irradiance[patch * groups.size() + group];
+    }
+};
+void write_luminaires(const std::filesystem::path& path, Header header, const LuminaireData& lum);
+LuminaireData read_luminaires(const std::filesystem::path& path, Header* header_out = nullptr);
+
 void write_radiosity(const std::filesystem::path& path, Header header, const RadiosityData& rad);
 RadiosityData read_radiosity(const std::filesystem::path& path, Header* header_out = nullptr);
 

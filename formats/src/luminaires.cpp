@@ -1,0 +1,90 @@
+// The luminaires kind (.lum): the sources it was made from as text, the light groups and the
+// direct irradiance per patch and group.
+#include "body_checks.hpp"
+#include "links.hpp"
+#include "radfmt/kinds.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace radfmt {
+namespace fs = std::filesystem;
+
+void write_luminaires(const fs::path& path, Header header, const LuminaireData& lum) {
+    header.kind = Kind::Luminaires;
+    if (lum.irradiance.size() != lum.patch_count * lum.groups.size())
+        throw std::logic_error("luminaires written with an irradiance array of the wrong size");
+    header.set("patches", std::to_string(lum.patch_count));
+    std::string names;
+    for (const auto& g : lum.groups) names += (names.empty() ? "" : ",") + g;
+    header.set("light_groups", names);
+    BodyWriter w;
+    w.string(lum.layout_name);
+    w.string(lum.layout_text);
+    w.u64(lum.files.size());
+    for (const auto& [name, text] : lum.files) {
+        w.string(name);
+        w.string(text);
+    }
+    w.u64(lum.groups.size());
+    for (const auto& g : lum.groups) w.string(g);
+    w.u64(lum.patch_count);
+    w.array(lum.irradiance);
+    write_file(path, std::move(header), w);
+}
+
+LuminaireData read_luminaires(const fs::path& path, Header* header_out) {
+    const Kind kind = Kind::Luminaires;
+    BodyReader r(path, &kind);
+    LuminaireData lum;
+    lum.layout_name = r.string();
+    lum.layout_text = r.string();
+    const auto files = r.count(16, "files");
+    for (std::uint64_t k = 0; k < files; ++k) {
+        auto name = r.string();
+        lum.files.emplace_back(std::move(name), r.string());
+    }
+    const auto groups = r.count(8, "light groups");
+    if (groups == 0) r.fail("no light group");
+    for (std::uint64_t g = 0; g < groups; ++g) lum.groups.push_back(r.string());
+    lum.patch_count = r.count(24 * groups, "patches");
+    lum.irradiance = r.array<Rgb>(lum.patch_count * groups, "irradiance");
+    r.expect_end();
+    detail::require_count(r.header(), "patches", lum.patch_count, r);
+    for (std::size_t i = 0; i < lum.irradiance.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            if (!(lum.irradiance[i][c] >= 0 && std::isfinite(lum.irradiance[i][c])))
+                r.fail("irradiance value " + std::to_string(i) + " is negative or not finite");
+    if (header_out) *header_out = r.take_header();
+    return lum;
+}
+
+namespace detail {
+void luminaires_csv(const fs::path& path, std::ostream& out) {
+    const auto lum = read_luminaires(path);
+    char line[160];
+    out << kind_info(Kind::Luminaires).csv_columns.substr(0, 22) << '\n';
+    for (std::size_t i = 0; i < lum.patch_count; ++i) {
+        for (std::size_t g = 0; g < lum.groups.size(); ++g) {
+            const auto& e = lum.of(i, g);
+            std::snprintf(line, sizeof line, "%zu,", i);
+            out << line << lum.groups[g];
+            std::snprintf(line, sizeof line, ",%.10g,%.10g,%.10g\n", e[0], e[1], e[2]);
+            out << line;
+        }
+        if (!out) return;
+    }
+}
+
+std::string luminaires_summary(const fs::path& path, Header& header) {
+    const auto lum = read_luminaires(path, &header);
+    std::string text = std::to_string(lum.patch_count) + " patches, " +
+                       std::to_string(lum.groups.size()) + " light group(s):";
+    for (const auto& g : lum.groups) text += " " + g;
+    text += "; from " + lum.layout_name + " and";
+    for (const auto& f : lum.files) text += " " + f.first;
+    return text;
+}
+} // namespace detail
+
+} // namespace radfmt

@@ -1,0 +1,324 @@
+// The luminaire layout: a CSV of placed, aimed and turned photometric files, read with the
+// files it names (inside the layout's folder), then built into luminaires.
+#include "photometry/text_lines.hpp"
+#include "radiosity/luminaires.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <sys/stat.h>
+
+namespace rad {
+namespace fs = std::filesystem;
+
+namespace {
+constexpr std::size_t kMaxSourceBytes = std::size_t(64) << 20; // a photometric file is small
+
+// The fields of one CSV line (double quotes around a field allow commas in it).
+std::vector<std::string> csv_fields(std::string_view line) {
+    std::vector<std::string> out(1);
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (c == '"') {
+            if (quoted && i + 1 < line.size() && line[i + 1] == '"') {
+                out.back() += '"';
+                ++i;
+            } else {
+                quoted = !quoted;
+            }
+        } else if (c == ',' && !quoted) {
+            out.emplace_back();
+        } else {
+            out.back() += c;
+        }
+    }
+    for (auto& f : out) {
+        while (!f.empty() && (f.front() == ' ' || f.front() == '\t')) f.erase(f.begin());
+        while (!f.empty() && (f.back() == ' ' || f.back() == '\t')) f.pop_back();
+    }
+    return out;
+}
+
+// A regular file's text, refused past kMaxSourceBytes (FileLoc names who asked for it).
+std::string read_text(const fs::path& path, const FileLoc& asked) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0)
+        throw InputError(asked, path.string() + " does not exist");
+    if (!S_ISREG(st.st_mode))
+        throw InputError(asked, path.string() + " is not a regular file");
+    if (std::size_t(st.st_size) > kMaxSourceBytes)
+        throw InputError(asked, path.string() + " is over 64 MiB: not a photometric file");
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    if (in.bad() || !in)
+        if (!in.eof()) throw SystemError(path.string() + ": cannot read it");
+    return s.str();
+}
+
+// `name` (relative to `folder`) as a path inside `root`, or InputError at `asked`.
+std::string inside(const fs::path& root, const fs::path& folder, const std::string& name,
+                   const FileLoc& asked) {
+    const fs::path given(name);
+    if (name.empty()) throw InputError(asked, "no file named");
+    if (given.is_absolute())
+        throw InputError(asked, "'" + name + "' is an absolute path: name files relative to " +
+                                    "the layout's folder, inside it");
+    const auto relative = (folder / given).lexically_normal();
+    if (relative.empty() || *relative.begin() == "..")
+        throw InputError(asked, "'" + name + "' leads out of the layout's folder " +
+                                    root.string() + ": copy the file into it");
+    std::error_code ec;
+    const auto canonical_root = fs::weakly_canonical(root, ec);
+    const auto canonical = fs::weakly_canonical(root / relative, ec);
+    const auto rel = canonical.lexically_relative(canonical_root);
+    if (ec || rel.empty() || *rel.begin() == "..")
+        throw InputError(asked, "'" + name + "' leads out of the layout's folder (a link): " +
+                                    "copy the file into it");
+    return relative.generic_string();
+}
+
+// The column indices of the header line (InputError naming a missing one).
+std::map<std::string, std::size_t> column_indices(const std::vector<std::string>& header,
+                                                  const FileLoc& where) {
+    std::map<std::string, std::size_t> columns;
+    for (std::size_t k = 0; k < header.size(); ++k) columns[header[k]] = k;
+    for (const char* required : {"name", "photometry", "x", "y", "z"})
+        if (!columns.count(required))
+            throw InputError(where, std::string("the header line has no column '") + required +
+                                        "' (name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,"
+                                        "maintenance,group)");
+    for (const auto& [name, index] : columns)
+        if (name != "name" && name != "photometry" && name != "x" && name != "y" && name != "z" &&
+            name != "aim_x" && name != "aim_y" && name != "aim_z" && name != "spin" &&
+            name != "maintenance" && name != "group" && name != "cct")
+            throw InputError(where, "unknown column '" + name +
+                                        "' (name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,"
+                                        "maintenance,group,cct)");
+    return columns;
+}
+
+// The layout's rows: (line, fields by column name).
+struct Row {
+    int line = 0;
+    std::map<std::string, std::string> field;
+    const std::string& operator[](const std::string& key) const {
+        static const std::string none;
+        const auto it = field.find(key);
+        return it == field.end() ? none : it->second;
+    }
+};
+
+std::vector<Row> layout_rows(const std::string& text, const std::string& name) {
+    const auto lines = photometry::split_lines(text);
+    std::vector<Row> rows;
+    std::map<std::string, std::size_t> columns;
+    bool header = true;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        const FileLoc where{name, int(i + 1)};
+        const auto line = lines[i];
+        if (line.find_first_not_of(" \t") == std::string_view::npos || line.starts_with('#'))
+            continue;
+        const auto fields = csv_fields(line);
+        if (header) {
+            columns = column_indices(fields, where);
+            header = false;
+            continue;
+        }
+        if (fields.size() > columns.size())
+            throw InputError(where, std::to_string(fields.size()) + " fields, but the header has " +
+                                        std::to_string(columns.size()) + " columns");
+        Row row{int(i + 1), {}};
+        for (const auto& [column, index] : columns)
+            if (index < fields.size()) row.field[column] = fields[index];
+        rows.push_back(std::move(row));
+    }
+    if (header) throw InputError(FileLoc{name, 0}, "empty layout: no header line");
+    if (rows.empty()) throw InputError(FileLoc{name, 0}, "the layout places no luminaire");
+    return rows;
+}
+
+double field_number(const Row& row, const std::string& column, double fallback,
+                    const std::string& name) {
+    const auto& text = row[column];
+    if (text.empty()) return fallback;
+    double value = 0;
+    if (!photometry::parse_number(text, value))
+        throw InputError(FileLoc{name, row.line},
+                         column + " is " + photometry::quoted(text) + ", not a number");
+    return value;
+}
+
+// The rotation taking unit `from` to unit `to` by the shortest arc, applied to `v`.
+Vec3 rotate_shortest(const Vec3& from, const Vec3& to, const Vec3& v) {
+    const double c = dot(from, to);
+    Vec3 axis = cross(from, to);
+    double s = length(axis);
+    if (s < 1e-12) {
+        if (c > 0) return v;
+        // Opposite: 180 degrees about +X (the rule for straight up), or any perpendicular.
+        axis = std::abs(from[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 0, 1};
+        axis = normalized(axis - from * dot(axis, from));
+        s = 0;
+    } else {
+        axis = axis * (1 / s);
+    }
+    // Rodrigues: v cos + (k x v) sin + k (k.v)(1 - cos).
+    return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1 - c));
+}
+
+// Orientation of a luminaire from its aim and spin (see build_luminaires).
+void orient(Luminaire& l, Vec3 aim, double spin_deg) {
+    const double a = spin_deg * std::numbers::pi / 180;
+    // Spin about +Y (counter-clockwise seen from above): +X turns towards -Z.
+    const Vec3 c0{std::cos(a), 0, -std::sin(a)};
+    const Vec3 c90{-std::sin(a), 0, -std::cos(a)};
+    const Vec3 down{0, -1, 0};
+    aim = normalized(aim);
+    l.nadir = aim;
+    l.c0 = normalized(rotate_shortest(down, aim, c0));
+    l.c90 = normalized(rotate_shortest(down, aim, c90));
+}
+} // namespace
+
+LuminaireSources read_luminaire_sources(const fs::path& layout) {
+    LuminaireSources sources;
+    sources.layout_name = layout.string();
+    sources.layout_text = read_text(layout, FileLoc{layout.string(), 0});
+    const auto root = layout.parent_path().empty() ? fs::path(".") : layout.parent_path();
+    std::map<std::string, bool> seen;
+    for (const auto& row : layout_rows(sources.layout_text, sources.layout_name)) {
+        const FileLoc where{sources.layout_name, row.line};
+        const auto relative = inside(root, "", row["photometry"], where);
+        if (seen[relative]) continue;
+        seen[relative] = true;
+        auto text = read_text(root / relative, where);
+        // The TILT file an IES file names, relative to it.
+        const auto folder = fs::path(relative).parent_path();
+        const IncludeReader include = [&](const std::string& name, const FileLoc& asked) {
+            const auto tilt = inside(root, folder, name, asked);
+            auto tilt_text = read_text(root / tilt, asked);
+            if (!seen[tilt]) sources.files.emplace_back(tilt, tilt_text);
+            seen[tilt] = true;
+            return tilt_text;
+        };
+        parse_photometry(text, relative, include); // refuses a bad file here, by its name
+        sources.files.emplace_back(relative, std::move(text));
+    }
+    return sources;
+}
+
+LuminaireSet build_luminaires(const LuminaireSources& sources, double metres_per_unit) {
+    LuminaireSet set;
+    set.metres_per_unit = metres_per_unit;
+    std::map<std::string, std::string> text_of(sources.files.begin(), sources.files.end());
+    std::map<std::string, std::size_t> photometry_of;
+    std::map<std::string, int> names;
+    for (const auto& row : layout_rows(sources.layout_text, sources.layout_name)) {
+        const FileLoc where{sources.layout_name, row.line};
+        Luminaire l;
+        l.name = row["name"];
+        l.line = row.line;
+        if (l.name.empty()) throw InputError(where, "a luminaire needs a name");
+        if (names.count(l.name))
+            throw InputError(where, "the name '" + l.name + "' is used on line " +
+                                        std::to_string(names[l.name]) + " too");
+        names[l.name] = row.line;
+        const auto relative = inside(".", "", row["photometry"], where);
+        if (!photometry_of.count(relative)) {
+            const auto it = text_of.find(relative);
+            if (it == text_of.end())
+                throw InputError(where, "the photometric file '" + relative + "' is not among the files");
+            const auto folder = fs::path(relative).parent_path();
+            const IncludeReader include = [&](const std::string& name, const FileLoc& asked) {
+                const auto tilt = inside(".", folder, name, asked);
+                const auto t = text_of.find(tilt);
+                if (t == text_of.end()) throw InputError(asked, "the TILT file '" + tilt + "' is missing");
+                return t->second;
+            };
+            photometry_of[relative] = set.photometries.size();
+            set.photometries.push_back(parse_photometry(it->second, relative, include));
+            for (auto& w : flux_warnings(set.photometries.back())) set.warnings.push_back(w);
+        }
+        l.photometry = photometry_of[relative];
+        const auto number = [&](const char* column, double fallback) {
+            return field_number(row, column, fallback, sources.layout_name);
+        };
+        l.position = {number("x", 0), number("y", 0), number("z", 0)};
+        const Vec3 aim{number("aim_x", 0), number("aim_y", -1), number("aim_z", 0)};
+        if (!(length(aim) > 0)) throw InputError(where, "the aim is the zero vector");
+        orient(l, aim, number("spin", 0));
+        l.maintenance = number("maintenance", 1);
+        if (!(l.maintenance > 0 && l.maintenance <= 1))
+            throw InputError(where, "maintenance must be in (0, 1]");
+        l.group = row["group"].empty() ? l.name : row["group"];
+        const auto& p = set.photometries[l.photometry];
+        // Tilt: the angle between the aim and straight down.
+        const double tilt = std::acos(std::clamp(-l.nadir[1], -1.0, 1.0)) * 180 / std::numbers::pi;
+        l.tilt_factor = p.tilt.factor(tilt);
+        l.cct = number("cct", p.cct > 0 ? p.cct : 0);
+        if (l.cct > 0) {
+            const auto t = cct_tint(l.cct);
+            l.tint = Rgb{{t[0], t[1], t[2]}};
+        }
+        if (std::find(set.groups.begin(), set.groups.end(), l.group) == set.groups.end())
+            set.groups.push_back(l.group);
+        set.luminaires.push_back(std::move(l));
+    }
+    return set;
+}
+
+double LuminaireSet::intensity(const Luminaire& l, const Vec3& d) const {
+    const auto& p = photometries[l.photometry];
+    const double f = dot(d, l.nadir), a = dot(d, l.c0), b = dot(d, l.c90);
+    constexpr double kDeg = 180 / std::numbers::pi;
+    double h = 0, v = 0;
+    switch (p.type) {
+    case PhotometricType::C:
+        v = std::acos(std::clamp(f, -1.0, 1.0)) * kDeg;
+        h = std::atan2(b, a) * kDeg;
+        break;
+    case PhotometricType::B:
+        h = std::asin(std::clamp(b, -1.0, 1.0)) * kDeg;
+        v = std::atan2(a, f) * kDeg;
+        break;
+    case PhotometricType::A:
+        v = std::asin(std::clamp(a, -1.0, 1.0)) * kDeg;
+        h = std::atan2(b, f) * kDeg;
+        break;
+    }
+    return p.intensity(h, v) * l.maintenance * l.tilt_factor;
+}
+
+double LuminaireSet::flux(const Luminaire& l) const {
+    return photometries[l.photometry].flux() * l.maintenance * l.tilt_factor;
+}
+
+double LuminaireSet::opening_size(const Luminaire& l) const {
+    const auto& p = photometries[l.photometry];
+    return std::max(p.length, p.width) / metres_per_unit;
+}
+
+std::size_t LuminaireSet::group_of(const Luminaire& l) const {
+    return std::size_t(std::find(groups.begin(), groups.end(), l.group) - groups.begin());
+}
+
+double unit_metres(const std::string& unit) {
+    if (unit == "m") return 1;
+    if (unit == "cm") return 0.01;
+    if (unit == "mm") return 0.001;
+    if (unit == "ft") return 0.3048;
+    if (unit == "in") return 0.0254;
+    throw InputError("unknown unit '" + unit + "' (m, cm, mm, ft or in)");
+}
+
+double metres_per_unit(const radfmt::Header& mesh_header) {
+    const auto* unit = mesh_header.find("unit");
+    return unit ? unit_metres(*unit) : 1.0;
+}
+
+} // namespace rad
