@@ -1,6 +1,9 @@
 // Photometric files: every public fixture read and integrated, malformed files refused with
 // FILE:LINE, interpolation and symmetry against values worked out by hand.
+#include "radiosity/gather.hpp"
+#include "radiosity/luminaires.hpp"
 #include "radiosity/photometry.hpp"
+#include "radiosity/rays.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -207,4 +210,118 @@ TEST_CASE("a colour temperature's tint keeps the luminance and warms or cools th
     CHECK(e[0] == Approx(1).epsilon(0.05));
     CHECK(e[2] == Approx(1).epsilon(0.08));
     CHECK_THROWS_AS(rad::cct_tint(500), rad::InputError);
+}
+
+// ---- luminaires placed in a scene ----
+
+
+namespace {
+const std::string kIsotropic = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 180\n0\n1000 1000\n";
+
+// A black square of side 2 s in the plane y = 0, facing up.
+radfmt::MeshData floor_mesh(double s) {
+    radfmt::MeshData m;
+    m.vertices = {{-s, 0, -s}, {-s, 0, s}, {s, 0, s}, {s, 0, -s}};
+    radfmt::Patch p;
+    p.corners = {0, 1, 2, 3};
+    p.area = 4 * s * s;
+    p.centroid = {0, 0, 0};
+    p.normal = {0, 1, 0};
+    m.patches.push_back(p);
+    m.groups = {"floor"};
+    m.materials = {{"black", {}, {}}};
+    return m;
+}
+
+rad::LuminaireSet one_luminaire(const std::string& photometry, const std::string& row,
+                                const std::string& file = "lamp.ies", double unit = 1) {
+    rad::LuminaireSources sources{
+        "layout.csv", "name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,maintenance,group\n" + row + "\n",
+        {{file, photometry}}};
+    return rad::build_luminaires(sources, unit);
+}
+} // namespace
+
+TEST_CASE("an isotropic point source over a plane gives I cos^3 / h^2 (inverse-square law)") {
+    const auto mesh = floor_mesh(10);
+    const rad::RayScene scene(mesh);
+    for (const double unit : {1.0, 0.001}) { // metres, and the same scene drawn in millimetres
+        const double h = 2 / unit;
+        const auto set = one_luminaire(kIsotropic, "L,lamp.ies,0," + std::to_string(h) + ",0", "lamp.ies", unit);
+        const auto& l = set.luminaires[0];
+        for (int i = -4; i <= 4; ++i)
+            for (int k = -4; k <= 4; ++k) {
+                const rad::Vec3 p{i * 0.5 / unit, 0, k * 0.7 / unit};
+                const double r = std::sqrt(p[0] * p[0] + p[2] * p[2]) * unit;
+                const double cos_t = 2 / std::sqrt(4 + r * r);
+                const double expect = 1000 * cos_t * cos_t * cos_t / 4;
+                CHECK(rad::luminaire_illuminance(set, l, p, {0, 1, 0}, &scene) ==
+                      Approx(expect).epsilon(1e-3));
+            }
+        CHECK(set.flux(l) == Approx(4000 * std::numbers::pi).epsilon(1e-6));
+    }
+}
+
+TEST_CASE("the patch mean of a point source's light is its solid angle times the intensity") {
+    // A 2 x 2 m floor under an isotropic 1000 cd source 1 m up: mean E = I Omega / A, Omega the
+    // square's solid angle (4 asin(a^2 / (a^2 + h^2)) for half-side a and height h = 2 pi / 3).
+    const auto mesh = floor_mesh(1);
+    const rad::RayScene scene(mesh);
+    const auto set = one_luminaire(kIsotropic, "L,lamp.ies,0,1,0");
+    const auto e = rad::patch_direct_light(mesh, set, scene, 0, 1);
+    const double omega = 4 * std::asin(1.0 / 2);
+    CHECK(rad::lux(e[0]) == Approx(1000 * omega / 4).epsilon(1e-9));
+}
+
+TEST_CASE("aim and spin turn the distribution as LM-63 says; TILT dims by its table") {
+    // The linear luminaire: C0 and C90 differ by up to 47% of the peak.
+    const auto ldt = slurp(kData / "eulumdat-ugr_sample_01_Isym4.ldt");
+    const auto p = rad::parse_ldt(ldt, "lin.ldt");
+    const double g = 40 * std::numbers::pi / 180;
+    const rad::Vec3 towards_x{std::sin(g), -std::cos(g), 0}, towards_minus_z{0, -std::cos(g), -std::sin(g)};
+    const auto straight = one_luminaire(ldt, "L,lin.ldt,0,3,0", "lin.ldt");
+    const auto spun = one_luminaire(ldt, "L,lin.ldt,0,3,0,,,,90", "lin.ldt");
+    REQUIRE(std::abs(p.intensity(0, 40) - p.intensity(90, 40)) > 0.1 * p.intensity(0, 40));
+    // Aim down, spin 0: C0 along +X, C90 along -Z.
+    CHECK(straight.intensity(straight.luminaires[0], towards_x) == Approx(p.intensity(0, 40)));
+    CHECK(straight.intensity(straight.luminaires[0], towards_minus_z) == Approx(p.intensity(90, 40)));
+    // Spin 90 puts C0 where C90 was: the footprint's axes swap.
+    CHECK(spun.intensity(spun.luminaires[0], towards_minus_z) == Approx(p.intensity(0, 40)));
+    const auto mesh = floor_mesh(10);
+    const rad::RayScene scene(mesh);
+    const double e_x = rad::luminaire_illuminance(straight, straight.luminaires[0], {2, 0, 0}, {0, 1, 0}, &scene);
+    const double e_z = rad::luminaire_illuminance(straight, straight.luminaires[0], {0, 0, -2}, {0, 1, 0}, &scene);
+    CHECK(rad::luminaire_illuminance(spun, spun.luminaires[0], {0, 0, -2}, {0, 1, 0}, &scene) == Approx(e_x));
+    CHECK(rad::luminaire_illuminance(spun, spun.luminaires[0], {-2, 0, 0}, {0, 1, 0}, &scene) == Approx(e_z));
+    // Aimed straight up: 180 degrees about +X, so gamma 0 points up and C0 stays along +X.
+    const auto up = one_luminaire(ldt, "L,lin.ldt,0,0,0,0,1,0", "lin.ldt");
+    CHECK(up.luminaires[0].c0[0] == Approx(1));
+    CHECK(up.luminaires[0].c90[2] == Approx(1)); // -Z turned to +Z
+    // TILT: the synthetic file's table says 0.9 at 45 degrees, 0.8 at 90.
+    const auto tilt = slurp(kData / "eulumdat-rs_TILT_TEST_SYNTHETIC.ies");
+    const auto level = one_luminaire(tilt, "L,t.ies,0,3,0", "t.ies");
+    const auto tilted = one_luminaire(tilt, "L,t.ies,0,3,0,1,-1,0", "t.ies");
+    const auto side = one_luminaire(tilt, "L,t.ies,0,3,0,1,0,0", "t.ies");
+    CHECK(tilted.flux(tilted.luminaires[0]) == Approx(0.9 * level.flux(level.luminaires[0])));
+    CHECK(side.flux(side.luminaires[0]) == Approx(0.8 * level.flux(level.luminaires[0])));
+}
+
+TEST_CASE("bad layouts are refused with LAYOUT:LINE") {
+    const auto refused = [](const std::string& rows) {
+        try {
+            rad::build_luminaires({"lay.csv", rows, {{"lamp.ies", kIsotropic}}}, 1);
+        } catch (const rad::InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(refused("name,photometry,x,y\nL,lamp.ies,0,1\n").rfind("lay.csv:1: the header line has no column 'z'", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\nL,lamp.ies,0,one,0\n").rfind("lay.csv:2: y is 'one', not a number", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\nL,lamp.ies,0,1,0\nL,lamp.ies,1,1,0\n").rfind("lay.csv:3: the name 'L' is used on line 2", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\nL,../lamp.ies,0,1,0\n").rfind("lay.csv:2: '../lamp.ies' leads out of the layout's folder", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\nL,/etc/lamp.ies,0,1,0\n").rfind("lay.csv:2: '/etc/lamp.ies' is an absolute path", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z,maintenance\nL,lamp.ies,0,1,0,1.5\n").rfind("lay.csv:2: maintenance must be in (0, 1]", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z,aim_x,aim_y,aim_z\nL,lamp.ies,0,1,0,0,0,0\n").rfind("lay.csv:2: the aim is the zero vector", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z,colour\nL,lamp.ies,0,1,0,red\n").rfind("lay.csv:1: unknown column 'colour'", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\n").rfind("lay.csv: the layout places no luminaire", 0) == 0);
 }

@@ -6,6 +6,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/falsecolour.hpp"
 #include "radiosity/gather.hpp"
+#include "radiosity/luminaires.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/solve_policy.hpp"
@@ -196,6 +197,7 @@ void print_work_plane(const std::vector<double>& lux, long without_value) {
 // What the command line says.
 struct GatherArgs {
     std::string mesh_path, rad_path, points_path, output, grid_text, png, smooth = "crease";
+    std::string direct_path;
     rad::GatherOptions options;
     bool lux = false, header = false, keep_going = false, quiet = false;
     double lux_max = 0;
@@ -208,6 +210,10 @@ void add_file_options(CLI::App& app, GatherArgs& a) {
     app.add_option("RADIOSITY", a.rad_path, "Radiosity from rad-solve for this mesh")->required();
     app.add_option("--points", a.points_path, "Read the points from this file (default: stdin)");
     app.add_option("-o,--output", a.output, "Write to this file (default: stdout)");
+    app.add_option("--direct", a.direct_path,
+                   "The luminaires file (.lum) the solution was solved with, when it has moved "
+                   "(default: the one rad-solve --direct recorded); its luminaires' direct "
+                   "light is computed exactly at each point (tables and visibility rays)");
 }
 
 // How the light is gathered.
@@ -280,8 +286,10 @@ void check_combinations(const GatherArgs& a) {
 class GatherRun {
   public:
     GatherRun(const GatherArgs& args, const rad::Gatherer& gatherer, const rad::Box& scene_box,
-              SensorSource& source, std::string source_name, std::uint64_t total)
-        : args_(args), gatherer_(gatherer), scene_box_(scene_box), source_(source),
+              SensorSource& source, std::string source_name, std::uint64_t total,
+              const rad::LuminaireSet* luminaires)
+        : args_(args), gatherer_(gatherer), luminaires_(luminaires), scene_box_(scene_box),
+          source_(source),
           source_name_(std::move(source_name)), progress_("rad-gather", total, args.quiet) {}
 
     void stream(std::FILE* out, const std::string& header_line) {
@@ -323,6 +331,10 @@ class GatherRun {
                               100 * s.result.back_fraction);
                 s.problem = text;
             }
+            if (luminaires_) // the luminaires' direct light, exactly at the point
+                for (const auto& g : rad::luminaire_irradiance(*luminaires_, s.position,
+                                                               s.direction, &gatherer_.scene()))
+                    for (std::size_t c = 0; c < 3; ++c) s.result.direct[c] += g[c];
             progress_.advance(1);
         });
     }
@@ -351,6 +363,7 @@ class GatherRun {
 
     const GatherArgs& args_;
     const rad::Gatherer& gatherer_;
+    const rad::LuminaireSet* luminaires_;
     const rad::Box& scene_box_;
     SensorSource& source_;
     std::string source_name_;
@@ -420,6 +433,8 @@ int gather(GatherArgs& a, int argc, char** argv) {
     // E and rho as solved (rad-solve --emission/--reflectance overrides included).
     rad::apply_recorded_overrides(mesh, rad_header);
     const rad::Gatherer gatherer(mesh, solution.radiosity, a.options);
+    const auto luminaires =
+        rad::solution_luminaires(rad_header, a.direct_path, mesh, a.mesh_path, mesh_header);
     const rad::Box scene_box = rad::bounds(mesh.vertices);
 
     std::ifstream points_file;
@@ -445,7 +460,8 @@ int gather(GatherArgs& a, int argc, char** argv) {
 
     const auto start = std::chrono::steady_clock::now();
     GatherRun run(a, gatherer, scene_box, *source, source_name,
-                  a.grid_text.empty() ? 0 : std::uint64_t(grid.nx) * grid.nz);
+                  a.grid_text.empty() ? 0 : std::uint64_t(grid.nx) * grid.nz,
+                  luminaires ? &*luminaires : nullptr);
     write_output(a.output, [&](std::FILE* out) { run.stream(out, header_line); });
     run.finish();
     if (!a.png.empty())

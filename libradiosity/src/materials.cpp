@@ -65,8 +65,9 @@ std::vector<std::string> material_warnings(const radfmt::MeshData& mesh,
         }
     }
     if (!any_emitter(mesh))
-        lines.push_back("no material emits light (Ke > 0): every solve will be black "
-                        "(rad-solve --emission MATERIAL=r,g,b)");
+        lines.push_back("no material emits light (Ke > 0): a solve needs light from elsewhere "
+                        "(rad-solve --emission MATERIAL=r,g,b, or luminaires: rad-ff "
+                        "--luminaires LAYOUT, rad-solve --direct)");
     return lines;
 }
 

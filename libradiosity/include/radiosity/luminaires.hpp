@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -96,6 +97,16 @@ struct DirectLightStats {
 std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const LuminaireSet& set,
                                     const RayScene& scene, std::uint64_t begin, std::uint64_t end,
                                     DirectLightStats* stats = nullptr);
+
+// The luminaires a solution was solved with (rad-solve --direct: its `direct` field), rebuilt
+// from the .lum at `path` (empty: the recorded one), which must be the file the solve read
+// (its hash as recorded) and belong to `mesh`; none when the solve had no luminaires.
+// InputError naming the file and what to run otherwise.
+std::optional<LuminaireSet> solution_luminaires(const radfmt::Header& solution_header,
+                                                const std::string& path,
+                                                const radfmt::MeshData& mesh,
+                                                const std::string& mesh_path,
+                                                const radfmt::Header& mesh_header);
 
 // A warning per luminaire whose centre is inside a closed object or behind a wall (most of
 // its light, by intensity, first meets the back of a surface), naming it and its row.

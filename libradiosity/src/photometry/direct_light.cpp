@@ -197,20 +197,22 @@ std::vector<std::string> enclosed_luminaire_warnings(const LuminaireSet& set,
     constexpr int kRays = 256;
     const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
     for (const auto& l : set.luminaires) {
-        double total = 0, back = 0;
+        double total = 0, hit = 0, back = 0;
         for (int k = 0; k < kRays; ++k) {
             const double z = 1 - 2 * (k + 0.5) / kRays, r = std::sqrt(1 - z * z);
             const Vec3 d{r * std::cos(k * golden), z, r * std::sin(k * golden)};
             const double w = set.intensity(l, d);
             if (w <= 0) continue;
             total += w;
-            const auto hit = scene.trace(ray_target(l.position, l, &scene), d);
-            if (hit.patch >= 0 && !hit.front) back += w;
+            const auto first = scene.trace(ray_target(l.position, l, &scene), d);
+            if (first.patch < 0) continue;
+            hit += w;
+            if (!first.front) back += w;
         }
-        if (total > 0 && back > 0.5 * total)
+        if (total > 0 && hit > 0 && sees_mostly_backs(hit / total, back / hit))
             out.push_back(layout_name + ":" + std::to_string(l.line) + ": luminaire '" + l.name +
-                          "': " + std::to_string(int(std::lround(100 * back / total))) +
-                          "% of its light first meets the back of a surface: its centre is "
+                          "': " + std::to_string(int(std::lround(100 * back / hit))) +
+                          "% of the light it sends onto surfaces meets their backs: its centre is "
                           "inside a closed object or behind a wall (check its x, y, z and aim)");
     }
     return out;

@@ -1,6 +1,7 @@
 // The luminaire layout: a CSV of placed, aimed and turned photometric files, read with the
 // files it names (inside the layout's folder), then built into luminaires.
 #include "photometry/text_lines.hpp"
+#include "radfmt/chain.hpp"
 #include "radiosity/luminaires.hpp"
 
 #include <algorithm>
@@ -319,6 +320,33 @@ double unit_metres(const std::string& unit) {
 double metres_per_unit(const radfmt::Header& mesh_header) {
     const auto* unit = mesh_header.find("unit");
     return unit ? unit_metres(*unit) : 1.0;
+}
+
+} // namespace rad
+
+namespace rad {
+
+std::optional<LuminaireSet> solution_luminaires(const radfmt::Header& solution_header,
+                                                const std::string& path,
+                                                const radfmt::MeshData& mesh,
+                                                const std::string& mesh_path,
+                                                const radfmt::Header& mesh_header) {
+    const auto* recorded = solution_header.find("direct");
+    if (!recorded && path.empty()) return std::nullopt;
+    const std::string lum_path = path.empty() ? *recorded : path;
+    if (!fs::exists(lum_path))
+        throw InputError(lum_path + ": the luminaires file the solution was solved with is not "
+                                    "there (give its new place with --direct FILE)");
+    radfmt::Header header;
+    const auto lum = radfmt::read_luminaires(lum_path, &header);
+    radfmt::require_same_geometry(lum_path, header, lum.patch_count, mesh_path, mesh,
+                                  "run rad-ff --luminaires and rad-solve again");
+    for (const auto& input : solution_header.inputs)
+        if (recorded && input.path == *recorded && input.hash != header.file_hash)
+            throw InputError(lum_path + " is not the luminaires file the solution was solved "
+                                        "with (it changed since): run rad-solve --direct again");
+    return build_luminaires({lum.layout_name, lum.layout_text, lum.files},
+                            metres_per_unit(mesh_header));
 }
 
 } // namespace rad

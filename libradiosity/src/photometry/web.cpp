@@ -146,21 +146,32 @@ double integrate(const Photometry& p, double v_low, double v_high) {
                                           0.6521451548625461, 0.3478548451374538};
     constexpr double kRad = std::numbers::pi / 180;
     double total = 0;
+    // A cell wider than 5 degrees is split, so the rule stays exact enough for the Jacobian
+    // over wide cells (an isotropic file's one cell of 180 degrees).
+    const auto pieces = [](double span) { return std::max(1, int(std::ceil(span / 5))); };
     for (std::size_t i = 0; i + 1 < p.h.size(); ++i)
         for (std::size_t j = 0; j + 1 < p.v.size(); ++j) {
-            const double v0 = std::max(p.v[j], v_low), v1 = std::min(p.v[j + 1], v_high);
-            if (!(v1 > v0)) continue;
-            const double hm = 0.5 * (p.h[i] + p.h[i + 1]), hr = 0.5 * (p.h[i + 1] - p.h[i]);
-            const double vm = 0.5 * (v0 + v1), vr = 0.5 * (v1 - v0);
-            for (int a = 0; a < 4; ++a)
-                for (int b = 0; b < 4; ++b) {
-                    const double hh = hm + hr * kNode[a], vv = vm + vr * kNode[b];
-                    const double jacobian = p.type == PhotometricType::C ? std::sin(vv * kRad)
-                                            : p.type == PhotometricType::A
-                                                ? std::cos(vv * kRad)
-                                                : std::cos(hh * kRad);
-                    total += kWeight[a] * kWeight[b] * hr * vr * kRad * kRad * jacobian *
-                             p.intensity(hh, vv);
+            const double lo = std::max(p.v[j], v_low), hi = std::min(p.v[j + 1], v_high);
+            if (!(hi > lo)) continue;
+            const int nh = pieces(p.h[i + 1] - p.h[i]), nv = pieces(hi - lo);
+            for (int ph = 0; ph < nh; ++ph)
+                for (int pv = 0; pv < nv; ++pv) {
+                    const double h0 = p.h[i] + (p.h[i + 1] - p.h[i]) * ph / nh;
+                    const double h1 = p.h[i] + (p.h[i + 1] - p.h[i]) * (ph + 1) / nh;
+                    const double v0 = lo + (hi - lo) * pv / nv, v1 = lo + (hi - lo) * (pv + 1) / nv;
+                    const double hm = 0.5 * (h0 + h1), hr = 0.5 * (h1 - h0);
+                    const double vm = 0.5 * (v0 + v1), vr = 0.5 * (v1 - v0);
+                    for (int a = 0; a < 4; ++a)
+                        for (int b = 0; b < 4; ++b) {
+                            const double hh = hm + hr * kNode[a], vv = vm + vr * kNode[b];
+                            const double jacobian = p.type == PhotometricType::C
+                                                        ? std::sin(vv * kRad)
+                                                    : p.type == PhotometricType::A
+                                                        ? std::cos(vv * kRad)
+                                                        : std::cos(hh * kRad);
+                            total += kWeight[a] * kWeight[b] * hr * vr * kRad * kRad * jacobian *
+                                     p.intensity(hh, vv);
+                        }
                 }
         }
     return total;
