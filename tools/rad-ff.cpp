@@ -188,6 +188,13 @@ void add_run_options(CLI::App& app, FfArgs& a) {
 // --merge: the parts joined into the file one run would have written.
 int merge_parts(const FfArgs& a) {
     if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
+    if (radfmt::read_header(a.inputs.front()).kind == radfmt::Kind::Luminaires) {
+        const auto rows = rad::merge_luminaire_parts(a.inputs, a.output);
+        if (!a.options.quiet)
+            std::fprintf(stderr, "rad-ff: merged %zu luminaires part(s): %llu rows\n",
+                         a.inputs.size(), static_cast<unsigned long long>(rows));
+        return 0;
+    }
     const auto merged =
         rad::merge_form_factor_parts(a.inputs, a.output, rad::tool::memory_limit(a.max_memory));
     if (!a.options.quiet)
@@ -325,8 +332,9 @@ void print_direct_summary(const radfmt::MeshData& mesh, const rad::LuminaireSet&
 
 // --luminaires: each luminaire's direct light per patch, into a .lum file.
 int direct_light(FfArgs& a, int argc, char** argv) {
-    if (a.merge || !a.rows.empty() || a.estimate_only)
-        throw rad::InputError("--luminaires takes neither --merge, --rows nor --estimate");
+    if (a.merge || a.estimate_only)
+        throw rad::InputError("--luminaires takes neither --merge (give the parts alone) nor "
+                              "--estimate");
     if (a.inputs.size() != 1) throw rad::InputError("give one mesh with --luminaires");
     rad::ThreadLimit thread_limit(a.threads);
     const auto& input = a.inputs.front();
@@ -341,9 +349,11 @@ int direct_light(FfArgs& a, int argc, char** argv) {
     for (const auto& w : rad::enclosed_luminaire_warnings(set, scene, a.luminaires))
         std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());
     rad::DirectLightStats stats;
-    radfmt::LuminaireData lum{sources.layout_name, sources.layout_text, sources.files, set.groups,
-                              mesh.patches.size(),
-                              rad::patch_direct_light(mesh, set, scene, 0, mesh.patches.size(), &stats)};
+    const auto range =
+        a.rows.empty() ? rad::RowRange{} : rad::parse_rows(a.rows, mesh.patches.size());
+    radfmt::LuminaireData lum{
+        sources.layout_name, sources.layout_text, sources.files, set.groups, mesh.patches.size(),
+        rad::patch_direct_light(mesh, set, scene, range.begin, range.end, &stats)};
     // The inputs: the mesh, the layout and every file it names, so Make and the chain see a
     // changed photometric file.
     std::vector<radfmt::Parent> parents{{input, &mesh_header}, {a.luminaires, nullptr}};
@@ -354,6 +364,11 @@ int direct_light(FfArgs& a, int argc, char** argv) {
     header.set("mesh_geometry_hash", mesh.geometry_hash());
     header.set("metres_per_unit", std::to_string(set.metres_per_unit));
     header.set("luminaires", std::to_string(set.luminaires.size()));
+    if (!a.rows.empty()) { // a part: rad-ff --merge joins the parts
+        header.set("rows_begin", std::to_string(range.begin));
+        header.set("rows_end", std::to_string(std::min<std::uint64_t>(range.end, mesh.patches.size())));
+        header.set("unsharded_command", rad::unsharded_command(argc, argv));
+    }
     radfmt::write_luminaires(a.output, header, lum);
     if (!a.options.quiet) print_direct_summary(mesh, set, lum, stats);
     return 0;
@@ -361,8 +376,8 @@ int direct_light(FfArgs& a, int argc, char** argv) {
 
 int form_factors(FfArgs& a, int argc, char** argv) {
     check_arguments(a);
-    if (!a.luminaires.empty()) return direct_light(a, argc, argv);
     if (a.merge) return merge_parts(a);
+    if (!a.luminaires.empty()) return direct_light(a, argc, argv);
     if (a.inputs.size() != 1)
         throw rad::InputError("give one mesh (several inputs are for --merge)");
     if (a.rows_option->count() > 0 && a.rows.empty())

@@ -59,6 +59,19 @@ PY
 mv "$TMP/t.lum" "$TMP/t1.lum"
 "$BIN/rad-ff" "$TMP/box.mesh" --luminaires "$TMP/box/layout.csv" -o "$TMP/t.lum" --threads 2 -q
 cmp -s "$TMP/t.lum" "$TMP/t1.lum" || fail ".lum differs between 1 and 2 threads"
+# Shards: three parts merged (in any order) are the bytes of one run; a missing or doubled part
+# is named with its rows.
+mkdir -p "$TMP/one" "$TMP/parts"
+"$BIN/rad-ff" "$TMP/box.mesh" --luminaires "$TMP/box/layout.csv" -o "$TMP/one/box.lum" -q
+mv "$TMP/one/box.lum" "$TMP/single.lum"
+for k in 0 1 2; do
+  "$BIN/rad-ff" "$TMP/box.mesh" --luminaires "$TMP/box/layout.csv" --rows $k/3 -o "$TMP/parts/$k.lum" -q || fail "part $k"
+done
+"$BIN/rad-ff" --merge "$TMP/parts/2.lum" "$TMP/parts/0.lum" "$TMP/parts/1.lum" -o "$TMP/one/box.lum" -q || fail "merge"
+cmp -s "$TMP/one/box.lum" "$TMP/single.lum" || fail "merged .lum differs from one run's"
+expect_error "are in no part (compute them with --rows" "$TMP/one/gap.lum" "$BIN/rad-ff" --merge "$TMP/parts/0.lum" "$TMP/parts/2.lum" -o "$TMP/one/gap.lum"
+expect_error "are in two parts" "$TMP/one/dup.lum" "$BIN/rad-ff" --merge "$TMP/parts/0.lum" "$TMP/parts/0.lum" "$TMP/parts/1.lum" "$TMP/parts/2.lum" -o "$TMP/one/dup.lum"
+expect_error "is a whole luminaires file, not a part" "$TMP/one/w.lum" "$BIN/rad-ff" --merge "$TMP/single.lum" -o "$TMP/one/w.lum"
 
 # Inverse-square law at points through rad-gather: an isotropic 1000 cd source 2 m over a
 # black floor (nothing reflects): E = I cos^3 / h^2 at every point within 0.1%.

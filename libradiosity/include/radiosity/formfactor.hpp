@@ -51,6 +51,19 @@ RowRange parse_rows(const std::string& text, std::uint64_t patches);
 // The command line without --rows and with -o's value replaced by a placeholder, recorded in
 // every part, so the merge can write the command one run would have.
 std::string unsharded_command(int argc, const char* const* argv);
+// Parts of a sharded result must cover rows [0, n) exactly once: InputError naming the rows
+// in no part (and the --rows that computes them) or in two, otherwise.
+struct RowPart {
+    std::string path;
+    std::uint64_t begin = 0, end = 0;
+};
+void require_row_cover(std::vector<RowPart> parts, std::uint64_t n);
+// The command one run writing `output` would have had, from a part's unsharded_command.
+std::string merged_command(const radfmt::Header& part, const std::string& part_path,
+                           const std::string& output);
+// A part's rows_begin or rows_end (FormatError naming the file when it is no whole number).
+std::uint64_t part_row(const radfmt::Header& header, const std::string& key,
+                       const std::string& path);
 struct FormFactorPart {
     std::string path;
     radfmt::Header header;

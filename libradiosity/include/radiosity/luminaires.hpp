@@ -98,6 +98,12 @@ std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const Luminair
                                     const RayScene& scene, std::uint64_t begin, std::uint64_t end,
                                     DirectLightStats* stats = nullptr);
 
+// Joins .lum parts (rad-ff --luminaires --rows) of one mesh, layout and files into the .lum one
+// run would have written to `output`, byte for byte; every row exactly once (InputError naming
+// a gap, an overlap or a part of other inputs). Returns the rows merged.
+std::uint64_t merge_luminaire_parts(const std::vector<std::string>& paths,
+                                    const std::string& output);
+
 // The luminaires a solution was solved with (rad-solve --direct: its `direct` field), rebuilt
 // from the .lum at `path` (empty: the recorded one), which must be the file the solve read
 // (its hash as recorded) and belong to `mesh`; none when the solve had no luminaires.

@@ -97,6 +97,45 @@ std::string unsharded_command(int argc, const char* const* argv) {
     return radfmt::command_line(static_cast<int>(kept.size()), kept.data());
 }
 
+void require_row_cover(std::vector<RowPart> parts, std::uint64_t n) {
+    std::sort(parts.begin(), parts.end(),
+              [](const auto& a, const auto& b) { return a.begin < b.begin; });
+    std::uint64_t next = 0;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        const auto& p = parts[k];
+        if (p.begin > next)
+            throw InputError("rows " + std::to_string(next) + " to " + std::to_string(p.begin - 1) +
+                             " are in no part (compute them with --rows " + std::to_string(next) +
+                             ":" + std::to_string(p.begin) + ")");
+        if (p.begin < next)
+            throw InputError("rows " + std::to_string(p.begin) + " to " +
+                             std::to_string(std::min(next, p.end) - 1) +
+                             " are in two parts: " + parts[k - 1].path + " and " + p.path);
+        next = p.end;
+    }
+    if (next < n)
+        throw InputError("rows " + std::to_string(next) + " to " + std::to_string(n - 1) +
+                         " are in no part (compute them with --rows " + std::to_string(next) + ":" +
+                         std::to_string(n) + ")");
+}
+
+std::string merged_command(const radfmt::Header& part, const std::string& part_path,
+                           const std::string& output) {
+    const char* quoted[] = {"x", output.c_str()};
+    const auto output_text = radfmt::command_line(2, quoted).substr(2);
+    auto command = part.get("unsharded_command", part_path);
+    const auto at = command.find(kOutputPlaceholder);
+    if (at == std::string::npos)
+        throw InputError(part_path + ": its recorded command has no output to replace");
+    command.replace(at, std::string(kOutputPlaceholder).size(), output_text);
+    return command;
+}
+
+std::uint64_t part_row(const radfmt::Header& header, const std::string& key,
+                       const std::string& path) {
+    return header_number(header, key, path);
+}
+
 MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
                                           const std::string& output, std::uint64_t memory_budget) {
     if (paths.empty()) throw InputError("--merge needs the part files to merge");
@@ -131,26 +170,12 @@ MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
                 p.header.get("unsharded_command", p.path));
     }
     // Every row exactly once.
+    std::vector<RowPart> cover;
+    for (const auto& p : parts) cover.push_back({p.path, p.begin, p.end});
+    const std::uint64_t n = header_number(first.header, "patches", first.path);
+    require_row_cover(cover, n);
     std::sort(parts.begin(), parts.end(),
               [](const auto& a, const auto& b) { return a.begin < b.begin; });
-    const std::uint64_t n = header_number(first.header, "patches", first.path);
-    std::uint64_t next = 0;
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-        const auto& p = parts[k];
-        if (p.begin > next)
-            throw InputError("rows " + std::to_string(next) + " to " + std::to_string(p.begin - 1) +
-                             " are in no part (compute them with --rows " + std::to_string(next) +
-                             ":" + std::to_string(p.begin) + ")");
-        if (p.begin < next)
-            throw InputError("rows " + std::to_string(p.begin) + " to " +
-                             std::to_string(std::min(next, p.end) - 1) +
-                             " are in two parts: " + parts[k - 1].path + " and " + p.path);
-        next = p.end;
-    }
-    if (next < n)
-        throw InputError("rows " + std::to_string(next) + " to " + std::to_string(n - 1) +
-                         " are in no part (compute them with --rows " + std::to_string(next) + ":" +
-                         std::to_string(n) + ")");
 
     std::uint64_t started_inside = 0;
     for (const auto& p : parts)
@@ -163,13 +188,7 @@ MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
     out.header.version = 0;
     std::erase_if(out.header.fields, [](const auto& f) { return part_only(f.first); });
     out.header.set("rays_started_inside", std::to_string(started_inside));
-    const char* quoted[] = {"x", output.c_str()};
-    const auto output_text = radfmt::command_line(2, quoted).substr(2);
-    auto command = first.header.get("unsharded_command", first.path);
-    const auto at = command.find(kOutputPlaceholder);
-    if (at == std::string::npos)
-        throw InputError(first.path + ": its recorded command has no output to replace");
-    command.replace(at, std::string(kOutputPlaceholder).size(), output_text);
+    const auto command = merged_command(first.header, first.path, output);
     out.header.command = command;
 
     // The rows, part after part, through a spool: one part is read at a time, and what does
