@@ -325,3 +325,40 @@ TEST_CASE("bad layouts are refused with LAYOUT:LINE") {
     CHECK(refused("name,photometry,x,y,z,colour\nL,lamp.ies,0,1,0,red\n").rfind("lay.csv:1: unknown column 'colour'", 0) == 0);
     CHECK(refused("name,photometry,x,y,z\n").rfind("lay.csv: the layout places no luminaire", 0) == 0);
 }
+
+#include "radiosity/luminaire_image.hpp"
+
+TEST_CASE("a luminaire's opening is drawn at its luminance, in front of the ceiling it sits in") {
+    // A 0.2 x 0.2 m opening, 1000 cd straight down, flush with a ceiling at y = 3 (a plane
+    // facing down); the camera below looks straight up at it.
+    const std::string ies = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0.2 0.2 0\n1 1 0\n0 90\n0\n1000 1000\n";
+    auto ceiling = floor_mesh(5);
+    for (auto& v : ceiling.vertices) v[1] = 3;
+    std::swap(ceiling.vertices[1], ceiling.vertices[3]); // wound to face down
+    ceiling.patches[0].normal = {0, -1, 0};
+    ceiling.patches[0].centroid = {0, 3, 0};
+    const rad::RayScene scene(ceiling);
+    const auto set = one_luminaire(ies, "L,lamp.ies,0,3,0");
+    rad::Image image;
+    image.width = image.height = 33;
+    image.rgb.assign(33 * 33 * 3, 0.5f);
+    rad::View view;
+    view.position = {0, 0, 0};
+    view.direction = {0, 1, 0};
+    view.up = {0, 0, -1};
+    view.horizontal_deg = view.vertical_deg = 20;
+    const auto changed = rad::draw_luminaires(image, set, scene, view, 1);
+    // pi L = pi I / A, as W/m^2 of white (179 lm/W).
+    const double expect = std::numbers::pi * 1000 / 0.04 / 179;
+    const std::size_t centre = (16 * 33 + 16) * 3;
+    CHECK(image.rgb[centre] == Approx(expect).epsilon(1e-4));
+    CHECK(image.rgb[0] == 0.5f); // the corner sees the ceiling
+    // The opening covers 0.2 / (2 x 3 tan 10 deg) of the view across: about 6 of 33 pixels.
+    const double across = 0.2 / (2 * 3 * std::tan(10 * std::numbers::pi / 180)) * 33;
+    CHECK(double(changed) == Approx(across * across).epsilon(0.35));
+    // Dimmed by its group's weight (--mix).
+    rad::Image dim = image;
+    dim.rgb.assign(33 * 33 * 3, 0.5f);
+    rad::draw_luminaires(dim, set, scene, view, 1, {radfmt::Rgb{{0.5, 0.5, 0.5}}});
+    CHECK(dim.rgb[centre] == Approx(expect / 2).epsilon(1e-4));
+}

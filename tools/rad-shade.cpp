@@ -5,6 +5,7 @@
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/gathered.hpp"
+#include "radiosity/luminaire_image.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
@@ -26,7 +27,7 @@ struct ShadeArgs {
     bool flat = false, albedo = false, quiet = false;
     std::vector<std::string> mix;
     bool mix_only = false, layers = false;
-    std::string backfaces = "show", max_memory;
+    std::string backfaces = "show", max_memory, direct_path;
     int gather = 0, shadow_rays = 32;
 };
 
@@ -91,6 +92,10 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
                    "Weight a light group (rad-solve --light-groups): NAME=s, or NAME=r,g,b to "
                    "recolour it (repeatable; groups not named keep weight 1)");
     app.add_flag("--mix-only", a.mix_only, "Groups not named in --mix are off (weight 0)");
+    app.add_option("--direct", a.direct_path,
+                   "The luminaires file (.lum) the solution was solved with, when it has moved "
+                   "(default: the one rad-solve --direct recorded): their openings are drawn at "
+                   "their luminance, and --gather adds their direct light exactly");
     app.add_flag("--layers", a.layers,
                  "Also write one EXR layer per light group (<group>.R/G/B, each at weight 1, "
                  "for relighting in a compositor) next to the mixed image");
@@ -126,6 +131,7 @@ struct ShadeInputs {
     radfmt::RadiosityData radiosity;
     std::vector<radfmt::Rgb> values;
     std::vector<std::string> chain;
+    std::optional<rad::LuminaireSet> luminaires; // the solve's rad-solve --direct
 };
 
 ShadeInputs read_inputs(const ShadeArgs& a) {
@@ -145,6 +151,8 @@ ShadeInputs read_inputs(const ShadeArgs& a) {
     radfmt::require_same_geometry(a.rad_path, in.rad_header, in.values.size(), a.mesh_path, in.mesh,
                                   "run rad-ff and rad-solve on " + a.mesh_path + " again");
     in.chain = in.rad_header.chain();
+    in.luminaires =
+        rad::solution_luminaires(in.rad_header, a.direct_path, in.mesh, a.mesh_path, in.mesh_header);
     return in;
 }
 
@@ -176,7 +184,27 @@ rad::Image render_image(const ShadeArgs& a, const ShadeInputs& in, const rad::Vi
     options.smoothing = mode;
     options.crease_deg = a.crease;
     const rad::Gatherer gatherer(solved, in.values, options);
-    return rad::render_gathered(gatherer, view, a.width, a.height, a.aa, a.quiet);
+    return rad::render_gathered(gatherer, view, a.width, a.height, a.aa, a.quiet,
+                                in.luminaires ? &*in.luminaires : nullptr);
+}
+
+// The luminaires' openings at their luminance, dimmed and tinted by --mix as their groups.
+void draw_openings(const ShadeArgs& a, const ShadeInputs& in, const rad::View& view,
+                   rad::Image& image) {
+    const auto& set = *in.luminaires;
+    std::vector<radfmt::Rgb> weights;
+    if (!a.mix.empty() || a.mix_only) {
+        const auto all = rad::mix_weights(in.radiosity, a.mix, a.mix_only, a.rad_path);
+        for (const auto& g : set.groups) {
+            const auto it = std::find(in.radiosity.group_names.begin(),
+                                      in.radiosity.group_names.end(), g);
+            weights.push_back(it == in.radiosity.group_names.end()
+                                  ? radfmt::Rgb{{1, 1, 1}}
+                                  : all[std::size_t(it - in.radiosity.group_names.begin())]);
+        }
+    }
+    const rad::RayScene scene(in.mesh);
+    rad::draw_luminaires(image, set, scene, view, a.aa, weights);
 }
 
 // A warning when much of the image shows the backs of surfaces.
@@ -253,6 +281,7 @@ int shade(ShadeArgs& a, int argc, char** argv) {
         rad::apply_recorded_overrides(solved, in.rad_header);
     }
     rad::Image image = render_image(a, in, view, solved, mode, corners);
+    if (in.luminaires) draw_openings(a, in, view, image);
     if (image.covered_pixels == 0)
         throw rad::InputError("the view sees no geometry of " + a.mesh_path +
                               " (camera outside looking away, or inside an object facing "

@@ -7,10 +7,13 @@
 #include "radiosity/view.hpp"
 
 namespace rad {
+struct LuminaireSet;
 
 // Same camera and pixel convention as render(); N x N samples per pixel, each seeded by
 // its index, so the image is the same at any thread count.
+// `luminaires` (a solve's rad-solve --direct): their direct light is added exactly at each
+// visible point.
 Image render_gathered(const Gatherer& gatherer, const View& view, int width, int height,
-                      int supersampling, bool quiet);
+                      int supersampling, bool quiet, const LuminaireSet* luminaires = nullptr);
 
 } // namespace rad

@@ -38,6 +38,10 @@ radfmt::RadiosityData radiosity_data(const Channels& solution,
 // Patch radiosity for a mix of a file's groups: "NAME=s" (grey weight) or "NAME=r,g,b" per
 // named group; unnamed groups keep weight 1, or 0 with `mix_only`. Throws InputError naming
 // the known groups for an unknown one, and when the file has no groups at all.
+// The weight of each of the file's groups in that mix.
+std::vector<radfmt::Rgb> mix_weights(const radfmt::RadiosityData& rad,
+                                     const std::vector<std::string>& mix, bool mix_only,
+                                     const std::string& path);
 std::vector<radfmt::Rgb> mix_light_groups(const radfmt::RadiosityData& rad,
                                           const std::vector<std::string>& mix, bool mix_only,
                                           const std::string& path);

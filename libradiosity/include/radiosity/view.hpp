@@ -19,5 +19,8 @@ struct View {
 // the text's origin in messages. Throws InputError for malformed or degenerate views.
 View parse_view(const std::string& text, const FileLoc& source, View start = {});
 View read_view_file(const std::string& path);
+// The unit ray from the eye through (u, v) of the image: u from its left edge (0) to its
+// right (1), v from its top (0) to its bottom (1), as the rasteriser maps them.
+Vec3 view_ray(const View& view, double u, double v);
 
 } // namespace rad

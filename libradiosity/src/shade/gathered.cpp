@@ -1,6 +1,7 @@
 // Images by final gather: each pixel's visible point lit by rays cast from that point.
 #include "radiosity/gathered.hpp"
 
+#include "radiosity/luminaires.hpp"
 #include "radiosity/progress.hpp"
 
 #include <tbb/parallel_for.h>
@@ -11,15 +12,9 @@
 namespace rad {
 
 Image render_gathered(const Gatherer& gatherer, const View& view, int width, int height,
-                      int supersampling, bool quiet) {
+                      int supersampling, bool quiet, const LuminaireSet* luminaires) {
     const int ss = std::max(1, supersampling);
     const int W = width * ss, H = height * ss;
-    const Vec3 dir = normalized(view.direction);
-    const Vec3 right = normalized(cross(dir, view.up));
-    const Vec3 up = cross(right, dir);
-    constexpr double kDeg = std::numbers::pi / 180;
-    const double tan_h = std::tan(0.5 * view.horizontal_deg * kDeg),
-                 tan_v = std::tan(0.5 * view.vertical_deg * kDeg);
     const auto& mesh = gatherer.mesh();
 
     Image image;
@@ -37,8 +32,7 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
                 for (int sx = 0; sx < ss; ++sx) {
                     // The sample's centre, in the rasteriser's screen convention.
                     const double px = x * ss + sx + 0.5, py = y * ss + sy + 0.5;
-                    const double cx = (2 * px / W - 1) * tan_h, cy = (1 - 2 * py / H) * tan_v;
-                    const Vec3 ray = normalized(dir + right * cx + up * cy);
+                    const Vec3 ray = view_ray(view, px / W, py / H);
                     const auto hit = gatherer.scene().trace(view.position, ray);
                     if (hit.patch < 0) continue;
                     covered[std::size_t(y) * width + x] = 1;
@@ -51,7 +45,11 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
                     const Vec3 point = view.position + ray * hit.distance;
                     const std::uint64_t index = std::uint64_t(y * ss + sy) * W + (x * ss + sx);
                     const auto normal = gatherer.shading_normal(hit);
-                    const auto h = gatherer.gather(point, normal, patch.normal, index).total();
+                    auto h = gatherer.gather(point, normal, patch.normal, index).total();
+                    if (luminaires) // their direct light, exactly at the point
+                        for (const auto& g : luminaire_irradiance(*luminaires, point, normal,
+                                                                  &gatherer.scene()))
+                            for (int c = 0; c < 3; ++c) h[c] += g[c];
                     for (int c = 0; c < 3; ++c)
                         sum[c] += material.emission[c] + material.reflectance[c] * h[c];
                 }

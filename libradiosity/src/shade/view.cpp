@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 namespace rad {
@@ -65,6 +66,16 @@ View read_view_file(const std::string& path) {
         view = parse_view(line, FileLoc{path, number}, view);
     }
     return view;
+}
+
+Vec3 view_ray(const View& view, double u, double v) {
+    constexpr double kDeg = std::numbers::pi / 180;
+    const Vec3 dir = normalized(view.direction);
+    const Vec3 right = normalized(cross(dir, view.up));
+    const Vec3 up = cross(right, dir);
+    const double cx = (2 * u - 1) * std::tan(0.5 * view.horizontal_deg * kDeg);
+    const double cy = (1 - 2 * v) * std::tan(0.5 * view.vertical_deg * kDeg);
+    return normalized(dir + right * cx + up * cy);
 }
 
 } // namespace rad

@@ -108,10 +108,9 @@ radfmt::RadiosityData radiosity_data(const Channels& solution,
     return rad;
 }
 
-std::vector<radfmt::Rgb> mix_light_groups(const radfmt::RadiosityData& rad,
-                                          const std::vector<std::string>& mix, bool mix_only,
-                                          const std::string& path) {
-    if (mix.empty() && !mix_only) return rad.radiosity;
+std::vector<radfmt::Rgb> mix_weights(const radfmt::RadiosityData& rad,
+                                     const std::vector<std::string>& mix, bool mix_only,
+                                     const std::string& path) {
     if (rad.group_count() == 0)
         throw InputError(path + " has no light groups to mix (solve with rad-solve "
                                 "--light-groups)");
@@ -128,6 +127,14 @@ std::vector<radfmt::Rgb> mix_light_groups(const radfmt::RadiosityData& rad,
         }
         weight[static_cast<std::size_t>(it - rad.group_names.begin())] = w.value;
     }
+    return weight;
+}
+
+std::vector<radfmt::Rgb> mix_light_groups(const radfmt::RadiosityData& rad,
+                                          const std::vector<std::string>& mix, bool mix_only,
+                                          const std::string& path) {
+    if (mix.empty() && !mix_only) return rad.radiosity;
+    const auto weight = mix_weights(rad, mix, mix_only, path);
     std::vector<radfmt::Rgb> out(rad.radiosity.size(), radfmt::Rgb{});
     for (std::size_t i = 0; i < out.size(); ++i)
         for (std::size_t g = 0; g < rad.group_count(); ++g)
