@@ -425,8 +425,8 @@ TEST_CASE("the kind table names every kind once, with its CSV columns") {
         CHECK(radfmt::kind_info(k.kind).name == k.name);
         CHECK_FALSE(k.csv_columns.empty());
     }
-    CHECK(names ==
-          std::vector<std::string>{"mesh", "formfactors", "formfactor-part", "radiosity", "links"});
+    CHECK(names == std::vector<std::string>{"mesh", "formfactors", "formfactor-part", "radiosity",
+                                            "links", "luminaires"});
 }
 
 TEST_CASE("checksum-valid files with nonsense values are refused by the readers") {

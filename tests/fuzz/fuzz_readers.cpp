@@ -16,6 +16,7 @@
 #include "../helpers.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
+#include "radiosity/luminaires.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/hierarchy.hpp"
@@ -338,6 +339,39 @@ int main(int argc, char** argv) {
     radfmt::write_radiosity(dir / "seed-groups.rad", header,
                             rad::radiosity_data(grouped, {{"a", {}}, {"b", {}}}));
 
+    // A luminaires file: the ERCO downlight over the box, its layout and IES text inside.
+    const fs::path ies = data / "photometry" / "photon-v2_ERCO_Panarc_corridor_1.ies";
+    const fs::path ldt = data / "photometry" / "eulumdat-ugr_sample_01_Isym4.ldt";
+    {
+        const auto text = read_bytes(ies);
+        const rad::LuminaireSources sources{
+            "layout.csv", "name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,maintenance,group\n"
+                          "a,erco.ies,0,1.5,0,,,,30,0.8,\nb,erco.ies,0.3,1.5,0,0,-1,1,,,\n",
+            {{"erco.ies", std::string(text.begin(), text.end())}}};
+        const auto set = rad::build_luminaires(sources, 1);
+        const rad::RayScene lum_scene(mesh);
+        radfmt::write_luminaires(dir / "seed.lum", header,
+                                 {sources.layout_name, sources.layout_text, sources.files,
+                                  set.groups, mesh.patches.size(),
+                                  rad::patch_direct_light(mesh, set, lum_scene, 0,
+                                                          mesh.patches.size())});
+    }
+    // What a tool does with a luminaires file: rebuild the luminaires from the texts inside,
+    // and light a point with them.
+    const auto use_luminaires = [&](const radfmt::LuminaireData& lum) {
+        const auto set = rad::build_luminaires({lum.layout_name, lum.layout_text, lum.files}, 1);
+        for (const auto& l : set.luminaires) (void)set.flux(l);
+        (void)rad::luminaire_irradiance(set, {0, 0.5, 0}, {0, 1, 0}, nullptr);
+    };
+    const auto use_photometry = [](const fs::path& p, const std::string& name) {
+        const auto bytes = read_bytes(p);
+        const auto photometry =
+            rad::parse_photometry(std::string(bytes.begin(), bytes.end()), name, nullptr);
+        (void)photometry.flux();
+        (void)rad::flux_warnings(photometry);
+        (void)photometry.intensity(33, 47);
+    };
+
     struct Kind {
         std::string name;
         std::vector<Bytes> seeds;
@@ -404,6 +438,12 @@ int main(int argc, char** argv) {
          {read_bytes(dir / "seed.rad"), read_bytes(dir / "seed-groups.rad")},
          false,
          [&](const fs::path& p) { use_radiosity(mesh_copy, radfmt::read_radiosity(p)); }},
+        {"luminaires",
+         {read_bytes(dir / "seed.lum")},
+         false,
+         [&](const fs::path& p) { use_luminaires(radfmt::read_luminaires(p)); }},
+        {"ies", {read_bytes(ies)}, true, [&](const fs::path& p) { use_photometry(p, "f.ies"); }},
+        {"ldt", {read_bytes(ldt)}, true, [&](const fs::path& p) { use_photometry(p, "f.ldt"); }},
         {"obj",
          {read_bytes(obj)},
          true,
