@@ -167,7 +167,6 @@ TEST_CASE("malformed photometric files are refused with FILE:LINE and what is wr
          "type.ies:4: the photometric type (1 = C, 2 = B, 3 = A) must be a whole number from 1 to 3"},
         {"lumens.ies", small_ies("1 0 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5\n"),
          "lumens.ies:4: lumens per lamp must be positive, or -1"},
-        {"tiltfile.ies", small_ies(), ""}, // placeholder replaced below
         {"tiltshort.ies", small_ies("", "TILT=INCLUDE\n1\n3\n0 45 90\n1 0.9\n"),
          "tiltshort.ies:7: the file ends where a TILT multiplier should be"},
         {"empty.ies", "", "empty.ies: empty file"},
@@ -178,7 +177,6 @@ TEST_CASE("malformed photometric files are refused with FILE:LINE and what is wr
         {"truncated.ldt", "\n1\n1\n", "truncated.ldt:3: the file ends where line 4"},
     };
     for (const auto& c : cases) {
-        if (c.says.empty()) continue;
         INFO(c.name);
         const auto message = refusal(c.text, c.name);
         CHECK(message.rfind(c.says, 0) == 0);
