@@ -64,7 +64,8 @@ TEST_CASE("every public photometric fixture reads and integrates to its stated f
         const auto p = read(f.file);
         CHECK(p.type == f.type);
         CHECK(p.flux() == Approx(f.flux).epsilon(f.tolerance));
-        CHECK(rad::flux_warnings(p).empty() == (std::string(f.file) != "eulumdat-rs_projector_Isym2.ldt"));
+        CHECK(rad::flux_warnings(p).empty() ==
+              (std::string(f.file) != "eulumdat-rs_projector_Isym2.ldt"));
     }
     for (const char* file :
          {"luxcore_ASA_15M_R2.ies", "photon-v2_ERCO_Panarc_corridor_1.ies",
@@ -114,7 +115,7 @@ TEST_CASE("interpolation is bilinear in the angles and symmetric parts are mirro
     CHECK(p.intensity(270, 45) == Approx(60));
     CHECK(p.intensity(315, 45) == Approx(70));
     CHECK(p.intensity(0, 120) == 0); // past the last vertical angle
-    CHECK(p.length == Approx(0.1)); // metres (units 2)
+    CHECK(p.length == Approx(0.1));  // metres (units 2)
     // Feet (units 1): the roadway luminaire's 1.24 ft opening.
     CHECK(read("luxcore_ASA_15M_R2.ies").length == Approx(1.24 * 0.3048));
     // A negative width is round: the ERCO luminaire's 0.262 m disc.
@@ -152,26 +153,36 @@ TEST_CASE("malformed photometric files are refused with FILE:LINE and what is wr
     const Bad cases[] = {
         {"mdl.ies", slurp(kData / "MALFORMED_mdl-sdk_test_file_format_error.ies"),
          "mdl.ies:3: expected the number of lamps, found 'file'"},
-        {"notilt.ies", "IESNA:LM-63-2002\n[TEST] x\n1 1000 1 3 2 1 2 0 0 0\n", "notilt.ies:3: no TILT= line"},
-        {"short.ies", small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100\n"),
+        {"notilt.ies", "IESNA:LM-63-2002\n[TEST] x\n1 1000 1 3 2 1 2 0 0 0\n",
+         "notilt.ies:3: no TILT= line"},
+        {"short.ies",
+         small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100\n"),
          "short.ies:9: the file ends where candela value 5 of 6 should be"},
-        {"long.ies", small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5 7\n"),
+        {"long.ies",
+         small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5 7\n"),
          "long.ies:9: numbers left over"},
-        {"order.ies", small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 90 45\n0 90\n100 80 10\n100 60 5\n"),
+        {"order.ies",
+         small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 90 45\n0 90\n100 80 10\n100 60 5\n"),
          "order.ies:6: vertical angles must increase"},
-        {"neg.ies", small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 -80 10\n100 60 5\n"),
+        {"neg.ies",
+         small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 -80 10\n100 60 5\n"),
          "neg.ies:8: a negative candela value"},
-        {"layout.ies", small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 45\n100 80 10\n100 60 5\n"),
+        {"layout.ies",
+         small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 45\n100 80 10\n100 60 5\n"),
          "layout.ies:7: horizontal angles from 0.000000 to 45.000000"},
-        {"type.ies", small_ies("1 1000 1 3 2 4 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5\n"),
-         "type.ies:4: the photometric type (1 = C, 2 = B, 3 = A) must be a whole number from 1 to 3"},
-        {"lumens.ies", small_ies("1 0 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5\n"),
+        {"type.ies",
+         small_ies("1 1000 1 3 2 4 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5\n"),
+         "type.ies:4: the photometric type (1 = C, 2 = B, 3 = A) must be a whole number from 1 to "
+         "3"},
+        {"lumens.ies",
+         small_ies("1 0 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5\n"),
          "lumens.ies:4: lumens per lamp must be positive, or -1"},
         {"tiltshort.ies", small_ies("", "TILT=INCLUDE\n1\n3\n0 45 90\n1 0.9\n"),
          "tiltshort.ies:7: the file ends where a TILT multiplier should be"},
         {"empty.ies", "", "empty.ies: empty file"},
         {"isym.ldt", ldt_with(3, "5"), "isym.ldt:3: Isym (the symmetry, 0 to 4) must be"},
-        {"mc.ldt", ldt_with(4, "many"), "mc.ldt:4: expected Mc (the number of C-planes), found 'many'"},
+        {"mc.ldt", ldt_with(4, "many"),
+         "mc.ldt:4: expected Mc (the number of C-planes), found 'many'"},
         {"negative.ldt", ldt_with(110, "-3"), "negative.ldt:110: a negative intensity"},
         {"cut.ldt", ldt.substr(0, ldt.size() / 2), "cut.ldt:"},
         {"truncated.ldt", "\n1\n1\n", "truncated.ldt:3: the file ends where line 4"},
@@ -212,9 +223,9 @@ TEST_CASE("a colour temperature's tint keeps the luminance and warms or cools th
 
 // ---- luminaires placed in a scene ----
 
-
 namespace {
-const std::string kIsotropic = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 180\n0\n1000 1000\n";
+const std::string kIsotropic =
+    "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 180\n0\n1000 1000\n";
 
 // A black square of side 2 s in the plane y = 0, facing up.
 radfmt::MeshData floor_mesh(double s) {
@@ -234,7 +245,8 @@ radfmt::MeshData floor_mesh(double s) {
 rad::LuminaireSet one_luminaire(const std::string& photometry, const std::string& row,
                                 const std::string& file = "lamp.ies", double unit = 1) {
     rad::LuminaireSources sources{
-        "layout.csv", "name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,maintenance,group\n" + row + "\n",
+        "layout.csv",
+        "name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,maintenance,group\n" + row + "\n",
         {{file, photometry}}};
     return rad::build_luminaires(sources, unit);
 }
@@ -245,7 +257,8 @@ TEST_CASE("an isotropic point source over a plane gives I cos^3 / h^2 (inverse-s
     const rad::RayScene scene(mesh);
     for (const double unit : {1.0, 0.001}) { // metres, and the same scene drawn in millimetres
         const double h = 2 / unit;
-        const auto set = one_luminaire(kIsotropic, "L,lamp.ies,0," + std::to_string(h) + ",0", "lamp.ies", unit);
+        const auto set =
+            one_luminaire(kIsotropic, "L,lamp.ies,0," + std::to_string(h) + ",0", "lamp.ies", unit);
         const auto& l = set.luminaires[0];
         for (int i = -4; i <= 4; ++i)
             for (int k = -4; k <= 4; ++k) {
@@ -276,21 +289,27 @@ TEST_CASE("aim and spin turn the distribution as LM-63 says; TILT dims by its ta
     const auto ldt = slurp(kData / "eulumdat-ugr_sample_01_Isym4.ldt");
     const auto p = rad::parse_ldt(ldt, "lin.ldt");
     const double g = 40 * std::numbers::pi / 180;
-    const rad::Vec3 towards_x{std::sin(g), -std::cos(g), 0}, towards_minus_z{0, -std::cos(g), -std::sin(g)};
+    const rad::Vec3 towards_x{std::sin(g), -std::cos(g), 0},
+        towards_minus_z{0, -std::cos(g), -std::sin(g)};
     const auto straight = one_luminaire(ldt, "L,lin.ldt,0,3,0", "lin.ldt");
     const auto spun = one_luminaire(ldt, "L,lin.ldt,0,3,0,,,,90", "lin.ldt");
     REQUIRE(std::abs(p.intensity(0, 40) - p.intensity(90, 40)) > 0.1 * p.intensity(0, 40));
     // Aim down, spin 0: C0 along +X, C90 along -Z.
     CHECK(straight.intensity(straight.luminaires[0], towards_x) == Approx(p.intensity(0, 40)));
-    CHECK(straight.intensity(straight.luminaires[0], towards_minus_z) == Approx(p.intensity(90, 40)));
+    CHECK(straight.intensity(straight.luminaires[0], towards_minus_z) ==
+          Approx(p.intensity(90, 40)));
     // Spin 90 puts C0 where C90 was: the footprint's axes swap.
     CHECK(spun.intensity(spun.luminaires[0], towards_minus_z) == Approx(p.intensity(0, 40)));
     const auto mesh = floor_mesh(10);
     const rad::RayScene scene(mesh);
-    const double e_x = rad::luminaire_illuminance(straight, straight.luminaires[0], {2, 0, 0}, {0, 1, 0}, &scene);
-    const double e_z = rad::luminaire_illuminance(straight, straight.luminaires[0], {0, 0, -2}, {0, 1, 0}, &scene);
-    CHECK(rad::luminaire_illuminance(spun, spun.luminaires[0], {0, 0, -2}, {0, 1, 0}, &scene) == Approx(e_x));
-    CHECK(rad::luminaire_illuminance(spun, spun.luminaires[0], {-2, 0, 0}, {0, 1, 0}, &scene) == Approx(e_z));
+    const double e_x =
+        rad::luminaire_illuminance(straight, straight.luminaires[0], {2, 0, 0}, {0, 1, 0}, &scene);
+    const double e_z =
+        rad::luminaire_illuminance(straight, straight.luminaires[0], {0, 0, -2}, {0, 1, 0}, &scene);
+    CHECK(rad::luminaire_illuminance(spun, spun.luminaires[0], {0, 0, -2}, {0, 1, 0}, &scene) ==
+          Approx(e_x));
+    CHECK(rad::luminaire_illuminance(spun, spun.luminaires[0], {-2, 0, 0}, {0, 1, 0}, &scene) ==
+          Approx(e_z));
     // Aimed straight up: 180 degrees about +X, so gamma 0 points up and C0 stays along +X.
     const auto up = one_luminaire(ldt, "L,lin.ldt,0,0,0,0,1,0", "lin.ldt");
     CHECK(up.luminaires[0].c0[0] == Approx(1));
@@ -313,15 +332,24 @@ TEST_CASE("bad layouts are refused with LAYOUT:LINE") {
         }
         return std::string();
     };
-    CHECK(refused("name,photometry,x,y\nL,lamp.ies,0,1\n").rfind("lay.csv:1: the header line has no column 'z'", 0) == 0);
-    CHECK(refused("name,photometry,x,y,z\nL,lamp.ies,0,one,0\n").rfind("lay.csv:2: y is 'one', not a number", 0) == 0);
-    CHECK(refused("name,photometry,x,y,z\nL,lamp.ies,0,1,0\nL,lamp.ies,1,1,0\n").rfind("lay.csv:3: the name 'L' is used on line 2", 0) == 0);
-    CHECK(refused("name,photometry,x,y,z\nL,../lamp.ies,0,1,0\n").rfind("lay.csv:2: '../lamp.ies' leads out of the layout's folder", 0) == 0);
-    CHECK(refused("name,photometry,x,y,z\nL,/etc/lamp.ies,0,1,0\n").rfind("lay.csv:2: '/etc/lamp.ies' is an absolute path", 0) == 0);
-    CHECK(refused("name,photometry,x,y,z,maintenance\nL,lamp.ies,0,1,0,1.5\n").rfind("lay.csv:2: maintenance must be in (0, 1]", 0) == 0);
-    CHECK(refused("name,photometry,x,y,z,aim_x,aim_y,aim_z\nL,lamp.ies,0,1,0,0,0,0\n").rfind("lay.csv:2: the aim is the zero vector", 0) == 0);
-    CHECK(refused("name,photometry,x,y,z,colour\nL,lamp.ies,0,1,0,red\n").rfind("lay.csv:1: unknown column 'colour'", 0) == 0);
-    CHECK(refused("name,photometry,x,y,z\n").rfind("lay.csv: the layout places no luminaire", 0) == 0);
+    CHECK(refused("name,photometry,x,y\nL,lamp.ies,0,1\n")
+              .rfind("lay.csv:1: the header line has no column 'z'", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\nL,lamp.ies,0,one,0\n")
+              .rfind("lay.csv:2: y is 'one', not a number", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\nL,lamp.ies,0,1,0\nL,lamp.ies,1,1,0\n")
+              .rfind("lay.csv:3: the name 'L' is used on line 2", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\nL,../lamp.ies,0,1,0\n")
+              .rfind("lay.csv:2: '../lamp.ies' leads out of the layout's folder", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\nL,/etc/lamp.ies,0,1,0\n")
+              .rfind("lay.csv:2: '/etc/lamp.ies' is an absolute path", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z,maintenance\nL,lamp.ies,0,1,0,1.5\n")
+              .rfind("lay.csv:2: maintenance must be in (0, 1]", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z,aim_x,aim_y,aim_z\nL,lamp.ies,0,1,0,0,0,0\n")
+              .rfind("lay.csv:2: the aim is the zero vector", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z,colour\nL,lamp.ies,0,1,0,red\n")
+              .rfind("lay.csv:1: unknown column 'colour'", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\n").rfind("lay.csv: the layout places no luminaire", 0) ==
+          0);
 }
 
 #include "radiosity/luminaire_image.hpp"
@@ -329,7 +357,8 @@ TEST_CASE("bad layouts are refused with LAYOUT:LINE") {
 TEST_CASE("a luminaire's opening is drawn at its luminance, in front of the ceiling it sits in") {
     // A 0.2 x 0.2 m opening, 1000 cd straight down, flush with a ceiling at y = 3 (a plane
     // facing down); the camera below looks straight up at it.
-    const std::string ies = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0.2 0.2 0\n1 1 0\n0 90\n0\n1000 1000\n";
+    const std::string ies =
+        "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0.2 0.2 0\n1 1 0\n0 90\n0\n1000 1000\n";
     auto ceiling = floor_mesh(5);
     for (auto& v : ceiling.vertices) v[1] = 3;
     std::swap(ceiling.vertices[1], ceiling.vertices[3]); // wound to face down

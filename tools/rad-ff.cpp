@@ -352,7 +352,11 @@ int direct_light(FfArgs& a, int argc, char** argv) {
     const auto range =
         a.rows.empty() ? rad::RowRange{} : rad::parse_rows(a.rows, mesh.patches.size());
     radfmt::LuminaireData lum{
-        sources.layout_name, sources.layout_text, sources.files, set.groups, mesh.patches.size(),
+        sources.layout_name,
+        sources.layout_text,
+        sources.files,
+        set.groups,
+        mesh.patches.size(),
         rad::patch_direct_light(mesh, set, scene, range.begin, range.end, &stats)};
     // The inputs: the mesh, the layout and every file it names, so Make and the chain see a
     // changed photometric file.
@@ -366,7 +370,8 @@ int direct_light(FfArgs& a, int argc, char** argv) {
     header.set("luminaires", std::to_string(set.luminaires.size()));
     if (!a.rows.empty()) { // a part: rad-ff --merge joins the parts
         header.set("rows_begin", std::to_string(range.begin));
-        header.set("rows_end", std::to_string(std::min<std::uint64_t>(range.end, mesh.patches.size())));
+        header.set("rows_end",
+                   std::to_string(std::min<std::uint64_t>(range.end, mesh.patches.size())));
         header.set("unsharded_command", rad::unsharded_command(argc, argv));
     }
     radfmt::write_luminaires(a.output, header, lum);

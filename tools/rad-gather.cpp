@@ -289,8 +289,8 @@ class GatherRun {
               SensorSource& source, std::string source_name, std::uint64_t total,
               const rad::LuminaireSet* luminaires)
         : args_(args), gatherer_(gatherer), luminaires_(luminaires), scene_box_(scene_box),
-          source_(source),
-          source_name_(std::move(source_name)), progress_("rad-gather", total, args.quiet) {}
+          source_(source), source_name_(std::move(source_name)),
+          progress_("rad-gather", total, args.quiet) {}
 
     void stream(std::FILE* out, const std::string& header_line) {
         if (!header_line.empty()) std::fprintf(out, "%s\n", header_line.c_str());

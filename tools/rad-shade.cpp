@@ -5,8 +5,8 @@
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/gathered.hpp"
-#include "radiosity/luminaire_image.hpp"
 #include "radiosity/light_groups.hpp"
+#include "radiosity/luminaire_image.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/shade.hpp"
@@ -151,8 +151,8 @@ ShadeInputs read_inputs(const ShadeArgs& a) {
     radfmt::require_same_geometry(a.rad_path, in.rad_header, in.values.size(), a.mesh_path, in.mesh,
                                   "run rad-ff and rad-solve on " + a.mesh_path + " again");
     in.chain = in.rad_header.chain();
-    in.luminaires =
-        rad::solution_luminaires(in.rad_header, a.direct_path, in.mesh, a.mesh_path, in.mesh_header);
+    in.luminaires = rad::solution_luminaires(in.rad_header, a.direct_path, in.mesh, a.mesh_path,
+                                             in.mesh_header);
     return in;
 }
 
@@ -196,8 +196,8 @@ void draw_openings(const ShadeArgs& a, const ShadeInputs& in, const rad::View& v
     if (!a.mix.empty() || a.mix_only) {
         const auto all = rad::mix_weights(in.radiosity, a.mix, a.mix_only, a.rad_path);
         for (const auto& g : set.groups) {
-            const auto it = std::find(in.radiosity.group_names.begin(),
-                                      in.radiosity.group_names.end(), g);
+            const auto it =
+                std::find(in.radiosity.group_names.begin(), in.radiosity.group_names.end(), g);
             weights.push_back(it == in.radiosity.group_names.end()
                                   ? radfmt::Rgb{{1, 1, 1}}
                                   : all[std::size_t(it - in.radiosity.group_names.begin())]);

@@ -236,8 +236,8 @@ void print_summary(const SolveArgs& a, const rad::Solver& solver, const rad::Sol
                    const rad::SolveControl& control, const std::array<double, 3>& power,
                    const std::vector<rad::LightGroup>& groups, double metres_per_unit) {
     if (a.quiet) return;
-    const double lumens = rad::lux(radfmt::Rgb{{power[0], power[1], power[2]}}) *
-                          metres_per_unit * metres_per_unit;
+    const double lumens =
+        rad::lux(radfmt::Rgb{{power[0], power[1], power[2]}}) * metres_per_unit * metres_per_unit;
     std::fprintf(
         stderr, "rad-solve: %s, %ld %s, %s %.3g%s, power %.6g %.6g %.6g W (%.6g lm)\n",
         a.request.method.c_str(), result.iterations, solver.shooting() ? "shots" : "sweeps",
@@ -283,7 +283,8 @@ rad::Channels add_direct_light(const SolveArgs& a, const radfmt::MeshData& mesh,
         const auto& rho = mesh.materials[mesh.patches[i].material].reflectance;
         for (std::size_t g = 0; g < lum_groups; ++g)
             for (std::size_t c = 0; c < 3; ++c) e.at(i, 3 * g + c) = rho[c] * lum.of(i, g)[c];
-        for (std::size_t c = 0; c < 3 * others; ++c) e.at(i, 3 * lum_groups + c) = emission.at(i, c);
+        for (std::size_t c = 0; c < 3 * others; ++c)
+            e.at(i, 3 * lum_groups + c) = emission.at(i, c);
     }
     std::vector<rad::LightGroup> all;
     for (const auto& name : lum.groups) {
@@ -294,12 +295,13 @@ rad::Channels add_direct_light(const SolveArgs& a, const radfmt::MeshData& mesh,
     groups = std::move(all);
     header.set("direct", a.direct_path);
     if (!a.quiet) {
-        const auto set = rad::build_luminaires(
-            {lum.layout_name, lum.layout_text, lum.files}, rad::metres_per_unit(mesh_header));
+        const auto set = rad::build_luminaires({lum.layout_name, lum.layout_text, lum.files},
+                                               rad::metres_per_unit(mesh_header));
         double emitted = 0;
         for (const auto& l : set.luminaires) emitted += set.flux(l);
-        std::fprintf(stderr, "rad-solve: %zu luminaire(s) in %zu light group(s): %.6g lm (%.6g W "
-                             "at %g lm/W)\n",
+        std::fprintf(stderr,
+                     "rad-solve: %zu luminaire(s) in %zu light group(s): %.6g lm (%.6g W "
+                     "at %g lm/W)\n",
                      set.luminaires.size(), lum_groups, emitted, emitted / rad::kRadianceEfficacy,
                      rad::kRadianceEfficacy);
     }
@@ -330,7 +332,8 @@ int solve(SolveArgs& a, int argc, char** argv) {
                               "along rows of F, which links do not have; use --method gs or "
                               "jacobi");
 
-    std::vector<radfmt::Parent> parents{{a.mesh_path, &mesh_header}, {a.ff_path, &transport.header}};
+    std::vector<radfmt::Parent> parents{{a.mesh_path, &mesh_header},
+                                        {a.ff_path, &transport.header}};
     if (!a.direct_path.empty()) parents.push_back({a.direct_path, nullptr}); // hashed from disk
     auto header = radfmt::derived_header(rad::tool_version("rad-solve"),
                                          radfmt::command_line(argc, argv), parents);

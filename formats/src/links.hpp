@@ -1,4 +1,5 @@
-// The links and luminaires kinds' CSV and summary, for the kind table in kinds.cpp (internal header).
+// The links and luminaires kinds' CSV and summary, for the kind table in kinds.cpp (internal
+// header).
 #pragma once
 #include "radfmt/kinds.hpp"
 

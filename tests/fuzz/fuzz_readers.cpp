@@ -16,11 +16,11 @@
 #include "../helpers.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
-#include "radiosity/luminaires.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/hierarchy.hpp"
 #include "radiosity/light_groups.hpp"
+#include "radiosity/luminaires.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/smoothing.hpp"
@@ -345,16 +345,17 @@ int main(int argc, char** argv) {
     {
         const auto text = read_bytes(ies);
         const rad::LuminaireSources sources{
-            "layout.csv", "name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,maintenance,group\n"
-                          "a,erco.ies,0,1.5,0,,,,30,0.8,\nb,erco.ies,0.3,1.5,0,0,-1,1,,,\n",
+            "layout.csv",
+            "name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,maintenance,group\n"
+            "a,erco.ies,0,1.5,0,,,,30,0.8,\nb,erco.ies,0.3,1.5,0,0,-1,1,,,\n",
             {{"erco.ies", std::string(text.begin(), text.end())}}};
         const auto set = rad::build_luminaires(sources, 1);
         const rad::RayScene lum_scene(mesh);
-        radfmt::write_luminaires(dir / "seed.lum", header,
-                                 {sources.layout_name, sources.layout_text, sources.files,
-                                  set.groups, mesh.patches.size(),
-                                  rad::patch_direct_light(mesh, set, lum_scene, 0,
-                                                          mesh.patches.size())});
+        radfmt::write_luminaires(
+            dir / "seed.lum", header,
+            {sources.layout_name, sources.layout_text, sources.files, set.groups,
+             mesh.patches.size(),
+             rad::patch_direct_light(mesh, set, lum_scene, 0, mesh.patches.size())});
     }
     // What a tool does with a luminaires file: rebuild the luminaires from the texts inside,
     // and light a point with them.

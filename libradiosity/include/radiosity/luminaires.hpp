@@ -33,10 +33,10 @@ LuminaireSources read_luminaire_sources(const std::filesystem::path& layout);
 
 struct Luminaire {
     std::string name, group;
-    int line = 0;                // its row in the layout
-    std::size_t photometry = 0;  // index into LuminaireSet::photometries
-    Vec3 position{};             // the photometric centre, scene units
-    Vec3 nadir{0, -1, 0};        // gamma 0 (type C), the beam axis (A, B)
+    int line = 0;               // its row in the layout
+    std::size_t photometry = 0; // index into LuminaireSet::photometries
+    Vec3 position{};            // the photometric centre, scene units
+    Vec3 nadir{0, -1, 0};       // gamma 0 (type C), the beam axis (A, B)
     Vec3 c0{1, 0, 0}, c90{0, 0, -1};
     double maintenance = 1;
     double tilt_factor = 1; // the TILT table's multiplier at its actual tilt
@@ -47,7 +47,7 @@ struct Luminaire {
 struct LuminaireSet {
     std::vector<Photometry> photometries;
     std::vector<Luminaire> luminaires;
-    std::vector<std::string> groups; // in order of first appearance
+    std::vector<std::string> groups;   // in order of first appearance
     std::vector<std::string> warnings; // flux mismatches, each naming its file
     double metres_per_unit = 1;        // the scene's unit (rad-mesh --unit)
 
@@ -116,8 +116,7 @@ std::optional<LuminaireSet> solution_luminaires(const radfmt::Header& solution_h
 
 // A warning per luminaire whose centre is inside a closed object or behind a wall (most of
 // its light, by intensity, first meets the back of a surface), naming it and its row.
-std::vector<std::string> enclosed_luminaire_warnings(const LuminaireSet& set,
-                                                     const RayScene& scene,
+std::vector<std::string> enclosed_luminaire_warnings(const LuminaireSet& set, const RayScene& scene,
                                                      const std::string& layout_name);
 
 } // namespace rad

@@ -150,7 +150,8 @@ std::vector<Rgb> luminaire_irradiance(const LuminaireSet& set, const Vec3& point
     for (const auto& l : set.luminaires) {
         const double lux = luminaire_illuminance(set, l, point, normal, scene);
         auto& g = out[set.group_of(l)];
-        for (int c = 0; c < 3; ++c) g[std::size_t(c)] += lux / kRadianceEfficacy * l.tint[std::size_t(c)];
+        for (int c = 0; c < 3; ++c)
+            g[std::size_t(c)] += lux / kRadianceEfficacy * l.tint[std::size_t(c)];
     }
     return out;
 }
@@ -190,8 +191,7 @@ std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const Luminair
     return out;
 }
 
-std::vector<std::string> enclosed_luminaire_warnings(const LuminaireSet& set,
-                                                     const RayScene& scene,
+std::vector<std::string> enclosed_luminaire_warnings(const LuminaireSet& set, const RayScene& scene,
                                                      const std::string& layout_name) {
     std::vector<std::string> out;
     constexpr int kRays = 256;

@@ -163,8 +163,7 @@ Photometry parse_ies(std::string_view text, const std::string& name,
     if (!in.at_end()) {
         in.number("the end of the file");
         in.fail("numbers left over after " + std::to_string(head.nv) + " x " +
-                std::to_string(head.nh) +
-                " candela values: the counts do not match the values");
+                std::to_string(head.nh) + " candela values: the counts do not match the values");
     }
     const photometry::Fail fail = [&](const std::string& m) { throw InputError(angles_end, m); };
     if (p.type == PhotometricType::C) {

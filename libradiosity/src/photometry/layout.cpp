@@ -47,10 +47,8 @@ std::vector<std::string> csv_fields(std::string_view line) {
 // A regular file's text, refused past kMaxSourceBytes (FileLoc names who asked for it).
 std::string read_text(const fs::path& path, const FileLoc& asked) {
     struct stat st {};
-    if (::stat(path.c_str(), &st) != 0)
-        throw InputError(asked, path.string() + " does not exist");
-    if (!S_ISREG(st.st_mode))
-        throw InputError(asked, path.string() + " is not a regular file");
+    if (::stat(path.c_str(), &st) != 0) throw InputError(asked, path.string() + " does not exist");
+    if (!S_ISREG(st.st_mode)) throw InputError(asked, path.string() + " is not a regular file");
     if (std::size_t(st.st_size) > kMaxSourceBytes)
         throw InputError(asked, path.string() + " is over 64 MiB: not a photometric file");
     std::ifstream in(path, std::ios::binary);
@@ -71,8 +69,8 @@ std::string inside(const fs::path& root, const fs::path& folder, const std::stri
                                     "the layout's folder, inside it");
     const auto relative = (folder / given).lexically_normal();
     if (relative.empty() || *relative.begin() == "..")
-        throw InputError(asked, "'" + name + "' leads out of the layout's folder " +
-                                    root.string() + ": copy the file into it");
+        throw InputError(asked, "'" + name + "' leads out of the layout's folder " + root.string() +
+                                    ": copy the file into it");
     std::error_code ec;
     const auto canonical_root = fs::weakly_canonical(root, ec);
     const auto canonical = fs::weakly_canonical(root / relative, ec);
@@ -233,12 +231,14 @@ LuminaireSet build_luminaires(const LuminaireSources& sources, double metres_per
         if (!photometry_of.count(relative)) {
             const auto it = text_of.find(relative);
             if (it == text_of.end())
-                throw InputError(where, "the photometric file '" + relative + "' is not among the files");
+                throw InputError(where,
+                                 "the photometric file '" + relative + "' is not among the files");
             const auto folder = fs::path(relative).parent_path();
             const IncludeReader include = [&](const std::string& name, const FileLoc& asked) {
                 const auto tilt = inside(".", folder, name, asked);
                 const auto t = text_of.find(tilt);
-                if (t == text_of.end()) throw InputError(asked, "the TILT file '" + tilt + "' is missing");
+                if (t == text_of.end())
+                    throw InputError(asked, "the TILT file '" + tilt + "' is missing");
                 return t->second;
             };
             photometry_of[relative] = set.photometries.size();

@@ -27,7 +27,8 @@ class LdtLines {
     // A number, with a decimal comma taken as a point (some writers use one).
     double number(std::size_t line, const std::string& what) const {
         std::string token(trimmed(text(line, what)));
-        if (token.find('.') == std::string::npos) std::replace(token.begin(), token.end(), ',', '.');
+        if (token.find('.') == std::string::npos)
+            std::replace(token.begin(), token.end(), ',', '.');
         double value = 0;
         if (!photometry::parse_number(token, value))
             throw InputError(FileLoc{name_, int(line)},
@@ -37,9 +38,9 @@ class LdtLines {
     long count(std::size_t line, const std::string& what, long low, long high) const {
         const double value = number(line, what);
         if (value != std::floor(value) || value < double(low) || value > double(high))
-            throw InputError(FileLoc{name_, int(line)},
-                             what + " must be a whole number from " + std::to_string(low) +
-                                 " to " + std::to_string(high));
+            throw InputError(FileLoc{name_, int(line)}, what + " must be a whole number from " +
+                                                            std::to_string(low) + " to " +
+                                                            std::to_string(high));
         return long(value);
     }
     // The leading number of a line ("3000K" -> 3000), 0 when there is none.
@@ -66,21 +67,29 @@ std::vector<std::size_t> stored_planes(int isym, const std::vector<double>& c, T
     const std::size_t mc = c.size();
     std::vector<std::size_t> out;
     const auto first_n = [&](std::size_t n, std::size_t from) {
-        if (from + n > mc) in.fail("the C angles do not hold the planes Isym " +
-                                   std::to_string(isym) + " stores");
+        if (from + n > mc)
+            in.fail("the C angles do not hold the planes Isym " + std::to_string(isym) + " stores");
         for (std::size_t k = 0; k < n; ++k) out.push_back(from + k);
     };
     switch (isym) {
-    case 0: first_n(mc, 0); break;
-    case 1: first_n(1, 0); break;
-    case 2: first_n(mc / 2 + 1, 0); break;
+    case 0:
+        first_n(mc, 0);
+        break;
+    case 1:
+        first_n(1, 0);
+        break;
+    case 2:
+        first_n(mc / 2 + 1, 0);
+        break;
     case 3: {
         const auto at90 = std::find(c.begin(), c.end(), 90.0);
         if (at90 == c.end()) in.fail("Isym 3 stores C90 to C270, but no C angle is 90");
         first_n(mc / 2 + 1, std::size_t(at90 - c.begin()));
         break;
     }
-    default: first_n(mc / 4 + 1, 0); break;
+    default:
+        first_n(mc / 4 + 1, 0);
+        break;
     }
     return out;
 }

@@ -30,7 +30,8 @@ double opening_hit(const LuminaireSet& set, const Luminaire& l, const Vec3& eye,
 // pi x the opening's luminance towards -ray, as W/m^2 of white.
 double opening_value(const LuminaireSet& set, const Luminaire& l, const Vec3& ray) {
     const auto& p = set.photometries[l.photometry];
-    const double area = p.round ? std::numbers::pi * 0.25 * p.length * p.length : p.length * p.width;
+    const double area =
+        p.round ? std::numbers::pi * 0.25 * p.length * p.length : p.length * p.width;
     const double projected = area * std::abs(dot(ray, l.nadir));
     if (!(projected > 0)) return 0;
     return std::numbers::pi * set.intensity(l, ray * -1) / projected / kRadianceEfficacy;
@@ -51,7 +52,8 @@ std::size_t draw_luminaires(Image& image, const LuminaireSet& set, const RayScen
             int hits = 0;
             for (int sy = 0; sy < ss; ++sy)
                 for (int sx = 0; sx < ss; ++sx) {
-                    const Vec3 ray = view_ray(view, (x * ss + sx + 0.5) / W, (y * ss + sy + 0.5) / H);
+                    const Vec3 ray =
+                        view_ray(view, (x * ss + sx + 0.5) / W, (y * ss + sy + 0.5) / H);
                     const auto surface = scene.trace(view.position, ray);
                     double nearest = surface.patch >= 0 ? surface.distance + tolerance : 1e300;
                     const Luminaire* seen = nullptr;

@@ -60,8 +60,7 @@ bool TokenCursor::next_token(std::string_view& token) {
 
 double TokenCursor::number(const std::string& what) {
     std::string_view token;
-    if (!next_token(token))
-        fail("the file ends where " + what + " should be (truncated?)");
+    if (!next_token(token)) fail("the file ends where " + what + " should be (truncated?)");
     double value = 0;
     if (!parse_number(token, value)) fail("expected " + what + ", found " + quoted(token));
     return value;

@@ -73,7 +73,8 @@ void complete_type_c(Photometry& p, const std::vector<double>& h, const std::vec
              ": type C distributions give one plane, or planes 0-90, 0-180, 90-270 or 0-360");
     }
     // Both ends of the circle, so that every angle lies between two planes.
-    const bool has0 = std::any_of(planes.begin(), planes.end(), [](auto& q) { return q.first == 0; });
+    const bool has0 =
+        std::any_of(planes.begin(), planes.end(), [](auto& q) { return q.first == 0; });
     const bool has360 =
         std::any_of(planes.begin(), planes.end(), [](auto& q) { return q.first == 360; });
     for (const auto& q : std::vector(planes)) {
@@ -105,8 +106,8 @@ double TiltTable::factor(double degrees) const {
     if (angles.empty()) return 1;
     if (degrees <= angles.front()) return factors.front();
     if (degrees >= angles.back()) return factors.back();
-    const auto k = std::size_t(std::upper_bound(angles.begin(), angles.end(), degrees) -
-                               angles.begin());
+    const auto k =
+        std::size_t(std::upper_bound(angles.begin(), angles.end(), degrees) - angles.begin());
     const double t = (degrees - angles[k - 1]) / (angles[k] - angles[k - 1]);
     return factors[k - 1] + t * (factors[k] - factors[k - 1]);
 }
@@ -164,11 +165,10 @@ double integrate(const Photometry& p, double v_low, double v_high) {
                     for (int a = 0; a < 4; ++a)
                         for (int b = 0; b < 4; ++b) {
                             const double hh = hm + hr * kNode[a], vv = vm + vr * kNode[b];
-                            const double jacobian = p.type == PhotometricType::C
-                                                        ? std::sin(vv * kRad)
-                                                    : p.type == PhotometricType::A
-                                                        ? std::cos(vv * kRad)
-                                                        : std::cos(hh * kRad);
+                            const double jacobian =
+                                p.type == PhotometricType::C   ? std::sin(vv * kRad)
+                                : p.type == PhotometricType::A ? std::cos(vv * kRad)
+                                                               : std::cos(hh * kRad);
                             total += kWeight[a] * kWeight[b] * hr * vr * kRad * kRad * jacobian *
                                      p.intensity(hh, vv);
                         }

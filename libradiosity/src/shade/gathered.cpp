@@ -47,8 +47,8 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
                     const auto normal = gatherer.shading_normal(hit);
                     auto h = gatherer.gather(point, normal, patch.normal, index).total();
                     if (luminaires) // their direct light, exactly at the point
-                        for (const auto& g : luminaire_irradiance(*luminaires, point, normal,
-                                                                  &gatherer.scene()))
+                        for (const auto& g :
+                             luminaire_irradiance(*luminaires, point, normal, &gatherer.scene()))
                             for (int c = 0; c < 3; ++c) h[c] += g[c];
                     for (int c = 0; c < 3; ++c)
                         sum[c] += material.emission[c] + material.reflectance[c] * h[c];
