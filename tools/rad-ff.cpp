@@ -357,7 +357,7 @@ int direct_light(FfArgs& a, int argc, char** argv) {
         sources.files,
         set.groups,
         mesh.patches.size(),
-        rad::patch_direct_light(mesh, set, scene, range.begin, range.end, &stats)};
+        rad::patch_direct_light(mesh, set, scene, range.begin, range.end, &stats, a.options.quiet)};
     // The inputs: the mesh, the layout and every file it names, so Make and the chain see a
     // changed photometric file.
     std::vector<radfmt::Parent> parents{{input, &mesh_header}, {a.luminaires, nullptr}};

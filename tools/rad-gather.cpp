@@ -433,8 +433,8 @@ int gather(GatherArgs& a, int argc, char** argv) {
     // E and rho as solved (rad-solve --emission/--reflectance overrides included).
     rad::apply_recorded_overrides(mesh, rad_header);
     const rad::Gatherer gatherer(mesh, solution.radiosity, a.options);
-    const auto luminaires =
-        rad::solution_luminaires(rad_header, a.direct_path, mesh, a.mesh_path, mesh_header);
+    const auto luminaires = rad::solution_luminaires(rad_header, a.rad_path, a.direct_path, mesh,
+                                                     a.mesh_path, mesh_header);
     const rad::Box scene_box = rad::bounds(mesh.vertices);
 
     std::ifstream points_file;

@@ -151,8 +151,8 @@ ShadeInputs read_inputs(const ShadeArgs& a) {
     radfmt::require_same_geometry(a.rad_path, in.rad_header, in.values.size(), a.mesh_path, in.mesh,
                                   "run rad-ff and rad-solve on " + a.mesh_path + " again");
     in.chain = in.rad_header.chain();
-    in.luminaires = rad::solution_luminaires(in.rad_header, a.direct_path, in.mesh, a.mesh_path,
-                                             in.mesh_header);
+    in.luminaires = rad::solution_luminaires(in.rad_header, a.rad_path, a.direct_path, in.mesh,
+                                             a.mesh_path, in.mesh_header);
     return in;
 }
 

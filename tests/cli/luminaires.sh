@@ -99,6 +99,9 @@ for p, e in zip(pts, lux):
     expect = 1000 * 2 ** 3 / (4 + r2) ** 1.5 / 4 * 1  # I cos^3 / h^2, cos = 2 / sqrt(4 + r^2)
     assert abs(e - expect) <= 1e-3 * expect, (p, e, expect)
 PY
+# Solved with relative paths in its folder, read from elsewhere: the .lum is found beside the .rad.
+(cd "$TMP" && "$BIN/rad-solve" p.mesh p.ff --direct p.lum -o rel.rad -q) || fail "relative solve"
+(cd / && "$BIN/rad-gather" "$TMP/p.mesh" "$TMP/rel.rad" --points "$TMP/pts.txt" --lux -q) | cmp -s - "$TMP/lux.txt" || fail "the .lum beside the .rad"
 # A moved .lum is found with --direct; a missing one is named.
 mv "$TMP/p.lum" "$TMP/moved.lum"
 expect_error "p.lum: the luminaires file the solution was solved with is not there" "" "$BIN/rad-gather" "$TMP/p.mesh" "$TMP/p.rad" --points "$TMP/pts.txt"

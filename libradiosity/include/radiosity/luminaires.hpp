@@ -94,9 +94,10 @@ struct DirectLightStats {
     std::uint64_t rays = 0;
     double seconds = 0;
 };
+// `progress`: patches done, on stderr when it is a terminal (not when quiet).
 std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const LuminaireSet& set,
                                     const RayScene& scene, std::uint64_t begin, std::uint64_t end,
-                                    DirectLightStats* stats = nullptr);
+                                    DirectLightStats* stats = nullptr, bool quiet = true);
 
 // Joins .lum parts (rad-ff --luminaires --rows) of one mesh, layout and files into the .lum one
 // run would have written to `output`, byte for byte; every row exactly once (InputError naming
@@ -105,14 +106,14 @@ std::uint64_t merge_luminaire_parts(const std::vector<std::string>& paths,
                                     const std::string& output);
 
 // The luminaires a solution was solved with (rad-solve --direct: its `direct` field), rebuilt
-// from the .lum at `path` (empty: the recorded one), which must be the file the solve read
-// (its hash as recorded) and belong to `mesh`; none when the solve had no luminaires.
-// InputError naming the file and what to run otherwise.
-std::optional<LuminaireSet> solution_luminaires(const radfmt::Header& solution_header,
-                                                const std::string& path,
-                                                const radfmt::MeshData& mesh,
-                                                const std::string& mesh_path,
-                                                const radfmt::Header& mesh_header);
+// from the .lum at `path` (empty: the recorded one, as recorded or, when that is not there,
+// beside the solution at `solution_path`), which must be the file the solve read (its hash as
+// recorded) and belong to `mesh`; none when the solve had no luminaires. InputError naming the
+// file and what to run otherwise.
+std::optional<LuminaireSet>
+solution_luminaires(const radfmt::Header& solution_header, const std::string& solution_path,
+                    const std::string& path, const radfmt::MeshData& mesh,
+                    const std::string& mesh_path, const radfmt::Header& mesh_header);
 
 // A warning per luminaire whose centre is inside a closed object or behind a wall (most of
 // its light, by intensity, first meets the back of a surface), naming it and its row.

@@ -5,6 +5,7 @@
 #include "radiosity/gather.hpp"
 #include "radiosity/luminaires.hpp"
 #include "radiosity/patch_geometry.hpp"
+#include "radiosity/progress.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -158,7 +159,7 @@ std::vector<Rgb> luminaire_irradiance(const LuminaireSet& set, const Vec3& point
 
 std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const LuminaireSet& set,
                                     const RayScene& scene, std::uint64_t begin, std::uint64_t end,
-                                    DirectLightStats* stats) {
+                                    DirectLightStats* stats, bool quiet) {
     const auto start = std::chrono::steady_clock::now();
     const std::size_t groups = set.groups.size();
     end = std::min<std::uint64_t>(end, mesh.patches.size());
@@ -166,6 +167,7 @@ std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const Luminair
     std::vector<double> nodes, weights;
     ff::gauss_legendre(4, nodes, weights);
     std::atomic<std::uint64_t> rays{0};
+    Progress progress("rad-ff luminaires", end > begin ? end - begin : 0, quiet);
     tbb::parallel_for(std::uint64_t(begin), std::max(begin, end), [&](std::uint64_t i) {
         const auto& patch = mesh.patches[i];
         const auto corners = patch_points(mesh, i);
@@ -182,7 +184,9 @@ std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const Luminair
                 g[std::size_t(c)] += lux / kRadianceEfficacy * l.tint[std::size_t(c)];
         }
         rays += cast;
+        progress.advance(1);
     });
+    progress.finish();
     if (stats) {
         stats->rays = rays;
         stats->seconds =

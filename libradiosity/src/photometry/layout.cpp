@@ -326,14 +326,15 @@ double metres_per_unit(const radfmt::Header& mesh_header) {
 
 namespace rad {
 
-std::optional<LuminaireSet> solution_luminaires(const radfmt::Header& solution_header,
-                                                const std::string& path,
-                                                const radfmt::MeshData& mesh,
-                                                const std::string& mesh_path,
-                                                const radfmt::Header& mesh_header) {
+std::optional<LuminaireSet>
+solution_luminaires(const radfmt::Header& solution_header, const std::string& solution_path,
+                    const std::string& path, const radfmt::MeshData& mesh,
+                    const std::string& mesh_path, const radfmt::Header& mesh_header) {
     const auto* recorded = solution_header.find("direct");
     if (!recorded && path.empty()) return std::nullopt;
-    const std::string lum_path = path.empty() ? *recorded : path;
+    std::string lum_path = path.empty() ? *recorded : path;
+    const auto beside = fs::path(solution_path).parent_path() / fs::path(lum_path).filename();
+    if (path.empty() && !fs::exists(lum_path) && fs::exists(beside)) lum_path = beside.string();
     if (!fs::exists(lum_path))
         throw InputError(lum_path + ": the luminaires file the solution was solved with is not "
                                     "there (give its new place with --direct FILE)");
