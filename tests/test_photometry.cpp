@@ -389,3 +389,40 @@ TEST_CASE("a luminaire's opening is drawn at its luminance, in front of the ceil
     rad::draw_luminaires(dim, set, scene, view, 1, {radfmt::Rgb{{0.5, 0.5, 0.5}}});
     CHECK(dim.rgb[centre] == Approx(expect / 2).epsilon(1e-4));
 }
+
+#include "radiosity/formfactor.hpp"
+
+TEST_CASE("near a large opening its light is sampled over it, as the exact form factor says") {
+    // A 1 x 1 m Lambertian opening (I = I0 cos(gamma), I0 = L A) 0.5 m over a point: the
+    // irradiance is L pi F, F the point's exact form factor to the square (contour integral);
+    // a point source would read I0 / h^2, 27% more.
+    std::string text = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 91 1 1 2 1 1 0\n1 1 0\n";
+    for (int g = 0; g <= 90; ++g) text += std::to_string(g) + " ";
+    text += "\n0\n";
+    char value[32];
+    for (int g = 0; g <= 90; ++g) {
+        std::snprintf(value, sizeof value, "%.6f ", 1000 * std::cos(g * std::numbers::pi / 180));
+        text += value;
+    }
+    const auto set = one_luminaire(text, "L,lamp.ies,0,0.5,0");
+    const double luminance = 1000 / 1.0; // I0 / A
+    const std::vector<rad::Vec3> square{
+        {-0.5, 0.5, -0.5}, {0.5, 0.5, -0.5}, {0.5, 0.5, 0.5}, {-0.5, 0.5, 0.5}};
+    for (const rad::Vec3 p : {rad::Vec3{0, 0, 0}, rad::Vec3{0.3, 0, 0.1}}) {
+        const double f = rad::point_to_polygon_form_factor(p, {0, 1, 0}, square);
+        const double exact = luminance * std::numbers::pi * f;
+        const double near =
+            rad::luminaire_illuminance(set, set.luminaires[0], p, {0, 1, 0}, nullptr);
+        CHECK(near == Approx(exact).epsilon(0.01));
+    }
+    // Far away (over five openings) it is a point source: I0 cos^3 / h^2 exactly.
+    const double far =
+        rad::luminaire_illuminance(set, set.luminaires[0], {0, -5.5, 0}, {0, 1, 0}, nullptr);
+    CHECK(far == Approx(1000 / 36.0).epsilon(1e-6));
+}
+
+TEST_CASE("EULUMDAT's lamp colour temperature tints the light, keeping its lumens") {
+    // The floor uplight's lamp set says "nw/4200".
+    const auto p = read("eulumdat-rs_floor_uplight_Isym0.ldt");
+    CHECK(p.cct == 4200);
+}

@@ -262,6 +262,8 @@ LuminaireSet build_luminaires(const LuminaireSources& sources, double metres_per
         const double tilt = std::acos(std::clamp(-l.nadir[1], -1.0, 1.0)) * 180 / std::numbers::pi;
         l.tilt_factor = p.tilt.factor(tilt);
         l.cct = number("cct", p.cct > 0 ? p.cct : 0);
+        if (l.cct != 0 && !(l.cct >= 1667 && l.cct <= 25000))
+            throw InputError(where, "cct " + row["cct"] + " K is outside 1667 to 25000 K");
         if (l.cct > 0) {
             const auto t = cct_tint(l.cct);
             l.tint = Rgb{{t[0], t[1], t[2]}};

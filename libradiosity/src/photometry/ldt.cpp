@@ -5,6 +5,7 @@
 #include "radiosity/photometry.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
@@ -43,11 +44,18 @@ class LdtLines {
                                                             std::to_string(high));
         return long(value);
     }
-    // The leading number of a line ("3000K" -> 3000), 0 when there is none.
-    double leading_number(std::size_t line) const {
+    // A colour temperature on a line ("3000K", "nw/4200", "LED 4000 K"): its first number
+    // within 1667 to 25000 K, 0 when there is none.
+    double colour_temperature(std::size_t line) const {
         if (line > lines_.size()) return 0;
-        const std::string token(trimmed(lines_[line - 1]));
-        return std::strtod(token.c_str(), nullptr);
+        const std::string text(lines_[line - 1]);
+        for (std::size_t i = 0; i < text.size(); ++i) {
+            if (!std::isdigit(static_cast<unsigned char>(text[i]))) continue;
+            const double value = std::strtod(text.c_str() + i, nullptr);
+            if (value >= 1667 && value <= 25000) return value;
+            while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i;
+        }
+        return 0;
     }
     const std::vector<std::string_view>& all() const { return lines_; }
     const std::string& name() const { return name_; }
@@ -121,7 +129,7 @@ Photometry parse_ldt(std::string_view text, const std::string& name) {
     const double lamp_flux = ldt.number(set_line(2), "the lamp flux of set 1 (lm)");
     if (!(lamp_flux > 0))
         throw InputError(FileLoc{name, int(set_line(2))}, "the lamp flux must be positive");
-    p.cct = ldt.leading_number(set_line(3));
+    p.cct = ldt.colour_temperature(set_line(3));
     p.input_watts = ldt.number(set_line(5), "the wattage of set 1 (W)");
     // A negative lamp count marks absolute photometry: the flux is then the luminaire's.
     p.lamp_lumens = lamps < 0 ? 0 : lamp_flux;
