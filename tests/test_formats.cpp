@@ -168,6 +168,12 @@ TEST_CASE("polygon patches that consumers could not split are refused") {
                Contains("a polygon has 4 corners or more"));
     CHECK_THAT(error([](auto& m) { m.polygon_corners[2] = 99; }),
                Contains("polygon corner 2 refers to vertex 99 of 10"));
+    // A polygon whose corners are all one point (#55).
+    CHECK_THAT(error([](auto& m) {
+                   const auto first = m.polygon_corners[0];
+                   for (auto& c : m.polygon_corners) c = first;
+               }),
+               Contains("patch 2 stores an area of") && Contains("its corners enclose 0"));
 }
 
 TEST_CASE("form-factor and radiosity files round-trip") {
@@ -455,6 +461,15 @@ TEST_CASE("checksum-valid files with nonsense values are refused by the readers"
                Contains("material 'lamp' has a negative or non-finite"));
     CHECK_THAT(mesh_error([&](auto& m) { m.materials[0].reflectance[2] = nan; }),
                Contains("material 'grey'"));
+    // A stored area far from what the corners enclose (#55): a million times, or a patch whose
+    // corners are one point.
+    CHECK_THAT(mesh_error([&](auto& m) { m.patches[1].area *= 1e6; }),
+               Contains("patch 1 stores an area of") && Contains("but its corners enclose"));
+    CHECK_THAT(mesh_error([&](auto& m) {
+                   for (auto& c : m.patches[0].corners)
+                       if (c != radfmt::kNoVertex) c = m.patches[0].corners[0];
+               }),
+               Contains("patch 0 stores an area of") && Contains("its corners enclose 0"));
     CHECK(mesh_error([](auto&) {}) == "no error");
 
     radfmt::FormFactorData ff;

@@ -397,5 +397,18 @@ TEST_CASE("links files: written and read back whole; a broken tree is refused") 
     radfmt::write_links(dir / "f.links", header, broken);
     CHECK_THROWS_WITH(radfmt::read_links(dir / "f.links"),
                       Contains("a part its node does not have"));
+    // A leaf that gathers from itself (#55), and a node from its own parent.
+    broken = links;
+    bool spoiled = false;
+    for (std::size_t i = 0; i < broken.nodes.size() && !spoiled; ++i)
+        for (auto l = broken.link_start[i]; l < broken.link_start[i + 1] && !spoiled; ++l)
+            if (broken.is_leaf(i) && broken.is_leaf(broken.source[l])) {
+                broken.source[l] = static_cast<std::uint32_t>(i);
+                spoiled = true;
+            }
+    REQUIRE(spoiled);
+    radfmt::write_links(dir / "g.links", header, broken);
+    CHECK_THROWS_WITH(radfmt::read_links(dir / "g.links"),
+                      Contains("which shares its patches (a patch would light itself)"));
     fs::remove_all(dir);
 }

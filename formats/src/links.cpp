@@ -125,7 +125,15 @@ void check_links(const LinkData& links, BodyReader& r) {
     }
     for (std::size_t i = 0; i < links.nodes.size(); ++i) {
         const auto slots = share_slots(links, i);
+        const auto& node = links.nodes[i];
         for (auto l = start[i]; l < start[i + 1]; ++l) {
+            // A node never gathers from itself or from a part of itself (nor a part from its
+            // whole): its patches would light themselves.
+            const auto& source = links.nodes[links.source[l]];
+            if (source.first < node.first + node.count && node.first < source.first + source.count)
+                r.fail("link " + std::to_string(l) + " joins node " + std::to_string(i) +
+                       " with node " + std::to_string(links.source[l]) +
+                       ", which shares its patches (a patch would light itself)");
             check_shares(slots, links.receiver_share[l], r, l, "receiver");
             check_shares(share_slots(links, links.source[l]), links.source_share[l], r, l,
                          "source");
