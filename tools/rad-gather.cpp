@@ -65,26 +65,6 @@ void parse_sensor(const std::string& text, Sensor& sensor) {
     sensor.direction = {d[0] / len, d[1] / len, d[2] / len};
 }
 
-// Rays from a point farther than this many scene sizes from the scene cannot be traced in
-// single precision (Embree aborts on some): such points are refused, as rad-ff refuses
-// scenes out of its range.
-constexpr double kMaxSensorDistance = 1e6;
-
-// Why a sensor at `p` is out of the ray tracer's reach of the scene in `box`, or "".
-std::string out_of_reach(const rad::Vec3& p, const rad::Box& box) {
-    const double size = std::max(box.diagonal(), 1e-300);
-    using rad::operator-;
-    const double distance = rad::length(p - box.centre());
-    if (distance <= kMaxSensorDistance * size) return "";
-    char text[240];
-    std::snprintf(text, sizeof text,
-                  "the point is %.3g units from the scene, which is %.3g across: more than %.0e "
-                  "times its size away, rays from it cannot be traced in single precision "
-                  "(move it nearer)",
-                  distance, size, kMaxSensorDistance);
-    return text;
-}
-
 // Where sensors come from: lines of a stream, or a generated grid.
 class SensorSource {
   public:
@@ -172,6 +152,16 @@ std::string number_text(double v) {
     char text[32];
     std::snprintf(text, sizeof text, "%.6g", v);
     return text;
+}
+
+// A grid whose corners the ray tracer cannot reach is refused up front, as --points refuses
+// such a point (its sensors are not "inside objects": they are too far to trace from).
+void check_grid_reach(const Grid& grid, const rad::Box& box) {
+    for (const double x : {grid.x0, grid.x1})
+        for (const double z : {grid.z0, grid.z1})
+            if (const auto why = rad::out_of_reach({x, grid.y, z}, box); !why.empty())
+                throw rad::InputError("--grid: its corner (" + number_text(x) + ", " +
+                                      number_text(grid.y) + ", " + number_text(z) + "): " + why);
 }
 
 // What lighting designers report of a work plane, over the sensors with a value (lux).
@@ -318,7 +308,7 @@ class GatherRun {
     void gather(std::vector<Sensor>& block) {
         tbb::parallel_for(std::size_t(0), block.size(), [&](std::size_t k) {
             auto& s = block[k];
-            if (s.problem.empty()) s.problem = out_of_reach(s.position, scene_box_);
+            if (s.problem.empty()) s.problem = rad::out_of_reach(s.position, scene_box_);
             if (!s.problem.empty()) return;
             s.result =
                 gatherer_.gather(s.position, s.direction, static_cast<std::uint64_t>(written_ + k));
@@ -436,6 +426,7 @@ int gather(GatherArgs& a, int argc, char** argv) {
     const auto luminaires = rad::solution_luminaires(rad_header, a.rad_path, a.direct_path, mesh,
                                                      a.mesh_path, mesh_header);
     const rad::Box scene_box = rad::bounds(mesh.vertices);
+    if (!a.grid_text.empty()) check_grid_reach(grid, scene_box);
 
     std::ifstream points_file;
     if (!a.points_path.empty()) {

@@ -9,6 +9,7 @@
 #include "radiosity/luminaire_image.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
+#include "radiosity/rays.hpp"
 #include "radiosity/shade.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/version.hpp"
@@ -269,6 +270,11 @@ int shade(ShadeArgs& a, int argc, char** argv) {
     rad::View view = a.view_file.empty() ? rad::View{} : rad::read_view_file(a.view_file);
     if (!a.view_text.empty()) view = rad::parse_view(a.view_text, rad::FileLoc{"--view"}, view);
     const auto in = read_inputs(a);
+    // The camera's rays are traced (--gather, the luminaires' openings): one check for every
+    // position a tool is given.
+    if (const auto why = rad::out_of_reach(view.position, rad::bounds(in.mesh.vertices));
+        !why.empty())
+        throw rad::InputError("the camera (-vp): " + why);
     if (a.albedo) a.flat = true;
     check_memory(a, in.radiosity.group_count());
     const auto mode = a.flat ? rad::Smoothing::Flat : rad::parse_smoothing(a.smooth);

@@ -127,6 +127,20 @@ void check_ray_precision(std::span<const radfmt::Vec3> points, const std::string
     }
 }
 
+std::string out_of_reach(const Vec3& p, const Box& box) {
+    if (!finite(p)) return "the point is not finite";
+    const double size = std::max(box.diagonal(), 1e-300);
+    const double distance = length(p - box.centre());
+    if (distance <= kMaxRayOriginDistance * size) return "";
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "the point is %.3g units from the scene, which is %.3g across: more than %.0e "
+                  "times its size away, rays from it cannot be traced in single precision "
+                  "(move it nearer)",
+                  distance, size, kMaxRayOriginDistance);
+    return text;
+}
+
 RayScene::RayScene(const radfmt::MeshData& mesh, RayBuild build) : impl_(std::make_unique<Impl>()) {
     const auto size = add_geometry(mesh, build);
     commit(size);

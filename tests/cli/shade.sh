@@ -97,4 +97,9 @@ e2=$("$BIN/rad-shade" "$TMP/mc.mesh" "$TMP/mc.rad" -o "$TMP/v2.exr" -x 128 -y 12
 [ -n "$e1" ] && [ "$e1" = "$e2" ] || fail "two views of one solution got exposures '$e1' and '$e2'"
 share=$(python3 "$SRC/tests/cli/png_stats.py" "$TMP/v1.png")
 python3 -c "import sys; sys.exit(not $share < 0.01)" || fail "lamp in view: $share of the pixels saturated"
+# A camera too far to trace rays from is refused as rad-gather refuses such a point (#55), with
+# --gather (Embree aborted there) and without.
+for g in "" "--gather 4"; do
+  expect_error "the camera (-vp): the point is 1e+19 units from the scene" "$TMP/far.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/far.exr" --view "-vp 1e19 0 0 -vd -1 0 0" -x 8 -y 8 $g
+done
 finish

@@ -19,6 +19,14 @@ inline constexpr double kMinRaySceneSize = 1e-11, kMaxRaySceneSize = 1e13;
 inline constexpr double kMaxRaySceneOffset = 1e9;
 void check_ray_precision(std::span<const radfmt::Vec3> points, const std::string& source);
 
+// Rays from a point farther than this many scene sizes from the scene cannot be traced in
+// single precision (Embree aborts on some): every tool that casts rays from a position it is
+// given (a sensor, a grid's corner, a camera) asks out_of_reach first.
+inline constexpr double kMaxRayOriginDistance = 1e6;
+// Why rays from `p` cannot be traced in the scene in `box`, or "" when they can (a non-finite
+// point cannot either).
+std::string out_of_reach(const Vec3& p, const Box& box);
+
 // What rays cast from a point say of where it is: inside an object, under something or
 // behind a surface when more than `max_back_fraction` of the surfaces they meet show their
 // back, and those backs are not a sliver of an open view (at least a tenth of all the rays).
