@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <string_view>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace rad::tool {
@@ -27,6 +28,38 @@ bool opted_out() {
     return value && std::string_view(value) == "0";
 }
 
+// Why the process was not restarted for huge pages, when it was not (for --timings and -v).
+std::string& not_restarted() {
+    static std::string why;
+    return why;
+}
+
+// The file `argv0` names: itself when it has a slash, else the first match on PATH.
+std::string named_file(const std::string& argv0) {
+    if (argv0.find('/') != std::string::npos) return argv0;
+    const char* path = std::getenv("PATH");
+    std::string_view dirs = path ? path : "";
+    while (!dirs.empty()) {
+        const auto colon = dirs.find(':');
+        const std::string dir(dirs.substr(0, colon));
+        const auto candidate = (dir.empty() ? "." : dir) + "/" + argv0;
+        if (access(candidate.c_str(), X_OK) == 0) return candidate;
+        dirs = colon == std::string_view::npos ? "" : dirs.substr(colon + 1);
+    }
+    return "";
+}
+
+// The process image (/proc/self/exe) is the program argv[0] names: not a loader or a tool
+// running it (ld.so TOOL, valgrind TOOL), which /proc/self/exe would name instead, and which
+// exec'd with the tool's arguments would run something else.
+bool image_is_the_program(const char* argv0) {
+    struct stat self {
+    }, named{};
+    const auto file = argv0 ? named_file(argv0) : "";
+    return !file.empty() && stat("/proc/self/exe", &self) == 0 && stat(file.c_str(), &named) == 0 &&
+           self.st_dev == named.st_dev && self.st_ino == named.st_ino;
+}
+
 std::string tunables() {
     const char* value = std::getenv("GLIBC_TUNABLES");
     return value ? value : "";
@@ -39,6 +72,11 @@ void restart_with_huge_pages(char** argv) {
     if (opted_out() || current.find(kTunable) != std::string::npos) return;
     const auto policy = kernel_policy();
     if (policy.empty() || policy == "never") return;
+    if (!image_is_the_program(argv[0])) {
+        not_restarted() = "not restarted for huge pages: the process image is not the program "
+                          "itself (run through a loader or a tool such as valgrind)";
+        return;
+    }
     const auto wanted = (current.empty() ? "" : current + ":") + std::string(kTunable) + "=1";
     if (setenv("GLIBC_TUNABLES", wanted.c_str(), 1) != 0) return;
     execv("/proc/self/exe", argv);
@@ -54,6 +92,8 @@ std::string huge_pages_state() {
     const auto policy = kernel_policy();
     if (tunables().find(std::string(kTunable) + "=1") != std::string::npos)
         state = "transparent huge pages asked for (" + std::string(kTunable) + "=1)";
+    else if (!not_restarted().empty())
+        state = "4 KiB pages (" + not_restarted() + ")";
     else if (opted_out())
         state = "4 KiB pages (RADIOSITY_HUGE_PAGES=0)";
     else if (policy.empty() || policy == "never")

@@ -13,7 +13,10 @@ namespace rad::tool {
 // Restarts the running program (/proc/self/exe, the same arguments) with
 // glibc.malloc.hugetlb=1 added to GLIBC_TUNABLES, unless the kernel has transparent huge
 // pages off, GLIBC_TUNABLES already sets glibc.malloc.hugetlb, or RADIOSITY_HUGE_PAGES=0.
-// Returns (and the program goes on as it is) when it does not restart or the restart fails.
+// Nor when the process image is not the program argv[0] names (run as `ld.so TOOL` or under
+// valgrind: exec'ing /proc/self/exe would run the loader or the tool with the tool's
+// arguments); huge_pages_state() then says so. Returns (and the program goes on as it is)
+// when it does not restart or the restart fails.
 void restart_with_huge_pages(char** argv);
 
 // One line for --timings: whether huge pages were asked for, and how much of the heap is in

@@ -318,6 +318,7 @@ int solve(SolveArgs& a, int argc, char** argv) {
     auto& request = a.request;
     request.tolerance_given = a.tolerance_option->count() > 0;
     const auto& solver = rad::solver(request.method);
+    if (a.verbose) std::cerr << "rad-solve: pages: " << rad::tool::huge_pages_state() << '\n';
     radfmt::Header mesh_header;
     auto mesh = radfmt::read_mesh(a.mesh_path, &mesh_header);
     // The materials first: a refusal comes before the (large) form factors are read. The

@@ -65,5 +65,16 @@ expect_error "--tolerance 0 is never reached" "$TMP/x.rad" "$BIN/rad-solve" "$TM
 rm -f "$TMP/x.rad"
 expect_error "--emission-scale 1e+308 makes the emission of material 'light' overflow (a scale of at most 4.49e+306 is usable)" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission-scale 1e308
 expect_error "makes the emission of material 'light' overflow" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission-scale 1e308
+# Run through the dynamic loader or under valgrind, the huge-page restart must not exec the
+# loader with the tool's arguments (#55 item 7): the tool runs on, and -v says why not.
+ldso=$(ls /lib64/ld-linux-*.so.* /lib/ld-linux-*.so.* 2>/dev/null | head -1)
+if [ -n "$ldso" ]; then
+  "$ldso" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/ldso.rad" -v 2> "$TMP/ldso.err" || fail "rad-solve through $ldso: $(tail -2 "$TMP/ldso.err")"
+  grep -q "not restarted for huge pages: the process image is not the program itself" "$TMP/ldso.err" || fail "-v does not say why: $(grep pages "$TMP/ldso.err")"
+  "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/direct.rad" -q
+  cmp -s <("$BIN/rad-info" --csv "$TMP/ldso.rad") <("$BIN/rad-info" --csv "$TMP/direct.rad") || fail "through the loader the solution differs"
+fi
+if command -v valgrind >/dev/null; then
+  valgrind -q --tool=none "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/vg.rad" -q || fail "rad-solve under valgrind"
+fi
 finish
-
