@@ -384,6 +384,11 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
     if (fd < 0)
         throw WriteError(path.string() + ": cannot create a temporary file in " + dir.string() +
                          ": " + std::strerror(errno));
+    // Replacing a file keeps its permission bits (a private 0600 output stays private, written
+    // directly or through a link to it); a new file gets 0666 less the umask.
+    struct stat existing {};
+    if (::stat(target.c_str(), &existing) == 0 && S_ISREG(existing.st_mode))
+        ::fchmod(fd, existing.st_mode & 07777);
     const auto temp_text = temp.string();
     const std::size_t slot = register_temp(temp_text);
     try {

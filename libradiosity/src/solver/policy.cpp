@@ -60,6 +60,32 @@ radfmt::Material& find_material(radfmt::MeshData& mesh, const std::string& name)
 }
 } // namespace
 
+namespace {
+// `value` rounded down to 3 significant digits, so that what a message calls usable is.
+double down_to_3_digits(double value) {
+    const double unit = std::pow(10.0, std::floor(std::log10(value)) - 2);
+    double out = std::floor(value / unit) * unit;
+    while (out > value) out = std::nextafter(out, 0.0);
+    return out;
+}
+
+// Refuses a scale that takes a material past the emission limit (kMaxEmission), saying the
+// largest scale that is accepted (and is, when given back).
+void check_emission_scale(const radfmt::MeshData& mesh, double scale, const char* scale_text) {
+    for (const auto& m : mesh.materials) {
+        const double most = std::max({m.emission[0], m.emission[1], m.emission[2]});
+        if (!(most > 0) || most * scale <= kMaxEmission) continue;
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "' emit %.3g W/m^2, over the limit of %.0e: a scale of at most %.3g is "
+                      "usable",
+                      most * scale, kMaxEmission, down_to_3_digits(kMaxEmission / most));
+        throw InputError(std::string("--emission-scale ") + scale_text + " makes material '" +
+                         m.name + text);
+    }
+}
+} // namespace
+
 void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& request,
                               radfmt::Header& header) {
     for (const auto& spec : request.emission_overrides) {
@@ -77,21 +103,9 @@ void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& reques
     if (request.emission_scale != 1) {
         char scale[32];
         std::snprintf(scale, sizeof scale, "%.9g", request.emission_scale);
+        check_emission_scale(mesh, request.emission_scale, scale);
         for (auto& m : mesh.materials)
-            for (auto& e : m.emission) {
-                const double original = e;
-                e *= request.emission_scale;
-                if (!std::isfinite(e)) {
-                    char usable[32];
-                    std::snprintf(usable, sizeof usable, "%.3g",
-                                  std::numeric_limits<double>::max() / original);
-                    std::string message = "--emission-scale ";
-                    message += scale;
-                    message += " makes the emission of material '" + m.name +
-                               "' overflow (a scale of at most " + usable + " is usable)";
-                    throw InputError(message);
-                }
-            }
+            for (auto& e : m.emission) e *= request.emission_scale;
         header.set("override.emission_scale", scale);
     }
     for (const auto& m : mesh.materials)
