@@ -42,3 +42,43 @@ TEST_CASE("human_bytes uses binary units") {
     CHECK(rad::human_bytes(1536) == "1.5 KiB");
     CHECK(rad::human_bytes(3.0 * 1024 * 1024 * 1024) == "3.0 GiB");
 }
+
+#include "radiosity/text_input.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+TEST_CASE("text inputs: lines, ends, folders, devices and overlong lines told apart") {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("radiosity-lines-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto write = [&](const std::string& name, const std::string& text) {
+        std::ofstream(dir / name, std::ios::binary) << text;
+        return (dir / name).string();
+    };
+    const auto lines_of = [](const std::string& path) {
+        rad::LineReader in(path);
+        std::vector<std::string> out;
+        for (std::string line; in.next(line);) out.push_back(line);
+        return out;
+    };
+    CHECK(lines_of(write("a.txt", "one\r\ntwo\n\nlast")) ==
+          std::vector<std::string>{"one", "two", "", "last"});
+    CHECK(lines_of(write("empty.txt", "")).empty());
+    // Lines longer than the reader's first buffer (64 KiB) and just under the limit are read.
+    const std::string big(rad::kMaxLineBytes, 'x');
+    CHECK(lines_of(write("big.txt", "a\n" + big + "\nb\n")) ==
+          std::vector<std::string>{"a", big, "b"});
+    CHECK_THROWS_WITH(lines_of(write("huge.txt", "a\n" + big + "y\n")),
+                      Catch::Matchers::Contains("huge.txt:2: a line longer than 1 MiB") &&
+                          Catch::Matchers::Contains("'xxxxxxxxxx"));
+    CHECK_THROWS_WITH(lines_of(dir.string()), Catch::Matchers::Contains("is a folder"));
+    CHECK_THROWS_WITH(lines_of("/dev/zero"),
+                      Catch::Matchers::Contains("/dev/zero:1: holds a NUL byte"));
+    CHECK_THROWS_WITH(lines_of((dir / "missing.txt").string()),
+                      Catch::Matchers::Contains("missing.txt: cannot open it"));
+    // A message quotes a short prefix of a line, never the whole.
+    CHECK(rad::quoted_prefix(std::string(1000, 'q')).size() == 60 + 5);
+    std::filesystem::remove_all(dir);
+}

@@ -10,6 +10,7 @@
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/solve_policy.hpp"
+#include "radiosity/text_input.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
@@ -46,13 +47,14 @@ void parse_sensor(const std::string& text, Sensor& sensor) {
     int count = 0;
     while (words >> token) {
         if (count == 6 || !rad::parse_number(token, v[count])) {
-            sensor.problem = "expected six numbers 'x y z dx dy dz', found '" + text + "'";
+            sensor.problem =
+                "expected six numbers 'x y z dx dy dz', found " + rad::quoted_prefix(text);
             return;
         }
         ++count;
     }
     if (count != 6) {
-        sensor.problem = "expected six numbers 'x y z dx dy dz', found '" + text + "'";
+        sensor.problem = "expected six numbers 'x y z dx dy dz', found " + rad::quoted_prefix(text);
         return;
     }
     sensor.position = {v[0], v[1], v[2]};
@@ -75,16 +77,14 @@ class SensorSource {
 
 class LineSource final : public SensorSource {
   public:
-    explicit LineSource(std::istream& in) : in_(in) {}
+    explicit LineSource(rad::LineReader& in) : in_(in) {}
     bool next(std::vector<Sensor>& out, std::size_t count) override {
         std::string text;
-        while (out.size() < count && std::getline(in_, text)) {
-            ++line_;
-            if (!text.empty() && text.back() == '\r') text.pop_back();
+        while (out.size() < count && in_.next(text)) {
             const auto first = text.find_first_not_of(" \t");
             if (first == std::string::npos || text[first] == '#') continue; // blank, comment
             Sensor s;
-            s.line = line_;
+            s.line = in_.line_number();
             parse_sensor(text, s);
             out.push_back(std::move(s));
         }
@@ -92,8 +92,7 @@ class LineSource final : public SensorSource {
     }
 
   private:
-    std::istream& in_;
-    long line_ = 0;
+    rad::LineReader& in_;
 };
 
 // "x0 z0 x1 z1 y nx nz": upward sensors at height y at the centres of nx x nz cells, rows
@@ -428,16 +427,15 @@ int gather(GatherArgs& a, int argc, char** argv) {
     const rad::Box scene_box = rad::bounds(mesh.vertices);
     if (!a.grid_text.empty()) check_grid_reach(grid, scene_box);
 
-    std::ifstream points_file;
-    if (!a.points_path.empty()) {
-        points_file.open(a.points_path);
-        if (!points_file) throw rad::InputError(a.points_path + ": cannot open the points file");
-    }
+    // Points from a file or standard input: a folder, a device that never ends a line, a line
+    // over 1 MiB or a failed read is an error naming the file and line, never an end.
+    std::unique_ptr<rad::LineReader> points;
+    if (a.grid_text.empty()) points = std::make_unique<rad::LineReader>(a.points_path);
     std::unique_ptr<SensorSource> source;
     if (!a.grid_text.empty())
         source = std::make_unique<GridSource>(grid);
     else
-        source = std::make_unique<LineSource>(a.points_path.empty() ? std::cin : points_file);
+        source = std::make_unique<LineSource>(*points);
     const std::string source_name = !a.grid_text.empty()    ? "--grid"
                                     : a.points_path.empty() ? "<stdin>"
                                                             : a.points_path;

@@ -139,4 +139,12 @@ paste "$TMP/top-exact.txt" "$TMP/top-rays.txt" | awk '{ d = ($1 - $4) / $4; if (
 # A grid out of the ray tracer's reach is refused with that reason, as a point is (#55): not
 # written as every sensor "inside or behind objects".
 expect_error "--grid: its corner (1e+25, 0.3, 0.1): the point is 1e+25 units from the scene" "$TMP/farg.txt" "$BIN/rad-gather" "$M" "$R" --grid "1e25 0.1 2e25 0.5 0.3 4 4" --lux -o "$TMP/farg.txt"
+# A read error is an error (#55 item 2): a folder, /dev/zero, a line over 1 MiB; the output is
+# not written (it held the points before the bad line, and said exit 0).
+expect_error "is a folder, not a text file" "$TMP/rd.txt" "$BIN/rad-gather" "$M" "$R" --points "$TMP" -o "$TMP/rd.txt"
+expect_error "/dev/zero:1: holds a NUL byte" "$TMP/rd.txt" "$BIN/rad-gather" "$M" "$R" --points /dev/zero -o "$TMP/rd.txt"
+{ printf '0.278 0.3 0.28 0 1 0\n0.278 0.3 0.28 0 1 0\n'; head -c 2000000 /dev/zero | tr '\0' 'x'; echo; } > "$TMP/long.txt"
+expect_error "long.txt:3: a line longer than 1 MiB" "$TMP/rd.txt" "$BIN/rad-gather" "$M" "$R" --points "$TMP/long.txt" -o "$TMP/rd.txt"
+err=$("$BIN/rad-gather" "$M" "$R" --points "$TMP/long.txt" -o "$TMP/rd.txt" 2>&1)
+[ "${#err}" -lt 400 ] || fail "the message quotes the whole line (${#err} bytes)"
 finish

@@ -102,4 +102,10 @@ python3 -c "import sys; sys.exit(not $share < 0.01)" || fail "lamp in view: $sha
 for g in "" "--gather 4"; do
   expect_error "the camera (-vp): the point is 1e+19 units from the scene" "$TMP/far.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/far.exr" --view "-vp 1e19 0 0 -vd -1 0 0" -x 8 -y 8 $g
 done
+# A view file that cannot be read is an error, not the default camera (#55 item 2).
+expect_error "is a folder, not a text file" "$TMP/vf.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/vf.exr" --view-file "$TMP"
+expect_error "/dev/zero:1: holds a NUL byte" "$TMP/vf.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/vf.exr" --view-file /dev/zero
+: > "$TMP/empty.vf"
+expect_error "empty.vf: holds no view" "$TMP/vf.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/vf.exr" --view-file "$TMP/empty.vf"
+expect_error "is a folder, not a text file" "$TMP/vf.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/vf.glb" --html "$TMP/vf.html" --view-file "$TMP"
 finish

@@ -3,6 +3,7 @@
 
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
+#include "radiosity/text_input.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -53,18 +54,21 @@ View parse_view(const std::string& text, const FileLoc& source, View view) {
 }
 
 View read_view_file(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(FileLoc{path}, "cannot open view file");
-    std::string line, all;
-    int number = 0;
+    // A folder, /dev/zero or a failed read is an error naming the file, never the default
+    // camera; a view file that sets nothing is one too.
+    LineReader in(path);
+    std::string line;
+    int set = 0;
     View view;
-    while (std::getline(in, line)) {
-        ++number;
+    while (in.next(line)) {
+        const int number = in.line_number();
         const auto hash = line.find('#');
         if (hash != std::string::npos) line = line.substr(0, hash);
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
         view = parse_view(line, FileLoc{path, number}, view);
+        ++set;
     }
+    if (set == 0) throw InputError(FileLoc{path}, "holds no view (-vp, -vd, ... on a line)");
     return view;
 }
 

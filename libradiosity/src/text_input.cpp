@@ -1,0 +1,97 @@
+#include "radiosity/text_input.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace rad {
+
+std::string quoted_prefix(std::string_view text) {
+    constexpr std::size_t kShown = 60;
+    std::string out = "'";
+    for (const char c : text.substr(0, kShown))
+        out += (static_cast<unsigned char>(c) < 32 || c == 127) ? '?' : c;
+    return out + (text.size() > kShown ? "...'" : "'");
+}
+
+LineReader::LineReader(const std::string& path, const std::string& stdin_name)
+    : buffer_(std::size_t(1) << 16) {
+    if (path.empty() || path == "-") {
+        fd_ = 0;
+        name_ = stdin_name;
+    } else {
+        name_ = path;
+        fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd_ < 0)
+            throw InputError(FileLoc{path}, std::string("cannot open it: ") + std::strerror(errno));
+        owned_ = true;
+    }
+    struct stat st {};
+    if (::fstat(fd_, &st) == 0 && S_ISDIR(st.st_mode)) {
+        if (owned_) ::close(fd_);
+        fd_ = -1;
+        throw InputError(FileLoc{name_}, "is a folder, not a text file");
+    }
+}
+
+LineReader::~LineReader() {
+    if (owned_ && fd_ >= 0) ::close(fd_);
+}
+
+bool LineReader::fill() {
+    if (eof_) return false;
+    if (begin_ > 0) { // keep the unread part at the front
+        std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
+        end_ -= begin_;
+        begin_ = 0;
+    }
+    if (end_ == buffer_.size()) buffer_.resize(buffer_.size() * 2);
+    for (;;) {
+        const auto got = ::read(fd_, buffer_.data() + end_, buffer_.size() - end_);
+        if (got > 0) {
+            end_ += std::size_t(got);
+            return true;
+        }
+        if (got == 0) {
+            eof_ = true;
+            return false;
+        }
+        if (errno == EINTR) continue;
+        if (errno == EISDIR) throw InputError(FileLoc{name_}, "is a folder, not a text file");
+        throw SystemError(FileLoc{name_, line_ + 1}.str() +
+                          ": cannot read: " + std::strerror(errno));
+    }
+}
+
+bool LineReader::next(std::string& line) {
+    std::size_t scanned = begin_;
+    for (;;) {
+        const void* nl = std::memchr(buffer_.data() + scanned, '\n', end_ - scanned);
+        const std::size_t stop =
+            nl ? std::size_t(static_cast<const char*>(nl) - buffer_.data()) : end_;
+        if (stop - begin_ > kMaxLineBytes)
+            throw InputError(FileLoc{name_, line_ + 1},
+                             "a line longer than 1 MiB (the longest a line may be), starting " +
+                                 quoted_prefix({buffer_.data() + begin_, 60}) +
+                                 ": not a text file of this kind?");
+        if (std::memchr(buffer_.data() + scanned, '\0', stop - scanned))
+            throw InputError(FileLoc{name_, line_ + 1},
+                             "holds a NUL byte: not a text file (a binary file or a device?)");
+        if (nl || (eof_ && stop > begin_)) {
+            line.assign(buffer_.data() + begin_, stop - begin_);
+            begin_ = nl ? stop + 1 : stop;
+            if (!line.empty() && line.back() == '\r') line.pop_back();
+            ++line_;
+            return true;
+        }
+        const std::size_t offset = stop - begin_; // fill() may move the unread part
+        const bool more = fill();
+        scanned = begin_ + offset;
+        if (!more && end_ == begin_) return false;
+        // Else: more to scan, or a last line without its newline.
+    }
+}
+
+} // namespace rad
