@@ -8,6 +8,7 @@
 #include "radiosity/texture.hpp"
 #include "radiosity/vec.hpp"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
@@ -240,6 +241,50 @@ void add_nodes(const aiScene& ai, const aiNode& node, const aiMatrix4x4& parent,
         add_nodes(ai, *node.mChildren[c], transform, name, path, group_of, scene);
 }
 
+// The only files assimp may open: the scene itself and regular files inside its folder (unless
+// --allow-outside-refs), decided on the path as assimp opens it (after its own clean-up of
+// separators and escapes, relative to the working folder as its default IO opens it), with
+// links resolved. Checking the file's text beforehand guessed how assimp would read a name
+// ("..\\x.bin" passed as an odd name inside the folder, then assimp opened ../x.bin); here
+// the check and the open are one. What it refuses it remembers, for the message.
+class FolderBoundIO final : public Assimp::DefaultIOSystem {
+  public:
+    FolderBoundIO(const fs::path& scene, bool allow_outside)
+        : scene_(fs::weakly_canonical(scene)), folder_(scene_.parent_path()),
+          allow_outside_(allow_outside) {}
+    bool Exists(const char* file) const override {
+        return allowed(file) && Assimp::DefaultIOSystem::Exists(file);
+    }
+    Assimp::IOStream* Open(const char* file, const char* mode = "rb") override {
+        if (!allowed(file) || (mode && std::strpbrk(mode, "wa+"))) {
+            refused_.push_back(file);
+            return nullptr;
+        }
+        return Assimp::DefaultIOSystem::Open(file, mode);
+    }
+    const std::vector<std::string>& refused() const { return refused_; }
+    bool outside_allowed() const { return allow_outside_; }
+
+  private:
+    bool allowed(const char* file) const {
+        if (!file) return false;
+        std::error_code ec;
+        const auto path = fs::weakly_canonical(fs::path(file), ec);
+        if (ec) return false;
+        if (path == scene_) return true;
+        const auto status = fs::status(path, ec);
+        // A FIFO, device or folder is never opened (a FIFO blocks until the import timeout).
+        if (!ec && fs::exists(status) && !fs::is_regular_file(status)) return false;
+        if (allow_outside_) return true;
+        const auto [end, at] =
+            std::mismatch(folder_.begin(), folder_.end(), path.begin(), path.end());
+        return end == folder_.end();
+    }
+    fs::path scene_, folder_;
+    bool allow_outside_;
+    mutable std::vector<std::string> refused_;
+};
+
 } // namespace
 
 Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneReport* report_out) {
@@ -247,6 +292,8 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
     SceneReport local_report;
     SceneReport& report = report_out ? *report_out : local_report;
     Assimp::Importer importer;
+    auto* io = new FolderBoundIO(path, options.allow_outside_refs); // the importer owns it
+    importer.SetIOHandler(io);
     // Vertices shared by position and attributes, as an OBJ's are; faces kept as written
     // (quads stay quads); lines and points sorted out.
     const aiScene* ai =
@@ -254,6 +301,17 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
                                              aiProcess_ValidateDataStructure);
     // assimp catches its own out-of-memory: it is one still (the isolated import says so).
     if (!ai && std::strstr(importer.GetErrorString(), "bad_alloc")) throw std::bad_alloc();
+    if (!io->refused().empty()) // even when assimp went on without the file
+        throw InputError(path.string() + ": the importer asked for '" + io->refused().front() +
+                         "', which " +
+                         (io->outside_allowed() ? std::string("is not a regular file (a FIFO, "
+                                                              "device or folder is never opened)")
+                                                : std::string("lies outside the scene's folder "
+                                                              "or is not a regular file (a FIFO, "
+                                                              "device or folder is never opened; "
+                                                              "--allow-outside-refs allows files "
+                                                              "outside)")) +
+                         "; nothing was written");
     if (!ai || !ai->mRootNode || (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
         throw InputError(path.string() + ": cannot read the scene (" + importer.GetErrorString() +
                          ")");

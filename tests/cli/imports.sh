@@ -73,6 +73,11 @@ write("huge.gltf", lambda d: d["accessors"][0].update(byteOffset=2**64))
 write("past.gltf", lambda d: d["accessors"][0].update(count=4))
 write("view.gltf", lambda d: d["bufferViews"][0].update(byteLength=40))
 write("image.gltf", lambda d: d.update(images=[{"uri": "../../x.png"}]))
+# Every form of a path that reaches a file outside (#55 item 1): backslashes, escapes mixed in.
+for name, uri in [("back.gltf", "..\\secret.bin"), ("mixed.gltf", "x/..\\..\\secret.bin"),
+                  ("escaped.gltf", "%2e%2e/secret.bin"), ("slash.gltf", "..%2fsecret.bin"),
+                  ("fileuri.gltf", "file:../secret.bin"), ("backfifo.gltf", "..\\sub\\fifo.bin")]:
+    write(name, lambda d, uri=uri: d["buffers"][0].update(uri=uri))
 PY
 "$BIN/rad-mesh" ok.gltf -o ok.mesh -q 2>/dev/null || fail "the plain glTF triangle"
 mkdir -p sub && cp outside.gltf sub/
@@ -91,6 +96,21 @@ expect_error "huge.gltf: accessor 0: byteOffset 1.8446744073709552e+19 is not a 
 expect_error "past.gltf: accessor 0 (4 elements from byte 0) runs past the end of bufferView 0 (36 bytes)" out.mesh bounded "$BIN/rad-mesh" past.gltf -o out.mesh
 expect_error "view.gltf: bufferView 0 (bytes 0 to 40) runs past the end of buffer 0 (36 bytes)" out.mesh bounded "$BIN/rad-mesh" view.gltf -o out.mesh
 expect_error "image.gltf: image 0 uri '../../x.png' lies outside" out.mesh bounded "$BIN/rad-mesh" image.gltf -o out.mesh
+mkdir -p forms
+cp back.gltf mixed.gltf escaped.gltf slash.gltf fileuri.gltf forms/
+for f in back mixed escaped slash fileuri; do
+  err=$(bounded "$BIN/rad-mesh" forms/$f.gltf -o out.mesh 2>&1 >/dev/null); rc=$?
+  [ $rc -eq 1 ] || fail "$f.gltf: exit $rc (wanted 1): $err"
+  grep -q "outside the scene's folder\|is an absolute path" <<<"$err" || fail "$f.gltf: $err"
+  [ ! -e out.mesh ] || fail "$f.gltf: out.mesh was written"
+done
+# A backslash path to a FIFO outside is refused, not opened (it blocked until the timeout).
+mkdir -p forms2 && cp backfifo.gltf forms2/
+expect_error "the importer asked for" out.mesh bounded "$BIN/rad-mesh" forms2/backfifo.gltf -o out.mesh
+# A link inside the folder to a file outside is outside.
+mkdir -p linked && cp ok.gltf linked/ && ln -s ../secret.bin linked/inner.bin
+python3 -c "import json; d = json.load(open('linked/ok.gltf')); d['buffers'][0]['uri'] = 'inner.bin'; json.dump(d, open('linked/link.gltf', 'w'))"
+expect_error "lies outside the scene's folder" out.mesh bounded "$BIN/rad-mesh" linked/link.gltf -o out.mesh
 # Allowed by hand, the buffer outside is read.
 "$BIN/rad-mesh" sub/outside.gltf -o out.mesh --allow-outside-refs -q 2>/dev/null || fail "--allow-outside-refs"
 [ -e out.mesh ] || fail "--allow-outside-refs wrote nothing"

@@ -176,7 +176,39 @@ class Mutator {
         line = line.substr(0, eq + 1) + values[below(std::size(values))];
     }
 
+    // Replaces the file a reference names (a glTF "uri", an OBJ mtllib, an MTL map_Kd) by a
+    // path that reaches outside the scene's folder in one of the forms importers decode, or a
+    // device: each must be refused, never read (#55 item 1).
+    void mutate_path(std::string& text) {
+        static const char* paths[] = {
+            "../secret.bin",      "..\\secret.bin",  "%2e%2e/secret.bin",
+            "..%2fsecret.bin",    "..%5csecret.bin", "file:../secret.bin",
+            "file:///etc/passwd", "/etc/passwd",     "C:\\x.bin",
+            "x/../../secret.bin", "/dev/zero",       "..\\..\\..\\etc\\passwd"};
+        std::vector<std::pair<std::size_t, std::size_t>> values; // (start, length)
+        for (const char* key : {"\"uri\"", "mtllib ", "map_Kd "}) {
+            for (auto at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+                auto start = at + std::strlen(key);
+                if (key[0] == '"') { // "uri": "VALUE"
+                    start = text.find('"', text.find(':', start));
+                    if (start == std::string::npos) continue;
+                    ++start;
+                    const auto end = text.find('"', start);
+                    if (end != std::string::npos) values.push_back({start, end - start});
+                } else {
+                    const auto end = text.find_first_of("\r\n", start);
+                    values.push_back(
+                        {start, (end == std::string::npos ? text.size() : end) - start});
+                }
+            }
+        }
+        if (values.empty()) return;
+        const auto [start, length] = values[below(values.size())];
+        text.replace(start, length, paths[below(std::size(paths))]);
+    }
+
     void mutate_text(std::string& text) {
+        if (below(4) == 0) mutate_path(text);
         static const char* tokens[] = {
             "nan",          "inf", "-",   "0x2",         "1e999", "/", "//", " ",
             "\n",           "#",   "v ",  "f ",          "-1",    "0", "\t", "1e-320",
