@@ -716,3 +716,36 @@ TEST_CASE("formfactors version 2 files (plain arrays) are still read") {
     CHECK(old.values == ff.values);
     CHECK(old.back_fraction == ff.back_fraction);
 }
+
+#include "radfmt/names.hpp"
+
+TEST_CASE("names: one rule for every output, and readers refuse what breaks it") {
+    CHECK(radfmt::name_problem("café").empty());
+    CHECK(radfmt::clean_name("caf\xe9") == "café"); // Latin-1
+    CHECK(radfmt::clean_name("a\nb\tc") == "a?b?c");
+    CHECK(radfmt::clean_name("") == "unnamed");
+    CHECK(radfmt::clean_name(std::string(300, 'x')).size() == radfmt::kMaxNameBytes);
+    // Cut on a character's boundary, never inside one.
+    const auto cut = radfmt::clean_name(std::string(199, 'x') + "é");
+    CHECK(cut == std::string(199, 'x'));
+    CHECK(radfmt::name_problem(radfmt::clean_name("\xff\xfe\n")).empty());
+    CHECK(radfmt::name_problem("caf\xe9").rfind("a name that is not UTF-8", 0) == 0);
+    CHECK(radfmt::name_problem("\xed\xa0\x80").rfind("a name that is not UTF-8", 0) ==
+          0); // surrogate
+    CHECK(radfmt::shown_name("caf\xe9\n") == "caf\\xE9\\n");
+
+    const auto dir = temp_dir("names");
+    auto mesh = small_mesh();
+    mesh.materials[0].name = "grey\nkey=value";
+    radfmt::write_mesh(dir / "n.mesh", header_for("rad-mesh"), mesh);
+    CHECK_THROWS_WITH(radfmt::read_mesh(dir / "n.mesh"),
+                      Contains("material 0 has a name holding a control character"));
+    // A header field whose name would break its line is never written.
+    auto header = header_for("rad-solve");
+    header.set("light_group.x\ny", "1");
+    radfmt::RadiosityData rad{{{{1, 1, 1}}}};
+    CHECK_THROWS_WITH(radfmt::write_radiosity(dir / "k.rad", header, rad),
+                      Contains("a header field's name"));
+    CHECK_FALSE(fs::exists(dir / "k.rad"));
+    fs::remove_all(dir);
+}

@@ -53,7 +53,7 @@ std::string page_config(const rad::View& view, double exposure) {
                                      {"horizontal_deg", view.horizontal_deg},
                                      {"vertical_deg", view.vertical_deg}}},
                                    {"exposure", exposure}};
-    return config.dump();
+    return config.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 rad::Image lightmap_image(const rad::Lightmap& map) {
@@ -209,7 +209,7 @@ void write_engine_glb(const std::string& path, const rad::BakeResult& result, do
     extras["lightmap"]["content"] =
         "irradiance in W/m^2 times exposure (sRGB): an engine's albedo times it, plus the "
         "emissive, gives the baked radiosity";
-    engine.extras_json = extras.dump();
+    engine.extras_json = extras.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     const auto bytes = rad::baked_glb(engine);
     rad::write_file(path, bytes.data(), bytes.size());
 }
@@ -246,7 +246,7 @@ int bake_files(const Arguments& a, const std::string& command) {
     result.scene.generator = rad::tool_version("rad-bake");
     result.scene.extras_json =
         provenance_json(mesh_header, a.mesh_path, rad_header, a.rad_path, command, options, result)
-            .dump();
+            .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     const auto glb = rad::baked_glb(result.scene);
     rad::write_file(a.output, glb.data(), glb.size());
     if (!a.html.empty()) {

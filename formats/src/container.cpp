@@ -191,6 +191,12 @@ static std::string header_text(const Header& h) {
 }
 
 static std::string serialise_header(const Header& h) {
+    // A field's name is written as it is: one that would break its line, or its key=value
+    // split, would make a file no reader accepts.
+    for (const auto& [k, v] : h.fields)
+        if (k.empty() || k.find_first_of("=\n\r") != std::string::npos)
+            throw FormatError("not written: a header field's name '" + escape(k.substr(0, 60)) +
+                              "' is empty or holds '=' or a line break");
     auto text = header_text(h);
     text += "header_hash=xxh64:" + hash_hex(hash_bytes(text.data(), text.size())) + "\n\n";
     text.resize((text.size() + kBodyAlignment - 1) / kBodyAlignment * kBodyAlignment, '\0');

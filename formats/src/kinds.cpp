@@ -1,4 +1,5 @@
 #include "radfmt/kinds.hpp"
+#include "radfmt/names.hpp"
 
 #include "body_checks.hpp"
 #include "compact_rows.hpp"
@@ -229,6 +230,14 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
     for (std::uint64_t v = 0; v < nv; ++v)
         if (!finite(mesh.vertices[v]))
             r.fail("vertex " + std::to_string(v) + " is not a finite point");
+    for (std::size_t g = 0; g < mesh.groups.size(); ++g)
+        if (const auto why = name_problem(mesh.groups[g]); !why.empty())
+            r.fail("group " + std::to_string(g) + " has " + why +
+                   " (rad-mesh makes names UTF-8 text: mesh the scene again)");
+    for (std::size_t k = 0; k < mesh.materials.size(); ++k)
+        if (const auto why = name_problem(mesh.materials[k].name); !why.empty())
+            r.fail("material " + std::to_string(k) + " has " + why +
+                   " (rad-mesh makes names UTF-8 text: mesh the scene again)");
     for (auto& m : mesh.materials)
         for (int k = 0; k < 3; ++k)
             if (!(m.reflectance[k] >= 0 && std::isfinite(m.reflectance[k]) && m.emission[k] >= 0 &&
@@ -544,7 +553,11 @@ RadiosityData read_radiosity(const fs::path& path, Header* header_out) {
     rad.radiosity = r.array<Rgb>(n, "radiosity");
     if (r.header().version >= 2) {
         const auto groups = r.count(8, "light groups");
-        for (std::uint64_t g = 0; g < groups; ++g) rad.group_names.push_back(r.string());
+        for (std::uint64_t g = 0; g < groups; ++g) {
+            rad.group_names.push_back(r.string());
+            if (const auto why = name_problem(rad.group_names.back()); !why.empty())
+                r.fail("light group " + std::to_string(g) + " has " + why);
+        }
         if (groups > 0 && n > (std::uint64_t(1) << 40) / groups)
             r.fail("too many light groups for the patches");
         rad.group_radiosity = r.array<Rgb>(n * groups, "light group radiosity");

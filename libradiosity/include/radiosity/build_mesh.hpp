@@ -58,5 +58,8 @@ void imprint_pass(Scene& scene, const std::vector<bool>& turned, MeshReport& rep
 // faces (on a large input, the memory they hold is needed for the regions).
 radfmt::MeshData patch_pass(Scene& scene, const MeshOptions& options, MeshReport& report);
 void two_sided_pass(radfmt::MeshData& mesh, const MeshOptions& options, MeshReport& report);
+// Group and material names made names of the chain (radfmt/names.hpp), still unique; each kind
+// of change is a `changed:` line.
+void names_pass(radfmt::MeshData& mesh, MeshReport& report);
 
 } // namespace rad

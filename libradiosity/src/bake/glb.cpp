@@ -232,7 +232,8 @@ void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
 
 std::vector<std::uint8_t> baked_glb(const BakeScene& scene) {
     GlbBuilder glb;
-    std::string text = build_document(scene, glb).dump();
+    std::string text =
+        build_document(scene, glb).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     while (text.size() % 4) text.push_back(' '); // the JSON chunk is padded with spaces
     const std::uint64_t total = 12 + 8 + std::uint64_t(text.size()) + 8 + glb.bin.size();
     if (total > 0xFFFFFFFFull)

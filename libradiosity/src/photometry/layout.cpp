@@ -2,6 +2,7 @@
 // files it names (inside the layout's folder), then built into luminaires.
 #include "photometry/text_lines.hpp"
 #include "radfmt/chain.hpp"
+#include "radfmt/names.hpp"
 #include "radiosity/luminaires.hpp"
 
 #include <algorithm>
@@ -223,6 +224,12 @@ LuminaireSet build_luminaires(const LuminaireSources& sources, double metres_per
         l.name = row["name"];
         l.line = row.line;
         if (l.name.empty()) throw InputError(where, "a luminaire needs a name");
+        for (const auto* name : {&row["name"], &row["group"]})
+            if (!name->empty())
+                if (const auto why = radfmt::name_problem(*name); !why.empty())
+                    throw InputError(where, photometry::quoted(*name) + " is " + why +
+                                                ": names are UTF-8 text of at most 200 bytes "
+                                                "without control characters");
         if (names.count(l.name))
             throw InputError(where, "the name '" + l.name + "' is used on line " +
                                         std::to_string(names[l.name]) + " too");

@@ -1,7 +1,9 @@
 #include "radiosity/light_groups.hpp"
 
+#include "radfmt/names.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/solve_policy.hpp"
+#include "radiosity/text_input.hpp"
 
 #include <algorithm>
 #include <map>
@@ -20,6 +22,11 @@ std::vector<LightGroup> light_groups(const radfmt::MeshData& mesh,
         if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
             throw InputError("--group: '" + spec + "' is not NAME=MATERIAL[,MATERIAL...]");
         LightGroup group{spec.substr(0, eq), {}};
+        if (const auto why = radfmt::name_problem(group.name); !why.empty())
+            throw InputError("--group: " + quoted_prefix(group.name) + " is " + why +
+                             ": a light group's name is UTF-8 text of at most " +
+                             std::to_string(radfmt::kMaxNameBytes) +
+                             " bytes without control characters");
         for (const auto& g : groups)
             if (g.name == group.name)
                 throw InputError("--group: group '" + group.name + "' is defined twice");
