@@ -8,6 +8,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/image_io.hpp"
 #include "radiosity/light_groups.hpp"
+#include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/version.hpp"
@@ -68,6 +69,7 @@ struct Arguments {
                                              view_file, engine;
     double crease = 30, exposure = 0, density = 0, chart_angle = 20;
     int lightmap = 0, padding = 2, threads = 0;
+    std::string max_memory;
     bool quiet = false, mix_only = false;
     std::vector<std::string> mix;
 };
@@ -119,6 +121,9 @@ void add_options(CLI::App& app, Arguments& a) {
     app.add_option("--view", a.view_text, "--html: the camera, as rad-shade's --view");
     app.add_option("--view-file", a.view_file, "--html: the camera, as rad-shade's --view-file");
     rad::tool::add_threads_option(app, a.threads);
+    app.add_option("--max-memory", a.max_memory,
+                   "--lightmap: refuse, before baking, an atlas (times its light groups) "
+                   "estimated to need more than this (e.g. 4G; default: 80% of physical memory)");
     app.add_flag("-q,--quiet", a.quiet, "No summary");
 }
 
@@ -158,6 +163,21 @@ rad::BakeOptions bake_options(const Arguments& a, double solution_exposure) {
     options.padding = a.padding;
     options.chart_angle_deg = a.chart_angle;
     return options;
+}
+
+// A lightmap whose atlas, times its light groups, would not fit in --max-memory is refused
+// before baking (it failed after a minute at 16384 with 4 groups).
+void check_lightmap_memory(const Arguments& a, std::size_t groups) {
+    if (a.lightmap == 0) return;
+    const auto need =
+        rad::estimate_lightmap_memory(a.lightmap, groups, !a.engine.empty(), !a.exr.empty());
+    const auto limit = rad::tool::memory_limit(a.max_memory);
+    if (need <= limit) return;
+    throw rad::InputError("--lightmap " + std::to_string(a.lightmap) + " with " +
+                          std::to_string(groups) + " light group(s) needs about " +
+                          rad::human_bytes(double(need)) + ", more than --max-memory " +
+                          rad::human_bytes(double(limit)) +
+                          " (use a smaller --lightmap, or a larger --max-memory)");
 }
 
 // The atlas files beside the glb: linear EXR (a layer per group) and the sRGB PNG.
@@ -242,6 +262,7 @@ int bake_files(const Arguments& a, const std::string& command) {
                      "groups; --lightmap keeps one lightmap per group for mixing later\n",
                      radiosity.group_count());
 
+    check_lightmap_memory(a, groups.size());
     auto result = rad::bake(mesh, values, groups, options);
     result.scene.generator = rad::tool_version("rad-bake");
     result.scene.extras_json =

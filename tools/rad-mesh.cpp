@@ -74,7 +74,7 @@ struct MeshArgs {
     double planarity = 1e-3, max_patches = 2e7;
     bool quiet = false, timings = false, strict = false;
     std::string patch_order = "morton", default_reflectance, orient = "warn";
-    std::string surfaces = "regions", import_memory, unit = "m";
+    std::string surfaces = "regions", import_memory, unit = "m", max_memory;
     rad::SceneOptions scene;
     std::vector<std::string> mtl_paths, flip, two_sided;
     bool two_sided_emission = false, no_imprint = false;
@@ -171,6 +171,10 @@ void add_import_options(CLI::App& app, MeshArgs& a) {
                    "... and on one for which it needs more address space than this (e.g. 4G; "
                    "default: 80% of physical memory); a crash there is an error naming the "
                    "file, never the tool's");
+    app.add_option("--max-memory", a.max_memory,
+                   "Refuse a scene whose faces (instances counted) would need more than this "
+                   "to mesh, as soon as they are counted (e.g. 4G; default: 80% of physical "
+                   "memory)");
     app.add_flag("--allow-outside-refs", a.scene.allow_outside_refs,
                  "Let the scene refer to files outside its own folder (material libraries, "
                  "textures, glTF buffers and images given by absolute paths or '..'); FIFOs "
@@ -192,6 +196,7 @@ void add_import_options(CLI::App& app, MeshArgs& a) {
 rad::MeshOptions mesh_options_of(MeshArgs& a) {
     if (!a.import_memory.empty())
         a.scene.import.memory_bytes = rad::tool::parse_size(a.import_memory, "--import-memory");
+    a.scene.max_memory = rad::tool::memory_limit(a.max_memory);
     rad::SubdivisionOptions options;
     // No limit given at all: one from the scene's size, chosen by the patch pass.
     if (a.max_edge.empty() && a.max_area.empty()) options.max_edge = rad::kMaxEdgeFromScene;

@@ -241,6 +241,19 @@ void add_nodes(const aiScene& ai, const aiNode& node, const aiMatrix4x4& parent,
         add_nodes(ai, *node.mChildren[c], transform, name, path, group_of, scene);
 }
 
+// The faces the node hierarchy places: each node's meshes' faces, for every node (an instanced
+// mesh counts at each of its nodes). Saturates instead of overflowing.
+std::uint64_t placed_faces(const aiScene& ai, const aiNode& node, int depth = 0) {
+    std::uint64_t faces = 0;
+    for (unsigned m = 0; m < node.mNumMeshes; ++m)
+        if (node.mMeshes[m] < ai.mNumMeshes) faces += ai.mMeshes[node.mMeshes[m]]->mNumFaces;
+    if (depth < 2000)
+        for (unsigned c = 0; c < node.mNumChildren; ++c)
+            faces = std::min<std::uint64_t>(faces + placed_faces(ai, *node.mChildren[c], depth + 1),
+                                            std::uint64_t(1) << 62);
+    return faces;
+}
+
 // The only files assimp may open: the scene itself and regular files inside its folder (unless
 // --allow-outside-refs), decided on the path as assimp opens it (after its own clean-up of
 // separators and escapes, relative to the working folder as its default IO opens it), with
@@ -315,6 +328,8 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
     if (!ai || !ai->mRootNode || (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
         throw InputError(path.string() + ": cannot read the scene (" + importer.GetErrorString() +
                          ")");
+    // Instances counted before they are expanded: the faces every node places.
+    check_mesh_memory(placed_faces(*ai, *ai->mRootNode), options.max_memory, path.string());
     Scene scene;
     scene.path = path.string();
     add_materials(*ai, path, options, scene, report);

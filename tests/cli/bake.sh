@@ -95,4 +95,7 @@ expect_error "--html needs a camera" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" 
 expect_error "are for the --html page" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --view-file "$VF"
 expect_error "do not fit a 64x64 lightmap at" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --lightmap 64 --texels-per-metre 1000
 [ -e "$TMP/x.html" ] && fail "a page was written by a failed run"
+# The work a lightmap implies is estimated and checked before baking (#55 item 3).
+expect_error "--lightmap 4096 with 0 light group(s) needs about 528.0 MiB, more than --max-memory 100.0 MiB" "$TMP/mem.glb" \
+  "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/mem.glb" --lightmap 4096 --max-memory 100M
 finish

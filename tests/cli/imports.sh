@@ -155,4 +155,29 @@ PY
 expect_error "strength.gltf: material" out2.mesh "$BIN/rad-mesh" strength.gltf -o out2.mesh
 "$BIN/rad-ff" out.mesh -o out.ff -q 2>/dev/null || fail "rad-ff on the dangling triangle"
 expect_error "material 'default' emits 1e+30 W/m^2, over the limit of 1e+20" out.rad "$BIN/rad-solve" out.mesh out.ff -o out.rad --emission default=1e30,1,1
+# One 19,602-triangle mesh placed at 1000 nodes: its faces, instances counted, are refused
+# against --max-memory as soon as they are counted (the parent ran past 60 s and 6.3 GB).
+mkdir -p inst && (cd inst && python3 - <<'PY'
+import json, struct
+n = 100
+pos = b"".join(struct.pack("<3f", i / n, 0, j / n) for j in range(n) for i in range(n))
+idx = b"".join(struct.pack("<6I", j * n + i, j * n + i + n, j * n + i + 1, j * n + i + 1, j * n + i + n, j * n + i + n + 1)
+               for j in range(n - 1) for i in range(n - 1))
+open("grid.bin", "wb").write(pos + idx)
+json.dump({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": list(range(1000))}],
+           "nodes": [{"mesh": 0, "translation": [k % 40 * 1.1, 0, k // 40 * 1.1]} for k in range(1000)],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+           "buffers": [{"uri": "grid.bin", "byteLength": len(pos) + len(idx)}],
+           "bufferViews": [{"buffer": 0, "byteLength": len(pos)},
+                           {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": n * n, "type": "VEC3",
+                          "min": [0, 0, 0], "max": [1, 0, 1]},
+                         {"bufferView": 1, "componentType": 5125, "count": len(idx) // 4, "type": "SCALAR"}]},
+          open("inst.gltf", "w"))
+PY
+)
+start=$(date +%s)
+expect_error "inst.gltf: its 19602000 faces (instances counted) need about 7.3 GiB to mesh, more than --max-memory 1.0 GiB" inst.mesh \
+  bounded "$BIN/rad-mesh" inst/inst.gltf -o inst.mesh --max-memory 1G
+[ $(( $(date +%s) - start )) -lt 20 ] || fail "the instanced glTF was not refused up front"
 finish

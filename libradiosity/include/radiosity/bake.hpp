@@ -43,6 +43,12 @@ AtlasLayout pack_atlas(const std::vector<Chart>& charts, int size, double texels
 
 // A float RGB atlas; `state` says per texel whether a chart covers its centre (kChart), it is a
 // chart rectangle's fill (kPadding: the value of its nearest chart texel), or unused (kEmpty).
+// The most memory a --lightmap bake of `size` x `size` texels takes, estimated before it is
+// done: each lightmap (the mix, one per light group, the irradiance with --engine) as float RGB
+// and a state byte, the chart fill's working arrays, and the files' copies (EXR float layers,
+// the PNG's bytes, the glb's PNG images).
+std::uint64_t estimate_lightmap_memory(int size, std::size_t light_groups, bool engine, bool exr);
+
 struct Lightmap {
     enum State : std::uint8_t { kEmpty = 0, kChart = 1, kPadding = 2 };
     int size = 0;

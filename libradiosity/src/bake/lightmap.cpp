@@ -156,4 +156,13 @@ std::vector<std::vector<std::array<float, 2>>> chart_uv(const radfmt::MeshData& 
     return uv;
 }
 
+std::uint64_t estimate_lightmap_memory(int size, std::size_t light_groups, bool engine, bool exr) {
+    const std::uint64_t texels = std::uint64_t(size) * std::uint64_t(size);
+    const std::uint64_t maps = 1 + light_groups + (engine ? 1 : 0);
+    std::uint64_t per_texel = maps * 13 + 16; // RGB floats and state, the fill's arrays
+    per_texel += maps * 4;                    // the glb's images (RGBA8) as they are encoded
+    if (exr) per_texel += maps * 12;          // the EXR's float layers
+    return texels * per_texel;
+}
+
 } // namespace rad

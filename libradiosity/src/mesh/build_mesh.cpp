@@ -2,6 +2,7 @@
 #include "radiosity/build_mesh.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/materials.hpp"
+#include "radiosity/numbers.hpp"
 #include "radiosity/stages.hpp"
 
 #include <tbb/global_control.h>
@@ -20,6 +21,7 @@ radfmt::MeshData build_mesh(const std::filesystem::path& input, const MeshOption
     StageLog* stages = options.scene.stages;
     begin_stage(stages, "reading " + input.filename().string());
     auto scene = load_pass(input, options.scene, report);
+    check_mesh_memory(scene.polygons.size(), options.scene.max_memory, input.string());
     begin_stage(stages, "duplicates");
     duplicates_pass(scene, report);
     begin_stage(stages, "orientation");
@@ -44,6 +46,15 @@ radfmt::MeshData build_mesh(const std::filesystem::path& input, const MeshOption
     if (options.morton_order) order_patches_by_locality(mesh);
     if (scene_out) *scene_out = std::move(scene);
     return mesh;
+}
+
+void check_mesh_memory(std::uint64_t faces, std::uint64_t max_memory, const std::string& source) {
+    if (max_memory == 0 || faces * kMeshBytesPerFace <= max_memory) return;
+    throw InputError(source + ": its " + std::to_string(faces) +
+                     " faces (instances counted) need about " +
+                     human_bytes(double(faces * kMeshBytesPerFace)) +
+                     " to mesh, more than --max-memory " + human_bytes(double(max_memory)) +
+                     " (give a larger --max-memory, or a scene with fewer faces or instances)");
 }
 
 } // namespace rad
