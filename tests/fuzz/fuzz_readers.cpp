@@ -31,6 +31,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -207,8 +208,33 @@ class Mutator {
         text.replace(start, length, paths[below(std::size(paths))]);
     }
 
+    // A glTF's instancing made heavy: its first node's mesh placed at up to 4000 new nodes
+    // (each a root of the scene), so the importer must count instances before building them.
+    void mutate_instances(std::string& text) {
+        auto doc = nlohmann::json::parse(text, nullptr, false);
+        if (doc.is_discarded() || !doc.is_object() || !doc.contains("nodes") ||
+            !doc["nodes"].is_array() || doc["nodes"].empty() || !doc.contains("scenes") ||
+            !doc["scenes"].is_array() || doc["scenes"].empty() || !doc["scenes"][0].is_object())
+            return;
+        nlohmann::json mesh_node;
+        for (const auto& node : doc["nodes"])
+            if (node.is_object() && node.contains("mesh")) mesh_node = {{"mesh", node["mesh"]}};
+        if (mesh_node.is_null()) return;
+        const auto copies = 1 + below(4000);
+        auto& roots = doc["scenes"][0]["nodes"];
+        if (!roots.is_array()) return;
+        for (std::size_t k = 0; k < copies; ++k) {
+            auto node = mesh_node;
+            node["translation"] = {double(k % 64), 0.0, double(k / 64)};
+            roots.push_back(doc["nodes"].size());
+            doc["nodes"].push_back(node);
+        }
+        text = doc.dump();
+    }
+
     void mutate_text(std::string& text) {
         if (below(4) == 0) mutate_path(text);
+        if (below(8) == 0) mutate_instances(text);
         static const char* tokens[] = {
             "nan",          "inf", "-",   "0x2",         "1e999", "/", "//", " ",
             "\n",           "#",   "v ",  "f ",          "-1",    "0", "\t", "1e-320",
