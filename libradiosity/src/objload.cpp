@@ -6,6 +6,7 @@
 #include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/stages.hpp"
+#include "radiosity/text_input.hpp"
 #include "radiosity/texture.hpp"
 #include "radiosity/vec.hpp"
 
@@ -235,8 +236,8 @@ int lint_face(Words& words, const FileLoc& where, bool strict, LintResult& resul
 }
 
 LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path.string() + ": cannot open OBJ file");
+    // A failed read, a NUL byte or a line over 64 MiB is an error naming the line, never an end.
+    LineReader in(path.string(), "", kMaxSceneLineBytes);
     LintResult result;
     std::string line;
     int number = 0;
@@ -244,7 +245,7 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
     const double file_bytes = std::max<double>(1, static_cast<double>(fs::file_size(path)));
     double bytes_read = 0;
     FileLoc where{path.string(), 0}; // the line's, for messages
-    while (std::getline(in, line)) {
+    while (in.next(line)) {
         where.line = ++number;
         bytes_read += static_cast<double>(line.size() + 1);
         if (number % 65536 == 0) stage_fraction(options.stages, bytes_read / file_bytes);
@@ -289,11 +290,11 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
 // goes out) and a single value means grey ("Kd 0.9" is 0.9 0.9 0.9, the MTL convention, not
 // 0.9 0 0). Also notes which materials state a Kd.
 std::string normalised_mtl(const fs::path& path, std::set<std::string>& states_kd) {
-    std::ifstream in(path);
+    LineReader in(path.string(), "", kMaxSceneLineBytes);
     std::ostringstream out;
     std::string line, current;
     int number = 0;
-    while (std::getline(in, line)) {
+    while (in.next(line)) {
         ++number;
         if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3); // UTF-8 BOM
         const auto text = trim(line);

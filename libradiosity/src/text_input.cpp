@@ -1,5 +1,7 @@
 #include "radiosity/text_input.hpp"
 
+#include "radiosity/numbers.hpp"
+
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -16,8 +18,9 @@ std::string quoted_prefix(std::string_view text) {
     return out + (text.size() > kShown ? "...'" : "'");
 }
 
-LineReader::LineReader(const std::string& path, const std::string& stdin_name)
-    : buffer_(std::size_t(1) << 16) {
+LineReader::LineReader(const std::string& path, const std::string& stdin_name,
+                       std::size_t max_line_bytes)
+    : buffer_(std::size_t(1) << 16), max_line_(max_line_bytes) {
     if (path.empty() || path == "-") {
         fd_ = 0;
         name_ = stdin_name;
@@ -71,9 +74,10 @@ bool LineReader::next(std::string& line) {
         const void* nl = std::memchr(buffer_.data() + scanned, '\n', end_ - scanned);
         const std::size_t stop =
             nl ? std::size_t(static_cast<const char*>(nl) - buffer_.data()) : end_;
-        if (stop - begin_ > kMaxLineBytes)
+        if (stop - begin_ > max_line_)
             throw InputError(FileLoc{name_, line_ + 1},
-                             "a line longer than 1 MiB (the longest a line may be), starting " +
+                             "a line longer than " + human_bytes(double(max_line_)) +
+                                 " (the longest a line may be), starting " +
                                  quoted_prefix({buffer_.data() + begin_, 60}) +
                                  ": not a text file of this kind?");
         if (std::memchr(buffer_.data() + scanned, '\0', stop - scanned))

@@ -144,7 +144,7 @@ expect_error "--grid: its corner (1e+25, 0.3, 0.1): the point is 1e+25 units fro
 expect_error "is a folder, not a text file" "$TMP/rd.txt" "$BIN/rad-gather" "$M" "$R" --points "$TMP" -o "$TMP/rd.txt"
 expect_error "/dev/zero:1: holds a NUL byte" "$TMP/rd.txt" "$BIN/rad-gather" "$M" "$R" --points /dev/zero -o "$TMP/rd.txt"
 { printf '0.278 0.3 0.28 0 1 0\n0.278 0.3 0.28 0 1 0\n'; head -c 2000000 /dev/zero | tr '\0' 'x'; echo; } > "$TMP/long.txt"
-expect_error "long.txt:3: a line longer than 1 MiB" "$TMP/rd.txt" "$BIN/rad-gather" "$M" "$R" --points "$TMP/long.txt" -o "$TMP/rd.txt"
+expect_error "long.txt:3: a line longer than 1.0 MiB" "$TMP/rd.txt" "$BIN/rad-gather" "$M" "$R" --points "$TMP/long.txt" -o "$TMP/rd.txt"
 err=$("$BIN/rad-gather" "$M" "$R" --points "$TMP/long.txt" -o "$TMP/rd.txt" 2>&1)
 [ "${#err}" -lt 400 ] || fail "the message quotes the whole line (${#err} bytes)"
 finish

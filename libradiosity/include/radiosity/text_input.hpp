@@ -22,13 +22,14 @@ class LineReader {
   public:
     // Opens `path` ("-" or empty: standard input, named `stdin_name`). A folder, or a file
     // that cannot be opened, is refused here (InputError naming it).
-    explicit LineReader(const std::string& path, const std::string& stdin_name = "<stdin>");
+    explicit LineReader(const std::string& path, const std::string& stdin_name = "<stdin>",
+                        std::size_t max_line_bytes = kMaxLineBytes);
     ~LineReader();
     LineReader(const LineReader&) = delete;
     LineReader& operator=(const LineReader&) = delete;
 
     // The next line, without its LF or CR LF; false at the end of the input. Throws
-    // InputError "NAME:LINE: ..." for a line over kMaxLineBytes or holding a NUL byte (not
+    // InputError "NAME:LINE: ..." for a line over the limit or holding a NUL byte (not
     // text), SystemError for a failed read.
     bool next(std::string& line);
     int line_number() const { return line_; }
@@ -42,6 +43,10 @@ class LineReader {
     std::vector<char> buffer_;
     std::size_t begin_ = 0, end_ = 0;
     int line_ = 0;
+    std::size_t max_line_;
 };
+
+// The longest line of an OBJ or MTL file: 64 MiB (a face of millions of corners fits).
+inline constexpr std::size_t kMaxSceneLineBytes = std::size_t(64) << 20;
 
 } // namespace rad
