@@ -605,9 +605,25 @@ std::string mesh_summary(const fs::path& path, Header& header) {
     }
     const std::string with_polygons =
         polygons ? std::to_string(polygons) + " polygons, " : std::string();
-    return std::to_string(mesh.patches.size()) + " patches (" + std::to_string(quads) + " quads, " +
-           with_polygons + std::to_string(mesh.patches.size() - quads - polygons) +
-           " triangles), " + std::to_string(mesh.vertices.size()) + " vertices";
+    std::string text = std::to_string(mesh.patches.size()) + " patches (" + std::to_string(quads) +
+                       " quads, " + with_polygons +
+                       std::to_string(mesh.patches.size() - quads - polygons) + " triangles), " +
+                       std::to_string(mesh.vertices.size()) + " vertices";
+    // Where it lies and in what unit (rad-mesh --unit; meshes before it: metres).
+    if (!mesh.vertices.empty()) {
+        Vec3 lo = mesh.vertices.front(), hi = lo;
+        for (const auto& v : mesh.vertices)
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = std::min(lo[k], v[k]);
+                hi[k] = std::max(hi[k], v[k]);
+            }
+        char box[200];
+        std::snprintf(box, sizeof box, ", bounding box (%.6g, %.6g, %.6g) to (%.6g, %.6g, %.6g)",
+                      lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+        text += box;
+    }
+    const auto* unit = header.find("unit");
+    return text + ", unit " + (unit ? *unit : std::string("m (not recorded)"));
 }
 
 void form_factor_rows_csv(const FormFactorData& ff, std::ostream& out);

@@ -81,6 +81,9 @@ printf 'newmtl black\nKd 0 0 0\n' > "$TMP/plane/p.mtl"
 printf 'IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 180\n0\n1000 1000\n' > "$TMP/plane/iso.ies"
 printf 'name,photometry,x,y,z\nbulb,iso.ies,0,2,0\n' > "$TMP/plane/layout.csv"
 "$BIN/rad-mesh" "$TMP/plane/p.obj" -o "$TMP/p.mesh" --max-edge 2 -q || fail "plane mesh"
+# rad-info says where a mesh lies and in what unit (#53 item 7).
+"$BIN/rad-mesh" "$TMP/plane/p.obj" -o "$TMP/mm.mesh" --max-edge 2 --unit mm -q 2>/dev/null
+"$BIN/rad-info" "$TMP/mm.mesh" | grep -q "bounding box (-10, 0, -10) to (10, 0, 10), unit mm" || fail "rad-info: $("$BIN/rad-info" "$TMP/mm.mesh" | grep contents)"
 "$BIN/rad-ff" "$TMP/p.mesh" -o "$TMP/p.ff" -q || fail "plane ff"
 "$BIN/rad-ff" "$TMP/p.mesh" --luminaires "$TMP/plane/layout.csv" -o "$TMP/p.lum" -q || fail "plane lum"
 "$BIN/rad-solve" "$TMP/p.mesh" "$TMP/p.ff" --direct "$TMP/p.lum" -o "$TMP/p.rad" -q || fail "plane solve"
