@@ -208,6 +208,19 @@ void draw_openings(const ShadeArgs& a, const ShadeInputs& in, const rad::View& v
     rad::draw_luminaires(image, set, scene, view, a.aa, weights);
 }
 
+// A solution with no light anywhere renders black: say so, and how to light it (#53).
+void warn_black(const ShadeArgs& a, const ShadeInputs& in) {
+    if (a.albedo || in.luminaires) return;
+    for (const auto& b : in.values)
+        if (b[0] > 0 || b[1] > 0 || b[2] > 0) return;
+    std::fprintf(stderr,
+                 "rad-shade: warning: %s is black: nothing in it emits light (give a material "
+                 "light with rad-solve --emission MATERIAL=r,g,b, or luminaires with rad-ff "
+                 "--luminaires and rad-solve --direct)%s\n",
+                 a.rad_path.c_str(),
+                 a.mix_only || !a.mix.empty() ? "; or --mix turned every light group off" : "");
+}
+
 // A warning when much of the image shows the backs of surfaces.
 void warn_back_faces(const ShadeArgs& a, const rad::Image& image) {
     const double back_share = double(image.back_face_pixels) / (double(a.width) * a.height);
@@ -286,6 +299,7 @@ int shade(ShadeArgs& a, int argc, char** argv) {
         solved = in.mesh;
         rad::apply_recorded_overrides(solved, in.rad_header);
     }
+    warn_black(a, in);
     rad::Image image = render_image(a, in, view, solved, mode, corners);
     if (in.luminaires) draw_openings(a, in, view, image);
     if (image.covered_pixels == 0)

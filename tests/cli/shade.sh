@@ -108,4 +108,10 @@ expect_error "/dev/zero:1: holds a NUL byte" "$TMP/vf.exr" "$BIN/rad-shade" "$TM
 : > "$TMP/empty.vf"
 expect_error "empty.vf: holds no view" "$TMP/vf.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/vf.exr" --view-file "$TMP/empty.vf"
 expect_error "is a folder, not a text file" "$TMP/vf.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/vf.glb" --html "$TMP/vf.html" --view-file "$TMP"
+# A black solution is said to be black, with how to light it (#53 item 7).
+"$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/dark.rad" --emission light=0 -q 2>/dev/null
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/dark.rad" -o "$TMP/dark.exr" --view-file "$VF" -x 16 -y 16 -q 2> "$TMP/dark.err" || fail "rad-shade on a black solution"
+grep -q "dark.rad is black: nothing in it emits light" "$TMP/dark.err" || fail "no warning for a black solution: $(cat "$TMP/dark.err")"
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/lit.exr" --view-file "$VF" -x 16 -y 16 -q 2> "$TMP/lit.err"
+grep -q "is black" "$TMP/lit.err" && fail "a lit solution called black"
 finish
