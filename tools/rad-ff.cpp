@@ -19,6 +19,8 @@
 #include <string>
 
 namespace {
+// Warning lines of one kind shown without -v (the worst first).
+constexpr std::size_t kMaxWarningLines = 20;
 // Below this, a run is over before an estimate would matter.
 constexpr double kSayEstimateSeconds = 10;
 // Above this, an O(n^2) method also hears what hemisphere would cost.
@@ -91,7 +93,7 @@ struct FfArgs {
     rad::HierarchyOptions hierarchy;
     int threads = 0;
     std::vector<std::string> inputs;
-    bool merge = false, estimate_only = false;
+    bool merge = false, estimate_only = false, verbose = false;
     CLI::Option *rows_option = nullptr, *output_option = nullptr;
 };
 
@@ -183,6 +185,9 @@ void add_run_options(CLI::App& app, FfArgs& a) {
                    "Refuse to start when the estimated memory exceeds this (e.g. 4G; default: "
                    "80% of physical memory)");
     app.add_flag("-q,--quiet", a.options.quiet, "No progress and no summary");
+    app.add_flag("-v,--verbose", a.verbose,
+                 "Every warning line (without it, at most 20 of a kind, the worst first, and a "
+                 "count of the rest)");
 }
 
 // --merge: the parts joined into the file one run would have written.
@@ -277,9 +282,18 @@ void warn_back_faces(const FfArgs& a, const radfmt::MeshData& mesh,
                      input.c_str(), static_cast<unsigned long long>(stats.rays_started_inside),
                      stats.patches_started_inside);
     // (A part sees its own rows only: the groups' warnings need them all.)
-    if (a.rows.empty())
-        for (const auto& line : rad::back_face_warnings(mesh, ff.back_fraction(), stats))
-            std::fprintf(stderr, "rad-ff: warning: %s: %s\n", input.c_str(), line.c_str());
+    if (!a.rows.empty()) return;
+    const auto lines = rad::back_face_warnings(mesh, ff.back_fraction(), stats);
+    const std::size_t shown =
+        a.verbose ? lines.size() : std::min<std::size_t>(lines.size(), kMaxWarningLines);
+    for (std::size_t k = 0; k < shown; ++k)
+        std::fprintf(stderr, "rad-ff: warning: %s: %s\n", input.c_str(), lines[k].c_str());
+    if (shown < lines.size())
+        std::fprintf(stderr,
+                     "rad-ff: warning: %s: %zu more group(s) face the wrong way or look at "
+                     "backs, each over a smaller area than those above (rad-ff -v lists them "
+                     "all; rad-mesh --orient fix turns what faces the wrong way)\n",
+                     input.c_str(), lines.size() - shown);
 }
 
 void print_summary(const FfArgs& a, const radfmt::FormFactorSpool& ff,

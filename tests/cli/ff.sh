@@ -117,5 +117,45 @@ grep -q "rad-ff: --method auto: analytic for [0-9]* patches" <<<"$err" || fail "
 err=$("$BIN/rad-ff" "$TMP/auto-big.mesh" -o "$TMP/auto-big.ff" --rays 200 2>&1) || fail "auto big: $err"
 grep -q "rad-ff: --method auto: hemisphere for [0-9]* patches" <<<"$err" || fail "auto big: $err"
 "$BIN/rad-info" "$TMP/auto-big.ff" | grep -q "method.*hemisphere" || fail "auto big header: $("$BIN/rad-info" "$TMP/auto-big.ff")"
+# Warnings people can read (#53 item 6): 60 boxes, each its own group, inside a room drawn
+# facing out, so that every box looks at the backs of its walls: at most 20 lines, the largest
+# first, and a count of the rest; -v lists them all.
+python3 - "$TMP/boxes.obj" <<'PY'
+import sys
+out = ["mtllib none.mtl"]
+v = []
+def quad(g, a, b, c, d):
+    v.extend([a, b, c, d]); n = len(v)
+    out.append(f"g {g}\nf {n-3} {n-2} {n-1} {n}")
+W = 10.0
+# The room facing out (each wall wound a, d, c, b of its inward quad).
+out_quad = lambda g, a, b, c, d: quad(g, a, d, c, b)
+out_quad("floor", (0,0,0), (0,0,W), (W,0,W), (W,0,0)); out_quad("ceiling", (0,W,0), (W,W,0), (W,W,W), (0,W,W))
+out_quad("south", (0,0,0), (W,0,0), (W,W,0), (0,W,0)); out_quad("north", (0,0,W), (0,W,W), (W,W,W), (W,0,W))
+out_quad("west", (0,0,0), (0,W,0), (0,W,W), (0,0,W)); out_quad("east", (W,0,0), (W,0,W), (W,W,W), (W,W,0))
+for k in range(60):
+    s = 0.2 + 0.01 * k  # boxes of different sizes: the largest first
+    x, z = 0.5 + (k % 8) * 1.2, 0.5 + (k // 8) * 1.2
+    y = 3.0
+    c = lambda i, j, l: (x + i * s, y + j * s, z + l * s)
+    g = f"box{k}"
+    quad(g, c(0,0,0), c(1,0,0), c(1,0,1), c(0,0,1)); quad(g, c(0,1,0), c(0,1,1), c(1,1,1), c(1,1,0))
+    quad(g, c(0,0,0), c(0,1,0), c(1,1,0), c(1,0,0)); quad(g, c(0,0,1), c(1,0,1), c(1,1,1), c(0,1,1))
+    quad(g, c(0,0,0), c(0,0,1), c(0,1,1), c(0,1,0)); quad(g, c(1,0,0), c(1,1,0), c(1,1,1), c(1,0,1))
+open(sys.argv[1], "w").write("\n".join(f"v {a} {b} {c}" for a, b, c in v) + "\n" + "\n".join(out) + "\n")
+PY
+"$BIN/rad-mesh" "$TMP/boxes.obj" -o "$TMP/boxes.mesh" --max-edge 1 --no-imprint -q 2>/dev/null || fail "boxes mesh"
+"$BIN/rad-ff" "$TMP/boxes.mesh" -o "$TMP/boxes.ff" --method hemisphere --rays 256 -q 2> "$TMP/boxes.err"
+"$BIN/rad-ff" "$TMP/boxes.mesh" -o "$TMP/boxes.ff" --method hemisphere --rays 256 -q -v 2> "$TMP/boxes-v.err"
+all=$(grep -c "^rad-ff: warning: .*: group " "$TMP/boxes-v.err")
+[ "$all" -gt 20 ] || fail "only $all groups warned about with -v (the test needs more than 20)"
+n=$(grep -c "^rad-ff: warning: .*: group " "$TMP/boxes.err")
+[ "$n" -eq 20 ] || fail "$n box warning lines (wanted the 20 worst of $all)"
+grep -q "$((all - 20)) more group(s) face the wrong way or look at backs.*rad-ff -v lists them all" "$TMP/boxes.err" || fail "no count of the rest: $(tail -1 "$TMP/boxes.err")"
+# The largest area first: box sizes grow with their number (the room's walls, larger, lead).
+python3 - "$TMP/boxes-v.err" <<'PY2' || fail "not the largest first"
+import re, sys
+sizes = [int(m) for m in re.findall(r"group box(\d+):", open(sys.argv[1]).read())]
+assert sizes == sorted(sizes, reverse=True), sizes[:10]
+PY2
 finish
-

@@ -148,7 +148,8 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
                                             const FormFactorOptions& options,
                                             FormFactorStats* stats = nullptr, RowRange rows = {});
 
-// The back-face check of a computed matrix, one warning line per group found:
+// The back-face check of a computed matrix, one warning line per group found, the largest area
+// concerned first:
 //  - most of the group's patches send most of their rays to the back of other surfaces
 //    (they face the wrong way, or what they look at does);
 //  - more than 80% of the rays that reach the group arrive at its back (it faces the wrong

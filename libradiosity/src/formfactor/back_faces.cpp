@@ -70,7 +70,8 @@ std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
             g.reached_back += stats.reached_back[i];
         }
     }
-    std::vector<std::string> out;
+    // Each line with its weight (the area concerned), so the worst come first.
+    std::vector<std::pair<double, std::string>> weighted;
     for (const auto& [key, g] : groups) {
         std::string name = "group " + mesh.groups[key[0]];
         std::string fix = "rad-mesh --orient fix, or --flip " + mesh.groups[key[0]];
@@ -91,7 +92,8 @@ std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
             std::string line = name + ": " + text;
             line += "they probably face the wrong way, or what they look at does (a sheet seen "
                     "from both sides needs rad-mesh --two-sided)";
-            out.push_back(std::move(line));
+            weighted.emplace_back(g.area * double(g.looking_at_backs) / double(g.patches),
+                                  std::move(line));
         }
         // Enough rays to tell (a few per patch), nearly all of them at the back: a right
         // lamp just under a ceiling is reached at its back by the ceiling above it about as
@@ -105,9 +107,14 @@ std::vector<std::string> back_face_warnings(const radfmt::MeshData& mesh,
                           static_cast<unsigned long long>(reached));
             std::string line = name + ": " + text;
             line += "it probably faces the wrong way (" + fix + ")";
-            out.push_back(std::move(line));
+            weighted.emplace_back(g.area * double(g.reached_back) / double(reached),
+                                  std::move(line));
         }
     }
+    std::stable_sort(weighted.begin(), weighted.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<std::string> out;
+    for (auto& [weight, line] : weighted) out.push_back(std::move(line));
     return out;
 }
 
