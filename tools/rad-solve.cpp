@@ -6,6 +6,7 @@
 #include "radiosity/gather.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/luminaires.hpp"
+#include "radiosity/numbers.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/solver.hpp"
 #include "radiosity/version.hpp"
@@ -92,6 +93,7 @@ Transport read_transport(const std::string& ff_path, const std::string& mesh_pat
 // What the command line says.
 struct SolveArgs {
     std::string mesh_path, ff_path, output, log_path, snapshot, snapshot_at, direct_path;
+    std::string max_memory;
     rad::SolveRequest request;
     long snapshot_every = 0;
     bool quiet = false, verbose = false, light_groups = false;
@@ -165,6 +167,9 @@ void add_material_options(CLI::App& app, SolveArgs& a) {
     app.add_option("--direct", a.direct_path,
                    "Luminaires' direct light from rad-ff --luminaires (.lum): the first bounce, "
                    "one light group per layout group (implies --light-groups)");
+    app.add_option("--max-memory", a.max_memory,
+                   "Refuse, before solving, light groups whose channels over the patches would "
+                   "need more than this (e.g. 4G; default: 80% of physical memory)");
     app.add_flag("--force", request.force,
                  "Solve even with a reflectance >= 1 (convergence not guaranteed)");
     app.add_flag("-q,--quiet", a.quiet, "No summary");
@@ -260,6 +265,21 @@ void warn_transport(const SolveArgs& a, const radfmt::MeshData& mesh, const Tran
     for (const auto& warning : warnings)
         if (a.direct_path.empty() || warning.rfind("no patch emits", 0) != 0)
             std::cerr << "rad-solve: warning: " << warning << '\n';
+}
+
+// The channels a solve holds grow with its light groups (a layout of 1000 luminaires, each its
+// own group): the emission, the solution and the solver's working copy of them, and the file's
+// per-group radiosity and its sum, estimated before solving.
+void check_channel_memory(const SolveArgs& a, const rad::Channels& emission) {
+    const double bytes = double(emission.values.size()) * sizeof(double) * 5;
+    const auto limit = rad::tool::memory_limit(a.max_memory);
+    if (bytes <= double(limit)) return;
+    throw rad::InputError(std::to_string(emission.channels / 3) + " light group(s) over " +
+                          std::to_string(emission.patches()) + " patches need about " +
+                          rad::human_bytes(bytes) + ", more than --max-memory " +
+                          rad::human_bytes(double(limit)) +
+                          " (join groups: a layout's group column or --group; or a larger "
+                          "--max-memory)");
 }
 
 // --direct: the luminaires' groups first, each emitting rho x its direct irradiance (the first
@@ -361,6 +381,7 @@ int solve(SolveArgs& a, int argc, char** argv) {
     // Only observe iterations when asked to (a line per shot for pr/apr).
     if (!a.log_path.empty() || a.verbose || !a.snapshot.empty())
         control.on_iteration = iteration_observer(a, snapshots, header, groups, log);
+    check_channel_memory(a, emission);
     const auto result = solver.solve(op, emission, control);
     rad::record_solve_result(header, solver, result);
     check_finite_solution(result.radiosity, mesh);

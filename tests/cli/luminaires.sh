@@ -127,4 +127,6 @@ printf 'name,photometry,x,y,z\nbulb,iso.ies,0,2,0\ncellar,iso.ies,0,-1,0\n' > "$
 "$BIN/rad-ff" "$TMP/p.mesh" --luminaires "$TMP/plane/under.csv" -o "$TMP/under.lum" -q 2> "$TMP/under.err"
 grep -q "under.csv:3: luminaire 'cellar': .* inside a closed object or behind a wall" "$TMP/under.err" || fail "enclosed warning: $(cat "$TMP/under.err")"
 grep -q "'bulb'" "$TMP/under.err" && fail "bulb warned: $(cat "$TMP/under.err")"
+# The channels a solve holds grow with its light groups: checked against --max-memory (#55 item 3).
+expect_error "1 light group(s) over" "$TMP/mem.rad" "$BIN/rad-solve" "$TMP/box.mesh" "$TMP/box.ff" --direct "$TMP/box.lum" -o "$TMP/mem.rad" --max-memory 10K
 finish
