@@ -96,6 +96,19 @@ TEST_CASE("every public photometric fixture reads and integrates to its stated f
 }
 
 namespace {
+// I = 1000 cos(gamma) on gamma 0-90 at 1 degree, one plane, its opening "WIDTH LENGTH" (metres).
+std::string cosine_ies(const std::string& opening) {
+    std::string text = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 91 1 1 2 " + opening + " 0\n1 1 0\n";
+    for (int g = 0; g <= 90; ++g) text += std::to_string(g) + " ";
+    text += "\n0\n";
+    char value[32];
+    for (int g = 0; g <= 90; ++g) {
+        std::snprintf(value, sizeof value, "%.6f ", 1000 * std::cos(g * std::numbers::pi / 180));
+        text += value;
+    }
+    return text;
+}
+
 // A small valid IES file: type C, 3 vertical angles, 2 planes 0 and 90 (quadrant symmetric).
 std::string small_ies(const std::string& numbers =
                           "1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 "
@@ -126,15 +139,7 @@ TEST_CASE("interpolation is bilinear in the angles and symmetric parts are mirro
 
 TEST_CASE("a cosine distribution integrates to pi times its peak") {
     // I = 1000 cos(gamma) on gamma 0-90 at 1 degree, one plane.
-    std::string text = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 91 1 1 2 0 0 0\n1 1 0\n";
-    for (int g = 0; g <= 90; ++g) text += std::to_string(g) + " ";
-    text += "\n0\n";
-    char value[32];
-    for (int g = 0; g <= 90; ++g) {
-        std::snprintf(value, sizeof value, "%.6f ", 1000 * std::cos(g * std::numbers::pi / 180));
-        text += value;
-    }
-    const auto p = rad::parse_ies(text, "cos.ies", nullptr);
+    const auto p = rad::parse_ies(cosine_ies("0 0"), "cos.ies", nullptr);
     CHECK(p.flux() == Approx(1000 * std::numbers::pi).epsilon(1e-4));
     CHECK(p.downward_flux() == Approx(p.flux()));
 }
@@ -396,15 +401,7 @@ TEST_CASE("near a large opening its light is sampled over it, as the exact form 
     // A 1 x 1 m Lambertian opening (I = I0 cos(gamma), I0 = L A) 0.5 m over a point: the
     // irradiance is L pi F, F the point's exact form factor to the square (contour integral);
     // a point source would read I0 / h^2, 27% more.
-    std::string text = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 91 1 1 2 1 1 0\n1 1 0\n";
-    for (int g = 0; g <= 90; ++g) text += std::to_string(g) + " ";
-    text += "\n0\n";
-    char value[32];
-    for (int g = 0; g <= 90; ++g) {
-        std::snprintf(value, sizeof value, "%.6f ", 1000 * std::cos(g * std::numbers::pi / 180));
-        text += value;
-    }
-    const auto set = one_luminaire(text, "L,lamp.ies,0,0.5,0");
+    const auto set = one_luminaire(cosine_ies("1 1"), "L,lamp.ies,0,0.5,0");
     const double luminance = 1000 / 1.0; // I0 / A
     const std::vector<rad::Vec3> square{
         {-0.5, 0.5, -0.5}, {0.5, 0.5, -0.5}, {0.5, 0.5, 0.5}, {-0.5, 0.5, 0.5}};

@@ -54,6 +54,22 @@ bool finite(const Vec3& p) {
 }
 } // namespace
 
+void detail::write_group_rows(std::ostream& out, const std::vector<std::string>& groups,
+                              std::span<const Rgb> values) {
+    char line[160];
+    const std::size_t n = groups.empty() ? 0 : values.size() / groups.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            const auto& v = values[i * groups.size() + g];
+            std::snprintf(line, sizeof line, "%zu,", i);
+            out << line << groups[g];
+            std::snprintf(line, sizeof line, ",%.10g,%.10g,%.10g\n", v[0], v[1], v[2]);
+            out << line;
+        }
+        if (!out) return;
+    }
+}
+
 void detail::require_count(const Header& header, const char* key, std::uint64_t count,
                            BodyReader& r) {
     const auto* value = header.find(key);
@@ -702,16 +718,7 @@ void radiosity_csv(const fs::path& path, std::ostream& out) {
     }
     // With light groups: one row per patch and group.
     out << "patch,group,b_r,b_g,b_b\n";
-    for (std::size_t i = 0; i < rad.radiosity.size(); ++i) {
-        for (std::size_t g = 0; g < rad.group_count(); ++g) {
-            const auto& b = rad.of_group(i, g);
-            std::snprintf(line, sizeof line, "%zu,", i);
-            out << line << rad.group_names[g];
-            std::snprintf(line, sizeof line, ",%.10g,%.10g,%.10g\n", b[0], b[1], b[2]);
-            out << line;
-        }
-        if (!out) return;
-    }
+    detail::write_group_rows(out, rad.group_names, rad.group_radiosity);
 }
 
 std::string radiosity_summary(const fs::path& path, Header& header) {

@@ -67,18 +67,8 @@ LuminaireData read_luminaires(const fs::path& path, Header* header_out) {
 namespace detail {
 void luminaires_csv(const fs::path& path, std::ostream& out) {
     const auto lum = read_luminaires(path);
-    char line[160];
     out << kind_info(Kind::Luminaires).csv_columns.substr(0, 22) << '\n';
-    for (std::size_t i = 0; i < lum.patch_count; ++i) {
-        for (std::size_t g = 0; g < lum.groups.size(); ++g) {
-            const auto& e = lum.of(i, g);
-            std::snprintf(line, sizeof line, "%zu,", i);
-            out << line << lum.groups[g];
-            std::snprintf(line, sizeof line, ",%.10g,%.10g,%.10g\n", e[0], e[1], e[2]);
-            out << line;
-        }
-        if (!out) return;
-    }
+    write_group_rows(out, lum.groups, lum.irradiance);
 }
 
 std::string luminaires_summary(const fs::path& path, Header& header) {

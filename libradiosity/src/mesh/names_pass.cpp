@@ -33,18 +33,16 @@ void names_pass(radfmt::MeshData& mesh, MeshReport& report) {
     for (const auto& m : mesh.materials) names.push_back(m.name);
     const auto materials = clean_all(names, first_material);
     for (std::size_t k = 0; k < names.size(); ++k) mesh.materials[k].name = names[k];
-    if (groups)
+    const auto say = [&](std::size_t count, const char* what, const std::string& first) {
+        if (count == 0) return;
         report.add(MeshReport::Kind::Change,
-                   "names: " + std::to_string(groups) +
-                       " group name(s) made UTF-8 text of at most 200 bytes without control "
+                   "names: " + std::to_string(count) + " " + what +
+                       " name(s) made UTF-8 text of at most 200 bytes without control "
                        "characters (bytes that were not UTF-8 read as Latin-1), first '" +
-                       first_group);
-    if (materials)
-        report.add(MeshReport::Kind::Change,
-                   "names: " + std::to_string(materials) +
-                       " material name(s) made UTF-8 text of at most 200 bytes without control "
-                       "characters (bytes that were not UTF-8 read as Latin-1), first '" +
-                       first_material);
+                       first);
+    };
+    say(groups, "group", first_group);
+    say(materials, "material", first_material);
 }
 
 } // namespace rad

@@ -1,5 +1,7 @@
 #include "photometry/text_lines.hpp"
 
+#include "radiosity/text_input.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -7,11 +9,7 @@
 namespace rad::photometry {
 
 std::string quoted(std::string_view text) {
-    constexpr std::size_t kShown = 60;
-    std::string out = "'";
-    for (const char c : text.substr(0, kShown))
-        out += (static_cast<unsigned char>(c) < 32 || c == 127) ? '?' : c;
-    return out + (text.size() > kShown ? "...'" : "'");
+    return quoted_prefix(text);
 }
 
 std::vector<std::string_view> split_lines(std::string_view text) {
