@@ -66,6 +66,9 @@ TEST_CASE("text inputs: lines, ends, folders, devices and overlong lines told ap
     CHECK(lines_of(write("a.txt", "one\r\ntwo\n\nlast")) ==
           std::vector<std::string>{"one", "two", "", "last"});
     CHECK(lines_of(write("empty.txt", "")).empty());
+    // A lone CR ends a line too, as tinyobjloader reads an OBJ (the lint and the reader agree).
+    CHECK(lines_of(write("cr.txt", "f 1 2 3\r-1\r\nlast\r")) ==
+          std::vector<std::string>{"f 1 2 3", "-1", "last"});
     // Lines longer than the reader's first buffer (64 KiB) and just under the limit are read.
     const std::string big(rad::kMaxLineBytes, 'x');
     CHECK(lines_of(write("big.txt", "a\n" + big + "\nb\n")) ==

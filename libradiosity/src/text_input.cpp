@@ -68,12 +68,14 @@ bool LineReader::fill() {
     }
 }
 
+// A line ends at LF, CR LF or a lone CR (as tinyobjloader and old Mac files have it).
 bool LineReader::next(std::string& line) {
     std::size_t scanned = begin_;
     for (;;) {
-        const void* nl = std::memchr(buffer_.data() + scanned, '\n', end_ - scanned);
-        const std::size_t stop =
-            nl ? std::size_t(static_cast<const char*>(nl) - buffer_.data()) : end_;
+        std::size_t stop = scanned;
+        while (stop < end_ && buffer_[stop] != '\n' && buffer_[stop] != '\r') ++stop;
+        // A CR last in the buffer may be the first half of CR LF: read on before deciding.
+        const bool ends = stop < end_ && (buffer_[stop] == '\n' || stop + 1 < end_ || eof_);
         if (stop - begin_ > max_line_)
             throw InputError(FileLoc{name_, line_ + 1},
                              "a line longer than " + human_bytes(double(max_line_)) +
@@ -83,10 +85,14 @@ bool LineReader::next(std::string& line) {
         if (std::memchr(buffer_.data() + scanned, '\0', stop - scanned))
             throw InputError(FileLoc{name_, line_ + 1},
                              "holds a NUL byte: not a text file (a binary file or a device?)");
-        if (nl || (eof_ && stop > begin_)) {
+        if (ends || (eof_ && stop == end_ && stop > begin_)) {
             line.assign(buffer_.data() + begin_, stop - begin_);
-            begin_ = nl ? stop + 1 : stop;
-            if (!line.empty() && line.back() == '\r') line.pop_back();
+            begin_ = stop;
+            if (ends) {
+                const bool crlf =
+                    buffer_[stop] == '\r' && stop + 1 < end_ && buffer_[stop + 1] == '\n';
+                begin_ = stop + (crlf ? 2 : 1);
+            }
             ++line_;
             return true;
         }
@@ -94,7 +100,7 @@ bool LineReader::next(std::string& line) {
         const bool more = fill();
         scanned = begin_ + offset;
         if (!more && end_ == begin_) return false;
-        // Else: more to scan, or a last line without its newline.
+        // Else: more to scan, or a last line without its end.
     }
 }
 
