@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 using namespace testing_helpers;
 using Catch::Matchers::Contains;
 
@@ -64,7 +66,8 @@ TEST_CASE("overrides change the materials and are recorded in the header") {
 
     request.emission_overrides = {"nothere=1"};
     CHECK_THROWS_WITH(rad::apply_material_overrides(mesh, request, header),
-                      Contains("no material 'nothere'") && Contains("it has: grey, lamp"));
+                      Contains("no material or group 'nothere'") &&
+                          Contains("materials: grey, lamp"));
     request.emission_overrides = {};
     request.emission_scale = -1;
     CHECK_THROWS_AS(rad::apply_material_overrides(mesh, request, header), rad::InputError);
@@ -139,4 +142,35 @@ TEST_CASE("the header records the method, the input hashes, then the result") {
     CHECK(*header.find("mesh_geometry_hash") == mesh.geometry_hash());
     CHECK(*header.find("form_factor_hash") == "xxh64:00000000000000ff");
     CHECK(*header.find("unshot_fraction") == "0.125");
+}
+
+TEST_CASE("--emission names a group when no material has the name (an OBJ without materials)") {
+    // Two groups of one material ("default" OBJ material from no usemtl): light the ceiling.
+    auto mesh =
+        mesh_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                      "g floor\nf 1 2 3 4\ng ceiling\nf 5 8 7 6\n");
+    REQUIRE(std::find(mesh.groups.begin(), mesh.groups.end(), "ceiling") != mesh.groups.end());
+    rad::SolveRequest request;
+    request.emission_overrides = {"ceiling=4,5,6"};
+    radfmt::Header header;
+    std::vector<std::string> notes;
+    rad::apply_material_overrides(mesh, request, header, &notes);
+    for (const auto& p : mesh.patches) {
+        const auto& m = mesh.materials[p.material];
+        const bool ceiling = mesh.groups[p.group] == "ceiling";
+        CHECK(m.emits() == ceiling);
+        if (ceiling) CHECK(m.emission == radfmt::Rgb{4, 5, 6});
+        if (ceiling) CHECK(m.name == "ceiling");
+    }
+    REQUIRE(notes.size() == 1);
+    CHECK_THAT(notes[0], Contains("group 'ceiling'") && Contains("emits 4,5,6"));
+    CHECK(*header.find("override.emission.ceiling") == "4,5,6");
+    // What reads the solution replays it from the header, the same way.
+    auto replay =
+        mesh_from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                      "g floor\nf 1 2 3 4\ng ceiling\nf 5 8 7 6\n");
+    rad::apply_recorded_overrides(replay, header);
+    for (std::size_t i = 0; i < replay.patches.size(); ++i)
+        CHECK(replay.materials[replay.patches[i].material].emission ==
+              mesh.materials[mesh.patches[i].material].emission);
 }

@@ -148,7 +148,8 @@ void add_record_options(CLI::App& app, SolveArgs& a) {
 void add_material_options(CLI::App& app, SolveArgs& a) {
     auto& request = a.request;
     app.add_option("--emission", request.emission_overrides,
-                   "Override a material's exitance: MATERIAL=r,g,b (W/m^2)");
+                   "Override a material's exitance: MATERIAL=r,g,b (W/m^2); a name no material "
+                   "has but a group has (an OBJ's g or o name) lights that group's patches");
     app.add_option("--reflectance", request.reflectance_overrides,
                    "Override a material's reflectance: MATERIAL=r,g,b");
     app.add_option("--emission-scale", request.emission_scale, "Scale every emission")
@@ -344,7 +345,10 @@ int solve(SolveArgs& a, int argc, char** argv) {
     // The materials first: a refusal comes before the (large) form factors are read. The
     // override fields are kept to go into the header once it exists.
     radfmt::Header overrides;
-    rad::apply_material_overrides(mesh, request, overrides);
+    std::vector<std::string> notes;
+    rad::apply_material_overrides(mesh, request, overrides, &notes);
+    if (!a.quiet)
+        for (const auto& note : notes) std::fprintf(stderr, "rad-solve: %s\n", note.c_str());
     rad::check_reflectances(mesh, request.force);
     const auto transport = read_transport(a.ff_path, a.mesh_path, mesh);
     if (transport.hierarchical && solver.shooting())

@@ -33,7 +33,7 @@ expect_error "may not converge" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TM
 "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/f.rad" --reflectance white=1,0.5,0.5 --force --iterations 3 -q || fail "--force"
 err=$("$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/k.rad" --emission light=0 -q 2>&1)
 grep -q "no patch emits light" <<<"$err" || fail "black warning"
-expect_error "no material 'lamp'" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission lamp=1,1,1
+expect_error "no material or group 'lamp'" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission lamp=1,1,1
 expect_error "is not MATERIAL=r,g,b" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission light
 expect_error "'x' in 'light=1,x,3' is not a number" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/x.rad" --emission light=1,x,3
 # Real-valued options reject NaN and out-of-range values; iteration lists are whole numbers.
@@ -88,4 +88,12 @@ fi
 if command -v valgrind >/dev/null; then
   valgrind -q --tool=none "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/vg.rad" -q || fail "rad-solve under valgrind"
 fi
+# An OBJ without materials lights its lamp by its group or object name (#53 item 7), and says so.
+"$BIN/rad-mesh" "$SRC/tests/data/no-material/no_material.obj" -o "$TMP/nm.mesh" -q 2>/dev/null || fail "no-material mesh"
+"$BIN/rad-ff" "$TMP/nm.mesh" -o "$TMP/nm.ff" -q 2>/dev/null
+"$BIN/rad-solve" "$TMP/nm.mesh" "$TMP/nm.ff" -o "$TMP/nm.rad" --emission light=17,12,4 2> "$TMP/nm.err" || fail "--emission by object name: $(cat "$TMP/nm.err")"
+grep -q "no material has that name; group 'light' (.* patches) emits 17,12,4" "$TMP/nm.err" || fail "does not say which: $(cat "$TMP/nm.err")"
+"$BIN/rad-shade" "$TMP/nm.mesh" "$TMP/nm.rad" -o "$TMP/nm.exr" -x 16 -y 16 --view "-vp 278 273 -800 -vd 0 0 1 -vh 40 -vv 40" -q 2> "$TMP/nm-shade.err" || fail "shade"
+grep -q "is black" "$TMP/nm-shade.err" && fail "the group's light did not light the solve"
+expect_error "no material or group 'lamp' in the mesh (materials: default; groups:" "$TMP/nm2.rad" "$BIN/rad-solve" "$TMP/nm.mesh" "$TMP/nm.ff" -o "$TMP/nm2.rad" --emission lamp=1
 finish

@@ -44,10 +44,13 @@ struct SolveRequest {
 };
 
 // Applies the overrides and the emission scale to `mesh`'s materials and records each in
-// `header` (override.emission.M, override.reflectance.M, override.emission_scale). Throws
-// InputError for unknown materials (listing the known ones) and malformed values.
+// `header` (override.emission.M, override.reflectance.M, override.emission_scale). An
+// --emission NAME that no material has but a group has (an OBJ without materials lit by its
+// `g` or `o` name) lights that group's patches: they get a copy of their material named NAME
+// (NAME:MATERIAL when the group has several) that emits; `notes` says so. Throws InputError for
+// names that are neither (listing both) and malformed values.
 void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& request,
-                              radfmt::Header& header);
+                              radfmt::Header& header, std::vector<std::string>* notes = nullptr);
 
 // Applies to `mesh` the overrides a radiosity file's header records (what rad-solve used),
 // so that what reads the solution (rad-gather, rad-shade --gather) splits it into E and

@@ -7,9 +7,11 @@
 
 #include "radfmt/packed_rows.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace rad {
@@ -58,6 +60,38 @@ radfmt::Material& find_material(radfmt::MeshData& mesh, const std::string& name)
     throw InputError("no material '" + name + "' in the mesh (it has: " + material_names(mesh) +
                      ")");
 }
+
+// --emission GROUP=r,g,b: the group's patches get, per material they have, a copy of it named
+// GROUP (GROUP:MATERIAL when there are several) that emits `value`. False when no group has
+// that name.
+bool emit_group(radfmt::MeshData& mesh, const std::string& group, const radfmt::Rgb& value,
+                std::vector<std::string>* notes) {
+    const auto it = std::find(mesh.groups.begin(), mesh.groups.end(), group);
+    if (it == mesh.groups.end()) return false;
+    const auto g = static_cast<std::uint32_t>(it - mesh.groups.begin());
+    std::map<std::uint32_t, std::uint32_t> copy_of; // material -> its emitting copy
+    for (const auto& p : mesh.patches)
+        if (p.group == g) copy_of[p.material] = 0;
+    for (auto& [material, copy] : copy_of) {
+        auto m = mesh.materials[material];
+        m.name = copy_of.size() == 1 ? group : group + ":" + m.name;
+        m.emission = value;
+        copy = static_cast<std::uint32_t>(mesh.materials.size());
+        mesh.materials.push_back(std::move(m));
+    }
+    std::size_t patches = 0;
+    for (auto& p : mesh.patches)
+        if (p.group == g) {
+            p.material = copy_of[p.material];
+            ++patches;
+        }
+    if (notes)
+        notes->push_back("--emission " + group + ": no material has that name; group '" + group +
+                         "' (" + std::to_string(patches) + " patches) emits " + rgb_text(value) +
+                         " as material" +
+                         (copy_of.size() == 1 ? " '" + group + "'" : "s '" + group + ":...'"));
+    return true;
+}
 } // namespace
 
 namespace {
@@ -87,10 +121,19 @@ void check_emission_scale(const radfmt::MeshData& mesh, double scale, const char
 } // namespace
 
 void apply_material_overrides(radfmt::MeshData& mesh, const SolveRequest& request,
-                              radfmt::Header& header) {
+                              radfmt::Header& header, std::vector<std::string>* notes) {
     for (const auto& spec : request.emission_overrides) {
         const auto o = parse_material_override(spec, "--emission");
-        find_material(mesh, o.material).emission = o.value;
+        const bool material = std::any_of(mesh.materials.begin(), mesh.materials.end(),
+                                          [&](const auto& m) { return m.name == o.material; });
+        if (material) {
+            find_material(mesh, o.material).emission = o.value;
+        } else if (!emit_group(mesh, o.material, o.value, notes)) {
+            std::string groups;
+            for (const auto& g : mesh.groups) groups += (groups.empty() ? "" : ", ") + g;
+            throw InputError("no material or group '" + o.material + "' in the mesh (materials: " +
+                             material_names(mesh) + "; groups: " + groups + ")");
+        }
         header.set("override.emission." + o.material, rgb_text(o.value));
     }
     for (const auto& spec : request.reflectance_overrides) {
