@@ -358,6 +358,15 @@ int direct_light(FfArgs& a, int argc, char** argv) {
     rad::check_ray_precision(mesh.vertices, input);
     const auto sources = rad::read_luminaire_sources(a.luminaires);
     const auto set = rad::build_luminaires(sources, rad::metres_per_unit(mesh_header));
+    // Per patch and light group an RGB irradiance, held and written: checked before the rays.
+    const double need = double(mesh.patches.size()) * double(set.groups.size()) * 24 * 2;
+    if (const auto limit = rad::tool::memory_limit(a.max_memory); need > double(limit))
+        throw rad::InputError(a.luminaires + ": " + std::to_string(set.groups.size()) +
+                              " light group(s) over " + std::to_string(mesh.patches.size()) +
+                              " patches need about " + rad::human_bytes(need) +
+                              ", more than --max-memory " + rad::human_bytes(double(limit)) +
+                              " (join luminaires in fewer groups: the layout's group column; "
+                              "or a larger --max-memory)");
     for (const auto& w : set.warnings) std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());
     const rad::RayScene scene(mesh);
     for (const auto& w : rad::enclosed_luminaire_warnings(set, scene, a.luminaires))

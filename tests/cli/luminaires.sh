@@ -129,4 +129,5 @@ grep -q "under.csv:3: luminaire 'cellar': .* inside a closed object or behind a 
 grep -q "'bulb'" "$TMP/under.err" && fail "bulb warned: $(cat "$TMP/under.err")"
 # The channels a solve holds grow with its light groups: checked against --max-memory (#55 item 3).
 expect_error "1 light group(s) over" "$TMP/mem.rad" "$BIN/rad-solve" "$TMP/box.mesh" "$TMP/box.ff" --direct "$TMP/box.lum" -o "$TMP/mem.rad" --max-memory 10K
+expect_error "layout.csv: 1 light group(s) over" "$TMP/mem.lum" "$BIN/rad-ff" "$TMP/box.mesh" --luminaires "$TMP/box/layout.csv" -o "$TMP/mem.lum" --max-memory 1K
 finish
