@@ -4,6 +4,7 @@
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/gather.hpp"
 #include "radiosity/gathered.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/luminaire_image.hpp"
@@ -19,6 +20,8 @@
 #include <iostream>
 
 namespace {
+// rad-shade --gather with no count: the rays rad-gather casts per point by default.
+const int kDefaultGatherRays = rad::GatherOptions{}.rays;
 
 // What the command line says.
 struct ShadeArgs {
@@ -101,9 +104,13 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
                  "Also write one EXR layer per light group (<group>.R/G/B, each at weight 1, "
                  "for relighting in a compositor) next to the mixed image");
     app.add_option("--gather", a.gather,
-                   "Final gather: each sample is E + rho x the irradiance gathered at the "
-                   "visible point with this many indirect rays (direct light sampled on the "
-                   "emitters): sharp shadows, no blotches; slower (0: off)")
+                   "[N] Final gather: each sample is E + rho x the irradiance gathered at the "
+                   "visible point with N indirect rays (--gather alone: " +
+                       std::to_string(kDefaultGatherRays) +
+                       "; direct light sampled on the emitters): sharp shadows, no blotches; "
+                       "slower (0, or no --gather: off)")
+        ->expected(0, 1)
+        ->default_str(std::to_string(kDefaultGatherRays))
         ->check(CLI::Range(0, 1000000));
     app.add_option("--shadow-rays", a.shadow_rays,
                    "--gather: shadow rays per sample for the direct light, shared among the "

@@ -114,4 +114,10 @@ expect_error "is a folder, not a text file" "$TMP/vf.glb" "$BIN/rad-bake" "$TMP/
 grep -q "dark.rad is black: nothing in it emits light" "$TMP/dark.err" || fail "no warning for a black solution: $(cat "$TMP/dark.err")"
 "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/lit.exr" --view-file "$VF" -x 16 -y 16 -q 2> "$TMP/lit.err"
 grep -q "is black" "$TMP/lit.err" && fail "a lit solution called black"
+# --gather alone takes rad-gather's default ray count (#53 item 7).
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/ga.exr" --png "$TMP/ga.png" --view-file "$VF" -x 8 -y 8 --gather -q || fail "--gather with no count"
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/gb.exr" --png "$TMP/gb.png" --view-file "$VF" -x 8 -y 8 --gather 256 -q
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/gc.exr" --png "$TMP/gc.png" --view-file "$VF" -x 8 -y 8 --gather 2 -q
+cmp -s "$TMP/ga.png" "$TMP/gb.png" || fail "--gather alone is not --gather 256"
+cmp -s "$TMP/ga.png" "$TMP/gc.png" && fail "the comparison cannot tell ray counts apart"
 finish
