@@ -54,6 +54,16 @@ bool finite(const Vec3& p) {
 }
 } // namespace
 
+std::vector<std::string> detail::read_group_names(BodyReader& r, std::uint64_t count) {
+    std::vector<std::string> names;
+    for (std::uint64_t g = 0; g < count; ++g) {
+        names.push_back(r.string());
+        if (const auto why = name_problem(names.back()); !why.empty())
+            r.fail("light group " + std::to_string(g) + " has " + why);
+    }
+    return names;
+}
+
 void detail::write_group_rows(std::ostream& out, const std::vector<std::string>& groups,
                               std::span<const Rgb> values) {
     char line[160];
@@ -569,11 +579,7 @@ RadiosityData read_radiosity(const fs::path& path, Header* header_out) {
     rad.radiosity = r.array<Rgb>(n, "radiosity");
     if (r.header().version >= 2) {
         const auto groups = r.count(8, "light groups");
-        for (std::uint64_t g = 0; g < groups; ++g) {
-            rad.group_names.push_back(r.string());
-            if (const auto why = name_problem(rad.group_names.back()); !why.empty())
-                r.fail("light group " + std::to_string(g) + " has " + why);
-        }
+        rad.group_names = detail::read_group_names(r, groups);
         if (groups > 0 && n > (std::uint64_t(1) << 40) / groups)
             r.fail("too many light groups for the patches");
         rad.group_radiosity = r.array<Rgb>(n * groups, "light group radiosity");

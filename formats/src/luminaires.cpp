@@ -3,7 +3,6 @@
 #include "body_checks.hpp"
 #include "links.hpp"
 #include "radfmt/kinds.hpp"
-#include "radfmt/names.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -47,11 +46,7 @@ LuminaireData read_luminaires(const fs::path& path, Header* header_out) {
     }
     const auto groups = r.count(8, "light groups");
     if (groups == 0) r.fail("no light group");
-    for (std::uint64_t g = 0; g < groups; ++g) {
-        lum.groups.push_back(r.string());
-        if (const auto why = name_problem(lum.groups.back()); !why.empty())
-            r.fail("light group " + std::to_string(g) + " has " + why);
-    }
+    lum.groups = detail::read_group_names(r, groups);
     lum.patch_count = r.count(24 * groups, "patches");
     lum.irradiance = r.array<Rgb>(lum.patch_count * groups, "irradiance");
     r.expect_end();

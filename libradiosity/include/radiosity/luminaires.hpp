@@ -46,6 +46,7 @@ struct Luminaire {
 
 struct LuminaireSet {
     std::vector<Photometry> photometries;
+    std::vector<double> photometry_flux; // lm, each file's integral, computed once
     std::vector<Luminaire> luminaires;
     std::vector<std::string> groups;   // in order of first appearance
     std::vector<std::string> warnings; // flux mismatches, each naming its file

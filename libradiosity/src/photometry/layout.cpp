@@ -250,6 +250,7 @@ LuminaireSet build_luminaires(const LuminaireSources& sources, double metres_per
             };
             photometry_of[relative] = set.photometries.size();
             set.photometries.push_back(parse_photometry(it->second, relative, include));
+            set.photometry_flux.push_back(set.photometries.back().flux());
             for (auto& w : flux_warnings(set.photometries.back())) set.warnings.push_back(w);
         }
         l.photometry = photometry_of[relative];
@@ -305,7 +306,7 @@ double LuminaireSet::intensity(const Luminaire& l, const Vec3& d) const {
 }
 
 double LuminaireSet::flux(const Luminaire& l) const {
-    return photometries[l.photometry].flux() * l.maintenance * l.tilt_factor;
+    return photometry_flux[l.photometry] * l.maintenance * l.tilt_factor;
 }
 
 double LuminaireSet::opening_size(const Luminaire& l) const {
