@@ -62,18 +62,28 @@ void say_estimate(const radfmt::MeshData& mesh, const rad::FormFactorOptions& op
     std::fprintf(stderr, "%s\n", line.c_str());
 }
 // --method hierarchical: the tree and its links into a links file.
+// A part (--rows K/N) records its shard and the command one run would have had.
 void write_hierarchical(const std::string& input, const radfmt::MeshData& mesh,
                         const radfmt::Header& mesh_header, const rad::HierarchyOptions& options,
-                        const std::string& output, const std::string& command, bool quiet) {
+                        const std::string& output, int argc, char** argv, bool part, bool quiet) {
     rad::HierarchyStats stats;
     const auto links = rad::compute_links(mesh, options, &stats);
     const radfmt::Parent parents[] = {{input, &mesh_header}};
-    auto header = radfmt::derived_header(rad::tool_version("rad-ff"), command, parents);
+    auto header = radfmt::derived_header(rad::tool_version("rad-ff"),
+                                         radfmt::command_line(argc, argv), parents);
     for (const auto& [key, value] : rad::link_header_fields(options, mesh)) header.set(key, value);
     header.set("mesh_geometry_hash", mesh.geometry_hash());
+    if (part) {
+        header.set("shard", std::to_string(options.shard));
+        header.set("shards", std::to_string(options.shards));
+        header.set("unsharded_command", rad::unsharded_command(argc, argv));
+    }
     radfmt::write_links(output, header, links);
     if (quiet) return;
     const double n = double(std::max<std::size_t>(1, mesh.patches.size()));
+    if (part)
+        std::fprintf(stderr, "rad-ff: shard %u of %u: the links of the pairs it owns\n",
+                     options.shard, options.shards);
     std::fprintf(
         stderr,
         "rad-ff: hierarchical: %zu patches, %zu nodes, %llu links (%.1f a patch, %llu "
@@ -84,6 +94,20 @@ void write_hierarchical(const std::string& input, const radfmt::MeshData& mesh,
         static_cast<unsigned long long>(stats.outline_pairs),
         static_cast<unsigned long long>(stats.pairs), static_cast<unsigned long long>(stats.culled),
         static_cast<unsigned long long>(stats.rays), stats.tree_seconds, stats.link_seconds);
+}
+
+// --rows K/N for --method hierarchical: shard K of N of the refinement's tasks (its links
+// are not rows of a matrix, so A:B has no meaning there).
+void set_link_shard(const std::string& rows, std::size_t patches, rad::HierarchyOptions& options) {
+    if (rows.find('/') == std::string::npos)
+        throw rad::InputError("--rows " + rows +
+                              ": --method hierarchical is split into shards K/N (its links are "
+                              "not rows), e.g. --rows 0/4");
+    const auto range = rad::parse_rows(rows, patches); // checks K < N <= patches
+    const auto slash = rows.find('/');
+    options.shard = static_cast<std::uint32_t>(std::stoul(rows.substr(0, slash)));
+    options.shards = static_cast<std::uint32_t>(std::stoul(rows.substr(slash + 1)));
+    (void)range;
 }
 
 // What the command line says.
@@ -105,7 +129,8 @@ void add_file_options(CLI::App& app, FfArgs& a) {
     a.rows_option =
         app.add_option("--rows", a.rows,
                        "Compute only these rows and write a part file: A:B (rows A to B, B "
-                       "excluded) or K/N (shard K of N, from 0, e.g. $SLURM_ARRAY_TASK_ID/16); "
+                       "excluded) or K/N (shard K of N, from 0, e.g. $SLURM_ARRAY_TASK_ID/16; "
+                       "--method hierarchical: K/N only, the refinement's tasks); "
                        "rad-ff --merge joins the parts");
     app.add_flag("--merge", a.merge,
                  "Join part files (rad-ff --rows) of one mesh and options into the form-factor "
@@ -193,7 +218,15 @@ void add_run_options(CLI::App& app, FfArgs& a) {
 // --merge: the parts joined into the file one run would have written.
 int merge_parts(const FfArgs& a) {
     if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
-    if (radfmt::read_header(a.inputs.front()).kind == radfmt::Kind::Luminaires) {
+    const auto kind = radfmt::read_header(a.inputs.front()).kind;
+    if (kind == radfmt::Kind::Links) {
+        const auto links = rad::merge_link_parts(a.inputs, a.output);
+        if (!a.options.quiet)
+            std::fprintf(stderr, "rad-ff: merged %zu links part(s): %llu links\n", a.inputs.size(),
+                         static_cast<unsigned long long>(links));
+        return 0;
+    }
+    if (kind == radfmt::Kind::Luminaires) {
         const auto rows = rad::merge_luminaire_parts(a.inputs, a.output);
         if (!a.options.quiet)
             std::fprintf(stderr, "rad-ff: merged %zu luminaires part(s): %llu rows\n",
@@ -421,13 +454,14 @@ int form_factors(FfArgs& a, int argc, char** argv) {
     choose_method(options, mesh.patches.size());
     rad::check_ray_precision(mesh.vertices, input);
     if (options.method == "hierarchical") {
-        if (!a.rows.empty() || a.estimate_only)
+        if (a.estimate_only)
             throw rad::InputError("--method hierarchical refines links from the whole tree: "
-                                  "it takes neither --rows nor --estimate");
+                                  "it has no --estimate");
         a.hierarchy.samples = options.samples > 0 ? options.samples : rad::kDefaultLinkSamples;
         a.hierarchy.seed = options.seed;
-        write_hierarchical(input, mesh, mesh_header, a.hierarchy, a.output,
-                           radfmt::command_line(argc, argv), options.quiet);
+        if (!a.rows.empty()) set_link_shard(a.rows, mesh.patches.size(), a.hierarchy);
+        write_hierarchical(input, mesh, mesh_header, a.hierarchy, a.output, argc, argv,
+                           !a.rows.empty(), options.quiet);
         return 0;
     }
     options = rad::resolve_form_factor_options(options);

@@ -36,11 +36,32 @@ grep -q "material 'white' emits" "$TMP/warn.txt" || fail "no warning for an emit
 "$BIN/rad-info" "$TMP/w.links" | grep "emitters = " | grep -q "white" || fail "--emitters recorded"
 "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/w.links" -o "$TMP/white.rad" --emission white=1,1,1 -q 2> "$TMP/warn.txt"
 ! grep -q "emits, but" "$TMP/warn.txt" || fail "warned although --emitters named the material"
-# Refusals: a stale file, shooting solvers, shards and estimates.
+# Refusals: a stale file, shooting solvers, estimates, A:B rows.
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/other.mesh" --max-edge 0.2 -q
 expect_error "c.links is stale" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/other.mesh" "$TMP/c.links" -o "$TMP/x.rad"
 expect_error "use --method gs or jacobi" "$TMP/x.rad" "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.links" -o "$TMP/x.rad" --method pr
-expect_error "neither --rows nor --estimate" "$TMP/x.links" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/x.links" --method hierarchical --rows 0/2
+expect_error "it has no --estimate" "$TMP/x.links" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/x.links" --method hierarchical --estimate
+expect_error "split into shards K/N" "$TMP/x.links" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/x.links" --method hierarchical --rows 0:10
+# Shards K/N (one at another thread count), merged in any order: the bytes of one run (the
+# merged file named as the single run's output, so the commands match).
+mkdir -p "$TMP/one" "$TMP/merged"
+(cd "$TMP/one" && "$BIN/rad-ff" "$TMP/c.mesh" -o c.links --method hierarchical --seed 3 -q) || fail "one run"
+for k in 0 1 2; do
+  "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/s$k.part" --method hierarchical --seed 3 --rows $k/3 -q --threads $((k % 2 + 1)) || fail "shard $k"
+done
+"$BIN/rad-info" "$TMP/s1.part" | grep -q "shards = 3" || fail "a part records its shard"
+"$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/whole.part" --method hierarchical --seed 3 --rows 0/1 -q && "$BIN/rad-info" "$TMP/whole.part" | grep -q "shards = 1" || fail "one shard of one is a part"
+(cd "$TMP/merged" && "$BIN/rad-ff" --merge ../s2.part ../s0.part ../s1.part -o c.links -q) || fail "merge shards"
+cmp -s "$TMP/one/c.links" "$TMP/merged/c.links" || fail "merged shards differ from one run"
+# Each shard holds only its own links: no part alone is the whole.
+[ "$(stat -c %s "$TMP/s0.part")" -lt "$(stat -c %s "$TMP/one/c.links")" ] || fail "a shard holds every link"
+expect_error "shard 1/3 is in no part (compute it with --rows 1/3)" "$TMP/x.links" "$BIN/rad-ff" --merge "$TMP/s0.part" "$TMP/s2.part" -o "$TMP/x.links"
+expect_error "shard 2/3 is in two parts" "$TMP/x.links" "$BIN/rad-ff" --merge "$TMP/s0.part" "$TMP/s1.part" "$TMP/s2.part" "$TMP/s2.part" -o "$TMP/x.links"
+"$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/t1.part" --method hierarchical --seed 4 --rows 1/3 -q
+expect_error "are parts of different links files" "$TMP/x.links" "$BIN/rad-ff" --merge "$TMP/s0.part" "$TMP/t1.part" "$TMP/s2.part" -o "$TMP/x.links"
+"$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/f1.part" --method hierarchical --seed 3 --rows 1/4 -q
+expect_error "give the parts of one --rows K/N split" "$TMP/x.links" "$BIN/rad-ff" --merge "$TMP/s0.part" "$TMP/f1.part" "$TMP/s2.part" -o "$TMP/x.links"
+expect_error "is a whole links file, not a part" "$TMP/x.links" "$BIN/rad-ff" --merge "$TMP/one/c.links" -o "$TMP/x.links"
 expect_error "--epsilon" "$TMP/x.links" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/x.links" --method hierarchical --epsilon 0
 "$BIN/rad-ff" --help | grep -q "hierarchical" || fail "--help lists hierarchical"
 finish

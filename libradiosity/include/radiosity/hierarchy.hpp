@@ -32,6 +32,9 @@ struct HierarchyOptions {
     // Materials whose light is linked as an emitter's besides those that emit in the mesh
     // (rad-ff --emitters): for one that will be made to emit at solve time.
     std::vector<std::string> emitters = {};
+    // Shard `shard` of `shards` (rad-ff --rows K/N): only the links of the refinement's tasks
+    // this shard owns; merge_link_parts joins all shards into one run's links.
+    std::uint32_t shard = 0, shards = 1;
 };
 
 struct HierarchyStats {
@@ -63,6 +66,12 @@ std::vector<std::pair<std::string, std::string>> link_header_fields(const Hierar
 // `links_header` was computed: their light travels over links refined as for any surface.
 std::vector<std::string> emitters_not_refined_for(const radfmt::Header& links_header,
                                                   const radfmt::MeshData& mesh);
+
+// Shards of a links file (rad-ff --method hierarchical --rows K/N, then --merge): every
+// shard K of N exactly once (InputError naming a missing, doubled or foreign part), of one
+// mesh, tree and options, joined into what one run would have written to `output`, byte for
+// byte. Returns the number of links.
+std::uint64_t merge_link_parts(const std::vector<std::string>& paths, const std::string& output);
 
 // Per node of `links`, the area of its patches.
 std::vector<double> link_node_areas(const radfmt::MeshData& mesh, const radfmt::LinkData& links);

@@ -98,6 +98,25 @@ constexpr int kMinFacing = 16;
 // How much a side's uneven facing adds to the oracle's estimate.
 constexpr double kSpreadWeight = 4;
 
+// A shard's tasks (HierarchyOptions::shard): a pair of nodes (or a node's interactions with
+// itself) of at most `cut` patches whose parent pair is larger. Above the cut every shard
+// walks the same decisions (each drawn from (seed, pair) alone) and keeps the links of the
+// pairs it owns; below it, a shard refines only the tasks it owns. Owners are spread by a hash
+// of the pair, so the tasks' sizes even out over the shards.
+struct ShardWalk {
+    std::uint32_t shard = 0, shards = 1;
+    std::uint64_t cut = 0;
+    bool owns(std::uint32_t a, std::uint32_t b) const {
+        std::uint64_t x = (std::uint64_t(a) << 32 | b) + 0x9e3779b97f4a7c15ull; // splitmix64
+        x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+        x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+        return (x ^ (x >> 31)) % shards == shard;
+    }
+};
+
+// About this many tasks a shard, so that their sizes even out.
+constexpr std::uint64_t kTasksPerShard = 16;
+
 class LinkRefiner {
   public:
     LinkRefiner(const FormFactorContext& context, const radfmt::LinkData& tree,
@@ -106,23 +125,17 @@ class LinkRefiner {
           geometry_(context.mesh, context.polygons, tree, emitter_materials(context.mesh, options),
                     surface),
           options_(options), samples_(std::max(1, options.samples)) {
+        walk_.shard = options.shard;
+        walk_.shards = std::max<std::uint32_t>(1, options.shards);
+        walk_.cut = std::max<std::uint64_t>(2, tree.patch_count / (kTasksPerShard * walk_.shards));
         // Two patches: the analytic method's default quadrature (16 points, 64 when close).
         const int m = ff::points_per_axis(kPatchPairPoints);
         ff::gauss_legendre(m, nodes_, weights_);
         ff::gauss_legendre(2 * m, close_nodes_, close_weights_);
     }
 
-    // Every interaction between patches of `node`.
-    void refine_within(std::uint32_t node) {
-        const auto& n = tree_.nodes[node];
-        if (n.left == radfmt::kNoNode) return; // a flat patch does not see itself
-        run_both([&] { refine_within(n.left); },
-                 [&] {
-                     refine_within(n.right);
-                     refine_pair(n.left, n.right);
-                 },
-                 n.count);
-    }
+    // Every interaction between patches of `node` (of those this shard owns).
+    void refine_within(std::uint32_t node) { refine_within(node, walk_.shards == 1); }
 
     // The links, by receiver then source, into the tree's arrays.
     void collect(radfmt::LinkData& out, HierarchyStats& stats) {
@@ -156,6 +169,27 @@ class LinkRefiner {
     }
 
   private:
+    // `inside`: within a task this shard owns (always, unsharded).
+    void refine_within(std::uint32_t node, bool inside) {
+        const auto& n = tree_.nodes[node];
+        if (!enter(node, node, n.count, inside)) return;
+        if (n.left == radfmt::kNoNode) return; // a flat patch does not see itself
+        run_both([&] { refine_within(n.left, inside); },
+                 [&] {
+                     refine_within(n.right, inside);
+                     refine_pair(n.left, n.right, kIntoA | kIntoB, inside);
+                 },
+                 n.count);
+    }
+
+    // Whether this shard refines the pair (a, b) of `patches` patches, and from there on
+    // `inside` one of its tasks.
+    bool enter(std::uint32_t a, std::uint32_t b, std::uint64_t patches, bool& inside) const {
+        if (inside || patches > walk_.cut) return true;
+        inside = walk_.owns(a, b);
+        return inside;
+    }
+
     template <class A, class B> void run_both(A&& a, B&& b, std::uint64_t patches) {
         if (patches < kSerialPatches) {
             a();
@@ -176,7 +210,9 @@ class LinkRefiner {
     // standing apart, which see other things (a cluster may be a source: its mean radiosity,
     // with each sample's own cosine).
     bool receives(std::uint32_t node) const { return geometry_[node].one_surface; }
-    void refine_pair(std::uint32_t a, std::uint32_t b, unsigned wanted = kIntoA | kIntoB) {
+    void refine_pair(std::uint32_t a, std::uint32_t b, unsigned wanted, bool inside) {
+        if (!enter(a, b, std::uint64_t(tree_.nodes[a].count) + tree_.nodes[b].count, inside))
+            return;
         auto& work = work_.local();
         ++work.stats.pairs;
         if (geometry_.all_behind(a, b) || geometry_.all_behind(b, a)) {
@@ -196,13 +232,13 @@ class LinkRefiner {
         const bool split_a = !receives(a) || sampled_a > kClearly * epsilon_a;
         const bool split_b = !receives(b) || sampled_b > kClearly * epsilon_b;
         if ((!(wanted & kIntoA) || split_a) && (!(wanted & kIntoB) || split_b))
-            return split(a, b, wanted);
+            return split(a, b, wanted, inside);
         const auto exact = exact_form_factor(a, b, rng, work);
         // Sampled alone, or integrated from points of the larger node, a near pair is not
         // trusted (see near): a few points of the larger miss the part of it near the other.
         if ((!exact.known || exact.from_larger) && (geometry_[a].planar || geometry_[b].planar) &&
             near(a, b))
-            return split(a, b, wanted);
+            return split(a, b, wanted, inside);
         const double f_ab = exact.known ? exact.factor : estimate.unoccluded;
         const double f_ba = f_ab * area_ratio;
         // Each direction's form factor, grown by how unevenly its receiver faces the source,
@@ -215,7 +251,7 @@ class LinkRefiner {
         // Dropped only when it could not matter (bounded by each node's solid angle seen from
         // the other at their boxes' distance).
         if (f_ab <= 0) {
-            if (largest_possible(a, b) > options_.epsilon) split(a, b, wanted);
+            if (largest_possible(a, b) > options_.epsilon) split(a, b, wanted, inside);
             return;
         }
         unsigned ready = 0;
@@ -242,9 +278,11 @@ class LinkRefiner {
             // Visibility judged from a few facing pairs is no judgement: where most pairs
             // face away (a node mostly behind the other's plane), split.
             if (traced.facing < kMinFacing) ready = 0;
-            add_links(a, b, value_ab, ready, shares(a, b, sampled, traced), work);
+            // Above the cut, the pair's links are its owner's.
+            if (inside || walk_.owns(a, b))
+                add_links(a, b, value_ab, ready, shares(a, b, sampled, traced), work);
         }
-        if (wanted & ~ready) split(a, b, wanted & ~ready);
+        if (wanted & ~ready) split(a, b, wanted & ~ready, inside);
     }
 
     // The squared distance between the boxes of nodes a and b (0 when they overlap).
@@ -276,7 +314,7 @@ class LinkRefiner {
 
     // Refines the children of one node against the other for the directions left: a
     // receiver that cannot receive is split, else the larger node.
-    void split(std::uint32_t a, std::uint32_t b, unsigned directions) {
+    void split(std::uint32_t a, std::uint32_t b, unsigned directions, bool inside) {
         bool split_a;
         if ((directions & kIntoA) && !receives(a))
             split_a = true;
@@ -287,11 +325,11 @@ class LinkRefiner {
         const auto& n = tree_.nodes[split_a ? a : b];
         const auto patches = std::uint64_t(tree_.nodes[a].count) + tree_.nodes[b].count;
         if (split_a)
-            run_both([&] { refine_pair(n.left, b, directions); },
-                     [&] { refine_pair(n.right, b, directions); }, patches);
+            run_both([&] { refine_pair(n.left, b, directions, inside); },
+                     [&] { refine_pair(n.right, b, directions, inside); }, patches);
         else
-            run_both([&] { refine_pair(a, n.left, directions); },
-                     [&] { refine_pair(a, n.right, directions); }, patches);
+            run_both([&] { refine_pair(a, n.left, directions, inside); },
+                     [&] { refine_pair(a, n.right, directions, inside); }, patches);
     }
 
     struct PairEstimate {
@@ -529,6 +567,7 @@ class LinkRefiner {
     const radfmt::LinkData& tree_;
     NodeGeometries geometry_;
     HierarchyOptions options_;
+    ShardWalk walk_;
     int samples_;
     std::vector<double> nodes_, weights_, close_nodes_, close_weights_;
     tbb::enumerable_thread_specific<ThreadWork> work_;
