@@ -5,10 +5,12 @@
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/falsecolour.hpp"
+#include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
 #include "radiosity/luminaires.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
+#include "radiosity/sensor_parts.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/text_input.hpp"
 #include "radiosity/version.hpp"
@@ -185,8 +187,10 @@ void print_work_plane(const std::vector<double>& lux, long without_value) {
 
 // What the command line says.
 struct GatherArgs {
+    std::vector<std::string> inputs;
     std::string mesh_path, rad_path, points_path, output, grid_text, png, smooth = "crease";
-    std::string direct_path;
+    std::string direct_path, rows;
+    bool merge = false;
     rad::GatherOptions options;
     bool lux = false, header = false, keep_going = false, quiet = false;
     double lux_max = 0;
@@ -195,14 +199,24 @@ struct GatherArgs {
 
 // The inputs and outputs.
 void add_file_options(CLI::App& app, GatherArgs& a) {
-    app.add_option("MESH", a.mesh_path, "Patch mesh from rad-mesh")->required();
-    app.add_option("RADIOSITY", a.rad_path, "Radiosity from rad-solve for this mesh")->required();
+    app.add_option("MESH RADIOSITY", a.inputs,
+                   "Patch mesh from rad-mesh and radiosity from rad-solve for it (with --merge: "
+                   "the part files to join)")
+        ->required();
     app.add_option("--points", a.points_path, "Read the points from this file (default: stdin)");
     app.add_option("-o,--output", a.output, "Write to this file (default: stdout)");
     app.add_option("--direct", a.direct_path,
                    "The luminaires file (.lum) the solution was solved with, when it has moved "
                    "(default: the one rad-solve --direct recorded); its luminaires' direct "
                    "light is computed exactly at each point (tables and visibility rays)");
+    app.add_option("--rows", a.rows,
+                   "Gather only these sensors (of --points FILE or --grid, in order, from 0) "
+                   "into a part file: A:B (sensors A to B, B excluded) or K/N (shard K of N, "
+                   "e.g. $SLURM_ARRAY_TASK_ID/16); rad-gather --merge joins the parts into "
+                   "what one run writes");
+    app.add_flag("--merge", a.merge,
+                 "Join part files (rad-gather --rows) into -o, in order: the bytes one run "
+                 "would have written");
 }
 
 // How the light is gathered.
@@ -262,6 +276,15 @@ void add_output_options(CLI::App& app, GatherArgs& a) {
 
 // Combinations that cannot work.
 void check_combinations(const GatherArgs& a) {
+    if (!a.rows.empty()) {
+        if (a.output.empty()) throw rad::InputError("--rows writes a part file: give -o FILE");
+        if (a.points_path.empty() && a.grid_text.empty())
+            throw rad::InputError("--rows splits a --points FILE or a --grid (standard input "
+                                  "cannot be counted and read again)");
+        if (!a.png.empty())
+            throw rad::InputError("--png draws the whole plane: give it to one run of the "
+                                  "--grid, not to a --rows part");
+    }
     if (a.lux_max > 0 && a.png.empty())
         throw rad::InputError("--lux-max scales the --png of a --grid: give --png FILE");
     if (!a.png.empty() && a.grid_text.empty())
@@ -275,17 +298,26 @@ void check_combinations(const GatherArgs& a) {
 class GatherRun {
   public:
     GatherRun(const GatherArgs& args, const rad::Gatherer& gatherer, const rad::Box& scene_box,
-              SensorSource& source, std::string source_name, std::uint64_t total,
+              SensorSource& source, std::string source_name, rad::RowRange range,
               const rad::LuminaireSet* luminaires)
         : args_(args), gatherer_(gatherer), luminaires_(luminaires), scene_box_(scene_box),
-          source_(source), source_name_(std::move(source_name)),
-          progress_("rad-gather", total, args.quiet) {}
+          source_(source), source_name_(std::move(source_name)), range_(range),
+          progress_("rad-gather", range.end == rad::RowRange{}.end ? 0 : range.end - range.begin,
+                    args.quiet) {}
 
-    void stream(std::FILE* out, const std::string& header_line) {
-        if (!header_line.empty()) std::fprintf(out, "%s\n", header_line.c_str());
+    // Sensors range.begin to range.end of the source (each drawing its rays from its index
+    // in the whole source, so parts gather what one run does).
+    void stream(std::FILE* out, const std::string& preamble) {
+        if (!preamble.empty()) std::fputs(preamble.c_str(), out);
         std::vector<Sensor> block;
-        constexpr std::size_t kBlock = 4096;
-        while (block.clear(), source_.next(block, kBlock)) {
+        constexpr std::uint64_t kBlock = 4096;
+        for (std::uint64_t skipped = 0; skipped < range_.begin; skipped += block.size())
+            if (block.clear(), !source_.next(block, std::min(kBlock, range_.begin - skipped)))
+                return;
+        const std::uint64_t wanted = range_.end - range_.begin;
+        while (block.clear(),
+               std::uint64_t(written_) < wanted &&
+                   source_.next(block, std::min(kBlock, wanted - std::uint64_t(written_)))) {
             gather(block);
             write(block, out);
             written_ += static_cast<long>(block.size());
@@ -309,8 +341,8 @@ class GatherRun {
             auto& s = block[k];
             if (s.problem.empty()) s.problem = rad::out_of_reach(s.position, scene_box_);
             if (!s.problem.empty()) return;
-            s.result =
-                gatherer_.gather(s.position, s.direction, static_cast<std::uint64_t>(written_ + k));
+            s.result = gatherer_.gather(s.position, s.direction,
+                                        range_.begin + std::uint64_t(written_) + k);
             if (s.result.sees_backs(args_.options.max_back_fraction)) {
                 char text[200];
                 std::snprintf(text, sizeof text,
@@ -356,6 +388,7 @@ class GatherRun {
     const rad::Box& scene_box_;
     SensorSource& source_;
     std::string source_name_;
+    rad::RowRange range_;
     rad::Progress progress_;
     long written_ = 0, problems_ = 0;
     std::string first_problem_;
@@ -403,7 +436,57 @@ void report(const GatherArgs& a, const GatherRun& run, double seconds) {
                  a.options.shadow_rays);
 }
 
+// The sensors of a points file (its lines but blank ones and comments), for --rows K/N.
+std::uint64_t count_sensors(const std::string& path) {
+    rad::LineReader in(path);
+    std::string text;
+    std::uint64_t count = 0;
+    while (in.next(text)) {
+        const auto first = text.find_first_not_of(" \t");
+        if (first != std::string::npos && text[first] != '#') ++count;
+    }
+    return count;
+}
+
+// --merge: the parts into the output one run would have written.
+int merge_parts(const GatherArgs& a) {
+    if (a.output.empty()) throw rad::InputError("--merge writes -o FILE: give it");
+    if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
+    rad::tool::check_outputs(a.inputs, {{"-o", a.output}});
+    const auto sensors = rad::merge_sensor_parts(a.inputs, a.output);
+    if (!a.quiet)
+        std::fprintf(stderr, "rad-gather: merged %zu part(s): %llu sensor(s)\n", a.inputs.size(),
+                     static_cast<unsigned long long>(sensors));
+    return 0;
+}
+
+// What a part says of itself: which sensors, of what, by which command.
+std::string part_preamble(const GatherArgs& a, const Grid& grid, rad::RowRange range,
+                          std::uint64_t total, const radfmt::Header& mesh_header,
+                          const radfmt::Header& rad_header, const std::string& header_line,
+                          int argc, char** argv) {
+    rad::SensorPart part;
+    part.begin = range.begin;
+    part.end = range.end;
+    part.total = total;
+    part.inputs =
+        mesh_header.file_hash + " " + rad_header.file_hash + " " +
+        (a.grid_text.empty() ? radfmt::hash_file(a.points_path)
+                             : "grid " + std::to_string(grid.nx) + "x" + std::to_string(grid.nz));
+    part.command = rad::unsharded_command(argc, argv);
+    if (!header_line.empty()) // one run's line, its command without --rows
+        part.header_line = header_line.substr(0, header_line.find(": ") + 2) + part.command +
+                           header_line.substr(header_line.find("; mesh "));
+    return rad::sensor_part_preamble(part);
+}
+
 int gather(GatherArgs& a, int argc, char** argv) {
+    if (a.merge) return merge_parts(a);
+    if (a.inputs.size() != 2)
+        throw rad::InputError("give MESH and RADIOSITY (" + std::to_string(a.inputs.size()) +
+                              " file(s) given; several are for --merge)");
+    a.mesh_path = a.inputs[0];
+    a.rad_path = a.inputs[1];
     rad::tool::check_outputs({a.mesh_path, a.rad_path, a.points_path},
                              {{"-o", a.output}, {"--png", a.png}});
     check_combinations(a);
@@ -447,11 +530,22 @@ int gather(GatherArgs& a, int argc, char** argv) {
                       rad_header.file_hash +
                       "; columns: " + (a.lux ? "illuminance (lux)" : "irradiance r g b (W/m^2)");
 
+    // A part: its sensors of all of them, after a preamble for the merge.
+    rad::RowRange range;
+    std::string preamble = header_line.empty() ? "" : header_line + "\n";
+    if (!a.rows.empty()) {
+        const std::uint64_t total =
+            a.grid_text.empty() ? count_sensors(a.points_path) : std::uint64_t(grid.nx) * grid.nz;
+        range = rad::parse_rows(a.rows, total, "the sensors");
+        preamble =
+            part_preamble(a, grid, range, total, mesh_header, rad_header, header_line, argc, argv);
+    } else if (!a.grid_text.empty()) {
+        range.end = std::uint64_t(grid.nx) * grid.nz;
+    }
     const auto start = std::chrono::steady_clock::now();
-    GatherRun run(a, gatherer, scene_box, *source, source_name,
-                  a.grid_text.empty() ? 0 : std::uint64_t(grid.nx) * grid.nz,
+    GatherRun run(a, gatherer, scene_box, *source, source_name, range,
                   luminaires ? &*luminaires : nullptr);
-    write_output(a.output, [&](std::FILE* out) { run.stream(out, header_line); });
+    write_output(a.output, [&](std::FILE* out) { run.stream(out, preamble); });
     run.finish();
     if (!a.png.empty())
         rad::write_false_colour_png(a.png, run.grid_lux(), static_cast<int>(grid.nx),

@@ -4,8 +4,10 @@
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
 #include "radiosity/gathered.hpp"
+#include "radiosity/image_parts.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/luminaire_image.hpp"
 #include "radiosity/numbers.hpp"
@@ -25,6 +27,9 @@ const int kDefaultGatherRays = rad::GatherOptions{}.rays;
 
 // What the command line says.
 struct ShadeArgs {
+    std::vector<std::string> inputs;
+    std::string rows;
+    bool merge = false;
     std::string mesh_path, rad_path, output, view_text, view_file, smooth = "crease", png, ply;
     int width = 512, height = 512, aa = 2, threads = 0;
     double exposure = 0, crease = 30;
@@ -37,9 +42,19 @@ struct ShadeArgs {
 
 // The inputs, the camera and the image's size.
 void add_image_options(CLI::App& app, ShadeArgs& a) {
-    app.add_option("MESH", a.mesh_path, "Patch mesh from rad-mesh")->required();
-    app.add_option("RADIOSITY", a.rad_path, "Radiosity from rad-solve (not needed with --albedo)");
+    app.add_option("MESH RADIOSITY", a.inputs,
+                   "Patch mesh from rad-mesh, and radiosity from rad-solve (not needed with "
+                   "--albedo); with --merge: the part files to join")
+        ->required();
     app.add_option("-o,--output", a.output, "Output OpenEXR image")->required();
+    app.add_option("--rows", a.rows,
+                   "Render only these image rows into a part file (an EXR of the image's size): "
+                   "A:B (rows A to B, B excluded, from the top) or K/N (band K of N, e.g. "
+                   "$SLURM_ARRAY_TASK_ID/16); rad-shade --merge joins the parts into the EXR "
+                   "and --png one run writes");
+    app.add_flag("--merge", a.merge,
+                 "Join part files (rad-shade --rows) into -o and the --png the parts were "
+                 "given (or this run's --png): one run's bytes");
     app.add_option("--view", a.view_text,
                    "Radiance view options, e.g. \"-vp 0 1 3 -vd 0 0 -1 -vu 0 1 0 -vh 40 -vv 40\"");
     app.add_option("--view-file", a.view_file,
@@ -122,6 +137,9 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
 
 // Combinations that cannot work, refused before anything is read.
 void check_combinations(const ShadeArgs& a) {
+    if (!a.rows.empty() && (!a.ply.empty() || a.layers))
+        throw rad::InputError("--rows renders a band of the image: --ply and --layers are "
+                              "written by a run of the whole image");
     if (a.view_text.empty() && a.view_file.empty())
         throw rad::InputError("give a camera with --view or --view-file");
     if (a.albedo && (!a.mix.empty() || a.mix_only || a.layers))
@@ -181,7 +199,7 @@ void check_memory(const ShadeArgs& a, std::size_t group_count) {
 // The image: smoothed patch colours, or the final gather from the solution as solved.
 rad::Image render_image(const ShadeArgs& a, const ShadeInputs& in, const rad::View& view,
                         const radfmt::MeshData& solved, rad::Smoothing mode,
-                        const rad::CornerColours& corners) {
+                        const rad::CornerColours& corners, rad::RowBand band) {
     if (a.gather <= 0) return rad::render(in.mesh, corners, view, a.width, a.height, a.aa);
     if (a.albedo || !a.mix.empty() || a.mix_only || a.layers)
         throw rad::InputError("--gather shades a solution as solved: not with --albedo, "
@@ -193,7 +211,7 @@ rad::Image render_image(const ShadeArgs& a, const ShadeInputs& in, const rad::Vi
     options.crease_deg = a.crease;
     const rad::Gatherer gatherer(solved, in.values, options);
     return rad::render_gathered(gatherer, view, a.width, a.height, a.aa, a.quiet,
-                                in.luminaires ? &*in.luminaires : nullptr);
+                                in.luminaires ? &*in.luminaires : nullptr, band);
 }
 
 // The luminaires' openings at their luminance, dimmed and tinted by --mix as their groups.
@@ -242,6 +260,7 @@ void warn_back_faces(const ShadeArgs& a, const rad::Image& image) {
 }
 
 // The EXR's attributes: where the image came from.
+// A part (--rows) records the command one run would have had (see unsharded_command).
 std::map<std::string, std::string> exr_attributes(const ShadeArgs& a, const ShadeInputs& in,
                                                   int argc, char** argv) {
     std::map<std::string, std::string> attributes;
@@ -249,7 +268,9 @@ std::map<std::string, std::string> exr_attributes(const ShadeArgs& a, const Shad
     for (std::size_t i = 0; i < in.chain.size(); ++i)
         provenance += std::to_string(i + 1) + ". " + in.chain[i] + "\n";
     provenance +=
-        std::to_string(in.chain.size() + 1) + ". " + radfmt::command_line(argc, argv) + "\n";
+        std::to_string(in.chain.size() + 1) + ". " +
+        (a.rows.empty() ? radfmt::command_line(argc, argv) : rad::unsharded_command(argc, argv)) +
+        "\n";
     attributes["radiosity:provenance"] = provenance;
     attributes["radiosity:tool"] = rad::tool_version("rad-shade");
     attributes["radiosity:mesh"] = a.mesh_path + " " + in.mesh_header.file_hash;
@@ -280,7 +301,76 @@ std::vector<rad::Image> render_layers(const ShadeArgs& a, const ShadeInputs& in,
     return images;
 }
 
+// The exposure one run uses; 0 for a part whose exposure comes from the whole image.
+double run_exposure(const ShadeArgs& a, const ShadeInputs& in, const radfmt::MeshData& solved,
+                    const rad::Image& image) {
+    double scale = a.exposure;
+    if (!(scale > 0) && !a.albedo) scale = rad::solution_exposure(solved, in.values);
+    if (!(scale > 0) && a.rows.empty()) scale = rad::auto_exposure(image);
+    return scale;
+}
+
+void say_written(const ShadeArgs& a, const std::string& png, double scale) {
+    if (a.quiet) return;
+    std::fprintf(stderr, "rad-shade: wrote %s (%dx%d, %s%s), exposure %.4g\n", a.output.c_str(),
+                 a.width, a.height,
+                 a.albedo ? "albedo"
+                 : a.flat ? "flat"
+                          : a.smooth.c_str(),
+                 png.empty() ? "" : ", png", scale);
+}
+
+// --merge: the bands into the image (and PNG) one run writes.
+int merge_parts(ShadeArgs& a) {
+    if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
+    auto merged = rad::merge_image_parts(a.inputs, a.output);
+    if (!a.png.empty()) merged.info.png = a.png;
+    rad::tool::check_outputs(a.inputs, {{"-o", a.output}, {"--png", merged.info.png}});
+    radfmt::OutputBatch outputs;
+    auto& image = merged.image;
+    if (image.covered_pixels == 0)
+        throw rad::InputError("the view sees no geometry in any part (camera outside looking "
+                              "away, or inside an object facing nothing)");
+    const double scale =
+        merged.info.exposure > 0 ? merged.info.exposure : rad::auto_exposure(image);
+    if (merged.info.mark_backs) rad::mark_back_faces(image, {1 / scale, 0, 1 / scale});
+    a.width = image.width;
+    a.height = image.height;
+    a.backfaces = merged.info.mark_backs ? "mark" : "show";
+    warn_back_faces(a, image);
+    rad::write_exr(a.output, image, merged.info.attributes);
+    if (!merged.info.png.empty()) rad::write_png(merged.info.png, image, scale);
+    outputs.commit();
+    if (!a.quiet)
+        std::fprintf(stderr, "rad-shade: merged %zu part(s) into %s%s%s (%dx%d), exposure %.4g\n",
+                     a.inputs.size(), a.output.c_str(), merged.info.png.empty() ? "" : " and ",
+                     merged.info.png.c_str(), image.width, image.height, scale);
+    return 0;
+}
+
+// --rows: a band of the image into a part file.
+void write_part(const ShadeArgs& a, rad::Image& image, rad::RowBand band,
+                std::map<std::string, std::string> attributes, double scale) {
+    rad::keep_rows(image, band);
+    rad::ImagePartInfo info;
+    info.band = band;
+    info.attributes = std::move(attributes);
+    info.exposure = scale;
+    info.mark_backs = a.backfaces == "mark";
+    info.png = a.png;
+    rad::write_image_part(a.output, image, info);
+    if (!a.quiet)
+        std::fprintf(stderr, "rad-shade: wrote rows %d to %d of %d into the part %s\n", band.begin,
+                     band.end - 1, a.height, a.output.c_str());
+}
+
 int shade(ShadeArgs& a, int argc, char** argv) {
+    if (a.merge) return merge_parts(a);
+    if (a.inputs.size() > 2)
+        throw rad::InputError("give MESH and RADIOSITY (" + std::to_string(a.inputs.size()) +
+                              " files given; several are for --merge)");
+    a.mesh_path = a.inputs[0];
+    if (a.inputs.size() > 1) a.rad_path = a.inputs[1];
     rad::tool::check_outputs({a.mesh_path, a.rad_path},
                              {{"-o", a.output}, {"--png", a.png}, {"--ply", a.ply}});
     // The image, its preview and the PLY land together or not at all.
@@ -307,17 +397,26 @@ int shade(ShadeArgs& a, int argc, char** argv) {
         rad::apply_recorded_overrides(solved, in.rad_header);
     }
     warn_black(a, in);
-    rad::Image image = render_image(a, in, view, solved, mode, corners);
+    rad::RowBand band;
+    if (!a.rows.empty()) {
+        const auto range = rad::parse_rows(a.rows, std::uint64_t(a.height), "the image's rows");
+        band = {int(range.begin), int(range.end)};
+    }
+    rad::Image image = render_image(a, in, view, solved, mode, corners, band);
     if (in.luminaires) draw_openings(a, in, view, image);
+    if (!a.rows.empty()) { // a band: the merge checks coverage, exposes and marks the whole
+        write_part(a, image, band, exr_attributes(a, in, argc, argv),
+                   run_exposure(a, in, solved, image));
+        outputs.commit();
+        return 0;
+    }
     if (image.covered_pixels == 0)
         throw rad::InputError("the view sees no geometry of " + a.mesh_path +
                               " (camera outside looking away, or inside an object facing "
                               "nothing)");
     // Exposure from the solution (every view of it alike; lamps in view do not set it), or
     // for albedo from the image; then the overlay in full magenta at that exposure.
-    double scale = a.exposure;
-    if (!(scale > 0) && !a.albedo) scale = rad::solution_exposure(solved, in.values);
-    if (!(scale > 0)) scale = rad::auto_exposure(image);
+    const double scale = run_exposure(a, in, solved, image);
     if (a.backfaces == "mark") rad::mark_back_faces(image, {1 / scale, 0, 1 / scale});
     warn_back_faces(a, image);
 
@@ -329,13 +428,7 @@ int shade(ShadeArgs& a, int argc, char** argv) {
     if (!a.png.empty()) rad::write_png(a.png, image, scale);
     if (!a.ply.empty()) rad::write_ply(a.ply, in.mesh, corners, scale);
     outputs.commit();
-    if (!a.quiet)
-        std::fprintf(stderr, "rad-shade: wrote %s (%dx%d, %s%s), exposure %.4g\n", a.output.c_str(),
-                     a.width, a.height,
-                     a.albedo ? "albedo"
-                     : a.flat ? "flat"
-                              : a.smooth.c_str(),
-                     a.png.empty() ? "" : ", png", scale);
+    say_written(a, a.png, scale);
     return 0;
 }
 

@@ -14,8 +14,8 @@ head -c 8 "$TMP/i.png" | od -An -c | grep -q "P   N   G" || fail "png signature"
 head -1 "$TMP/i.ply" | grep -q "^ply" || fail "ply"
 expect_error "parallel" "$TMP/v.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/v.exr" --view "-vd 0 1 0 -vu 0 1 0"
 # Image memory is checked before rendering (16384^2 at --aa 8 would need 344 GiB).
-expect_error "a 16384x16384 image at --aa 8 needs about 344.0 GiB, more than --max-memory" "$TMP/v.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/v.exr" --view-file "$VF" -x 16384 -y 16384 --aa 8
-expect_error "needs about 442.5 MiB, more than --max-memory 400.0 MiB" "$TMP/v.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/v.exr" --view-file "$VF" -x 2000 -y 2000 --aa 2 --max-memory 400M
+expect_error "a 16384x16384 image at --aa 8 needs about 344.2 GiB, more than --max-memory" "$TMP/v.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/v.exr" --view-file "$VF" -x 16384 -y 16384 --aa 8
+expect_error "needs about 446.3 MiB, more than --max-memory 400.0 MiB" "$TMP/v.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/v.exr" --view-file "$VF" -x 2000 -y 2000 --aa 2 --max-memory 400M
 expect_error "sees no geometry" "$TMP/v.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/v.exr" --view "-vp 0.3 0.3 -1 -vd 0 0 -1"
 "$BIN/rad-mesh" "$SRC/scenes/cornell/cornell.obj" -o "$TMP/other.mesh" --max-edge 0.2 -q
 expect_error "does not belong to" "$TMP/v.exr" "$BIN/rad-shade" "$TMP/other.mesh" "$TMP/c.rad" -o "$TMP/v.exr" --view-file "$VF"

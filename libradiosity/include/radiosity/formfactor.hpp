@@ -47,7 +47,8 @@ struct RowRange {
 
 // Shards (rad-ff --rows, --merge). "A:B" (rows A to B, B excluded) or "K/N" (shard K of N,
 // from 0: rows [K p / N, (K + 1) p / N) of p patches); throws InputError otherwise.
-RowRange parse_rows(const std::string& text, std::uint64_t patches);
+RowRange parse_rows(const std::string& text, std::uint64_t patches,
+                    const std::string& what = "the mesh's patches");
 // The command line without --rows and with -o's value replaced by a placeholder, recorded in
 // every part, so the merge can write the command one run would have.
 std::string unsharded_command(int argc, const char* const* argv);
@@ -58,6 +59,10 @@ struct RowPart {
     std::uint64_t begin = 0, end = 0;
 };
 void require_row_cover(std::vector<RowPart> parts, std::uint64_t n);
+// An unsharded_command with `output` (quoted as a shell would need) in the placeholder's
+// place; InputError naming `part_path` when it has none.
+std::string command_with_output(std::string command, const std::string& output,
+                                const std::string& part_path);
 // The command one run writing `output` would have had, from a part's unsharded_command.
 std::string merged_command(const radfmt::Header& part, const std::string& part_path,
                            const std::string& output);

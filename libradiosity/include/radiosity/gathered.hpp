@@ -12,8 +12,10 @@ struct LuminaireSet;
 // Same camera and pixel convention as render(); N x N samples per pixel, each seeded by
 // its index, so the image is the same at any thread count.
 // `luminaires` (a solve's rad-solve --direct): their direct light is added exactly at each
-// visible point.
+// visible point. Only the image rows in `rows` are gathered (the rest stay black and
+// uncovered): a band for rad-shade --rows, the same pixels a whole run gives there.
 Image render_gathered(const Gatherer& gatherer, const View& view, int width, int height,
-                      int supersampling, bool quiet, const LuminaireSet* luminaires = nullptr);
+                      int supersampling, bool quiet, const LuminaireSet* luminaires = nullptr,
+                      RowBand rows = {});
 
 } // namespace rad

@@ -18,6 +18,12 @@ struct Image {
     // seen from the side that gets no light), and the pixels where that is at least half.
     std::vector<float> back_coverage;
     std::size_t back_face_pixels = 0;
+    std::vector<std::uint8_t> covered; // per pixel: 1 where a sample sees geometry
+};
+
+// Image rows [begin, end) (end -1: to the bottom): a band of an image, rad-shade --rows.
+struct RowBand {
+    int begin = 0, end = -1;
 };
 
 // Perspective-correct interpolation of the corner colours, N x N supersampling per pixel.
@@ -25,7 +31,7 @@ struct Image {
 // shows the side that faces the camera.
 // The most memory one run of rad-shade takes for images of this size: the supersampled
 // buffers of one render (colour, depth, back-face mark: 21 bytes a sample), and per
-// finished image (the main one and one per layer) its RGB and back coverage plus the
+// finished image (the main one and one per layer) its RGB, back coverage and coverage plus the
 // writers' copies (EXR, PNG).
 std::uint64_t estimate_render_memory(int width, int height, int supersampling, int images);
 

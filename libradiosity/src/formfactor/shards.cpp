@@ -45,7 +45,7 @@ std::uint64_t header_number(const radfmt::Header& header, const std::string& key
 }
 } // namespace
 
-RowRange parse_rows(const std::string& text, std::uint64_t patches) {
+RowRange parse_rows(const std::string& text, std::uint64_t patches, const std::string& what) {
     const auto colon = text.find(':'), slash = text.find('/');
     RowRange range;
     if (colon != std::string::npos && slash == std::string::npos) {
@@ -53,7 +53,7 @@ RowRange parse_rows(const std::string& text, std::uint64_t patches) {
         range.end = whole_number(text.substr(colon + 1), "end row");
         if (!(range.begin < range.end) || range.end > patches)
             throw InputError("--rows " + text + ": rows A:B need 0 <= A < B <= " +
-                             std::to_string(patches) + " (the mesh's patches; B is excluded)");
+                             std::to_string(patches) + " (" + what + "; B is excluded)");
         return range;
     }
     if (slash != std::string::npos && colon == std::string::npos) {
@@ -61,7 +61,7 @@ RowRange parse_rows(const std::string& text, std::uint64_t patches) {
         const auto shards = whole_number(text.substr(slash + 1), "shard count");
         if (shards == 0 || shard >= shards || shards > patches)
             throw InputError("--rows " + text + ": shard K/N needs 0 <= K < N <= " +
-                             std::to_string(patches) + " (the mesh's patches)");
+                             std::to_string(patches) + " (" + what + ")");
         // Shard k of n: rows [k p / n, (k + 1) p / n), so the shards cover every row once.
         range.begin = shard * patches / shards;
         range.end = (shard + 1) * patches / shards;
@@ -119,16 +119,20 @@ void require_row_cover(std::vector<RowPart> parts, std::uint64_t n) {
                          std::to_string(n) + ")");
 }
 
-std::string merged_command(const radfmt::Header& part, const std::string& part_path,
-                           const std::string& output) {
+std::string command_with_output(std::string command, const std::string& output,
+                                const std::string& part_path) {
     const char* quoted[] = {"x", output.c_str()};
     const auto output_text = radfmt::command_line(2, quoted).substr(2);
-    auto command = part.get("unsharded_command", part_path);
     const auto at = command.find(kOutputPlaceholder);
     if (at == std::string::npos)
         throw InputError(part_path + ": its recorded command has no output to replace");
     command.replace(at, std::string(kOutputPlaceholder).size(), output_text);
     return command;
+}
+
+std::string merged_command(const radfmt::Header& part, const std::string& part_path,
+                           const std::string& output) {
+    return command_with_output(part.get("unsharded_command", part_path), output, part_path);
 }
 
 std::uint64_t part_row(const radfmt::Header& header, const std::string& key,

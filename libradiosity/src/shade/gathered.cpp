@@ -6,13 +6,17 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <numbers>
 
 namespace rad {
 
 Image render_gathered(const Gatherer& gatherer, const View& view, int width, int height,
-                      int supersampling, bool quiet, const LuminaireSet* luminaires) {
+                      int supersampling, bool quiet, const LuminaireSet* luminaires, RowBand rows) {
+    const int first_row = std::clamp(rows.begin, 0, height);
+    const int end_row = rows.end < 0 ? height : std::clamp(rows.end, first_row, height);
     const int ss = std::max(1, supersampling);
     const int W = width * ss, H = height * ss;
     const auto& mesh = gatherer.mesh();
@@ -22,9 +26,10 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
     image.height = height;
     image.rgb.assign(std::size_t(width) * height * 3, 0.0f);
     image.back_coverage.assign(std::size_t(width) * height, 0.0f);
-    std::vector<std::uint8_t> covered(std::size_t(width) * height, 0);
-    Progress progress("rad-shade gather", std::uint64_t(height), quiet);
-    tbb::parallel_for(0, height, [&](int y) {
+    auto& covered = image.covered;
+    covered.assign(std::size_t(width) * height, 0);
+    Progress progress("rad-shade gather", std::uint64_t(end_row - first_row), quiet);
+    tbb::parallel_for(first_row, end_row, [&](int y) {
         for (int x = 0; x < width; ++x) {
             double sum[3] = {0, 0, 0};
             int backs = 0;

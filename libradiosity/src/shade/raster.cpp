@@ -37,7 +37,7 @@ struct ScreenTriangle {
 std::uint64_t estimate_render_memory(int width, int height, int supersampling, int images) {
     const std::uint64_t pixels = std::uint64_t(std::max(0, width)) * std::max(0, height);
     const std::uint64_t ss = std::max(1, supersampling);
-    return pixels * ss * ss * 21 + pixels * std::max(1, images) * (16 + 16);
+    return pixels * ss * ss * 21 + pixels * std::max(1, images) * (17 + 16);
 }
 
 namespace {
@@ -177,6 +177,7 @@ Image resolve(const Frame& f, int width, int height, int ss) {
     image.height = height;
     image.rgb.assign(static_cast<std::size_t>(width) * height * 3, 0.0f);
     image.back_coverage.assign(static_cast<std::size_t>(width) * height, 0.0f);
+    image.covered.assign(static_cast<std::size_t>(width) * height, 0);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             double sum[3] = {0, 0, 0};
@@ -191,6 +192,7 @@ Image resolve(const Frame& f, int width, int height, int ss) {
                     for (int c = 0; c < 3; ++c) sum[c] += f.hi[3 * at + c];
                 }
             image.covered_pixels += covered;
+            image.covered[static_cast<std::size_t>(y) * width + x] = covered;
             const float back_share = static_cast<float>(back_samples) / float(ss * ss);
             image.back_coverage[static_cast<std::size_t>(y) * width + x] = back_share;
             image.back_face_pixels += back_share >= 0.5f;
