@@ -1,0 +1,69 @@
+# The chain with GNU parallel over ssh (an sshd started here on the loopback address, with a
+# key made for the test): shards run by scripts/parallel-shards in a working folder of their
+# own on the "remote" machine, the inputs sent and the parts returned by parallel, merged here
+# byte for byte as one run writes; a failed shard is rerun alone from the job log.
+#   bash tests/scheduler/parallel.sh BIN_DIR SOURCE_DIR      (as root)
+source "$(dirname "$0")/lib.sh"
+SSHD="$TMP/sshd"
+trap '"$SRC/tests/scheduler/sshd-loopback" stop "$SSHD"; rm -rf "$TMP"' EXIT
+SSH="$("$SRC/tests/scheduler/sshd-loopback" start "$SSHD")" || { echo "FAIL: the test sshd did not start"; exit 1; }
+LOGIN="$(id -un)@127.0.0.1"
+step "mesh the office"
+make_office
+cd "$WORK"
+SHARDS="$SRC/scripts/parallel-shards"
+# What parallel leaves in the remote's ~/.parallel/tmp (working folders, removed after).
+remote_folders() { find "$HOME/.parallel/tmp" -mindepth 1 -maxdepth 1 -type d 2>/dev/null | wc -l; }
+folders_before=$(remote_folders)
+
+# A rad-ff that fails once for shard 2 (while $FLAG exists), as a machine that goes down.
+FLAG="$TMP/fail-shard-2"
+cat >"$TMP/flaky-rad-ff" <<EOF
+#!/usr/bin/env bash
+case " \$* " in *" --rows 2/4 "*) if [ -e "$FLAG" ]; then rm -f "$FLAG"; echo "flaky-rad-ff: shard 2 fails this time" >&2; exit 3; fi ;; esac
+exec "$BIN/rad-ff" "\$@"
+EOF
+chmod +x "$TMP/flaky-rad-ff"
+touch "$FLAG"
+
+step "form factors: 4 shards over ssh, one fails"
+one_run office.ff "$BIN/rad-ff" office.mesh --method hemisphere --rays 1000 -q
+# The merge's command must be one run's: the flaky tool is named rad-ff too.
+mkdir -p "$TMP/tools" && ln -s "$TMP/flaky-rad-ff" "$TMP/tools/rad-ff"
+FF=("$TMP/tools/rad-ff" office.mesh --method hemisphere --rays 1000 -q)
+"$SHARDS" -n 4 --ssh "$SSH" -S "$LOGIN" --transfer office.mesh office.ff -- "${FF[@]}" 2> first.txt && fail "a failed shard went unreported"
+grep -q "shard(s) 2 failed" first.txt || fail "the failed shard is not named: $(cat first.txt)"
+[ ! -e office.ff ] || fail "office.ff written although a shard failed"
+for k in 0 1 3; do [ -e office.ff.parts/office.ff.part$k ] || fail "part $k did not come back"; done
+[ ! -e office.ff.parts/office.ff.part2 ] || fail "the failed shard left a part"
+# The job log: every shard ran over ssh, sent the mesh and returned its part.
+awk -F'\t' -v login="$LOGIN" 'NR > 1 && ($2 != login || $5 <= 0 || ($7 == 0 && $6 <= 0)) { bad = 1 } END { exit bad }' office.ff.parts/office.ff.joblog ||
+  fail "a shard did not run over ssh with its files sent and returned: $(cut -f 2-8 office.ff.parts/office.ff.joblog)"
+[ "$(remote_folders)" = "$folders_before" ] || fail "the remote working folders were not removed"
+
+step "rerun: only the failed shard"
+lines_before=$(wc -l <office.ff.parts/office.ff.joblog)
+before=$(stat -c %Y office.ff.parts/office.ff.part0)
+"$SHARDS" -n 4 --ssh "$SSH" -S "$LOGIN" --transfer office.mesh office.ff -- "${FF[@]}" 2> second.txt || fail "rerun: $(cat second.txt)"
+# The failed shard's line is replaced by its rerun's, last; the others' lines are kept.
+[ "$(wc -l <office.ff.parts/office.ff.joblog)" = "$lines_before" ] || fail "the rerun ran more than the failed shard: $(cut -f 1,7,9 office.ff.parts/office.ff.joblog)"
+tail -n 1 office.ff.parts/office.ff.joblog | awk -F'\t' '$7 == 0 && $9 ~ /--rows 2\/4 / { ok = 1 } END { exit !ok }' || fail "the rerun did not run shard 2: $(cut -f 1,7,9 office.ff.parts/office.ff.joblog)"
+[ "$(stat -c %Y office.ff.parts/office.ff.part0)" = "$before" ] || fail "a finished part was computed again"
+same office.ff "form factors over ssh"
+
+step "solve here, image bands over ssh"
+"$BIN/rad-solve" office.mesh office.ff -o office.rad -q || fail "solve"
+SHADE=("$BIN/rad-shade" office.mesh office.rad --png office.png --gather 8 -x 64 -y 48
+  --view "-vp 1 2.2 0.5 -vd 1 -0.35 1 -vu 0 1 0 -vh 80 -vv 55" -q)
+one_run office.exr "${SHADE[@]}"
+mv office.png single-office.png
+"$SHARDS" -n 3 --ssh "$SSH" -S "$LOGIN" --transfer office.mesh --transfer office.rad office.exr -- "${SHADE[@]}" 2>/dev/null || fail "image bands over ssh"
+same office.exr "gathered image over ssh (EXR)"
+cmp -s office.png single-office.png || fail "gathered image over ssh (PNG): the merge differs from one run"
+
+step "make SCHEDULER=parallel"
+check_make parallel HOSTS="$LOGIN" SSH="$SSH"
+# The job log: the lost part's line dropped and run again last, the others' lines kept.
+tail -n 1 "$WORK/mk/office.ff.parts/office.ff.joblog" | grep -q -- '--rows 1/3' || fail "make SCHEDULER=parallel again: the lost part did not run again last: $(cut -f 1,7,9 "$WORK/mk/office.ff.parts/office.ff.joblog")"
+[ "$(wc -l <"$WORK/mk/office.ff.parts/office.ff.joblog")" = 4 ] || fail "make SCHEDULER=parallel again: the job log has other than one line a shard"
+finish
