@@ -85,3 +85,16 @@ TEST_CASE("text inputs: lines, ends, folders, devices and overlong lines told ap
     CHECK(rad::quoted_prefix(std::string(1000, 'q')).size() == 60 + 5);
     std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("parse_count takes digits alone, up to 15 of them") {
+    std::uint64_t v = 7;
+    CHECK(rad::parse_count("0", v));
+    CHECK(v == 0);
+    CHECK(rad::parse_count("123456789012345", v));
+    CHECK(v == 123456789012345ull);
+    for (const char* bad : {"", "-1", "+1", "1.0", "1e3", " 1", "1 ", "0x10", "1234567890123456"}) {
+        v = 7;
+        CHECK_FALSE(rad::parse_count(bad, v));
+        CHECK(v == 7);
+    }
+}

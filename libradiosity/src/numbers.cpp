@@ -45,6 +45,17 @@ bool parse_number(std::string_view text, double& value) {
     return true;
 }
 
+bool parse_count(std::string_view text, std::uint64_t& value) {
+    if (text.empty() || text.size() > 15) return false;
+    std::uint64_t v = 0;
+    for (const char c : text) {
+        if (c < '0' || c > '9') return false;
+        v = v * 10 + std::uint64_t(c - '0');
+    }
+    value = v;
+    return true;
+}
+
 bool spells_non_finite(std::string_view text) {
     std::string lower;
     for (char c : text) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

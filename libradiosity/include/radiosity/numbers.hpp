@@ -10,6 +10,9 @@ namespace rad {
 
 // True when all of `text` is a finite decimal number; `value` is set only then.
 bool parse_number(std::string_view text, double& value);
+// True when all of `text` is a whole number of at most 15 digits (a count, a row, a shard:
+// digits only, no sign); `value` is set only then.
+bool parse_count(std::string_view text, std::uint64_t& value);
 // True when `text` spells nan or inf in a way other parsers accept: for a clearer message.
 bool spells_non_finite(std::string_view text);
 

@@ -4,6 +4,7 @@
 #include "radfmt/container.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
+#include "radiosity/numbers.hpp"
 #include "radiosity/text_input.hpp"
 
 #include <algorithm>
@@ -28,13 +29,7 @@ std::string preamble_value(LineReader& in, const std::string& path, const std::s
 
 std::uint64_t whole(const std::string& text, const std::string& path, long line) {
     std::uint64_t value = 0;
-    std::size_t used = 0;
-    try {
-        value = std::stoull(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size() || text[0] == '-' || text[0] == '+')
+    if (!parse_count(text, value))
         throw InputError(path + ":" + std::to_string(line) + ": '" + text +
                          "' is not a sensor number");
     return value;

@@ -4,6 +4,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/hierarchy.hpp"
+#include "radiosity/numbers.hpp"
 
 #include <algorithm>
 #include <numeric>
@@ -72,13 +73,7 @@ std::uint64_t header_count(const radfmt::Header& header, const std::string& key,
                            const std::string& path) {
     const auto& text = header.get(key, path);
     std::uint64_t value = 0;
-    std::size_t used = 0;
-    try {
-        value = std::stoull(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size() || text[0] == '-')
+    if (!parse_count(text, value))
         throw radfmt::FormatError(path + ": corrupt header: " + key + " '" + text +
                                   "' is not a whole number");
     return value;
