@@ -26,7 +26,8 @@ Image read_exr(const std::string& path, std::map<std::string, std::string>* attr
 double auto_exposure(const Image& image);
 // Exposure from a solution, the same for every view of it: 0.85 over the luminance that 99% of
 // the area of the surfaces that do not emit stays below (emitters in view are not what the
-// picture is exposed for). 0 when nothing that does not emit is lit.
+// picture is exposed for); when nothing that does not emit is lit, the same over the
+// emitters. 0 when nothing is lit.
 double solution_exposure(const radfmt::MeshData& solved, const std::vector<Rgb>& radiosity);
 void write_png(const std::string& path, const Image& image, double exposure);
 // 8-bit sRGB pixels, row-major, top row first, 3 bytes each.

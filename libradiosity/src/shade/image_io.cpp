@@ -103,12 +103,16 @@ double auto_exposure(const Image& image) {
     return *at > 0 ? 0.8 / *at : 1;
 }
 
-double solution_exposure(const radfmt::MeshData& solved, const std::vector<Rgb>& radiosity) {
-    std::vector<std::pair<double, double>> lit; // luminance, area of surfaces that do not emit
+namespace {
+// 0.85 over the luminance that 99% of the area of the patches `counted` stays below; 0 when
+// none of them is lit.
+double exposure_of(const radfmt::MeshData& solved, const std::vector<Rgb>& radiosity,
+                   bool with_emitters) {
+    std::vector<std::pair<double, double>> lit; // luminance, area
     double total = 0;
     for (std::size_t i = 0; i < solved.patches.size() && i < radiosity.size(); ++i) {
         const auto& p = solved.patches[i];
-        if (solved.materials[p.material].emits()) continue;
+        if (!with_emitters && solved.materials[p.material].emits()) continue;
         const auto& b = radiosity[i];
         const double y = 0.2126 * b[0] + 0.7152 * b[1] + 0.0722 * b[2];
         if (!(y > 0) || !(p.area > 0)) continue;
@@ -121,6 +125,14 @@ double solution_exposure(const radfmt::MeshData& solved, const std::vector<Rgb>&
     for (const auto& [y, area] : lit)
         if ((below += area) >= 0.99 * total) return 0.85 / y;
     return 0.85 / lit.back().first;
+}
+} // namespace
+
+double solution_exposure(const radfmt::MeshData& solved, const std::vector<Rgb>& radiosity) {
+    // A scene whose every lit patch emits (a light box, an all-emitting test object) is
+    // exposed for its emitters, the same way, rather than left to each image.
+    const double without = exposure_of(solved, radiosity, false);
+    return without > 0 ? without : exposure_of(solved, radiosity, true);
 }
 
 std::uint8_t to_srgb8(double linear) {
