@@ -3,6 +3,7 @@
 #include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
+#include "radiosity/auto_view.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
@@ -56,7 +57,10 @@ void add_image_options(CLI::App& app, ShadeArgs& a) {
                  "Join part files (rad-shade --rows) into -o and the --png the parts were "
                  "given (or this run's --png): one run's bytes");
     app.add_option("--view", a.view_text,
-                   "Radiance view options, e.g. \"-vp 0 1 3 -vd 0 0 -1 -vu 0 1 0 -vh 40 -vv 40\"");
+                   "Radiance view options, e.g. \"-vp 0 1 3 -vd 0 0 -1 -vu 0 1 0 -vh 40 -vv 40\" "
+                   "(neither --view nor --view-file: rad-shade chooses a camera that sees the "
+                   "surfaces' fronts, from outside each side of the scene or inside it, and "
+                   "prints it)");
     app.add_option("--view-file", a.view_file,
                    "File with Radiance view options (e.g. scenes/cornell/cornell.vf)");
     app.add_option("-x,--width", a.width, "Image width in pixels")
@@ -93,10 +97,12 @@ void add_look_options(CLI::App& app, ShadeArgs& a) {
                  "Show reflectance colours only, flat (the paper's Figure 1(a) and 4)");
     app.add_option("--png", a.png, "Also write an sRGB tone-mapped PNG preview");
     app.add_option("--ply", a.ply, "Also write the smoothed mesh with vertex colours as PLY");
-    app.add_option("--exposure", a.exposure,
-                   "Linear multiplier for PNG/PLY (default, or 0: from the solution, the same "
-                   "for every view: 0.85 over the luminance that 99% of the area of the "
-                   "surfaces that do not emit stays below; --albedo: from the image)")
+    app.add_option(
+           "--exposure", a.exposure,
+           "Linear multiplier for PNG/PLY (default, or 0: from the solution, the same "
+           "for every view: 0.85 over the luminance that 99% of the area of the "
+           "surfaces that do not emit stays below, or of the emitters when only they are lit; "
+           "--albedo: from the image)")
         ->check(rad::tool::finite_range(0, 1e30));
     app.add_option("--backfaces", a.backfaces,
                    "Faces seen from behind (the side of a one-sided patch that gets no light): "
@@ -140,8 +146,10 @@ void check_combinations(const ShadeArgs& a) {
     if (!a.rows.empty() && (!a.ply.empty() || a.layers))
         throw rad::InputError("--rows renders a band of the image: --ply and --layers are "
                               "written by a run of the whole image");
-    if (a.view_text.empty() && a.view_file.empty())
-        throw rad::InputError("give a camera with --view or --view-file");
+    if (!a.rows.empty() && a.view_text.empty() && a.view_file.empty())
+        throw rad::InputError("--rows renders a band of one camera's image: give it with "
+                              "--view or --view-file (rad-shade without them prints the view "
+                              "it chooses)");
     if (a.albedo && (!a.mix.empty() || a.mix_only || a.layers))
         throw rad::InputError("--mix, --mix-only and --layers need a radiosity file, not "
                               "--albedo");
@@ -301,6 +309,19 @@ std::vector<rad::Image> render_layers(const ShadeArgs& a, const ShadeInputs& in,
     return images;
 }
 
+// No camera given: one that sees the scene's surfaces from their front, said on stderr so
+// that it can be given again (and changed).
+rad::View chosen_view(const ShadeArgs& a, const radfmt::MeshData& mesh) {
+    const rad::RayScene scene(mesh);
+    const auto chosen = rad::choose_view(mesh, scene, double(a.width) / a.height);
+    std::fprintf(stderr,
+                 "rad-shade: no camera given: chose --view \"%s\" (%s; %.0f%% of its rays "
+                 "see the front of a surface)\n",
+                 chosen.text.c_str(), chosen.where.c_str(),
+                 100 * std::max(0.0, chosen.front_share));
+    return chosen.view;
+}
+
 // The exposure one run uses; 0 for a part whose exposure comes from the whole image.
 double run_exposure(const ShadeArgs& a, const ShadeInputs& in, const radfmt::MeshData& solved,
                     const rad::Image& image) {
@@ -380,6 +401,7 @@ int shade(ShadeArgs& a, int argc, char** argv) {
     rad::View view = a.view_file.empty() ? rad::View{} : rad::read_view_file(a.view_file);
     if (!a.view_text.empty()) view = rad::parse_view(a.view_text, rad::FileLoc{"--view"}, view);
     const auto in = read_inputs(a);
+    if (a.view_text.empty() && a.view_file.empty()) view = chosen_view(a, in.mesh);
     // The camera's rays are traced (--gather, the luminaires' openings): one check for every
     // position a tool is given.
     if (const auto why = rad::out_of_reach(view.position, rad::bounds(in.mesh.vertices));

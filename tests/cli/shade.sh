@@ -120,4 +120,46 @@ grep -q "is black" "$TMP/lit.err" && fail "a lit solution called black"
 "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/gc.exr" --png "$TMP/gc.png" --view-file "$VF" -x 8 -y 8 --gather 2 -q
 cmp -s "$TMP/ga.png" "$TMP/gb.png" || fail "--gather alone is not --gather 256"
 cmp -s "$TMP/ga.png" "$TMP/gc.png" && fail "the comparison cannot tell ray counts apart"
+# No camera given: the Cornell box (open towards -z) is seen from its open side, a closed room
+# from inside; the printed view gives the same image again.
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/auto.exr" --png "$TMP/auto.png" -x 32 -y 24 2> "$TMP/auto.txt" || fail "rad-shade without a camera"
+grep -q 'no camera given: chose --view "-vp .*" (outside, from -z' "$TMP/auto.txt" || fail "the open box is not seen from its open side: $(cat "$TMP/auto.txt")"
+chosen=$(sed -n 's/.*chose --view "\([^"]*\)".*/\1/p' "$TMP/auto.txt")
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/again.exr" --png "$TMP/again.png" -x 32 -y 24 --view "$chosen" -q || fail "the printed view"
+cmp -s "$TMP/auto.png" "$TMP/again.png" || fail "the printed view does not give the same image"
+"$BIN/rad-mesh" "$SRC/scenes/lighting/room.obj" -o "$TMP/room.mesh" -q 2>/dev/null
+"$BIN/rad-shade" "$TMP/room.mesh" --albedo -o "$TMP/room.exr" -x 32 -y 24 2> "$TMP/room.txt" || fail "rad-shade without a camera in a closed room"
+grep -q "(inside, towards" "$TMP/room.txt" || fail "a closed room is not seen from inside: $(cat "$TMP/room.txt")"
+expect_error "--rows renders a band of one camera's image" "$TMP/x.part" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.part" --rows 0/2
+# A scene whose every patch emits: rad-shade and rad-bake expose it alike, from the solution
+# (over its emitters), not rad-shade from its image and rad-bake at 1.
+cat > "$TMP/glow.mtl" <<'MTL'
+newmtl glow
+Kd 0.5 0.5 0.5
+Ke 2 1 0.5
+MTL
+cat > "$TMP/glow.obj" <<'OBJ'
+mtllib glow.mtl
+usemtl glow
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+v 1 0 1
+v 1 1 1
+v 0 1 1
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 2 3 7 6
+f 3 4 8 7
+f 4 1 5 8
+OBJ
+"$BIN/rad-mesh" "$TMP/glow.obj" -o "$TMP/glow.mesh" --max-edge 0.25 -q 2>/dev/null || fail "mesh the glowing cube"
+"$BIN/rad-ff" "$TMP/glow.mesh" -o "$TMP/glow.ff" -q 2>/dev/null && "$BIN/rad-solve" "$TMP/glow.mesh" "$TMP/glow.ff" -o "$TMP/glow.rad" -q || fail "solve the glowing cube"
+shade_exposure=$("$BIN/rad-shade" "$TMP/glow.mesh" "$TMP/glow.rad" -o "$TMP/glow.exr" -x 32 -y 24 2>&1 | sed -n 's/.*exposure \([0-9.e+-]*\)$/\1/p')
+bake_exposure=$("$BIN/rad-bake" "$TMP/glow.mesh" "$TMP/glow.rad" -o "$TMP/glow.glb" 2>&1 | sed -n 's/.*exposure \([0-9.e+-]*\)$/\1/p')
+[ -n "$shade_exposure" ] && [ "$shade_exposure" = "$bake_exposure" ] || fail "rad-shade's exposure '$shade_exposure' is not rad-bake's '$bake_exposure' on an all-emitting scene"
+[ "$bake_exposure" != 1 ] || fail "rad-bake left an all-emitting scene at exposure 1"
 finish
