@@ -6,6 +6,7 @@ BUILD="$3"
 cmake --install "$BUILD" --prefix "$TMP/prefix" >"$TMP/install.log" 2>&1 || { cat "$TMP/install.log"; fail "install"; }
 [ -x "$TMP/prefix/bin/rad-ff" ] || fail "tools not installed"
 [ -f "$TMP/prefix/include/radiosity/formfactor.hpp" ] || fail "headers not installed"
+[ -s "$TMP/prefix/share/man/man1/rad-ff.1" ] || fail "man pages not installed"
 [ -f "$TMP/prefix/include/radiosity/version.hpp" ] || fail "generated version header not installed"
 grep -rl "CLI/CLI.hpp" "$TMP/prefix/include" && fail "an installed header includes CLI11"
 # The dependency direction: only tools/ may use CLI11.
