@@ -18,7 +18,7 @@ std::string cube(double x, double y, double z, const std::string& group, std::ve
                  bool all_flipped = false, int* vertex_count = nullptr) {
     static const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                                     {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    std::string out = "g " + group + "\n";
+    std::string out = group.empty() ? "" : "g " + group + "\n";
     int base = vertex_count ? *vertex_count : 0;
     for (int f = 0; f < 6; ++f) {
         for (int k = 0; k < 4; ++k) {
@@ -147,10 +147,27 @@ TEST_CASE("--flip reverses named groups and names the known ones for a typo") {
     int count = 0;
     const auto first = cube(0, 0, 0, "box", {}, true, &count);
     auto scene = scene_from_obj("usemtl grey\n" + first + cube(3, 0, 0, "fine", {}, false, &count));
-    CHECK(rad::flip_groups(scene, {"box"}) == 6);
+    const auto flipped = rad::flip_groups(scene, {"box"});
+    REQUIRE(flipped.size() == 1);
+    CHECK(flipped[0].faces == 6);
+    CHECK(flipped[0].what == "group");
     CHECK(rad::check_orientation(scene).empty());
-    CHECK_THROWS_WITH(rad::flip_groups(scene, {"bx"}),
-                      Catch::Contains("no group 'bx'") && Catch::Contains("box, fine"));
+    CHECK_THROWS_WITH(rad::flip_groups(scene, {"bx"}), Catch::Contains("no group 'bx'") &&
+                                                           Catch::Contains("box, fine") &&
+                                                           Catch::Contains("materials: grey"));
+}
+
+TEST_CASE("--flip takes a material's name where no group has it (a file without groups)") {
+    int count = 0;
+    const auto lamp = cube(0, 0, 0, "", {}, true, &count); // inside out
+    const auto grey = cube(3, 0, 0, "", {}, false, &count);
+    auto scene = scene_from_obj("usemtl lamp\n" + lamp + "usemtl grey\n" + grey);
+    REQUIRE(!rad::check_orientation(scene).empty());
+    const auto flipped = rad::flip_groups(scene, {"lamp"});
+    REQUIRE(flipped.size() == 1);
+    CHECK(flipped[0].what == "material");
+    CHECK(flipped[0].faces == 6);
+    CHECK(rad::check_orientation(scene).empty());
 }
 
 TEST_CASE("the project's scenes give no orientation finding") {
@@ -185,7 +202,7 @@ TEST_CASE("visibility voting turns a room modelled as seen from outside, and not
     const std::string path = std::string(RADIOSITY_SOURCE_DIR) + "/scenes/cornell/cornell.obj";
     auto scene = rad::load_obj(path);
     std::vector<std::string> room_groups{"floor", "ceiling", "light", "back", "right", "left"};
-    for (const auto& g : room_groups) rad::flip_groups(scene, {g});
+    for (const auto& g : room_groups) (void)rad::flip_groups(scene, {g});
     CHECK(rad::check_orientation(scene).empty());
     const auto facing = rad::check_facing_by_visibility(scene);
     std::vector<std::string> found;

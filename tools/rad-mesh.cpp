@@ -139,7 +139,9 @@ void add_stage_options(CLI::App& app, MeshArgs& a) {
                    "back sees the front of others flipped by ray-cast voting)")
         ->capture_default_str()
         ->check(CLI::IsMember({"warn", "fix"}));
-    app.add_option("--flip", a.flip, "Reverse the faces of this group (repeatable)");
+    app.add_option("--flip", a.flip,
+                   "Reverse the faces of this group, or of this material where no group has "
+                   "the name (a file without groups; repeatable)");
     app.add_option("--two-sided", a.two_sided,
                    "Give these surfaces a back patch per patch, with its own radiosity, for "
                    "thin things modelled as one sheet (curtains, leaves, table tops as "

@@ -44,9 +44,15 @@ std::vector<OrientationFinding> check_facing_by_visibility(const Scene& scene);
 // "material white, the surface from scene.obj:10: 4 face(s) ... (first at scene.obj:12)".
 std::string describe(const OrientationFinding& finding, const Scene& scene);
 
-// Reverses the winding of every face of the named groups; throws InputError naming the
-// known groups for an unknown one. Returns the number of faces flipped.
-std::size_t flip_groups(Scene& scene, const std::vector<std::string>& groups);
+// Reverses the winding of every face of each named group, or, where no group has the name,
+// of the material of that name (rad-mesh --flip); throws InputError naming the known groups
+// and materials for a name that is neither. Says per name which it was and how many faces.
+struct FlipResult {
+    std::string name;
+    std::string what; // "group" or "material"
+    std::size_t faces = 0;
+};
+std::vector<FlipResult> flip_groups(Scene& scene, const std::vector<std::string>& names);
 
 // Flips the faces of the AgainstNeighbours and InsideOut findings, so every connected
 // surface is consistent and closed objects face outward. Returns faces flipped per group.

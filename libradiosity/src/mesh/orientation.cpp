@@ -535,24 +535,36 @@ std::string describe(const OrientationFinding& finding, const Scene& scene) {
            " (first at " + face_location(scene, first.line) + ")";
 }
 
-std::size_t flip_groups(Scene& scene, const std::vector<std::string>& groups) {
-    std::size_t flipped = 0;
-    for (const auto& name : groups) {
-        const auto it = std::find(scene.groups.begin(), scene.groups.end(), name);
-        if (it == scene.groups.end()) {
-            std::string known;
-            for (const auto& g : scene.groups) known += (known.empty() ? "" : ", ") + g;
-            throw InputError("--flip: no group '" + name + "' in " + scene.path +
-                             " (it has: " + known + ")");
+std::vector<FlipResult> flip_groups(Scene& scene, const std::vector<std::string>& names) {
+    std::vector<FlipResult> out;
+    for (const auto& name : names) {
+        // A group (or object) by that name, else a material: a file without groups (one
+        // 'default') still names its lamp's material.
+        const auto group = std::find(scene.groups.begin(), scene.groups.end(), name);
+        const auto material =
+            std::find_if(scene.materials.begin(), scene.materials.end(),
+                         [&](const radfmt::Material& m) { return m.name == name; });
+        const bool by_group = group != scene.groups.end();
+        if (!by_group && material == scene.materials.end()) {
+            std::string groups, materials;
+            for (const auto& g : scene.groups) groups += (groups.empty() ? "" : ", ") + g;
+            for (const auto& m : scene.materials)
+                materials += (materials.empty() ? "" : ", ") + m.name;
+            throw InputError("--flip: no group '" + name + "' and no material of that name in " +
+                             scene.path + " (groups: " + groups + "; materials: " + materials +
+                             ")");
         }
-        const auto group = static_cast<std::uint32_t>(it - scene.groups.begin());
+        const auto index = static_cast<std::uint32_t>(
+            by_group ? group - scene.groups.begin() : material - scene.materials.begin());
+        FlipResult result{name, by_group ? "group" : "material", 0};
         for (auto& p : scene.polygons)
-            if (p.group == group) {
+            if ((by_group ? p.group : p.material) == index) {
                 std::reverse(p.vertices.begin(), p.vertices.end());
-                ++flipped;
+                ++result.faces;
             }
+        out.push_back(result);
     }
-    return flipped;
+    return out;
 }
 
 std::vector<std::pair<std::string, std::size_t>>

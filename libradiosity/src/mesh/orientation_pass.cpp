@@ -71,9 +71,10 @@ void fix_doing_no_harm(Scene& scene, const std::vector<OrientationFinding>& find
 
 std::vector<bool> orientation_pass(Scene& scene, const MeshOptions& options, MeshReport& report) {
     using Kind = MeshReport::Kind;
-    if (!options.flip.empty())
-        report.add(Kind::Note, "--flip reversed " +
-                                   std::to_string(flip_groups(scene, options.flip)) + " face(s)");
+    for (const auto& flipped : flip_groups(scene, options.flip))
+        report.add(Kind::Note, "--flip " + flipped.name + " reversed " +
+                                   std::to_string(flipped.faces) + " face(s) of the " +
+                                   flipped.what + " of that name");
     const auto findings = check_orientation(scene);
     for (const auto& finding : findings)
         report.add(Kind::Warning,
