@@ -77,6 +77,7 @@ struct MeshArgs {
     std::string surfaces = "regions", import_memory, unit = "m", max_memory;
     rad::SceneOptions scene;
     std::vector<std::string> mtl_paths, flip, two_sided;
+    bool keep_lamps = false;
     bool two_sided_emission = false, no_imprint = false;
 };
 
@@ -142,6 +143,10 @@ void add_stage_options(CLI::App& app, MeshArgs& a) {
     app.add_option("--flip", a.flip,
                    "Reverse the faces of this group, or of this material where no group has "
                    "the name (a file without groups; repeatable)");
+    app.add_flag("--keep-lamps", a.keep_lamps,
+                 "Leave emitters as drawn: without it, an emitting material most of whose light "
+                 "meets the back of surfaces (a lamp facing into its fixture) while its other "
+                 "side's would not is turned, and said");
     app.add_option("--two-sided", a.two_sided,
                    "Give these surfaces a back patch per patch, with its own radiosity, for "
                    "thin things modelled as one sheet (curtains, leaves, table tops as "
@@ -225,6 +230,7 @@ rad::MeshOptions mesh_options_of(MeshArgs& a) {
     mesh_options.regions = a.surfaces == "regions";
     mesh_options.imprint = !a.no_imprint;
     mesh_options.orient_fix = a.orient == "fix";
+    mesh_options.turn_lamps = !a.keep_lamps;
     mesh_options.flip = a.flip;
     mesh_options.two_sided = a.two_sided;
     mesh_options.two_sided_emission = a.two_sided_emission;

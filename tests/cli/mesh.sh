@@ -186,5 +186,21 @@ grep -q "^rad-mesh: timing: pages: 4 KiB pages (GLIBC_TUNABLES sets glibc.malloc
 for m in small own; do
   [ "$(grep -a -m1 body_hash $m.mesh)" = "$(grep -a -m1 body_hash timed.mesh)" ] || fail "$m.mesh differs from timed.mesh"
 done
+# A lamp drawn facing into its shade is turned, and said; --keep-lamps leaves it, and then each
+# piece of rad-ff's advice, followed, removes rad-ff's warnings about it.
+LAMP="$SRC/tests/data/lamp-in-shade/lamp.obj"
+"$BIN/rad-mesh" "$LAMP" -o "$TMP/lamp.mesh" --max-edge 0.25 -q 2> "$TMP/lamp.txt" || fail "mesh the lamp in its shade"
+grep -q "changed: turned the 1 face(s) of emitter lamp: 100% of the light from their front met the back of surfaces" "$TMP/lamp.txt" || fail "the lamp facing into its shade was not turned: $(cat "$TMP/lamp.txt")"
+"$BIN/rad-ff" "$TMP/lamp.mesh" -o "$TMP/lamp.ff" 2> "$TMP/lamp-ff.txt"
+! grep -q "group lamp" "$TMP/lamp-ff.txt" || fail "rad-ff still warns about the turned lamp: $(cat "$TMP/lamp-ff.txt")"
+"$BIN/rad-mesh" "$LAMP" -o "$TMP/keep.mesh" --max-edge 0.25 --keep-lamps -q 2> "$TMP/keep.txt"
+! grep -q "turned" "$TMP/keep.txt" || fail "--keep-lamps turned the lamp"
+"$BIN/rad-ff" "$TMP/keep.mesh" -o "$TMP/keep.ff" 2> "$TMP/keep-ff.txt"
+grep -q "group lamp: 100% of the .* rays that reach it arrive at its back: it probably faces the wrong way (rad-mesh --orient fix, or --flip lamp)" "$TMP/keep-ff.txt" || fail "rad-ff does not advise about the lamp kept facing its shade: $(cat "$TMP/keep-ff.txt")"
+for advice in "--orient fix" "--flip lamp"; do
+  # shellcheck disable=SC2086 # the advice's words
+  "$BIN/rad-mesh" "$LAMP" -o "$TMP/advised.mesh" --max-edge 0.25 --keep-lamps $advice -q 2>/dev/null || fail "rad-mesh $advice"
+  "$BIN/rad-ff" "$TMP/advised.mesh" -o "$TMP/advised.ff" 2> "$TMP/advised.txt"
+  ! grep -q "group lamp" "$TMP/advised.txt" || fail "rad-ff's advice $advice, followed, leaves its warning: $(cat "$TMP/advised.txt")"
+done
 finish
-

@@ -19,7 +19,8 @@ struct MeshOptions {
     bool regions = true;            // grid planar regions (false: each face on its own)
     bool imprint = true;            // cut contacts, remove hidden regions
     bool orient_fix = false;        // --orient fix (else only warn)
-    std::vector<std::string> flip;  // groups reversed by hand
+    std::vector<std::string> flip;  // groups (or materials) reversed by hand
+    bool turn_lamps = true;         // emitters facing into their fixture turned (--keep-lamps)
     std::vector<std::string> two_sided;
     bool two_sided_emission = false;
     bool morton_order = true; // patches along a Z-order curve (else in face order)

@@ -67,6 +67,21 @@ void fix_doing_no_harm(Scene& scene, const std::vector<OrientationFinding>& find
     }
 }
 
+// Lamps drawn facing into their fixture are turned (not those turned by hand with --flip).
+void turn_lamps(Scene& scene, const MeshOptions& options, MeshReport& report) {
+    if (!options.turn_lamps) return;
+    for (const auto& lamp : turn_lamps_facing_backs(scene, options.flip)) {
+        char text[400];
+        std::snprintf(text, sizeof text,
+                      "turned the %zu face(s) of emitter %s: %.0f%% of the light from their "
+                      "front met the back of surfaces (a lamp facing into its fixture), from "
+                      "their other side %.0f%% does (--keep-lamps keeps them as drawn)",
+                      lamp.faces, lamp.material.c_str(), 100 * lamp.backs_before,
+                      100 * lamp.backs_after);
+        report.add(MeshReport::Kind::Change, text);
+    }
+}
+
 } // namespace
 
 std::vector<bool> orientation_pass(Scene& scene, const MeshOptions& options, MeshReport& report) {
@@ -83,6 +98,7 @@ std::vector<bool> orientation_pass(Scene& scene, const MeshOptions& options, Mes
                         : finding.material
                             ? "; --orient fix would flip them"
                             : "; --orient fix would flip them, or --flip the group"));
+    turn_lamps(scene, options, report);
     std::vector<bool> turned(scene.polygons.size(), false);
     if (options.orient_fix) {
         fix_doing_no_harm(scene, findings, "", report);
