@@ -77,7 +77,7 @@ struct MeshArgs {
     std::string surfaces = "regions", import_memory, unit = "m", max_memory;
     rad::SceneOptions scene;
     std::vector<std::string> mtl_paths, flip, two_sided;
-    bool keep_lamps = false;
+    bool keep_lamps = false, verbose = false;
     bool two_sided_emission = false, no_imprint = false;
 };
 
@@ -193,6 +193,9 @@ void add_import_options(CLI::App& app, MeshArgs& a) {
         ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40));
     app.add_flag("-q,--quiet", a.quiet,
                  "Print no summary (and no progress; progress shows only on a terminal)");
+    app.add_flag("-v,--verbose", a.verbose,
+                 "Every orientation warning line (without it, at most 20, those with the most "
+                 "faces first, and a count of the rest)");
     app.add_flag("--timings", a.timings,
                  "Print each stage's wall time and the peak memory so far (stderr), and "
                  "whether the heap is in transparent huge pages (rad-mesh restarts itself "
@@ -231,6 +234,7 @@ rad::MeshOptions mesh_options_of(MeshArgs& a) {
     mesh_options.imprint = !a.no_imprint;
     mesh_options.orient_fix = a.orient == "fix";
     mesh_options.turn_lamps = !a.keep_lamps;
+    mesh_options.verbose = a.verbose;
     mesh_options.flip = a.flip;
     mesh_options.two_sided = a.two_sided;
     mesh_options.two_sided_emission = a.two_sided_emission;

@@ -203,4 +203,30 @@ for advice in "--orient fix" "--flip lamp"; do
   "$BIN/rad-ff" "$TMP/advised.mesh" -o "$TMP/advised.ff" 2> "$TMP/advised.txt"
   ! grep -q "group lamp" "$TMP/advised.txt" || fail "rad-ff's advice $advice, followed, leaves its warning: $(cat "$TMP/advised.txt")"
 done
+# Many orientation findings: at most 20 lines, the largest first, and a count of the rest;
+# -v lists every one. 25 cubes, each inside out and a group of its own, one of 12 triangles.
+python3 - "$TMP/cubes.obj" <<'PY'
+import sys
+faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+out, base = ["mtllib none.mtl", "usemtl grey"], 0
+for c in range(25):
+    size = 1.0 if c == 24 else 0.5
+    out.append("g cube%02d" % c)
+    for k in range(8):
+        out.append("v %g %g %g" % (3 * c + size * (k & 1), size * ((k >> 1) & 1), size * ((k >> 2) & 1)))
+    for f in faces:  # inside out: every face wound backwards; the large cube in triangles
+        r = [base + 1 + i for i in reversed(f)]
+        if c == 24:
+            out += ["f %d %d %d" % (r[0], r[1], r[2]), "f %d %d %d" % (r[0], r[2], r[3])]
+        else:
+            out.append("f %d %d %d %d" % tuple(r))
+    base += 8
+open(sys.argv[1], "w").write("\n".join(out) + "\n")
+PY
+"$BIN/rad-mesh" "$TMP/cubes.obj" -o "$TMP/cubes.mesh" --max-edge none --no-imprint -q 2> "$TMP/cubes.txt" || fail "mesh the cubes"
+[ "$(grep -c "rad-mesh: warning: .*group cube" "$TMP/cubes.txt")" = 20 ] || fail "not 20 orientation lines: $(cat "$TMP/cubes.txt")"
+grep -q "and 5 more such finding(s), 30 face(s) in all" "$TMP/cubes.txt" || fail "the rest is not counted: $(cat "$TMP/cubes.txt")"
+grep "rad-mesh: warning: .*group cube" "$TMP/cubes.txt" | head -1 | grep -q "cube24" || fail "the largest finding is not first"
+"$BIN/rad-mesh" "$TMP/cubes.obj" -o "$TMP/cubes.mesh" --max-edge none --no-imprint -q -v 2> "$TMP/cubes-v.txt"
+[ "$(grep -c "rad-mesh: warning: .*group cube" "$TMP/cubes-v.txt")" = 25 ] || fail "-v does not list every finding"
 finish

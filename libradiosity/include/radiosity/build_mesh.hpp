@@ -21,6 +21,7 @@ struct MeshOptions {
     bool orient_fix = false;        // --orient fix (else only warn)
     std::vector<std::string> flip;  // groups (or materials) reversed by hand
     bool turn_lamps = true;         // emitters facing into their fixture turned (--keep-lamps)
+    bool verbose = false;           // every warning line (else at most 20 of a kind)
     std::vector<std::string> two_sided;
     bool two_sided_emission = false;
     bool morton_order = true; // patches along a Z-order curve (else in face order)

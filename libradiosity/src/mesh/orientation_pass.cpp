@@ -2,7 +2,9 @@
 #include "radiosity/build_mesh.hpp"
 #include "radiosity/orientation.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <functional>
 
 namespace rad {
 
@@ -82,6 +84,30 @@ void turn_lamps(Scene& scene, const MeshOptions& options, MeshReport& report) {
     }
 }
 
+// One warning line per finding, those with the most faces first; without --verbose, at most
+// kMaxFindingLines of them and a line that counts the rest (a game map gave hundreds).
+constexpr std::size_t kMaxFindingLines = 20;
+void report_findings(const std::vector<OrientationFinding>& findings, const Scene& scene,
+                     const MeshOptions& options, MeshReport& report,
+                     const std::function<std::string(const OrientationFinding&)>& advice) {
+    std::vector<const OrientationFinding*> order;
+    for (const auto& f : findings) order.push_back(&f);
+    std::stable_sort(order.begin(), order.end(), [](const auto* a, const auto* b) {
+        return a->polygons.size() > b->polygons.size();
+    });
+    const std::size_t shown =
+        options.verbose ? order.size() : std::min(order.size(), kMaxFindingLines);
+    for (std::size_t k = 0; k < shown; ++k)
+        report.add(MeshReport::Kind::Warning, describe(*order[k], scene) + advice(*order[k]));
+    if (shown == order.size()) return;
+    std::size_t faces = 0;
+    for (std::size_t k = shown; k < order.size(); ++k) faces += order[k]->polygons.size();
+    report.add(MeshReport::Kind::Warning, "and " + std::to_string(order.size() - shown) +
+                                              " more such finding(s), " + std::to_string(faces) +
+                                              " face(s) in all, none larger than those above " +
+                                              "(rad-mesh -v lists every one)");
+}
+
 } // namespace
 
 std::vector<bool> orientation_pass(Scene& scene, const MeshOptions& options, MeshReport& report) {
@@ -91,20 +117,19 @@ std::vector<bool> orientation_pass(Scene& scene, const MeshOptions& options, Mes
                                    std::to_string(flipped.faces) + " face(s) of the " +
                                    flipped.what + " of that name");
     const auto findings = check_orientation(scene);
-    for (const auto& finding : findings)
-        report.add(Kind::Warning,
-                   describe(finding, scene) +
-                       (options.orient_fix || finding.to_flip.empty() ? ""
-                        : finding.material
-                            ? "; --orient fix would flip them"
-                            : "; --orient fix would flip them, or --flip the group"));
+    report_findings(findings, scene, options, report, [&](const OrientationFinding& finding) {
+        return options.orient_fix || finding.to_flip.empty() ? ""
+               : finding.material                            ? "; --orient fix would flip them"
+                                  : "; --orient fix would flip them, or --flip the group";
+    });
     turn_lamps(scene, options, report);
     std::vector<bool> turned(scene.polygons.size(), false);
     if (options.orient_fix) {
         fix_doing_no_harm(scene, findings, "", report);
         // With closed objects facing outward, rays tell which way open surfaces face.
         auto facing = check_facing_by_visibility(scene);
-        for (const auto& finding : facing) report.add(Kind::Warning, describe(finding, scene));
+        report_findings(facing, scene, options, report,
+                        [](const OrientationFinding&) { return std::string(); });
         keep_faces_agreeing_with_normals(scene, facing, report);
         fix_doing_no_harm(scene, facing, " (visibility)", report);
         return turned;
