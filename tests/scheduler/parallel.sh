@@ -10,7 +10,7 @@ SSH="$("$SRC/tests/scheduler/sshd-loopback" start "$SSHD")" || { echo "FAIL: the
 LOGIN="$(id -un)@127.0.0.1"
 step "mesh the office"
 make_office
-cd "$WORK"
+cd "$WORK" || exit 1
 SHARDS="$SRC/scripts/parallel-shards"
 # What parallel leaves in the remote's ~/.parallel/tmp (working folders, removed after).
 remote_folders() { find "$HOME/.parallel/tmp" -mindepth 1 -maxdepth 1 -type d 2>/dev/null | wc -l; }

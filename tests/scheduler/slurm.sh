@@ -11,7 +11,7 @@ eval "$("$SRC/tests/scheduler/slurm-cluster" start "$CLUSTER")" || { echo "FAIL:
 sinfo -h -o '%D node(s) %c cpu(s) %T' >&2
 step "mesh the office"
 make_office
-cd "$WORK"
+cd "$WORK" || exit 1
 SHARDS="$SRC/scripts/slurm-shards"
 
 # Form factors, hemisphere: one task is cancelled while it runs. The tasks take both CPUs
