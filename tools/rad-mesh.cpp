@@ -71,6 +71,8 @@ void print_summary(const radfmt::MeshData& mesh, const rad::MeshReport& report) 
 struct MeshArgs {
     std::string input, output;
     std::vector<std::string> max_edge, max_area;
+    double patches = rad::kDefaultPatchBudget;
+    CLI::Option* patches_option = nullptr;
     double planarity = 1e-3, max_patches = 2e7;
     bool quiet = false, timings = false, strict = false;
     std::string patch_order = "morton", default_reflectance, orient = "warn";
@@ -91,8 +93,17 @@ void add_scene_options(CLI::App& app, MeshArgs& a) {
     app.add_option("--max-edge", a.max_edge,
                    "Longest patch edge, or none (surfaces as few patches as their shape "
                    "allows); repeat as GROUP=L for a per-group limit (default: the scene's "
-                   "size, its bounding box's diagonal, over 20)");
+                   "size, its bounding box's diagonal, over 20, or smaller for a long or flat "
+                   "scene: see --patches)");
     app.add_option("--max-area", a.max_area, "Largest patch area; repeat as GROUP=A per group");
+    a.patches_option =
+        app.add_option("--patches", a.patches,
+                       "Without --max-edge or --max-area: where the scene is long or flat "
+                       "(the edge of a square of its surfaces' area over this many patches is "
+                       "under its size / 20), patches of that edge, so a tunnel, a stairwell "
+                       "and a cubic room of one area get patches of one size")
+            ->capture_default_str()
+            ->check(CLI::Range(1.0, 1e9));
     app.add_option("--unit", a.unit,
                    "The scene's length unit, recorded in the mesh: luminaires' candela become "
                    "lux through it (a scene drawn in millimetres: mm)")
@@ -208,8 +219,13 @@ rad::MeshOptions mesh_options_of(MeshArgs& a) {
         a.scene.import.memory_bytes = rad::tool::parse_size(a.import_memory, "--import-memory");
     a.scene.max_memory = rad::tool::memory_limit(a.max_memory);
     rad::SubdivisionOptions options;
-    // No limit given at all: one from the scene's size, chosen by the patch pass.
-    if (a.max_edge.empty() && a.max_area.empty()) options.max_edge = rad::kMaxEdgeFromScene;
+    // No limit given at all: one from the scene's size and area, chosen by the patch pass.
+    if (a.max_edge.empty() && a.max_area.empty())
+        options.max_edge = rad::kMaxEdgeFromScene;
+    else if (a.patches_option->count() > 0)
+        throw rad::InputError("--patches chooses the default patch size: not with --max-edge "
+                              "or --max-area, which set it");
+    options.patch_budget = a.patches;
     parse_limits(a.max_edge, "--max-edge", options.max_edge, options.max_edge_by_group);
     parse_limits(a.max_area, "--max-area", options.max_area, options.max_area_by_group);
     options.planarity_tolerance = a.planarity;

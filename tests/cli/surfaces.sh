@@ -155,10 +155,41 @@ grep -q "mirror or glass" <<<"$err" && fail "a missing texture taken for a mirro
 d1=$(sed -n 's/.*dropped: \([0-9]*\) degenerate.*/\1/p' water.err); d0=$(sed -n 's/.*dropped: \([0-9]*\) degenerate.*/\1/p' water0.err)
 [ "${d1:-0}" -le "${d0:-0}" ] || fail "imprinting made degenerate faces: ${d1:-0} dropped, ${d0:-0} without imprinting"
 
-# 9. With no limit given, rad-mesh grids at the scene's size / 20 and says so; none keeps
-# surfaces whole.
+# 9. With no limit given, rad-mesh grids at the scene's size / 20, or for a long or flat scene
+# at the edge of a square of its area over 800 patches, and says which; none keeps surfaces
+# whole.
 err=$("$BIN/rad-mesh" quad.obj -o auto.mesh 2>&1) || fail "default limit: $err"
-grep -q "rad-mesh: --max-edge 0.2795 (the scene's size 5.59 / 20" <<<"$err" || fail "default limit not said: $err"
+grep -q "rad-mesh: --max-edge 0.2739 (the surfaces' area 60 over 800 patches: the scene is long or flat, its size 5.59 / 20 would be 0.2795" <<<"$err" || fail "default limit not said: $err"
+err=$("$BIN/rad-mesh" quad.obj -o auto.mesh --patches 1 2>&1) || fail "default limit, --patches 1: $err"
+grep -q "rad-mesh: --max-edge 0.2795 (the scene's size 5.59 / 20" <<<"$err" || fail "default limit from the size not said: $err"
+expect_error "--patches chooses the default patch size: not with --max-edge" auto2.mesh "$BIN/rad-mesh" quad.obj -o auto2.mesh --patches 10 --max-edge 1
+# A cube, a tunnel (20 times as long as wide) and a stairwell (as tall) of one surface area:
+# patches of one size, near-square in the tunnel (the diagonal / 20 made the tunnel's wider
+# than the tunnel, every facet a long strip).
+python3 - <<'PY'
+def box(path, sx, sy, sz):
+    v = [(x * sx, y * sy, z * sz) for z in (0, 1) for y in (0, 1) for x in (0, 1)]
+    faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
+    with open(path, "w") as f:  # a room: faces inward
+        f.write("".join("v %g %g %g\n" % p for p in v))
+        f.write("".join("f %d %d %d %d\n" % q for q in faces))
+a = 6.0 * 4 * 4  # the cube's area, 4 m sides
+w = (a / 82.0) ** 0.5  # a 1 x 1 x 20 box (times w) has area 82 w^2
+box("cube.obj", 4, 4, 4)
+box("tunnel.obj", w, w, 20 * w)
+box("stairwell.obj", w, 20 * w, w)
+PY
+for scene in cube tunnel stairwell; do
+  "$BIN/rad-mesh" $scene.obj -o $scene.mesh 2> $scene.err || fail "$scene: $(cat $scene.err)"
+  sed -n 's/^rad-mesh: --max-edge \([0-9.]*\) .*/\1/p' $scene.err > $scene.edge
+done
+python3 - "$(cat cube.edge)" "$(cat tunnel.edge)" "$(cat stairwell.edge)" <<'PY' || fail "cube, tunnel and stairwell: edges $(cat cube.edge tunnel.edge stairwell.edge | tr '\n' ' ')"
+import sys
+e = [float(x) for x in sys.argv[1:]]
+sys.exit(max(e) / min(e) > 1.01)
+PY
+tunnel_share=$(sed -n 's/.*aspect <= 3: \([0-9.]*\)% of the patches.*/\1/p' tunnel.err)
+python3 -c "import sys; sys.exit(not ${tunnel_share:-0} >= 95)" || fail "tunnel: aspect <= 3 for ${tunnel_share:-?}% of its patches"
 [ "$(patches <(echo "$err"))" -gt 500 ] || fail "the default limit did not subdivide: $err"
 err=$("$BIN/rad-mesh" quad.obj -o whole.mesh --max-edge none 2>&1) || fail "--max-edge none: $err"
 [ "$(patches <(echo "$err"))" = 7 ] || fail "--max-edge none should keep the 7 surfaces whole: $err"
@@ -347,7 +378,8 @@ python3 -c "import sys; sys.exit(not abs($(column_area columns.mesh) - $(column_
 # cap's centre before, 436 patches, 6 specks, aspect <= 3 for 76.7%; then 433, 5 and 82.5%.
 # With specks joined into their neighbours (polygon patches) 428 patches, none a speck, 94.3%
 # (without the rule: 430 and 89.2%).
-"$BIN/rad-mesh" "$SRC/tests/data/zdm2-cap/zdm2-cap.obj" -o cap.mesh 2> cap.err || fail "zdm2 cap: $(cat cap.err)"
+# (--patches 1: the limit from the map's size, as before patch budgets.)
+"$BIN/rad-mesh" "$SRC/tests/data/zdm2-cap/zdm2-cap.obj" -o cap.mesh --patches 1 2> cap.err || fail "zdm2 cap: $(cat cap.err)"
 grep -q "max-edge 55.41 (the scene's size 1108" cap.err || fail "zdm2 cap: the map's size not kept: $(grep max-edge cap.err)"
 read -r tenth wide < <(shape_share cap.err)
 specks=$(specks cap.err)

@@ -136,13 +136,19 @@ struct DuplicateFaces {
 DuplicateFaces remove_duplicate_faces(Scene& scene);
 
 // rad-mesh's default limit: the longest patch edge is the scene's size (its bounding box's
-// diagonal) over kSceneCells, about 20 patches across the scene's longest extent.
+// diagonal) over kSceneCells, about 20 patches across the scene's longest extent, or, where
+// that is larger, the edge of a square patch of the surfaces' total area over a budget
+// (SubdivisionOptions::patch_budget): a long, a tall and a cubic room of one area then get
+// patches of one size (for an empty cube the two agree at the default budget of 800), where
+// the diagonal alone made a tunnel's patches wider than the tunnel.
 inline constexpr double kMaxEdgeFromScene = -1;
 inline constexpr double kSceneCells = 20;
+inline constexpr double kDefaultPatchBudget = 800;
 
 struct SubdivisionOptions {
     double max_edge = 0; // 0: no limit; kMaxEdgeFromScene: the scene's size / kSceneCells
     double max_area = 0; // 0: no limit
+    double patch_budget = kDefaultPatchBudget; // for kMaxEdgeFromScene (rad-mesh --patches)
     std::map<std::string, double> max_edge_by_group;
     std::map<std::string, double> max_area_by_group;
     double planarity_tolerance = 1e-3; // relative to the face's size

@@ -5,6 +5,7 @@
 #include "radiosity/stages.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace rad {
@@ -69,19 +70,41 @@ void report_growth(const SurfaceReport& surfaces, MeshReport& report) {
     report.add(MeshReport::Kind::Change, text);
 }
 
-// The default limit from the scene's size: the diagonal of the used vertices' bounding box.
+// The default limit: the scene's size over kSceneCells (the diagonal of the used vertices'
+// bounding box), or the edge of a square of the surfaces' area over the patch budget where
+// that is smaller (a long or flat scene).
 SubdivisionOptions resolve_limits(const Scene& scene, SubdivisionOptions limits,
                                   MeshReport& report) {
     if (limits.max_edge != kMaxEdgeFromScene) return limits;
     Box box;
-    for (const auto& polygon : scene.polygons)
-        for (const auto v : polygon.vertices) box.add(scene.vertices[v]);
-    limits.max_edge = box.diagonal() / kSceneCells;
-    char text[300];
-    std::snprintf(text, sizeof text,
-                  "--max-edge %.4g (the scene's size %.4g / %g: about %g patches across it; "
-                  "--max-edge L sets it, --max-edge none keeps surfaces whole)",
-                  limits.max_edge, box.diagonal(), kSceneCells, kSceneCells);
+    double area = 0;
+    std::vector<Vec3> points;
+    for (const auto& polygon : scene.polygons) {
+        points.clear();
+        for (const auto v : polygon.vertices) {
+            box.add(scene.vertices[v]);
+            points.push_back(scene.vertices[v]);
+        }
+        area += 0.5 * length(newell_normal(points));
+    }
+    const double from_size = box.diagonal() / kSceneCells;
+    const double from_area = std::sqrt(area / limits.patch_budget);
+    char text[400];
+    if (from_area < from_size) {
+        limits.max_edge = from_area;
+        std::snprintf(text, sizeof text,
+                      "--max-edge %.4g (the surfaces' area %.4g over %g patches: the scene is "
+                      "long or flat, its size %.4g / %g would be %.4g; --patches N sets the "
+                      "budget, --max-edge L the edge, --max-edge none keeps surfaces whole)",
+                      limits.max_edge, area, limits.patch_budget, box.diagonal(), kSceneCells,
+                      from_size);
+    } else {
+        limits.max_edge = from_size;
+        std::snprintf(text, sizeof text,
+                      "--max-edge %.4g (the scene's size %.4g / %g: about %g patches across it; "
+                      "--max-edge L sets it, --max-edge none keeps surfaces whole)",
+                      limits.max_edge, box.diagonal(), kSceneCells, kSceneCells);
+    }
     report.add(MeshReport::Kind::Note, text);
     return limits;
 }
