@@ -170,7 +170,7 @@ python3 - <<'PY'
 def box(path, sx, sy, sz):
     v = [(x * sx, y * sy, z * sz) for z in (0, 1) for y in (0, 1) for x in (0, 1)]
     faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
-    with open(path, "w") as f:  # a room: faces inward
+    with open(path, "w") as f:  # a closed box, faces outward
         f.write("".join("v %g %g %g\n" % p for p in v))
         f.write("".join("f %d %d %d %d\n" % q for q in faces))
 a = 6.0 * 4 * 4  # the cube's area, 4 m sides
