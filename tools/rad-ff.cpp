@@ -103,11 +103,9 @@ void set_link_shard(const std::string& rows, std::size_t patches, rad::Hierarchy
         throw rad::InputError("--rows " + rows +
                               ": --method hierarchical is split into shards K/N (its links are "
                               "not rows), e.g. --rows 0/4");
-    const auto range = rad::parse_rows(rows, patches); // checks K < N <= patches
-    const auto slash = rows.find('/');
-    options.shard = static_cast<std::uint32_t>(std::stoul(rows.substr(0, slash)));
-    options.shards = static_cast<std::uint32_t>(std::stoul(rows.substr(slash + 1)));
-    (void)range;
+    const auto [shard, shards] = rad::parse_shard(rows, patches);
+    options.shard = static_cast<std::uint32_t>(shard);
+    options.shards = static_cast<std::uint32_t>(shards);
 }
 
 // What the command line says.

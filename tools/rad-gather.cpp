@@ -69,6 +69,12 @@ void parse_sensor(const std::string& text, Sensor& sensor) {
     sensor.direction = {d[0] / len, d[1] / len, d[2] / len};
 }
 
+// A points file's line that is a sensor: not blank, not a # comment.
+bool is_sensor_line(const std::string& text) {
+    const auto first = text.find_first_not_of(" \t");
+    return first != std::string::npos && text[first] != '#';
+}
+
 // Where sensors come from: lines of a stream, or a generated grid.
 class SensorSource {
   public:
@@ -83,8 +89,7 @@ class LineSource final : public SensorSource {
     bool next(std::vector<Sensor>& out, std::size_t count) override {
         std::string text;
         while (out.size() < count && in_.next(text)) {
-            const auto first = text.find_first_not_of(" \t");
-            if (first == std::string::npos || text[first] == '#') continue; // blank, comment
+            if (!is_sensor_line(text)) continue;
             Sensor s;
             s.line = in_.line_number();
             parse_sensor(text, s);
@@ -441,10 +446,7 @@ std::uint64_t count_sensors(const std::string& path) {
     rad::LineReader in(path);
     std::string text;
     std::uint64_t count = 0;
-    while (in.next(text)) {
-        const auto first = text.find_first_not_of(" \t");
-        if (first != std::string::npos && text[first] != '#') ++count;
-    }
+    while (in.next(text)) count += is_sensor_line(text);
     return count;
 }
 
@@ -460,11 +462,19 @@ int merge_parts(const GatherArgs& a) {
     return 0;
 }
 
+// The --header line of a run with this command (empty without --header).
+std::string header_line(const GatherArgs& a, const std::string& command,
+                        const radfmt::Header& mesh_header, const radfmt::Header& rad_header) {
+    if (!a.header) return "";
+    return "# " + rad::tool_version("rad-gather") + ": " + command + "; mesh " + a.mesh_path + " " +
+           mesh_header.file_hash + "; radiosity " + a.rad_path + " " + rad_header.file_hash +
+           "; columns: " + (a.lux ? "illuminance (lux)" : "irradiance r g b (W/m^2)");
+}
+
 // What a part says of itself: which sensors, of what, by which command.
 std::string part_preamble(const GatherArgs& a, const Grid& grid, rad::RowRange range,
                           std::uint64_t total, const radfmt::Header& mesh_header,
-                          const radfmt::Header& rad_header, const std::string& header_line,
-                          int argc, char** argv) {
+                          const radfmt::Header& rad_header, int argc, char** argv) {
     rad::SensorPart part;
     part.begin = range.begin;
     part.end = range.end;
@@ -474,10 +484,26 @@ std::string part_preamble(const GatherArgs& a, const Grid& grid, rad::RowRange r
         (a.grid_text.empty() ? radfmt::hash_file(a.points_path)
                              : "grid " + std::to_string(grid.nx) + "x" + std::to_string(grid.nz));
     part.command = rad::unsharded_command(argc, argv);
-    if (!header_line.empty()) // one run's line, its command without --rows
-        part.header_line = header_line.substr(0, header_line.find(": ") + 2) + part.command +
-                           header_line.substr(header_line.find("; mesh "));
+    part.header_line = header_line(a, part.command, mesh_header, rad_header);
     return rad::sensor_part_preamble(part);
+}
+
+// The sensors this run gathers (all, or a part's), and what the output starts with: one
+// run's --header line, or a part's preamble.
+std::string sensors_and_preamble(const GatherArgs& a, const Grid& grid,
+                                 const radfmt::Header& mesh_header,
+                                 const radfmt::Header& rad_header, int argc, char** argv,
+                                 rad::RowRange& range) {
+    range = {};
+    if (a.rows.empty()) {
+        if (!a.grid_text.empty()) range.end = std::uint64_t(grid.nx) * grid.nz;
+        const auto line = header_line(a, radfmt::command_line(argc, argv), mesh_header, rad_header);
+        return line.empty() ? "" : line + "\n";
+    }
+    const std::uint64_t total =
+        a.grid_text.empty() ? count_sensors(a.points_path) : std::uint64_t(grid.nx) * grid.nz;
+    range = rad::parse_rows(a.rows, total, "the sensors");
+    return part_preamble(a, grid, range, total, mesh_header, rad_header, argc, argv);
 }
 
 int gather(GatherArgs& a, int argc, char** argv) {
@@ -522,26 +548,8 @@ int gather(GatherArgs& a, int argc, char** argv) {
     const std::string source_name = !a.grid_text.empty()    ? "--grid"
                                     : a.points_path.empty() ? "<stdin>"
                                                             : a.points_path;
-    std::string header_line;
-    if (a.header)
-        header_line = "# " + rad::tool_version("rad-gather") + ": " +
-                      radfmt::command_line(argc, argv) + "; mesh " + a.mesh_path + " " +
-                      mesh_header.file_hash + "; radiosity " + a.rad_path + " " +
-                      rad_header.file_hash +
-                      "; columns: " + (a.lux ? "illuminance (lux)" : "irradiance r g b (W/m^2)");
-
-    // A part: its sensors of all of them, after a preamble for the merge.
     rad::RowRange range;
-    std::string preamble = header_line.empty() ? "" : header_line + "\n";
-    if (!a.rows.empty()) {
-        const std::uint64_t total =
-            a.grid_text.empty() ? count_sensors(a.points_path) : std::uint64_t(grid.nx) * grid.nz;
-        range = rad::parse_rows(a.rows, total, "the sensors");
-        preamble =
-            part_preamble(a, grid, range, total, mesh_header, rad_header, header_line, argc, argv);
-    } else if (!a.grid_text.empty()) {
-        range.end = std::uint64_t(grid.nx) * grid.nz;
-    }
+    const auto preamble = sensors_and_preamble(a, grid, mesh_header, rad_header, argc, argv, range);
     const auto start = std::chrono::steady_clock::now();
     GatherRun run(a, gatherer, scene_box, *source, source_name, range,
                   luminaires ? &*luminaires : nullptr);

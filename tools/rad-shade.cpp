@@ -331,14 +331,14 @@ double run_exposure(const ShadeArgs& a, const ShadeInputs& in, const radfmt::Mes
     return scale;
 }
 
-void say_written(const ShadeArgs& a, const std::string& png, double scale) {
+void say_written(const ShadeArgs& a, double scale) {
     if (a.quiet) return;
     std::fprintf(stderr, "rad-shade: wrote %s (%dx%d, %s%s), exposure %.4g\n", a.output.c_str(),
                  a.width, a.height,
                  a.albedo ? "albedo"
                  : a.flat ? "flat"
                           : a.smooth.c_str(),
-                 png.empty() ? "" : ", png", scale);
+                 a.png.empty() ? "" : ", png", scale);
 }
 
 // --merge: the bands into the image (and PNG) one run writes.
@@ -450,7 +450,7 @@ int shade(ShadeArgs& a, int argc, char** argv) {
     if (!a.png.empty()) rad::write_png(a.png, image, scale);
     if (!a.ply.empty()) rad::write_ply(a.ply, in.mesh, corners, scale);
     outputs.commit();
-    say_written(a, a.png, scale);
+    say_written(a, scale);
     return 0;
 }
 

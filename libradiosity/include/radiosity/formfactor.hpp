@@ -47,6 +47,12 @@ struct RowRange {
 
 // Shards (rad-ff --rows, --merge). "A:B" (rows A to B, B excluded) or "K/N" (shard K of N,
 // from 0: rows [K p / N, (K + 1) p / N) of p patches); throws InputError otherwise.
+// "K/N" alone (shard K of N), for a split that is not into rows (hierarchical links).
+struct Shard {
+    std::uint64_t shard = 0, shards = 1;
+};
+Shard parse_shard(const std::string& text, std::uint64_t patches,
+                  const std::string& what = "the mesh's patches");
 RowRange parse_rows(const std::string& text, std::uint64_t patches,
                     const std::string& what = "the mesh's patches");
 // The command line without --rows and with -o's value replaced by a placeholder, recorded in
@@ -58,7 +64,9 @@ struct RowPart {
     std::string path;
     std::uint64_t begin = 0, end = 0;
 };
-void require_row_cover(std::vector<RowPart> parts, std::uint64_t n);
+// `what` names the rows in messages ("rows", "sensors").
+void require_row_cover(std::vector<RowPart> parts, std::uint64_t n,
+                       const std::string& what = "rows");
 // An unsharded_command with `output` (quoted as a shell would need) in the placeholder's
 // place; InputError naming `part_path` when it has none.
 std::string command_with_output(std::string command, const std::string& output,
@@ -66,7 +74,8 @@ std::string command_with_output(std::string command, const std::string& output,
 // The command one run writing `output` would have had, from a part's unsharded_command.
 std::string merged_command(const radfmt::Header& part, const std::string& part_path,
                            const std::string& output);
-// A part's rows_begin or rows_end (FormatError naming the file when it is no whole number).
+// A part's whole-number header field (rows_begin, rows_end, shard, shards): digits only,
+// else FormatError naming the file.
 std::uint64_t part_row(const radfmt::Header& header, const std::string& key,
                        const std::string& path);
 struct FormFactorPart {

@@ -38,12 +38,24 @@ std::uint64_t header_number(const radfmt::Header& header, const std::string& key
                             const std::string& path) {
     const auto& text = header.get(key, path);
     std::uint64_t value = 0;
-    if (!parse_whole_number(text, value))
+    if (!parse_count(text, value))
         throw radfmt::FormatError(path + ": corrupt header: " + key + " '" + text +
                                   "' is not a whole number");
     return value;
 }
 } // namespace
+
+Shard parse_shard(const std::string& text, std::uint64_t patches, const std::string& what) {
+    const auto slash = text.find('/');
+    if (slash == std::string::npos || text.find(':') != std::string::npos)
+        throw InputError("--rows '" + text + "' is not K/N (shard K of N, from 0)");
+    const auto shard = whole_number(text.substr(0, slash), "shard");
+    const auto shards = whole_number(text.substr(slash + 1), "shard count");
+    if (shards == 0 || shard >= shards || shards > patches)
+        throw InputError("--rows " + text + ": shard K/N needs 0 <= K < N <= " +
+                         std::to_string(patches) + " (" + what + ")");
+    return {shard, shards};
+}
 
 RowRange parse_rows(const std::string& text, std::uint64_t patches, const std::string& what) {
     const auto colon = text.find(':'), slash = text.find('/');
@@ -57,11 +69,7 @@ RowRange parse_rows(const std::string& text, std::uint64_t patches, const std::s
         return range;
     }
     if (slash != std::string::npos && colon == std::string::npos) {
-        const auto shard = whole_number(text.substr(0, slash), "shard");
-        const auto shards = whole_number(text.substr(slash + 1), "shard count");
-        if (shards == 0 || shard >= shards || shards > patches)
-            throw InputError("--rows " + text + ": shard K/N needs 0 <= K < N <= " +
-                             std::to_string(patches) + " (" + what + ")");
+        const auto [shard, shards] = parse_shard(text, patches, what);
         // Shard k of n: rows [k p / n, (k + 1) p / n), so the shards cover every row once.
         range.begin = shard * patches / shards;
         range.end = (shard + 1) * patches / shards;
@@ -97,24 +105,25 @@ std::string unsharded_command(int argc, const char* const* argv) {
     return radfmt::command_line(static_cast<int>(kept.size()), kept.data());
 }
 
-void require_row_cover(std::vector<RowPart> parts, std::uint64_t n) {
+void require_row_cover(std::vector<RowPart> parts, std::uint64_t n, const std::string& what) {
     std::sort(parts.begin(), parts.end(),
               [](const auto& a, const auto& b) { return a.begin < b.begin; });
     std::uint64_t next = 0;
     for (std::size_t k = 0; k < parts.size(); ++k) {
         const auto& p = parts[k];
         if (p.begin > next)
-            throw InputError("rows " + std::to_string(next) + " to " + std::to_string(p.begin - 1) +
+            throw InputError(what + " " + std::to_string(next) + " to " +
+                             std::to_string(p.begin - 1) +
                              " are in no part (compute them with --rows " + std::to_string(next) +
                              ":" + std::to_string(p.begin) + ")");
         if (p.begin < next)
-            throw InputError("rows " + std::to_string(p.begin) + " to " +
+            throw InputError(what + " " + std::to_string(p.begin) + " to " +
                              std::to_string(std::min(next, p.end) - 1) +
                              " are in two parts: " + parts[k - 1].path + " and " + p.path);
         next = p.end;
     }
     if (next < n)
-        throw InputError("rows " + std::to_string(next) + " to " + std::to_string(n - 1) +
+        throw InputError(what + " " + std::to_string(next) + " to " + std::to_string(n - 1) +
                          " are in no part (compute them with --rows " + std::to_string(next) + ":" +
                          std::to_string(n) + ")");
 }

@@ -85,13 +85,7 @@ std::uint64_t merge_sensor_parts(const std::vector<std::string>& paths, const st
                              "options): compute every part with one command");
     std::vector<RowPart> cover;
     for (const auto& p : parts) cover.push_back({p.path, p.part.begin, p.part.end});
-    try {
-        require_row_cover(cover, first.part.total);
-    } catch (const InputError& e) { // the row words of the matrix's message, for sensors
-        std::string text = e.what();
-        if (text.rfind("rows ", 0) == 0) text = "sensors " + text.substr(5);
-        throw InputError(text);
-    }
+    require_row_cover(cover, first.part.total, "sensors");
     std::sort(parts.begin(), parts.end(),
               [](const auto& a, const auto& b) { return a.part.begin < b.part.begin; });
 

@@ -4,7 +4,6 @@
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/hierarchy.hpp"
-#include "radiosity/numbers.hpp"
 
 #include <algorithm>
 #include <numeric>
@@ -69,16 +68,6 @@ void require_same_refinement(const std::vector<LinkPart>& parts) {
     }
 }
 
-std::uint64_t header_count(const radfmt::Header& header, const std::string& key,
-                           const std::string& path) {
-    const auto& text = header.get(key, path);
-    std::uint64_t value = 0;
-    if (!parse_count(text, value))
-        throw radfmt::FormatError(path + ": corrupt header: " + key + " '" + text +
-                                  "' is not a whole number");
-    return value;
-}
-
 struct PartLink {
     std::uint32_t receiver, source;
     float factor;
@@ -94,8 +83,8 @@ std::uint64_t merge_link_parts(const std::vector<std::string>& paths, const std:
         LinkPart part{path, radfmt::read_header(path, &kind)};
         if (!part.header.find("shards"))
             throw InputError(path + " is a whole links file, not a part (rad-ff --rows K/N)");
-        part.shard = header_count(part.header, "shard", path);
-        part.shards = header_count(part.header, "shards", path);
+        part.shard = part_row(part.header, "shard", path);
+        part.shards = part_row(part.header, "shards", path);
         parts.push_back(std::move(part));
     }
     require_every_shard(parts);

@@ -151,13 +151,7 @@ MergedImage merge_image_parts(const std::vector<std::string>& paths, const std::
     // The provenance's last line is the command one run would have had.
     attribute(info.attributes, kProvenance, first.path);
     auto& provenance = info.attributes[kProvenance];
-    const auto last = provenance.rfind('\n', provenance.size() - 2);
-    const auto start = last == std::string::npos ? 0 : last + 1;
-    const auto dot = provenance.find(". ", start);
-    if (dot == std::string::npos) throw InputError(first.path + ": no command in its provenance");
-    const auto command = provenance.substr(dot + 2, provenance.size() - dot - 3);
-    provenance =
-        provenance.substr(0, dot + 2) + command_with_output(command, output, first.path) + "\n";
+    provenance = command_with_output(provenance, output, first.path);
     return merged;
 }
 
