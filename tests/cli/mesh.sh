@@ -226,7 +226,8 @@ PY
 "$BIN/rad-mesh" "$TMP/cubes.obj" -o "$TMP/cubes.mesh" --max-edge none --no-imprint -q 2> "$TMP/cubes.txt" || fail "mesh the cubes"
 [ "$(grep -c "rad-mesh: warning: .*group cube" "$TMP/cubes.txt")" = 20 ] || fail "not 20 orientation lines: $(cat "$TMP/cubes.txt")"
 grep -q "and 5 more such finding(s), 30 face(s) in all" "$TMP/cubes.txt" || fail "the rest is not counted: $(cat "$TMP/cubes.txt")"
-grep "rad-mesh: warning: .*group cube" "$TMP/cubes.txt" | head -1 | grep -q "cube24" || fail "the largest finding is not first"
+first_finding=$(grep -m 1 "rad-mesh: warning: .*group cube" "$TMP/cubes.txt")
+[[ "$first_finding" == *"group cube24:"* ]] || fail "the largest finding is not first: $first_finding"
 "$BIN/rad-mesh" "$TMP/cubes.obj" -o "$TMP/cubes.mesh" --max-edge none --no-imprint -q -v 2> "$TMP/cubes-v.txt"
 [ "$(grep -c "rad-mesh: warning: .*group cube" "$TMP/cubes-v.txt")" = 25 ] || fail "-v does not list every finding"
 finish

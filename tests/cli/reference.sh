@@ -19,6 +19,7 @@ for tool in rad-mesh rad-ff rad-solve rad-shade rad-gather rad-bake rad-info; do
 done
 # A man page reads as one (when man is there).
 if command -v man >/dev/null; then
-  man -l "$BUILD/man/man1/rad-ff.1" 2>/dev/null | grep -q "hemisphere" || fail "man -l rad-ff.1 does not render"
+  man -l "$BUILD/man/man1/rad-ff.1" > "$TMP/man.txt" 2>/dev/null
+  grep -q "hemisphere" "$TMP/man.txt" || fail "man -l rad-ff.1 does not render"
 fi
 finish
