@@ -177,6 +177,13 @@ void add_method_options(CLI::App& app, FfArgs& a) {
     app.add_option("--rays", options.rays, "hemisphere: rays per patch")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000000));
+    app.add_option("--specular-depth", options.specular_depth,
+                   "hemisphere: how many mirrors and panes of glass a path may go through (each "
+                   "reflection or crossing counts one; paths also end where under 1e-4 of the "
+                   "light would go on); for a mesh with no specular material it changes "
+                   "nothing")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
     app.add_option("--resolution", options.resolution,
                    "hemicube: pixels across the hemi-cube's top face, even (default " +
                        std::to_string(rad::kDefaultHemicubeResolution) + ": " +
@@ -241,11 +248,12 @@ int merge_parts(const FfArgs& a) {
 }
 
 // --method auto: analytic or hemisphere by the patch count, and why.
-void choose_method(rad::FormFactorOptions& options, std::size_t patches) {
+void choose_method(rad::FormFactorOptions& options, std::size_t patches, bool specular) {
     if (options.method != "auto") return;
-    options.method = rad::automatic_form_factor_method(patches);
+    options.method = specular ? "hemisphere" : rad::automatic_form_factor_method(patches);
     const std::string why =
-        options.method == "analytic"
+        specular ? "its rays go on through mirrors and glass, which the mesh has"
+        : options.method == "analytic"
             ? "exact; above " + std::to_string(rad::kAutoAnalyticPatches) +
                   " patches hemisphere, whose rays grow as n, not analytic's pairs as n^2"
             : "rays, O(n); analytic's pairs grow as n^2: --method analytic insists";
@@ -286,6 +294,8 @@ void write_rows(const FfArgs& a, const radfmt::MeshData& mesh, const radfmt::Hea
     auto header = radfmt::derived_header(rad::tool_version("rad-ff"),
                                          radfmt::command_line(argc, argv), parents);
     for (const auto& [key, value] : rad::form_factor_header_fields(a.options))
+        header.set(key, value);
+    for (const auto& [key, value] : rad::specular_header_fields(mesh, a.options))
         header.set(key, value);
     header.set("mesh_geometry_hash", mesh.geometry_hash());
     header.set("rays_started_inside", std::to_string(stats.rays_started_inside));
@@ -449,7 +459,7 @@ int form_factors(FfArgs& a, int argc, char** argv) {
     const auto mesh = radfmt::read_mesh(input, &mesh_header);
     if (mesh.patches.empty()) throw rad::InputError(input + ": mesh has no patches");
     auto& options = a.options;
-    choose_method(options, mesh.patches.size());
+    choose_method(options, mesh.patches.size(), mesh.has_specular());
     rad::check_ray_precision(mesh.vertices, input);
     if (options.method == "hierarchical") {
         if (a.estimate_only)

@@ -78,7 +78,7 @@ struct MeshArgs {
     std::string patch_order = "morton", default_reflectance, orient = "warn";
     std::string surfaces = "regions", import_memory, unit = "m", max_memory;
     rad::SceneOptions scene;
-    std::vector<std::string> mtl_paths, flip, two_sided;
+    std::vector<std::string> mtl_paths, flip, two_sided, thin, transmittance;
     bool keep_lamps = false, verbose = false;
     bool two_sided_emission = false, no_imprint = false;
 };
@@ -154,6 +154,15 @@ void add_stage_options(CLI::App& app, MeshArgs& a) {
     app.add_option("--flip", a.flip,
                    "Reverse the faces of this group, or of this material where no group has "
                    "the name (a file without groups; repeatable)");
+    app.add_option("--thin", a.thin,
+                   "Make this refracting material (MTL illum 6 or 7, glTF volume), or the "
+                   "refracting materials of this group, a thin pane of glass: light passes "
+                   "without displacement, with the transmittance of a pane of its index, as "
+                   "glazing drawn as one sheet should (repeatable)");
+    app.add_option("--transmittance", a.transmittance,
+                   "MATERIAL=r,g,b: what a glass material lets through instead of what its file "
+                   "says (a pane: at normal incidence; a refracting solid: a passage through "
+                   "it; MTL's Tf is that filter: Tf 0.1 lets a tenth through; repeatable)");
     app.add_flag("--keep-lamps", a.keep_lamps,
                  "Leave emitters as drawn: without it, an emitting material most of whose light "
                  "meets the back of surfaces (a lamp facing into its fixture) while its other "
@@ -253,6 +262,8 @@ rad::MeshOptions mesh_options_of(MeshArgs& a) {
     mesh_options.verbose = a.verbose;
     mesh_options.flip = a.flip;
     mesh_options.two_sided = a.two_sided;
+    mesh_options.thin = a.thin;
+    mesh_options.transmittance = a.transmittance;
     mesh_options.two_sided_emission = a.two_sided_emission;
     mesh_options.morton_order = a.patch_order == "morton";
     return mesh_options;

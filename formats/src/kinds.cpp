@@ -28,7 +28,42 @@ std::string MeshData::geometry_hash() const {
     for (const auto& p : patches) w.array(std::span<const std::uint32_t>(p.corners));
     // Only a mesh with polygons hashes their corners: a mesh without keeps its hash.
     if (!polygon_corners.empty()) w.array(polygon_corners);
+    // Only a mesh with mirrors or glass hashes each patch's specular part (not the material's
+    // index: renaming or reordering materials changes no path of light).
+    if (has_specular())
+        for (const auto& p : patches) {
+            const auto& s = materials[p.material].specular;
+            w.u64(static_cast<std::uint64_t>(s.kind));
+            if (!s.any()) continue;
+            w.array(std::span<const double>(s.reflectance.c));
+            w.array(std::span<const double>(s.transmittance.c));
+            w.array(std::span<const double>(&s.ior, 1));
+        }
     return "xxh64:" + hash_hex(w.hash());
+}
+
+bool MeshData::has_specular() const {
+    std::vector<bool> specular(materials.size());
+    for (std::size_t m = 0; m < materials.size(); ++m) specular[m] = materials[m].specular.any();
+    return std::any_of(patches.begin(), patches.end(), [&](const Patch& p) {
+        return p.material < specular.size() && specular[p.material];
+    });
+}
+
+const char* specular_kind_name(SpecularKind kind) {
+    switch (kind) {
+    case SpecularKind::mirror:
+        return "mirror";
+    case SpecularKind::fresnel:
+        return "fresnel";
+    case SpecularKind::pane:
+        return "pane";
+    case SpecularKind::dielectric:
+        return "dielectric";
+    case SpecularKind::none:
+        break;
+    }
+    return "none";
 }
 
 void MeshData::set_corners(Patch& patch, std::span<const std::uint32_t> list, bool as_polygon) {
@@ -165,6 +200,32 @@ void check_patch_areas(const MeshData& mesh, BodyReader& r) {
 }
 } // namespace
 
+namespace {
+// A material's specular part (mesh version 3), checked: a known kind, shares in [0, 1], an
+// index of refraction in [1, 10].
+Specular read_specular(BodyReader& r, const std::string& material) {
+    Specular s;
+    const auto kind = r.u64();
+    const auto rho = r.array<double>(3, "specular reflectance");
+    const auto tau = r.array<double>(3, "specular transmittance");
+    const auto numbers = r.array<double>(2, "index of refraction and roughness");
+    const auto in_unit = [](double x) { return x >= 0 && x <= 1; };
+    bool sane = kind < kSpecularKinds && numbers[0] >= 1 && numbers[0] <= 10 && in_unit(numbers[1]);
+    for (int k = 0; k < 3; ++k) {
+        s.reflectance[k] = rho[k];
+        s.transmittance[k] = tau[k];
+        sane = sane && in_unit(rho[k]) && in_unit(tau[k]);
+    }
+    if (!sane)
+        r.fail("material '" + material +
+               "' has a specular part out of range (kind, shares in [0, 1], index in [1, 10])");
+    s.kind = static_cast<SpecularKind>(kind);
+    s.ior = numbers[0];
+    s.roughness = numbers[1];
+    return s;
+}
+} // namespace
+
 void write_mesh(const fs::path& path, Header header, const MeshData& mesh) {
     header.kind = Kind::Mesh;
     header.set("patches", std::to_string(mesh.patches.size()));
@@ -176,7 +237,10 @@ void write_mesh(const fs::path& path, Header header, const MeshData& mesh) {
     // Version 2 adds the polygons' corners; a mesh without polygons is written as version 1,
     // byte for byte what it was before polygons existed.
     const bool polygons = !mesh.polygon_corners.empty();
-    header.version = polygons ? 2 : 1;
+    // Version 3 adds the materials' specular parts, written only when a material has one.
+    const bool specular = std::any_of(mesh.materials.begin(), mesh.materials.end(),
+                                      [](const Material& m) { return m.specular.any(); });
+    header.version = specular ? 3 : polygons ? 2 : 1;
     if (polygons) header.set("polygons", std::to_string(mesh.polygon_count()));
 
     const auto n = mesh.patches.size();
@@ -203,17 +267,27 @@ void write_mesh(const fs::path& path, Header header, const MeshData& mesh) {
     w.array(area);
     w.array(centroid);
     w.array(normal);
-    if (polygons) {
+    if (polygons || specular) {
         w.u64(mesh.polygon_corners.size());
         w.array(mesh.polygon_corners);
     }
     w.u64(mesh.groups.size());
     for (const auto& g : mesh.groups) w.string(g);
     w.u64(mesh.materials.size());
+    // The writer keeps pointers to what it is given until the file is written.
+    std::vector<std::array<double, 2>> numbers;
+    numbers.reserve(mesh.materials.size());
     for (const auto& m : mesh.materials) {
         w.string(m.name);
         w.array(std::span<const double>(m.reflectance.c));
         w.array(std::span<const double>(m.emission.c));
+        if (!specular) continue;
+        const auto& s = m.specular;
+        w.u64(static_cast<std::uint64_t>(s.kind));
+        w.array(std::span<const double>(s.reflectance.c));
+        w.array(std::span<const double>(s.transmittance.c));
+        numbers.push_back({s.ior, s.roughness});
+        w.array(std::span<const double>(numbers.back()));
     }
     write_file(path, std::move(header), w);
 }
@@ -237,7 +311,8 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
     }
     const auto ng = r.count(8, "groups");
     for (std::uint64_t i = 0; i < ng; ++i) mesh.groups.push_back(r.string());
-    const auto nm = r.count(8 + 48, "materials");
+    const bool specular = r.header().version >= 3;
+    const auto nm = r.count(8 + 48 + (specular ? 72 : 0), "materials");
     for (std::uint64_t i = 0; i < nm; ++i) {
         Material m;
         m.name = r.string();
@@ -247,6 +322,7 @@ MeshData read_mesh(const fs::path& path, Header* header_out) {
             m.reflectance[k] = rho[k];
             m.emission[k] = e[k];
         }
+        if (specular) m.specular = read_specular(r, m.name);
         mesh.materials.push_back(std::move(m));
     }
     r.expect_end();
@@ -738,7 +814,7 @@ std::string radiosity_summary(const fs::path& path, Header& header) {
 }
 
 constexpr KindInfo kKinds[] = {
-    {Kind::Mesh, "mesh", "patch mesh", 2, 1,
+    {Kind::Mesh, "mesh", "patch mesh", 3, 1,
      "patch,group,material,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b,corners", mesh_csv,
      mesh_summary},
     {Kind::FormFactors, "formfactors", "form-factor matrix", 3, 1, "row,col,f", form_factor_csv,

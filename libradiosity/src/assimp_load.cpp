@@ -5,6 +5,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
+#include "radiosity/specular_materials.hpp"
 #include "radiosity/texture.hpp"
 #include "radiosity/vec.hpp"
 
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -33,8 +35,40 @@ using import::lower_extension;
 // mesh's provenance must hash. From the JSON of a .gltf, or the first chunk of a .glb.
 struct GltfExtras {
     std::vector<double> emissive_strength; // per glTF material
-    std::vector<std::string> files;        // relative to the scene's folder
+    // Per glTF material, its metallic-roughness, transmission, ior and volume (the base
+    // colour is left to assimp, which averages its texture).
+    std::vector<PbrSpecularInput> pbr;
+    std::vector<std::string> files; // relative to the scene's folder
 };
+
+// A number at `key` of a JSON object, or `fallback`.
+double json_number(const nlohmann::json& object, const char* key, double fallback) {
+    if (!object.is_object() || !object.contains(key) || !object[key].is_number()) return fallback;
+    const double value = object[key].get<double>();
+    return std::isfinite(value) ? value : fallback;
+}
+
+// glTF's defaults: metallic 1, roughness 1 (a rough metal, kept diffuse).
+PbrSpecularInput pbr_of(const nlohmann::json& material) {
+    PbrSpecularInput in;
+    const nlohmann::json none = nlohmann::json::object();
+    const auto& pbr = material.is_object() && material.contains("pbrMetallicRoughness")
+                          ? material["pbrMetallicRoughness"]
+                          : none;
+    in.metallic = json_number(pbr, "metallicFactor", 1);
+    in.roughness = json_number(pbr, "roughnessFactor", 1);
+    if (!material.is_object() || !material.contains("extensions")) return in;
+    const auto& extensions = material["extensions"];
+    if (!extensions.is_object()) return in;
+    const auto extension = [&](const char* name) -> const nlohmann::json& {
+        return extensions.contains(name) ? extensions[name] : none;
+    };
+    in.transmission = json_number(extension("KHR_materials_transmission"), "transmissionFactor", 0);
+    in.ior = json_number(extension("KHR_materials_ior"), "ior", 1.5);
+    if (extensions.contains("KHR_materials_volume"))
+        in.thickness = json_number(extension("KHR_materials_volume"), "thicknessFactor", 0);
+    return in;
+}
 GltfExtras gltf_extras(const fs::path& path) {
     GltfExtras extras;
     const auto ext = lower_extension(path);
@@ -68,6 +102,7 @@ GltfExtras gltf_extras(const fs::path& path) {
                 }
             }
             extras.emissive_strength.push_back(strength);
+            extras.pbr.push_back(pbr_of(material));
         }
     for (const char* list : {"buffers", "images"})
         if (json.contains(list) && json[list].is_array())
@@ -172,11 +207,18 @@ void add_materials(const aiScene& ai, const fs::path& path, const SceneOptions& 
         ai.mMaterials[m]->Get(AI_MATKEY_EMISSIVE_INTENSITY, intensity);
         const auto& strengths = extras.emissive_strength;
         const double strength = m < strengths.size() ? strengths[m] : double(intensity);
-        scene.materials.push_back(material_of(ai, m, strength, path, options, report, scene));
+        auto material = material_of(ai, m, strength, path, options, report, scene);
+        if (m < extras.pbr.size()) {
+            auto pbr = extras.pbr[m];
+            pbr.base = material.reflectance;
+            material.specular = specular_from_pbr(pbr, material.reflectance);
+            check_specular_energy(material, path.string() + ": material '" + material.name + "'");
+        }
+        scene.materials.push_back(std::move(material));
         scene.material_sources.push_back({});
     }
     if (scene.materials.empty()) {
-        scene.materials.push_back({"default", options.default_reflectance, {}});
+        scene.materials.push_back({"default", options.default_reflectance, {}, {}});
         scene.material_sources.push_back({});
         report.default_material = "default";
     }

@@ -45,7 +45,8 @@ std::vector<std::string> material_warnings(const radfmt::MeshData& mesh,
                             mat.name + "=r,g,b)");
             continue;
         }
-        if (!emits && specular && brightest(mat.reflectance) < 0.1) {
+        // A mirror or glass the chain now follows (its specular part) is no warning.
+        if (!emits && specular && !mat.specular.any() && brightest(mat.reflectance) < 0.1) {
             std::string line = "material '";
             line += mat.name;
             line += "' is a mirror or glass in its MTL (";

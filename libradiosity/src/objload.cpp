@@ -5,6 +5,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
+#include "radiosity/specular_materials.hpp"
 #include "radiosity/stages.hpp"
 #include "radiosity/text_input.hpp"
 #include "radiosity/texture.hpp"
@@ -288,8 +289,9 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
 // repeated or trailing whitespace names "name"; colours (Ka, Kd, Ks, Ke, Tf) are checked with
 // the chain's number grammar (tinyobjloader reads "abc" or "nan" as 0, and a light silently
 // goes out) and a single value means grey ("Kd 0.9" is 0.9 0.9 0.9, the MTL convention, not
-// 0.9 0 0). Also notes which materials state a Kd.
-std::string normalised_mtl(const fs::path& path, std::set<std::string>& states_kd) {
+// 0.9 0 0). Also notes which materials state a Kd and which an Ns.
+std::string normalised_mtl(const fs::path& path, std::set<std::string>& states_kd,
+                           std::set<std::string>& states_ns) {
     LineReader in(path.string(), "", kMaxSceneLineBytes);
     std::ostringstream out;
     std::string line, current;
@@ -308,6 +310,7 @@ std::string normalised_mtl(const fs::path& path, std::set<std::string>& states_k
             out << "newmtl " << current << '\n';
             continue;
         }
+        if (keyword == "Ns") states_ns.insert(current);
         if (keyword == "Ka" || keyword == "Kd" || keyword == "Ks" || keyword == "Ke" ||
             keyword == "Tf") {
             std::vector<double> values;
@@ -375,6 +378,7 @@ struct MaterialLibraries {
     std::map<std::string, int> index;
     std::vector<fs::path> folder, library; // per material: textures are named relative to it
     std::set<std::string> states_kd;       // materials whose library gives a Kd line
+    std::set<std::string> states_ns;       // and an Ns line
 };
 
 MaterialLibraries read_material_libraries(const fs::path& path, const LintResult& lint,
@@ -398,7 +402,7 @@ MaterialLibraries read_material_libraries(const fs::path& path, const LintResult
                                                      lib.found.lexically_normal().string());
         const auto canonical = fs::weakly_canonical(lib.found);
         if (!loaded.insert(canonical).second) continue;
-        std::istringstream text(normalised_mtl(lib.found, libs.states_kd));
+        std::istringstream text(normalised_mtl(lib.found, libs.states_kd, libs.states_ns));
         std::string warn, err;
         tinyobj::LoadMtl(&libs.index, &libs.materials, &text, &warn, &err);
         libs.folder.resize(libs.materials.size(), lib.found.parent_path());
@@ -488,6 +492,17 @@ void add_materials(const fs::path& path, const MaterialLibraries& libs, const Sc
         }
         if (!m.diffuse_texname.empty())
             apply_texture(m, index, libs, options, material, source, scene, report);
+        MtlSpecularInput specular;
+        specular.illum = m.illum;
+        specular.diffuse = material.reflectance;
+        specular.specular = source.specular;
+        specular.filter = source.transmittance;
+        specular.ior = m.ior;
+        specular.dissolve = m.dissolve;
+        if (libs.states_ns.count(m.name)) specular.shininess = m.shininess;
+        material.specular = specular_from_mtl(specular);
+        check_specular_energy(material,
+                              libs.library[index].string() + ": material '" + m.name + "'");
         scene.materials.push_back(material);
         scene.material_sources.push_back(source);
     }
@@ -523,7 +538,7 @@ class MissingMaterials {
             report_.default_material = "default";
             while (known_.count(report_.default_material)) report_.default_material += "_";
             scene_.materials.push_back(
-                {report_.default_material, options_.default_reflectance, {}});
+                {report_.default_material, options_.default_reflectance, {}, {}});
             scene_.material_sources.push_back({});
         }
         return static_cast<std::uint32_t>(
@@ -535,7 +550,7 @@ class MissingMaterials {
         const auto it = named_.find(name);
         if (it != named_.end()) return it->second;
         const auto id = static_cast<std::uint32_t>(scene_.materials.size());
-        scene_.materials.push_back({name, options_.default_reflectance, {}});
+        scene_.materials.push_back({name, options_.default_reflectance, {}, {}});
         scene_.material_sources.push_back({});
         named_[name] = id;
         return id;

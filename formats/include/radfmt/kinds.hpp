@@ -32,12 +32,40 @@ struct Rgb {
 static_assert(sizeof(Rgb) == 24 && std::is_trivially_copyable_v<Rgb>);
 inline constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
 
+// The smooth specular part of a material (mirrors and glass): how light that meets it goes on
+// without being scattered. Radiosity keeps the diffuse part (Material::reflectance); this
+// part is geometry-like (it bends paths), so form factors depend on it.
+enum class SpecularKind : std::uint32_t {
+    none = 0,
+    mirror = 1,     // reflects `reflectance` at every angle
+    fresnel = 2,    // reflects `reflectance` at normal incidence, rising to 1 at grazing
+    pane = 3,       // a thin sheet of glass of index `ior` (Radiance's glass): `transmittance`
+                    // at normal incidence, without displacement, and its own reflection
+    dielectric = 4, // the boundary of a medium of index `ior` behind its back: refracts
+                    // (Fresnel), `transmittance` filtering what enters
+};
+inline constexpr std::uint32_t kSpecularKinds = 5;
+
+struct Specular {
+    SpecularKind kind = SpecularKind::none;
+    Rgb reflectance{};    // mirror, fresnel: at normal incidence
+    Rgb transmittance{};  // pane: at normal incidence; dielectric: the filter of what enters
+    double ior = 1.5;     // pane, dielectric
+    double roughness = 0; // as the scene gave it (0 smooth); treated as smooth
+    bool any() const { return kind != SpecularKind::none; }
+    bool operator==(const Specular&) const = default;
+};
+
 struct Material {
     std::string name;
     Rgb reflectance{}; // rho, diffuse reflectance per channel
     Rgb emission{};    // E, emitted exitance in W/m^2
+    Specular specular; // mirrors and glass (mesh version 3)
     bool emits() const { return emission[0] > 0 || emission[1] > 0 || emission[2] > 0; }
 };
+
+// "mirror", "fresnel", "pane", "dielectric" ("none").
+const char* specular_kind_name(SpecularKind kind);
 
 // Corner 3 of a polygon patch: its corners are listed in MeshData::polygon_corners.
 inline constexpr std::uint32_t kPolygon = kNoVertex - 1;
@@ -94,9 +122,12 @@ struct MeshData {
     std::size_t polygon_count() const;
 
     double total_area() const;
-    // Hash of the geometry alone (vertices and patch corners): form factors depend only on
-    // it, so materials can change without invalidating a cached form-factor file.
+    // Hash of the geometry alone (vertices and patch corners) and, when any patch's material
+    // is a mirror or glass, of each patch's specular part: form factors depend only on these,
+    // so diffuse reflectances and emission can change without invalidating a cached
+    // form-factor file (a mesh without specular parts keeps the hash it always had).
     std::string geometry_hash() const;
+    bool has_specular() const; // some patch's material has a specular part
 };
 
 // A hemisphere matrix's rows packed in memory (read with FormFactorLayout::compact): 3 bytes

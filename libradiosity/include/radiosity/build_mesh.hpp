@@ -23,6 +23,8 @@ struct MeshOptions {
     bool turn_lamps = true;         // emitters facing into their fixture turned (--keep-lamps)
     bool verbose = false;           // every warning line (else at most 20 of a kind)
     std::vector<std::string> two_sided;
+    std::vector<std::string> thin; // refracting materials or groups made thin panes
+    std::vector<std::string> transmittance; // MATERIAL=r,g,b: glass's transmittance
     bool two_sided_emission = false;
     bool morton_order = true; // patches along a Z-order curve (else in face order)
 };
@@ -63,5 +65,7 @@ void two_sided_pass(radfmt::MeshData& mesh, const MeshOptions& options, MeshRepo
 // Group and material names made names of the chain (radfmt/names.hpp), still unique; each kind
 // of change is a `changed:` line.
 void names_pass(radfmt::MeshData& mesh, MeshReport& report);
+// --thin, and a note for each mirror and glass saying how it is taken.
+void specular_pass(radfmt::MeshData& mesh, const MeshOptions& options, MeshReport& report);
 
 } // namespace rad

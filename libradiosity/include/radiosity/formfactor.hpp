@@ -37,6 +37,7 @@ struct FormFactorOptions {
     std::string hemicube_origin = "spread"; // hemicube: rays from over the patch, or "centre"
     std::uint64_t seed = 1;
     bool quiet = false;
+    int specular_depth = 12; // specular events a path may go through (kDefaultSpecularDepth)
 };
 
 // Rows [begin, end) of the matrix: the seam for sharded and distributed computation.
@@ -143,6 +144,10 @@ FormFactorEstimate estimate_form_factor_time(const radfmt::MeshData& mesh,
 // seed): what makes two files comparable.
 std::vector<std::pair<std::string, std::string>>
 form_factor_header_fields(const FormFactorOptions& options);
+// For a mesh with mirrors or glass, the fields that say how paths through them were
+// followed (specular_depth, specular_materials); none for a mesh without.
+std::vector<std::pair<std::string, std::string>>
+specular_header_fields(const radfmt::MeshData& mesh, const FormFactorOptions& options);
 
 // Row i of the matrix as the sink receives it: (column, F_ij), columns ascending.
 using FormFactorEntries = std::span<const std::pair<std::uint32_t, float>>;

@@ -7,6 +7,7 @@
 #include "radiosity/formfactor.hpp"
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
+#include "radiosity/specular.hpp"
 
 #include <array>
 #include <memory>
@@ -39,8 +40,13 @@ struct FormFactorContext {
     // Per patch, the key of its random streams: a hash of its corners, so a patch gets the
     // same samples whatever its number (the patch order is free to change).
     std::vector<std::uint64_t> stream_key;
+    // Mirrors and glass: rays go on through them (methods that follow rays), up to
+    // `specular_depth` specular events.
+    SpecularSurfaces specular;
+    int specular_depth = kDefaultSpecularDepth;
 
-    FormFactorContext(const radfmt::MeshData& mesh, const RayScene& scene);
+    FormFactorContext(const radfmt::MeshData& mesh, const RayScene& scene,
+                      int specular_depth = kDefaultSpecularDepth);
     // Does any corner of patch j lie strictly in front of patch i's plane?
     bool in_front(std::size_t i, std::size_t j) const;
 };
@@ -116,10 +122,15 @@ class FormFactorMethod {
     }
     // Whether its kernel records cosine-weighted rays in the RayLog (else rows are probed).
     virtual bool logs_rays() const { return false; }
+    // Whether its rays go on through mirrors and glass (FormFactorContext::specular).
+    virtual bool follows_specular() const { return false; }
     // Per-mesh preparation (tables, per-thread scratch); the kernel may keep `context`.
     virtual std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
                                                const FormFactorOptions& options) const = 0;
 };
+
+// Refuses (InputError) a mesh with mirrors or glass for a method that does not follow them.
+void require_specular_support(std::string_view method, bool follows, const radfmt::MeshData& mesh);
 
 // Every registered method, in the order --help lists them.
 std::span<const FormFactorMethod* const> form_factor_methods();

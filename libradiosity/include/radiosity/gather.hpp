@@ -13,6 +13,7 @@
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/smoothing.hpp"
+#include "radiosity/specular.hpp"
 #include "radiosity/vec.hpp"
 
 #include <array>
@@ -46,6 +47,8 @@ struct GatherOptions {
     // A point whose rays meet the back of surfaces more often than this is inside an object
     // or behind a surface: refused (its value would be meaningless).
     double max_back_fraction = 0.5;
+    // Mirrors and glass: indirect rays go on through up to this many specular events.
+    int specular_depth = 12; // kDefaultSpecularDepth
 };
 
 struct Irradiance {
@@ -84,6 +87,8 @@ class Gatherer {
 
     const radfmt::MeshData& mesh() const { return mesh_; }
     const RayScene& scene() const { return *scene_; }
+    const SpecularSurfaces& specular() const { return *specular_; }
+    int specular_depth() const { return options_.specular_depth; }
     // Patches sampled as lights because they reflect so much (see bright_factor).
     std::size_t bright_patches() const;
     // The radiosity where a ray hit a patch, interpolated as rad-shade.
@@ -104,6 +109,9 @@ class Gatherer {
                                    double weight, int rays, Rng& rng) const;
     Vec3 point_on_light(std::size_t patch, double u, Rng& rng) const;
     Rgb exact_indirect(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    // What an indirect ray from a point brings through mirrors and glass (its first surface
+    // as reflected light; what it reaches beyond, emission included); counts its hits.
+    Rgb specular_ray(const Vec3& point, const Vec3& d, int& hits, int& backs) const;
     double form_factor_to(const Vec3& point, const Vec3& normal, std::size_t patch,
                           std::vector<Vec3>& clipped) const;
     double visible_fraction(const Vec3& point, const Vec3& normal, std::size_t patch,
@@ -112,13 +120,14 @@ class Gatherer {
     const radfmt::MeshData& mesh_;
     GatherOptions options_;
     std::unique_ptr<RayScene> scene_;
-    std::vector<Rgb> emission_;                 // E per patch
-    CornerColours total_corners_;               // B at the corners
-    CornerColours reflected_corners_;           // B - E at the corners
-    std::vector<Rgb> reflected_flat_;           // B - E per patch
-    std::vector<std::uint8_t> bright_;          // lit so much it is a light
-    std::unique_ptr<gather::LightTree> lights_; // emitters and bright patches
-    CornerColours corner_normals_;              // smoothed normals at the corners
+    std::unique_ptr<SpecularSurfaces> specular_; // mirrors and glass
+    std::vector<Rgb> emission_;                  // E per patch
+    CornerColours total_corners_;                // B at the corners
+    CornerColours reflected_corners_;            // B - E at the corners
+    std::vector<Rgb> reflected_flat_;            // B - E per patch
+    std::vector<std::uint8_t> bright_;           // lit so much it is a light
+    std::unique_ptr<gather::LightTree> lights_;  // emitters and bright patches
+    CornerColours corner_normals_;               // smoothed normals at the corners
 };
 
 // Luminous efficacy of Radiance's white (lm/W) and its RGB luminance weights: illuminance

@@ -35,6 +35,8 @@ struct RowBand {
 // writers' copies (EXR, PNG).
 std::uint64_t estimate_render_memory(int width, int height, int supersampling, int images);
 
+// A mesh with mirrors or glass is drawn by render_specular instead (rays from the camera
+// that go on through them, specular_view.hpp), with the same colours.
 Image render(const radfmt::MeshData& mesh, const CornerColours& corners, const View& view,
              int width, int height, int supersampling);
 

@@ -40,4 +40,9 @@ struct CornerColours {
 CornerColours corner_colours(const radfmt::MeshData& mesh, const std::vector<Rgb>& patch,
                              Smoothing mode, double crease_deg = 30);
 
+// The corner values where a ray met a patch: bilinear on a quad, barycentric on a triangle
+// or on the polygon's fan triangle the ray met (RayScene::Hit's u, v and piece).
+Rgb interpolate_corners(const radfmt::MeshData& mesh, const CornerColours& corners,
+                        std::int64_t patch, double u, double v, std::int32_t piece);
+
 } // namespace rad

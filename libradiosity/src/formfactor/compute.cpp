@@ -1,5 +1,6 @@
 // The parts every form-factor method shares: the per-mesh context, the parallel loop over
 // rows with a random stream per row, and the packing of rows into sparse storage.
+#include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/formfactor_method.hpp"
 #include "radiosity/progress.hpp"
@@ -18,8 +19,10 @@
 
 namespace rad {
 
-FormFactorContext::FormFactorContext(const radfmt::MeshData& mesh_, const RayScene& scene_)
-    : mesh(mesh_), scene(scene_), epsilon(scene_.epsilon()) {
+FormFactorContext::FormFactorContext(const radfmt::MeshData& mesh_, const RayScene& scene_,
+                                     int specular_depth_)
+    : mesh(mesh_), scene(scene_), epsilon(scene_.epsilon()), specular(mesh_),
+      specular_depth(specular_depth_) {
     const std::size_t n = mesh.patches.size();
     polygons.reserve(n);
     diameter.assign(n, 0);
@@ -117,6 +120,33 @@ form_factor_header_fields(const FormFactorOptions& options) {
     return fields;
 }
 
+std::vector<std::pair<std::string, std::string>>
+specular_header_fields(const radfmt::MeshData& mesh, const FormFactorOptions& options) {
+    if (!mesh.has_specular()) return {};
+    std::string materials;
+    std::vector<bool> used(mesh.materials.size(), false);
+    for (const auto& p : mesh.patches) used[p.material] = true;
+    for (std::size_t m = 0; m < mesh.materials.size(); ++m)
+        if (used[m] && mesh.materials[m].specular.any())
+            materials += (materials.empty() ? "" : ",") + mesh.materials[m].name + "=" +
+                         radfmt::specular_kind_name(mesh.materials[m].specular.kind);
+    return {{"specular_depth", std::to_string(options.specular_depth)},
+            {"specular_materials", materials}};
+}
+
+void require_specular_support(std::string_view method, bool follows, const radfmt::MeshData& mesh) {
+    if (follows || !mesh.has_specular()) return;
+    std::string names;
+    for (const auto& m : mesh.materials)
+        if (m.specular.any()) names += (names.empty() ? "'" : ", '") + m.name + "'";
+    throw InputError("--method " + std::string(method) +
+                     " does not follow light through mirrors and glass, and this mesh has "
+                     "them (material " +
+                     names +
+                     "): use --method hemisphere, which does (or mesh the scene without "
+                     "them)");
+}
+
 void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOptions& options_in,
                               const FormFactorRowSink& sink, FormFactorStats* stats,
                               RowRange range) {
@@ -129,7 +159,8 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
         std::max(first, static_cast<std::size_t>(std::min<std::uint64_t>(range.end, n)));
 
     const RayScene scene(mesh);
-    const FormFactorContext context(mesh, scene);
+    require_specular_support(method.name(), method.follows_specular(), mesh);
+    const FormFactorContext context(mesh, scene, options.specular_depth);
     const auto kernel = method.prepare(context, options);
 
     // Per-thread tallies of the rays reaching each patch's front and back (integer sums:

@@ -4,6 +4,7 @@
 
 #include "formfactor/sampling.hpp"
 #include "gather/light_tree.hpp"
+#include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/random.hpp"
 
@@ -26,32 +27,20 @@ Vec3 stratified_direction(const Vec3& n, const Vec3& tu, const Vec3& tv, int r, 
     return cosine_direction(n, tu, tv, u, v);
 }
 
-// The corner values at a hit: bilinear on a quad, barycentric on a triangle or on the
-// polygon's fan triangle the ray met.
+// The corner values at a hit.
 Rgb interpolate(const radfmt::MeshData& mesh, const CornerColours& c, const RayScene::Hit& hit) {
-    const auto patch = static_cast<std::size_t>(hit.patch);
-    const double u = hit.u, v = hit.v;
-    Rgb out;
-    if (mesh.patches[patch].is_polygon()) {
-        const auto piece = static_cast<std::size_t>(std::max(0, hit.piece));
-        const auto &c0 = c.at(mesh, patch, 0), &c1 = c.at(mesh, patch, piece + 1),
-                   &c2 = c.at(mesh, patch, piece + 2);
-        for (int k = 0; k < 3; ++k) out[k] = (1 - u - v) * c0[k] + u * c1[k] + v * c2[k];
-        return out;
-    }
-    const auto& q = c[patch];
-    const bool triangle = mesh.patches[patch].corner_count() == 3;
-    for (int k = 0; k < 3; ++k)
-        out[k] = triangle ? (1 - u - v) * q[0][k] + u * q[1][k] + v * q[2][k]
-                          : (1 - u) * (1 - v) * q[0][k] + u * (1 - v) * q[1][k] + u * v * q[2][k] +
-                                (1 - u) * v * q[3][k];
-    return out;
+    return interpolate_corners(mesh, c, hit.patch, hit.u, hit.v, hit.piece);
 }
 } // namespace
 
 Gatherer::Gatherer(const radfmt::MeshData& mesh, std::span<const Rgb> radiosity,
                    GatherOptions options)
-    : mesh_(mesh), options_(options), scene_(std::make_unique<RayScene>(mesh)) {
+    : mesh_(mesh), options_(options), scene_(std::make_unique<RayScene>(mesh)),
+      specular_(std::make_unique<SpecularSurfaces>(mesh)) {
+    if (options_.exact && specular_->any())
+        throw InputError("--exact sums the light of every patch seen directly and does not "
+                         "follow mirrors and glass, which this mesh has: leave --exact out (rays "
+                         "go on through them)");
     const std::size_t n = mesh.patches.size();
     emission_.resize(n);
     reflected_flat_.resize(n);
@@ -158,6 +147,11 @@ Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, const Vec3& s
     for (int r = 0; r < rays; ++r) {
         const Vec3 d = stratified_direction(normal, tu, tv, r, rays, rotation);
         if (dot(d, surface) <= 0) continue; // into the surface under a shading normal
+        if (specular_->any()) {
+            const auto b = specular_ray(point, d, hits, backs);
+            for (int k = 0; k < 3; ++k) sum[k] += b[k];
+            continue;
+        }
         const auto hit = scene_->trace(point, d);
         if (hit.patch < 0) continue;
         ++hits;
@@ -176,6 +170,29 @@ Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, const Vec3& s
     else if (options_.rays > 0)
         for (int k = 0; k < 3; ++k) out.indirect[k] = sum[k] / rays;
     return out;
+}
+
+Rgb Gatherer::specular_ray(const Vec3& point, const Vec3& d, int& hits, int& backs) const {
+    Rgb sum{0, 0, 0};
+    follow_specular(*scene_, *specular_, point, d, Rgb{{1, 1, 1}}, options_.specular_depth,
+                    [&](const PathHit& h) {
+                        const auto j = static_cast<std::size_t>(h.hit.patch);
+                        if (h.events == 0) {
+                            ++hits;
+                            // Glass is met from behind as often as from the front.
+                            if (!h.hit.front && !specular_->transmits(j)) ++backs;
+                            // Emitters and bright patches seen directly are direct()'s.
+                            if (!h.hit.front || bright_[j]) return;
+                            const auto b = reflected_at(h.hit);
+                            for (int k = 0; k < 3; ++k) sum[k] += b[k];
+                            return;
+                        }
+                        // Beyond a mirror or glass, direct() does not see: all of it.
+                        if (!h.hit.front) return;
+                        const auto b = radiosity_at(h.hit);
+                        for (int k = 0; k < 3; ++k) sum[k] += h.weight[k] * b[k];
+                    });
+    return sum;
 }
 
 } // namespace rad

@@ -580,6 +580,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 radfmt::LinkData compute_links(const radfmt::MeshData& mesh, const HierarchyOptions& options,
                                HierarchyStats* stats) {
+    require_specular_support("hierarchical", false, mesh);
     HierarchyStats local;
     auto start = std::chrono::steady_clock::now();
     const auto surface = hierarchy::connected_surfaces(mesh); // for the tree and the refiner

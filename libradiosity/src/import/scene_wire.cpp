@@ -92,6 +92,11 @@ std::string encode_scene(const Scene& scene, const SceneReport& report) {
         w.text(m.name);
         w.put(m.reflectance);
         w.put(m.emission);
+        w.put(m.specular.kind);
+        w.put(m.specular.reflectance);
+        w.put(m.specular.transmittance);
+        w.put(m.specular.ior);
+        w.put(m.specular.roughness);
     }
     w.put<std::uint64_t>(scene.material_sources.size());
     for (const auto& s : scene.material_sources) {
@@ -141,6 +146,13 @@ void decode_scene(std::string_view bytes, Scene& scene, SceneReport& report) {
         m.name = r.text();
         m.reflectance = r.get<radfmt::Rgb>();
         m.emission = r.get<radfmt::Rgb>();
+        m.specular.kind = r.get<radfmt::SpecularKind>();
+        if (static_cast<std::uint32_t>(m.specular.kind) >= radfmt::kSpecularKinds)
+            r.count(~std::size_t(0)); // fails
+        m.specular.reflectance = r.get<radfmt::Rgb>();
+        m.specular.transmittance = r.get<radfmt::Rgb>();
+        m.specular.ior = r.get<double>();
+        m.specular.roughness = r.get<double>();
     }
     scene.material_sources.resize(r.count(8));
     for (auto& s : scene.material_sources) {

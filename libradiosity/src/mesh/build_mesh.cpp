@@ -38,6 +38,7 @@ radfmt::MeshData build_mesh(const std::filesystem::path& input, const MeshOption
     begin_stage(stages, "two-sided, materials, order");
     two_sided_pass(mesh, options, report);
     names_pass(mesh, report);
+    specular_pass(mesh, options, report);
     if (const auto problems = material_warnings(mesh, scene.material_sources); !problems.empty()) {
         std::string text = "materials to check before solving:";
         for (const auto& line : problems) text += "\n  " + line;

@@ -3,6 +3,7 @@
 
 #include "radiosity/luminaires.hpp"
 #include "radiosity/progress.hpp"
+#include "radiosity/specular_view.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -13,8 +14,43 @@
 
 namespace rad {
 
+namespace {
+// E + rho x (what is gathered at the point, and the luminaires' direct light there).
+Rgb gathered_colour(const Gatherer& gatherer, const LuminaireSet* luminaires,
+                    const RayScene::Hit& hit, const Vec3& point, std::uint64_t index) {
+    const auto& mesh = gatherer.mesh();
+    const auto& patch = mesh.patches[static_cast<std::size_t>(hit.patch)];
+    const auto& material = mesh.materials[patch.material];
+    const auto normal = gatherer.shading_normal(hit);
+    auto h = gatherer.gather(point, normal, patch.normal, index).total();
+    if (luminaires) // their direct light, exactly at the point
+        for (const auto& g : luminaire_irradiance(*luminaires, point, normal, &gatherer.scene()))
+            for (int c = 0; c < 3; ++c) h[c] += g[c];
+    Rgb out;
+    for (int c = 0; c < 3; ++c) out[c] = material.emission[c] + material.reflectance[c] * h[c];
+    return out;
+}
+
+// A mesh with mirrors and glass: the camera's rays go on through them, and each surface they
+// reach is gathered.
+Image render_gathered_specular(const Gatherer& gatherer, const View& view, int width, int height,
+                               int supersampling, bool quiet, const LuminaireSet* luminaires,
+                               RowBand rows) {
+    const SpecularView scene{gatherer.mesh(), gatherer.scene(), gatherer.specular(),
+                             gatherer.specular_depth()};
+    const HitShader shade = [&](const PathHit& h, std::uint64_t index) {
+        return gathered_colour(gatherer, luminaires, h.hit, h.origin + h.direction * h.hit.distance,
+                               index);
+    };
+    return render_specular(scene, view, width, height, supersampling, shade, quiet, rows);
+}
+} // namespace
+
 Image render_gathered(const Gatherer& gatherer, const View& view, int width, int height,
                       int supersampling, bool quiet, const LuminaireSet* luminaires, RowBand rows) {
+    if (gatherer.specular().any())
+        return render_gathered_specular(gatherer, view, width, height, supersampling, quiet,
+                                        luminaires, rows);
     const int first_row = std::clamp(rows.begin, 0, height);
     const int end_row = rows.end < 0 ? height : std::clamp(rows.end, first_row, height);
     const int ss = std::max(1, supersampling);

@@ -3,6 +3,7 @@
 #include "radiosity/raster.hpp"
 
 #include "radiosity/patch_geometry.hpp"
+#include "radiosity/specular_view.hpp"
 #include "radiosity/two_sided.hpp"
 
 #include <tbb/parallel_for.h>
@@ -207,6 +208,13 @@ Image resolve(const Frame& f, int width, int height, int ss) {
 
 Image render(const radfmt::MeshData& mesh, const CornerColours& corners, const View& view,
              int width, int height, int supersampling) {
+    // Mirrors and glass show what lies beyond them: rays, not a z-buffer.
+    if (mesh.has_specular()) {
+        const RayScene scene(mesh);
+        const SpecularSurfaces surfaces(mesh);
+        return render_specular({mesh, scene, surfaces, kDefaultSpecularDepth}, view, width, height,
+                               supersampling, smoothed_shader(mesh, corners), true);
+    }
     const int ss = std::max(1, supersampling);
     Camera cam;
     cam.W = width * ss;

@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -66,6 +67,26 @@ CornerColours corner_colours(const radfmt::MeshData& mesh, const std::vector<Rgb
         else if (p.corner_count() == 3)
             out[i][3] = out[i][2];
     });
+    return out;
+}
+
+Rgb interpolate_corners(const radfmt::MeshData& mesh, const CornerColours& c, std::int64_t hit,
+                        double u, double v, std::int32_t piece_in) {
+    const auto patch = static_cast<std::size_t>(hit);
+    Rgb out;
+    if (mesh.patches[patch].is_polygon()) {
+        const auto piece = static_cast<std::size_t>(std::max(0, piece_in));
+        const auto &c0 = c.at(mesh, patch, 0), &c1 = c.at(mesh, patch, piece + 1),
+                   &c2 = c.at(mesh, patch, piece + 2);
+        for (int k = 0; k < 3; ++k) out[k] = (1 - u - v) * c0[k] + u * c1[k] + v * c2[k];
+        return out;
+    }
+    const auto& q = c[patch];
+    const bool triangle = mesh.patches[patch].corner_count() == 3;
+    for (int k = 0; k < 3; ++k)
+        out[k] = triangle ? (1 - u - v) * q[0][k] + u * q[1][k] + v * q[2][k]
+                          : (1 - u) * (1 - v) * q[0][k] + u * (1 - v) * q[1][k] + u * v * q[2][k] +
+                                (1 - u) * v * q[3][k];
     return out;
 }
 

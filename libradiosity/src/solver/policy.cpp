@@ -244,7 +244,8 @@ std::vector<std::string> warnings_of(const radfmt::MeshData& mesh, const RowSumR
                                      const char* remedy) {
     std::vector<std::string> out;
     if (!any_emitter(mesh)) out.push_back("no patch emits light: the result is black");
-    if (rows.rows_above) {
+    // Through mirrors and glass a surface is seen again (its image): rows add up past 1.
+    if (rows.rows_above && !mesh.has_specular()) {
         std::ostringstream text;
         text << rows.rows_above << " form-factor row(s) of " << ff_path << " sum above 1 + "
              << row_sum_tolerance << " (largest " << rows.largest

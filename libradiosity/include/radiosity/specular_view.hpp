@@ -1,0 +1,35 @@
+// Pass 2 of the two-pass method: images of a mesh with mirrors and glass. Each sample's ray
+// from the camera goes on through mirrors and glass (rad::follow_specular), and every surface
+// it reaches adds its colour times the share of light that comes along the path: a mirror
+// shows the room, glass refracts it, both show the lamps' highlights.
+#pragma once
+#include "radiosity/raster.hpp"
+#include "radiosity/smoothing.hpp"
+#include "radiosity/specular.hpp"
+#include "radiosity/view.hpp"
+
+#include <functional>
+
+namespace rad {
+
+// A surface's colour where a path reached its front (`sample`: the sample's index, a seed).
+using HitShader = std::function<Rgb(const PathHit& hit, std::uint64_t sample)>;
+
+struct SpecularView {
+    const radfmt::MeshData& mesh;
+    const RayScene& scene;
+    const SpecularSurfaces& surfaces;
+    int depth = kDefaultSpecularDepth;
+};
+
+// The same camera, pixel convention, supersampling and row bands as render(); the pixels a
+// sample's first surface shows from behind are counted in back_coverage (glass excepted). Of
+// a two-sided pair the side facing the camera is shown.
+Image render_specular(const SpecularView& scene, const View& view, int width, int height,
+                      int supersampling, const HitShader& shade, bool quiet, RowBand rows = {});
+
+// render()'s colours for render_specular: the corner colours interpolated where a path met
+// a patch.
+HitShader smoothed_shader(const radfmt::MeshData& mesh, const CornerColours& corners);
+
+} // namespace rad

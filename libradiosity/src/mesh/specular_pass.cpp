@@ -1,0 +1,121 @@
+// The specular pass: --thin made panes of the named materials or groups, and a note for each
+// mirror and glass the mesh has, saying how the chain takes it.
+#include "radiosity/build_mesh.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/solve_policy.hpp"
+#include "radiosity/specular_materials.hpp"
+
+#include <algorithm>
+#include <map>
+
+namespace rad {
+
+namespace {
+using radfmt::SpecularKind;
+
+// The index of `name` among `names`, or -1.
+long index_of(const std::vector<std::string>& names, const std::string& name) {
+    const auto at = std::find(names.begin(), names.end(), name);
+    return at == names.end() ? -1 : at - names.begin();
+}
+
+std::vector<std::string> names_of_materials(const radfmt::MeshData& mesh) {
+    std::vector<std::string> names;
+    for (const auto& m : mesh.materials) names.push_back(m.name);
+    return names;
+}
+
+// A group's refracting materials are made panes in copies ("glass thin"), so the same
+// material elsewhere keeps refracting.
+std::size_t thin_group(radfmt::MeshData& mesh, std::uint32_t group) {
+    std::map<std::uint32_t, std::uint32_t> copy_of;
+    std::size_t patches = 0;
+    for (auto& p : mesh.patches) {
+        if (p.group != group) continue;
+        const auto& material = mesh.materials[p.material];
+        if (material.specular.kind != SpecularKind::dielectric) continue;
+        auto [at, added] = copy_of.try_emplace(p.material, 0);
+        if (added) {
+            auto thin = material;
+            thin.name += " thin";
+            while (index_of(names_of_materials(mesh), thin.name) >= 0) thin.name += "_";
+            thin.specular = as_thin_pane(thin.specular, thin.reflectance);
+            at->second = static_cast<std::uint32_t>(mesh.materials.size());
+            mesh.materials.push_back(std::move(thin));
+        }
+        p.material = at->second;
+        ++patches;
+    }
+    return patches;
+}
+
+} // namespace
+
+namespace {
+// --transmittance MATERIAL=r,g,b: a pane's transmittance at normal incidence, or what a
+// passage through a refracting solid keeps, instead of what the scene file says.
+void set_transmittance(radfmt::MeshData& mesh, const std::string& spec, MeshReport& report) {
+    const auto given = parse_material_override(spec, "--transmittance");
+    const long m = index_of(names_of_materials(mesh), given.material);
+    if (m < 0)
+        throw InputError("--transmittance " + spec + ": no material '" + given.material +
+                         "' (it has: " + rad::material_names(mesh) + ")");
+    auto& material = mesh.materials[static_cast<std::size_t>(m)];
+    const auto kind = material.specular.kind;
+    if (kind != SpecularKind::pane && kind != SpecularKind::dielectric)
+        throw InputError("--transmittance " + spec + ": material '" + given.material +
+                         "' transmits nothing in its file (" + specular_summary(material.specular) +
+                         "): give it glass there (MTL illum 4, 6 or 7, or d < 1)");
+    for (int k = 0; k < 3; ++k)
+        if (given.value[k] > 1) throw InputError("--transmittance " + spec + ": a share above 1");
+    const auto was = material.specular.transmittance;
+    material.specular.transmittance = given.value;
+    check_specular_energy(material,
+                          "--transmittance " + spec + ": material '" + given.material + "'");
+    report.add(MeshReport::Kind::Change, "material '" + given.material + "': transmittance " +
+                                             rgb_text(given.value) + " (was " + rgb_text(was) +
+                                             ", --transmittance)");
+}
+} // namespace
+
+void specular_pass(radfmt::MeshData& mesh, const MeshOptions& options, MeshReport& report) {
+    for (const auto& spec : options.transmittance) set_transmittance(mesh, spec, report);
+    for (const auto& name : options.thin) {
+        const auto names = names_of_materials(mesh);
+        if (const long m = index_of(names, name); m >= 0) {
+            auto& material = mesh.materials[static_cast<std::size_t>(m)];
+            if (material.specular.kind != SpecularKind::dielectric)
+                throw InputError("--thin " + name + ": material '" + name + "' is a " +
+                                 specular_summary(material.specular) +
+                                 ", not a refracting one (illum 6 or 7, or a glTF volume)");
+            material.specular = as_thin_pane(material.specular, material.reflectance);
+            report.add(MeshReport::Kind::Change, "material '" + name + "' is a thin pane (--thin)");
+            continue;
+        }
+        if (const long g = index_of(mesh.groups, name); g >= 0) {
+            const auto patches = thin_group(mesh, static_cast<std::uint32_t>(g));
+            if (patches == 0)
+                throw InputError("--thin " + name + ": group '" + name +
+                                 "' has no refracting material (illum 6 or 7, or a glTF volume)");
+            report.add(MeshReport::Kind::Change,
+                       "group '" + name + "': " + std::to_string(patches) +
+                           " patch(es) of glass made thin panes (--thin)");
+            continue;
+        }
+        std::string known;
+        for (const auto& m : mesh.materials)
+            if (m.specular.kind == SpecularKind::dielectric) known += " " + m.name;
+        throw InputError("--thin " + name +
+                         ": no material or group of that name (refracting "
+                         "materials:" +
+                         (known.empty() ? std::string(" none") : known) + ")");
+    }
+    std::vector<bool> used(mesh.materials.size(), false);
+    for (const auto& p : mesh.patches) used[p.material] = true;
+    for (std::size_t m = 0; m < mesh.materials.size(); ++m)
+        if (used[m] && mesh.materials[m].specular.any())
+            report.add(MeshReport::Kind::Note, "material '" + mesh.materials[m].name + "': " +
+                                                   specular_summary(mesh.materials[m].specular));
+}
+
+} // namespace rad

@@ -1,0 +1,161 @@
+// The optics of smooth surfaces: Fresnel's boundary, Radiance's glass pane, and the branches
+// a ray takes at a mirror or glass.
+#include "radiosity/specular.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rad {
+
+double fresnel_reflectance(double cos_incident, double n1, double n2) {
+    const double ci = std::clamp(cos_incident, 0.0, 1.0);
+    const double eta = n1 / n2;
+    const double sin2_t = eta * eta * (1 - ci * ci);
+    if (sin2_t >= 1) return 1; // total internal reflection
+    const double ct = std::sqrt(1 - sin2_t);
+    const double rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+    const double rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+double pane_transmissivity(double tn, double ior) {
+    if (tn <= 0) return 0;
+    const double r = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
+    const double a = (1 - r) * (1 - r);
+    // Tn r^2 t^2 + (1-r)^2 t - Tn = 0, the positive root (t -> Tn / (1-r)^2 as r -> 0).
+    if (r == 0) return std::min(1.0, tn);
+    const double t = (-a + std::sqrt(a * a + 4 * tn * tn * r * r)) / (2 * tn * r * r);
+    return std::min(1.0, t);
+}
+
+PaneShares pane_shares(double t, double ior, double cos_incident) {
+    const double ci = std::clamp(cos_incident, 1e-9, 1.0);
+    const double sin2_t = (1 - ci * ci) / (ior * ior);
+    const double ct = std::sqrt(1 - sin2_t);
+    // The ray crosses the glass along a path 1/ct times its thickness.
+    const double path_t = t > 0 ? std::pow(t, 1 / ct) : 0;
+    const double rs = std::pow((ci - ior * ct) / (ci + ior * ct), 2);
+    const double rp = std::pow((ior * ci - ct) / (ior * ci + ct), 2);
+    PaneShares out;
+    for (const double r : {rs, rp}) {
+        const double inner = 1 - r * r * path_t * path_t; // the inner reflections' series
+        out.transmitted += 0.5 * (1 - r) * (1 - r) * path_t / inner;
+        out.reflected += 0.5 * (r + (1 - r) * (1 - r) * r * path_t * path_t / inner);
+    }
+    return out;
+}
+
+SpecularSurfaces::SpecularSurfaces(const radfmt::MeshData& mesh) {
+    for (const auto& m : mesh.materials) {
+        materials_.push_back(m.specular);
+        radfmt::Rgb t{};
+        for (int c = 0; c < 3; ++c)
+            t[c] = pane_transmissivity(m.specular.transmittance[c], m.specular.ior);
+        pane_tc_.push_back(t);
+        diffuse_.push_back(std::max({m.reflectance[0], m.reflectance[1], m.reflectance[2]}));
+        any_ = any_ || m.specular.any();
+    }
+    any_ = any_ && mesh.has_specular();
+    mesh_ = &mesh;
+    if (any_) {
+        std::vector<radfmt::Rgb> normals;
+        normals.reserve(mesh.patches.size());
+        for (const auto& p : mesh.patches)
+            normals.push_back({p.normal[0], p.normal[1], p.normal[2]});
+        corner_normals_ = corner_colours(mesh, normals, Smoothing::Crease, 30);
+    }
+    material_.reserve(mesh.patches.size());
+    normal_.reserve(mesh.patches.size());
+    for (const auto& p : mesh.patches) {
+        material_.push_back(p.material);
+        normal_.push_back(p.normal);
+    }
+}
+
+bool SpecularSurfaces::transmits(std::size_t patch) const {
+    const auto kind = of(patch).kind;
+    return kind == radfmt::SpecularKind::pane || kind == radfmt::SpecularKind::dielectric;
+}
+
+namespace {
+Vec3 mirrored(const Vec3& d, const Vec3& n) {
+    return d - n * (2 * dot(d, n));
+}
+radfmt::Rgb grey(double x) {
+    return radfmt::Rgb{{x, x, x}};
+}
+} // namespace
+
+Vec3 SpecularSurfaces::normal_at(const RayScene::Hit& hit) const {
+    const auto& flat = normal_[static_cast<std::size_t>(hit.patch)];
+    if (corner_normals_.patches.empty()) return flat;
+    const auto c = interpolate_corners(*mesh_, corner_normals_, hit.patch, hit.u, hit.v, hit.piece);
+    const Vec3 n{c[0], c[1], c[2]};
+    const double len = length(n);
+    // Interpolated normals stay on the patch's side of its plane.
+    if (!(len > 0) || dot(n, flat) <= 0.5 * len) return flat;
+    return n * (1 / len);
+}
+
+int SpecularSurfaces::branches(std::size_t patch, const Vec3& d, bool front,
+                               std::array<SpecularBranch, 2>& out, const RayScene::Hit* hit) const {
+    using radfmt::SpecularKind;
+    const auto m = material_[patch];
+    const auto& s = materials_[m];
+    Vec3 n = hit ? normal_at(*hit) : normal_[patch];
+    // A ray must meet the shading normal from the side it met the patch.
+    if ((dot(d, n) < 0) != front) n = normal_[patch];
+    const double cos_i = std::min(1.0, std::abs(dot(d, n)));
+    switch (s.kind) {
+    case SpecularKind::none:
+        return 0;
+    case SpecularKind::mirror:
+        // A mirror's back is its backing, not a mirror.
+        if (!front) return 0;
+        out[0] = {mirrored(d, n), s.reflectance};
+        return 1;
+    case SpecularKind::fresnel: {
+        if (!front) return 0;
+        // Schlick's approximation from the reflectance at normal incidence.
+        const double rise = std::pow(1 - cos_i, 5);
+        out[0].direction = mirrored(d, n);
+        for (int c = 0; c < 3; ++c)
+            out[0].weight[c] = s.reflectance[c] + (1 - s.reflectance[c]) * rise;
+        return 1;
+    }
+    case SpecularKind::pane: {
+        out[0].direction = d;
+        out[1].direction = mirrored(d, n);
+        for (int c = 0; c < 3; ++c) {
+            const auto shares = pane_shares(pane_tc_[m][c], s.ior, cos_i);
+            out[0].weight[c] = shares.transmitted;
+            out[1].weight[c] = shares.reflected;
+        }
+        return 2;
+    }
+    case SpecularKind::dielectric: {
+        // The medium is behind the surface's back: a ray meeting the front enters it.
+        const double n1 = front ? 1.0 : s.ior, n2 = front ? s.ior : 1.0;
+        // The diffuse part takes its share first; the boundary splits the rest.
+        const double share = 1 - diffuse_[m];
+        const double r = fresnel_reflectance(cos_i, n1, n2);
+        out[0] = {mirrored(d, n), grey(share * r)};
+        if (r >= 1) return 1;
+        const double eta = n1 / n2;
+        const double cos_t = std::sqrt(std::max(0.0, 1 - eta * eta * (1 - cos_i * cos_i)));
+        const Vec3 toward = dot(d, n) < 0 ? n : n * -1.0; // the normal on the ray's side
+        out[1].direction = normalized(d * eta + toward * (eta * cos_i - cos_t));
+        // Radiance scales by (n1/n2)^2 across the boundary: light entering a denser medium
+        // is squeezed into a narrower cone (the path is traced from the receiver back).
+        // The filter (MTL's Tf) is what a passage through the solid keeps: its square root
+        // at each of the two crossings, in either direction, so paths stay reciprocal.
+        const double squeeze = eta * eta;
+        for (int c = 0; c < 3; ++c)
+            out[1].weight[c] = share * (1 - r) * squeeze * std::sqrt(s.transmittance[c]);
+        return 2;
+    }
+    }
+    return 0;
+}
+
+} // namespace rad
