@@ -76,7 +76,7 @@ inline radfmt::MeshData polygon_under_square(const std::vector<std::array<double
                                              double area, const radfmt::Vec3& centroid) {
     radfmt::MeshData m;
     m.groups = {"g"};
-    m.materials = {{"grey", {0.5, 0.5, 0.5}, {0, 0, 0}}};
+    m.materials = {{"grey", {0.5, 0.5, 0.5}, {0, 0, 0}, {}}};
     std::vector<radfmt::Vec3> corners;
     for (const auto& [x, y] : outline) corners.push_back({x, y, 0});
     add_polygon_patch(m, corners, area, centroid, {0, 0, 1});

@@ -59,7 +59,8 @@ radfmt::MeshData small_mesh() {
     t.normal = {0, 0, 1};
     m.patches = {q, t};
     m.groups = {"floor", "wall"};
-    m.materials = {{"grey", {0.5, 0.5, 0.5}, {0, 0, 0}}, {"lamp", {0.1, 0.2, 0.3}, {10, 20, 30}}};
+    m.materials = {{"grey", {0.5, 0.5, 0.5}, {0, 0, 0}, {}},
+                   {"lamp", {0.1, 0.2, 0.3}, {10, 20, 30}, {}}};
     return m;
 }
 

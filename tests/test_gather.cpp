@@ -81,7 +81,8 @@ TEST_CASE("a polygon patch, not convex, lights and reflects as the surface it co
     // indirect rays find it, landing on the triangles of its fan.
     radfmt::MeshData mesh;
     mesh.groups = {"g"};
-    mesh.materials = {{"lamp", {0, 0, 0}, {10, 20, 40}}, {"white", {0.5, 0.5, 0.5}, {0, 0, 0}}};
+    mesh.materials = {{"lamp", {0, 0, 0}, {10, 20, 40}, {}},
+                      {"white", {0.5, 0.5, 0.5}, {0, 0, 0}, {}}};
     std::vector<radfmt::Vec3> outline;
     for (const auto& [x, z] : std::vector<std::array<double, 2>>{
              {-0.5, -0.5}, {0.5, -0.5}, {0.5, 0}, {0, 0}, {0, 0.5}, {-0.5, 0.5}})
@@ -112,7 +113,7 @@ TEST_CASE("a ray's hit on a polygon patch takes the values of the fan triangle i
     // L's others 1. A hit is interpolated over the fan triangle {0, k, k + 1} it lies in.
     radfmt::MeshData mesh;
     mesh.groups = {"g"};
-    mesh.materials = {{"white", {0.5, 0.5, 0.5}, {0, 0, 0}}};
+    mesh.materials = {{"white", {0.5, 0.5, 0.5}, {0, 0, 0}, {}}};
     add_polygon_patch(mesh, {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}, 3,
                       {5.0 / 6, 5.0 / 6, 0}, {0, 0, 1});
     mesh.vertices.push_back({3, 0, 0});

@@ -243,7 +243,7 @@ radfmt::MeshData floor_mesh(double s) {
     p.normal = {0, 1, 0};
     m.patches.push_back(p);
     m.groups = {"floor"};
-    m.materials = {{"black", {}, {}}};
+    m.materials = {{"black", {}, {}, {}}};
     return m;
 }
 

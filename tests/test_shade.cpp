@@ -23,7 +23,7 @@ radfmt::MeshData quad(const std::array<radfmt::Vec3, 4>& corners) {
     p.centroid = (corners[0] + corners[1] + corners[2] + corners[3]) * 0.25;
     m.patches = {p};
     m.groups = {"g"};
-    m.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}}};
+    m.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}, {}}};
     return m;
 }
 
@@ -61,7 +61,7 @@ TEST_CASE("a polygon patch, not convex, is drawn as the surface it covers") {
     // into triangles shows exactly at every pixel it covers.
     radfmt::MeshData mesh;
     mesh.groups = {"g"};
-    mesh.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}}};
+    mesh.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}, {}}};
     rad::CornerColours corners;
     std::vector<radfmt::Vec3> outline;
     for (const auto& [x, y] :
@@ -177,7 +177,7 @@ TEST_CASE("smoothing: averages, area weights, creases and flat") {
     b.area = 3;
     b.normal = {0, 0, 1};
     m.patches = {a, b};
-    m.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}}};
+    m.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}, {}}};
     m.groups = {"g"};
     const std::vector<Rgb> values{{1, 1, 1}, {3, 3, 3}};
     const auto average = rad::corner_colours(m, values, rad::Smoothing::Average);
@@ -200,7 +200,7 @@ TEST_CASE("smoothing: averages, area weights, creases and flat") {
     m.vertices[4] = {4, 0, 0};
     m.vertices[5] = {4, 1, 0};
     m.patches[1].normal = {0, 0, 1};
-    m.materials.push_back({"n", {0.5, 0.5, 0.5}, {0, 0, 0}});
+    m.materials.push_back({"n", {0.5, 0.5, 0.5}, {0, 0, 0}, {}});
     m.patches[1].material = 1;
     const auto material = rad::corner_colours(m, values, rad::Smoothing::Crease, 30);
     CHECK(material[0][1][0] == 1);

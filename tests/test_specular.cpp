@@ -1,0 +1,310 @@
+// Mirrors and glass: the materials read from MTL and glTF parameters, the optics (Fresnel,
+// Radiance's glass), extended form factors against closed forms, and the mesh format.
+#include "helpers.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/formfactor.hpp"
+#include "radiosity/specular.hpp"
+#include "radiosity/specular_materials.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+using namespace testing_helpers;
+using radfmt::SpecularKind;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::string v(double x, double y, double z) {
+    return "v " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+}
+
+double entry(const radfmt::FormFactorData& ff, std::uint32_t row, std::uint32_t col) {
+    for (auto k = ff.row_start[row]; k < ff.row_start[row + 1]; ++k)
+        if (ff.columns[k] == col) return ff.values[k];
+    return 0;
+}
+
+radfmt::FormFactorData hemisphere(const radfmt::MeshData& mesh, int rays, int depth = 12) {
+    rad::FormFactorOptions options;
+    options.method = "hemisphere";
+    options.rays = rays;
+    options.quiet = true;
+    options.specular_depth = depth;
+    return rad::compute_form_factors(mesh, options);
+}
+
+// The form factor from rectangle [x1,x2] x [y1,y2] at z = 0 to the parallel rectangle
+// [u1,u2] x [w1,w2] at z = c facing it: the corner sum of Howell's configuration C-11 in
+// general position (an independent closed form, not the library's).
+double offset_parallel(double x1, double x2, double y1, double y2, double u1, double u2, double w1,
+                       double w2, double c) {
+    const auto g = [c](double x, double y) {
+        const double px = std::sqrt(x * x + c * c), py = std::sqrt(y * y + c * c);
+        return (y * px * std::atan(y / px) + x * py * std::atan(x / py) -
+                0.5 * c * c * std::log(x * x + y * y + c * c)) /
+               (2 * kPi);
+    };
+    const double xs[2] = {x1, x2}, ys[2] = {y1, y2}, us[2] = {u1, u2}, ws[2] = {w1, w2};
+    double sum = 0;
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+            for (int k = 0; k < 2; ++k)
+                for (int l = 0; l < 2; ++l) {
+                    const double sign = ((i + j + k + l) % 2) ? -1 : 1;
+                    sum += sign * g(xs[i] - us[k], ys[j] - ws[l]);
+                }
+    return sum / ((x2 - x1) * (y2 - y1));
+}
+
+rad::MtlSpecularInput mtl(int illum) {
+    rad::MtlSpecularInput in;
+    in.illum = illum;
+    in.diffuse = {{0.1, 0.1, 0.1}};
+    in.specular = {{0.8, 0.8, 0.8}};
+    return in;
+}
+
+} // namespace
+
+TEST_CASE("the independent offset closed form agrees with the aligned one") {
+    CHECK(offset_parallel(0, 1, 0, 1, 0, 1, 0, 1, 1) ==
+          Approx(rad::parallel_rectangles_form_factor(1, 1, 1)).epsilon(1e-9));
+    CHECK(offset_parallel(0, 2, 0, 1, 0, 2, 0, 1, 0.5) ==
+          Approx(rad::parallel_rectangles_form_factor(2, 1, 0.5)).epsilon(1e-9));
+}
+
+TEST_CASE("MTL illumination models become mirrors, Fresnel mirrors, panes and refracting "
+          "boundaries") {
+    auto mirror = rad::specular_from_mtl(mtl(3));
+    CHECK(mirror.kind == SpecularKind::mirror);
+    CHECK(mirror.reflectance[0] == 0.8);
+    CHECK(rad::specular_from_mtl(mtl(5)).kind == SpecularKind::fresnel);
+    auto glass = mtl(7);
+    glass.ior = 1.33;
+    glass.filter = {{0.9, 0.8, 0.7}};
+    const auto water = rad::specular_from_mtl(glass);
+    CHECK(water.kind == SpecularKind::dielectric);
+    CHECK(water.ior == 1.33);
+    CHECK(water.transmittance[2] == 0.7);
+    glass.ior = 1; // Ni absent: glass's index
+    CHECK(rad::specular_from_mtl(glass).ior == 1.5);
+    auto pane = mtl(4);
+    pane.filter = {{0.7, 0.7, 0.7}};
+    CHECK(rad::specular_from_mtl(pane).kind == SpecularKind::pane);
+    CHECK(rad::specular_from_mtl(pane).transmittance[0] == 0.7);
+    // d < 1 with an opaque model: transparency without refraction, a pane of 1 - d.
+    auto dissolved = mtl(2);
+    dissolved.dissolve = 0.25;
+    CHECK(rad::specular_from_mtl(dissolved).kind == SpecularKind::pane);
+    CHECK(rad::specular_from_mtl(dissolved).transmittance[1] == Approx(0.75));
+    // Exporters write Tf 1 1 1 on every material: alone it makes nothing transmit, and a
+    // Phong highlight (illum 2, Ks) is no mirror.
+    auto opaque = mtl(2);
+    opaque.filter = {{1, 1, 1}};
+    CHECK(rad::specular_from_mtl(opaque).kind == SpecularKind::none);
+    // Ns as a roughness, kept.
+    auto shiny = mtl(3);
+    shiny.shininess = 1000;
+    CHECK(rad::specular_from_mtl(shiny).roughness == Approx(std::sqrt(2.0 / 1002)));
+}
+
+TEST_CASE("glTF metallic-roughness, transmission, ior and volume") {
+    rad::PbrSpecularInput in;
+    in.base = {{0.9, 0.9, 0.9}};
+    in.metallic = 1;
+    in.roughness = 0.05;
+    radfmt::Rgb diffuse;
+    auto s = rad::specular_from_pbr(in, diffuse);
+    CHECK(s.kind == SpecularKind::fresnel);
+    CHECK(s.reflectance[0] == Approx(0.9));
+    CHECK(diffuse[0] == Approx(0));
+    in.roughness = 1; // glTF's default: a rough metal stays diffuse
+    CHECK(rad::specular_from_pbr(in, diffuse).kind == SpecularKind::none);
+    CHECK(diffuse[0] == Approx(0.9));
+    in.metallic = 0;
+    in.transmission = 1;
+    in.ior = 1.4;
+    s = rad::specular_from_pbr(in, diffuse);
+    CHECK(s.kind == SpecularKind::pane); // thin-walled without a volume
+    CHECK(s.ior == 1.4);
+    CHECK(diffuse[0] == Approx(0));
+    in.thickness = 0.1;
+    CHECK(rad::specular_from_pbr(in, diffuse).kind == SpecularKind::dielectric);
+}
+
+TEST_CASE("a material reflecting and transmitting more than it gets is refused, named") {
+    radfmt::Material m;
+    m.name = "greenhouse";
+    m.reflectance = {{0.6, 0.6, 0.6}};
+    m.specular.kind = SpecularKind::pane;
+    m.specular.transmittance = {{0.7, 0.7, 0.7}};
+    m.specular.ior = 1.52;
+    CHECK_THROWS_WITH(rad::check_specular_energy(m, "x.mtl: material 'greenhouse'"),
+                      Catch::Contains("material 'greenhouse' is a pane") &&
+                          Catch::Contains("add up to"));
+    m.reflectance = {{0.1, 0.1, 0.1}};
+    CHECK_NOTHROW(rad::check_specular_energy(m, "x"));
+    m.specular.kind = SpecularKind::mirror;
+    m.specular.reflectance = {{0.95, 0.95, 0.95}};
+    CHECK_THROWS_WITH(rad::check_specular_energy(m, "x"), Catch::Contains("mirror"));
+}
+
+TEST_CASE("Fresnel: 4% at normal incidence for glass, total internal reflection, energy") {
+    CHECK(rad::fresnel_reflectance(1, 1, 1.5) == Approx(0.04));
+    CHECK(rad::fresnel_reflectance(0.1, 1.5, 1) == 1); // past the critical angle
+    // The same boundary from either side at Snell's pair of angles reflects the same.
+    const double ci = 0.8, si = std::sqrt(1 - ci * ci), ct = std::sqrt(1 - si * si / 2.25);
+    CHECK(rad::fresnel_reflectance(ci, 1, 1.5) == Approx(rad::fresnel_reflectance(ct, 1.5, 1)));
+}
+
+TEST_CASE("Radiance's glass: a clear pane of 0.88, and the transmissivity inverts the pane") {
+    // Radiance: transmissivity from transmittance tn at n = 1.52.
+    const double tn = 0.88;
+    const double radiance =
+        (std::sqrt(0.8402528435 + 0.0072522239 * tn * tn) - 0.9166530661) / 0.0036261119 / tn;
+    CHECK(rad::pane_transmissivity(tn, 1.52) == Approx(radiance).epsilon(1e-6));
+    for (const double t : {0.1, 0.5, 0.7, 0.9}) {
+        const double trans = rad::pane_transmissivity(t, 1.52);
+        CHECK(rad::pane_shares(trans, 1.52, 1).transmitted == Approx(t).epsilon(1e-9));
+        const auto grazing = rad::pane_shares(trans, 1.52, 0.2);
+        CHECK(grazing.transmitted < t);
+        CHECK(grazing.transmitted + grazing.reflected <= 1);
+    }
+}
+
+TEST_CASE("two squares between two parallel mirrors: the lattice sum of their images", "[slow]") {
+    // A at z = 0 facing up and B at z = d facing down fill [0,1]^2; mirror walls at x = 0 and
+    // x = 1 close the gap between them (y's sides open). Unfolded, B repeats at x offsets k,
+    // seen after |k| reflections.
+    const double d = 0.7, rho = 0.8;
+    const std::string mtl = "newmtl white\nKd 0.5 0.5 0.5\nnewmtl mirror\nillum 3\nKd 0 0 0\n"
+                            "Ks 0.8 0.8 0.8\n";
+    std::string obj = v(0, 0, 0) + v(1, 0, 0) + v(1, 1, 0) + v(0, 1, 0) + v(0, 0, d) + v(1, 0, d) +
+                      v(1, 1, d) + v(0, 1, d);
+    obj += "usemtl white\nf 1 2 3 4\nf 5 8 7 6\nusemtl mirror\nf 1 4 8 5\nf 2 6 7 3\n";
+    const auto mesh = rad::subdivide(scene_from_obj(obj, mtl), {});
+    REQUIRE(mesh.patches.size() == 4);
+    REQUIRE(mesh.has_specular());
+    double lattice = 0;
+    for (int k = -40; k <= 40; ++k)
+        lattice += std::pow(rho, std::abs(k)) * offset_parallel(0, 1, 0, 1, k, k + 1, 0, 1, d);
+    const auto ff = hemisphere(mesh, 1 << 20, 64);
+    CHECK(entry(ff, 0, 1) == Approx(lattice).epsilon(0.005));
+    CHECK(entry(ff, 1, 0) == Approx(lattice).epsilon(0.005));
+    // Without the mirrors' specular part, only the direct view.
+    auto plain = mesh;
+    for (auto& m : plain.materials) m.specular = {};
+    CHECK(entry(hemisphere(plain, 1 << 18), 0, 1) ==
+          Approx(rad::parallel_rectangles_form_factor(1, 1, d)).epsilon(0.01));
+}
+
+TEST_CASE("a patch facing a parallel mirror sees its own image: rho F(2h)", "[slow]") {
+    const double h = 0.4;
+    const std::string mtl = "newmtl white\nKd 0.5 0.5 0.5\nnewmtl mirror\nillum 3\nKd 0 0 0\n"
+                            "Ks 0.9 0.9 0.9\n";
+    const std::string obj = v(0, 0, 0) + v(1, 0, 0) + v(1, 1, 0) + v(0, 1, 0) + v(0, 0, h) +
+                            v(1, 0, h) + v(1, 1, h) + v(0, 1, h) +
+                            "usemtl white\nf 1 2 3 4\nusemtl mirror\nf 5 8 7 6\n";
+    const auto mesh = rad::subdivide(scene_from_obj(obj, mtl), {});
+    REQUIRE(mesh.patches.size() == 2);
+    const auto ff = hemisphere(mesh, 1 << 20);
+    CHECK(entry(ff, 0, 0) ==
+          Approx(0.9 * rad::parallel_rectangles_form_factor(1, 1, 2 * h)).epsilon(0.005));
+    // The mirror's own (diffuse) part is seen directly, unweighted.
+    CHECK(entry(ff, 0, 1) == Approx(rad::parallel_rectangles_form_factor(1, 1, h)).epsilon(0.005));
+}
+
+TEST_CASE("a pane between emitter and receiver passes the glass model's angular share", "[slow]") {
+    // Receiver at z = 0 facing up, a wide pane (normal transmittance 0.7) at z = 0.5, the
+    // emitter's square at z = 1 facing down.
+    const double tn = 0.7, ior = 1.52;
+    const std::string mtl = "newmtl white\nKd 0.5 0.5 0.5\nnewmtl glass\nillum 4\nKd 0 0 0\n"
+                            "Tf 0.7 0.7 0.7\nNi 1.52\n";
+    const std::string obj = v(0, 0, 0) + v(1, 0, 0) + v(1, 1, 0) + v(0, 1, 0) + v(0, 0, 1) +
+                            v(1, 0, 1) + v(1, 1, 1) + v(0, 1, 1) + v(-3, -3, 0.5) + v(4, -3, 0.5) +
+                            v(4, 4, 0.5) + v(-3, 4, 0.5) +
+                            "usemtl white\nf 1 2 3 4\nf 5 8 7 6\nusemtl glass\nf 9 10 11 12\n";
+    const auto mesh = rad::subdivide(scene_from_obj(obj, mtl), {});
+    REQUIRE(mesh.patches.size() == 3);
+    REQUIRE(mesh.materials[mesh.patches[2].material].specular.kind == SpecularKind::pane);
+    // The reference: the form factor's double integral with the pane's transmittance at each
+    // pair's angle, by Gauss-Legendre quadrature (no rays).
+    const double t = rad::pane_transmissivity(tn, ior);
+    const int m = 14;
+    std::vector<double> x(m), w(m);
+    for (int i = 0; i < m; ++i) { // Gauss-Legendre on [0, 1] by Newton on P_m
+        double z = std::cos(kPi * (i + 0.75) / (m + 0.5)), dp = 1;
+        for (int it = 0; it < 100; ++it) {
+            double p0 = 1, p1 = z;
+            for (int k = 2; k <= m; ++k) {
+                const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = m * (z * p1 - p0) / (z * z - 1);
+            z -= p1 / dp;
+        }
+        x[i] = 0.5 * (1 - z);
+        w[i] = 1 / ((1 - z * z) * dp * dp);
+    }
+    double plain = 0, through = 0;
+    for (int a = 0; a < m; ++a)
+        for (int b = 0; b < m; ++b)
+            for (int c = 0; c < m; ++c)
+                for (int e = 0; e < m; ++e) {
+                    const double dx = x[a] - x[c], dy = x[b] - x[e];
+                    const double r2 = dx * dx + dy * dy + 1;
+                    const double kernel = w[a] * w[b] * w[c] * w[e] / (kPi * r2 * r2);
+                    plain += kernel;
+                    through += kernel * rad::pane_shares(t, ior, 1 / std::sqrt(r2)).transmitted;
+                }
+    REQUIRE(plain == Approx(rad::parallel_rectangles_form_factor(1, 1, 1)).epsilon(1e-4));
+    const auto ff = hemisphere(mesh, 1 << 20);
+    CHECK(entry(ff, 0, 1) == Approx(through).epsilon(0.01));
+    CHECK(through / plain < tn); // oblique rays lose more than normal ones
+}
+
+TEST_CASE("mesh version 3 keeps the specular parts; a mesh without keeps version and hash") {
+    const std::string mtl = "newmtl white\nKd 0.5 0.5 0.5\nnewmtl mirror\nillum 3\nKd 0 0 0\n"
+                            "Ks 0.9 0.9 0.9\nNs 200\n";
+    const std::string obj = v(0, 0, 0) + v(1, 0, 0) + v(1, 1, 0) + v(0, 1, 0) + v(0, 0, 1) +
+                            v(1, 0, 1) + v(1, 1, 1) + v(0, 1, 1) +
+                            "usemtl white\nf 1 2 3 4\nusemtl mirror\nf 5 8 7 6\n";
+    auto mesh = rad::subdivide(scene_from_obj(obj, mtl), {});
+    const auto dir = temp_dir("specular-mesh");
+    radfmt::Header header;
+    header.tool = "test";
+    radfmt::write_mesh(dir / "m.mesh", header, mesh);
+    radfmt::Header read_header;
+    const auto back = radfmt::read_mesh(dir / "m.mesh", &read_header);
+    CHECK(read_header.version == 3);
+    for (std::size_t k = 0; k < mesh.materials.size(); ++k)
+        CHECK(back.materials[k].specular == mesh.materials[k].specular);
+    CHECK(back.geometry_hash() == mesh.geometry_hash());
+    // The specular parts are in the geometry hash: a .ff for one mirror is not another's.
+    const auto with_mirror = mesh.geometry_hash();
+    auto duller = mesh;
+    for (auto& m : duller.materials)
+        if (m.specular.any()) m.specular.reflectance = {{0.5, 0.5, 0.5}};
+    CHECK(duller.geometry_hash() != with_mirror);
+    // A diffuse change is not.
+    auto repainted = mesh;
+    repainted.materials[0].reflectance = {{0.2, 0.2, 0.2}};
+    CHECK(repainted.geometry_hash() == with_mirror);
+    // Without specular parts: the hash of the geometry alone, and version 1 as before.
+    auto plain = mesh;
+    for (auto& m : plain.materials) m.specular = {};
+    radfmt::write_mesh(dir / "p.mesh", header, plain);
+    radfmt::read_mesh(dir / "p.mesh", &read_header);
+    CHECK(read_header.version == 1);
+    CHECK(plain.geometry_hash() != with_mirror);
+    auto unused = plain; // a specular material no patch uses changes nothing
+    unused.materials.push_back(mesh.materials[1]);
+    unused.materials.back().name = "spare";
+    CHECK(unused.geometry_hash() == plain.geometry_hash());
+    fs::remove_all(dir);
+}
