@@ -75,4 +75,23 @@ clear, dark, diffuse = map(float, sys.argv[1:4])
 print("under the ball: clear", clear, "file's glass", dark, "diffuse", diffuse)
 assert clear > 1.5 * dark and dark > diffuse
 PY
+# rad-bake: the baked light is diffuse; --engine's glb gives the engine the mirror as a smooth
+# metal and the glass its transmission and index, so it can reflect and refract.
+"$BIN/rad-bake" "$TMP/s.mesh" "$TMP/s.rad" -o "$TMP/s.glb" --lightmap 128 --engine "$TMP/e.glb" -q \
+  || fail "rad-bake"
+python3 - "$TMP/e.glb" <<'PY' || fail "the engine glb lacks the specular parameters"
+import json, struct, sys
+data = open(sys.argv[1], "rb").read()
+doc = json.loads(data[20:20 + struct.unpack("<I", data[12:16])[0]])
+m = {x["name"]: x for x in doc["materials"]}
+assert m["leftSphere"]["pbrMetallicRoughness"]["metallicFactor"] == 1
+glass = m["rightSphere"]["extensions"]
+assert glass["KHR_materials_ior"]["ior"] == 2.5
+assert abs(glass["KHR_materials_transmission"]["transmissionFactor"] - 0.1) < 1e-9
+assert "KHR_materials_transmission" in doc["extensionsUsed"]
+PY
+WEB="$SRC/web"
+if [ -d "$WEB/node_modules/gltf-validator" ]; then
+  node "$WEB/validate-gltf.mjs" "$TMP/s.glb" "$TMP/e.glb" > /dev/null || fail "glTF-Validator: the glbs with mirrors and glass"
+fi
 finish

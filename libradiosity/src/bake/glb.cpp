@@ -3,6 +3,7 @@
 #include "radiosity/bake.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/patch_geometry.hpp"
+#include "radiosity/specular_materials.hpp"
 #include "radiosity/two_sided.hpp"
 
 #include <nlohmann/json.hpp>
@@ -119,6 +120,34 @@ void add_patch(PrimitiveData& prim, const radfmt::MeshData& mesh, std::size_t i,
         prim.indices.insert(prim.indices.end(), {ids[a], ids[b], ids[c]});
 }
 
+// A mirror or glass for an engine that reflects and refracts (the view-dependent light the
+// bake cannot hold): a mirror as a smooth metal of its reflectance, glass with
+// KHR_materials_transmission and KHR_materials_ior; the chain's own description in extras.
+void add_specular_parameters(const radfmt::Specular& s, json& material) {
+    if (!s.any()) return;
+    material["extras"]["specular"] = specular_summary(s);
+    auto& pbr = material["pbrMetallicRoughness"];
+    pbr["roughnessFactor"] = s.roughness;
+    if (s.kind == radfmt::SpecularKind::mirror || s.kind == radfmt::SpecularKind::fresnel) {
+        pbr["metallicFactor"] = 1.0;
+        pbr["baseColorFactor"] = {s.reflectance[0], s.reflectance[1], s.reflectance[2], 1.0};
+        return;
+    }
+    const double through = (s.transmittance[0] + s.transmittance[1] + s.transmittance[2]) / 3;
+    material["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", through}};
+    material["extensions"]["KHR_materials_ior"] = {{"ior", s.ior}};
+}
+
+// The extensions the materials use, for extensionsUsed.
+std::vector<std::string> material_extensions(const json& materials) {
+    std::vector<std::string> used;
+    for (const auto& m : materials)
+        if (m.contains("extensions"))
+            for (const auto& [name, value] : m["extensions"].items())
+                if (std::find(used.begin(), used.end(), name) == used.end()) used.push_back(name);
+    return used;
+}
+
 // The scene's own material for an engine: base colour = reflectance, emission as emissive
 // (display values: times the exposure, clamped to 1).
 json engine_material_json(const radfmt::Material& m, bool two_sided_sheet, double exposure) {
@@ -128,12 +157,15 @@ json engine_material_json(const radfmt::Material& m, bool two_sided_sheet, doubl
         emissive.push_back(std::clamp(m.emission[c] * exposure, 0.0, 1.0));
     }
     base.push_back(1.0);
-    return {{"name", m.name + (two_sided_sheet ? " (one side of a two-sided sheet)" : "")},
-            {"pbrMetallicRoughness",
-             {{"baseColorFactor", base}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
-            {"emissiveFactor", emissive},
-            {"doubleSided", !two_sided_sheet},
-            {"extras", {{"reflectance", m.reflectance.c}, {"emission_W_per_m2", m.emission.c}}}};
+    json out = {
+        {"name", m.name + (two_sided_sheet ? " (one side of a two-sided sheet)" : "")},
+        {"pbrMetallicRoughness",
+         {{"baseColorFactor", base}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
+        {"emissiveFactor", emissive},
+        {"doubleSided", !two_sided_sheet},
+        {"extras", {{"reflectance", m.reflectance.c}, {"emission_W_per_m2", m.emission.c}}}};
+    add_specular_parameters(m.specular, out);
+    return out;
 }
 
 json material_json(const radfmt::Material& m, bool two_sided_sheet, int texture) {
@@ -145,7 +177,11 @@ json material_json(const radfmt::Material& m, bool two_sided_sheet, int texture)
             {"pbrMetallicRoughness", pbr},
             {"doubleSided", !two_sided_sheet},
             {"extensions", {{"KHR_materials_unlit", json::object()}}},
-            {"extras", {{"reflectance", m.reflectance.c}, {"emission_W_per_m2", m.emission.c}}}};
+            {"extras", m.specular.any() ? json{{"reflectance", m.reflectance.c},
+                                               {"emission_W_per_m2", m.emission.c},
+                                               {"specular", specular_summary(m.specular)}}
+                                        : json{{"reflectance", m.reflectance.c},
+                                               {"emission_W_per_m2", m.emission.c}}}};
 }
 
 // The primitives, by material and by whether the patch is one side of a two-sided sheet (those
@@ -214,6 +250,9 @@ json build_document(const BakeScene& scene, GlbBuilder& glb) {
                               {"material", glb.doc["materials"].size() - 1},
                               {"mode", 4}});
     }
+    if (scene.engine_materials)
+        if (const auto used = material_extensions(glb.doc["materials"]); !used.empty())
+            glb.doc["extensionsUsed"] = used;
     glb.doc["meshes"] = {{{"name", "radiosity"}, {"primitives", primitives}}};
     glb.doc["nodes"] = {{{"name", "radiosity"}, {"mesh", 0}}};
     glb.doc["scenes"] = {{{"nodes", {0}}}};
