@@ -3,6 +3,7 @@
 #include "helpers.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
+#include "radiosity/gather.hpp"
 #include "radiosity/specular.hpp"
 #include "radiosity/specular_materials.hpp"
 
@@ -307,4 +308,39 @@ TEST_CASE("mesh version 3 keeps the specular parts; a mesh without keeps version
     unused.materials.back().name = "spare";
     CHECK(unused.geometry_hash() == plain.geometry_hash());
     fs::remove_all(dir);
+}
+
+TEST_CASE("a sensor behind a pane gets the light the glass transmits", "[slow]") {
+    // The lamp (1 x 1, 10 W/m^2, facing down at z = 1) over a sensor at (0.5, 0.5, 0) facing
+    // up, a wide pane of 0.7 at z = 0.5 between them: the irradiance is the lamp's form factor
+    // weighted by the pane's transmittance at each direction (2D quadrature over the lamp).
+    const double tn = 0.7, ior = 1.52, e = 10;
+    const std::string mtl = "newmtl lamp\nKd 0 0 0\nKe 10 10 10\nnewmtl glass\nillum 4\nKd 0 0 0\n"
+                            "Tf 0.7 0.7 0.7\nNi 1.52\n";
+    const std::string obj = v(0, 0, 1) + v(1, 0, 1) + v(1, 1, 1) + v(0, 1, 1) + v(-3, -3, 0.5) +
+                            v(4, -3, 0.5) + v(4, 4, 0.5) + v(-3, 4, 0.5) +
+                            "usemtl lamp\nf 1 4 3 2\nusemtl glass\nf 5 6 7 8\n";
+    const auto mesh = rad::subdivide(scene_from_obj(obj, mtl), {});
+    REQUIRE(mesh.patches.size() == 2);
+    std::vector<radfmt::Rgb> b(2);
+    b[0] = {{e, e, e}};
+    const double t = rad::pane_transmissivity(tn, ior);
+    const int m = 64;
+    double expected = 0, open = 0;
+    for (int i = 0; i < m; ++i)
+        for (int j = 0; j < m; ++j) { // midpoints over the lamp
+            const double dx = (i + 0.5) / m - 0.5, dy = (j + 0.5) / m - 0.5;
+            const double r2 = dx * dx + dy * dy + 1;
+            const double kernel = 1 / (kPi * r2 * r2) / (m * m); // cos cos / (pi r^2) dA
+            open += kernel;
+            expected += kernel * rad::pane_shares(t, ior, 1 / std::sqrt(r2)).transmitted;
+        }
+    rad::GatherOptions options;
+    options.rays = 1 << 16;
+    const rad::Gatherer gatherer(mesh, b, options);
+    const auto got = gatherer.gather({0.5, 0.5, 0}, {0, 0, 1}, 3);
+    // The glass blocks the direct sampling; the rays through it find the lamp.
+    CHECK(got.direct[0] == 0);
+    CHECK(got.total()[0] == Approx(e * expected).epsilon(0.02));
+    CHECK(expected < tn * open);
 }

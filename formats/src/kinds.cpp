@@ -721,7 +721,15 @@ std::string mesh_summary(const fs::path& path, Header& header) {
         text += box;
     }
     const auto* unit = header.find("unit");
-    return text + ", unit " + (unit ? *unit : std::string("m (not recorded)"));
+    text += ", unit " + (unit ? *unit : std::string("m (not recorded)"));
+    // Mirrors and glass: which materials, of what kind.
+    std::string specular;
+    for (const auto& m : mesh.materials)
+        if (m.specular.any())
+            specular += (specular.empty() ? "" : ", ") + m.name + " (" +
+                        specular_kind_name(m.specular.kind) + ")";
+    if (!specular.empty()) text += "; mirrors and glass: " + specular;
+    return text;
 }
 
 void form_factor_rows_csv(const FormFactorData& ff, std::ostream& out);

@@ -20,6 +20,9 @@ expect_error "material 'floor' transmits nothing in its file" "$TMP/x.mesh" \
 expect_error "--thin leftSphere: material 'leftSphere' is a mirror" "$TMP/x.mesh" \
   "$BIN/rad-mesh" "$TMP/CornellBox-Sphere.obj" -o "$TMP/x.mesh" --thin leftSphere
 
+"$BIN/rad-info" "$TMP/s.mesh" | grep -q "mirrors and glass: leftSphere (fresnel), rightSphere (dielectric)" \
+  || fail "rad-info does not list the mesh's mirrors and glass"
+
 # rad-ff: auto picks the rays that follow them; methods that do not, say so.
 err=$("$BIN/rad-ff" "$TMP/s.mesh" -o "$TMP/s.ff" --rays 1024 2>&1) || fail "rad-ff: $err"
 grep -q "hemisphere .*mirrors and glass" <<<"$err" || fail "auto did not say why hemisphere: $err"
