@@ -215,6 +215,13 @@ TEST_CASE("a patch facing a parallel mirror sees its own image: rho F(2h)", "[sl
     const auto ff = hemisphere(mesh, 1 << 20);
     CHECK(entry(ff, 0, 0) ==
           Approx(0.9 * rad::parallel_rectangles_form_factor(1, 1, 2 * h)).epsilon(0.005));
+    // The hemi-cube's pixel rays go on at the mirror the same way.
+    rad::FormFactorOptions cube;
+    cube.method = "hemicube";
+    cube.resolution = 512;
+    cube.quiet = true;
+    CHECK(entry(rad::compute_form_factors(mesh, cube), 0, 0) ==
+          Approx(0.9 * rad::parallel_rectangles_form_factor(1, 1, 2 * h)).epsilon(0.005));
     // The mirror's own (diffuse) part is seen directly, unweighted.
     CHECK(entry(ff, 0, 1) == Approx(rad::parallel_rectangles_form_factor(1, 1, h)).epsilon(0.005));
 }

@@ -178,7 +178,8 @@ void add_method_options(CLI::App& app, FfArgs& a) {
         ->capture_default_str()
         ->check(CLI::Range(1, 100000000));
     app.add_option("--specular-depth", options.specular_depth,
-                   "hemisphere: how many mirrors and panes of glass a path may go through (each "
+                   "hemisphere, hemicube: how many mirrors and panes of glass a path may go "
+                   "through (each "
                    "reflection or crossing counts one; paths also end where under 1e-4 of the "
                    "light would go on); for a mesh with no specular material it changes "
                    "nothing")

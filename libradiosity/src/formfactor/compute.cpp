@@ -143,8 +143,8 @@ void require_specular_support(std::string_view method, bool follows, const radfm
                      " does not follow light through mirrors and glass, and this mesh has "
                      "them (material " +
                      names +
-                     "): use --method hemisphere, which does (or mesh the scene without "
-                     "them)");
+                     "): use --method hemisphere or hemicube, which do (or mesh the scene "
+                     "without them)");
 }
 
 void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOptions& options_in,

@@ -86,7 +86,12 @@ class HemicubeKernel final : public RowKernel {
                 origin = fan_triangle_point(poly, tri, within, wrap(pixel.t + shift_t));
             }
             const Vec3 d = pixel.direction;
-            const auto hit = context_.scene.trace(origin, tu * d[0] + tv * d[1] + pi.normal * d[2]);
+            const Vec3 direction = tu * d[0] + tv * d[1] + pi.normal * d[2];
+            if (context_.specular.any()) {
+                add_specular_pixel(i, origin, direction, pixel.weight, tally);
+                continue;
+            }
+            const auto hit = context_.scene.trace(origin, direction);
             if (hit.patch >= 0 && hit.front && static_cast<std::size_t>(hit.patch) != i)
                 tally.add(static_cast<std::size_t>(hit.patch), pixel.weight);
         }
@@ -97,6 +102,18 @@ class HemicubeKernel final : public RowKernel {
     }
 
   private:
+    // A pixel's ray through mirrors and glass: every surface its path reaches adds the
+    // pixel's delta form factor times the path's weight (the channels' mean).
+    void add_specular_pixel(std::size_t i, const Vec3& origin, const Vec3& direction, double delta,
+                            RowTally<double>& tally) const {
+        follow_specular(context_.scene, context_.specular, origin, direction,
+                        radfmt::Rgb{{1, 1, 1}}, context_.specular_depth, [&](const PathHit& h) {
+                            const auto j = static_cast<std::size_t>(h.hit.patch);
+                            if (!h.hit.front || (j == i && h.events == 0)) return;
+                            tally.add(j, delta * (h.weight[0] + h.weight[1] + h.weight[2]) / 3);
+                        });
+    }
+
     const FormFactorContext& context_;
     std::vector<Pixel> pixels_;
     bool at_centre_;
@@ -128,8 +145,11 @@ class Hemicube final : public FormFactorMethod {
     }
     std::uint64_t max_row_entries(const radfmt::MeshData& mesh,
                                   const FormFactorOptions& options) const override {
+        // A path through mirrors and glass reaches several surfaces.
+        if (mesh.has_specular()) return mesh.patches.size();
         return std::min<std::uint64_t>(mesh.patches.size(), hemicube_rays(options.resolution));
     }
+    bool follows_specular() const override { return true; }
     std::uint64_t working_memory(const radfmt::MeshData& mesh, const FormFactorOptions& options,
                                  unsigned threads) const override {
         // The pixel table, and per thread a sum per patch with its bitmaps.
