@@ -23,7 +23,7 @@ FormFactorEstimate estimate_form_factor_time(const radfmt::MeshData& mesh,
     if (last == first) return estimate;
     const auto setup_start = clock::now();
     const RayScene scene(mesh);
-    const FormFactorContext context(mesh, scene);
+    const FormFactorContext context(mesh, scene, options.specular_depth);
     const auto kernel = form_factor_method(options.method).prepare(context, options);
     estimate.setup_seconds = std::chrono::duration<double>(clock::now() - setup_start).count();
 
