@@ -33,22 +33,14 @@ class HemisphereKernel final : public RowKernel {
         // origin, Halton bases 3 and 5 for the direction), rotated per patch by seeded
         // offsets (Cranley-Patterson), so the estimate is unbiased and stratified jointly.
         const double rot[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
+        if (context_.specular.any()) return specular_row(i, rot, row, log);
         // Front hits are tallied in a dense array of this thread's (4 bytes a patch, so it
         // stays in the cache where the log's counters would not), the patches hit marked,
         // read back in column order, added to the log's front counts and reset.
-        if (context_.specular.any()) return specular_row(i, rot, row, log);
         auto& hits = hits_.local();
         hits.resize(n);
         for (int r = 0; r < rays_; ++r) {
-            const double u0 = wrap(qmc_[r][0] + rot[0]);
-            const double u1 = wrap(qmc_[r][1] + rot[1]);
-            const double u2 = wrap(qmc_[r][2] + rot[2]);
-            const double u3 = wrap(qmc_[r][3] + rot[3]);
-            // Choose a fan triangle with u0, then reuse u0's remainder: stays stratified.
-            double within = 0;
-            const std::size_t tri = pick_fan_triangle(cdf, u0, &within);
-            const Vec3 origin = fan_triangle_point(poly, tri, within, u1);
-            const Vec3 dir = cosine_direction(pi.normal, tu, tv, u2, u3);
+            const auto [origin, dir] = ray_of(i, r, rot, poly, cdf, tu, tv);
             const auto traced = context_.scene.trace(origin, dir);
             const auto hit = traced.patch;
             const bool front = traced.front;
@@ -79,6 +71,7 @@ class HemisphereKernel final : public RowKernel {
         const double u1 = wrap(qmc_[r][1] + rot[1]);
         const double u2 = wrap(qmc_[r][2] + rot[2]);
         const double u3 = wrap(qmc_[r][3] + rot[3]);
+        // Choose a fan triangle with u0, then reuse u0's remainder: stays stratified.
         double within = 0;
         const std::size_t tri = pick_fan_triangle(cdf, u0, &within);
         return {fan_triangle_point(poly, tri, within, u1),
