@@ -391,6 +391,15 @@ int main(int argc, char** argv) {
         dir / "seed-polygon.mesh", header,
         testing_helpers::polygon_under_square({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, 3,
                                               {5.0 / 6, 5.0 / 6, 0}));
+    // A mesh of version 3: the box with a mirror and a glass block (specular parts), which
+    // use_mesh's rays follow.
+    auto specular = mesh;
+    for (std::size_t m = 0; m < specular.materials.size(); ++m) {
+        auto& part = specular.materials[m].specular;
+        if (m % 3 == 1) part = {radfmt::SpecularKind::mirror, {{0.9, 0.9, 0.9}}, {}, 1.5, 0};
+        if (m % 3 == 2) part = {radfmt::SpecularKind::dielectric, {}, {{1, 1, 1}}, 1.5, 0.1};
+    }
+    radfmt::write_mesh(dir / "seed-specular.mesh", header, specular);
     // A second radiosity seed with light groups (version 2's extra arrays).
     rad::Channels grouped(mesh.patches.size(), 6);
     for (auto& v : grouped.values) v = 0.25;
@@ -477,7 +486,8 @@ int main(int argc, char** argv) {
     };
     std::vector<Kind> kinds{
         {"mesh",
-         {read_bytes(dir / "seed.mesh"), read_bytes(dir / "seed-polygon.mesh")},
+         {read_bytes(dir / "seed.mesh"), read_bytes(dir / "seed-polygon.mesh"),
+          read_bytes(dir / "seed-specular.mesh")},
          false,
          [](const fs::path& p) { use_mesh(radfmt::read_mesh(p)); }},
         {"formfactors",
