@@ -30,7 +30,7 @@ std::string about(double seconds) {
     char text[64];
     if (seconds < 10)
         std::snprintf(text, sizeof text, "about %.1f s", seconds);
-    else if (seconds < 90)
+    else if (seconds < 300) // whole minutes would be a quarter off at 90 s
         std::snprintf(text, sizeof text, "about %.0f s", seconds);
     else if (seconds < 5400)
         std::snprintf(text, sizeof text, "about %.0f min", seconds / 60);
