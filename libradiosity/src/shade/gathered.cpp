@@ -55,7 +55,6 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
     const int end_row = rows.end < 0 ? height : std::clamp(rows.end, first_row, height);
     const int ss = std::max(1, supersampling);
     const int W = width * ss, H = height * ss;
-    const auto& mesh = gatherer.mesh();
 
     Image image;
     image.width = width;
@@ -81,18 +80,10 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
                         ++backs;
                         continue;
                     }
-                    const auto& patch = mesh.patches[static_cast<std::size_t>(hit.patch)];
-                    const auto& material = mesh.materials[patch.material];
-                    const Vec3 point = view.position + ray * hit.distance;
                     const std::uint64_t index = std::uint64_t(y * ss + sy) * W + (x * ss + sx);
-                    const auto normal = gatherer.shading_normal(hit);
-                    auto h = gatherer.gather(point, normal, patch.normal, index).total();
-                    if (luminaires) // their direct light, exactly at the point
-                        for (const auto& g :
-                             luminaire_irradiance(*luminaires, point, normal, &gatherer.scene()))
-                            for (int c = 0; c < 3; ++c) h[c] += g[c];
-                    for (int c = 0; c < 3; ++c)
-                        sum[c] += material.emission[c] + material.reflectance[c] * h[c];
+                    const auto colour = gathered_colour(gatherer, luminaires, hit,
+                                                        view.position + ray * hit.distance, index);
+                    for (int c = 0; c < 3; ++c) sum[c] += colour[c];
                 }
             const std::size_t at = std::size_t(y) * width + x;
             for (int c = 0; c < 3; ++c)
