@@ -45,7 +45,9 @@ class SpecularSurfaces {
   public:
     explicit SpecularSurfaces(const radfmt::MeshData& mesh);
     bool any() const { return any_; }
-    const radfmt::Specular& of(std::size_t patch) const { return materials_[material_[patch]]; }
+    const radfmt::Specular& of(std::size_t patch) const {
+        return mesh_.materials[mesh_.patches[patch].material].specular;
+    }
     bool is_specular(std::size_t patch) const { return of(patch).any(); }
     // Light can pass it (a pane or a dielectric): meeting its back is no wrong way.
     bool transmits(std::size_t patch) const;
@@ -59,14 +61,9 @@ class SpecularSurfaces {
     Vec3 normal_at(const RayScene::Hit& hit) const;
 
   private:
-    std::vector<radfmt::Specular> materials_;
-    std::vector<double> pane_t_;       // per material: a pane's transmissivity per channel mean
-    std::vector<radfmt::Rgb> pane_tc_; // per material and channel
-    std::vector<double> diffuse_;      // per material: its brightest diffuse reflectance
-    std::vector<std::uint32_t> material_;
-    std::vector<Vec3> normal_;
-    const radfmt::MeshData* mesh_ = nullptr;
-    CornerColours corner_normals_; // of the specular patches' surfaces (empty without)
+    const radfmt::MeshData& mesh_;
+    std::vector<radfmt::Rgb> pane_transmissivity_; // per material and channel, for panes
+    CornerColours corner_normals_; // the patches' normals at their corners (empty: no specular)
     bool any_ = false;
 };
 

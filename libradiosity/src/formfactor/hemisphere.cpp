@@ -33,7 +33,7 @@ class HemisphereKernel final : public RowKernel {
         // origin, Halton bases 3 and 5 for the direction), rotated per patch by seeded
         // offsets (Cranley-Patterson), so the estimate is unbiased and stratified jointly.
         const double rot[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-        if (context_.specular.any()) return specular_row(i, rot, row, log);
+        if (context_.specular.any()) return specular_row(i, rot, poly, cdf, tu, tv, row, log);
         // Front hits are tallied in a dense array of this thread's (4 bytes a patch, so it
         // stays in the cache where the log's counters would not), the patches hit marked,
         // read back in column order, added to the log's front counts and reset.
@@ -81,15 +81,11 @@ class HemisphereKernel final : public RowKernel {
     // The row of a mesh with mirrors or glass: each ray goes on through them (the extended
     // form factor of the two-pass method), and every surface it reaches on the way adds the
     // path's weight (the channels' mean) to F_ij. The same rays as without them.
-    std::uint64_t specular_row(std::size_t i, const double (&rot)[4], FormFactorRow& row,
-                               RayLog& log) const {
-        const auto& mesh = context_.mesh;
-        const auto& pi = mesh.patches[i];
-        const auto poly = context_.polygons[i].points();
-        const auto cdf = fan_cdf(poly);
-        const Vec3 tu = orthogonal(pi.normal), tv = cross(pi.normal, tu);
+    std::uint64_t specular_row(std::size_t i, const double (&rot)[4], std::span<const Vec3> poly,
+                               std::span<const double> cdf, const Vec3& tu, const Vec3& tv,
+                               FormFactorRow& row, RayLog& log) const {
         auto& sums = weights_.local();
-        sums.resize(mesh.patches.size());
+        sums.resize(context_.mesh.patches.size());
         for (int r = 0; r < rays_; ++r) {
             const auto [origin, dir] = ray_of(i, r, rot, poly, cdf, tu, tv);
             bool met = false;

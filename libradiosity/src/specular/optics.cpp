@@ -45,31 +45,19 @@ PaneShares pane_shares(double t, double ior, double cos_incident) {
     return out;
 }
 
-SpecularSurfaces::SpecularSurfaces(const radfmt::MeshData& mesh) {
+SpecularSurfaces::SpecularSurfaces(const radfmt::MeshData& mesh)
+    : mesh_(mesh), any_(mesh.has_specular()) {
     for (const auto& m : mesh.materials) {
-        materials_.push_back(m.specular);
         radfmt::Rgb t{};
         for (int c = 0; c < 3; ++c)
             t[c] = pane_transmissivity(m.specular.transmittance[c], m.specular.ior);
-        pane_tc_.push_back(t);
-        diffuse_.push_back(std::max({m.reflectance[0], m.reflectance[1], m.reflectance[2]}));
-        any_ = any_ || m.specular.any();
+        pane_transmissivity_.push_back(t);
     }
-    any_ = any_ && mesh.has_specular();
-    mesh_ = &mesh;
-    if (any_) {
-        std::vector<radfmt::Rgb> normals;
-        normals.reserve(mesh.patches.size());
-        for (const auto& p : mesh.patches)
-            normals.push_back({p.normal[0], p.normal[1], p.normal[2]});
-        corner_normals_ = corner_colours(mesh, normals, Smoothing::Crease, 30);
-    }
-    material_.reserve(mesh.patches.size());
-    normal_.reserve(mesh.patches.size());
-    for (const auto& p : mesh.patches) {
-        material_.push_back(p.material);
-        normal_.push_back(p.normal);
-    }
+    if (!any_) return;
+    std::vector<radfmt::Rgb> normals;
+    normals.reserve(mesh.patches.size());
+    for (const auto& p : mesh.patches) normals.push_back({p.normal[0], p.normal[1], p.normal[2]});
+    corner_normals_ = corner_colours(mesh, normals, Smoothing::Crease, 30);
 }
 
 bool SpecularSurfaces::transmits(std::size_t patch) const {
@@ -87,9 +75,9 @@ radfmt::Rgb grey(double x) {
 } // namespace
 
 Vec3 SpecularSurfaces::normal_at(const RayScene::Hit& hit) const {
-    const auto& flat = normal_[static_cast<std::size_t>(hit.patch)];
+    const auto& flat = mesh_.patches[static_cast<std::size_t>(hit.patch)].normal;
     if (corner_normals_.patches.empty()) return flat;
-    const auto c = interpolate_corners(*mesh_, corner_normals_, hit.patch, hit.u, hit.v, hit.piece);
+    const auto c = interpolate_corners(mesh_, corner_normals_, hit.patch, hit.u, hit.v, hit.piece);
     const Vec3 n{c[0], c[1], c[2]};
     const double len = length(n);
     // Interpolated normals stay on the patch's side of its plane.
@@ -100,11 +88,12 @@ Vec3 SpecularSurfaces::normal_at(const RayScene::Hit& hit) const {
 int SpecularSurfaces::branches(std::size_t patch, const Vec3& d, bool front,
                                std::array<SpecularBranch, 2>& out, const RayScene::Hit* hit) const {
     using radfmt::SpecularKind;
-    const auto m = material_[patch];
-    const auto& s = materials_[m];
-    Vec3 n = hit ? normal_at(*hit) : normal_[patch];
+    const auto& material = mesh_.materials[mesh_.patches[patch].material];
+    const auto& s = material.specular;
+    const Vec3& flat = mesh_.patches[patch].normal;
+    Vec3 n = hit ? normal_at(*hit) : flat;
     // A ray must meet the shading normal from the side it met the patch.
-    if ((dot(d, n) < 0) != front) n = normal_[patch];
+    if ((dot(d, n) < 0) != front) n = flat;
     const double cos_i = std::min(1.0, std::abs(dot(d, n)));
     switch (s.kind) {
     case SpecularKind::none:
@@ -127,7 +116,8 @@ int SpecularSurfaces::branches(std::size_t patch, const Vec3& d, bool front,
         out[0].direction = d;
         out[1].direction = mirrored(d, n);
         for (int c = 0; c < 3; ++c) {
-            const auto shares = pane_shares(pane_tc_[m][c], s.ior, cos_i);
+            const auto shares =
+                pane_shares(pane_transmissivity_[mesh_.patches[patch].material][c], s.ior, cos_i);
             out[0].weight[c] = shares.transmitted;
             out[1].weight[c] = shares.reflected;
         }
@@ -137,7 +127,8 @@ int SpecularSurfaces::branches(std::size_t patch, const Vec3& d, bool front,
         // The medium is behind the surface's back: a ray meeting the front enters it.
         const double n1 = front ? 1.0 : s.ior, n2 = front ? s.ior : 1.0;
         // The diffuse part takes its share first; the boundary splits the rest.
-        const double share = 1 - diffuse_[m];
+        const auto& kd = material.reflectance;
+        const double share = 1 - std::max({kd[0], kd[1], kd[2]});
         const double r = fresnel_reflectance(cos_i, n1, n2);
         out[0] = {mirrored(d, n), grey(share * r)};
         if (r >= 1) return 1;
