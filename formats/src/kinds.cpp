@@ -42,12 +42,18 @@ std::string MeshData::geometry_hash() const {
     return "xxh64:" + hash_hex(w.hash());
 }
 
+std::vector<std::uint32_t> MeshData::specular_materials() const {
+    std::vector<bool> used(materials.size(), false);
+    for (const auto& p : patches)
+        if (p.material < used.size()) used[p.material] = true;
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t m = 0; m < materials.size(); ++m)
+        if (used[m] && materials[m].specular.any()) out.push_back(m);
+    return out;
+}
+
 bool MeshData::has_specular() const {
-    std::vector<bool> specular(materials.size());
-    for (std::size_t m = 0; m < materials.size(); ++m) specular[m] = materials[m].specular.any();
-    return std::any_of(patches.begin(), patches.end(), [&](const Patch& p) {
-        return p.material < specular.size() && specular[p.material];
-    });
+    return !specular_materials().empty();
 }
 
 const char* specular_kind_name(SpecularKind kind) {

@@ -128,6 +128,8 @@ struct MeshData {
     // form-factor file (a mesh without specular parts keeps the hash it always had).
     std::string geometry_hash() const;
     bool has_specular() const; // some patch's material has a specular part
+    // The materials with a specular part that some patch uses, ascending.
+    std::vector<std::uint32_t> specular_materials() const;
 };
 
 // A hemisphere matrix's rows packed in memory (read with FormFactorLayout::compact): 3 bytes

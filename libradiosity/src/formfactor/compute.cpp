@@ -122,23 +122,23 @@ form_factor_header_fields(const FormFactorOptions& options) {
 
 std::vector<std::pair<std::string, std::string>>
 specular_header_fields(const radfmt::MeshData& mesh, const FormFactorOptions& options) {
-    if (!mesh.has_specular()) return {};
+    const auto specular = mesh.specular_materials();
+    if (specular.empty()) return {};
     std::string materials;
-    std::vector<bool> used(mesh.materials.size(), false);
-    for (const auto& p : mesh.patches) used[p.material] = true;
-    for (std::size_t m = 0; m < mesh.materials.size(); ++m)
-        if (used[m] && mesh.materials[m].specular.any())
-            materials += (materials.empty() ? "" : ",") + mesh.materials[m].name + "=" +
-                         radfmt::specular_kind_name(mesh.materials[m].specular.kind);
+    for (const auto m : specular)
+        materials += (materials.empty() ? "" : ",") + mesh.materials[m].name + "=" +
+                     radfmt::specular_kind_name(mesh.materials[m].specular.kind);
     return {{"specular_depth", std::to_string(options.specular_depth)},
             {"specular_materials", materials}};
 }
 
 void require_specular_support(std::string_view method, bool follows, const radfmt::MeshData& mesh) {
-    if (follows || !mesh.has_specular()) return;
+    if (follows) return;
+    const auto specular = mesh.specular_materials();
+    if (specular.empty()) return;
     std::string names;
-    for (const auto& m : mesh.materials)
-        if (m.specular.any()) names += (names.empty() ? "'" : ", '") + m.name + "'";
+    for (const auto m : specular)
+        names += (names.empty() ? "'" : ", '") + mesh.materials[m].name + "'";
     throw InputError("--method " + std::string(method) +
                      " does not follow light through mirrors and glass, and this mesh has "
                      "them (material " +

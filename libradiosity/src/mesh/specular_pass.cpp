@@ -110,12 +110,9 @@ void specular_pass(radfmt::MeshData& mesh, const MeshOptions& options, MeshRepor
                          "materials:" +
                          (known.empty() ? std::string(" none") : known) + ")");
     }
-    std::vector<bool> used(mesh.materials.size(), false);
-    for (const auto& p : mesh.patches) used[p.material] = true;
-    for (std::size_t m = 0; m < mesh.materials.size(); ++m)
-        if (used[m] && mesh.materials[m].specular.any())
-            report.add(MeshReport::Kind::Note, "material '" + mesh.materials[m].name + "': " +
-                                                   specular_summary(mesh.materials[m].specular));
+    for (const auto m : mesh.specular_materials())
+        report.add(MeshReport::Kind::Note, "material '" + mesh.materials[m].name + "': " +
+                                               specular_summary(mesh.materials[m].specular));
 }
 
 } // namespace rad
