@@ -2,6 +2,7 @@
 #include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
+#include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/formfactor_method.hpp"
@@ -110,13 +111,14 @@ void set_link_shard(const std::string& rows, std::size_t patches, rad::Hierarchy
 
 // What the command line says.
 struct FfArgs {
-    std::string output, max_memory, rows, luminaires;
+    std::string output, max_memory, rows, luminaires, sky;
+    double north = 0;
     rad::FormFactorOptions options;
     rad::HierarchyOptions hierarchy;
     int threads = 0;
     std::vector<std::string> inputs;
     bool merge = false, estimate_only = false, verbose = false;
-    CLI::Option *rows_option = nullptr, *output_option = nullptr;
+    CLI::Option *rows_option = nullptr, *output_option = nullptr, *rays_option = nullptr;
 };
 
 // The inputs, the output, sharding and merging.
@@ -139,6 +141,16 @@ void add_file_options(CLI::App& app, FfArgs& a) {
                    "maintenance,group; photometric files IES or EULUMDAT beside it): write each "
                    "luminaire's direct light on every patch to -o (a .lum file for rad-solve "
                    "--direct) instead of form factors");
+    app.add_option("--sky", a.sky,
+                   "A sky subdivision (reinhart:1 = Tregenza's 145 patches, reinhart:2 = 577, "
+                   "reinhart:4 = 2305): write each patch's view of every sky patch and of the "
+                   "ground, through openings and glass, to -o (a .sky file for rad-solve "
+                   "--direct: daylight coefficients) instead of form factors");
+    app.add_option("--north", a.north,
+                   "With --sky: where true north is, in degrees from the scene's -Z axis "
+                   "towards +X (clockwise seen from above; +Y is up)")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(-360, 360));
     app.add_flag("--estimate", a.estimate_only,
                  "Measure a few rows, say how long the run would take (and, for an O(n^2) "
                  "method, what hemisphere would take), and stop: no output, no -o needed. "
@@ -174,9 +186,12 @@ void add_method_options(CLI::App& app, FfArgs& a) {
                    "analytic: visibility rays per sample point and patch")
         ->capture_default_str()
         ->check(CLI::Range(1, 1024));
-    app.add_option("--rays", options.rays, "hemisphere: rays per patch")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 100000000));
+    a.rays_option = app.add_option("--rays", options.rays,
+                                   "hemisphere: rays per patch (--sky: 1000 unless given; "
+                                   "sensors trace the sky themselves, the .sky feeds the "
+                                   "light the room reflects)")
+                        ->capture_default_str()
+                        ->check(CLI::Range(1, 100000000));
     app.add_option("--specular-depth", options.specular_depth,
                    "hemisphere, hemicube: how many mirrors and panes of glass a path may go "
                    "through (each "
@@ -444,10 +459,70 @@ int direct_light(FfArgs& a, int argc, char** argv) {
     return 0;
 }
 
+// --sky: each patch's view of the sky patches and the ground, into a .sky file.
+int sky_view(FfArgs& a, int argc, char** argv) {
+    if (a.merge || a.estimate_only || !a.rows.empty())
+        throw rad::InputError("--sky takes neither --merge, --rows nor --estimate");
+    if (a.inputs.size() != 1) throw rad::InputError("give one mesh with --sky");
+    rad::SkyViewOptions options{rad::SkyPatches::parse(a.sky), rad::SkyFrame{a.north},
+                                a.rays_option->count() ? a.options.rays : 1000, a.options.seed,
+                                a.options.specular_depth};
+    rad::ThreadLimit thread_limit(a.threads);
+    const auto& input = a.inputs.front();
+    radfmt::Header mesh_header;
+    const auto mesh = radfmt::read_mesh(input, &mesh_header);
+    if (mesh.patches.empty()) throw rad::InputError(input + ": mesh has no patches");
+    rad::check_ray_precision(mesh.vertices, input);
+    const double need = double(mesh.patches.size()) * double(options.patches.count()) * 12 * 2;
+    if (const auto limit = rad::tool::memory_limit(a.max_memory); need > double(limit))
+        throw rad::InputError(input + ": " + options.patches.spec() + " over " +
+                              std::to_string(mesh.patches.size()) + " patches needs about " +
+                              rad::human_bytes(need) + ", more than --max-memory " +
+                              rad::human_bytes(double(limit)) +
+                              " (a coarser subdivision or mesh, or a larger --max-memory)");
+    const rad::RayScene scene(mesh);
+    const rad::SpecularSurfaces specular(mesh);
+    rad::SkyViewStats stats;
+    const auto view = rad::patch_sky_view(mesh, scene, specular, options, 0, mesh.patches.size(),
+                                          &stats, a.options.quiet);
+    radfmt::SkyData sky{
+        options.patches.spec(), a.north, mesh.patches.size(), options.patches.count(), {}};
+    sky.coefficients.reserve(view.size() * 3);
+    for (const auto& c : view)
+        for (int k = 0; k < 3; ++k) sky.coefficients.push_back(float(c[std::size_t(k)]));
+    const radfmt::Parent parents[] = {{input, &mesh_header}};
+    auto header = radfmt::derived_header(rad::tool_version("rad-ff"),
+                                         radfmt::command_line(argc, argv), parents);
+    header.set("mesh_geometry_hash", mesh.geometry_hash());
+    header.set("rays", std::to_string(options.rays));
+    header.set("seed", std::to_string(options.seed));
+    if (mesh.has_specular()) header.set("specular_depth", std::to_string(options.specular_depth));
+    radfmt::write_sky(a.output, header, sky);
+    if (!a.options.quiet) {
+        std::size_t seeing = 0;
+        for (std::size_t i = 0; i < mesh.patches.size(); ++i)
+            for (std::size_t s = 0; s < options.patches.count(); ++s)
+                if (rad::luminous(view[i * options.patches.count() + s]) > 0) {
+                    ++seeing;
+                    break;
+                }
+        std::fprintf(stderr,
+                     "rad-ff: %s sky (%zu patches with the ground), north %g deg: %zu of %zu "
+                     "patches see it, %.3g%% of %llu rays left the scene; %.3f s\n",
+                     options.patches.spec().c_str(), options.patches.count(), a.north, seeing,
+                     mesh.patches.size(), 100.0 * double(stats.escaped) / double(stats.rays),
+                     static_cast<unsigned long long>(stats.rays), stats.seconds);
+    }
+    return 0;
+}
+
 int form_factors(FfArgs& a, int argc, char** argv) {
     check_arguments(a);
     if (a.merge) return merge_parts(a);
+    if (!a.luminaires.empty() && !a.sky.empty())
+        throw rad::InputError("--luminaires or --sky: one light source file per run");
     if (!a.luminaires.empty()) return direct_light(a, argc, argv);
+    if (!a.sky.empty()) return sky_view(a, argc, argv);
     if (a.inputs.size() != 1)
         throw rad::InputError("give one mesh (several inputs are for --merge)");
     if (a.rows_option->count() > 0 && a.rows.empty())

@@ -1,4 +1,5 @@
 // rad-gather: mesh + solved radiosity + points -> irradiance (or illuminance) at each point.
+#include "gather_daylight.hpp"
 #include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
@@ -200,6 +201,7 @@ struct GatherArgs {
     bool lux = false, header = false, keep_going = false, quiet = false;
     double lux_max = 0;
     int threads = 0;
+    rad::tool::DaylightArgs daylight;
 };
 
 // The inputs and outputs.
@@ -506,6 +508,57 @@ std::string sensors_and_preamble(const GatherArgs& a, const Grid& grid,
     return part_preamble(a, grid, range, total, mesh_header, rad_header, argc, argv);
 }
 
+// Daylight (--sky, --epw --annual): every sensor read first, then gathered in parallel.
+int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
+             const radfmt::RadiosityData& solution, const radfmt::Header& rad_header,
+             const Grid& grid, const radfmt::Header& mesh_header, int argc, char** argv) {
+    if (!a.rows.empty() || a.options.exact || (a.keep_going && a.grid_text.empty()))
+        throw rad::InputError("daylight takes neither --rows, --exact nor --keep-going");
+    rad::tool::DaylightRun run;
+    run.mesh = &mesh;
+    run.solution = &solution;
+    run.rad_header = &rad_header;
+    run.rad_path = a.rad_path;
+    run.output = a.output;
+    run.png = a.png;
+    run.rays = a.options.rays;
+    run.seed = a.options.seed;
+    run.quiet = a.quiet;
+    run.lux_max = a.lux_max;
+    run.command = radfmt::command_line(argc, argv);
+    run.inputs = {a.mesh_path, a.rad_path};
+    for (const auto* extra : {&a.points_path, &a.daylight.epw, &a.daylight.occupancy})
+        if (!extra->empty()) run.inputs.push_back(*extra);
+    if (a.header) run.header_line = header_line(a, run.command, mesh_header, rad_header);
+    std::unique_ptr<rad::LineReader> points;
+    std::unique_ptr<SensorSource> source;
+    if (a.grid_text.empty()) {
+        points = std::make_unique<rad::LineReader>(a.points_path);
+        source = std::make_unique<LineSource>(*points);
+    } else {
+        source = std::make_unique<GridSource>(grid);
+        run.grid_columns = int(grid.nx);
+        run.grid_rows = int(grid.nz);
+    }
+    const rad::Box box = rad::bounds(mesh.vertices);
+    std::vector<Sensor> sensors;
+    while (source->next(sensors, sensors.size() + 4096)) {
+        if (sensors.size() == run.positions.size()) break;
+        for (std::size_t k = run.positions.size(); k < sensors.size(); ++k) {
+            const auto& s = sensors[k];
+            const auto where = a.points_path.empty() ? std::string("<stdin>") : a.points_path;
+            if (!s.problem.empty())
+                throw rad::InputError(where + ":" + std::to_string(s.line) + ": " + s.problem);
+            if (const auto why = rad::out_of_reach(s.position, box); !why.empty())
+                throw rad::InputError(where + ":" + std::to_string(s.line) + ": " + why);
+            run.positions.push_back(s.position);
+            run.normals.push_back(s.direction);
+        }
+    }
+    if (run.positions.empty()) throw rad::InputError("no sensors: give --points FILE or --grid");
+    return rad::tool::gather_daylight(a.daylight, run);
+}
+
 int gather(GatherArgs& a, int argc, char** argv) {
     if (a.merge) return merge_parts(a);
     if (a.inputs.size() != 2)
@@ -530,6 +583,11 @@ int gather(GatherArgs& a, int argc, char** argv) {
                                   mesh, "run rad-ff and rad-solve on " + a.mesh_path + " again");
     // E and rho as solved (rad-solve --emission/--reflectance overrides included).
     rad::apply_recorded_overrides(mesh, rad_header);
+    if (rad::tool::wants_daylight(a.daylight)) {
+        const int rc = daylight(a, mesh, solution, rad_header, grid, mesh_header, argc, argv);
+        outputs.commit();
+        return rc;
+    }
     const rad::Gatherer gatherer(mesh, solution.radiosity, a.options);
     const auto luminaires = rad::solution_luminaires(rad_header, a.rad_path, a.direct_path, mesh,
                                                      a.mesh_path, mesh_header);
@@ -579,6 +637,7 @@ int main(int argc, char** argv) {
     add_file_options(app, args);
     add_gather_options(app, args);
     add_output_options(app, args);
+    rad::tool::add_daylight_options(app, args.daylight);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
     rad::tool::restart_with_huge_pages(argv);
     return rad::tool::run_tool("rad-gather", [&] { return gather(args, argc, argv); });

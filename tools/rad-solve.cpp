@@ -7,6 +7,7 @@
 #include "radiosity/light_groups.hpp"
 #include "radiosity/luminaires.hpp"
 #include "radiosity/numbers.hpp"
+#include "radiosity/sky_patches.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/solver.hpp"
 #include "radiosity/version.hpp"
@@ -166,8 +167,11 @@ void add_material_options(CLI::App& app, SolveArgs& a) {
                    "Define a light group: NAME=MATERIAL[,MATERIAL...] (repeatable; implies "
                    "--light-groups; emitting materials in no group get one each)");
     app.add_option("--direct", a.direct_path,
-                   "Luminaires' direct light from rad-ff --luminaires (.lum): the first bounce, "
-                   "one light group per layout group (implies --light-groups)");
+                   "Light that is not a glowing patch, as the first bounce: luminaires from "
+                   "rad-ff --luminaires (.lum), one light group per layout group; or the sky "
+                   "from rad-ff --sky (.sky), one light group per sky patch and the ground "
+                   "(daylight coefficients for rad-gather --sky and --epw). Implies "
+                   "--light-groups");
     app.add_option("--max-memory", a.max_memory,
                    "Refuse, before solving, light groups whose channels over the patches would "
                    "need more than this (e.g. 4G; default: 80% of physical memory)");
@@ -329,6 +333,52 @@ rad::Channels add_direct_light(const SolveArgs& a, const radfmt::MeshData& mesh,
     return e;
 }
 
+// --direct with a .sky: one group per sky patch (and the ground) at unit radiance, each
+// emitting rho x its irradiance on the patch, then the material groups `emission` holds.
+rad::Channels add_sky_light(const SolveArgs& a, const radfmt::MeshData& mesh,
+                            radfmt::Header& header, std::vector<rad::LightGroup>& groups,
+                            rad::Channels emission) {
+    radfmt::Header sky_header;
+    const auto sky = radfmt::read_sky(a.direct_path, &sky_header);
+    radfmt::require_same_geometry(a.direct_path, sky_header, sky.patch_count, a.mesh_path, mesh,
+                                  "run rad-ff --sky on " + a.mesh_path + " again");
+    const auto patches = rad::SkyPatches::parse(sky.subdivision);
+    if (patches.count() != sky.sky_patches)
+        throw rad::InputError(a.direct_path + ": " + std::to_string(sky.sky_patches) +
+                              " sky patches, but " + sky.subdivision + " has " +
+                              std::to_string(patches.count()));
+    const std::size_t sky_groups = sky.sky_patches, others = groups.size();
+    for (const auto& g : groups)
+        for (std::size_t s = 0; s < sky_groups; ++s)
+            if (g.name == patches.name(s))
+                throw rad::InputError("light group '" + g.name +
+                                      "' is also a sky patch's name: name it differently");
+    rad::Channels e(mesh.patches.size(), 3 * (sky_groups + others));
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const auto& rho = mesh.materials[mesh.patches[i].material].reflectance;
+        for (std::size_t s = 0; s < sky_groups; ++s) {
+            const auto d = sky.of(i, s);
+            for (std::size_t c = 0; c < 3; ++c) e.at(i, 3 * s + c) = rho[c] * d[c];
+        }
+        for (std::size_t c = 0; c < 3 * others; ++c)
+            e.at(i, 3 * sky_groups + c) = emission.at(i, c);
+    }
+    std::vector<rad::LightGroup> all;
+    for (std::size_t s = 0; s < sky_groups; ++s) all.push_back({patches.name(s), {}});
+    all.insert(all.end(), groups.begin(), groups.end());
+    groups = std::move(all);
+    header.set("direct", a.direct_path);
+    header.set("sky_subdivision", sky.subdivision);
+    header.set("north", sky_header.get("north", a.direct_path));
+    if (!a.quiet)
+        std::fprintf(stderr,
+                     "rad-solve: daylight: %zu light groups, one per sky patch of %s and the "
+                     "ground, each at a radiance of 1 W/m^2/sr (any sky or hour is a mix of "
+                     "them: rad-gather --sky, --epw)\n",
+                     sky_groups, sky.subdivision.c_str());
+    return e;
+}
+
 int solve(SolveArgs& a, int argc, char** argv) {
     const auto snapshots = parse_snapshots(a);
     rad::tool::check_outputs(
@@ -377,7 +427,12 @@ int solve(SolveArgs& a, int argc, char** argv) {
         rad::record_light_groups(header, mesh, groups);
     }
     auto emission = groups.empty() ? rad::emission_of(mesh) : rad::grouped_emission(mesh, groups);
-    if (!a.direct_path.empty())
+    const bool sky =
+        !a.direct_path.empty() && radfmt::read_header(a.direct_path).kind == radfmt::Kind::Sky;
+    if (sky)
+        emission = add_sky_light(a, mesh, header, groups,
+                                 groups.empty() ? rad::Channels() : std::move(emission));
+    else if (!a.direct_path.empty())
         emission = add_direct_light(a, mesh, mesh_header, header, groups,
                                     groups.empty() ? rad::Channels() : std::move(emission));
     std::ostringstream log;

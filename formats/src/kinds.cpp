@@ -844,6 +844,12 @@ constexpr KindInfo kKinds[] = {
     {Kind::Luminaires, "luminaires", "luminaires' direct light per patch (rad-ff --luminaires)", 1,
      1, "patch,group,e_r,e_g,e_b (direct irradiance, W/m^2)", detail::luminaires_csv,
      detail::luminaires_summary},
+    {Kind::Sky, "sky", "sky patches' light per patch at unit radiance (rad-ff --sky)", 1, 1,
+     "patch,sky_patch,d_r,d_g,d_b (irradiance per unit radiance, sr)", detail::sky_csv,
+     detail::sky_summary},
+    {Kind::Annual, "annual", "a year of illuminance at sensors (rad-gather --annual)", 1, 1,
+     "month,day,hour,occupied,then each sensor's lux", detail::annual_csv,
+     detail::annual_summary},
 };
 
 } // namespace

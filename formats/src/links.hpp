@@ -10,4 +10,8 @@ void links_csv(const std::filesystem::path& path, std::ostream& out);
 std::string links_summary(const std::filesystem::path& path, Header& header);
 void luminaires_csv(const std::filesystem::path& path, std::ostream& out);
 std::string luminaires_summary(const std::filesystem::path& path, Header& header);
+void sky_csv(const std::filesystem::path& path, std::ostream& out);
+std::string sky_summary(const std::filesystem::path& path, Header& header);
+void annual_csv(const std::filesystem::path& path, std::ostream& out);
+std::string annual_summary(const std::filesystem::path& path, Header& header);
 } // namespace radfmt::detail

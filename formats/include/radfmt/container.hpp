@@ -34,7 +34,7 @@ struct WriteError : std::runtime_error {
 
 // The file kinds; what each is (name, description, version, CSV, summary) is the table in
 // kinds.hpp, which the container and rad-info read.
-enum class Kind { Mesh, FormFactors, Radiosity, FormFactorPart, Links, Luminaires };
+enum class Kind { Mesh, FormFactors, Radiosity, FormFactorPart, Links, Luminaires, Sky, Annual };
 std::string_view kind_name(Kind kind);
 std::string_view kind_description(Kind kind);
 std::uint32_t kind_version(Kind kind);

@@ -332,6 +332,36 @@ struct LuminaireData {
 void write_luminaires(const std::filesystem::path& path, Header header, const LuminaireData& lum);
 LuminaireData read_luminaires(const std::filesystem::path& path, Header* header_out = nullptr);
 
+// A sky-view file (rad-ff --sky, .sky): the sky's subdivision and compass, and per patch and
+// sky patch (the ground first) the irradiance on the patch's front from that sky patch at
+// unit radiance, RGB (glass may tint it), as floats.
+struct SkyData {
+    std::string subdivision; // "reinhart:M"
+    double north_deg = 0;    // true north is -Z turned this far towards +X
+    std::uint64_t patch_count = 0;
+    std::uint64_t sky_patches = 0;
+    std::vector<float> coefficients; // [(i * sky_patches + s) * 3 + c]
+    Rgb of(std::size_t patch, std::size_t sky) const {
+        const float* c = &coefficients[(patch * sky_patches + sky) * 3];
+        return {{c[0], c[1], c[2]}};
+    }
+};
+void write_sky(const std::filesystem::path& path, Header header, const SkyData& sky);
+SkyData read_sky(const std::filesystem::path& path, Header* header_out = nullptr);
+
+// A year of illuminance at sensors (rad-gather --annual, .ill): the sensors, the hours (month,
+// day, hour 1..24 and whether occupied), and per hour and sensor the illuminance and the
+// part of it the sun's beam gives directly, lux, as floats.
+struct AnnualData {
+    std::vector<Vec3> positions, normals;
+    std::vector<std::uint32_t> hours;   // month * 10000 + day * 100 + hour
+    std::vector<std::uint8_t> occupied; // per hour, 0 or 1
+    std::vector<float> lux, sun_lux;    // [hour * sensors + sensor]
+    std::size_t sensors() const { return positions.size(); }
+};
+void write_annual(const std::filesystem::path& path, Header header, const AnnualData& year);
+AnnualData read_annual(const std::filesystem::path& path, Header* header_out = nullptr);
+
 void write_radiosity(const std::filesystem::path& path, Header header, const RadiosityData& rad);
 RadiosityData read_radiosity(const std::filesystem::path& path, Header* header_out = nullptr);
 

@@ -78,11 +78,14 @@ struct PathHit {
 
 // Follows a ray from `origin` along unit `direction` through up to `depth` specular events,
 // branching where glass both reflects and transmits, and calls visit(const PathHit&) for
-// every surface reached (specular ones too: their diffuse part is seen). Deterministic: no
-// random numbers. `weight` is the ray's own (1 for a form factor).
-template <class Visit>
+// every surface reached (specular ones too: their diffuse part is seen), and
+// escape(const Vec3& direction, const radfmt::Rgb& weight) for every path that leaves the
+// scene (to the sky). Deterministic: no random numbers. `weight` is the ray's own (1 for a
+// form factor).
+template <class Visit, class Escape>
 void follow_specular(const RayScene& scene, const SpecularSurfaces& surfaces, const Vec3& origin,
-                     const Vec3& direction, const radfmt::Rgb& weight, int depth, Visit&& visit) {
+                     const Vec3& direction, const radfmt::Rgb& weight, int depth, Visit&& visit,
+                     Escape&& escape) {
     struct Segment {
         Vec3 origin, direction;
         radfmt::Rgb weight;
@@ -93,7 +96,10 @@ void follow_specular(const RayScene& scene, const SpecularSurfaces& surfaces, co
         const Segment s = stack.back();
         stack.pop_back();
         const auto hit = scene.trace(s.origin, s.direction);
-        if (hit.patch < 0) continue;
+        if (hit.patch < 0) {
+            escape(s.direction, s.weight);
+            continue;
+        }
         visit(PathHit{hit, s.weight, s.events, s.origin, s.direction});
         const auto patch = static_cast<std::size_t>(hit.patch);
         if (s.events >= depth || !surfaces.is_specular(patch)) continue;
@@ -110,6 +116,14 @@ void follow_specular(const RayScene& scene, const SpecularSurfaces& surfaces, co
             if (alive) stack.push_back({at, next[b].direction, w, s.events + 1});
         }
     }
+}
+
+// The same, for callers that do not look past the scene.
+template <class Visit>
+void follow_specular(const RayScene& scene, const SpecularSurfaces& surfaces, const Vec3& origin,
+                     const Vec3& direction, const radfmt::Rgb& weight, int depth, Visit&& visit) {
+    follow_specular(scene, surfaces, origin, direction, weight, depth, std::forward<Visit>(visit),
+                    [](const Vec3&, const radfmt::Rgb&) {});
 }
 
 } // namespace rad

@@ -1,0 +1,173 @@
+// Daylight coefficients: how much each sky patch (and the ground) lights each mesh patch and
+// each sensor, per unit of its luminance, through openings and glass. Computed once from the
+// geometry (rad-ff --sky, the .sky file), solved as one light group per sky patch (rad-solve
+// --direct), then any sky or any hour of a year is a weighted sum (rad-gather).
+#pragma once
+#include "radfmt/kinds.hpp"
+#include "radiosity/rays.hpp"
+#include "radiosity/sky_patches.hpp"
+#include "radiosity/specular.hpp"
+#include "radiosity/weather.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rad {
+
+// Luminance-weighted sum of an RGB coefficient (0.265 R + 0.670 G + 0.065 B): the lux a
+// unit of white luminance (1 cd/m^2) gives through it.
+inline double luminous(const Rgb& c) {
+    return 0.265 * c[0] + 0.670 * c[1] + 0.065 * c[2];
+}
+
+struct SkyViewOptions {
+    SkyPatches patches;
+    SkyFrame frame;
+    int rays = 1000;        // per mesh patch: cosine-weighted, quasi-Monte Carlo
+    std::uint64_t seed = 1; // each patch's own stream
+    int specular_depth = kDefaultSpecularDepth;
+};
+
+// Per mesh patch i in [begin, end) and sky patch s, D_is (RGB): the irradiance on i's front
+// from s at unit radiance, the integral over s of visibility x glass's transmittance x cos,
+// estimated by `rays` cosine-weighted rays from points over i (pi / rays per ray that leaves
+// the scene into s). Patch-major: out[(i - begin) * count + s]. Deterministic.
+struct SkyViewStats {
+    std::uint64_t rays = 0, escaped = 0;
+    double seconds = 0;
+};
+std::vector<radfmt::Rgb> patch_sky_view(const radfmt::MeshData& mesh, const RayScene& scene,
+                                        const SpecularSurfaces& specular,
+                                        const SkyViewOptions& options, std::uint64_t begin,
+                                        std::uint64_t end, SkyViewStats* stats = nullptr,
+                                        bool quiet = true);
+
+// What a sensor sees of the sky directly: every sky patch (and the ground) sampled by
+// side x side directions of equal solid angle, each followed through mirrors and glass;
+// escape(direction, weight) for each path that leaves the scene, weight = the path's RGB x
+// its cell's solid angle x cos to `normal`. Directions behind the sensor are skipped.
+template <class Escape>
+void sensor_sky_paths(const RayScene& scene, const SpecularSurfaces& specular,
+                      const SkyPatches& patches, const SkyFrame& frame, int side, int depth,
+                      const Vec3& point, const Vec3& normal, Escape&& escape) {
+    for (std::size_t p = 0; p < patches.count(); ++p) {
+        const double cell = patches.solid_angle(p) / (side * side);
+        for (const auto& d : patches.cell_directions(frame, p, side)) {
+            const double cosine = dot(d, normal);
+            if (cosine <= 0) continue;
+            follow_specular(
+                scene, specular, point, d, radfmt::Rgb{{1, 1, 1}}, depth, [](const PathHit&) {},
+                [&](const Vec3& out, const radfmt::Rgb& w) {
+                    escape(out, radfmt::Rgb{{w[0] * cell * cosine, w[1] * cell * cosine,
+                                             w[2] * cell * cosine}});
+                });
+        }
+    }
+}
+
+// The direct sun at a sensor (lux): the beam's normal illuminance x cos x what glass lets
+// through on the straight path to the sun (a path that leaves the scene within the sun's
+// disc, 0.533 degrees across); 0 when the sun is down or blocked.
+double sensor_sun(const RayScene& scene, const SpecularSurfaces& specular, int depth,
+                  const Vec3& point, const Vec3& normal, const Vec3& sun_direction,
+                  double normal_illuminance);
+
+// The sky's part of a daylight solution (rad-solve --direct FILE.sky): each patch's radiosity
+// per sky patch at unit radiance, RGB.
+struct DaylightSolution {
+    SkyPatches patches;
+    SkyFrame frame;
+    std::vector<float> radiosity; // [(j * patches.count() + s) * 3 + c]
+};
+// From a solution's header (sky_subdivision, north) and its light groups ground, sky1...;
+// InputError naming `path` when it was not solved with a .sky.
+DaylightSolution daylight_solution(const radfmt::RadiosityData& solution,
+                                   const radfmt::Header& header, const std::string& path);
+
+struct DaylightOptions {
+    int sky_side = 8; // directions per sky patch at a sensor: side x side
+    int rays = 1024;  // the room's reflected light: cosine-weighted rays per sensor
+    std::uint64_t seed = 1;
+    int specular_depth = kDefaultSpecularDepth;
+};
+
+// Daylight at sensors of one solved mesh.
+class DaylightSensors {
+  public:
+    DaylightSensors(const radfmt::MeshData& mesh, DaylightSolution solution,
+                    DaylightOptions options);
+    ~DaylightSensors();
+    // Lux per cd/m^2 of each sky patch (the ground first) at a sensor: seen directly, and
+    // by the light the room reflects (rays taking each patch's radiosity per sky patch).
+    struct Coefficients {
+        std::vector<double> direct, reflected;
+    };
+    Coefficients coefficients(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    // Under one sky: the sky seen directly, exactly (its luminance along each path), the
+    // light the room reflects (the coefficients x the patches' mean luminance, the sun's
+    // beam in the patch it is in) and the sun's beam; lux.
+    struct Illuminance {
+        double sky = 0, reflected = 0, sun = 0;
+        double total() const { return sky + reflected + sun; }
+    };
+    Illuminance illuminance(const Sky& sky, const Vec3& point, const Vec3& normal,
+                            std::uint64_t index) const;
+    // The sun's beam at a sensor (lux), see sensor_sun.
+    double sun(const Vec3& point, const Vec3& normal, const Vec3& direction, double lux) const;
+    const SkyPatches& patches() const { return solution_.patches; }
+    const SkyFrame& frame() const { return solution_.frame; }
+    // A sky's patch luminances for the reflected light: each patch's mean, the sun's beam
+    // added to the patch it is in as the luminance that patch would need to give it.
+    std::vector<double> reflected_luminance(const Sky& sky) const;
+
+  private:
+    std::vector<double> reflected(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    const radfmt::MeshData& mesh_;
+    DaylightSolution solution_;
+    DaylightOptions options_;
+    std::unique_ptr<RayScene> scene_;
+    std::unique_ptr<SpecularSurfaces> specular_;
+};
+
+// A year at sensors from a weather file: per hour Perez's sky from its radiation (the sun at
+// mid-hour), the sky's light through the coefficients, the sun's beam traced at each sensor.
+// `occupied`: one flag per hour. `ground`: the ground's reflectance. Parallel over the
+// sensors; deterministic.
+radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
+                                      const std::vector<Vec3>& positions,
+                                      const std::vector<Vec3>& normals, const Weather& weather,
+                                      const std::vector<std::uint8_t>& occupied, double ground,
+                                      bool quiet = true);
+
+// The occupied hours: 08:00 to 18:00 local standard time every day (LM-83's default), or
+// read from `path`: one 0 or 1 a line for each hour of the year (# comments and blank lines
+// skipped; InputError "FILE:LINE" otherwise, or for a count other than `hours`).
+std::vector<std::uint8_t> default_occupancy(const Weather& weather);
+std::vector<std::uint8_t> read_occupancy(const std::string& path, std::size_t hours);
+
+// Climate-based metrics over the occupied hours (IES LM-83-12, and UDI after Nabil and
+// Mardaljevic): per sensor DA300 (share of hours at 300 lx or more), the hours the sun's
+// beam alone gives 1000 lx or more, and UDI's three bins (under 100, 100 to 3000, over 3000
+// lx); over the plane sDA300/50% (share of sensors with DA300 >= 50%) and ASE1000,250h
+// (share of sensors with more than 250 such hours).
+struct SensorMetrics {
+    double da300 = 0, udi_low = 0, udi_useful = 0, udi_high = 0;
+    int sun_hours = 0;
+};
+struct AnnualMetrics {
+    std::vector<SensorMetrics> sensors;
+    int occupied_hours = 0;
+    double sda = 0, ase = 0, udi_useful = 0, da300 = 0; // shares in [0, 1]; means over sensors
+};
+AnnualMetrics annual_metrics(const radfmt::AnnualData& year);
+
+// Daylight factors' summary: mean, median, min, max (%) and the share of sensors at 2% or more.
+struct DaylightFactorSummary {
+    double mean = 0, median = 0, min = 0, max = 0, above2 = 0;
+};
+DaylightFactorSummary summarise_daylight_factors(std::vector<double> factors);
+
+} // namespace rad

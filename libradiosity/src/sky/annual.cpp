@@ -1,0 +1,130 @@
+// A year of daylight at sensors from a weather file: hourly Perez skies through the sensors'
+// daylight coefficients, the sun's beam traced at each sensor for each hour (as Radiance's
+// five-phase method does, rather than smeared over a sky patch).
+#include "radiosity/daylight.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/progress.hpp"
+#include "radiosity/text_input.hpp"
+
+#include <tbb/parallel_for.h>
+
+namespace rad {
+namespace {
+// Directions per sky patch for the hourly patch means: 4 x 4 (3 degrees apart on Tregenza's
+// patches), where one sky's 16 x 16 would cost a year 16 times as much.
+constexpr int kHourlySide = 4;
+
+struct HourlySkies {
+    std::size_t count = 0;                // sky patches
+    std::vector<float> direct, reflected; // [hour * count + s], cd/m^2
+    std::vector<Vec3> sun;                // per hour
+    std::vector<double> sun_lux;          // the beam's normal illuminance, 0 when down
+};
+
+HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, const SkyFrame& frame,
+                         double ground) {
+    HourlySkies out;
+    out.count = patches.count();
+    const std::size_t hours = weather.hours.size();
+    out.direct.assign(hours * out.count, 0.0f);
+    out.reflected.assign(hours * out.count, 0.0f);
+    out.sun.assign(hours, Vec3{0, 1, 0});
+    out.sun_lux.assign(hours, 0.0);
+    // Each patch's directions, once for the year.
+    std::vector<std::vector<Vec3>> cells(out.count);
+    for (std::size_t s = 1; s < out.count; ++s)
+        cells[s] = patches.cell_directions(frame, s, kHourlySide);
+    tbb::parallel_for(std::size_t(0), hours, [&](std::size_t t) {
+        const auto& h = weather.hours[t];
+        const auto sun = sun_of_hour(weather, h);
+        if (h.diffuse_horizontal <= 0 && (h.direct_normal <= 0 || sun.zenith >= 90)) return;
+        const auto sky = Sky::perez(h.direct_normal, h.diffuse_horizontal, sun, h.day_of_year(),
+                                    h.dew_point, frame, ground);
+        for (std::size_t s = 0; s < out.count; ++s) {
+            double mean = sky.ground_luminance();
+            if (s > 0) {
+                mean = 0;
+                for (const auto& d : cells[s]) mean += sky.luminance(d);
+                mean /= double(cells[s].size());
+            }
+            out.direct[t * out.count + s] = out.reflected[t * out.count + s] = float(mean);
+        }
+        if (sky.sun_up() && sky.sun_normal_illuminance() > 0) {
+            out.sun[t] = sky.sun_direction();
+            out.sun_lux[t] = sky.sun_normal_illuminance();
+            // The beam's reflected light comes from the patch the sun is in.
+            const auto p = patches.patch_of(frame, sky.sun_direction());
+            out.reflected[t * out.count + p] +=
+                float(sky.sun_normal_illuminance() / patches.solid_angle(p));
+        }
+    });
+    return out;
+}
+} // namespace
+
+radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
+                                      const std::vector<Vec3>& positions,
+                                      const std::vector<Vec3>& normals, const Weather& weather,
+                                      const std::vector<std::uint8_t>& occupied, double ground,
+                                      bool quiet) {
+    const auto skies = hourly_skies(weather, sensors.patches(), sensors.frame(), ground);
+    const std::size_t n = positions.size(), hours = weather.hours.size(), count = skies.count;
+    radfmt::AnnualData year;
+    year.positions = positions;
+    year.normals = normals;
+    year.occupied = occupied;
+    for (const auto& h : weather.hours)
+        year.hours.push_back(std::uint32_t(h.month * 10000 + h.day * 100 + h.hour));
+    year.lux.assign(hours * n, 0.0f);
+    year.sun_lux.assign(hours * n, 0.0f);
+    Progress progress("rad-gather year", n, quiet);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
+        const auto c = sensors.coefficients(positions[k], normals[k], k);
+        std::vector<float> direct(c.direct.begin(), c.direct.end());
+        std::vector<float> reflected(c.reflected.begin(), c.reflected.end());
+        for (std::size_t t = 0; t < hours; ++t) {
+            const float* ld = &skies.direct[t * count];
+            const float* lr = &skies.reflected[t * count];
+            float lux = 0;
+            for (std::size_t s = 0; s < count; ++s) lux += direct[s] * ld[s] + reflected[s] * lr[s];
+            const double sun = skies.sun_lux[t] > 0 ? sensors.sun(positions[k], normals[k],
+                                                                  skies.sun[t], skies.sun_lux[t])
+                                                    : 0.0;
+            year.lux[t * n + k] = lux + float(sun);
+            year.sun_lux[t * n + k] = float(sun);
+        }
+        progress.advance(1);
+    });
+    progress.finish();
+    return year;
+}
+
+std::vector<std::uint8_t> default_occupancy(const Weather& weather) {
+    std::vector<std::uint8_t> out;
+    for (const auto& h : weather.hours) out.push_back(h.hour > 8 && h.hour <= 18); // 08-18
+    return out;
+}
+
+std::vector<std::uint8_t> read_occupancy(const std::string& path, std::size_t hours) {
+    LineReader in(path);
+    std::vector<std::uint8_t> out;
+    std::string line;
+    while (in.next(line)) {
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '#') continue;
+        const auto last = line.find_last_not_of(" \t\r");
+        const auto word = line.substr(first, last - first + 1);
+        if (word != "0" && word != "1")
+            throw InputError(FileLoc{path, in.line_number()},
+                             "an occupancy line is 0 or 1 (one a line for each hour of the "
+                             "year), not '" +
+                                 quoted_prefix(word) + "'");
+        out.push_back(word == "1");
+    }
+    if (out.size() != hours)
+        throw InputError(path + ": " + std::to_string(out.size()) +
+                         " hours of occupancy; the weather file has " + std::to_string(hours));
+    return out;
+}
+
+} // namespace rad

@@ -1,0 +1,123 @@
+// Daylight at sensors: the sky seen directly (traced from the sensor through openings and
+// glass) and the light the room reflects (rays taking each patch's radiosity per sky patch
+// from the solve of the .sky's light groups).
+#include "radiosity/daylight.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/random.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+namespace rad {
+
+DaylightSolution daylight_solution(const radfmt::RadiosityData& solution,
+                                   const radfmt::Header& header, const std::string& path) {
+    const auto* subdivision = header.find("sky_subdivision");
+    if (!subdivision)
+        throw InputError(path + " was not solved with a sky: run rad-ff MESH --sky reinhart:1 -o "
+                                "SKY, then rad-solve MESH FF --direct SKY -o SOLUTION");
+    DaylightSolution out{SkyPatches::parse(*subdivision), SkyFrame{}, {}};
+    const auto& north = header.get("north", path);
+    char* end = nullptr;
+    out.frame.north_deg = std::strtod(north.c_str(), &end);
+    if (end == north.c_str() || *end)
+        throw InputError(path + ": north '" + north + "' is no angle");
+    const std::size_t count = out.patches.count(), groups = solution.group_count();
+    std::vector<std::size_t> group(count);
+    for (std::size_t s = 0; s < count; ++s) {
+        const auto name = out.patches.name(s);
+        std::size_t g = 0;
+        while (g < groups && solution.group_names[g] != name) ++g;
+        if (g == groups)
+            throw InputError(path + ": light group '" + name +
+                             "' of the sky is missing: solve "
+                             "with rad-solve --direct SKY again");
+        group[s] = g;
+    }
+    const std::size_t n = solution.radiosity.size();
+    out.radiosity.resize(n * count * 3);
+    for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t s = 0; s < count; ++s)
+            for (std::size_t c = 0; c < 3; ++c)
+                out.radiosity[(j * count + s) * 3 + c] = float(solution.of_group(j, group[s])[c]);
+    return out;
+}
+
+DaylightSensors::DaylightSensors(const radfmt::MeshData& mesh, DaylightSolution solution,
+                                 DaylightOptions options)
+    : mesh_(mesh), solution_(std::move(solution)), options_(options),
+      scene_(std::make_unique<RayScene>(mesh)),
+      specular_(std::make_unique<SpecularSurfaces>(mesh)) {}
+
+DaylightSensors::~DaylightSensors() = default;
+
+DaylightSensors::Coefficients DaylightSensors::coefficients(const Vec3& point, const Vec3& normal,
+                                                            std::uint64_t index) const {
+    Coefficients out{std::vector<double>(patches().count(), 0.0), reflected(point, normal, index)};
+    sensor_sky_paths(*scene_, *specular_, patches(), frame(), options_.sky_side,
+                     options_.specular_depth, point, normal, [&](const Vec3& d, const Rgb& w) {
+                         out.direct[patches().patch_of(frame(), d)] += luminous(w);
+                     });
+    return out;
+}
+
+// The room's reflected light per sky patch: E = (1 / M) sum of B where M cosine-weighted
+// rays (jittered strata) land, through mirrors and glass.
+std::vector<double> DaylightSensors::reflected(const Vec3& point, const Vec3& normal,
+                                               std::uint64_t index) const {
+    const std::size_t count = patches().count();
+    std::vector<double> out(count, 0.0);
+    const int side = std::max(1, int(std::lround(std::sqrt(double(options_.rays)))));
+    const double share = 1.0 / (side * side);
+    const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
+    Rng rng(options_.seed, index);
+    const auto& b = solution_.radiosity;
+    for (int k = 0; k < side * side; ++k) {
+        const double u = ((k / side) + rng.uniform()) / side;
+        const double v = ((k % side) + rng.uniform()) / side;
+        follow_specular(*scene_, *specular_, point, cosine_direction(normal, tu, tv, u, v),
+                        Rgb{{1, 1, 1}}, options_.specular_depth, [&](const PathHit& h) {
+                            if (!h.hit.front) return;
+                            const float* row = &b[std::size_t(h.hit.patch) * count * 3];
+                            const double w0 = 0.265 * h.weight[0] * share,
+                                         w1 = 0.670 * h.weight[1] * share,
+                                         w2 = 0.065 * h.weight[2] * share;
+                            for (std::size_t s = 0; s < count; ++s)
+                                out[s] +=
+                                    w0 * row[3 * s] + w1 * row[3 * s + 1] + w2 * row[3 * s + 2];
+                        });
+    }
+    return out;
+}
+
+std::vector<double> DaylightSensors::reflected_luminance(const Sky& sky) const {
+    auto out = patches().mean_luminance(sky);
+    if (sky.sun_up() && sky.sun_normal_illuminance() > 0) {
+        const auto p = patches().patch_of(frame(), sky.sun_direction());
+        out[p] += sky.sun_normal_illuminance() / patches().solid_angle(p);
+    }
+    return out;
+}
+
+DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const Vec3& point,
+                                                          const Vec3& normal,
+                                                          std::uint64_t index) const {
+    Illuminance out;
+    sensor_sky_paths(
+        *scene_, *specular_, patches(), frame(), options_.sky_side, options_.specular_depth, point,
+        normal, [&](const Vec3& d, const Rgb& w) { out.sky += luminous(w) * sky.luminance(d); });
+    const auto c = reflected(point, normal, index);
+    const auto luminance = reflected_luminance(sky);
+    for (std::size_t s = 0; s < luminance.size(); ++s) out.reflected += c[s] * luminance[s];
+    if (sky.sun_up())
+        out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
+    return out;
+}
+
+double DaylightSensors::sun(const Vec3& point, const Vec3& normal, const Vec3& direction,
+                            double lux) const {
+    return sensor_sun(*scene_, *specular_, options_.specular_depth, point, normal, direction, lux);
+}
+
+} // namespace rad

@@ -1,0 +1,125 @@
+// The EPW reader (EnergyPlus Auxiliary Programs, "EnergyPlus Weather File (EPW) Data
+// Dictionary": fields 1-5 date and time, 7 dew point, 9 pressure in Pa, 14 direct normal and
+// 15 diffuse horizontal radiation in Wh/m^2 over the hour, 9999 when missing).
+#include "radiosity/error.hpp"
+#include "radiosity/text_input.hpp"
+#include "radiosity/weather.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace rad {
+namespace {
+constexpr int kHeaderLines = 8;
+constexpr double kMissingRadiation = 9999;
+
+std::vector<std::string> fields_of(const std::string& line) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    while (true) {
+        const auto comma = line.find(',', start);
+        out.push_back(line.substr(start, comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return out;
+}
+
+double number(const std::vector<std::string>& fields, std::size_t k, const FileLoc& at,
+              const char* what) {
+    std::string text = k < fields.size() ? fields[k] : "";
+    while (!text.empty() && text.front() == ' ') text.erase(text.begin());
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\r')) text.pop_back();
+    double value = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size() ||
+        !std::isfinite(value))
+        throw InputError(at, std::string("field ") + std::to_string(k + 1) + " (" + what +
+                                 ") is '" + quoted_prefix(text) + "', not a number");
+    return value;
+}
+
+Location parse_location(const std::string& line, const FileLoc& at, std::string& place) {
+    const auto f = fields_of(line);
+    if (f.empty() || f[0] != "LOCATION" || f.size() < 10)
+        throw InputError(at, "an EPW file starts with LOCATION,city,state,country,source,WMO,"
+                             "latitude,longitude,time zone,elevation (this is no EPW file)");
+    place = f[1];
+    Location l;
+    l.latitude = number(f, 6, at, "latitude");
+    l.longitude = number(f, 7, at, "longitude");
+    l.time_zone = number(f, 8, at, "time zone");
+    l.elevation = number(f, 9, at, "elevation");
+    if (std::abs(l.latitude) > 90 || std::abs(l.longitude) > 180 || std::abs(l.time_zone) > 14)
+        throw InputError(at, "latitude, longitude or time zone out of range (latitude -90..90, "
+                             "longitude -180..180 east positive, time zone -12..14 hours)");
+    return l;
+}
+
+WeatherHour parse_hour(const std::string& line, const FileLoc& at, int& missing) {
+    const auto f = fields_of(line);
+    if (f.size() < 16)
+        throw InputError(at, "a record has " + std::to_string(f.size()) +
+                                 " fields; an EPW record has 35 (the date, hour, temperatures "
+                                 "and radiation at least)");
+    WeatherHour h;
+    h.line = at.line;
+    h.year = int(number(f, 0, at, "year"));
+    h.month = int(number(f, 1, at, "month"));
+    h.day = int(number(f, 2, at, "day"));
+    h.hour = int(number(f, 3, at, "hour"));
+    static constexpr int kDays[12] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    if (h.month < 1 || h.month > 12 || h.day < 1 || h.day > kDays[h.month - 1] || h.hour < 1 ||
+        h.hour > 24)
+        throw InputError(at, "month " + std::to_string(h.month) + ", day " + std::to_string(h.day) +
+                                 ", hour " + std::to_string(h.hour) +
+                                 " is no hour of a year (hours are 1..24)");
+    h.dew_point = number(f, 7, at, "dew point");
+    const double pascal = number(f, 9, at, "pressure");
+    h.pressure = pascal > 0 && pascal < 999999 ? pascal / 100 : 1010;
+    h.direct_normal = number(f, 14, at, "direct normal radiation");
+    h.diffuse_horizontal = number(f, 15, at, "diffuse horizontal radiation");
+    bool absent = false;
+    for (double* v : {&h.direct_normal, &h.diffuse_horizontal}) {
+        if (*v >= kMissingRadiation) *v = 0, absent = true;
+        if (*v < 0) throw InputError(at, "negative radiation");
+    }
+    if (absent) ++missing;
+    if (h.dew_point > 70 || h.dew_point < -90) h.dew_point = 10; // 99.9: missing
+    return h;
+}
+} // namespace
+
+int WeatherHour::day_of_year() const {
+    static constexpr int kBefore[12] = {0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334};
+    return kBefore[month - 1] + day;
+}
+
+Weather read_epw(const std::string& path) {
+    LineReader in(path);
+    Weather w;
+    w.path = path;
+    std::string line;
+    for (int k = 0; k < kHeaderLines; ++k) {
+        if (!in.next(line))
+            throw InputError(FileLoc{path, in.line_number()},
+                             "the file ends within the EPW header (8 lines before the hours)");
+        if (k == 0) w.location = parse_location(line, {path, in.line_number()}, w.place);
+    }
+    while (in.next(line)) {
+        if (line.empty() || line == "\r") continue;
+        w.hours.push_back(parse_hour(line, {path, in.line_number()}, w.missing));
+    }
+    if (w.hours.size() != 8760 && w.hours.size() != 8784)
+        throw InputError(path + ": " + std::to_string(w.hours.size()) +
+                         " hourly records; a year has 8760 (8784 in a leap year)");
+    return w;
+}
+
+SunPosition sun_of_hour(const Weather& weather, const WeatherHour& hour) {
+    Location at = weather.location;
+    at.pressure = hour.pressure;
+    return solar_position(at, {hour.year, hour.month, hour.day, hour.hour - 0.5});
+}
+
+} // namespace rad

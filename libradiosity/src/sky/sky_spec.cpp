@@ -1,0 +1,110 @@
+// Skies, places, times and suns as a command line gives them.
+#include "radiosity/error.hpp"
+#include "radiosity/numbers.hpp"
+#include "radiosity/sky.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace rad {
+namespace {
+constexpr double kDefaultSkyLux = 10000;
+
+std::vector<double> numbers_of(const std::string& text, char separator, const std::string& what) {
+    std::vector<double> out;
+    std::stringstream in(text);
+    std::string part;
+    while (std::getline(in, part, separator)) {
+        double v = 0;
+        if (!parse_number(part, v) || !std::isfinite(v))
+            throw InputError(what + ": '" + part + "' is not a number");
+        out.push_back(v);
+    }
+    return out;
+}
+
+const char* kSkyForms = "uniform[:L], cie-overcast[:LUX], cie:TYPE[:LUX] (TYPE 1..15) or "
+                        "perez:DNI,DHI (W/m^2)";
+} // namespace
+
+Sky parse_sky(const std::string& spec, const SunPosition* sun, int day_of_year,
+              const SkyFrame& frame, double ground) {
+    const auto colon = spec.find(':');
+    const std::string name = spec.substr(0, colon);
+    const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
+    const auto need_sun = [&] {
+        if (!sun)
+            throw InputError("--sky " + spec +
+                             " needs the sun: --sun ALT,AZ, or --date, --time "
+                             "and --location (or --epw for the place)");
+        return *sun;
+    };
+    if (name == "uniform") {
+        const auto v = rest.empty() ? std::vector<double>{kDefaultSkyLux / std::numbers::pi}
+                                    : numbers_of(rest, ',', "--sky uniform:L");
+        if (v.size() != 1) throw InputError("--sky uniform:L takes one luminance (cd/m^2)");
+        return Sky::uniform(v[0], frame, ground);
+    }
+    if (name == "cie-overcast") {
+        const auto v = rest.empty() ? std::vector<double>{kDefaultSkyLux}
+                                    : numbers_of(rest, ',', "--sky cie-overcast:LUX");
+        if (v.size() != 1) throw InputError("--sky cie-overcast:LUX takes one illuminance");
+        return Sky::cie_overcast(v[0], frame, ground);
+    }
+    if (name == "cie") {
+        const auto v = numbers_of(rest, ':', "--sky cie:TYPE[:LUX]");
+        if (v.empty() || v.size() > 2 || v[0] != std::floor(v[0]))
+            throw InputError("--sky cie:TYPE[:LUX]: TYPE is 1..15, LUX the sky's horizontal "
+                             "illuminance");
+        return Sky::cie_standard(int(v[0]), need_sun(), v.size() > 1 ? v[1] : kDefaultSkyLux, frame,
+                                 ground);
+    }
+    if (name == "perez") {
+        const auto v = numbers_of(rest, ',', "--sky perez:DNI,DHI");
+        if (v.size() != 2)
+            throw InputError("--sky perez:DNI,DHI takes direct normal and diffuse horizontal "
+                             "irradiance (W/m^2)");
+        return Sky::perez(v[0], v[1], need_sun(), day_of_year, 10, frame, ground);
+    }
+    throw InputError("--sky '" + spec + "' is not known: give " + kSkyForms);
+}
+
+Location parse_location(const std::string& text) {
+    const auto v = numbers_of(text, ',', "--location");
+    if (v.size() < 3 || v.size() > 4 || std::abs(v[0]) > 90 || std::abs(v[1]) > 180 ||
+        std::abs(v[2]) > 14)
+        throw InputError("--location takes LAT,LON,TZ[,ELEVATION]: degrees north (-90..90), "
+                         "degrees east (-180..180), hours east of UTC (-12..14), metres");
+    Location l;
+    l.latitude = v[0];
+    l.longitude = v[1];
+    l.time_zone = v[2];
+    if (v.size() == 4) l.elevation = v[3];
+    return l;
+}
+
+LocalTime parse_local_time(const std::string& date, const std::string& time) {
+    int y = 0, mo = 0, d = 0, h = 0, mi = 0;
+    char tail = 0;
+    if (std::sscanf(date.c_str(), "%d-%d-%d%c", &y, &mo, &d, &tail) != 3 || mo < 1 || mo > 12 ||
+        d < 1 || d > 31)
+        throw InputError("--date '" + date + "': give YYYY-MM-DD");
+    if (std::sscanf(time.c_str(), "%d:%d%c", &h, &mi, &tail) != 2 || h < 0 || h > 24 || mi < 0 ||
+        mi > 59)
+        throw InputError("--time '" + time + "': give HH:MM, local standard time");
+    return {y, mo, d, h + mi / 60.0};
+}
+
+SunPosition parse_sun(const std::string& text) {
+    const auto v = numbers_of(text, ',', "--sun");
+    if (v.size() != 2 || v[0] < -90 || v[0] > 90)
+        throw InputError("--sun takes ALT,AZ: altitude -90..90 and azimuth from north towards "
+                         "east, degrees");
+    SunPosition s;
+    s.zenith = 90 - v[0];
+    s.azimuth = v[1];
+    return s;
+}
+
+} // namespace rad

@@ -1,0 +1,236 @@
+// rad-gather's daylight runs (see gather_daylight.hpp).
+#include "gather_daylight.hpp"
+
+#include "radfmt/chain.hpp"
+#include "radiosity/daylight.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/falsecolour.hpp"
+#include "radiosity/progress.hpp"
+#include "radiosity/version.hpp"
+#include "tool.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+
+namespace rad::tool {
+
+void add_daylight_options(CLI::App& app, DaylightArgs& a) {
+    app.add_option("--sky", a.sky,
+                   "Daylight at an instant, from a solution solved with a .sky (rad-ff --sky, "
+                   "rad-solve --direct): uniform[:L] (cd/m^2), cie-overcast[:LUX], "
+                   "cie:TYPE[:LUX] (the 15 CIE standard general skies), perez:DNI,DHI (W/m^2); "
+                   "LUX is the sky's horizontal illuminance (default 10000). Writes lux, one a "
+                   "line");
+    app.add_flag("--daylight-factor", a.daylight_factor,
+                 "With --sky (cie-overcast, as the standards define it): write the daylight "
+                 "factor in % (the sensor's illuminance over the unobstructed sky's horizontal "
+                 "illuminance), one a line, and its mean, median and share at 2% or more");
+    app.add_option("--sun", a.sun,
+                   "The sun for --sky cie:TYPE or perez: ALT,AZ in degrees (azimuth from north "
+                   "towards east)");
+    app.add_option("--date", a.date, "The sun by date and time: YYYY-MM-DD (with --time)");
+    app.add_option("--time", a.time, "HH:MM, local standard time (with --date)");
+    app.add_option("--location", a.location,
+                   "LAT,LON,TZ[,ELEVATION] for --date (degrees north, degrees east, hours east "
+                   "of UTC, m); default: the --epw file's");
+    app.add_option("--ground", a.ground,
+                   "The ground's reflectance below the horizon (its luminance: this x the "
+                   "global horizontal illuminance / pi)")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(0, 1));
+    app.add_option("--epw", a.epw,
+                   "An EnergyPlus weather file: with --annual, a year of hourly Perez skies "
+                   "and sun; with --date, the place");
+    app.add_flag("--annual", a.annual,
+                 "With --epw: every hour of the year at every sensor (the sky through daylight "
+                 "coefficients, the sun's beam traced at the sensor) into -o FILE (.ill, "
+                 "rad-info reads it), and LM-83's sDA300/50% and ASE1000,250h, DA300 and UDI "
+                 "100-3000 lx over the occupied hours");
+    app.add_option("--occupancy", a.occupancy,
+                   "With --annual: the occupied hours, one 0 or 1 a line for each hour of the "
+                   "weather file (default: 08:00 to 18:00 local standard time every day)");
+    app.add_option("--metrics", a.metrics,
+                   "With --annual: write each sensor's metrics as CSV (x,y,z,dx,dy,dz,da300,"
+                   "udi_low,udi_useful,udi_high,sun_hours)");
+    app.add_option("--sky-samples", a.sky_samples,
+                   "Daylight: directions per sky patch a sensor traces (rounded to a square)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 10000));
+}
+
+bool wants_daylight(const DaylightArgs& a) {
+    return !a.sky.empty() || a.annual || a.daylight_factor || !a.epw.empty();
+}
+
+namespace {
+
+void check_daylight_args(const DaylightArgs& a, const DaylightRun& run) {
+    if (a.annual == !a.sky.empty()) {
+        if (a.annual) throw InputError("--annual or --sky: a year or an instant, not both");
+        throw InputError("daylight needs --sky SPEC (an instant) or --epw FILE --annual (a year)");
+    }
+    if (a.annual && a.epw.empty()) throw InputError("--annual needs --epw FILE");
+    if (a.annual && run.output.empty())
+        throw InputError("--annual writes a binary .ill file: give -o FILE");
+    if (a.daylight_factor && a.annual)
+        throw InputError("--daylight-factor is for --sky cie-overcast, not --annual");
+    if (!a.annual && (!a.occupancy.empty() || !a.metrics.empty()))
+        throw InputError("--occupancy and --metrics go with --annual");
+    if (a.date.empty() != a.time.empty()) throw InputError("--date and --time go together");
+    if (!a.sun.empty() && !a.date.empty()) throw InputError("--sun or --date/--time, not both");
+}
+
+std::optional<SunPosition> sun_of(const DaylightArgs& a, int& day_of_year) {
+    day_of_year = 172;
+    if (!a.sun.empty()) return parse_sun(a.sun);
+    if (a.date.empty()) return std::nullopt;
+    Location where;
+    if (!a.location.empty())
+        where = parse_location(a.location);
+    else if (!a.epw.empty())
+        where = read_epw(a.epw).location;
+    else
+        throw InputError("--date needs --location LAT,LON,TZ (or --epw for the place)");
+    const auto when = parse_local_time(a.date, a.time);
+    WeatherHour h;
+    h.month = when.month;
+    h.day = when.day;
+    day_of_year = h.day_of_year();
+    return solar_position(where, when);
+}
+
+void write_lines(const std::string& output, const std::string& header_line,
+                 const std::vector<double>& values) {
+    const auto write = [&](std::FILE* out) {
+        if (!header_line.empty()) std::fprintf(out, "%s\n", header_line.c_str());
+        for (double v : values) std::fprintf(out, "%.6g\n", v);
+    };
+    if (output.empty()) {
+        write(stdout);
+        return;
+    }
+    radfmt::write_atomically(output, [&](const std::filesystem::path& temp) {
+        std::FILE* out = std::fopen(temp.c_str(), "w");
+        if (!out) throw SystemError(output + ": cannot open for writing");
+        write(out);
+        if (std::fclose(out) != 0) throw SystemError(output + ": cannot write");
+    });
+}
+
+void write_png(const DaylightRun& run, const std::vector<double>& values, const std::string& unit,
+               const std::string& title) {
+    if (run.png.empty()) return;
+    write_false_colour_png(run.png, values, run.grid_columns, run.grid_rows, unit, title,
+                           run.lux_max);
+}
+
+int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
+    int day = 172;
+    const auto sun = sun_of(a, day);
+    const auto sky = parse_sky(a.sky, sun ? &*sun : nullptr, day, sensors.frame(), a.ground);
+    if (a.daylight_factor && sky.horizontal_illuminance() <= 0)
+        throw InputError("--daylight-factor: the sky has no horizontal illuminance");
+    const std::size_t n = run.positions.size();
+    std::vector<DaylightSensors::Illuminance> lux(n);
+    Progress progress("rad-gather", n, run.quiet);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
+        lux[k] = sensors.illuminance(sky, run.positions[k], run.normals[k], k);
+        progress.advance(1);
+    });
+    progress.finish();
+    std::vector<double> values;
+    for (const auto& l : lux)
+        values.push_back(a.daylight_factor ? 100 * l.total() / sky.horizontal_illuminance()
+                                           : l.total());
+    write_lines(run.output, run.header_line, values);
+    if (a.daylight_factor) {
+        write_png(run, values, "%", "daylight factor (%)");
+        const auto s = summarise_daylight_factors(values);
+        std::fprintf(stderr,
+                     "rad-gather: daylight factor at %zu sensor(s) under the %s: mean %.3g%%, "
+                     "median %.3g%%, min %.3g%%, max %.3g%%; %.1f%% of the sensors at 2%% or "
+                     "more\n",
+                     n, sky.describe().c_str(), s.mean, s.median, s.min, s.max, 100 * s.above2);
+    } else {
+        write_png(run, values, "lux", "illuminance (lux) under the " + sky.describe());
+        if (!run.quiet) std::fprintf(stderr, "rad-gather: %s\n", sky.describe().c_str());
+    }
+    return 0;
+}
+
+void write_metrics_csv(const std::string& path, const radfmt::AnnualData& year,
+                       const AnnualMetrics& m) {
+    radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
+        std::ofstream out(temp);
+        out << "x,y,z,dx,dy,dz,da300,udi_low,udi_useful,udi_high,sun_hours\n";
+        char line[256];
+        for (std::size_t k = 0; k < year.sensors(); ++k) {
+            const auto& p = year.positions[k];
+            const auto& d = year.normals[k];
+            const auto& s = m.sensors[k];
+            std::snprintf(line, sizeof line,
+                          "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.4f,%d\n", p[0], p[1],
+                          p[2], d[0], d[1], d[2], s.da300, s.udi_low, s.udi_useful, s.udi_high,
+                          s.sun_hours);
+            out << line;
+        }
+        if (!out.flush()) throw SystemError(path + ": cannot write");
+    });
+}
+
+int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors,
+           const std::vector<std::string>& inputs, const std::string& command) {
+    const auto weather = read_epw(a.epw);
+    if (weather.missing > 0)
+        std::fprintf(stderr, "rad-gather: %s: %d hour(s) with missing radiation, taken as 0\n",
+                     a.epw.c_str(), weather.missing);
+    const auto occupied = a.occupancy.empty() ? default_occupancy(weather)
+                                              : read_occupancy(a.occupancy, weather.hours.size());
+    const auto year = annual_illuminance(sensors, run.positions, run.normals, weather, occupied,
+                                         a.ground, run.quiet);
+    std::vector<radfmt::Parent> parents;
+    for (const auto& i : inputs) parents.push_back({i, nullptr});
+    auto header = radfmt::derived_header(tool_version("rad-gather"), command, parents);
+    header.set("place", weather.place);
+    header.set("occupancy", a.occupancy.empty() ? "08:00-18:00 every day" : a.occupancy);
+    radfmt::write_annual(run.output, header, year);
+    const auto m = annual_metrics(year);
+    if (!a.metrics.empty()) write_metrics_csv(a.metrics, year, m);
+    if (!run.png.empty()) {
+        std::vector<double> da;
+        for (const auto& s : m.sensors) da.push_back(100 * s.da300);
+        write_false_colour_png(run.png, da, run.grid_columns, run.grid_rows, "%",
+                               "DA300: share of occupied hours at 300 lx or more (%)", 100);
+    }
+    std::printf("annual daylight at %zu sensor(s), %s (%.2f N, %.2f E), %d occupied hour(s) "
+                "(%s):\n",
+                year.sensors(), weather.place.c_str(), weather.location.latitude,
+                weather.location.longitude, m.occupied_hours,
+                a.occupancy.empty() ? "08:00-18:00 local standard time, every day"
+                                    : a.occupancy.c_str());
+    std::printf("  sDA300/50%%     %6.1f %% of sensors (DA300 >= 50%%)\n", 100 * m.sda);
+    std::printf("  ASE1000,250h   %6.1f %% of sensors (direct sun >= 1000 lx for > 250 h)\n",
+                100 * m.ase);
+    std::printf("  DA300 mean     %6.1f %% of occupied hours\n", 100 * m.da300);
+    std::printf("  UDI 100-3000   %6.1f %% of occupied hours (mean)\n", 100 * m.udi_useful);
+    return 0;
+}
+} // namespace
+
+int gather_daylight(const DaylightArgs& a, const DaylightRun& run) {
+    check_daylight_args(a, run);
+    DaylightOptions options;
+    options.sky_side = std::max(1, int(std::lround(std::sqrt(double(a.sky_samples)))));
+    options.rays = std::max(1, run.rays);
+    options.seed = run.seed;
+    const DaylightSensors sensors(
+        *run.mesh, daylight_solution(*run.solution, *run.rad_header, run.rad_path), options);
+    if (a.annual) return annual(a, run, sensors, run.inputs, run.command);
+    return instant(a, run, sensors);
+}
+
+} // namespace rad::tool

@@ -1,0 +1,40 @@
+// rad-gather's daylight: a sky at an instant (--sky, --daylight-factor) or a year from a
+// weather file (--epw --annual), at the sensors of a solution solved with a .sky.
+#pragma once
+#include "radfmt/kinds.hpp"
+#include "radiosity/vec.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
+
+namespace rad::tool {
+
+struct DaylightArgs {
+    std::string sky, sun, date, time, location, epw, occupancy, metrics;
+    double ground = 0.2;
+    bool daylight_factor = false, annual = false;
+    int sky_samples = 64;
+};
+void add_daylight_options(CLI::App& app, DaylightArgs& a);
+bool wants_daylight(const DaylightArgs& a);
+
+// What rad-gather's common options give the daylight run.
+struct DaylightRun {
+    const radfmt::MeshData* mesh = nullptr;
+    const radfmt::RadiosityData* solution = nullptr;
+    const radfmt::Header* rad_header = nullptr;
+    std::string rad_path, output, png, header_line;
+    std::vector<std::string> inputs; // for the .ill's provenance
+    std::string command;
+    std::vector<Vec3> positions, normals;
+    int grid_columns = 0, grid_rows = 0; // a --grid's, for --png; 0: points
+    int rays = 256;
+    std::uint64_t seed = 1;
+    bool quiet = false;
+    double lux_max = 0;
+};
+int gather_daylight(const DaylightArgs& a, const DaylightRun& run);
+
+} // namespace rad::tool
