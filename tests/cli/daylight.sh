@@ -1,0 +1,75 @@
+# Daylight through the chain (#51): the side-lit room (scenes/daylight-room) open and glazed,
+# its .sky (rad-ff --sky) solved as one light group per sky patch, daylight factors that fall
+# away from the window and are lower behind glass, a year from the Denver EPW with LM-83's
+# metrics, byte-identical files at 1 and 2 threads, and refusals that name the fix.
+source "$(dirname "$0")/lib.sh"
+S="$SRC/scenes/daylight-room"
+EPW="$SRC/tests/data/denver-tmy3.epw"
+for v in daylight-room daylight-room-glazed; do
+  "$BIN/rad-mesh" "$S/$v.obj" -o "$TMP/$v.mesh" --max-edge 0.5 -q 2>/dev/null || fail "rad-mesh $v"
+  err=$("$BIN/rad-ff" "$TMP/$v.mesh" --sky reinhart:1 -o "$TMP/$v.sky" 2>&1) || fail "rad-ff --sky $v: $err"
+  grep -q "reinhart:1 sky (146 patches with the ground)" <<<"$err" || fail "rad-ff --sky says: $err"
+  "$BIN/rad-ff" "$TMP/$v.mesh" -o "$TMP/$v.ff" --rays 2048 -q || fail "rad-ff $v"
+  err=$("$BIN/rad-solve" "$TMP/$v.mesh" "$TMP/$v.ff" --direct "$TMP/$v.sky" -o "$TMP/$v.rad" 2>&1) \
+    || fail "rad-solve --direct $v.sky: $err"
+  grep -q "146 light groups, one per sky patch" <<<"$err" || fail "rad-solve says: $err"
+done
+"$BIN/rad-info" "$TMP/daylight-room.sky" | grep -q "reinhart:1 (146 sky patches with the ground), north 0 deg" \
+  || fail "rad-info does not summarise the .sky"
+# Deterministic: the .sky at 1 and 2 threads.
+mkdir "$TMP/one"
+(cd "$TMP/one" && cp ../daylight-room.mesh . && "$BIN/rad-ff" daylight-room.mesh --sky reinhart:1 -o daylight-room.sky --threads 1 -q)
+body() { local b; b=$("$BIN/rad-info" "$1" | sed -n 's/^size:.*(body/(body/p'); echo "${b:-no $1}"; }
+[ "$(body "$TMP/one/daylight-room.sky")" = "$(body "$TMP/daylight-room.sky")" ] || fail "the .sky differs at 1 and 2 threads"
+
+# Daylight factors along the room's axis: falling away from the window, lower behind glass.
+for z in 5.5 4 2.5 1 0.5; do echo "2 0.8 $z 0 1 0"; done > "$TMP/axis.txt"
+for v in daylight-room daylight-room-glazed; do
+  "$BIN/rad-gather" "$TMP/$v.mesh" "$TMP/$v.rad" --points "$TMP/axis.txt" --sky cie-overcast \
+    --daylight-factor -o "$TMP/$v.df" 2>"$TMP/$v.err" || fail "rad-gather --daylight-factor $v: $(cat "$TMP/$v.err")"
+done
+grep -q "daylight factor at 5 sensor(s) under the CIE overcast sky" "$TMP/daylight-room.err" || fail "no DF summary: $(cat "$TMP/daylight-room.err")"
+paste "$TMP/daylight-room.df" "$TMP/daylight-room-glazed.df" > "$TMP/both.txt"
+awk 'NR > 1 && $1 >= prev { bad = 1 } { prev = $1 } END { exit bad }' "$TMP/both.txt" \
+  || fail "DF does not fall away from the window: $(tr '\n' ' ' < "$TMP/both.txt")"
+# Glass of 0.7 at normal incidence: between 0.45 and 0.75 of the open room's (angles, reflection).
+awk '{ r = $2 / $1; if (r < 0.45 || r > 0.75) bad = 1 } END { exit bad }' "$TMP/both.txt" \
+  || fail "glazed over open DF out of 0.45..0.75: $(tr '\n' ' ' < "$TMP/both.txt")"
+awk 'NR == 1 && ($1 < 5 || $1 > 40) { exit 1 }' "$TMP/both.txt" || fail "DF by the window: $(head -1 "$TMP/both.txt")"
+
+# A year: the .ill, the metrics, the DA300 plan.
+err=$("$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad" --grid "0 0 4 6 0.8 4 6" \
+  --epw "$EPW" --annual -o "$TMP/year.ill" --metrics "$TMP/metrics.csv" --png "$TMP/da.png" 2>&1) \
+  || fail "rad-gather --annual: $err"
+grep -q "sDA300/50%" <<<"$err" || fail "no sDA in: $err"
+grep -q "ASE1000,250h" <<<"$err" || fail "no ASE in: $err"
+grep -q "3650 occupied hour(s)" <<<"$err" || fail "not LM-83's 3650 occupied hours: $err"
+[ -s "$TMP/da.png" ] || fail "no DA300 plan"
+[ "$(wc -l < "$TMP/metrics.csv")" -eq 25 ] || fail "metrics.csv: $(wc -l < "$TMP/metrics.csv") lines"
+"$BIN/rad-info" "$TMP/year.ill" | grep -q "24 sensors x 8760 hours (3650 occupied)" || fail "rad-info on the .ill"
+"$BIN/rad-info" --csv "$TMP/year.ill" > "$TMP/year.csv" || fail "rad-info --csv year.ill"
+[ "$(wc -l < "$TMP/year.csv")" -eq 8761 ] || fail "the year's CSV has $(wc -l < "$TMP/year.csv") lines"
+# Nights are dark; a June noon by the window is bright.
+awk -F, 'NR > 1 && $3 == 2 && $5 != 0 { bad = 1 } END { exit bad }' "$TMP/year.csv" || fail "light at 01:00-02:00"
+(cd "$TMP/one" && "$BIN/rad-gather" ../daylight-room.mesh ../daylight-room.rad --grid "0 0 4 6 0.8 4 6" \
+  --epw "$EPW" --annual -o year.ill --threads 1 -q >/dev/null)
+[ "$(body "$TMP/one/year.ill")" = "$(body "$TMP/year.ill")" ] || fail "the year differs at 1 and 2 threads"
+
+# Refusals.
+expect_error "--annual needs --epw FILE" "$TMP/x.ill" \
+  "$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad" --grid "0 0 4 6 0.8 2 2" --annual -o "$TMP/x.ill"
+expect_error "needs the sun: --sun ALT,AZ" "" \
+  "$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad" --points "$TMP/axis.txt" --sky cie:12
+"$BIN/rad-ff" "$TMP/daylight-room.mesh" -o "$TMP/plain.ff" --rays 64 -q
+"$BIN/rad-solve" "$TMP/daylight-room.mesh" "$TMP/plain.ff" --emission floor=1 -o "$TMP/plain.rad" -q
+expect_error "was not solved with a sky: run rad-ff MESH --sky reinhart:1" "" \
+  "$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/plain.rad" --points "$TMP/axis.txt" --sky cie-overcast
+expect_error "run rad-ff --sky on" "$TMP/x.rad" \
+  "$BIN/rad-solve" "$TMP/daylight-room-glazed.mesh" "$TMP/daylight-room-glazed.ff" --direct "$TMP/daylight-room.sky" -o "$TMP/x.rad"
+head -20 "$EPW" > "$TMP/short.epw"
+sed -n 21p "$EPW" | cut -c1-30 >> "$TMP/short.epw"
+expect_error "short.epw:21: a record has" "$TMP/x.ill" \
+  "$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad" --grid "0 0 4 6 0.8 2 2" --epw "$TMP/short.epw" --annual -o "$TMP/x.ill"
+expect_error "sky subdivision 'klems' is not known" "$TMP/x.sky" \
+  "$BIN/rad-ff" "$TMP/daylight-room.mesh" --sky klems -o "$TMP/x.sky"
+finish
