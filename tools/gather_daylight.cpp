@@ -204,7 +204,7 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
         std::vector<double> da;
         for (const auto& s : m.sensors) da.push_back(100 * s.da300);
         write_false_colour_png(run.png, da, run.grid_columns, run.grid_rows, "%",
-                               "DA300: share of occupied hours at 300 lx or more (%)", 100);
+                               "DA300: % of hours at 300 lx or more", 100);
     }
     std::printf("annual daylight at %zu sensor(s), %s (%.2f N, %.2f E), %d occupied hour(s) "
                 "(%s):\n",
@@ -225,7 +225,7 @@ int gather_daylight(const DaylightArgs& a, const DaylightRun& run) {
     check_daylight_args(a, run);
     DaylightOptions options;
     options.sky_side = std::max(1, int(std::lround(std::sqrt(double(a.sky_samples)))));
-    options.rays = std::max(1, run.rays);
+    options.rays = run.rays; // 0: no reflected light
     options.seed = run.seed;
     const DaylightSensors sensors(
         *run.mesh, daylight_solution(*run.solution, *run.rad_header, run.rad_path), options);

@@ -11,6 +11,10 @@
 
 namespace rad::tool {
 
+// The room's reflected light at a sensor: rays unless --rays says (the reflected light of
+// every sky patch comes from them, and a year's thresholds are sharp).
+inline constexpr int kDaylightRays = 1024;
+
 struct DaylightArgs {
     std::string sky, sun, date, time, location, epw, occupancy, metrics;
     double ground = 0.2;
@@ -30,7 +34,7 @@ struct DaylightRun {
     std::string command;
     std::vector<Vec3> positions, normals;
     int grid_columns = 0, grid_rows = 0; // a --grid's, for --png; 0: points
-    int rays = 256;
+    int rays = kDaylightRays;
     std::uint64_t seed = 1;
     bool quiet = false;
     double lux_max = 0;

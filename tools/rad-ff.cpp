@@ -247,6 +247,13 @@ int merge_parts(const FfArgs& a) {
                          static_cast<unsigned long long>(links));
         return 0;
     }
+    if (kind == radfmt::Kind::Sky) {
+        const auto rows = rad::merge_sky_parts(a.inputs, a.output);
+        if (!a.options.quiet)
+            std::fprintf(stderr, "rad-ff: merged %zu sky part(s): %llu rows\n", a.inputs.size(),
+                         static_cast<unsigned long long>(rows));
+        return 0;
+    }
     if (kind == radfmt::Kind::Luminaires) {
         const auto rows = rad::merge_luminaire_parts(a.inputs, a.output);
         if (!a.options.quiet)
@@ -459,10 +466,53 @@ int direct_light(FfArgs& a, int argc, char** argv) {
     return 0;
 }
 
+// What rad-ff --sky says it did.
+void print_sky_summary(const FfArgs& a, const rad::SkyViewOptions& options,
+                       const std::vector<rad::Rgb>& view, const rad::SkyViewStats& stats) {
+    const std::size_t count = options.patches.count();
+    std::size_t seeing = 0;
+    for (std::size_t i = 0; i < view.size() / count; ++i)
+        seeing += std::any_of(view.begin() + long(i * count), view.begin() + long((i + 1) * count),
+                              [](const rad::Rgb& c) { return rad::luminous(c) > 0; });
+    std::fprintf(stderr,
+                 "rad-ff: %s sky (%zu patches with the ground), north %g deg: %zu of %zu "
+                 "patches see it, %.3g%% of %llu rays left the scene; %.3f s\n",
+                 options.patches.spec().c_str(), count, a.north, seeing, view.size() / count,
+                 100.0 * double(stats.escaped) / double(std::max<std::uint64_t>(1, stats.rays)),
+                 static_cast<unsigned long long>(stats.rays), stats.seconds);
+}
+
+// The .sky (or a part of it: every patch, only `range`'s rows filled) from the rows computed.
+void write_sky_view(const FfArgs& a, const radfmt::MeshData& mesh,
+                    const radfmt::Header& mesh_header, const rad::SkyViewOptions& options,
+                    const std::vector<rad::Rgb>& view, rad::RowRange range, int argc, char** argv) {
+    const std::size_t count = options.patches.count();
+    const std::uint64_t first = std::min<std::uint64_t>(range.begin, mesh.patches.size());
+    radfmt::SkyData sky{options.patches.spec(), a.north, mesh.patches.size(), count,
+                        std::vector<float>(mesh.patches.size() * count * 3, 0.0f)};
+    for (std::size_t k = 0; k < view.size(); ++k)
+        for (std::size_t c = 0; c < 3; ++c)
+            sky.coefficients[(first * count + k) * 3 + c] = float(view[k][c]);
+    const radfmt::Parent parents[] = {{a.inputs.front(), &mesh_header}};
+    auto header = radfmt::derived_header(rad::tool_version("rad-ff"),
+                                         radfmt::command_line(argc, argv), parents);
+    header.set("mesh_geometry_hash", mesh.geometry_hash());
+    header.set("rays", std::to_string(options.rays));
+    header.set("seed", std::to_string(options.seed));
+    if (mesh.has_specular()) header.set("specular_depth", std::to_string(options.specular_depth));
+    if (!a.rows.empty()) {
+        header.set("rows_begin", std::to_string(first));
+        header.set("rows_end",
+                   std::to_string(std::min<std::uint64_t>(range.end, mesh.patches.size())));
+        header.set("unsharded_command", rad::unsharded_command(argc, argv));
+    }
+    radfmt::write_sky(a.output, header, sky);
+}
+
 // --sky: each patch's view of the sky patches and the ground, into a .sky file.
 int sky_view(FfArgs& a, int argc, char** argv) {
-    if (a.merge || a.estimate_only || !a.rows.empty())
-        throw rad::InputError("--sky takes neither --merge, --rows nor --estimate");
+    if (a.merge || a.estimate_only)
+        throw rad::InputError("--sky takes neither --merge (give the parts alone) nor --estimate");
     if (a.inputs.size() != 1) throw rad::InputError("give one mesh with --sky");
     rad::SkyViewOptions options{rad::SkyPatches::parse(a.sky), rad::SkyFrame{a.north},
                                 a.rays_option->count() ? a.options.rays : 1000, a.options.seed,
@@ -480,39 +530,15 @@ int sky_view(FfArgs& a, int argc, char** argv) {
                               rad::human_bytes(need) + ", more than --max-memory " +
                               rad::human_bytes(double(limit)) +
                               " (a coarser subdivision or mesh, or a larger --max-memory)");
+    const auto range =
+        a.rows.empty() ? rad::RowRange{} : rad::parse_rows(a.rows, mesh.patches.size());
     const rad::RayScene scene(mesh);
     const rad::SpecularSurfaces specular(mesh);
     rad::SkyViewStats stats;
-    const auto view = rad::patch_sky_view(mesh, scene, specular, options, 0, mesh.patches.size(),
+    const auto view = rad::patch_sky_view(mesh, scene, specular, options, range.begin, range.end,
                                           &stats, a.options.quiet);
-    radfmt::SkyData sky{
-        options.patches.spec(), a.north, mesh.patches.size(), options.patches.count(), {}};
-    sky.coefficients.reserve(view.size() * 3);
-    for (const auto& c : view)
-        for (int k = 0; k < 3; ++k) sky.coefficients.push_back(float(c[std::size_t(k)]));
-    const radfmt::Parent parents[] = {{input, &mesh_header}};
-    auto header = radfmt::derived_header(rad::tool_version("rad-ff"),
-                                         radfmt::command_line(argc, argv), parents);
-    header.set("mesh_geometry_hash", mesh.geometry_hash());
-    header.set("rays", std::to_string(options.rays));
-    header.set("seed", std::to_string(options.seed));
-    if (mesh.has_specular()) header.set("specular_depth", std::to_string(options.specular_depth));
-    radfmt::write_sky(a.output, header, sky);
-    if (!a.options.quiet) {
-        std::size_t seeing = 0;
-        for (std::size_t i = 0; i < mesh.patches.size(); ++i)
-            for (std::size_t s = 0; s < options.patches.count(); ++s)
-                if (rad::luminous(view[i * options.patches.count() + s]) > 0) {
-                    ++seeing;
-                    break;
-                }
-        std::fprintf(stderr,
-                     "rad-ff: %s sky (%zu patches with the ground), north %g deg: %zu of %zu "
-                     "patches see it, %.3g%% of %llu rays left the scene; %.3f s\n",
-                     options.patches.spec().c_str(), options.patches.count(), a.north, seeing,
-                     mesh.patches.size(), 100.0 * double(stats.escaped) / double(stats.rays),
-                     static_cast<unsigned long long>(stats.rays), stats.seconds);
-    }
+    write_sky_view(a, mesh, mesh_header, options, view, range, argc, argv);
+    if (!a.options.quiet) print_sky_summary(a, options, view, stats);
     return 0;
 }
 

@@ -202,6 +202,7 @@ struct GatherArgs {
     double lux_max = 0;
     int threads = 0;
     rad::tool::DaylightArgs daylight;
+    CLI::Option* rays_option = nullptr;
 };
 
 // The inputs and outputs.
@@ -229,10 +230,11 @@ void add_file_options(CLI::App& app, GatherArgs& a) {
 // How the light is gathered.
 void add_gather_options(CLI::App& app, GatherArgs& a) {
     auto& options = a.options;
-    app.add_option("--rays", options.rays,
-                   "Indirect light: cosine-weighted rays per point (0: direct light only)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1000000));
+    a.rays_option = app.add_option("--rays", options.rays,
+                                   "Indirect light: cosine-weighted rays per point (0: direct "
+                                   "light only; daylight: 1024 unless given)")
+                        ->capture_default_str()
+                        ->check(CLI::Range(0, 1000000));
     app.add_option("--shadow-rays", options.shadow_rays,
                    "Direct light: shadow rays per point for the lights' visible fractions "
                    "(emitting patches, and patches lit so brightly that rays landing on them "
@@ -521,7 +523,7 @@ int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
     run.rad_path = a.rad_path;
     run.output = a.output;
     run.png = a.png;
-    run.rays = a.options.rays;
+    run.rays = a.rays_option->count() ? a.options.rays : rad::tool::kDaylightRays;
     run.seed = a.options.seed;
     run.quiet = a.quiet;
     run.lux_max = a.lux_max;

@@ -67,8 +67,9 @@ std::vector<std::string> material_warnings(const radfmt::MeshData& mesh,
     }
     if (!any_emitter(mesh))
         lines.push_back("no material emits light (Ke > 0): a solve needs light from elsewhere "
-                        "(rad-solve --emission MATERIAL=r,g,b, or luminaires: rad-ff "
-                        "--luminaires LAYOUT, rad-solve --direct)");
+                        "(rad-solve --emission MATERIAL=r,g,b; luminaires: rad-ff "
+                        "--luminaires LAYOUT; the sky through windows: rad-ff --sky "
+                        "reinhart:1; then rad-solve --direct)");
     return lines;
 }
 

@@ -22,6 +22,15 @@ mkdir "$TMP/one"
 body() { local b; b=$("$BIN/rad-info" "$1" | sed -n 's/^size:.*(body/(body/p'); echo "${b:-no $1}"; }
 [ "$(body "$TMP/one/daylight-room.sky")" = "$(body "$TMP/daylight-room.sky")" ] || fail "the .sky differs at 1 and 2 threads"
 
+# In shards (--rows K/N), merged into the bytes of one run.
+for k in 0 1 2; do
+  "$BIN/rad-ff" "$TMP/daylight-room.mesh" --sky reinhart:1 --rows $k/3 -o "$TMP/part$k.sky" -q || fail "rad-ff --sky --rows $k/3"
+done
+"$BIN/rad-ff" --merge "$TMP/part2.sky" "$TMP/part0.sky" "$TMP/part1.sky" -o "$TMP/merged.sky" -q || fail "rad-ff --merge of .sky parts"
+[ "$(body "$TMP/merged.sky")" = "$(body "$TMP/daylight-room.sky")" ] || fail "the merged .sky differs from one run's"
+expect_error "are in no part" "$TMP/gap.sky" "$BIN/rad-ff" --merge "$TMP/part0.sky" "$TMP/part2.sky" -o "$TMP/gap.sky"
+expect_error "is a whole sky file, not a part" "$TMP/w.sky" "$BIN/rad-ff" --merge "$TMP/daylight-room.sky" -o "$TMP/w.sky"
+
 # Daylight factors along the room's axis: falling away from the window, lower behind glass.
 for z in 5.5 4 2.5 1 0.5; do echo "2 0.8 $z 0 1 0"; done > "$TMP/axis.txt"
 for v in daylight-room daylight-room-glazed; do

@@ -23,7 +23,7 @@ struct MeshOptions {
     bool turn_lamps = true;         // emitters facing into their fixture turned (--keep-lamps)
     bool verbose = false;           // every warning line (else at most 20 of a kind)
     std::vector<std::string> two_sided;
-    std::vector<std::string> thin; // refracting materials or groups made thin panes
+    std::vector<std::string> thin;          // refracting materials or groups made thin panes
     std::vector<std::string> transmittance; // MATERIAL=r,g,b: glass's transmittance
     bool two_sided_emission = false;
     bool morton_order = true; // patches along a Z-order curve (else in face order)

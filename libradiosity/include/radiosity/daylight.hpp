@@ -45,6 +45,11 @@ std::vector<radfmt::Rgb> patch_sky_view(const radfmt::MeshData& mesh, const RayS
                                         std::uint64_t end, SkyViewStats* stats = nullptr,
                                         bool quiet = true);
 
+// Joins .sky parts (rad-ff --sky --rows) of one mesh and options into the .sky one run would
+// have written to `output`, byte for byte; every row exactly once (InputError naming a gap, an
+// overlap or a part of other inputs). Returns the rows merged.
+std::uint64_t merge_sky_parts(const std::vector<std::string>& paths, const std::string& output);
+
 // What a sensor sees of the sky directly: every sky patch (and the ground) sampled by
 // side x side directions of equal solid angle, each followed through mirrors and glass;
 // escape(direction, weight) for each path that leaves the scene, weight = the path's RGB x

@@ -79,6 +79,16 @@ std::string merged_command(const radfmt::Header& part, const std::string& part_p
 // else FormatError naming the file.
 std::uint64_t part_row(const radfmt::Header& header, const std::string& key,
                        const std::string& path);
+// The headers of part files of one per-patch kind (rad-ff --luminaires or --sky with
+// --rows), read and checked alike: each a part, of the same tool, inputs, fields (but a
+// part's own) and unsharded command; InputError naming the odd one (`what`: "luminaires
+// files"). Fills `headers`; returns each part's rows.
+std::vector<RowPart> patch_row_parts(const std::vector<std::string>& paths, radfmt::Kind kind,
+                                     const std::string& what, std::vector<radfmt::Header>& headers);
+// The merged file's header from its first part's: the part's own fields dropped, the command
+// one run writing `output` would have had.
+radfmt::Header merged_part_header(const radfmt::Header& first, const std::string& first_path,
+                                  const std::string& output);
 struct FormFactorPart {
     std::string path;
     radfmt::Header header;

@@ -225,4 +225,44 @@ MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
     return out;
 }
 
+std::vector<RowPart> patch_row_parts(const std::vector<std::string>& paths, radfmt::Kind kind,
+                                     const std::string& what,
+                                     std::vector<radfmt::Header>& headers) {
+    if (paths.empty()) throw InputError("--merge needs the part files to merge");
+    headers.clear();
+    std::vector<RowPart> cover;
+    for (const auto& path : paths) {
+        headers.push_back(radfmt::read_header(path, &kind));
+        if (!headers.back().find("rows_begin"))
+            throw InputError(path + " is a whole " + std::string(radfmt::kind_name(kind)) +
+                             " file, not a part (rad-ff --rows)");
+        cover.push_back({path, part_row(headers.back(), "rows_begin", path),
+                         part_row(headers.back(), "rows_end", path)});
+    }
+    const auto& first = headers.front();
+    for (std::size_t k = 0; k < headers.size(); ++k) {
+        const auto& h = headers[k];
+        auto same = h.tool == first.tool && h.inputs.size() == first.inputs.size();
+        for (std::size_t i = 0; same && i < h.inputs.size(); ++i)
+            same = h.inputs[i].hash == first.inputs[i].hash;
+        for (const auto& [key, value] : first.fields)
+            if (same && !part_only(key)) same = h.find(key) && *h.find(key) == value;
+        same = same && h.get("unsharded_command", paths[k]) ==
+                           first.get("unsharded_command", paths.front());
+        if (!same)
+            throw InputError(paths[k] + " and " + paths.front() + " are parts of different " +
+                             what + " (other mesh, inputs or options): compute every part alike");
+    }
+    return cover;
+}
+
+radfmt::Header merged_part_header(const radfmt::Header& first, const std::string& first_path,
+                                  const std::string& output) {
+    auto header = first;
+    header.version = 0;
+    header.command = merged_command(first, first_path, output);
+    std::erase_if(header.fields, [&](const auto& f) { return part_only(f.first); });
+    return header;
+}
+
 } // namespace rad

@@ -68,6 +68,7 @@ std::vector<double> DaylightSensors::reflected(const Vec3& point, const Vec3& no
                                                std::uint64_t index) const {
     const std::size_t count = patches().count();
     std::vector<double> out(count, 0.0);
+    if (options_.rays <= 0) return out;
     const int side = std::max(1, int(std::lround(std::sqrt(double(options_.rays)))));
     const double share = 1.0 / (side * side);
     const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
