@@ -255,8 +255,16 @@ void print_summary(const SolveArgs& a, const rad::Solver& solver, const rad::Sol
         control.tolerance > 0 && !result.converged ? " (not converged: iteration limit)" : "",
         power[0], power[1], power[2], lumens);
     if (groups.empty()) return;
+    // A sky's 146 (or 2306) groups: the first few and the last, not a screenful.
+    constexpr std::size_t kNamed = 12;
     std::string names;
-    for (const auto& g : groups) names += " " + g.name;
+    for (std::size_t k = 0; k < groups.size(); ++k) {
+        if (groups.size() > kNamed && k == kNamed - 2) {
+            names += " ... " + groups.back().name;
+            break;
+        }
+        names += " " + groups[k].name;
+    }
     std::fprintf(stderr, "rad-solve: %zu light group(s):%s\n", groups.size(), names.c_str());
 }
 

@@ -822,7 +822,15 @@ std::string radiosity_summary(const fs::path& path, Header& header) {
     std::string text = std::to_string(rad.radiosity.size()) + " patches";
     if (rad.group_count()) {
         text += ", " + std::to_string(rad.group_count()) + " light group(s):";
-        for (const auto& g : rad.group_names) text += " " + g;
+        // A sky's hundreds of groups: the first few and the last.
+        const auto& names = rad.group_names;
+        for (std::size_t k = 0; k < names.size(); ++k) {
+            if (names.size() > 12 && k == 10) {
+                text += " ... " + names.back();
+                break;
+            }
+            text += " " + names[k];
+        }
     }
     return text;
 }
@@ -848,8 +856,7 @@ constexpr KindInfo kKinds[] = {
      "patch,sky_patch,d_r,d_g,d_b (irradiance per unit radiance, sr)", detail::sky_csv,
      detail::sky_summary},
     {Kind::Annual, "annual", "a year of illuminance at sensors (rad-gather --annual)", 1, 1,
-     "month,day,hour,occupied,then each sensor's lux", detail::annual_csv,
-     detail::annual_summary},
+     "month,day,hour,occupied,then each sensor's lux", detail::annual_csv, detail::annual_summary},
 };
 
 } // namespace

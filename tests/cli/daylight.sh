@@ -13,6 +13,7 @@ for v in daylight-room daylight-room-glazed; do
   err=$("$BIN/rad-solve" "$TMP/$v.mesh" "$TMP/$v.ff" --direct "$TMP/$v.sky" -o "$TMP/$v.rad" 2>&1) \
     || fail "rad-solve --direct $v.sky: $err"
   grep -q "146 light groups, one per sky patch" <<<"$err" || fail "rad-solve says: $err"
+  grep -q "146 light group(s): ground sky1 sky2 .* sky9 ... sky145$" <<<"$err" || fail "rad-solve lists: $err"
 done
 "$BIN/rad-info" "$TMP/daylight-room.sky" | grep -q "reinhart:1 (146 sky patches with the ground), north 0 deg" \
   || fail "rad-info does not summarise the .sky"

@@ -16,6 +16,7 @@
 #include "../helpers.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
+#include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/hierarchy.hpp"
@@ -328,7 +329,8 @@ int main(int argc, char** argv) {
     if (argc < 2) {
         std::cerr << "usage: fuzz_readers DATA_DIR [--iterations N] [--seconds S] [--seed K] "
                      "[--kind NAME[,NAME...]] [--min-cases N]\n  kinds: mesh formfactors "
-                     "links radiosity obj mtl gltf glb ply plyb dae stl fbx\n";
+                     "links radiosity luminaires ies ldt sky annual epw obj mtl gltf glb ply "
+                     "plyb dae stl fbx\n";
         return 1;
     }
     const fs::path data = argv[1];
@@ -440,6 +442,54 @@ int main(int argc, char** argv) {
         (void)photometry.intensity(33, 47);
     };
 
+    // Daylight: a .sky of the box (its view of Tregenza's sky), a year at two sensors, and
+    // the Denver EPW (tests/data).
+    const fs::path epw = data / "denver-tmy3.epw";
+    {
+        const rad::RayScene sky_scene(mesh);
+        const rad::SpecularSurfaces sky_specular(mesh);
+        const rad::SkyViewOptions options{rad::SkyPatches(1), rad::SkyFrame{15}, 64, 1, 12};
+        const auto view =
+            rad::patch_sky_view(mesh, sky_scene, sky_specular, options, 0, mesh.patches.size());
+        radfmt::SkyData sky{"reinhart:1", 15, mesh.patches.size(), options.patches.count(), {}};
+        for (const auto& c : view)
+            for (double v : c) sky.coefficients.push_back(float(v));
+        radfmt::write_sky(dir / "seed.sky", header, sky);
+        radfmt::AnnualData year;
+        year.positions = {{0, 0.5, 0}, {0.2, 0.5, 0.1}};
+        year.normals = {{0, 1, 0}, {1, 0, 0}};
+        for (std::uint32_t h = 0; h < 48; ++h) {
+            year.hours.push_back(10000 + (1 + h / 24) * 100 + h % 24 + 1);
+            year.occupied.push_back(h % 24 >= 8 && h % 24 < 18);
+            year.lux.insert(year.lux.end(), {float(h * 40), float(h * 20)});
+            year.sun_lux.insert(year.sun_lux.end(), {float(h * 25), 0});
+        }
+        radfmt::write_annual(dir / "seed.ill", header, year);
+    }
+    // What rad-solve does with a .sky (each sky patch's first bounce on the mesh it belongs
+    // to), and rad-gather with a year and a weather file.
+    const auto use_sky = [&](const radfmt::SkyData& sky) {
+        const auto patches = rad::SkyPatches::parse(sky.subdivision);
+        if (patches.count() != sky.sky_patches || sky.patch_count != mesh.patches.size()) return;
+        double total = 0;
+        for (std::size_t i = 0; i < sky.patch_count; ++i)
+            for (std::size_t k = 0; k < sky.sky_patches; ++k)
+                total += rad::luminous(sky.of(i, k)) * mesh.patches[i].area;
+        if (!std::isfinite(total)) throw std::logic_error("a .sky read with a value not finite");
+    };
+    const auto use_weather = [](const fs::path& p) {
+        const auto weather = rad::read_epw(p.string());
+        for (std::size_t t = 0; t < weather.hours.size(); t += 97) {
+            const auto& h = weather.hours[t];
+            const auto sun = rad::sun_of_hour(weather, h);
+            const auto sky = rad::Sky::perez(h.direct_normal, h.diffuse_horizontal, sun,
+                                             h.day_of_year(), h.dew_point, rad::SkyFrame{}, 0.2);
+            if (!std::isfinite(sky.horizontal_illuminance()) ||
+                !std::isfinite(sky.sun_normal_illuminance()))
+                throw std::logic_error("a sky of the weather file is not finite");
+        }
+    };
+
     struct Kind {
         std::string name;
         std::vector<Bytes> seeds;
@@ -511,6 +561,15 @@ int main(int argc, char** argv) {
          {read_bytes(dir / "seed.lum")},
          false,
          [&](const fs::path& p) { use_luminaires(radfmt::read_luminaires(p)); }},
+        {"sky",
+         {read_bytes(dir / "seed.sky")},
+         false,
+         [&](const fs::path& p) { use_sky(radfmt::read_sky(p)); }},
+        {"annual",
+         {read_bytes(dir / "seed.ill")},
+         false,
+         [&](const fs::path& p) { (void)rad::annual_metrics(radfmt::read_annual(p)); }},
+        {"epw", {read_bytes(epw)}, true, [&](const fs::path& p) { use_weather(p); }},
         {"ies", {read_bytes(ies)}, true, [&](const fs::path& p) { use_photometry(p, "f.ies"); }},
         {"ldt", {read_bytes(ldt)}, true, [&](const fs::path& p) { use_photometry(p, "f.ldt"); }},
         {"obj",

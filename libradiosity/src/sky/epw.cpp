@@ -1,6 +1,7 @@
 // The EPW reader (EnergyPlus Auxiliary Programs, "EnergyPlus Weather File (EPW) Data
-// Dictionary": fields 1-5 date and time, 7 dew point, 9 pressure in Pa, 14 direct normal and
-// 15 diffuse horizontal radiation in Wh/m^2 over the hour, 9999 when missing).
+// Dictionary", fields counted from 1: 1-5 date and time, 8 dew point, 10 pressure in Pa, 15
+// direct normal and 16 diffuse horizontal radiation in Wh/m^2 over the hour, 9999 when
+// missing).
 #include "radiosity/error.hpp"
 #include "radiosity/text_input.hpp"
 #include "radiosity/weather.hpp"
@@ -12,6 +13,7 @@ namespace rad {
 namespace {
 constexpr int kHeaderLines = 8;
 constexpr double kMissingRadiation = 9999;
+constexpr double kMaxRadiation = 1500;
 
 std::vector<std::string> fields_of(const std::string& line) {
     std::vector<std::string> out;
@@ -82,7 +84,10 @@ WeatherHour parse_hour(const std::string& line, const FileLoc& at, int& missing)
     bool absent = false;
     for (double* v : {&h.direct_normal, &h.diffuse_horizontal}) {
         if (*v >= kMissingRadiation) *v = 0, absent = true;
-        if (*v < 0) throw InputError(at, "negative radiation");
+        // The solar constant is 1361 W/m^2: more is no radiation on Earth.
+        if (*v < 0 || *v > kMaxRadiation)
+            throw InputError(at, "radiation of " + quoted_prefix(std::to_string(*v)) +
+                                     " W/m^2 (fields 15, 16: 0 to 1500, 9999 when missing)");
     }
     if (absent) ++missing;
     if (h.dew_point > 70 || h.dew_point < -90) h.dew_point = 10; // 99.9: missing
