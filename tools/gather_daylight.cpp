@@ -19,29 +19,13 @@
 namespace rad::tool {
 
 void add_daylight_options(CLI::App& app, DaylightArgs& a) {
-    app.add_option("--sky", a.sky,
-                   "Daylight at an instant, from a solution solved with a .sky (rad-ff --sky, "
-                   "rad-solve --direct): uniform[:L] (cd/m^2), cie-overcast[:LUX], "
-                   "cie:TYPE[:LUX] (the 15 CIE standard general skies), perez:DNI,DHI (W/m^2); "
-                   "LUX is the sky's horizontal illuminance (default 10000). Writes lux, one a "
-                   "line");
+    add_sky_options(app, a.choice,
+                    "Daylight at an instant, from a solution solved with a .sky (rad-ff --sky, "
+                    "rad-solve --direct); writes lux, one a line");
     app.add_flag("--daylight-factor", a.daylight_factor,
                  "With --sky (cie-overcast, as the standards define it): write the daylight "
                  "factor in % (the sensor's illuminance over the unobstructed sky's horizontal "
                  "illuminance), one a line, and its mean, median and share at 2% or more");
-    app.add_option("--sun", a.sun,
-                   "The sun for --sky cie:TYPE or perez: ALT,AZ in degrees (azimuth from north "
-                   "towards east)");
-    app.add_option("--date", a.date, "The sun by date and time: YYYY-MM-DD (with --time)");
-    app.add_option("--time", a.time, "HH:MM, local standard time (with --date)");
-    app.add_option("--location", a.location,
-                   "LAT,LON,TZ[,ELEVATION] for --date (degrees north, degrees east, hours east "
-                   "of UTC, m); default: the --epw file's");
-    app.add_option("--ground", a.ground,
-                   "The ground's reflectance below the horizon (its luminance: this x the "
-                   "global horizontal illuminance / pi)")
-        ->capture_default_str()
-        ->check(rad::tool::finite_range(0, 1));
     app.add_option("--epw", a.epw,
                    "An EnergyPlus weather file: with --annual, a year of hourly Perez skies "
                    "and sun; with --date, the place");
@@ -63,13 +47,13 @@ void add_daylight_options(CLI::App& app, DaylightArgs& a) {
 }
 
 bool wants_daylight(const DaylightArgs& a) {
-    return !a.sky.empty() || a.annual || a.daylight_factor || !a.epw.empty();
+    return !a.choice.sky.empty() || a.annual || a.daylight_factor || !a.epw.empty();
 }
 
 namespace {
 
 void check_daylight_args(const DaylightArgs& a, const DaylightRun& run) {
-    if (a.annual == !a.sky.empty()) {
+    if (a.annual == !a.choice.sky.empty()) {
         if (a.annual) throw InputError("--annual or --sky: a year or an instant, not both");
         throw InputError("daylight needs --sky SPEC (an instant) or --epw FILE --annual (a year)");
     }
@@ -80,27 +64,6 @@ void check_daylight_args(const DaylightArgs& a, const DaylightRun& run) {
         throw InputError("--daylight-factor is for --sky cie-overcast, not --annual");
     if (!a.annual && (!a.occupancy.empty() || !a.metrics.empty()))
         throw InputError("--occupancy and --metrics go with --annual");
-    if (a.date.empty() != a.time.empty()) throw InputError("--date and --time go together");
-    if (!a.sun.empty() && !a.date.empty()) throw InputError("--sun or --date/--time, not both");
-}
-
-std::optional<SunPosition> sun_of(const DaylightArgs& a, int& day_of_year) {
-    day_of_year = 172;
-    if (!a.sun.empty()) return parse_sun(a.sun);
-    if (a.date.empty()) return std::nullopt;
-    Location where;
-    if (!a.location.empty())
-        where = parse_location(a.location);
-    else if (!a.epw.empty())
-        where = read_epw(a.epw).location;
-    else
-        throw InputError("--date needs --location LAT,LON,TZ (or --epw for the place)");
-    const auto when = parse_local_time(a.date, a.time);
-    WeatherHour h;
-    h.month = when.month;
-    h.day = when.day;
-    day_of_year = h.day_of_year();
-    return solar_position(where, when);
 }
 
 void write_lines(const std::string& output, const std::string& header_line,
@@ -130,8 +93,9 @@ void write_png(const DaylightRun& run, const std::vector<double>& values, const 
 
 int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
     int day = 172;
-    const auto sun = sun_of(a, day);
-    const auto sky = parse_sky(a.sky, sun ? &*sun : nullptr, day, sensors.frame(), a.ground);
+    const auto& c = a.choice;
+    const auto sun = sun_from({c.sun, c.date, c.time, c.location, a.epw}, day);
+    const auto sky = parse_sky(c.sky, sun ? &*sun : nullptr, day, sensors.frame(), c.ground);
     if (a.daylight_factor && sky.horizontal_illuminance() <= 0)
         throw InputError("--daylight-factor: the sky has no horizontal illuminance");
     const std::size_t n = run.positions.size();
@@ -191,7 +155,7 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
     const auto occupied = a.occupancy.empty() ? default_occupancy(weather)
                                               : read_occupancy(a.occupancy, weather.hours.size());
     const auto year = annual_illuminance(sensors, run.positions, run.normals, weather, occupied,
-                                         a.ground, run.quiet);
+                                         a.choice.ground, run.quiet);
     std::vector<radfmt::Parent> parents;
     for (const auto& i : inputs) parents.push_back({i, nullptr});
     auto header = radfmt::derived_header(tool_version("rad-gather"), command, parents);

@@ -3,6 +3,7 @@
 #pragma once
 #include "radfmt/kinds.hpp"
 #include "radiosity/vec.hpp"
+#include "tool.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -16,8 +17,8 @@ namespace rad::tool {
 inline constexpr int kDaylightRays = 1024;
 
 struct DaylightArgs {
-    std::string sky, sun, date, time, location, epw, occupancy, metrics;
-    double ground = 0.2;
+    SkyChoice choice;
+    std::string epw, occupancy, metrics;
     bool daylight_factor = false, annual = false;
     int sky_samples = 64;
 };

@@ -5,8 +5,10 @@
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/bake.hpp"
+#include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/image_io.hpp"
+
 #include "radiosity/light_groups.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
@@ -14,12 +16,20 @@
 #include "radiosity/version.hpp"
 #include "radiosity/view.hpp"
 #include "tool.hpp"
+#include <algorithm>
+#include <cmath>
 
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <optional>
 
 namespace {
+
+// A daylight page's components: layers of one texture array the fragment shader mixes; as
+// many as bring a year of clear skies within 0.5% rms of the full solution, at most 64.
+constexpr int kDaylightComponents = 64;
+constexpr double kDaylightError = 0.005;
 
 // What the glb says of where it came from (asset.extras.radiosity).
 nlohmann::json provenance_json(const radfmt::Header& mesh_header, const std::string& mesh_path,
@@ -69,9 +79,10 @@ struct Arguments {
                                              view_file, engine;
     double crease = 30, exposure = 0, density = 0, chart_angle = 20;
     int lightmap = 0, padding = 2, threads = 0;
-    std::string max_memory;
+    std::string max_memory, location;
     bool quiet = false, mix_only = false;
     std::vector<std::string> mix;
+    double ground = 0.2;
 };
 
 void add_options(CLI::App& app, Arguments& a) {
@@ -118,6 +129,14 @@ void add_options(CLI::App& app, Arguments& a) {
                    "colour = reflectance, emissive), TEXCOORD_1, and an irradiance atlas (what "
                    "falls on the surface, x exposure, sRGB) for the engine's lightmap slot, "
                    "named in asset.extras.radiosity.lightmap_texture");
+    app.add_option("--location", a.location,
+                   "--html of a daylight solution (rad-solve --direct SKY): LAT,LON,TZ, where the "
+                   "page's date and time sliders put the sun; the page relights by clear sky "
+                   "(CIE 12 with the IES daylight availability) from a basis of the solution "
+                   "(needs --lightmap)");
+    app.add_option("--ground", a.ground, "--location: the ground's reflectance below the horizon")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(0, 1));
     app.add_option("--view", a.view_text, "--html: the camera, as rad-shade's --view");
     app.add_option("--view-file", a.view_file, "--html: the camera, as rad-shade's --view-file");
     rad::tool::add_threads_option(app, a.threads);
@@ -234,6 +253,108 @@ void write_engine_glb(const std::string& path, const rad::BakeResult& result, do
     rad::write_file(path, bytes.data(), bytes.size());
 }
 
+// A daylight solution's page: the glb shows a clear equinox noon; the page relights by date
+// and time from a basis of the solution (its components as signed lightmaps).
+struct DaylightPage {
+    rad::DaylightSolution solution;
+    rad::Location where;
+    rad::DaylightBasis basis;             // the sky and the ground, without the sun
+    std::vector<std::size_t> sun_patches; // the sky patches the sun passes through
+    std::vector<radfmt::Rgb> noon;        // the patches' radiosity at the glb's default sky
+};
+
+// One sky patch's light group, its radiosity per patch.
+std::vector<radfmt::Rgb> sky_patch_values(const rad::DaylightSolution& solution, std::size_t s) {
+    const std::size_t count = solution.patches.count(), n = solution.radiosity.size() / (count * 3);
+    std::vector<radfmt::Rgb> out(n);
+    for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t c = 0; c < 3; ++c) out[j][c] = solution.radiosity[(j * count + s) * 3 + c];
+    return out;
+}
+
+std::optional<DaylightPage> daylight_page(const Arguments& a, const radfmt::MeshData& mesh,
+                                          const radfmt::RadiosityData& radiosity,
+                                          const radfmt::Header& rad_header) {
+    if (!rad::is_daylight_solution(rad_header)) {
+        if (!a.location.empty())
+            throw rad::InputError("--location is for the page of a daylight solution (rad-solve "
+                                  "--direct SKY); " +
+                                  a.rad_path + " is none");
+        return std::nullopt;
+    }
+    if (a.html.empty() || a.lightmap == 0 || a.location.empty())
+        throw rad::InputError(a.rad_path + " is a daylight solution (" +
+                              std::to_string(radiosity.group_count()) +
+                              " light groups, one per sky patch): bake its page with --html, "
+                              "--lightmap SIZE and --location LAT,LON,TZ (it relights by date and "
+                              "time), or one sky with rad-shade --sky");
+    if (!a.mix.empty() || a.mix_only) throw rad::InputError("--mix is not for a daylight page");
+    DaylightPage page{rad::daylight_solution(radiosity, rad_header, a.rad_path),
+                      rad::parse_location(a.location),
+                      {},
+                      {},
+                      {}};
+    std::vector<double> areas;
+    for (const auto& p : mesh.patches) areas.push_back(p.area);
+    const auto year =
+        rad::clear_year(page.solution.patches, page.solution.frame, page.where, a.ground);
+    page.basis =
+        rad::daylight_basis(page.solution, areas, year.skies, kDaylightComponents, kDaylightError);
+    page.sun_patches = year.sun_patches;
+    const auto sun = rad::solar_position(page.where, {2025, 3, 21, 12});
+    page.noon =
+        rad::sky_radiosity(page.solution, rad::Sky::clear(sun, page.solution.frame, a.ground));
+    return page;
+}
+
+// Every daylight layer in 16 bits, two PNG layers each (high and low byte of 0.5 + 0.5 x
+// value / scale): the components' weights cancel each other, and the sun's patch lights the
+// floor a hundred times as much as the walls, so 8 bits show as blotches on the walls.
+void encode_layers_16(rad::BakeResult& result) {
+    auto& pngs = result.scene.group_lightmaps_png;
+    std::vector<std::pair<std::string, std::vector<std::uint8_t>>> layers;
+    for (std::size_t k = 0; k < pngs.size(); ++k) {
+        const auto& map = result.group_lightmaps[k];
+        std::vector<std::uint8_t> high(map.rgb.size()), low(map.rgb.size());
+        for (std::size_t i = 0; i < map.rgb.size(); ++i) {
+            const double unit =
+                std::clamp(0.5 + 0.5 * map.rgb[i] / result.group_scales[k], 0.0, 1.0);
+            const auto q = static_cast<std::uint32_t>(std::lround(unit * 65535));
+            high[i] = std::uint8_t(q >> 8);
+            low[i] = std::uint8_t(q & 255);
+        }
+        layers.emplace_back(pngs[k].first, rad::encode_png_rgb8(map.size, map.size, high));
+        layers.emplace_back(pngs[k].first + ".low", rad::encode_png_rgb8(map.size, map.size, low));
+    }
+    pngs = std::move(layers);
+}
+
+// What the page needs to relight: the place, the sky patches, each component's weights and
+// lightmap scale, and how well the basis reproduces a year of clear skies.
+nlohmann::json daylight_extras(const Arguments& a, const DaylightPage& page,
+                               const rad::BakeResult& result) {
+    nlohmann::json components = nlohmann::json::array();
+    for (std::size_t k = 0; k < page.basis.values.size(); ++k)
+        components.push_back(
+            {{"weights", page.basis.weights[k]}, {"scale", result.group_scales[k]}});
+    nlohmann::json suns = nlohmann::json::array();
+    for (std::size_t k = 0; k < page.sun_patches.size(); ++k)
+        suns.push_back({{"patch", page.sun_patches[k]},
+                        {"scale", result.group_scales[page.basis.values.size() + k]}});
+    return {{"latitude", page.where.latitude},
+            {"longitude", page.where.longitude},
+            {"time_zone", page.where.time_zone},
+            {"north", page.solution.frame.north_deg},
+            {"subdivisions", page.solution.patches.subdivisions()},
+            {"ground", a.ground},
+            {"sky", "clear: CIE 12, diffuse 800 + 15500 sqrt(sin a) lux, beam 127500 "
+                    "exp(-0.21 / sin a) lux, the beam in the sky patch it is in"},
+            {"components", components},
+            {"sun_patches", suns},
+            {"mean_error", page.basis.mean_error},
+            {"worst_error", page.basis.worst_error}};
+}
+
 int bake_files(const Arguments& a, const std::string& command) {
     rad::tool::check_outputs({a.mesh_path, a.rad_path}, {{"-o", a.output},
                                                          {"--exr", a.exr},
@@ -246,16 +367,25 @@ int bake_files(const Arguments& a, const std::string& command) {
     radfmt::Header mesh_header, rad_header;
     const auto mesh = radfmt::read_mesh(a.mesh_path, &mesh_header);
     const auto radiosity = radfmt::read_radiosity(a.rad_path, &rad_header);
-    const auto values = rad::mix_light_groups(radiosity, a.mix, a.mix_only, a.rad_path);
+    const auto daylight = daylight_page(a, mesh, radiosity, rad_header);
+    const auto values =
+        daylight ? daylight->noon : rad::mix_light_groups(radiosity, a.mix, a.mix_only, a.rad_path);
     radfmt::require_same_geometry(a.rad_path, rad_header, values.size(), a.mesh_path, mesh,
                                   "run rad-ff and rad-solve on " + a.mesh_path + " again");
     radfmt::MeshData solved = mesh; // E and rho as solved, for the exposure
     rad::apply_recorded_overrides(solved, rad_header);
     auto options = bake_options(a, rad::solution_exposure(solved, values));
     if (!a.engine.empty()) options.engine_solved = &solved;
-    const auto groups = a.lightmap > 0
-                            ? group_radiosity(radiosity)
-                            : std::vector<std::pair<std::string, std::vector<radfmt::Rgb>>>{};
+    auto groups = a.lightmap > 0 && !daylight
+                      ? group_radiosity(radiosity)
+                      : std::vector<std::pair<std::string, std::vector<radfmt::Rgb>>>{};
+    if (daylight) {
+        options.signed_groups = true;
+        for (std::size_t k = 0; k < daylight->basis.values.size(); ++k)
+            groups.emplace_back("daylight" + std::to_string(k), daylight->basis.values[k]);
+        for (const auto p : daylight->sun_patches)
+            groups.emplace_back("sun" + std::to_string(p), sky_patch_values(daylight->solution, p));
+    }
     if (a.lightmap == 0 && radiosity.group_count() > 0 && !a.quiet)
         std::fprintf(stderr,
                      "rad-bake: note: vertex colours hold one mix of the solution's %zu light "
@@ -265,9 +395,12 @@ int bake_files(const Arguments& a, const std::string& command) {
     check_lightmap_memory(a, groups.size());
     auto result = rad::bake(mesh, values, groups, options);
     result.scene.generator = rad::tool_version("rad-bake");
+    if (daylight) encode_layers_16(result);
+    auto extras =
+        provenance_json(mesh_header, a.mesh_path, rad_header, a.rad_path, command, options, result);
+    if (daylight) extras["daylight"] = daylight_extras(a, *daylight, result);
     result.scene.extras_json =
-        provenance_json(mesh_header, a.mesh_path, rad_header, a.rad_path, command, options, result)
-            .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+        extras.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     const auto glb = rad::baked_glb(result.scene);
     rad::write_file(a.output, glb.data(), glb.size());
     if (!a.html.empty()) {
@@ -281,6 +414,16 @@ int bake_files(const Arguments& a, const std::string& command) {
     write_atlas_files(a, result, group_names, options.exposure);
     outputs.commit();
     if (!a.quiet) print_summary(a, mesh, result, options.exposure);
+    if (daylight && !a.quiet)
+        std::fprintf(stderr,
+                     "rad-bake: the page relights by date and time from %zu components of the "
+                     "solution's %zu sky groups (over a year of clear skies at %s the sky's "
+                     "light through them is %.2g%% rms from the full solution's on average, "
+                     "%.2g%% at worst) and the groups of the %zu sky patches the sun passes "
+                     "through, exactly\n",
+                     daylight->basis.values.size(), radiosity.group_count(), a.location.c_str(),
+                     100 * daylight->basis.mean_error, 100 * daylight->basis.worst_error,
+                     daylight->sun_patches.size());
     return 0;
 }
 

@@ -4,6 +4,7 @@
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/auto_view.hpp"
+#include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
@@ -39,6 +40,7 @@ struct ShadeArgs {
     bool mix_only = false, layers = false;
     std::string backfaces = "show", max_memory, direct_path;
     int gather = 0, shadow_rays = 32;
+    rad::tool::SkyChoice sky; // a daylight solution under one sky
 };
 
 // The inputs, the camera and the image's size.
@@ -117,6 +119,9 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
                    "Weight a light group (rad-solve --light-groups): NAME=s, or NAME=r,g,b to "
                    "recolour it (repeatable; groups not named keep weight 1)");
     app.add_flag("--mix-only", a.mix_only, "Groups not named in --mix are off (weight 0)");
+    rad::tool::add_sky_options(app, a.sky,
+                               "A daylight solution (rad-solve --direct SKY) under this sky: its "
+                               "sky patches' groups weighted by the sky's luminance");
     app.add_option("--direct", a.direct_path,
                    "The luminaires file (.lum) the solution was solved with, when it has moved "
                    "(default: the one rad-solve --direct recorded): their openings are drawn at "
@@ -168,6 +173,21 @@ struct ShadeInputs {
     std::optional<rad::LuminaireSet> luminaires; // the solve's rad-solve --direct
 };
 
+// --sky: the daylight solution's sky groups mixed by the sky's patch luminances.
+std::vector<radfmt::Rgb> sky_values(const ShadeArgs& a, const radfmt::RadiosityData& radiosity,
+                                    const radfmt::Header& header) {
+    if (!a.mix.empty() || a.mix_only || a.layers || a.gather > 0)
+        throw rad::InputError("--sky mixes the sky's groups itself: not with --mix, --mix-only, "
+                              "--layers or --gather");
+    const auto solution = rad::daylight_solution(radiosity, header, a.rad_path);
+    int day = 172;
+    const auto& c = a.sky;
+    const auto sun = rad::sun_from({c.sun, c.date, c.time, c.location, ""}, day);
+    const auto sky = rad::parse_sky(c.sky, sun ? &*sun : nullptr, day, solution.frame, c.ground);
+    if (!a.quiet) std::fprintf(stderr, "rad-shade: %s\n", sky.describe().c_str());
+    return rad::sky_radiosity(solution, sky);
+}
+
 ShadeInputs read_inputs(const ShadeArgs& a) {
     ShadeInputs in;
     in.mesh = radfmt::read_mesh(a.mesh_path, &in.mesh_header);
@@ -178,7 +198,9 @@ ShadeInputs read_inputs(const ShadeArgs& a) {
         return in;
     }
     in.radiosity = radfmt::read_radiosity(a.rad_path, &in.rad_header);
-    in.values = rad::mix_light_groups(in.radiosity, a.mix, a.mix_only, a.rad_path);
+    in.values = a.sky.sky.empty()
+                    ? rad::mix_light_groups(in.radiosity, a.mix, a.mix_only, a.rad_path)
+                    : sky_values(a, in.radiosity, in.rad_header);
     if (a.layers && in.radiosity.group_count() == 0)
         throw rad::InputError(a.rad_path + " has no light groups for --layers (solve with "
                                            "rad-solve --light-groups)");

@@ -233,4 +233,25 @@ void check_outputs(const std::vector<std::string>& inputs,
     }
 }
 
+void add_sky_options(CLI::App& app, SkyChoice& choice, const std::string& what) {
+    app.add_option("--sky", choice.sky,
+                   what + ": uniform[:L] (cd/m^2), cie-overcast[:LUX], cie:TYPE[:LUX] (the 15 CIE "
+                          "standard general skies), perez:DNI,DHI (W/m^2), clear (CIE 12 with the "
+                          "IES clear-sky daylight availability and the sun's beam); LUX is the "
+                          "sky's horizontal illuminance (default 10000)");
+    app.add_option("--sun", choice.sun,
+                   "The sun for --sky cie:TYPE, perez or clear: ALT,AZ in degrees (azimuth "
+                   "from north towards east)");
+    app.add_option("--date", choice.date, "The sun by date and time: YYYY-MM-DD (with --time)");
+    app.add_option("--time", choice.time, "HH:MM, local standard time (with --date)");
+    app.add_option("--location", choice.location,
+                   "LAT,LON,TZ[,ELEVATION] for --date (degrees north, degrees east, hours east "
+                   "of UTC, m)");
+    app.add_option("--ground", choice.ground,
+                   "The ground's reflectance below the horizon (its luminance: this x the "
+                   "global horizontal illuminance / pi)")
+        ->capture_default_str()
+        ->check(finite_range(0, 1));
+}
+
 } // namespace rad::tool

@@ -56,4 +56,12 @@ std::string one_of(const std::vector<std::string>& names);
 // `option` otherwise.
 std::uint64_t parse_size(const std::string& text, const std::string& option);
 
+// A sky at an instant as a command line names it (rad-gather, rad-shade): --sky, --sun,
+// --date, --time, --location, --ground. `what` says what the sky is for, in --sky's help.
+struct SkyChoice {
+    std::string sky, sun, date, time, location;
+    double ground = 0.2;
+};
+void add_sky_options(CLI::App& app, SkyChoice& choice, const std::string& what);
+
 } // namespace rad::tool

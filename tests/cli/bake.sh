@@ -98,4 +98,30 @@ expect_error "do not fit a 64x64 lightmap at" "$TMP/x.glb" "$BIN/rad-bake" "$TMP
 # The work a lightmap implies is estimated and checked before baking (#55 item 3).
 expect_error "--lightmap 4096 with 0 light group(s) needs about 528.0 MiB, more than --max-memory 100.0 MiB" "$TMP/mem.glb" \
   "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/mem.glb" --lightmap 4096 --max-memory 100M
+
+# A daylight solution's page (#51): it relights by date and time from a basis of the sky's
+# groups and the sun patches' own; at two instants and at night it shows what rad-shade --sky
+# clear shows at the same place and time, within 1%.
+D="$SRC/scenes/daylight-room"
+"$BIN/rad-mesh" "$D/daylight-room-glazed.obj" -o "$TMP/d.mesh" --max-edge 0.5 -q 2>/dev/null
+"$BIN/rad-ff" "$TMP/d.mesh" -o "$TMP/d.ff" --rays 1024 -q
+"$BIN/rad-ff" "$TMP/d.mesh" --sky reinhart:1 -o "$TMP/d.sky" -q
+"$BIN/rad-solve" "$TMP/d.mesh" "$TMP/d.ff" --direct "$TMP/d.sky" -o "$TMP/d.rad" -q
+DV="-vp 2 1.5 0.3 -vd 0 -0.25 1 -vu 0 1 0 -vh 75 -vv 75"
+PLACE=39.83,-104.65,-7
+err=$("$BIN/rad-bake" "$TMP/d.mesh" "$TMP/d.rad" -o "$TMP/d.glb" --lightmap 128 --html "$TMP/d.html" \
+  --location $PLACE --view "$DV" 2>&1) || fail "daylight page: $err"
+grep -q "relights by date and time from [0-9]* components of the solution's 146 sky groups" <<<"$err" || fail "daylight page summary: $err"
+exposure=$(sed -n 's/.*exposure \([0-9.e+-]*\)$/\1/p' <<<"$err" | head -1)
+validate "$TMP/d.glb"
+for when in "2025-03-21 12:00 80 12" "2025-06-21 09:00 172 9" "2025-06-21 02:00 172 2"; do
+  set -- $when
+  "$BIN/rad-shade" "$TMP/d.mesh" "$TMP/d.rad" -o "$TMP/dref.exr" --png "$TMP/dref.png" --sky clear \
+    --date "$1" --time "$2" --location $PLACE --view "$DV" --exposure "$exposure" -q 2>/dev/null ||
+    fail "rad-shade --sky clear at $1 $2"
+  page_matches "$TMP/d.html" "$TMP/dref.png" "{\"day\":$3,\"hour\":$4}" >/dev/null
+done
+expect_error "bake its page with --html, --lightmap SIZE and --location" "$TMP/x.glb" \
+  "$BIN/rad-bake" "$TMP/d.mesh" "$TMP/d.rad" -o "$TMP/x.glb"
+expect_error "is none" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --location $PLACE
 finish

@@ -47,6 +47,157 @@ function mixingMaterial(textures, doubleSided) {
   });
 }
 
+// ---- Daylight (a page of a daylight solution): the sky of a date and time, as the chain's
+// Sky::clear makes it, weighting the components of the solution's basis (one texture array).
+const DEG = Math.PI / 180;
+
+// The sun at day of year `day` and `hour` (local standard time) by NOAA's general solar
+// position formulas (within a few tenths of a degree; no refraction).
+function sunPosition(site, day, hour) {
+  const g = ((2 * Math.PI) / 365) * (day - 1 + (hour - 12) / 24);
+  const eqtime = 229.18 * (0.000075 + 0.001868 * Math.cos(g) - 0.032077 * Math.sin(g) -
+    0.014615 * Math.cos(2 * g) - 0.040849 * Math.sin(2 * g));
+  const decl = 0.006918 - 0.399912 * Math.cos(g) + 0.070257 * Math.sin(g) - 0.006758 * Math.cos(2 * g) +
+    0.000907 * Math.sin(2 * g) - 0.002697 * Math.cos(3 * g) + 0.00148 * Math.sin(3 * g);
+  const minutes = hour * 60 + eqtime + 4 * site.longitude - 60 * site.time_zone;
+  const ha = (minutes / 4 - 180) * DEG, lat = site.latitude * DEG;
+  const cosZ = Math.sin(lat) * Math.sin(decl) + Math.cos(lat) * Math.cos(decl) * Math.cos(ha);
+  const altitude = Math.asin(Math.max(-1, Math.min(1, cosZ)));
+  const azimuth = Math.atan2(Math.sin(ha), Math.cos(ha) * Math.sin(lat) - Math.tan(decl) * Math.cos(lat)) + Math.PI;
+  return { altitude, azimuth };
+}
+
+// Reinhart's sky patches (the chain's numbering: the ground, rows from the horizon up, each
+// from north towards east, the zenith cap), each as 4 x 4 cells of equal solid angle.
+function skyPatches(m) {
+  const perRow = [30, 30, 24, 24, 18, 12, 6];
+  const alpha = (Math.PI / 2) / (7 * m + 0.5);
+  const patches = [null];
+  const add = (a0, a1, z0, z1) => {
+    const cells = [];
+    for (let i = 0; i < 4; ++i) {
+      const alt = Math.asin(Math.sin(a0) + ((Math.sin(a1) - Math.sin(a0)) * (i + 0.5)) / 4);
+      for (let j = 0; j < 4; ++j) cells.push({ alt, az: z0 + ((z1 - z0) * (j + 0.5)) / 4 });
+    }
+    patches.push({ a0, a1, z0, z1, cells, omega: (Math.sin(a1) - Math.sin(a0)) * (z1 - z0) });
+  };
+  for (let row = 0; row < 7 * m; ++row) {
+    const n = perRow[Math.floor(row / m)] * m, w = (2 * Math.PI) / n;
+    for (let j = 0; j < n; ++j) add(row * alpha, (row + 1) * alpha, j * w - w / 2, j * w + w / 2);
+  }
+  add(Math.PI / 2 - alpha / 2, Math.PI / 2, 0, 2 * Math.PI);
+  return { patches, alpha, perRow, m };
+}
+
+function patchOf(sky, alt, az) {
+  const row = Math.floor(alt / sky.alpha);
+  if (row >= 7 * sky.m) return sky.patches.length - 1;
+  let first = 1;
+  for (let r = 0; r < row; ++r) first += sky.perRow[Math.floor(r / sky.m)] * sky.m;
+  const n = sky.perRow[Math.floor(row / sky.m)] * sky.m;
+  const a = ((az % (2 * Math.PI)) + 2 * Math.PI) % (2 * Math.PI);
+  return first + (Math.floor((a * n) / (2 * Math.PI) + 0.5) % n);
+}
+
+// Each sky patch's mean luminance (cd/m^2) under the clear sky of the sun `sun`: CIE 12 scaled
+// to 800 + 15500 sqrt(sin a) lux on the horizontal, the ground uniform; and the sun's beam,
+// 127500 exp(-0.21 / sin a) lux, as the luminance of the patch it is in (sunPatch, sunLuminance).
+function clearSkyLuminance(sky, sun, ground) {
+  const out = new Array(sky.patches.length).fill(0);
+  out.sunPatch = -1;
+  out.sunLuminance = 0;
+  if (sun.altitude <= 0) return out;
+  const [a, b, c, d, e] = [-1, -0.32, 10, -3, 0.45];
+  const gradation = (cosZ) => 1 + a * Math.exp(b / Math.max(cosZ, 1e-9));
+  const indicatrix = (g) => 1 + c * (Math.exp(d * g) - Math.exp((d * Math.PI) / 2)) + e * Math.cos(g) ** 2;
+  const zs = Math.PI / 2 - sun.altitude;
+  const zenith = gradation(1) * indicatrix(zs);
+  const relative = (alt, az) => {
+    const cosG = Math.sin(alt) * Math.sin(sun.altitude) + Math.cos(alt) * Math.cos(sun.altitude) * Math.cos(az - sun.azimuth);
+    return (gradation(Math.sin(alt)) * indicatrix(Math.acos(Math.max(-1, Math.min(1, cosG))))) / zenith;
+  };
+  let integral = 0;
+  for (let p = 1; p < sky.patches.length; ++p) {
+    const patch = sky.patches[p];
+    let sum = 0;
+    for (const cell of patch.cells) {
+      const r = relative(cell.alt, cell.az);
+      sum += r;
+      integral += (r * Math.sin(cell.alt) * patch.omega) / patch.cells.length;
+    }
+    out[p] = sum / patch.cells.length;
+  }
+  const s = Math.sin(sun.altitude);
+  const diffuse = 800 + 15500 * Math.sqrt(s), beam = 127500 * Math.exp(-0.21 / s);
+  for (let p = 1; p < out.length; ++p) out[p] *= diffuse / integral;
+  out.sunPatch = patchOf(sky, sun.altitude, sun.azimuth);
+  out.sunLuminance = beam / sky.patches[out.sunPatch].omega;
+  out[0] = (ground * (diffuse + beam * s)) / Math.PI;
+  return out;
+}
+
+// Mixes the basis layers: sum of weight x (linear) texel plus a bias (the layers are signed,
+// stored as 0.5 + 0.5 x value / scale), times the exposure; encoded to sRGB for display.
+function daylightMaterial(basis, count, doubleSided) {
+  return new THREE.ShaderMaterial({
+    glslVersion: THREE.GLSL3,
+    defines: { COMPONENTS: count },
+    uniforms: { basis: { value: basis }, weights: { value: new Array(count).fill(0) }, bias: { value: 0 }, scale: { value: 1 } },
+    side: doubleSided ? THREE.DoubleSide : THREE.FrontSide,
+    vertexShader: `
+      in vec2 uv1;
+      out vec2 vLightmapUv;
+      void main() {
+        vLightmapUv = uv1;
+        gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
+      }`,
+    fragmentShader: `
+      layout(location = 0) out highp vec4 pc_fragColor;
+      #define gl_FragColor pc_fragColor
+      precision highp sampler2DArray;
+      uniform sampler2DArray basis;
+      uniform float weights[COMPONENTS];
+      uniform float bias;
+      uniform float scale;
+      in vec2 vLightmapUv;
+      void main() {
+        vec3 light = vec3(bias);
+        for (int k = 0; k < COMPONENTS; ++k) light += weights[k] * texture(basis, vec3(vLightmapUv, float(k))).rgb;
+        gl_FragColor = vec4(clamp(light * scale, 0.0, 1.0), 1.0);
+        #include <colorspace_fragment>
+      }`,
+  });
+}
+
+// The basis layers (PNG textures of the glb) as one texture array, linear.
+async function basisTexture(parser, groups) {
+  const textures = await Promise.all(groups.map((g) => parser.getDependency('texture', g.texture)));
+  const { width, height } = textures[0].image;
+  const data = new Uint8Array(width * height * 4 * textures.length);
+  const canvas = document.createElement('canvas');
+  Object.assign(canvas, { width, height });
+  const context = canvas.getContext('2d', { willReadFrequently: true, colorSpace: 'srgb' });
+  textures.forEach((t, k) => {
+    context.clearRect(0, 0, width, height);
+    context.drawImage(t.image, 0, 0);
+    data.set(context.getImageData(0, 0, width, height).data, k * width * height * 4);
+  });
+  const array = new THREE.DataArrayTexture(data, width, height, textures.length);
+  Object.assign(array, { format: THREE.RGBAFormat, type: THREE.UnsignedByteType, minFilter: THREE.LinearFilter,
+    magFilter: THREE.LinearFilter, colorSpace: THREE.NoColorSpace, generateMipmaps: false });
+  array.needsUpdate = true;
+  return array;
+}
+
+const MONTHS = ['Jan', 'Feb', 'Mar', 'Apr', 'May', 'Jun', 'Jul', 'Aug', 'Sep', 'Oct', 'Nov', 'Dec'];
+function dateText(day, hour) {
+  const lengths = [31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31];
+  let month = 0, rest = Math.round(day);
+  while (rest > lengths[month]) rest -= lengths[month++];
+  const h = Math.floor(hour), m = Math.round((hour - h) * 60);
+  return `${rest} ${MONTHS[month]} ${String(h).padStart(2, '0')}:${String(m).padStart(2, '0')}`;
+}
+
 function setUpCamera(camera, box) {
   const v = config.view;
   camera.position.set(...v.position);
@@ -75,12 +226,12 @@ function fit(renderer, camera) {
   camera.updateProjectionMatrix();
 }
 
-function addSlider(panel, label, value, max, onInput) {
+function addSlider(panel, label, value, max, onInput, min = 0, step = 0.01) {
   const row = document.createElement('label');
   const text = document.createElement('span');
   const input = document.createElement('input');
   const shown = document.createElement('output');
-  Object.assign(input, { type: 'range', min: 0, max, step: 0.01, value });
+  Object.assign(input, { type: 'range', min, max, step, value });
   input.dataset.name = label;
   text.textContent = label;
   shown.textContent = Number(value).toFixed(2);
@@ -101,10 +252,21 @@ async function main() {
   const gltf = await new GLTFLoader().parseAsync(decodeBase64(document.getElementById('radiosity-glb').textContent), '');
   scene.add(gltf.scene);
   const extras = gltf.parser.json.asset.extras.radiosity;
-  const groups = extras.light_group_lightmaps ?? [];
-  const state = { exposure: config.exposure, weights: Object.fromEntries(groups.map((g) => [g.name, 1])) };
+  const daylight = extras.daylight;
+  const groups = daylight ? [] : extras.light_group_lightmaps ?? [];
+  const state = { exposure: config.exposure, weights: Object.fromEntries(groups.map((g) => [g.name, 1])), day: 80, hour: 12 };
   const materials = [];
-  if (groups.length > 0) {
+  let sky = null;
+  if (daylight) {
+    const basis = await basisTexture(gltf.parser, extras.light_group_lightmaps);
+    sky = skyPatches(daylight.subdivisions);
+    gltf.scene.traverse((node) => {
+      if (!node.isMesh) return;
+      node.material = daylightMaterial(basis, 2 * (daylight.components.length + daylight.sun_patches.length),
+        node.material.side === THREE.DoubleSide);
+      materials.push(node.material);
+    });
+  } else if (groups.length > 0) {
     const textures = await Promise.all(groups.map((g) => gltf.parser.getDependency('texture', g.texture)));
     for (const t of textures) {
       t.colorSpace = THREE.SRGBColorSpace;
@@ -140,8 +302,30 @@ async function main() {
 
   const render = () => {
     const scale = state.exposure / extras.exposure;
+    let daylightWeights = null, bias = 0;
+    if (daylight) {
+      const luminance = clearSkyLuminance(sky, sunPosition(daylight, state.day, state.hour), daylight.ground);
+      // The sky through the basis, the sun through its own patch's group (a layer each).
+      // Each component (and each sun patch's group) in two layers, the high and the low
+      // byte of 16 bits.
+      daylightWeights = daylight.components.flatMap((c) => {
+        let w = 0;
+        for (let k = 0; k < luminance.length; ++k) w += c.weights[k] * luminance[k];
+        bias -= w * c.scale;
+        return [(2 * w * c.scale * 65280) / 65535, (2 * w * c.scale * 255) / 65535];
+      });
+      for (const sunLayer of daylight.sun_patches) {
+        const w = sunLayer.patch === luminance.sunPatch ? luminance.sunLuminance / 179 : 0;
+        bias -= w * sunLayer.scale;
+        daylightWeights.push((2 * w * sunLayer.scale * 65280) / 65535, (2 * w * sunLayer.scale * 255) / 65535);
+      }
+    }
     for (const m of materials) {
-      if (m.isShaderMaterial) {
+      if (daylightWeights) {
+        m.uniforms.scale.value = state.exposure;
+        m.uniforms.weights.value = daylightWeights;
+        m.uniforms.bias.value = bias;
+      } else if (m.isShaderMaterial) {
         m.uniforms.scale.value = scale;
         m.uniforms.weights.value = groups.map((g) => state.weights[g.name]);
       } else if (m.lightMap && !m.map) {
@@ -161,16 +345,27 @@ async function main() {
   const panel = document.getElementById('panel');
   addSlider(panel, 'exposure', state.exposure, state.exposure * 4, (v) => { state.exposure = v; render(); });
   for (const g of groups) addSlider(panel, g.name, 1, 4, (v) => { state.weights[g.name] = v; render(); });
+  const when = document.createElement('div');
+  const showWhen = () => { when.textContent = daylight ? `${dateText(state.day, state.hour)} (clear sky)` : ''; };
+  if (daylight) {
+    addSlider(panel, 'day', state.day, 365, (v) => { state.day = v; showWhen(); render(); }, 1, 1);
+    addSlider(panel, 'hour', state.hour, 24, (v) => { state.hour = v; showWhen(); render(); }, 0, 0.25);
+    panel.append(when);
+    showWhen();
+  }
 
   // For scripts (the browser test): set weights and exposure, read the pixels of a fresh frame.
   window.radiosity = {
     groups: groups.map((g) => g.name),
     set(settings) {
       if (settings.exposure !== undefined) state.exposure = settings.exposure;
+      if (settings.day !== undefined) state.day = settings.day;
+      if (settings.hour !== undefined) state.hour = settings.hour;
+      showWhen();
       Object.assign(state.weights, settings.weights ?? {});
       for (const input of panel.querySelectorAll('input')) {
         const name = input.dataset.name;
-        input.value = name === 'exposure' ? state.exposure : state.weights[name];
+        input.value = name === 'exposure' || name === 'day' || name === 'hour' ? state[name] : state.weights[name];
         input.nextSibling.textContent = Number(input.value).toFixed(2);
       }
       render();

@@ -122,6 +122,10 @@ struct BakeOptions {
     double chart_angle_deg = 20;
     // Also an irradiance atlas for engines (BakeResult::irradiance): needs the solved E and rho.
     const radfmt::MeshData* engine_solved = nullptr;
+    // The groups' lightmaps hold signed values (a daylight basis): each PNG is linear, 0.5 +
+    // 0.5 x value / its scale (BakeResult::group_scales: the largest |value|), not sRGB of
+    // value x exposure.
+    bool signed_groups = false;
 };
 
 struct BakeResult {
@@ -130,6 +134,7 @@ struct BakeResult {
     std::size_t charts = 0;
     Lightmap lightmap;                        // radiosity, W/m^2 (linear, not exposed)
     std::vector<Lightmap> group_lightmaps;    // one per light group, each at weight 1
+    std::vector<double> group_scales;         // signed_groups: each group PNG's scale
     Lightmap irradiance;                      // with engine_solved: W/m^2 falling on the surface
     std::vector<std::uint8_t> irradiance_png; // sRGB of irradiance x exposure
 };

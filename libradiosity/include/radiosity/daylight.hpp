@@ -91,6 +91,19 @@ struct DaylightSolution {
 // InputError naming `path` when it was not solved with a .sky.
 DaylightSolution daylight_solution(const radfmt::RadiosityData& solution,
                                    const radfmt::Header& header, const std::string& path);
+// Whether a solution was solved with a .sky (its header says sky_subdivision).
+bool is_daylight_solution(const radfmt::Header& header);
+// The compass a daylight solution was made for (its header's north).
+SkyFrame daylight_frame(const radfmt::Header& header, const std::string& path);
+
+// A sky's patch luminances for light the room reflects: each patch's mean (side x side
+// directions), the sun's beam added to the patch it is in as the luminance that patch would
+// need to give the beam's illuminance.
+std::vector<double> patch_luminance_with_sun(const SkyPatches& patches, const Sky& sky,
+                                             int side = 16);
+// Each patch's radiosity under `sky`: every sky patch's group at the radiance its luminance
+// is (L / 179 W/m^2/sr per channel, patch_luminance_with_sun). What rad-shade --sky shows.
+std::vector<Rgb> sky_radiosity(const DaylightSolution& solution, const Sky& sky);
 
 struct DaylightOptions {
     int sky_side = 8; // directions per sky patch at a sensor: side x side
@@ -124,9 +137,6 @@ class DaylightSensors {
     double sun(const Vec3& point, const Vec3& normal, const Vec3& direction, double lux) const;
     const SkyPatches& patches() const { return solution_.patches; }
     const SkyFrame& frame() const { return solution_.frame; }
-    // A sky's patch luminances for the reflected light: each patch's mean, the sun's beam
-    // added to the patch it is in as the luminance that patch would need to give it.
-    std::vector<double> reflected_luminance(const Sky& sky) const;
 
   private:
     std::vector<double> reflected(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
@@ -174,5 +184,31 @@ struct DaylightFactorSummary {
     double mean = 0, median = 0, min = 0, max = 0, above2 = 0;
 };
 DaylightFactorSummary summarise_daylight_factors(std::vector<double> factors);
+
+// A small basis for relighting a daylight solution by sky (the viewer page): K components,
+// each a radiosity per patch, whose weights are linear in the sky patches' luminance; chosen
+// (principal components of the solutions under `skies`, area-weighted) to reproduce those
+// skies best. A sky L (cd/m^2 per sky patch, patch_luminance_with_sun) gives component k the
+// weight sum_s weights[k][s] L[s]; the radiosity is then sum_k weight_k values[k].
+struct DaylightBasis {
+    std::vector<std::vector<Rgb>> values;     // K x patches
+    std::vector<std::vector<double>> weights; // K x sky patches
+    // Relative area-weighted rms error of the radiosity over `skies`: the mean and the worst.
+    double mean_error = 0, worst_error = 0;
+};
+// `areas`: the patches'. The fewest components (up to `max_components`) whose mean error
+// over `skies` (luminance vectors, at least one) is at most `target_error`.
+DaylightBasis daylight_basis(const DaylightSolution& solution, const std::vector<double>& areas,
+                             const std::vector<std::vector<double>>& skies, int max_components,
+                             double target_error);
+// Clear skies (Sky::clear) over a year at `where` (every fifth day, each daylight hour at
+// half past): the patch luminances of the sky and the ground without the sun's beam, and
+// the sky patches the sun is in (ascending, each once). What the viewer page shows.
+struct ClearYear {
+    std::vector<std::vector<double>> skies;
+    std::vector<std::size_t> sun_patches;
+};
+ClearYear clear_year(const SkyPatches& patches, const SkyFrame& frame, const Location& where,
+                     double ground);
 
 } // namespace rad

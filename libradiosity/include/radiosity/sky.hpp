@@ -6,6 +6,7 @@
 #include "radiosity/vec.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
 
 namespace rad {
@@ -90,6 +91,13 @@ class Sky {
                      int day_of_year, double dew_point, const SkyFrame& frame,
                      double ground_reflectance);
 
+    // A clear day for a place and time with no weather file: CIE type 12 (the standard
+    // clear sky) with the IES clear-sky daylight availability (IES Lighting Handbook): the
+    // sky's horizontal illuminance 800 + 15500 sqrt(sin a) lux and the sun's beam
+    // 127500 exp(-0.21 / sin a) lux at solar altitude a (dark with the sun down). The viewer
+    // page relights with the same sky.
+    static Sky clear(const SunPosition& sun, const SkyFrame& frame, double ground_reflectance);
+
     // The 15 CIE types' gradation and indicatrix parameters a, b, c, d, e.
     static std::array<double, 5> cie_parameters(int type);
 
@@ -115,8 +123,8 @@ double air_mass(double zenith_deg);
 
 // A sky named on a command line: "uniform[:L]" (L cd/m^2, default 10000 / pi),
 // "cie-overcast[:LUX]", "cie:TYPE[:LUX]" (LUX: the sky's horizontal illuminance, default
-// 10000), "perez:DNI,DHI" (W/m^2). The CIE standard and Perez skies need `sun`; Perez also
-// the day of the year. InputError naming what is wrong and the forms accepted.
+// 10000), "perez:DNI,DHI" (W/m^2), "clear" (Sky::clear). The CIE standard and Perez skies need
+// `sun`; Perez also the day of the year. InputError naming what is wrong and the forms accepted.
 Sky parse_sky(const std::string& spec, const SunPosition* sun, int day_of_year,
               const SkyFrame& frame, double ground_reflectance);
 // "LAT,LON,TZ[,ELEVATION]" (degrees north, east, hours east of UTC, m).
@@ -125,5 +133,12 @@ Location parse_location(const std::string& text);
 LocalTime parse_local_time(const std::string& date, const std::string& time);
 // "ALT,AZ" degrees (azimuth from north towards east) into a sun position.
 SunPosition parse_sun(const std::string& text);
+// The sun a command line names: --sun ALT,AZ, or --date and --time at --location (or, without
+// it, the place of the weather file `epw`); none when neither is given. Sets `day_of_year`
+// (172 without a date). InputError for what does not go together.
+struct SunArguments {
+    std::string sun, date, time, location, epw;
+};
+std::optional<SunPosition> sun_from(const SunArguments& a, int& day_of_year);
 
 } // namespace rad

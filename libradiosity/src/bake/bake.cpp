@@ -3,6 +3,7 @@
 #include "radiosity/image_io.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rad {
 
@@ -69,10 +70,21 @@ BakeResult bake(const radfmt::MeshData& mesh, const std::vector<Rgb>& radiosity,
             corner_colours(mesh, values, options.smoothing, options.crease_deg);
         result.group_lightmaps.push_back(
             render_lightmap(mesh, charts, result.layout, group_corners));
-        result.scene.group_lightmaps_png.emplace_back(
-            name,
-            encode_png_rgb8(size, size,
-                            lightmap_pixels(result.group_lightmaps.back(), options.exposure)));
+        const auto& map = result.group_lightmaps.back();
+        if (!options.signed_groups) {
+            result.scene.group_lightmaps_png.emplace_back(
+                name, encode_png_rgb8(size, size, lightmap_pixels(map, options.exposure)));
+            continue;
+        }
+        double scale = 0;
+        for (const float v : map.rgb) scale = std::max(scale, double(std::abs(v)));
+        if (!(scale > 0)) scale = 1;
+        std::vector<std::uint8_t> pixels(map.rgb.size());
+        for (std::size_t i = 0; i < pixels.size(); ++i)
+            pixels[i] = std::uint8_t(
+                std::lround(std::clamp(127.5 + 127.5 * map.rgb[i] / scale, 0.0, 255.0)));
+        result.group_scales.push_back(scale);
+        result.scene.group_lightmaps_png.emplace_back(name, encode_png_rgb8(size, size, pixels));
     }
     return result;
 }

@@ -342,6 +342,8 @@ solution_luminaires(const radfmt::Header& solution_header, const std::string& so
                     const std::string& mesh_path, const radfmt::Header& mesh_header) {
     const auto* recorded = solution_header.find("direct");
     if (!recorded && path.empty()) return std::nullopt;
+    // A daylight solution's `direct` is its .sky: no luminaires.
+    if (path.empty() && solution_header.find("sky_subdivision")) return std::nullopt;
     std::string lum_path = path.empty() ? *recorded : path;
     const auto beside = fs::path(solution_path).parent_path() / fs::path(lum_path).filename();
     if (path.empty() && !fs::exists(lum_path) && fs::exists(beside)) lum_path = beside.string();

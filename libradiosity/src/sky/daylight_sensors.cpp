@@ -3,6 +3,7 @@
 // from the solve of the .sky's light groups).
 #include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/gather.hpp"
 #include "radiosity/random.hpp"
 
 #include <cmath>
@@ -11,18 +12,26 @@
 
 namespace rad {
 
+bool is_daylight_solution(const radfmt::Header& header) {
+    return header.find("sky_subdivision") != nullptr;
+}
+
+SkyFrame daylight_frame(const radfmt::Header& header, const std::string& path) {
+    const auto& north = header.get("north", path);
+    char* end = nullptr;
+    SkyFrame frame{std::strtod(north.c_str(), &end)};
+    if (end == north.c_str() || *end || !std::isfinite(frame.north_deg))
+        throw InputError(path + ": north '" + north + "' is no angle");
+    return frame;
+}
+
 DaylightSolution daylight_solution(const radfmt::RadiosityData& solution,
                                    const radfmt::Header& header, const std::string& path) {
     const auto* subdivision = header.find("sky_subdivision");
     if (!subdivision)
         throw InputError(path + " was not solved with a sky: run rad-ff MESH --sky reinhart:1 -o "
                                 "SKY, then rad-solve MESH FF --direct SKY -o SOLUTION");
-    DaylightSolution out{SkyPatches::parse(*subdivision), SkyFrame{}, {}};
-    const auto& north = header.get("north", path);
-    char* end = nullptr;
-    out.frame.north_deg = std::strtod(north.c_str(), &end);
-    if (end == north.c_str() || *end)
-        throw InputError(path + ": north '" + north + "' is no angle");
+    DaylightSolution out{SkyPatches::parse(*subdivision), daylight_frame(header, path), {}};
     const std::size_t count = out.patches.count(), groups = solution.group_count();
     std::vector<std::size_t> group(count);
     for (std::size_t s = 0; s < count; ++s) {
@@ -92,12 +101,25 @@ std::vector<double> DaylightSensors::reflected(const Vec3& point, const Vec3& no
     return out;
 }
 
-std::vector<double> DaylightSensors::reflected_luminance(const Sky& sky) const {
-    auto out = patches().mean_luminance(sky);
+std::vector<double> patch_luminance_with_sun(const SkyPatches& patches, const Sky& sky, int side) {
+    auto out = patches.mean_luminance(sky, side);
     if (sky.sun_up() && sky.sun_normal_illuminance() > 0) {
-        const auto p = patches().patch_of(frame(), sky.sun_direction());
-        out[p] += sky.sun_normal_illuminance() / patches().solid_angle(p);
+        const auto p = patches.patch_of(sky.frame(), sky.sun_direction());
+        out[p] += sky.sun_normal_illuminance() / patches.solid_angle(p);
     }
+    return out;
+}
+
+std::vector<Rgb> sky_radiosity(const DaylightSolution& solution, const Sky& sky) {
+    const auto luminance = patch_luminance_with_sun(solution.patches, sky);
+    const std::size_t count = luminance.size(), n = solution.radiosity.size() / (count * 3);
+    std::vector<Rgb> out(n, Rgb{});
+    for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t s = 0; s < count; ++s) {
+            const double radiance = luminance[s] / kRadianceEfficacy;
+            for (std::size_t c = 0; c < 3; ++c)
+                out[j][c] += radiance * solution.radiosity[(j * count + s) * 3 + c];
+        }
     return out;
 }
 
@@ -109,7 +131,7 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
         *scene_, *specular_, patches(), frame(), options_.sky_side, options_.specular_depth, point,
         normal, [&](const Vec3& d, const Rgb& w) { out.sky += luminous(w) * sky.luminance(d); });
     const auto c = reflected(point, normal, index);
-    const auto luminance = reflected_luminance(sky);
+    const auto luminance = patch_luminance_with_sun(patches(), sky);
     for (std::size_t s = 0; s < luminance.size(); ++s) out.reflected += c[s] * luminance[s];
     if (sky.sun_up())
         out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());

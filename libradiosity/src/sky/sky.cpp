@@ -104,7 +104,7 @@ void Sky::normalise_to(double lux) {
         integral += table.weights[k] * u * ring * (2 * kPi / double(table.cos_step.size()));
     }
     if (!(integral > 0)) throw InputError("the sky's luminance integrates to nothing");
-    scale_ = lux / integral;
+    scale_ = lux > 0 ? lux / integral : 0;
     horizontal_ = lux;
 }
 
@@ -156,6 +156,21 @@ Sky Sky::cie_overcast(double lux, const SkyFrame& frame, double ground_reflectan
     s.horizontal_ = lux;
     s.set_ground(ground_reflectance);
     return s;
+}
+
+Sky Sky::clear(const SunPosition& sun, const SkyFrame& frame, double ground_reflectance) {
+    const double altitude = sun.altitude() * kDeg;
+    if (altitude <= 0) {
+        auto dark = cie_standard(12, sun, 0, frame, ground_reflectance);
+        dark.name_ = "clear sky (the sun is down)";
+        return dark;
+    }
+    const double s = std::sin(altitude);
+    auto sky = cie_standard(12, sun, 800 + 15500 * std::sqrt(s), frame, 0);
+    sky.sun_normal_lux_ = 127500 * std::exp(-0.21 / s);
+    sky.name_ = "clear sky (CIE 12, IES daylight availability)";
+    sky.set_ground(ground_reflectance);
+    return sky;
 }
 
 Sky Sky::cie_standard(int type, const SunPosition& sun, double lux, const SkyFrame& frame,

@@ -2,6 +2,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/sky.hpp"
+#include "radiosity/weather.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -24,8 +25,8 @@ std::vector<double> numbers_of(const std::string& text, char separator, const st
     return out;
 }
 
-const char* kSkyForms = "uniform[:L], cie-overcast[:LUX], cie:TYPE[:LUX] (TYPE 1..15) or "
-                        "perez:DNI,DHI (W/m^2)";
+const char* kSkyForms = "uniform[:L], cie-overcast[:LUX], cie:TYPE[:LUX] (TYPE 1..15), "
+                        "perez:DNI,DHI (W/m^2) or clear";
 } // namespace
 
 Sky parse_sky(const std::string& spec, const SunPosition* sun, int day_of_year,
@@ -67,6 +68,10 @@ Sky parse_sky(const std::string& spec, const SunPosition* sun, int day_of_year,
                              "irradiance (W/m^2)");
         return Sky::perez(v[0], v[1], need_sun(), day_of_year, 10, frame, ground);
     }
+    if (name == "clear") {
+        if (!rest.empty()) throw InputError("--sky clear takes nothing after it");
+        return Sky::clear(need_sun(), frame, ground);
+    }
     throw InputError("--sky '" + spec + "' is not known: give " + kSkyForms);
 }
 
@@ -105,6 +110,27 @@ SunPosition parse_sun(const std::string& text) {
     s.zenith = 90 - v[0];
     s.azimuth = v[1];
     return s;
+}
+
+std::optional<SunPosition> sun_from(const SunArguments& a, int& day_of_year) {
+    day_of_year = 172;
+    if (a.date.empty() != a.time.empty()) throw InputError("--date and --time go together");
+    if (!a.sun.empty() && !a.date.empty()) throw InputError("--sun or --date/--time, not both");
+    if (!a.sun.empty()) return parse_sun(a.sun);
+    if (a.date.empty()) return std::nullopt;
+    Location where;
+    if (!a.location.empty())
+        where = parse_location(a.location);
+    else if (!a.epw.empty())
+        where = read_epw(a.epw).location;
+    else
+        throw InputError("--date needs --location LAT,LON,TZ (or --epw for the place)");
+    const auto when = parse_local_time(a.date, a.time);
+    WeatherHour h;
+    h.month = when.month;
+    h.day = when.day;
+    day_of_year = h.day_of_year();
+    return solar_position(where, when);
 }
 
 } // namespace rad
