@@ -41,6 +41,17 @@ double number(const std::vector<std::string>& fields, std::size_t k, const FileL
     return value;
 }
 
+// A whole number field from `lo` to `hi` (a year, a month, a day, an hour).
+int whole(const std::vector<std::string>& fields, std::size_t k, const FileLoc& at,
+          const char* what, int lo, int hi) {
+    const double v = number(fields, k, at, what);
+    if (!(v >= lo && v <= hi) || v != std::floor(v))
+        throw InputError(at, std::string("field ") + std::to_string(k + 1) + " (" + what +
+                                 ") must be a whole number from " + std::to_string(lo) + " to " +
+                                 std::to_string(hi));
+    return int(v);
+}
+
 Location parse_location(const std::string& line, const FileLoc& at, std::string& place) {
     const auto f = fields_of(line);
     if (f.empty() || f[0] != "LOCATION" || f.size() < 10)
@@ -66,16 +77,14 @@ WeatherHour parse_hour(const std::string& line, const FileLoc& at, int& missing)
                                  "and radiation at least)");
     WeatherHour h;
     h.line = at.line;
-    h.year = int(number(f, 0, at, "year"));
-    h.month = int(number(f, 1, at, "month"));
-    h.day = int(number(f, 2, at, "day"));
-    h.hour = int(number(f, 3, at, "hour"));
+    h.year = whole(f, 0, at, "year", 1, 9999);
+    h.month = whole(f, 1, at, "month", 1, 12);
+    h.day = whole(f, 2, at, "day", 1, 31);
+    h.hour = whole(f, 3, at, "hour", 1, 24);
     static constexpr int kDays[12] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-    if (h.month < 1 || h.month > 12 || h.day < 1 || h.day > kDays[h.month - 1] || h.hour < 1 ||
-        h.hour > 24)
-        throw InputError(at, "month " + std::to_string(h.month) + ", day " + std::to_string(h.day) +
-                                 ", hour " + std::to_string(h.hour) +
-                                 " is no hour of a year (hours are 1..24)");
+    if (h.day > kDays[h.month - 1])
+        throw InputError(at, "month " + std::to_string(h.month) + " has no day " +
+                                 std::to_string(h.day));
     h.dew_point = number(f, 7, at, "dew point");
     const double pascal = number(f, 9, at, "pressure");
     h.pressure = pascal > 0 && pascal < 999999 ? pascal / 100 : 1010;
