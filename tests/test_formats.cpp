@@ -433,7 +433,7 @@ TEST_CASE("the kind table names every kind once, with its CSV columns") {
         CHECK_FALSE(k.csv_columns.empty());
     }
     CHECK(names == std::vector<std::string>{"mesh", "formfactors", "formfactor-part", "radiosity",
-                                            "links", "luminaires"});
+                                            "links", "luminaires", "sky", "annual"});
 }
 
 TEST_CASE("checksum-valid files with nonsense values are refused by the readers") {
