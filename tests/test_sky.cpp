@@ -302,3 +302,53 @@ TEST_CASE("patches' sky view conserves the flux through an opening, deterministi
     const auto part = rad::patch_sky_view(mesh, scene, specular, options, 3, 5);
     for (std::size_t k = 0; k < part.size(); ++k) CHECK(part[k] == view[3 * count + k]);
 }
+
+TEST_CASE("the daylight basis reproduces the skies it was made for, better with more components",
+          "[sky]") {
+    // A made-up solution: 40 patches, Tregenza's 146 groups, values from a fixed sequence.
+    rad::DaylightSolution solution{rad::SkyPatches(1), rad::SkyFrame{}, {}};
+    const std::size_t count = solution.patches.count(), n = 40;
+    std::uint64_t state = 12345;
+    const auto next = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return double(state >> 11) * 0x1.0p-53;
+    };
+    for (std::size_t k = 0; k < n * count * 3; ++k) solution.radiosity.push_back(float(next()));
+    std::vector<double> areas(n);
+    for (auto& a : areas) a = 0.5 + next();
+    std::vector<std::vector<double>> skies(12, std::vector<double>(count));
+    for (auto& sky : skies)
+        for (auto& l : sky) l = 1000 * next();
+    // As many components as skies: exact (to the square root of rounding: the error is
+    // sqrt(|y|^2 - sum of c^2)); fewer: an error that never grows with more.
+    const auto full = rad::daylight_basis(solution, areas, skies, 64, 0);
+    CHECK(full.values.size() == skies.size());
+    CHECK(full.worst_error < 1e-4);
+    double previous = 2;
+    for (int k = 1; k <= 12; k += 3) {
+        const auto basis = rad::daylight_basis(solution, areas, skies, k, 0);
+        CHECK(basis.values.size() == std::size_t(k));
+        CHECK(basis.mean_error <= previous + 1e-12);
+        previous = basis.mean_error;
+    }
+    // The error it reports is the one its radiosity has: sky 3 through 4 components.
+    const auto four = rad::daylight_basis(solution, areas, skies, 4, 0);
+    const auto& sky = skies[3];
+    double diff = 0, norm = 0;
+    for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t c = 0; c < 3; ++c) {
+            double exact = 0, approx = 0;
+            for (std::size_t s = 0; s < count; ++s)
+                exact += sky[s] / 179 * solution.radiosity[(j * count + s) * 3 + c];
+            for (std::size_t k = 0; k < four.values.size(); ++k) {
+                double w = 0;
+                for (std::size_t s = 0; s < count; ++s) w += four.weights[k][s] * sky[s];
+                approx += w * four.values[k][j][c];
+            }
+            diff += areas[j] * (exact - approx) * (exact - approx);
+            norm += areas[j] * exact * exact;
+        }
+    const double error = std::sqrt(diff / norm);
+    CHECK(error <= four.worst_error + 1e-9);
+    CHECK(error > 0.01); // four components of twelve random skies cannot be exact
+}
