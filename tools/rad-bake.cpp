@@ -367,11 +367,12 @@ int bake_files(const Arguments& a, const std::string& command) {
     radfmt::Header mesh_header, rad_header;
     const auto mesh = radfmt::read_mesh(a.mesh_path, &mesh_header);
     const auto radiosity = radfmt::read_radiosity(a.rad_path, &rad_header);
+    // Checked first: the daylight page's basis weighs the solution's patches by the mesh's.
+    radfmt::require_same_geometry(a.rad_path, rad_header, radiosity.radiosity.size(), a.mesh_path,
+                                  mesh, "run rad-ff and rad-solve on " + a.mesh_path + " again");
     const auto daylight = daylight_page(a, mesh, radiosity, rad_header);
     const auto values =
         daylight ? daylight->noon : rad::mix_light_groups(radiosity, a.mix, a.mix_only, a.rad_path);
-    radfmt::require_same_geometry(a.rad_path, rad_header, values.size(), a.mesh_path, mesh,
-                                  "run rad-ff and rad-solve on " + a.mesh_path + " again");
     radfmt::MeshData solved = mesh; // E and rho as solved, for the exposure
     rad::apply_recorded_overrides(solved, rad_header);
     auto options = bake_options(a, rad::solution_exposure(solved, values));

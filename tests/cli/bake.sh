@@ -123,5 +123,8 @@ for when in "2025-03-21 12:00 80 12" "2025-06-21 09:00 172 9" "2025-06-21 02:00 
 done
 expect_error "bake its page with --html, --lightmap SIZE and --location" "$TMP/x.glb" \
   "$BIN/rad-bake" "$TMP/d.mesh" "$TMP/d.rad" -o "$TMP/x.glb"
+# Another mesh's daylight solution is refused before its basis is made of it.
+expect_error "does not belong to" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/d.rad" -o "$TMP/x.glb" \
+  --lightmap 128 --html "$TMP/x.html" --location $PLACE --view "$DV"
 expect_error "is none" "$TMP/x.glb" "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.glb" --location $PLACE
 finish
