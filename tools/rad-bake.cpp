@@ -8,7 +8,6 @@
 #include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/image_io.hpp"
-
 #include "radiosity/light_groups.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
@@ -16,8 +15,6 @@
 #include "radiosity/version.hpp"
 #include "radiosity/view.hpp"
 #include "tool.hpp"
-#include <algorithm>
-#include <cmath>
 
 #include <nlohmann/json.hpp>
 
@@ -307,28 +304,6 @@ std::optional<DaylightPage> daylight_page(const Arguments& a, const radfmt::Mesh
     return page;
 }
 
-// Every daylight layer in 16 bits, two PNG layers each (high and low byte of 0.5 + 0.5 x
-// value / scale): the components' weights cancel each other, and the sun's patch lights the
-// floor a hundred times as much as the walls, so 8 bits show as blotches on the walls.
-void encode_layers_16(rad::BakeResult& result) {
-    auto& pngs = result.scene.group_lightmaps_png;
-    std::vector<std::pair<std::string, std::vector<std::uint8_t>>> layers;
-    for (std::size_t k = 0; k < pngs.size(); ++k) {
-        const auto& map = result.group_lightmaps[k];
-        std::vector<std::uint8_t> high(map.rgb.size()), low(map.rgb.size());
-        for (std::size_t i = 0; i < map.rgb.size(); ++i) {
-            const double unit =
-                std::clamp(0.5 + 0.5 * map.rgb[i] / result.group_scales[k], 0.0, 1.0);
-            const auto q = static_cast<std::uint32_t>(std::lround(unit * 65535));
-            high[i] = std::uint8_t(q >> 8);
-            low[i] = std::uint8_t(q & 255);
-        }
-        layers.emplace_back(pngs[k].first, rad::encode_png_rgb8(map.size, map.size, high));
-        layers.emplace_back(pngs[k].first + ".low", rad::encode_png_rgb8(map.size, map.size, low));
-    }
-    pngs = std::move(layers);
-}
-
 // What the page needs to relight: the place, the sky patches, each component's weights and
 // lightmap scale, and how well the basis reproduces a year of clear skies.
 nlohmann::json daylight_extras(const Arguments& a, const DaylightPage& page,
@@ -396,7 +371,6 @@ int bake_files(const Arguments& a, const std::string& command) {
     check_lightmap_memory(a, groups.size());
     auto result = rad::bake(mesh, values, groups, options);
     result.scene.generator = rad::tool_version("rad-bake");
-    if (daylight) encode_layers_16(result);
     auto extras =
         provenance_json(mesh_header, a.mesh_path, rad_header, a.rad_path, command, options, result);
     if (daylight) extras["daylight"] = daylight_extras(a, *daylight, result);

@@ -122,9 +122,9 @@ struct BakeOptions {
     double chart_angle_deg = 20;
     // Also an irradiance atlas for engines (BakeResult::irradiance): needs the solved E and rho.
     const radfmt::MeshData* engine_solved = nullptr;
-    // The groups' lightmaps hold signed values (a daylight basis): each PNG is linear, 0.5 +
-    // 0.5 x value / its scale (BakeResult::group_scales: the largest |value|), not sRGB of
-    // value x exposure.
+    // The groups' lightmaps hold signed values (a daylight basis): each is two linear PNGs,
+    // "NAME" and "NAME.low", the high and the low byte of 16 bits of 0.5 + 0.5 x value / its
+    // scale (BakeResult::group_scales: the largest |value|), not sRGB of value x exposure.
     bool signed_groups = false;
 };
 

@@ -32,6 +32,29 @@ std::vector<Rgb> patch_irradiance(const radfmt::MeshData& solved,
     return h;
 }
 
+namespace {
+// A signed group's lightmap in 16 bits, as two PNGs (the high and the low byte of 0.5 + 0.5 x
+// value / scale, scale the largest |value|): a daylight basis's weights cancel each other, and
+// the sun's patch lights the floor a hundred times as much as the walls, so 8 bits would show
+// as blotches on the walls.
+void add_signed_lightmap(const std::string& name, const Lightmap& map, BakeResult& result) {
+    double scale = 0;
+    for (const float v : map.rgb) scale = std::max(scale, double(std::abs(v)));
+    if (!(scale > 0)) scale = 1;
+    std::vector<std::uint8_t> high(map.rgb.size()), low(map.rgb.size());
+    for (std::size_t i = 0; i < map.rgb.size(); ++i) {
+        const double unit = std::clamp(0.5 + 0.5 * map.rgb[i] / scale, 0.0, 1.0);
+        const auto q = static_cast<std::uint32_t>(std::lround(unit * 65535));
+        high[i] = std::uint8_t(q >> 8);
+        low[i] = std::uint8_t(q & 255);
+    }
+    result.group_scales.push_back(scale);
+    auto& pngs = result.scene.group_lightmaps_png;
+    pngs.emplace_back(name, encode_png_rgb8(map.size, map.size, high));
+    pngs.emplace_back(name + ".low", encode_png_rgb8(map.size, map.size, low));
+}
+} // namespace
+
 BakeResult bake(const radfmt::MeshData& mesh, const std::vector<Rgb>& radiosity,
                 const std::vector<std::pair<std::string, std::vector<Rgb>>>& groups,
                 const BakeOptions& options) {
@@ -76,15 +99,7 @@ BakeResult bake(const radfmt::MeshData& mesh, const std::vector<Rgb>& radiosity,
                 name, encode_png_rgb8(size, size, lightmap_pixels(map, options.exposure)));
             continue;
         }
-        double scale = 0;
-        for (const float v : map.rgb) scale = std::max(scale, double(std::abs(v)));
-        if (!(scale > 0)) scale = 1;
-        std::vector<std::uint8_t> pixels(map.rgb.size());
-        for (std::size_t i = 0; i < pixels.size(); ++i)
-            pixels[i] = std::uint8_t(
-                std::lround(std::clamp(127.5 + 127.5 * map.rgb[i] / scale, 0.0, 255.0)));
-        result.group_scales.push_back(scale);
-        result.scene.group_lightmaps_png.emplace_back(name, encode_png_rgb8(size, size, pixels));
+        add_signed_lightmap(name, map, result);
     }
     return result;
 }
