@@ -260,15 +260,6 @@ struct DaylightPage {
     std::vector<radfmt::Rgb> noon;        // the patches' radiosity at the glb's default sky
 };
 
-// One sky patch's light group, its radiosity per patch.
-std::vector<radfmt::Rgb> sky_patch_values(const rad::DaylightSolution& solution, std::size_t s) {
-    const std::size_t count = solution.patches.count(), n = solution.radiosity.size() / (count * 3);
-    std::vector<radfmt::Rgb> out(n);
-    for (std::size_t j = 0; j < n; ++j)
-        for (std::size_t c = 0; c < 3; ++c) out[j][c] = solution.radiosity[(j * count + s) * 3 + c];
-    return out;
-}
-
 std::optional<DaylightPage> daylight_page(const Arguments& a, const radfmt::MeshData& mesh,
                                           const radfmt::RadiosityData& radiosity,
                                           const radfmt::Header& rad_header) {
@@ -359,8 +350,12 @@ int bake_files(const Arguments& a, const std::string& command) {
         options.signed_groups = true;
         for (std::size_t k = 0; k < daylight->basis.values.size(); ++k)
             groups.emplace_back("daylight" + std::to_string(k), daylight->basis.values[k]);
-        for (const auto p : daylight->sun_patches)
-            groups.emplace_back("sun" + std::to_string(p), sky_patch_values(daylight->solution, p));
+        for (const auto p : daylight->sun_patches) { // each sun patch's own group
+            std::vector<double> only(daylight->solution.patches.count(), 0.0);
+            only[p] = 1;
+            groups.emplace_back("sun" + std::to_string(p),
+                                rad::mix_sky_groups(daylight->solution, only));
+        }
     }
     if (a.lightmap == 0 && radiosity.group_count() > 0 && !a.quiet)
         std::fprintf(stderr,

@@ -101,6 +101,10 @@ SkyFrame daylight_frame(const radfmt::Header& header, const std::string& path);
 // need to give the beam's illuminance.
 std::vector<double> patch_luminance_with_sun(const SkyPatches& patches, const Sky& sky,
                                              int side = 16);
+// Each patch's radiosity for a weight per sky patch: the sum over sky patches s of
+// weights[s] x s's group (at unit radiance: the weight is a radiance, W/m^2/sr).
+std::vector<Rgb> mix_sky_groups(const DaylightSolution& solution,
+                                const std::vector<double>& weights);
 // Each patch's radiosity under `sky`: every sky patch's group at the radiance its luminance
 // is (L / 179 W/m^2/sr per channel, patch_luminance_with_sun). What rad-shade --sky shows.
 std::vector<Rgb> sky_radiosity(const DaylightSolution& solution, const Sky& sky);

@@ -82,18 +82,6 @@ Matrix area_gram(const DaylightSolution& solution, const std::vector<double>& ar
     return g;
 }
 
-// The patches' radiosity for sky-patch weights z (sum over s of z_s r[j,s]).
-std::vector<Rgb> combine(const DaylightSolution& solution, const std::vector<double>& z) {
-    const std::size_t count = z.size(), n = solution.radiosity.size() / (count * 3);
-    std::vector<Rgb> out(n, Rgb{});
-    for (std::size_t j = 0; j < n; ++j)
-        for (std::size_t s = 0; s < count; ++s)
-            if (z[s] != 0)
-                for (std::size_t c = 0; c < 3; ++c)
-                    out[j][c] += z[s] * solution.radiosity[(j * count + s) * 3 + c];
-    return out;
-}
-
 } // namespace
 
 DaylightBasis daylight_basis(const DaylightSolution& solution, const std::vector<double>& areas,
@@ -179,7 +167,7 @@ DaylightBasis daylight_basis(const DaylightSolution& solution, const std::vector
         }
     DaylightBasis basis;
     for (std::size_t k = 0; k < used; ++k) {
-        basis.values.push_back(combine(solution, zs[k]));
+        basis.values.push_back(mix_sky_groups(solution, zs[k]));
         basis.weights.push_back(weights[k]);
     }
     basis.mean_error = mean[used];

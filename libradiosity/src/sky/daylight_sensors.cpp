@@ -110,17 +110,22 @@ std::vector<double> patch_luminance_with_sun(const SkyPatches& patches, const Sk
     return out;
 }
 
-std::vector<Rgb> sky_radiosity(const DaylightSolution& solution, const Sky& sky) {
-    const auto luminance = patch_luminance_with_sun(solution.patches, sky);
-    const std::size_t count = luminance.size(), n = solution.radiosity.size() / (count * 3);
+std::vector<Rgb> mix_sky_groups(const DaylightSolution& solution,
+                                const std::vector<double>& weights) {
+    const std::size_t count = weights.size(), n = solution.radiosity.size() / (count * 3);
     std::vector<Rgb> out(n, Rgb{});
     for (std::size_t j = 0; j < n; ++j)
-        for (std::size_t s = 0; s < count; ++s) {
-            const double radiance = luminance[s] / kRadianceEfficacy;
-            for (std::size_t c = 0; c < 3; ++c)
-                out[j][c] += radiance * solution.radiosity[(j * count + s) * 3 + c];
-        }
+        for (std::size_t s = 0; s < count; ++s)
+            if (weights[s] != 0)
+                for (std::size_t c = 0; c < 3; ++c)
+                    out[j][c] += weights[s] * solution.radiosity[(j * count + s) * 3 + c];
     return out;
+}
+
+std::vector<Rgb> sky_radiosity(const DaylightSolution& solution, const Sky& sky) {
+    auto radiance = patch_luminance_with_sun(solution.patches, sky);
+    for (auto& l : radiance) l /= kRadianceEfficacy;
+    return mix_sky_groups(solution, radiance);
 }
 
 DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const Vec3& point,
