@@ -50,17 +50,18 @@ std::vector<radfmt::Rgb> patch_sky_view(const radfmt::MeshData& mesh, const RayS
 // overlap or a part of other inputs). Returns the rows merged.
 std::uint64_t merge_sky_parts(const std::vector<std::string>& paths, const std::string& output);
 
-// What a sensor sees of the sky directly: every sky patch (and the ground) sampled by
-// side x side directions of equal solid angle, each followed through mirrors and glass;
-// escape(direction, weight) for each path that leaves the scene, weight = the path's RGB x
-// its cell's solid angle x cos to `normal`. Directions behind the sensor are skipped.
+// What a sensor sees of the sky directly: every sky patch (and the ground) sampled by its
+// `cells` (SkyPatches::cells: directions of equal solid angle), each followed through mirrors
+// and glass; escape(direction, weight) for each path that leaves the scene, weight = the
+// path's RGB x its cell's solid angle x cos to `normal`. Directions behind the sensor are
+// skipped.
 template <class Escape>
 void sensor_sky_paths(const RayScene& scene, const SpecularSurfaces& specular,
-                      const SkyPatches& patches, const SkyFrame& frame, int side, int depth,
+                      const SkyPatches& patches, const SkyPatches::Cells& cells, int depth,
                       const Vec3& point, const Vec3& normal, Escape&& escape) {
     for (std::size_t p = 0; p < patches.count(); ++p) {
-        const double cell = patches.solid_angle(p) / (side * side);
-        for (const auto& d : patches.cell_directions(frame, p, side)) {
+        const double cell = patches.solid_angle(p) / double(cells[p].size());
+        for (const auto& d : cells[p]) {
             const double cosine = dot(d, normal);
             if (cosine <= 0) continue;
             follow_specular(
@@ -95,6 +96,14 @@ DaylightSolution daylight_solution(const radfmt::RadiosityData& solution,
 bool is_daylight_solution(const radfmt::Header& header);
 // The compass a daylight solution was made for (its header's north).
 SkyFrame daylight_frame(const radfmt::Header& header, const std::string& path);
+
+// The sky patch the sun is in, and the luminance that patch would need to give the sun's
+// beam illuminance; none when the sun is down or has no beam.
+struct SunPatch {
+    std::size_t patch = 0;
+    double luminance = 0;
+};
+std::optional<SunPatch> sun_patch(const SkyPatches& patches, const Sky& sky);
 
 // A sky's patch luminances for light the room reflects: each patch's mean (side x side
 // directions), the sun's beam added to the patch it is in as the luminance that patch would
@@ -147,6 +156,7 @@ class DaylightSensors {
     const radfmt::MeshData& mesh_;
     DaylightSolution solution_;
     DaylightOptions options_;
+    SkyPatches::Cells cells_; // each sky patch's directions at a sensor
     std::unique_ptr<RayScene> scene_;
     std::unique_ptr<SpecularSurfaces> specular_;
 };

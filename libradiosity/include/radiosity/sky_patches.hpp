@@ -35,10 +35,15 @@ class SkyPatches {
     // The patch's directions as `side` x `side` cells of equal solid angle (their centres,
     // in sin(altitude) and azimuth), each standing for solid_angle / side^2.
     std::vector<Vec3> cell_directions(const SkyFrame& frame, std::size_t patch, int side) const;
+    // Every patch's (the ground's first), computed once for many skies or sensors.
+    using Cells = std::vector<std::vector<Vec3>>;
+    Cells cells(const SkyFrame& frame, int side) const;
 
     // Each patch's mean luminance (cd/m^2) under `sky`, integrated over the patch (a
-    // side x side grid of equal solid angle per patch; the ground's is uniform).
+    // side x side grid of equal solid angle per patch, or `cells` made for the sky's frame;
+    // the ground's is uniform).
     std::vector<double> mean_luminance(const Sky& sky, int side = 16) const;
+    std::vector<double> mean_luminance(const Sky& sky, const Cells& cells) const;
 
   private:
     int m_ = 1;

@@ -30,32 +30,21 @@ HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, cons
     out.reflected.assign(hours * out.count, 0.0f);
     out.sun.assign(hours, Vec3{0, 1, 0});
     out.sun_lux.assign(hours, 0.0);
-    // Each patch's directions, once for the year.
-    std::vector<std::vector<Vec3>> cells(out.count);
-    for (std::size_t s = 1; s < out.count; ++s)
-        cells[s] = patches.cell_directions(frame, s, kHourlySide);
+    const auto cells = patches.cells(frame, kHourlySide); // once for the year
     tbb::parallel_for(std::size_t(0), hours, [&](std::size_t t) {
         const auto& h = weather.hours[t];
         const auto sun = sun_of_hour(weather, h);
         if (h.diffuse_horizontal <= 0 && (h.direct_normal <= 0 || sun.zenith >= 90)) return;
         const auto sky = Sky::perez(h.direct_normal, h.diffuse_horizontal, sun, h.day_of_year(),
                                     h.dew_point, frame, ground);
-        for (std::size_t s = 0; s < out.count; ++s) {
-            double mean = sky.ground_luminance();
-            if (s > 0) {
-                mean = 0;
-                for (const auto& d : cells[s]) mean += sky.luminance(d);
-                mean /= double(cells[s].size());
-            }
-            out.direct[t * out.count + s] = out.reflected[t * out.count + s] = float(mean);
-        }
-        if (sky.sun_up() && sky.sun_normal_illuminance() > 0) {
+        const auto mean = patches.mean_luminance(sky, cells);
+        for (std::size_t s = 0; s < out.count; ++s)
+            out.direct[t * out.count + s] = out.reflected[t * out.count + s] = float(mean[s]);
+        if (const auto beam = sun_patch(patches, sky)) {
             out.sun[t] = sky.sun_direction();
             out.sun_lux[t] = sky.sun_normal_illuminance();
             // The beam's reflected light comes from the patch the sun is in.
-            const auto p = patches.patch_of(frame, sky.sun_direction());
-            out.reflected[t * out.count + p] +=
-                float(sky.sun_normal_illuminance() / patches.solid_angle(p));
+            out.reflected[t * out.count + beam->patch] += float(beam->luminance);
         }
     });
     return out;

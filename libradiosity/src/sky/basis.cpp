@@ -180,6 +180,7 @@ ClearYear clear_year(const SkyPatches& patches, const SkyFrame& frame, const Loc
     ClearYear out;
     static constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
     std::vector<bool> sun_in(patches.count(), false);
+    const auto cells = patches.cells(frame, 4); // once for the year
     for (int day = 1; day <= 365; day += 5) {
         int month = 0, rest = day;
         while (rest > kDays[month]) rest -= kDays[month++];
@@ -187,8 +188,9 @@ ClearYear clear_year(const SkyPatches& patches, const SkyFrame& frame, const Loc
             const auto sun = solar_position(where, {2025, month + 1, rest, hour + 0.5});
             if (sun.zenith >= 90) continue;
             const auto sky = Sky::clear(sun, frame, ground);
-            out.skies.push_back(patches.mean_luminance(sky, 4));
-            sun_in[patches.patch_of(frame, sky.sun_direction())] = true;
+            out.skies.push_back(patches.mean_luminance(sky, cells));
+            if (const auto sun_in_patch = sun_patch(patches, sky))
+                sun_in[sun_in_patch->patch] = true;
         }
     }
     for (std::size_t p = 0; p < sun_in.size(); ++p)

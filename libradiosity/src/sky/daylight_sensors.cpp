@@ -56,6 +56,7 @@ DaylightSolution daylight_solution(const radfmt::RadiosityData& solution,
 DaylightSensors::DaylightSensors(const radfmt::MeshData& mesh, DaylightSolution solution,
                                  DaylightOptions options)
     : mesh_(mesh), solution_(std::move(solution)), options_(options),
+      cells_(solution_.patches.cells(solution_.frame, options.sky_side)),
       scene_(std::make_unique<RayScene>(mesh)),
       specular_(std::make_unique<SpecularSurfaces>(mesh)) {}
 
@@ -64,8 +65,8 @@ DaylightSensors::~DaylightSensors() = default;
 DaylightSensors::Coefficients DaylightSensors::coefficients(const Vec3& point, const Vec3& normal,
                                                             std::uint64_t index) const {
     Coefficients out{std::vector<double>(patches().count(), 0.0), reflected(point, normal, index)};
-    sensor_sky_paths(*scene_, *specular_, patches(), frame(), options_.sky_side,
-                     options_.specular_depth, point, normal, [&](const Vec3& d, const Rgb& w) {
+    sensor_sky_paths(*scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
+                     [&](const Vec3& d, const Rgb& w) {
                          out.direct[patches().patch_of(frame(), d)] += luminous(w);
                      });
     return out;
@@ -101,12 +102,15 @@ std::vector<double> DaylightSensors::reflected(const Vec3& point, const Vec3& no
     return out;
 }
 
+std::optional<SunPatch> sun_patch(const SkyPatches& patches, const Sky& sky) {
+    if (!sky.sun_up() || !(sky.sun_normal_illuminance() > 0)) return std::nullopt;
+    const auto p = patches.patch_of(sky.frame(), sky.sun_direction());
+    return SunPatch{p, sky.sun_normal_illuminance() / patches.solid_angle(p)};
+}
+
 std::vector<double> patch_luminance_with_sun(const SkyPatches& patches, const Sky& sky, int side) {
     auto out = patches.mean_luminance(sky, side);
-    if (sky.sun_up() && sky.sun_normal_illuminance() > 0) {
-        const auto p = patches.patch_of(sky.frame(), sky.sun_direction());
-        out[p] += sky.sun_normal_illuminance() / patches.solid_angle(p);
-    }
+    if (const auto sun = sun_patch(patches, sky)) out[sun->patch] += sun->luminance;
     return out;
 }
 
@@ -133,8 +137,8 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
                                                           std::uint64_t index) const {
     Illuminance out;
     sensor_sky_paths(
-        *scene_, *specular_, patches(), frame(), options_.sky_side, options_.specular_depth, point,
-        normal, [&](const Vec3& d, const Rgb& w) { out.sky += luminous(w) * sky.luminance(d); });
+        *scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
+        [&](const Vec3& d, const Rgb& w) { out.sky += luminous(w) * sky.luminance(d); });
     const auto c = reflected(point, normal, index);
     const auto luminance = patch_luminance_with_sun(patches(), sky);
     for (std::size_t s = 0; s < luminance.size(); ++s) out.reflected += c[s] * luminance[s];

@@ -93,14 +93,24 @@ std::vector<Vec3> SkyPatches::cell_directions(const SkyFrame& frame, std::size_t
     return out;
 }
 
+SkyPatches::Cells SkyPatches::cells(const SkyFrame& frame, int side) const {
+    Cells out(count());
+    for (std::size_t p = 0; p < count(); ++p) out[p] = cell_directions(frame, p, side);
+    return out;
+}
+
 std::vector<double> SkyPatches::mean_luminance(const Sky& sky, int side) const {
+    return mean_luminance(sky, cells(sky.frame(), side));
+}
+
+std::vector<double> SkyPatches::mean_luminance(const Sky& sky, const Cells& cells) const {
     std::vector<double> out(count(), 0.0);
     out[0] = sky.ground_luminance();
     if (sky.horizontal_illuminance() <= 0) return out;
     for (std::size_t p = 1; p < count(); ++p) {
         double sum = 0;
-        for (const auto& d : cell_directions(sky.frame(), p, side)) sum += sky.luminance(d);
-        out[p] = sum / (side * side);
+        for (const auto& d : cells[p]) sum += sky.luminance(d);
+        out[p] = sum / double(cells[p].size());
     }
     return out;
 }
