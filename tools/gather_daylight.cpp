@@ -66,24 +66,6 @@ void check_daylight_args(const DaylightArgs& a, const DaylightRun& run) {
         throw InputError("--occupancy and --metrics go with --annual");
 }
 
-void write_lines(const std::string& output, const std::string& header_line,
-                 const std::vector<double>& values) {
-    const auto write = [&](std::FILE* out) {
-        if (!header_line.empty()) std::fprintf(out, "%s\n", header_line.c_str());
-        for (double v : values) std::fprintf(out, "%.6g\n", v);
-    };
-    if (output.empty()) {
-        write(stdout);
-        return;
-    }
-    radfmt::write_atomically(output, [&](const std::filesystem::path& temp) {
-        std::FILE* out = std::fopen(temp.c_str(), "w");
-        if (!out) throw SystemError(output + ": cannot open for writing");
-        write(out);
-        if (std::fclose(out) != 0) throw SystemError(output + ": cannot write");
-    });
-}
-
 void write_png(const DaylightRun& run, const std::vector<double>& values, const std::string& unit,
                const std::string& title) {
     if (run.png.empty()) return;
@@ -92,10 +74,7 @@ void write_png(const DaylightRun& run, const std::vector<double>& values, const 
 }
 
 int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
-    int day = 172;
-    const auto& c = a.choice;
-    const auto sun = sun_from({c.sun, c.date, c.time, c.location, a.epw}, day);
-    const auto sky = parse_sky(c.sky, sun ? &*sun : nullptr, day, sensors.frame(), c.ground);
+    const auto sky = sky_of(a.choice, a.epw, sensors.frame());
     if (a.daylight_factor && sky.horizontal_illuminance() <= 0)
         throw InputError("--daylight-factor: the sky has no horizontal illuminance");
     const std::size_t n = run.positions.size();
@@ -110,7 +89,10 @@ int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors
     for (const auto& l : lux)
         values.push_back(a.daylight_factor ? 100 * l.total() / sky.horizontal_illuminance()
                                            : l.total());
-    write_lines(run.output, run.header_line, values);
+    write_output(run.output, [&](std::FILE* out) {
+        if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
+        for (double v : values) std::fprintf(out, "%.6g\n", v);
+    });
     if (a.daylight_factor) {
         write_png(run, values, "%", "daylight factor (%)");
         const auto s = summarise_daylight_factors(values);
@@ -146,8 +128,7 @@ void write_metrics_csv(const std::string& path, const radfmt::AnnualData& year,
     });
 }
 
-int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors,
-           const std::vector<std::string>& inputs, const std::string& command) {
+int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
     const auto weather = read_epw(a.epw);
     if (weather.missing > 0)
         std::fprintf(stderr, "rad-gather: %s: %d hour(s) with missing radiation, taken as 0\n",
@@ -157,8 +138,8 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
     const auto year = annual_illuminance(sensors, run.positions, run.normals, weather, occupied,
                                          a.choice.ground, run.quiet);
     std::vector<radfmt::Parent> parents;
-    for (const auto& i : inputs) parents.push_back({i, nullptr});
-    auto header = radfmt::derived_header(tool_version("rad-gather"), command, parents);
+    for (const auto& i : run.inputs) parents.push_back({i, nullptr});
+    auto header = radfmt::derived_header(tool_version("rad-gather"), run.command, parents);
     header.set("place", weather.place);
     header.set("occupancy", a.occupancy.empty() ? "08:00-18:00 every day" : a.occupancy);
     radfmt::write_annual(run.output, header, year);
@@ -193,7 +174,7 @@ int gather_daylight(const DaylightArgs& a, const DaylightRun& run) {
     options.seed = run.seed;
     const DaylightSensors sensors(
         *run.mesh, daylight_solution(*run.solution, *run.rad_header, run.rad_path), options);
-    if (a.annual) return annual(a, run, sensors, run.inputs, run.command);
+    if (a.annual) return annual(a, run, sensors);
     return instant(a, run, sensors);
 }
 

@@ -404,27 +404,6 @@ class GatherRun {
     std::vector<double> grid_lux_; // for --png
 };
 
-// Runs `write` on stdout, or on a temporary file that becomes `output` when it is all there.
-void write_output(const std::string& output, const std::function<void(std::FILE*)>& write) {
-    if (output.empty()) {
-        write(stdout); // run_tool checks what reached stdout
-        return;
-    }
-    radfmt::write_atomically(output, [&](const std::filesystem::path& temp) {
-        std::FILE* out = std::fopen(temp.c_str(), "w");
-        if (!out)
-            throw rad::SystemError(output + ": cannot open for writing: " + std::strerror(errno));
-        try {
-            write(out);
-        } catch (...) {
-            std::fclose(out);
-            throw;
-        }
-        if (std::fclose(out) != 0)
-            throw rad::SystemError(output + ": cannot write: " + std::strerror(errno));
-    });
-}
-
 // The problems met (or the work plane's figures), then the summary.
 void report(const GatherArgs& a, const GatherRun& run, double seconds) {
     if (!a.grid_text.empty()) {
@@ -613,7 +592,7 @@ int gather(GatherArgs& a, int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     GatherRun run(a, gatherer, scene_box, *source, source_name, range,
                   luminaires ? &*luminaires : nullptr);
-    write_output(a.output, [&](std::FILE* out) { run.stream(out, preamble); });
+    rad::tool::write_output(a.output, [&](std::FILE* out) { run.stream(out, preamble); });
     run.finish();
     if (!a.png.empty())
         rad::write_false_colour_png(a.png, run.grid_lux(), static_cast<int>(grid.nx),

@@ -180,10 +180,7 @@ std::vector<radfmt::Rgb> sky_values(const ShadeArgs& a, const radfmt::RadiosityD
         throw rad::InputError("--sky mixes the sky's groups itself: not with --mix, --mix-only, "
                               "--layers or --gather");
     const auto solution = rad::daylight_solution(radiosity, header, a.rad_path);
-    int day = 172;
-    const auto& c = a.sky;
-    const auto sun = rad::sun_from({c.sun, c.date, c.time, c.location, ""}, day);
-    const auto sky = rad::parse_sky(c.sky, sun ? &*sun : nullptr, day, solution.frame, c.ground);
+    const auto sky = rad::tool::sky_of(a.sky, "", solution.frame);
     if (!a.quiet) std::fprintf(stderr, "rad-shade: %s\n", sky.describe().c_str());
     return rad::sky_radiosity(solution, sky);
 }

@@ -254,4 +254,30 @@ void add_sky_options(CLI::App& app, SkyChoice& choice, const std::string& what) 
         ->check(finite_range(0, 1));
 }
 
+void write_output(const std::string& output, const std::function<void(std::FILE*)>& write) {
+    if (output.empty()) {
+        write(stdout); // run_tool checks what reached stdout
+        return;
+    }
+    radfmt::write_atomically(output, [&](const std::filesystem::path& temp) {
+        std::FILE* out = std::fopen(temp.c_str(), "w");
+        if (!out)
+            throw rad::SystemError(output + ": cannot open for writing: " + std::strerror(errno));
+        try {
+            write(out);
+        } catch (...) {
+            std::fclose(out);
+            throw;
+        }
+        if (std::fclose(out) != 0)
+            throw rad::SystemError(output + ": cannot write: " + std::strerror(errno));
+    });
+}
+
+Sky sky_of(const SkyChoice& choice, const std::string& epw, const SkyFrame& frame) {
+    int day = 172;
+    const auto sun = sun_from({choice.sun, choice.date, choice.time, choice.location, epw}, day);
+    return parse_sky(choice.sky, sun ? &*sun : nullptr, day, frame, choice.ground);
+}
+
 } // namespace rad::tool

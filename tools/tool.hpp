@@ -1,7 +1,11 @@
 // What every tool's main shares (tools only: the library knows nothing of CLI11): argument
 // parsing with the house exit codes, and running a tool body with errors mapped to them.
 #pragma once
+#include "radiosity/sky.hpp"
+
 #include <CLI/CLI.hpp>
+
+#include <cstdio>
 
 #include <functional>
 #include <string>
@@ -56,6 +60,10 @@ std::string one_of(const std::vector<std::string>& names);
 // `option` otherwise.
 std::uint64_t parse_size(const std::string& text, const std::string& option);
 
+// Runs `write` on stdout (output empty), or on a temporary file that becomes `output` when it
+// is all there (SystemError, with the system's reason, when it cannot be written).
+void write_output(const std::string& output, const std::function<void(std::FILE*)>& write);
+
 // A sky at an instant as a command line names it (rad-gather, rad-shade): --sky, --sun,
 // --date, --time, --location, --ground. `what` says what the sky is for, in --sky's help.
 struct SkyChoice {
@@ -63,5 +71,7 @@ struct SkyChoice {
     double ground = 0.2;
 };
 void add_sky_options(CLI::App& app, SkyChoice& choice, const std::string& what);
+// The sky `choice` names, in `frame`; `epw` (may be empty) gives the place for --date.
+Sky sky_of(const SkyChoice& choice, const std::string& epw, const SkyFrame& frame);
 
 } // namespace rad::tool
