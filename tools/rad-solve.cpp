@@ -13,6 +13,7 @@
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -295,6 +296,39 @@ void check_channel_memory(const SolveArgs& a, const rad::Channels& emission) {
                           "--max-memory)");
 }
 
+// Whether a group of `groups` has this name.
+bool group_named(const std::vector<rad::LightGroup>& groups, const std::string& name) {
+    return std::any_of(groups.begin(), groups.end(),
+                       [&](const rad::LightGroup& g) { return g.name == name; });
+}
+
+// The channels of light that is not a glowing patch (--direct): `count` groups first, each
+// patch emitting rho x `irradiance(patch, group)` (the first bounce), then the `others`
+// material groups' channels that `emission` holds (none: empty).
+template <class Irradiance>
+rad::Channels first_bounce_groups(const radfmt::MeshData& mesh, std::size_t count,
+                                  Irradiance&& irradiance, std::size_t others,
+                                  const rad::Channels& emission) {
+    rad::Channels e(mesh.patches.size(), 3 * (count + others));
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const auto& rho = mesh.materials[mesh.patches[i].material].reflectance;
+        for (std::size_t g = 0; g < count; ++g) {
+            const radfmt::Rgb d = irradiance(i, g);
+            for (std::size_t c = 0; c < 3; ++c) e.at(i, 3 * g + c) = rho[c] * d[c];
+        }
+        for (std::size_t c = 0; c < 3 * others; ++c) e.at(i, 3 * count + c) = emission.at(i, c);
+    }
+    return e;
+}
+
+// Groups named `names` (of no material) put before `groups`, in that order.
+void put_groups_first(const std::vector<std::string>& names, std::vector<rad::LightGroup>& groups) {
+    std::vector<rad::LightGroup> all;
+    for (const auto& name : names) all.push_back({name, {}});
+    all.insert(all.end(), groups.begin(), groups.end());
+    groups = std::move(all);
+}
+
 // --direct: the luminaires' groups first, each emitting rho x its direct irradiance (the first
 // bounce), then the material groups `emission` holds (none: empty). Says the luminaires' flux.
 rad::Channels add_direct_light(const SolveArgs& a, const radfmt::MeshData& mesh,
@@ -304,28 +338,17 @@ rad::Channels add_direct_light(const SolveArgs& a, const radfmt::MeshData& mesh,
     const auto lum = radfmt::read_luminaires(a.direct_path, &lum_header);
     radfmt::require_same_geometry(a.direct_path, lum_header, lum.patch_count, a.mesh_path, mesh,
                                   "run rad-ff --luminaires on " + a.mesh_path + " again");
-    const std::size_t lum_groups = lum.groups.size(), others = groups.size();
     for (const auto& name : lum.groups)
-        for (const auto& g : groups)
-            if (g.name == name)
-                throw rad::InputError(a.direct_path + ": light group '" + name +
-                                      "' is also an emitting material's group: name the "
-                                      "layout's group differently");
-    rad::Channels e(mesh.patches.size(), 3 * (lum_groups + others));
-    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
-        const auto& rho = mesh.materials[mesh.patches[i].material].reflectance;
-        for (std::size_t g = 0; g < lum_groups; ++g)
-            for (std::size_t c = 0; c < 3; ++c) e.at(i, 3 * g + c) = rho[c] * lum.of(i, g)[c];
-        for (std::size_t c = 0; c < 3 * others; ++c)
-            e.at(i, 3 * lum_groups + c) = emission.at(i, c);
-    }
-    std::vector<rad::LightGroup> all;
-    for (const auto& name : lum.groups) {
-        all.push_back({name, {}});
+        if (group_named(groups, name))
+            throw rad::InputError(a.direct_path + ": light group '" + name +
+                                  "' is also an emitting material's group: name the "
+                                  "layout's group differently");
+    auto e = first_bounce_groups(
+        mesh, lum.groups.size(), [&](std::size_t i, std::size_t g) { return lum.of(i, g); },
+        groups.size(), emission);
+    for (const auto& name : lum.groups)
         header.set("light_group." + name, "luminaires of " + a.direct_path);
-    }
-    all.insert(all.end(), groups.begin(), groups.end());
-    groups = std::move(all);
+    put_groups_first(lum.groups, groups);
     header.set("direct", a.direct_path);
     if (!a.quiet) {
         const auto set = rad::build_luminaires({lum.layout_name, lum.layout_text, lum.files},
@@ -335,8 +358,8 @@ rad::Channels add_direct_light(const SolveArgs& a, const radfmt::MeshData& mesh,
         std::fprintf(stderr,
                      "rad-solve: %zu luminaire(s) in %zu light group(s): %.6g lm (%.6g W "
                      "at %g lm/W)\n",
-                     set.luminaires.size(), lum_groups, emitted, emitted / rad::kRadianceEfficacy,
-                     rad::kRadianceEfficacy);
+                     set.luminaires.size(), lum.groups.size(), emitted,
+                     emitted / rad::kRadianceEfficacy, rad::kRadianceEfficacy);
     }
     return e;
 }
@@ -355,26 +378,17 @@ rad::Channels add_sky_light(const SolveArgs& a, const radfmt::MeshData& mesh,
         throw rad::InputError(a.direct_path + ": " + std::to_string(sky.sky_patches) +
                               " sky patches, but " + sky.subdivision + " has " +
                               std::to_string(patches.count()));
-    const std::size_t sky_groups = sky.sky_patches, others = groups.size();
+    const std::size_t sky_groups = sky.sky_patches;
+    std::vector<std::string> names;
+    for (std::size_t s = 0; s < sky_groups; ++s) names.push_back(patches.name(s));
     for (const auto& g : groups)
-        for (std::size_t s = 0; s < sky_groups; ++s)
-            if (g.name == patches.name(s))
-                throw rad::InputError("light group '" + g.name +
-                                      "' is also a sky patch's name: name it differently");
-    rad::Channels e(mesh.patches.size(), 3 * (sky_groups + others));
-    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
-        const auto& rho = mesh.materials[mesh.patches[i].material].reflectance;
-        for (std::size_t s = 0; s < sky_groups; ++s) {
-            const auto d = sky.of(i, s);
-            for (std::size_t c = 0; c < 3; ++c) e.at(i, 3 * s + c) = rho[c] * d[c];
-        }
-        for (std::size_t c = 0; c < 3 * others; ++c)
-            e.at(i, 3 * sky_groups + c) = emission.at(i, c);
-    }
-    std::vector<rad::LightGroup> all;
-    for (std::size_t s = 0; s < sky_groups; ++s) all.push_back({patches.name(s), {}});
-    all.insert(all.end(), groups.begin(), groups.end());
-    groups = std::move(all);
+        if (std::find(names.begin(), names.end(), g.name) != names.end())
+            throw rad::InputError("light group '" + g.name +
+                                  "' is also a sky patch's name: name it differently");
+    auto e = first_bounce_groups(
+        mesh, sky_groups, [&](std::size_t i, std::size_t s) { return sky.of(i, s); }, groups.size(),
+        emission);
+    put_groups_first(names, groups);
     header.set("direct", a.direct_path);
     header.set("sky_subdivision", sky.subdivision);
     header.set("north", sky_header.get("north", a.direct_path));
