@@ -84,10 +84,16 @@ Matrix area_gram(const DaylightSolution& solution, const std::vector<double>& ar
 
 } // namespace
 
-DaylightBasis daylight_basis(const DaylightSolution& solution, const std::vector<double>& areas,
-                             const std::vector<std::vector<double>>& skies, int max_components,
-                             double target_error) {
-    if (skies.empty()) throw std::logic_error("a daylight basis needs skies");
+namespace {
+// The principal directions of the solutions under `skies`, as sky-patch weights z_k (the
+// component u_k = A z_k, area-orthonormal), largest first, at most `max_components`; and
+// the area Gram matrix G = A^T W A they were found with.
+struct Directions {
+    std::vector<std::vector<double>> z;
+    Matrix g;
+};
+Directions principal_directions(const DaylightSolution& solution, const std::vector<double>& areas,
+                                const std::vector<std::vector<double>>& skies, int max_components) {
     const std::size_t count = solution.patches.count();
     // Y = A L over the skies; its principal directions u = A z / sqrt(lambda), from the
     // symmetric H = R^T G R with C = L L^T = R R^T (R = E D^1/2) and G = A^T W A.
@@ -101,7 +107,8 @@ DaylightBasis daylight_basis(const DaylightSolution& solution, const std::vector
     Matrix r(count, std::vector<double>(count, 0.0));
     for (std::size_t s = 0; s < count; ++s)
         for (std::size_t k = 0; k < count; ++k) r[s][k] = e[s][k] * std::sqrt(std::max(0.0, d[k]));
-    const auto g = area_gram(solution, areas);
+    Directions out{{}, area_gram(solution, areas)};
+    const auto& g = out.g;
     Matrix h(count, std::vector<double>(count, 0.0));
     {
         Matrix gr(count, std::vector<double>(count, 0.0)); // G R
@@ -119,29 +126,26 @@ DaylightBasis daylight_basis(const DaylightSolution& solution, const std::vector
     std::vector<double> lambda;
     const auto q = eigen_symmetric(h, lambda);
     // Every usable component's sky-patch weights z = R q_k / sqrt(lambda_k).
-    std::vector<std::vector<double>> zs;
     for (std::size_t k = 0; k < count && int(k) < max_components; ++k) {
         if (!(lambda[k] > 1e-12 * lambda[0])) break;
         std::vector<double> z(count, 0.0);
         const double norm = 1 / std::sqrt(lambda[k]);
         for (std::size_t s = 0; s < count; ++s)
             for (std::size_t l = 0; l < count; ++l) z[s] += r[s][l] * q[l][k] * norm;
-        zs.push_back(std::move(z));
+        out.z.push_back(std::move(z));
     }
-    // The weight of a sky: u_k^T W A L = z^T G L (radiance; L in cd/m^2 / 179).
-    std::vector<std::vector<double>> weights;
-    for (const auto& z : zs) {
-        std::vector<double> w(count, 0.0);
-        for (std::size_t t = 0; t < count; ++t) {
-            for (std::size_t s = 0; s < count; ++s) w[t] += z[s] * g[s][t];
-            w[t] /= kRadianceEfficacy;
-        }
-        weights.push_back(std::move(w));
-    }
-    // The components are orthonormal (area-weighted): a sky's error with the first K is
-    // sqrt(|y|^2 - sum of its first K weights squared) / |y|, |y|^2 = l^T G l. The fewest
-    // components whose mean error over the skies is at most target_error.
-    std::vector<double> mean(zs.size() + 1, 0.0), worst(zs.size() + 1, 0.0);
+    return out;
+}
+
+// Per number K of components (0 to all), the mean and the worst relative error over the
+// skies. The components are orthonormal (area-weighted): a sky's error with the first K is
+// sqrt(|y|^2 - sum of its first K weights squared) / |y|, |y|^2 = l^T G l.
+void errors_by_count(const Matrix& g, const std::vector<std::vector<double>>& weights,
+                     const std::vector<std::vector<double>>& skies, std::vector<double>& mean,
+                     std::vector<double>& worst) {
+    const std::size_t count = g.size();
+    mean.assign(weights.size() + 1, 0.0);
+    worst.assign(weights.size() + 1, 0.0);
     for (const auto& sky : skies) {
         double norm2 = 0;
         for (std::size_t s = 0; s < count; ++s)
@@ -149,25 +153,47 @@ DaylightBasis daylight_basis(const DaylightSolution& solution, const std::vector
         norm2 /= kRadianceEfficacy * kRadianceEfficacy;
         if (!(norm2 > 0)) continue;
         double left = norm2;
-        for (std::size_t k = 0; k <= zs.size(); ++k) {
+        for (std::size_t k = 0; k <= weights.size(); ++k) {
             const double error = std::sqrt(std::max(0.0, left) / norm2);
             mean[k] += error / double(skies.size());
             worst[k] = std::max(worst[k], error);
-            if (k == zs.size()) break;
+            if (k == weights.size()) break;
             double weight = 0;
             for (std::size_t s = 0; s < count; ++s) weight += weights[k][s] * sky[s];
             left -= weight * weight;
         }
     }
-    std::size_t used = zs.size();
-    for (std::size_t k = 1; k <= zs.size(); ++k)
+}
+} // namespace
+
+DaylightBasis daylight_basis(const DaylightSolution& solution, const std::vector<double>& areas,
+                             const std::vector<std::vector<double>>& skies, int max_components,
+                             double target_error) {
+    if (skies.empty()) throw std::logic_error("a daylight basis needs skies");
+    const auto directions = principal_directions(solution, areas, skies, max_components);
+    const std::size_t count = solution.patches.count();
+    // The weight of a sky: u_k^T W A L = z^T G L (radiance; L in cd/m^2 / 179).
+    std::vector<std::vector<double>> weights;
+    for (const auto& z : directions.z) {
+        std::vector<double> w(count, 0.0);
+        for (std::size_t t = 0; t < count; ++t) {
+            for (std::size_t s = 0; s < count; ++s) w[t] += z[s] * directions.g[s][t];
+            w[t] /= kRadianceEfficacy;
+        }
+        weights.push_back(std::move(w));
+    }
+    // The fewest components whose mean error over the skies is at most target_error.
+    std::vector<double> mean, worst;
+    errors_by_count(directions.g, weights, skies, mean, worst);
+    std::size_t used = weights.size();
+    for (std::size_t k = 1; k <= weights.size(); ++k)
         if (mean[k] <= target_error) {
             used = k;
             break;
         }
     DaylightBasis basis;
     for (std::size_t k = 0; k < used; ++k) {
-        basis.values.push_back(mix_sky_groups(solution, zs[k]));
+        basis.values.push_back(mix_sky_groups(solution, directions.z[k]));
         basis.weights.push_back(weights[k]);
     }
     basis.mean_error = mean[used];
