@@ -4,6 +4,7 @@
 #include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
+#include "radiosity/calc_surfaces.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/falsecolour.hpp"
 #include "radiosity/formfactor.hpp"
@@ -12,6 +13,7 @@
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/sensor_parts.hpp"
+#include "radiosity/sensors.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/text_input.hpp"
 #include "radiosity/version.hpp"
@@ -41,41 +43,6 @@ struct Sensor {
     rad::Irradiance result;
 };
 
-// Parses "x y z dx dy dz" (rtrace -I); fills `problem` instead of throwing, so that the
-// lines before a bad one are still written, in order.
-void parse_sensor(const std::string& text, Sensor& sensor) {
-    std::istringstream words(text);
-    std::string token;
-    double v[6];
-    int count = 0;
-    while (words >> token) {
-        if (count == 6 || !rad::parse_number(token, v[count])) {
-            sensor.problem =
-                "expected six numbers 'x y z dx dy dz', found " + rad::quoted_prefix(text);
-            return;
-        }
-        ++count;
-    }
-    if (count != 6) {
-        sensor.problem = "expected six numbers 'x y z dx dy dz', found " + rad::quoted_prefix(text);
-        return;
-    }
-    sensor.position = {v[0], v[1], v[2]};
-    const rad::Vec3 d{v[3], v[4], v[5]};
-    const double len = rad::length(d);
-    if (!(len > 0) || !std::isfinite(len)) {
-        sensor.problem = "the direction dx dy dz is zero: give the way the sensor faces";
-        return;
-    }
-    sensor.direction = {d[0] / len, d[1] / len, d[2] / len};
-}
-
-// A points file's line that is a sensor: not blank, not a # comment.
-bool is_sensor_line(const std::string& text) {
-    const auto first = text.find_first_not_of(" \t");
-    return first != std::string::npos && text[first] != '#';
-}
-
 // Where sensors come from: lines of a stream, or a generated grid.
 class SensorSource {
   public:
@@ -90,10 +57,9 @@ class LineSource final : public SensorSource {
     bool next(std::vector<Sensor>& out, std::size_t count) override {
         std::string text;
         while (out.size() < count && in_.next(text)) {
-            if (!is_sensor_line(text)) continue;
-            Sensor s;
-            s.line = in_.line_number();
-            parse_sensor(text, s);
+            if (!rad::is_sensor_line(text)) continue;
+            auto pose = rad::parse_sensor_line(text);
+            Sensor s{in_.line_number(), pose.position, pose.direction, std::move(pose.problem), {}};
             out.push_back(std::move(s));
         }
         return !out.empty();
@@ -103,46 +69,16 @@ class LineSource final : public SensorSource {
     rad::LineReader& in_;
 };
 
-// "x0 z0 x1 z1 y nx nz": upward sensors at height y at the centres of nx x nz cells, rows
-// of constant z from z0, x varying fastest.
-struct Grid {
-    double x0, z0, x1, z1, y;
-    long nx, nz;
-};
-
-Grid parse_grid(const std::string& text) {
-    std::istringstream words(text);
-    std::string token;
-    std::vector<double> v;
-    while (words >> token) {
-        double value = 0;
-        if (!rad::parse_number(token, value))
-            throw rad::InputError("--grid: '" + token + "' is not a number");
-        v.push_back(value);
-    }
-    if (v.size() != 7)
-        throw rad::InputError("--grid takes seven numbers \"x0 z0 x1 z1 y nx nz\", got " +
-                              std::to_string(v.size()));
-    const auto whole = [](double x) { return x >= 1 && x <= 100000 && x == std::floor(x); };
-    if (!whole(v[5]) || !whole(v[6]) || v[5] * v[6] > 1e8)
-        throw rad::InputError("--grid: nx and nz are whole numbers from 1 to 100000 (at most "
-                              "1e8 points)");
-    if (v[0] == v[2] || v[1] == v[3])
-        throw rad::InputError("--grid: x0 x1 and z0 z1 must differ (the grid has no area)");
-    return {v[0], v[1], v[2], v[3], v[4], static_cast<long>(v[5]), static_cast<long>(v[6])};
-}
+using Grid = rad::WorkPlaneGrid;
 
 class GridSource final : public SensorSource {
   public:
     explicit GridSource(const Grid& grid) : grid_(grid) {}
     bool next(std::vector<Sensor>& out, std::size_t count) override {
-        const long total = grid_.nx * grid_.nz;
-        while (out.size() < count && index_ < total) {
-            const long row = index_ / grid_.nx, column = index_ % grid_.nx;
+        while (out.size() < count && index_ < grid_.size()) {
             Sensor s;
             s.line = index_ + 1;
-            s.position = {grid_.x0 + (column + 0.5) * (grid_.x1 - grid_.x0) / grid_.nx, grid_.y,
-                          grid_.z0 + (row + 0.5) * (grid_.z1 - grid_.z0) / grid_.nz};
+            s.position = grid_.position(index_);
             s.direction = {0, 1, 0};
             out.push_back(s);
             ++index_;
@@ -172,29 +108,26 @@ void check_grid_reach(const Grid& grid, const rad::Box& box) {
 }
 
 // What lighting designers report of a work plane, over the sensors with a value (lux).
-void print_work_plane(const std::vector<double>& lux, long without_value) {
-    double low = std::numeric_limits<double>::infinity(), high = 0, sum = 0;
-    long count = 0;
-    for (const double e : lux)
-        if (std::isfinite(e)) low = std::min(low, e), high = std::max(high, e), sum += e, ++count;
-    if (count == 0) {
+void print_work_plane(const std::vector<double>& lux) {
+    const auto stats = rad::illuminance_stats(lux);
+    if (stats.count == 0) {
         std::fprintf(stderr,
                      "rad-gather: work plane: no sensor has a value (%ld inside or behind "
                      "objects: nan)\n",
-                     without_value);
+                     stats.without_value);
         return;
     }
-    const double mean = sum / double(count);
     std::fprintf(stderr,
                  "rad-gather: work plane: %ld sensor(s) with a value, %ld inside or behind "
                  "objects (nan): Emin %.4g lx, Eavg %.4g lx, Emax %.4g lx, U0 = Emin/Eavg = %.3f\n",
-                 count, without_value, low, mean, high, mean > 0 ? low / mean : 0.0);
+                 stats.count, stats.without_value, stats.min, stats.mean, stats.max, stats.u0());
 }
 
 // What the command line says.
 struct GatherArgs {
     std::vector<std::string> inputs;
     std::string mesh_path, rad_path, points_path, output, grid_text, png, smooth = "crease";
+    std::string surfaces_path;
     std::string direct_path, rows;
     bool merge = false;
     rad::GatherOptions options;
@@ -227,27 +160,6 @@ void add_file_options(CLI::App& app, GatherArgs& a) {
                  "would have written");
 }
 
-// How the light is gathered.
-void add_gather_options(CLI::App& app, GatherArgs& a) {
-    auto& options = a.options;
-    a.rays_option = app.add_option("--rays", options.rays,
-                                   "Indirect light: cosine-weighted rays per point (0: direct "
-                                   "light only; daylight: 1024 unless given)")
-                        ->capture_default_str()
-                        ->check(CLI::Range(0, 1000000));
-    app.add_option("--shadow-rays", options.shadow_rays,
-                   "Direct light: shadow rays per point for the lights' visible fractions "
-                   "(emitting patches, and patches lit so brightly that rays landing on them "
-                   "would be fireflies), shared by what each contributes; lights too faint "
-                   "for one each share theirs (--exact: per patch); 0: no shadows")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 100000));
-    app.add_flag("--exact", options.exact,
-                 "Indirect light as the exact point-to-polygon sum over every patch (with "
-                 "shadow rays for visibility) instead of rays: no ray noise, cost grows with "
-                 "the patches; for small scenes");
-}
-
 // What is written, and the work plane.
 void add_output_options(CLI::App& app, GatherArgs& a) {
     app.add_flag("--lux", a.lux,
@@ -257,18 +169,17 @@ void add_output_options(CLI::App& app, GatherArgs& a) {
     app.add_flag("--keep-going", a.keep_going,
                  "Write 'nan nan nan' for a point that cannot be gathered (bad line, zero "
                  "direction, inside an object) and go on, instead of stopping there");
-    app.add_option("--smooth", a.smooth,
-                   "How the radiosity where a ray lands is interpolated: crease, area, average "
-                   "or flat (as rad-shade)")
-        ->capture_default_str();
-    app.add_option("--crease-angle", a.options.crease_deg, "crease: largest angle smoothed over")
-        ->capture_default_str()
-        ->check(rad::tool::finite_range(0, 180));
     app.add_option("--grid", a.grid_text,
                    "Instead of reading points: upward sensors on a work plane, \"x0 z0 x1 z1 y "
                    "nx nz\" (cell centres, height y, rows of constant z from z0, x fastest); "
                    "sensors inside furniture have no value (nan, grey in the PNG, counted), and "
                    "the summary gives Emin, Eavg, Emax and U0 = Emin/Eavg of the others");
+    app.add_option("--surfaces", a.surfaces_path,
+                   "Instead of reading points: the sensors of the calculation surfaces in this "
+                   "CSV (formats/README.md: work planes, task areas, walls, ceilings, by "
+                   "EN 12464-1's grid rule); writes 'surface,index,column,row,x,y,z,lux' lines "
+                   "and each surface's Em, Emin, Emax, U0 and verdict on stderr, the numbers "
+                   "rad-report shows");
     app.add_option("--png", a.png,
                    "With --grid: also write a false-colour PNG of the illuminance (lux) with a "
                    "legend");
@@ -277,8 +188,6 @@ void add_output_options(CLI::App& app, GatherArgs& a) {
                    "(default: a round number at or above the plane's largest value; values "
                    "above it get the top colour)")
         ->check(rad::tool::finite_range(0, 1e30));
-    app.add_option("--seed", a.options.seed, "Seed; each point has its own stream (seed, index)")
-        ->capture_default_str();
     rad::tool::add_threads_option(app, a.threads);
     app.add_flag("-q,--quiet", a.quiet, "No progress and no summary");
 }
@@ -300,6 +209,11 @@ void check_combinations(const GatherArgs& a) {
         throw rad::InputError("--png draws a --grid: give --grid \"x0 z0 x1 z1 y nx nz\"");
     if (!a.grid_text.empty() && !a.points_path.empty())
         throw rad::InputError("give --grid or --points, not both");
+    if (!a.surfaces_path.empty() &&
+        (!a.grid_text.empty() || !a.points_path.empty() || !a.rows.empty() || !a.png.empty() ||
+         a.lux || a.keep_going || rad::tool::wants_daylight(a.daylight)))
+        throw rad::InputError("--surfaces writes lux at its own sensors: not with --points, "
+                              "--grid, --rows, --png, --lux, --keep-going or daylight");
 }
 
 // Streams blocks of sensors: parsed, gathered in parallel, written in order; keeps what the
@@ -348,23 +262,10 @@ class GatherRun {
     void gather(std::vector<Sensor>& block) {
         tbb::parallel_for(std::size_t(0), block.size(), [&](std::size_t k) {
             auto& s = block[k];
-            if (s.problem.empty()) s.problem = rad::out_of_reach(s.position, scene_box_);
-            if (!s.problem.empty()) return;
-            s.result = gatherer_.gather(s.position, s.direction,
-                                        range_.begin + std::uint64_t(written_) + k);
-            if (s.result.sees_backs(args_.options.max_back_fraction)) {
-                char text[200];
-                std::snprintf(text, sizeof text,
-                              "%.0f%% of the surfaces the point sees show their back: it is "
-                              "inside an object, behind a surface, or faces into one (move it "
-                              "off the surface, or turn it)",
-                              100 * s.result.back_fraction);
-                s.problem = text;
-            }
-            if (luminaires_) // the luminaires' direct light, exactly at the point
-                for (const auto& g : rad::luminaire_irradiance(*luminaires_, s.position,
-                                                               s.direction, &gatherer_.scene()))
-                    for (std::size_t c = 0; c < 3; ++c) s.result.direct[c] += g[c];
+            if (s.problem.empty())
+                s.result =
+                    rad::gather_sensor(gatherer_, luminaires_, scene_box_, s.position, s.direction,
+                                       range_.begin + std::uint64_t(written_) + k, s.problem);
             progress_.advance(1);
         });
     }
@@ -407,7 +308,7 @@ class GatherRun {
 // The problems met (or the work plane's figures), then the summary.
 void report(const GatherArgs& a, const GatherRun& run, double seconds) {
     if (!a.grid_text.empty()) {
-        print_work_plane(run.grid_lux(), run.problems());
+        print_work_plane(run.grid_lux());
     } else if (run.problems()) {
         std::fprintf(stderr,
                      "rad-gather: warning: %ld point(s) could not be gathered and were written "
@@ -429,7 +330,7 @@ std::uint64_t count_sensors(const std::string& path) {
     rad::LineReader in(path);
     std::string text;
     std::uint64_t count = 0;
-    while (in.next(text)) count += is_sensor_line(text);
+    while (in.next(text)) count += rad::is_sensor_line(text);
     return count;
 }
 
@@ -479,7 +380,7 @@ std::string sensors_and_preamble(const GatherArgs& a, const Grid& grid,
                                  rad::RowRange& range) {
     range = {};
     if (a.rows.empty()) {
-        if (!a.grid_text.empty()) range.end = std::uint64_t(grid.nx) * grid.nz;
+        if (!a.grid_text.empty()) range.end = std::uint64_t(grid.size());
         const auto line = header_line(a, radfmt::command_line(argc, argv), mesh_header, rad_header);
         return line.empty() ? "" : line + "\n";
     }
@@ -540,6 +441,53 @@ int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
     return rad::tool::gather_daylight(a.daylight, run);
 }
 
+// A surface's figures and verdict, as rad-report shows them.
+void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid,
+                   const std::vector<double>& lux) {
+    const auto stats = rad::illuminance_stats(lux);
+    const auto verdict = rad::judge(stats, surface.required);
+    const bool required = !std::isnan(surface.required.em) || !std::isnan(surface.required.u0) ||
+                          !std::isnan(surface.required.emin);
+    std::fprintf(stderr,
+                 "rad-gather: %s (%s, %ld x %ld sensors at %.3g m, %ld without a value): Em %.4g "
+                 "lx, Emin %.4g lx, Emax %.4g lx, U0 %.3f, Emin/Emax %.3f%s\n",
+                 surface.name.c_str(), rad::calc_kind_name(surface.kind), grid.columns, grid.rows,
+                 grid.spacing_m, stats.without_value, stats.mean, stats.min, stats.max, stats.u0(),
+                 stats.min_over_max(),
+                 !required          ? ""
+                 : verdict.passes() ? ": meets its requirements"
+                                    : ": FAILS its requirements");
+}
+
+// --surfaces: every calculation surface's sensors, one CSV line each, and their figures.
+void gather_surfaces(const GatherArgs& a, const rad::Gatherer& gatherer,
+                     const rad::LuminaireSet* luminaires, const rad::Box& scene_box,
+                     double metres_per_unit, int argc, char** argv,
+                     const radfmt::Header& mesh_header, const radfmt::Header& rad_header) {
+    const auto file = rad::read_calc_file(a.surfaces_path);
+    if (file.surfaces.empty())
+        throw rad::InputError(a.surfaces_path + ": it has observers only: add a surface");
+    std::vector<rad::SurfaceGrid> grids;
+    for (const auto& surface : file.surfaces)
+        grids.push_back(rad::surface_grid(surface, metres_per_unit));
+    const auto lux = rad::gather_surfaces(gatherer, luminaires, scene_box, grids, a.quiet);
+    const auto header = header_line(a, radfmt::command_line(argc, argv), mesh_header, rad_header);
+    rad::tool::write_output(a.output, [&](std::FILE* out) {
+        if (!header.empty()) std::fprintf(out, "%s\n", header.c_str());
+        std::fputs("surface,index,column,row,x,y,z,lux\n", out);
+        for (std::size_t s = 0; s < grids.size(); ++s)
+            for (long k = 0; k < grids[s].size(); ++k) {
+                const auto p = grids[s].position(k);
+                std::fprintf(out, "%s,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g\n",
+                             rad::csv_field(file.surfaces[s].name).c_str(), k, k % grids[s].columns,
+                             k / grids[s].columns, p[0], p[1], p[2], lux[s][std::size_t(k)]);
+            }
+    });
+    if (a.quiet) return;
+    for (std::size_t s = 0; s < grids.size(); ++s)
+        print_surface(file.surfaces[s], grids[s], lux[s]);
+}
+
 int gather(GatherArgs& a, int argc, char** argv) {
     if (a.merge) return merge_parts(a);
     if (a.inputs.size() != 2)
@@ -547,10 +495,10 @@ int gather(GatherArgs& a, int argc, char** argv) {
                               " file(s) given; several are for --merge)");
     a.mesh_path = a.inputs[0];
     a.rad_path = a.inputs[1];
-    rad::tool::check_outputs({a.mesh_path, a.rad_path, a.points_path},
+    rad::tool::check_outputs({a.mesh_path, a.rad_path, a.points_path, a.surfaces_path},
                              {{"-o", a.output}, {"--png", a.png}});
     check_combinations(a);
-    const auto grid = a.grid_text.empty() ? Grid{} : parse_grid(a.grid_text);
+    const auto grid = a.grid_text.empty() ? Grid{} : rad::parse_work_plane_grid(a.grid_text);
     // A work plane runs through furniture: a sensor inside it has no value, not an error.
     if (!a.grid_text.empty()) a.keep_going = true;
     a.options.smoothing = rad::parse_smoothing(a.smooth);
@@ -573,6 +521,12 @@ int gather(GatherArgs& a, int argc, char** argv) {
     const auto luminaires = rad::solution_luminaires(rad_header, a.rad_path, a.direct_path, mesh,
                                                      a.mesh_path, mesh_header);
     const rad::Box scene_box = rad::bounds(mesh.vertices);
+    if (!a.surfaces_path.empty()) {
+        gather_surfaces(a, gatherer, luminaires ? &*luminaires : nullptr, scene_box,
+                        rad::metres_per_unit(mesh_header), argc, argv, mesh_header, rad_header);
+        outputs.commit();
+        return 0;
+    }
     if (!a.grid_text.empty()) check_grid_reach(grid, scene_box);
 
     // Points from a file or standard input: a folder, a device that never ends a line, a line
@@ -616,7 +570,8 @@ int main(int argc, char** argv) {
         "with cosine-weighted rays taking the smoothed reflected radiosity where they land."};
     GatherArgs args;
     add_file_options(app, args);
-    add_gather_options(app, args);
+    args.rays_option = rad::tool::add_sensor_gather_options(app, args.options, args.smooth,
+                                                            "; daylight: 1024 unless given");
     add_output_options(app, args);
     rad::tool::add_daylight_options(app, args.daylight);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;

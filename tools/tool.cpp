@@ -274,6 +274,37 @@ void write_output(const std::string& output, const std::function<void(std::FILE*
     });
 }
 
+CLI::Option* add_sensor_gather_options(CLI::App& app, GatherOptions& options, std::string& smooth,
+                                       const std::string& rays_help) {
+    auto* rays = app.add_option("--rays", options.rays,
+                                "Indirect light: cosine-weighted rays per point (0: direct "
+                                "light only" +
+                                    rays_help + ")")
+                     ->capture_default_str()
+                     ->check(CLI::Range(0, 1000000));
+    app.add_option("--shadow-rays", options.shadow_rays,
+                   "Direct light: shadow rays per point for the lights' visible fractions "
+                   "(emitting patches, and patches lit so brightly that rays landing on them "
+                   "would be fireflies), shared by what each contributes; lights too faint "
+                   "for one each share theirs (--exact: per patch); 0: no shadows")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100000));
+    app.add_flag("--exact", options.exact,
+                 "Indirect light as the exact point-to-polygon sum over every patch (with "
+                 "shadow rays for visibility) instead of rays: no ray noise, cost grows with "
+                 "the patches; for small scenes");
+    app.add_option("--smooth", smooth,
+                   "How the radiosity where a ray lands is interpolated: crease, area, average "
+                   "or flat (as rad-shade)")
+        ->capture_default_str();
+    app.add_option("--crease-angle", options.crease_deg, "crease: largest angle smoothed over")
+        ->capture_default_str()
+        ->check(finite_range(0, 180));
+    app.add_option("--seed", options.seed, "Seed; each point has its own stream (seed, index)")
+        ->capture_default_str();
+    return rays;
+}
+
 Sky sky_of(const SkyChoice& choice, const std::string& epw, const SkyFrame& frame) {
     int day = 172;
     const auto sun = sun_from({choice.sun, choice.date, choice.time, choice.location, epw}, day);

@@ -1,6 +1,7 @@
 // What every tool's main shares (tools only: the library knows nothing of CLI11): argument
 // parsing with the house exit codes, and running a tool body with errors mapped to them.
 #pragma once
+#include "radiosity/gather.hpp"
 #include "radiosity/sky.hpp"
 
 #include <CLI/CLI.hpp>
@@ -63,6 +64,12 @@ std::uint64_t parse_size(const std::string& text, const std::string& option);
 // Runs `write` on stdout (output empty), or on a temporary file that becomes `output` when it
 // is all there (SystemError, with the system's reason, when it cannot be written).
 void write_output(const std::string& output, const std::function<void(std::FILE*)>& write);
+
+// How a final gather at sensors is made (rad-gather, rad-report, so that both give the same
+// numbers): --rays, --shadow-rays, --exact, --smooth, --crease-angle, --seed. `rays_help`
+// ends --rays' help. Returns the --rays option (whether it was given).
+CLI::Option* add_sensor_gather_options(CLI::App& app, GatherOptions& options, std::string& smooth,
+                                       const std::string& rays_help);
 
 // A sky at an instant as a command line names it (rad-gather, rad-shade): --sky, --sun,
 // --date, --time, --location, --ground. `what` says what the sky is for, in --sky's help.

@@ -2,7 +2,7 @@
 # and the build made a man page of each; every option is findable from the README.
 source "$(dirname "$0")/lib.sh"
 BUILD="$3"
-for tool in rad-mesh rad-ff rad-solve rad-shade rad-gather rad-bake rad-info; do
+for tool in rad-mesh rad-ff rad-solve rad-shade rad-gather rad-bake rad-report rad-info; do
   python3 "$SRC/scripts/help-doc" "$BIN/$tool" --markdown "$TMP/$tool.md" || fail "help-doc $tool"
   diff -u "$SRC/docs/reference/$tool.md" "$TMP/$tool.md" >"$TMP/diff.txt" ||
     fail "docs/reference/$tool.md is not $tool --help of today (run scripts/update-reference): $(head -20 "$TMP/diff.txt")"

@@ -89,6 +89,7 @@ class Gatherer {
     const RayScene& scene() const { return *scene_; }
     const SpecularSurfaces& specular() const { return *specular_; }
     int specular_depth() const { return options_.specular_depth; }
+    const GatherOptions& options() const { return options_; }
     // Patches sampled as lights because they reflect so much (see bright_factor).
     std::size_t bright_patches() const;
     // The radiosity where a ray hit a patch, interpolated as rad-shade.

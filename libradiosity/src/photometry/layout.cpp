@@ -19,32 +19,6 @@ namespace fs = std::filesystem;
 namespace {
 constexpr std::size_t kMaxSourceBytes = std::size_t(64) << 20; // a photometric file is small
 
-// The fields of one CSV line (double quotes around a field allow commas in it).
-std::vector<std::string> csv_fields(std::string_view line) {
-    std::vector<std::string> out(1);
-    bool quoted = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        const char c = line[i];
-        if (c == '"') {
-            if (quoted && i + 1 < line.size() && line[i + 1] == '"') {
-                out.back() += '"';
-                ++i;
-            } else {
-                quoted = !quoted;
-            }
-        } else if (c == ',' && !quoted) {
-            out.emplace_back();
-        } else {
-            out.back() += c;
-        }
-    }
-    for (auto& f : out) {
-        while (!f.empty() && (f.front() == ' ' || f.front() == '\t')) f.erase(f.begin());
-        while (!f.empty() && (f.back() == ' ' || f.back() == '\t')) f.pop_back();
-    }
-    return out;
-}
-
 // A regular file's text, refused past kMaxSourceBytes (FileLoc names who asked for it).
 std::string read_text(const fs::path& path, const FileLoc& asked) {
     struct stat st {};
@@ -123,7 +97,7 @@ std::vector<Row> layout_rows(const std::string& text, const std::string& name) {
         const auto line = lines[i];
         if (line.find_first_not_of(" \t") == std::string_view::npos || line.starts_with('#'))
             continue;
-        const auto fields = csv_fields(line);
+        const auto fields = photometry::csv_fields(line);
         if (header) {
             columns = column_indices(fields, where);
             header = false;

@@ -25,6 +25,31 @@ std::vector<std::string_view> split_lines(std::string_view text) {
     return lines;
 }
 
+std::vector<std::string> csv_fields(std::string_view line) {
+    std::vector<std::string> out(1);
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (c == '"') {
+            if (quoted && i + 1 < line.size() && line[i + 1] == '"') {
+                out.back() += '"';
+                ++i;
+            } else {
+                quoted = !quoted;
+            }
+        } else if (c == ',' && !quoted) {
+            out.emplace_back();
+        } else {
+            out.back() += c;
+        }
+    }
+    for (auto& f : out) {
+        while (!f.empty() && (f.front() == ' ' || f.front() == '\t')) f.erase(f.begin());
+        while (!f.empty() && (f.back() == ' ' || f.back() == '\t')) f.pop_back();
+    }
+    return out;
+}
+
 bool parse_number(std::string_view token, double& value) {
     if (!token.empty() && token.front() == '+') token.remove_prefix(1);
     if (token.empty()) return false;

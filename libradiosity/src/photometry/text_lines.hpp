@@ -17,6 +17,10 @@ std::string quoted(std::string_view text);
 // The text's lines without their line ends.
 std::vector<std::string_view> split_lines(std::string_view text);
 
+// The fields of one CSV line, blanks around each trimmed (double quotes around a field allow
+// commas in it; "" inside them is one quote).
+std::vector<std::string> csv_fields(std::string_view line);
+
 // A finite number that is the whole of `token`, or false.
 bool parse_number(std::string_view token, double& value);
 

@@ -39,16 +39,15 @@ std::array<std::uint8_t, 3> false_colour(double t) {
     return {mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b)};
 }
 
-namespace {
-
-// The smallest of 1, 2, 2.5, 5 x 10^k at or above `value`.
-double round_up(double value) {
+double false_colour_top(double value) {
     if (!(value > 0)) return 1;
     const double decade = std::pow(10.0, std::floor(std::log10(value)));
     for (double step : {1.0, 2.0, 2.5, 5.0, 10.0})
         if (step * decade >= value * (1 - 1e-12)) return step * decade;
     return 10 * decade;
 }
+
+namespace {
 
 struct Canvas {
     int width, height;
@@ -100,7 +99,7 @@ void write_false_colour_png(const std::string& path, std::span<const double> val
     std::size_t finite = 0;
     for (double v : values)
         if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v), sum += v, ++finite;
-    const double top = top_value > 0 ? top_value : round_up(finite ? hi : 1);
+    const double top = top_value > 0 ? top_value : false_colour_top(finite ? hi : 1);
     // Cells at least 2 px, the map about 480 px on its longer side.
     const int cell = std::max(2, 480 / std::max(columns, rows));
     const int map_w = columns * cell, map_h = rows * cell;

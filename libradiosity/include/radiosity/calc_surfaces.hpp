@@ -1,0 +1,104 @@
+// Calculation surfaces: the named rectangles lighting designers report (work planes, task
+// areas, walls, ceilings, floors) with their grid of sensors by EN 12464-1's rule and the
+// requirements the user sets, and the observers whose glare (UGR) is reported. One CSV file
+// (formats/README.md, "Calculation surfaces") read by rad-gather --surfaces and rad-report.
+#pragma once
+#include "radiosity/error.hpp"
+#include "radiosity/sensors.hpp"
+#include "radiosity/vec.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace rad {
+
+enum class CalcKind { WorkPlane, Task, Wall, Ceiling, Floor, Observer };
+// "workplane", "task", "wall", "ceiling", "floor", "observer".
+const char* calc_kind_name(CalcKind kind);
+
+inline constexpr double kNoRequirement = std::numeric_limits<double>::quiet_NaN();
+
+// What the user requires of a surface (NaN: nothing): a maintained average, a uniformity
+// Emin/Em and a minimum (lux).
+struct Requirements {
+    double em = kNoRequirement, u0 = kNoRequirement, emin = kNoRequirement;
+};
+
+// A rectangle from `corner` along the edges `u` and `v` (scene units); its sensors face
+// u x v (right-handed: u along +x and v along -z face up).
+struct CalcSurface {
+    std::string name;
+    FileLoc where;
+    CalcKind kind = CalcKind::WorkPlane;
+    Vec3 corner{0, 0, 0}, u{0, 0, 0}, v{0, 0, 0};
+    double spacing_m = 0;             // 0: EN 12464-1's rule
+    double border_m = kNoRequirement; // NaN: 0.5 m for a work plane, else 0
+    Requirements required;
+};
+
+// An observer's eye and line of sight (scene units), with the UGR limit required (NaN: none).
+struct CalcObserver {
+    std::string name;
+    FileLoc where;
+    Vec3 position{0, 0, 0}, view{0, 0, 0}; // view: unit
+    double ugr_limit = kNoRequirement;
+};
+
+struct CalcFile {
+    std::string name;
+    std::vector<CalcSurface> surfaces;
+    std::vector<CalcObserver> observers;
+};
+
+// Reads a calculation-surfaces CSV. Throws InputError "FILE:LINE: ..." naming what is wrong
+// and the fix (a missing or unknown column, a bad number, edges that span no area, a name used
+// twice, ...).
+CalcFile read_calc_file(const std::string& path);
+
+// `text` as one CSV field: double-quoted (quotes doubled) when it holds a comma, a quote or
+// blanks at its ends, as read_calc_file reads it back.
+std::string csv_field(const std::string& text);
+
+// EN 12464-1's grid spacing for a calculation area whose longer side is `longer_m` metres:
+// 0.2 x 5^log10(d), at most 10 m.
+double en12464_spacing(double longer_m);
+
+// A surface's sensors: the calculation area (the surface less its border band) cut into
+// columns x rows cells of at most the spacing, a sensor at each cell's centre; column along u
+// varying fastest, rows along v.
+struct SurfaceGrid {
+    Vec3 origin{0, 0, 0}; // the calculation area's corner (scene units)
+    Vec3 column_step{0, 0, 0}, row_step{0, 0, 0};
+    Vec3 normal{0, 1, 0};
+    long columns = 0, rows = 0;
+    double width_m = 0, depth_m = 0;    // the calculation area, along u and v
+    double spacing_m = 0, border_m = 0; // the spacing asked for (or the rule's), the band
+    long size() const { return columns * rows; }
+    Vec3 position(long index) const {
+        const long row = index / columns, column = index % columns;
+        return origin + column_step * (column + 0.5) + row_step * (row + 0.5);
+    }
+    double area_m2() const { return width_m * depth_m; }
+};
+// Throws InputError at the surface's line when the border leaves no area or the grid would
+// exceed a million sensors.
+SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit);
+
+// Illuminance (lux) at every sensor of every grid, in order: surface by surface, each
+// sensor's random stream from its index over all of them (so rad-gather --surfaces and
+// rad-report give the same numbers). A sensor inside an object or behind a surface has NaN.
+std::vector<std::vector<double>> gather_surfaces(const Gatherer& gatherer,
+                                                 const LuminaireSet* luminaires,
+                                                 const Box& scene_box,
+                                                 const std::vector<SurfaceGrid>& grids, bool quiet);
+
+// Whether `stats` meet `required` (true where nothing is required).
+struct Verdict {
+    bool em = true, u0 = true, emin = true;
+    bool passes() const { return em && u0 && emin; }
+};
+Verdict judge(const IlluminanceStats& stats, const Requirements& required);
+
+} // namespace rad

@@ -1,0 +1,55 @@
+// Discomfort glare from luminaires: CIE 117's Unified Glare Rating at an observer,
+// UGR = 8 log10(0.25 / Lb x sum(L^2 omega / p^2)), from each luminaire's luminance toward the
+// eye (its intensity over its projected luminous opening), the solid angle of that opening,
+// Guth's position index, and the background luminance Lb (the indirect illuminance at the eye
+// over pi, from the solution).
+#pragma once
+#include "radiosity/luminaires.hpp"
+#include "radiosity/rays.hpp"
+#include "radiosity/vec.hpp"
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rad {
+
+// Guth's position index (the IES Lighting Handbook's fit, as Radiance's evalglare uses it):
+// `tau_deg`, the angle from the vertical of the plane holding the line of sight and the
+// source; `sigma_deg`, the angle between the line of sight and the source. Capped at 16.
+double guth_position_index(double tau_deg, double sigma_deg);
+
+struct GlareTerm {
+    std::size_t luminaire = 0; // index into LuminaireSet::luminaires
+    double luminance = 0;      // cd/m^2 toward the eye
+    double solid_angle = 0;    // sr
+    double position_index = 0;
+    double tau_deg = 0, sigma_deg = 0;
+    double contribution() const {
+        return luminance * luminance * solid_angle / (position_index * position_index);
+    }
+};
+
+// The UGR of these terms over background luminance `lb` (cd/m^2); NaN without terms.
+double unified_glare_rating(double lb, std::span<const GlareTerm> terms);
+
+// The luminous opening's area (m^2) seen from the unit direction `toward` (from the
+// luminaire to the eye): its bottom by the cosine from the nadir, its sides (a box of
+// length x width x height along C0, C90 and the nadir; a disc or cylinder when round).
+double projected_opening_area(const Photometry& photometry, const Luminaire& luminaire,
+                              const Vec3& toward);
+
+struct ObserverGlare {
+    std::vector<GlareTerm> terms; // the luminaires that count: seen, in front, above the eye
+    long behind_or_below = 0;     // in the set but behind the eye or below the line of sight
+    long hidden = 0;              // blocked by the scene
+    long pointlike = 0;           // no luminous opening in their file: no luminance
+    double ugr = 0;               // NaN when no luminaire counts
+};
+
+// The glare at an eye at `eye` (scene units) looking along `view` (unit; the vertical is +Y),
+// from `set`, over background luminance `lb`; `scene` (may be null) hides luminaires.
+ObserverGlare observer_glare(const LuminaireSet& set, const RayScene* scene, const Vec3& eye,
+                             const Vec3& view, double lb);
+
+} // namespace rad

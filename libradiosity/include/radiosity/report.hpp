@@ -1,0 +1,64 @@
+// The lighting report (rad-report): one self-contained HTML page, printable at A4, of the
+// calculation surfaces' figures against their requirements with false-colour isolux plans,
+// the luminaires' schedule, polar curves and power density, and the observers' glare. Every
+// number comes from what the caller computed (the same functions rad-gather calls).
+#pragma once
+#include "radiosity/calc_surfaces.hpp"
+#include "radiosity/glare.hpp"
+#include "radiosity/luminaires.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rad {
+
+struct ReportSurface {
+    CalcSurface surface;
+    SurfaceGrid grid;
+    std::vector<double> lux; // per sensor, NaN: none
+    IlluminanceStats stats;
+    Verdict verdict;
+};
+
+struct ReportObserver {
+    CalcObserver observer;
+    double background = 0; // Lb, cd/m^2
+    ObserverGlare glare;
+};
+
+struct ReportInput {
+    std::string project, date, producer;                     // producer: "rad-report 0.1.0"
+    std::vector<std::pair<std::string, std::string>> inputs; // path, hash
+    std::vector<std::string> provenance;                     // the solution's commands
+    std::string method;                                      // how the lux were gathered
+    std::vector<ReportSurface> surfaces;
+    std::vector<ReportObserver> observers;
+    const LuminaireSet* luminaires = nullptr; // none: no schedule, no glare
+    double metres_per_unit = 1;
+    double power_area_m2 = 0;    // the area the power density is over (0: not given)
+    std::string power_area_what; // which area that is, for the page
+};
+
+// Lux as the page shows it: three significant figures without an exponent (412, 41.2, 4.12;
+// 1234 as 1234), "-" for NaN.
+std::string lux_text(double lux);
+// A ratio (U0, Emin/Emax) as the page shows it: two decimals.
+std::string ratio_text(double ratio);
+
+// The page.
+std::string report_html(const ReportInput& input);
+
+// Parts of the page (each its own file):
+// a surface's false-colour plan with isolux lines labelled in lux and the luminaires above it,
+// as SVG; `top` is the colour scale's top (lux).
+std::string surface_plan_svg(const ReportSurface& surface, const LuminaireSet* luminaires,
+                             double metres_per_unit);
+// A photometric file's polar curve (C0-C180 and C90-C270, cd/klm) as SVG, from `luminaire`'s
+// frame.
+std::string polar_curve_svg(const LuminaireSet& set, const Luminaire& luminaire);
+
+// Text for HTML: & < > " escaped.
+std::string html_escape(const std::string& text);
+
+} // namespace rad

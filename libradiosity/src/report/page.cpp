@@ -1,0 +1,352 @@
+// The report's page: title block, contents, summary, a page per calculation surface, the
+// luminaires and the observers' glare; self-contained HTML with print rules for A4.
+#include "radiosity/report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+namespace rad {
+namespace {
+
+std::string fixed(double v, int decimals) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", decimals, v);
+    return text;
+}
+
+const char* kStyle = R"(
+@page { size: A4; margin: 14mm 14mm 16mm 14mm; }
+body { font: 10pt/1.35 "DejaVu Sans", Helvetica, Arial, sans-serif; color: #111; margin: 0 auto;
+       max-width: 182mm; padding: 0 4mm; }
+h1 { font-size: 18pt; margin: 0 0 4pt; } h2 { font-size: 13pt; margin: 14pt 0 6pt;
+  border-bottom: 1px solid #444; } h3 { font-size: 11pt; margin: 10pt 0 4pt; }
+table { border-collapse: collapse; margin: 4pt 0 8pt; break-inside: avoid; }
+th, td { border: 1px solid #999; padding: 2pt 5pt; text-align: left; vertical-align: top; }
+td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
+.title-block { border: 2px solid #222; padding: 8pt 10pt; margin-top: 6pt; }
+.title-block table { margin: 0; } .title-block td, .title-block th { border: none; padding: 1pt 6pt 1pt 0; }
+.title-block th { white-space: nowrap; }
+.hash { font-family: "DejaVu Sans Mono", monospace; font-size: 8pt; }
+.provenance { font-family: "DejaVu Sans Mono", monospace; font-size: 7.5pt; word-break: break-all; }
+.pass { color: #0a6b1f; font-weight: bold; } .fail { color: #b00020; font-weight: bold; }
+section.part { break-before: page; }
+figure { margin: 6pt 0; break-inside: avoid; } figcaption { font-size: 9pt; color: #333; }
+svg text { font: 11px "DejaVu Sans", Helvetica, Arial, sans-serif; fill: #111; }
+svg.plan rect.surface { fill: #eee; stroke: #555; stroke-width: 1; }
+svg.plan .isoline { fill: none; stroke: #000; stroke-width: 1.3; }
+svg.plan .isolabel { font-weight: bold; paint-order: stroke; stroke: #fff; stroke-width: 3px;
+  text-anchor: middle; }
+svg.plan .luminaire circle { fill: #fff; stroke: #000; stroke-width: 1.2; }
+svg.plan .luminaire path { stroke: #000; stroke-width: 1.2; }
+svg.plan .luminaire text { paint-order: stroke; stroke: #fff; stroke-width: 3px; }
+svg.polar .grid circle, svg.polar .grid path { fill: none; stroke: #bbb; stroke-width: 0.8; }
+svg.polar path.c0 { fill: none; stroke: #b00020; stroke-width: 1.6; }
+svg.polar path.c90 { fill: none; stroke: #1040b0; stroke-width: 1.6; stroke-dasharray: 5 3; }
+svg.polar tspan.c0 { fill: #b00020; } svg.polar tspan.c90 { fill: #1040b0; }
+.polars { display: flex; flex-wrap: wrap; gap: 8pt; }
+.note { font-size: 9pt; color: #333; }
+nav ol { margin: 2pt 0; }
+)";
+
+std::string verdict_text(bool required, bool passes) {
+    if (!required) return "<td>-</td>";
+    return passes ? "<td class=\"pass\">meets</td>" : "<td class=\"fail\">fails</td>";
+}
+
+bool has_requirements(const Requirements& r) {
+    return !std::isnan(r.em) || !std::isnan(r.u0) || !std::isnan(r.emin);
+}
+
+std::string required_text(const Requirements& r) {
+    std::string out;
+    const auto add = [&](const std::string& part) { out += (out.empty() ? "" : ", ") + part; };
+    if (!std::isnan(r.em)) add("Em &#8805; " + lux_text(r.em) + " lx");
+    if (!std::isnan(r.u0)) add("U0 &#8805; " + ratio_text(r.u0));
+    if (!std::isnan(r.emin)) add("Emin &#8805; " + lux_text(r.emin) + " lx");
+    return out.empty() ? "-" : out;
+}
+
+std::string cell(const std::string& text, const char* cls = "num") {
+    return std::string("<td class=\"") + cls + "\">" + text + "</td>";
+}
+
+std::string title_block(const ReportInput& in) {
+    std::string out =
+        "<header class=\"title-block\"><h1>Lighting report: " + html_escape(in.project) +
+        "</h1><table>";
+    out += "<tr><th>Project</th><td>" + html_escape(in.project) + "</td></tr>";
+    out += "<tr><th>Date</th><td>" + html_escape(in.date) + "</td></tr>";
+    out += "<tr><th>Made by</th><td>" + html_escape(in.producer) + "</td></tr>";
+    out += "<tr><th>Units</th><td>illuminance in lux (lx), maintained: each luminaire's "
+           "maintenance factor applied (see the schedule); luminance in cd/m&#178;; lengths in "
+           "metres</td></tr>";
+    out += "</table><h3>Inputs</h3><table>";
+    for (const auto& [path, hash] : in.inputs)
+        out += "<tr><td>" + html_escape(path) + "</td><td class=\"hash\">" + html_escape(hash) +
+               "</td></tr>";
+    out += "</table>";
+    if (!in.provenance.empty()) {
+        out += "<h3>How the solution was made</h3><ol class=\"provenance\">";
+        for (const auto& line : in.provenance) out += "<li>" + html_escape(line) + "</li>";
+        out += "</ol>";
+    }
+    return out + "</header>";
+}
+
+std::string contents(const ReportInput& in) {
+    std::string out = "<nav id=\"contents\"><h2>Contents</h2><ol>";
+    out += "<li><a href=\"#summary\">Summary</a></li>";
+    for (std::size_t k = 0; k < in.surfaces.size(); ++k)
+        out += "<li><a href=\"#surface-" + std::to_string(k + 1) + "\">" +
+               html_escape(in.surfaces[k].surface.name) + "</a></li>";
+    if (in.luminaires) out += "<li><a href=\"#luminaires\">Luminaires</a></li>";
+    if (!in.observers.empty()) out += "<li><a href=\"#glare\">Glare (UGR)</a></li>";
+    out += "<li><a href=\"#method\">Method</a></li>";
+    return out + "</ol></nav>";
+}
+
+std::string surface_row(const ReportSurface& s, std::size_t index) {
+    const auto& st = s.stats;
+    return "<tr data-surface=\"" + html_escape(s.surface.name) + "\"><td><a href=\"#surface-" +
+           std::to_string(index + 1) + "\">" + html_escape(s.surface.name) + "</a></td><td>" +
+           calc_kind_name(s.surface.kind) + "</td>" + cell(lux_text(st.mean)) +
+           cell(lux_text(st.min)) + cell(lux_text(st.max)) + cell(ratio_text(st.u0())) +
+           cell(ratio_text(st.min_over_max())) + "<td>" + required_text(s.surface.required) +
+           "</td>" + verdict_text(has_requirements(s.surface.required), s.verdict.passes()) +
+           "</tr>";
+}
+
+std::string surfaces_table(const ReportInput& in) {
+    std::string out = "<table class=\"surfaces\"><thead><tr><th>Surface</th><th>Kind</th>"
+                      "<th class=\"num\">Em (lx)</th><th class=\"num\">Emin (lx)</th>"
+                      "<th class=\"num\">Emax (lx)</th><th class=\"num\">U0</th>"
+                      "<th class=\"num\">Emin/Emax</th><th>Required</th><th>Verdict</th></tr>"
+                      "</thead><tbody>";
+    for (std::size_t k = 0; k < in.surfaces.size(); ++k) out += surface_row(in.surfaces[k], k);
+    return out + "</tbody></table>";
+}
+
+std::string ugr_text(double ugr) {
+    return std::isnan(ugr) ? std::string("-") : fixed(ugr, 1);
+}
+
+std::string observers_table(const ReportInput& in) {
+    std::string out = "<table class=\"observers\"><thead><tr><th>Observer</th>"
+                      "<th class=\"num\">UGR</th><th class=\"num\">Limit</th><th>Verdict</th>"
+                      "</tr></thead><tbody>";
+    for (const auto& o : in.observers) {
+        const bool limited = !std::isnan(o.observer.ugr_limit);
+        const bool passes = !std::isnan(o.glare.ugr) ? o.glare.ugr <= o.observer.ugr_limit : true;
+        out += "<tr data-observer=\"" + html_escape(o.observer.name) + "\"><td>" +
+               html_escape(o.observer.name) + "</td>" + cell(ugr_text(o.glare.ugr)) +
+               cell(limited ? fixed(o.observer.ugr_limit, 0) : "-") +
+               verdict_text(limited, passes) + "</tr>";
+    }
+    return out + "</tbody></table>";
+}
+
+std::string summary(const ReportInput& in) {
+    std::string out = "<section id=\"summary\"><h2>Summary</h2>";
+    if (!in.surfaces.empty()) out += surfaces_table(in);
+    if (!in.observers.empty()) out += observers_table(in);
+    out += "<p class=\"note\">Em: average maintained illuminance over a surface's calculation "
+           "points; U0 = Emin/Em. Requirements are the ones given in the calculation-surfaces "
+           "file.</p>";
+    return out + "</section>";
+}
+
+std::string surface_section(const ReportInput& in, const ReportSurface& s, std::size_t index) {
+    const auto& g = s.grid;
+    const auto& st = s.stats;
+    std::string out = "<section class=\"part surface\" id=\"surface-" + std::to_string(index + 1) +
+                      "\"><h2>" + html_escape(s.surface.name) + "</h2>";
+    out += "<table class=\"figures\" data-surface=\"" + html_escape(s.surface.name) + "\"><tbody>";
+    out += "<tr><th>Kind</th><td>" + std::string(calc_kind_name(s.surface.kind)) + "</td></tr>";
+    out += "<tr><th>Calculation area</th><td>" + fixed(g.width_m, 2) + " m &#215; " +
+           fixed(g.depth_m, 2) + " m (border band " + fixed(g.border_m, 2) +
+           " m left out)</td></tr>";
+    out += "<tr><th>Grid</th><td>" + std::to_string(g.columns) + " &#215; " +
+           std::to_string(g.rows) + " points, spacing at most " + fixed(g.spacing_m, 3) +
+           " m</td></tr>";
+    const auto row = [&](const char* name, const std::string& value, const char* cls) {
+        out += std::string("<tr><th>") + name + "</th><td class=\"num " + cls + "\">" + value +
+               "</td></tr>";
+    };
+    row("Em (lx)", lux_text(st.mean), "em");
+    row("Emin (lx)", lux_text(st.min), "emin");
+    row("Emax (lx)", lux_text(st.max), "emax");
+    row("U0 = Emin/Em", ratio_text(st.u0()), "u0");
+    row("Emin/Emax", ratio_text(st.min_over_max()), "ratio");
+    if (st.without_value)
+        out += "<tr><th>Points without a value</th><td>" + std::to_string(st.without_value) +
+               " (inside or under objects; grey in the plan)</td></tr>";
+    out += "<tr><th>Required</th><td>" + required_text(s.surface.required) + "</td></tr>";
+    out += "<tr><th>Verdict</th>" +
+           verdict_text(has_requirements(s.surface.required), s.verdict.passes()) + "</tr>";
+    out += "</tbody></table>";
+    out += "<figure>" + surface_plan_svg(s, in.luminaires, in.metres_per_unit) +
+           "<figcaption>Illuminance on " + html_escape(s.surface.name) +
+           ", seen from the side its points face; isolux lines labelled in lx";
+    if (in.luminaires && std::abs(g.normal[1]) >= 0.9)
+        out += "; luminaires over it drawn as circles";
+    out += g.border_m > 0 ? ". The grey band is the border left out." : ".";
+    out += " Grey cells: points without a value.</figcaption></figure>";
+    return out + "</section>";
+}
+
+// The luminaire types: photometry index -> the luminaires of it.
+std::map<std::size_t, std::vector<const Luminaire*>> types_of(const LuminaireSet& set) {
+    std::map<std::size_t, std::vector<const Luminaire*>> types;
+    for (const auto& l : set.luminaires) types[l.photometry].push_back(&l);
+    return types;
+}
+
+std::string type_name(const Photometry& p) {
+    for (const char* key : {"LUMINAIRE", "LUMCAT"})
+        for (const auto& [k, v] : p.keywords)
+            if (k == key && !v.empty()) return v;
+    return p.source;
+}
+
+std::string luminaires_section(const ReportInput& in) {
+    const auto& set = *in.luminaires;
+    const auto types = types_of(set);
+    std::string out = "<section class=\"part\" id=\"luminaires\"><h2>Luminaires</h2>";
+    out += "<table class=\"schedule\"><thead><tr><th>Type</th><th>File</th><th class=\"num\">"
+           "Count</th><th class=\"num\">Luminaire flux (lm, each)</th><th class=\"num\">Input "
+           "power (W, each)</th><th class=\"num\">Efficacy (lm/W)</th><th class=\"num\">"
+           "Maintenance factor</th><th>Luminaires</th></tr></thead><tbody>";
+    double watts = 0;
+    for (const auto& [index, members] : types) {
+        const auto& p = set.photometries[index];
+        const double flux = set.photometry_flux[index];
+        std::string names, factors;
+        std::map<std::string, int> distinct;
+        for (const auto* l : members) {
+            names += (names.empty() ? "" : ", ") + html_escape(l->name);
+            distinct[fixed(l->maintenance, 2)]++;
+        }
+        for (const auto& [f, n] : distinct) factors += (factors.empty() ? "" : ", ") + f;
+        watts += p.input_watts * double(members.size());
+        out += "<tr><td>" + html_escape(type_name(p)) + "</td><td>" + html_escape(p.source) +
+               "</td>" + cell(std::to_string(members.size())) + cell(fixed(flux, 0)) +
+               cell(p.input_watts > 0 ? fixed(p.input_watts, 1) : "-") +
+               cell(p.input_watts > 0 ? fixed(flux / p.input_watts, 1) : "-") + cell(factors) +
+               "<td>" + names + "</td></tr>";
+    }
+    out += "</tbody></table>";
+    out += "<p class=\"note\">Luminaire flux: the photometric file's intensities integrated over "
+           "the sphere (before the maintenance factor). Input power: the file's input watts.</p>";
+    if (watts > 0 && in.power_area_m2 > 0)
+        out += "<p class=\"power\">Installed power " + fixed(watts, 1) + " W over " +
+               html_escape(in.power_area_what) + " of " + fixed(in.power_area_m2, 2) +
+               " m&#178;: <b><span class=\"density\">" + fixed(watts / in.power_area_m2, 2) +
+               "</span> W/m&#178;</b>.</p>";
+    out += "<h3>Polar curves</h3><div class=\"polars\">";
+    for (const auto& [index, members] : types)
+        out += "<figure>" + polar_curve_svg(set, *members.front()) + "<figcaption>" +
+               html_escape(type_name(set.photometries[index])) + " (" +
+               html_escape(set.photometries[index].source) + ")</figcaption></figure>";
+    return out + "</div></section>";
+}
+
+std::string glare_section(const ReportInput& in) {
+    std::string out = "<section class=\"part\" id=\"glare\"><h2>Glare (UGR)</h2>";
+    out += "<p class=\"note\">CIE 117: UGR = 8 log<sub>10</sub>(0.25/L<sub>b</sub> &#183; "
+           "&#931; L&#178;&#969;/p&#178;). L: a luminaire's luminance toward the eye (its "
+           "maintained intensity over its luminous opening's projected area, from the "
+           "photometric file); &#969;: that area's solid angle; p: Guth's position index; "
+           "L<sub>b</sub>: the illuminance at the eye from the room's surfaces (the solution, "
+           "luminaires' direct light excluded) over &#960;. Luminaires behind the eye, below "
+           "the line of sight or hidden do not count.</p>";
+    for (const auto& o : in.observers) {
+        const auto& ob = o.observer;
+        out += "<h3>" + html_escape(ob.name) + "</h3><table class=\"observer\" data-observer=\"" +
+               html_escape(ob.name) + "\"><tbody>";
+        out += "<tr><th>Eye</th><td>(" + fixed(ob.position[0], 2) + ", " +
+               fixed(ob.position[1], 2) + ", " + fixed(ob.position[2], 2) + "), looking (" +
+               fixed(ob.view[0], 2) + ", " + fixed(ob.view[1], 2) + ", " + fixed(ob.view[2], 2) +
+               ")</td></tr>";
+        out += "<tr><th>Background L<sub>b</sub> (cd/m&#178;)</th><td class=\"num\">" +
+               fixed(o.background, 2) + "</td></tr>";
+        out += "<tr><th>UGR</th><td class=\"num ugr\">" + ugr_text(o.glare.ugr) + "</td></tr>";
+        out += "<tr><th>Luminaires counted</th><td>" + std::to_string(o.glare.terms.size()) +
+               " (behind or below the line of sight " + std::to_string(o.glare.behind_or_below) +
+               ", hidden " + std::to_string(o.glare.hidden) + ", no luminous area " +
+               std::to_string(o.glare.pointlike) + ")</td></tr></tbody></table>";
+        if (o.glare.terms.empty()) continue;
+        out += "<table class=\"terms\"><thead><tr><th>Luminaire</th><th class=\"num\">L "
+               "(cd/m&#178;)</th><th class=\"num\">&#969; (sr)</th><th class=\"num\">&#963; "
+               "(&#176;)</th><th class=\"num\">&#964; (&#176;)</th><th class=\"num\">p</th>"
+               "</tr></thead><tbody>";
+        for (const auto& t : o.glare.terms) {
+            char omega[32];
+            std::snprintf(omega, sizeof omega, "%.3e", t.solid_angle);
+            out += "<tr><td>" + html_escape(in.luminaires->luminaires[t.luminaire].name) + "</td>" +
+                   cell(fixed(t.luminance, 0)) + cell(omega) + cell(fixed(t.sigma_deg, 1)) +
+                   cell(fixed(t.tau_deg, 1)) + cell(fixed(t.position_index, 2)) + "</tr>";
+        }
+        out += "</tbody></table>";
+    }
+    return out + "</section>";
+}
+
+std::string method_section(const ReportInput& in) {
+    return "<section class=\"part\" id=\"method\"><h2>Method</h2><p>" + html_escape(in.method) +
+           "</p><p>Calculation grids follow EN 12464-1: points at the centres of cells of at most "
+           "p = 0.2 &#215; 5<sup>log<sub>10</sub> d</sup> m (d: the calculation area's longer "
+           "side; at most 10 m) unless the file gives a spacing, a work plane's 0.5 m border "
+           "band left out unless the file gives another. The values on this page are the ones "
+           "<code>rad-gather --surfaces</code> writes for the same inputs.</p></section>";
+}
+
+} // namespace
+
+std::string lux_text(double lux) {
+    if (!std::isfinite(lux)) return "-";
+    const double a = std::abs(lux);
+    return fixed(lux, a >= 99.95 ? 0 : a >= 9.995 ? 1 : 2);
+}
+
+std::string ratio_text(double ratio) {
+    return std::isfinite(ratio) ? fixed(ratio, 2) : "-";
+}
+
+std::string html_escape(const std::string& text) {
+    std::string out;
+    for (const char c : text) switch (c) {
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        default:
+            out += c;
+        }
+    return out;
+}
+
+std::string report_html(const ReportInput& in) {
+    std::string out = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+                      "<meta name=\"viewport\" content=\"width=device-width\"><title>Lighting "
+                      "report: " +
+                      html_escape(in.project) + "</title><style>" + kStyle +
+                      "</style></head><body>\n";
+    out += title_block(in) + "\n" + contents(in) + "\n" + summary(in) + "\n";
+    for (std::size_t k = 0; k < in.surfaces.size(); ++k)
+        out += surface_section(in, in.surfaces[k], k) + "\n";
+    if (in.luminaires) out += luminaires_section(in) + "\n";
+    if (!in.observers.empty()) out += glare_section(in) + "\n";
+    out += method_section(in) + "\n</body></html>\n";
+    return out;
+}
+
+} // namespace rad

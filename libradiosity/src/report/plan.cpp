@@ -1,0 +1,217 @@
+// A calculation surface's plan for the report: false-colour cells, isolux lines labelled in
+// lux, the luminaires over it, and a legend; SVG in pixels (the page prints it at A4 width).
+#include "radiosity/contours.hpp"
+#include "radiosity/falsecolour.hpp"
+#include "radiosity/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+namespace rad {
+namespace {
+
+constexpr double kPlanWidth = 540, kPlanHeight = 400; // px available to the surface
+constexpr double kMargin = 12, kLegendWidth = 90;
+
+std::string px(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", v);
+    return text;
+}
+
+// A round value (a contour level, a legend tick) as short as it is.
+std::string round_text(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+std::string colour_hex(std::array<std::uint8_t, 3> c) {
+    char text[8];
+    std::snprintf(text, sizeof text, "#%02x%02x%02x", c[0], c[1], c[2]);
+    return text;
+}
+
+// Where the plan puts a point of the surface given in metres along u and v from the
+// calculation area's corner: u to the right, v up (the surface seen from its front).
+struct PlanFrame {
+    double scale = 1, left = 0, bottom = 0; // px per m; the area corner's pixel
+    double x(double u_m) const { return left + u_m * scale; }
+    double y(double v_m) const { return bottom - v_m * scale; }
+};
+
+PlanFrame frame_of(const SurfaceGrid& grid) {
+    const double whole_u = grid.width_m + 2 * grid.border_m;
+    const double whole_v = grid.depth_m + 2 * grid.border_m;
+    PlanFrame f;
+    f.scale = std::min(kPlanWidth / whole_u, kPlanHeight / whole_v);
+    f.left = kMargin + grid.border_m * f.scale;
+    f.bottom = kMargin + whole_v * f.scale - grid.border_m * f.scale;
+    return f;
+}
+
+std::string cells_svg(const ReportSurface& s, const PlanFrame& f, double top) {
+    const auto& g = s.grid;
+    const double du = g.width_m / double(g.columns), dv = g.depth_m / double(g.rows);
+    std::string out = "<g class=\"cells\" shape-rendering=\"crispEdges\">";
+    for (long k = 0; k < g.size(); ++k) {
+        const long c = k % g.columns, r = k / g.columns;
+        const double v = s.lux[std::size_t(k)];
+        const auto fill =
+            std::isnan(v) ? std::string("#bbbbbb") : colour_hex(false_colour(v / top));
+        // Cells overlap a hair so that no seam of the background shows between them.
+        out += "<rect x=\"" + px(f.x(c * du)) + "\" y=\"" + px(f.y((r + 1) * dv)) + "\" width=\"" +
+               px(du * f.scale + 0.6) + "\" height=\"" + px(dv * f.scale + 0.6) + "\" fill=\"" +
+               fill + "\"/>";
+    }
+    return out + "</g>";
+}
+
+struct PlacedLuminaire {
+    double x = 0, y = 0;
+    std::string name;
+};
+
+// The luminaires whose centre is over (or under) a horizontal surface, where the plan draws
+// them.
+std::vector<PlacedLuminaire> luminaires_over(const SurfaceGrid& g, const PlanFrame& f,
+                                             const LuminaireSet* set, double metres_per_unit) {
+    std::vector<PlacedLuminaire> out;
+    if (!set || std::abs(g.normal[1]) < 0.9) return out;
+    const Vec3 unit_u = normalized(g.column_step), unit_v = normalized(g.row_step);
+    for (const auto& l : set->luminaires) {
+        const Vec3 offset = l.position - g.origin;
+        const double u = dot(offset, unit_u) * metres_per_unit;
+        const double v = dot(offset, unit_v) * metres_per_unit;
+        const double b = g.border_m;
+        if (u < -b || v < -b || u > g.width_m + b || v > g.depth_m + b) continue;
+        out.push_back({f.x(u), f.y(v), l.name});
+    }
+    return out;
+}
+
+// Where a label may go: apart from the labels placed and off the luminaires.
+struct LabelPlaces {
+    struct Taken {
+        double x, y, radius;
+    };
+    std::vector<Taken> taken;
+    bool free(double x, double y, double spacing) const {
+        return std::none_of(taken.begin(), taken.end(), [&](const Taken& t) {
+            return std::hypot(t.x - x, t.y - y) < std::min(t.radius, spacing);
+        });
+    }
+};
+
+// Up to four labels on a level's segments (pixel coordinates), 70 px apart from other labels;
+// when none fits, one at 32 px, so every line drawn has its value on it.
+std::string label_level(const std::vector<IsoSegment>& pixels, const std::string& text,
+                        LabelPlaces& places) {
+    std::string out;
+    const std::size_t n = pixels.size();
+    std::size_t stride = std::max<std::size_t>(1, n / 5);
+    while (std::gcd(stride, n) != 1) ++stride; // visits every segment, spread out
+    int count = 0;
+    for (const double spacing : {70.0, 32.0}) {
+        const int most = spacing > 50 ? 4 : 1;
+        for (std::size_t i = 0, k = n / 2; i < n && count < most; ++i, k = (k + stride) % n) {
+            const double mx = (pixels[k].x0 + pixels[k].x1) / 2,
+                         my = (pixels[k].y0 + pixels[k].y1) / 2;
+            if (!places.free(mx, my, spacing)) continue;
+            places.taken.push_back({mx, my, 70});
+            out += "<text class=\"isolabel\" data-lux=\"" + text + "\" x=\"" + px(mx) + "\" y=\"" +
+                   px(my + 4) + "\">" + text + "</text>";
+            ++count;
+        }
+        if (count) break;
+    }
+    return out;
+}
+
+// The isolines, each level one path in pixels, with its labels.
+std::string isolines_svg(const ReportSurface& s, const PlanFrame& f,
+                         const std::vector<PlacedLuminaire>& luminaires) {
+    const auto& g = s.grid;
+    const double du = g.width_m / double(g.columns), dv = g.depth_m / double(g.rows);
+    // Sensor (c, r) at pixel (x0 + c dx, y0 - r dy).
+    const double x0 = f.x(du / 2), y0 = f.y(dv / 2), dx = du * f.scale, dy = dv * f.scale;
+    std::string out = "<g class=\"isolux\" data-sensor-origin=\"" + px(x0) + " " + px(y0) +
+                      "\" data-sensor-step=\"" + px(dx) + " " + px(dy) + "\">";
+    std::string labels;
+    LabelPlaces places;
+    for (const auto& l : luminaires) places.taken.push_back({l.x, l.y, 22});
+    for (const double level : contour_levels(s.stats.min, s.stats.max)) {
+        auto segments = isolines(s.lux, g.columns, g.rows, level);
+        if (segments.empty()) continue;
+        std::string d;
+        for (auto& seg : segments) {
+            seg = {x0 + seg.x0 * dx, y0 - seg.y0 * dy, x0 + seg.x1 * dx, y0 - seg.y1 * dy};
+            d += 'M';
+            d += px(seg.x0) + ' ' + px(seg.y0);
+            d += 'L';
+            d += px(seg.x1) + ' ' + px(seg.y1);
+        }
+        out += "<path class=\"isoline\" data-lux=\"" + round_text(level) + "\" d=\"" + d + "\"/>";
+        labels += label_level(segments, round_text(level), places);
+    }
+    return out + labels + "</g>";
+}
+
+std::string luminaires_svg(const std::vector<PlacedLuminaire>& luminaires) {
+    std::string out = "<g class=\"luminaires\">";
+    for (const auto& [x, y, name] : luminaires)
+        out += "<g class=\"luminaire\" data-name=\"" + html_escape(name) + "\"><circle cx=\"" +
+               px(x) + "\" cy=\"" + px(y) + "\" r=\"7\"/><path d=\"M" + px(x - 5) + " " +
+               px(y - 5) + "L" + px(x + 5) + " " + px(y + 5) + "M" + px(x - 5) + " " + px(y + 5) +
+               "L" + px(x + 5) + " " + px(y - 5) + "\"/><text x=\"" + px(x + 10) + "\" y=\"" +
+               px(y - 8) + "\">" + html_escape(name) + "</text></g>";
+    return out + "</g>";
+}
+
+std::string legend_svg(double left, double top_px, double height, double top_lux) {
+    std::string out = "<g class=\"legend\">";
+    const int steps = 40;
+    for (int k = 0; k < steps; ++k) {
+        const double t = (k + 0.5) / steps;
+        out += "<rect x=\"" + px(left) + "\" y=\"" + px(top_px + height * (1 - (k + 1.0) / steps)) +
+               "\" width=\"16\" height=\"" + px(height / steps + 0.6) + "\" fill=\"" +
+               colour_hex(false_colour(t)) + "\"/>";
+    }
+    for (int k = 0; k <= 4; ++k) {
+        const double y = top_px + height * (1 - k / 4.0);
+        out += "<text x=\"" + px(left + 22) + "\" y=\"" + px(y + 4) + "\">" +
+               round_text(top_lux * k / 4) + "</text>";
+    }
+    out += "<text x=\"" + px(left) + "\" y=\"" + px(top_px - 6) + "\">lx</text>";
+    return out + "</g>";
+}
+
+} // namespace
+
+std::string surface_plan_svg(const ReportSurface& s, const LuminaireSet* luminaires,
+                             double metres_per_unit) {
+    const auto& g = s.grid;
+    const PlanFrame f = frame_of(g);
+    const double whole_u = (g.width_m + 2 * g.border_m) * f.scale;
+    const double whole_v = (g.depth_m + 2 * g.border_m) * f.scale;
+    const double width = kMargin * 2 + whole_u + kLegendWidth;
+    const double height = std::max(kMargin * 2 + whole_v, 180.0);
+    const double top = false_colour_top(s.stats.count ? s.stats.max : 1);
+    std::string out = "<svg class=\"plan\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
+                      px(width) + "\" height=\"" + px(height) + "\" viewBox=\"0 0 " + px(width) +
+                      " " + px(height) + "\" role=\"img\" aria-label=\"isolux plan of " +
+                      html_escape(s.surface.name) + "\">";
+    // The whole surface (its border band hatched by the background), then the area computed.
+    out += "<rect class=\"surface\" x=\"" + px(kMargin) + "\" y=\"" + px(kMargin) + "\" width=\"" +
+           px(whole_u) + "\" height=\"" + px(whole_v) + "\"/>";
+    out += cells_svg(s, f, top);
+    const auto placed = luminaires_over(g, f, luminaires, metres_per_unit);
+    out += isolines_svg(s, f, placed);
+    out += luminaires_svg(placed);
+    out += legend_svg(kMargin * 2 + whole_u + 10, kMargin + 16, std::min(whole_v, 300.0) - 16, top);
+    return out + "</svg>";
+}
+
+} // namespace rad

@@ -1,0 +1,52 @@
+// A calculation surface's sensors by EN 12464-1's rule, and the verdict on its figures.
+#include "radiosity/calc_surfaces.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rad {
+
+double en12464_spacing(double longer_m) {
+    return std::min(10.0, 0.2 * std::pow(5.0, std::log10(longer_m)));
+}
+
+SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit) {
+    SurfaceGrid grid;
+    const double length_u = length(surface.u) * metres_per_unit;
+    const double length_v = length(surface.v) * metres_per_unit;
+    grid.border_m = std::isnan(surface.border_m) ? (surface.kind == CalcKind::WorkPlane ? 0.5 : 0.0)
+                                                 : surface.border_m;
+    grid.width_m = length_u - 2 * grid.border_m;
+    grid.depth_m = length_v - 2 * grid.border_m;
+    if (!(grid.width_m > 0) || !(grid.depth_m > 0))
+        throw InputError(surface.where,
+                         "the border band of " + std::to_string(grid.border_m) +
+                             " m leaves no area of the surface (a work plane's default is "
+                             "EN 12464-1's 0.5 m): give a smaller border, e.g. 0");
+    grid.spacing_m = surface.spacing_m > 0 ? surface.spacing_m
+                                           : en12464_spacing(std::max(grid.width_m, grid.depth_m));
+    const double columns = std::ceil(grid.width_m / grid.spacing_m - 1e-9);
+    const double rows = std::ceil(grid.depth_m / grid.spacing_m - 1e-9);
+    if (columns * rows > 1e6)
+        throw InputError(surface.where, "a spacing of " + std::to_string(grid.spacing_m) +
+                                            " m makes over a million sensors: give a larger one");
+    grid.columns = std::max(1L, long(columns));
+    grid.rows = std::max(1L, long(rows));
+    const Vec3 unit_u = normalized(surface.u), unit_v = normalized(surface.v);
+    const double border = grid.border_m / metres_per_unit;
+    grid.origin = surface.corner + unit_u * border + unit_v * border;
+    grid.column_step = unit_u * (grid.width_m / metres_per_unit / double(grid.columns));
+    grid.row_step = unit_v * (grid.depth_m / metres_per_unit / double(grid.rows));
+    grid.normal = normalized(cross(surface.u, surface.v));
+    return grid;
+}
+
+Verdict judge(const IlluminanceStats& stats, const Requirements& required) {
+    Verdict v;
+    if (!std::isnan(required.em)) v.em = stats.count > 0 && stats.mean >= required.em;
+    if (!std::isnan(required.u0)) v.u0 = stats.count > 0 && stats.u0() >= required.u0;
+    if (!std::isnan(required.emin)) v.emin = stats.count > 0 && stats.min >= required.emin;
+    return v;
+}
+
+} // namespace rad

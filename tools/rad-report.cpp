@@ -1,0 +1,231 @@
+// rad-report: mesh + solution + calculation surfaces -> a lighting report (HTML, and PDF).
+#include "radfmt/chain.hpp"
+#include "radfmt/container.hpp"
+#include "radfmt/kinds.hpp"
+#include "radiosity/calc_surfaces.hpp"
+#include "radiosity/error.hpp"
+#include "radiosity/glare.hpp"
+#include "radiosity/progress.hpp"
+#include "radiosity/report.hpp"
+#include "radiosity/solve_policy.hpp"
+#include "radiosity/version.hpp"
+#include "report_pdf.hpp"
+#include "tool.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <numbers>
+
+namespace {
+
+struct ReportArgs {
+    std::vector<std::string> inputs;
+    std::string surfaces, output, pdf, project, date, direct, smooth = "crease";
+    rad::GatherOptions options;
+    double area = 0;
+    int threads = 0;
+    bool quiet = false;
+};
+
+void add_options(CLI::App& app, ReportArgs& a) {
+    app.add_option("MESH RADIOSITY", a.inputs,
+                   "Patch mesh from rad-mesh and radiosity from "
+                   "rad-solve for it")
+        ->required()
+        ->expected(2);
+    app.add_option("--surfaces", a.surfaces,
+                   "The calculation surfaces and observers (CSV; formats/README.md, "
+                   "\"Calculation surfaces\"): rad-gather --surfaces reads the same file")
+        ->required();
+    app.add_option("-o,--output", a.output, "Write the report's page (HTML) here")->required();
+    app.add_option("--pdf", a.pdf,
+                   "Also print the page to this PDF (A4) with headless Chromium ($RAD_CHROMIUM "
+                   "or chromium on PATH)");
+    app.add_option("--project", a.project,
+                   "The project's name on the title block (default: "
+                   "the mesh file's name)");
+    app.add_option("--date", a.date, "The date on the title block (default: today, YYYY-MM-DD)");
+    app.add_option("--direct", a.direct,
+                   "The luminaires file (.lum) the solution was solved with, when it has moved "
+                   "(default: the one rad-solve --direct recorded)");
+    app.add_option("--area", a.area,
+                   "The floor area (m^2) the installed power density is over (default: the "
+                   "largest floor or work plane's whole rectangle)")
+        ->check(rad::tool::finite_range(1e-9, 1e12));
+    rad::tool::add_sensor_gather_options(app, a.options, a.smooth, "; as rad-gather");
+    rad::tool::add_threads_option(app, a.threads);
+    app.add_flag("-q,--quiet", a.quiet, "No progress and no summary");
+}
+
+std::string today() {
+    const std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char text[16];
+    std::strftime(text, sizeof text, "%Y-%m-%d", &utc);
+    return text;
+}
+
+// The surfaces' grids and lux, their figures and verdicts.
+std::vector<rad::ReportSurface> surfaces_of(const rad::CalcFile& file,
+                                            const rad::Gatherer& gatherer,
+                                            const rad::LuminaireSet* luminaires,
+                                            const rad::Box& box, double metres_per_unit,
+                                            bool quiet) {
+    std::vector<rad::SurfaceGrid> grids;
+    for (const auto& surface : file.surfaces)
+        grids.push_back(rad::surface_grid(surface, metres_per_unit));
+    auto lux = rad::gather_surfaces(gatherer, luminaires, box, grids, quiet);
+    std::vector<rad::ReportSurface> out;
+    for (std::size_t k = 0; k < grids.size(); ++k) {
+        rad::ReportSurface s{file.surfaces[k], grids[k], std::move(lux[k]), {}, {}};
+        s.stats = rad::illuminance_stats(s.lux);
+        s.verdict = rad::judge(s.stats, s.surface.required);
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+// Each observer's background luminance (the surfaces' light at the eye, over pi) and glare.
+std::vector<rad::ReportObserver> observers_of(const rad::CalcFile& file,
+                                              const rad::Gatherer& gatherer,
+                                              const rad::LuminaireSet* luminaires,
+                                              const rad::Box& box, std::uint64_t first_index) {
+    std::vector<rad::ReportObserver> out;
+    if (!file.observers.empty() && !luminaires)
+        throw rad::InputError(file.name + ": observers' glare (UGR) is from luminaires, and the "
+                                          "solution has none (rad-ff --luminaires, rad-solve "
+                                          "--direct): remove the observer lines");
+    for (std::size_t k = 0; k < file.observers.size(); ++k) {
+        const auto& o = file.observers[k];
+        std::string problem;
+        const auto at_eye = rad::gather_sensor(gatherer, nullptr, box, o.position, o.view,
+                                               first_index + k, problem);
+        if (!problem.empty()) throw rad::InputError(o.where, "the observer's eye: " + problem);
+        rad::ReportObserver r{o, 0, {}};
+        r.background = rad::lux(at_eye.total()) / std::numbers::pi;
+        r.glare =
+            rad::observer_glare(*luminaires, &gatherer.scene(), o.position, o.view, r.background);
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
+// The area the power density is over: --area, or the largest floor or work plane.
+void power_area(const ReportArgs& a, const rad::CalcFile& file, double metres_per_unit,
+                rad::ReportInput& in) {
+    if (a.area > 0) {
+        in.power_area_m2 = a.area;
+        in.power_area_what = "the floor area given";
+        return;
+    }
+    for (const auto& s : file.surfaces) {
+        if (s.kind != rad::CalcKind::Floor && s.kind != rad::CalcKind::WorkPlane) continue;
+        const double area = rad::length(s.u) * rad::length(s.v) * metres_per_unit * metres_per_unit;
+        if (area > in.power_area_m2) {
+            in.power_area_m2 = area;
+            in.power_area_what = "the whole rectangle of '" + s.name + "'";
+        }
+    }
+}
+
+std::string method_text(const ReportArgs& a, const radfmt::Header& rad_header) {
+    const auto* method = rad_header.find("method");
+    char text[600];
+    std::snprintf(text, sizeof text,
+                  "Illuminance at each point by a final gather over the radiosity solution "
+                  "(solver %s): the light of the room's surfaces from %s%s, the luminaires' "
+                  "direct light exactly from their photometric files with a visibility ray per "
+                  "point (the luminous opening sampled where near), %d shadow rays for bright "
+                  "surfaces, seed %llu.",
+                  method ? method->c_str() : "?",
+                  a.options.exact
+                      ? "the exact sum over every patch"
+                      : (std::to_string(a.options.rays) + " cosine-weighted rays").c_str(),
+                  a.options.exact ? "" : " per point", a.options.shadow_rays,
+                  static_cast<unsigned long long>(a.options.seed));
+    return text;
+}
+
+int report(ReportArgs& a) {
+    const auto& mesh_path = a.inputs[0];
+    const auto& rad_path = a.inputs[1];
+    rad::tool::check_outputs({mesh_path, rad_path, a.surfaces, a.direct},
+                             {{"-o", a.output}, {"--pdf", a.pdf}});
+    a.options.smoothing = rad::parse_smoothing(a.smooth);
+    rad::ThreadLimit thread_limit(a.threads);
+    const auto file = rad::read_calc_file(a.surfaces);
+    radfmt::Header mesh_header, rad_header;
+    auto mesh = radfmt::read_mesh(mesh_path, &mesh_header);
+    const auto solution = radfmt::read_radiosity(rad_path, &rad_header);
+    radfmt::require_same_geometry(rad_path, rad_header, solution.radiosity.size(), mesh_path, mesh,
+                                  "run rad-ff and rad-solve on " + mesh_path + " again");
+    if (rad_header.find("sky_subdivision"))
+        throw rad::InputError(rad_path + " is a daylight solution (one light group per sky "
+                                         "patch): rad-report does not report daylight yet; "
+                                         "rad-gather --sky ... --daylight-factor and --epw ... "
+                                         "--annual give its figures");
+    rad::apply_recorded_overrides(mesh, rad_header);
+    const rad::Gatherer gatherer(mesh, solution.radiosity, a.options);
+    const auto luminaires =
+        rad::solution_luminaires(rad_header, rad_path, a.direct, mesh, mesh_path, mesh_header);
+    const auto* set = luminaires ? &*luminaires : nullptr;
+    const double metres = rad::metres_per_unit(mesh_header);
+    const rad::Box box = rad::bounds(mesh.vertices);
+
+    rad::ReportInput in;
+    in.project = a.project.empty() ? std::filesystem::path(mesh_path).stem().string() : a.project;
+    in.date = a.date.empty() ? today() : a.date;
+    in.producer = rad::tool_version("rad-report");
+    in.inputs = {{mesh_path, mesh_header.file_hash},
+                 {rad_path, rad_header.file_hash},
+                 {a.surfaces, radfmt::hash_file(a.surfaces)}};
+    in.provenance = rad_header.chain();
+    in.method = method_text(a, rad_header);
+    in.metres_per_unit = metres;
+    in.luminaires = set;
+    in.surfaces = surfaces_of(file, gatherer, set, box, metres, a.quiet);
+    std::uint64_t sensors = 0;
+    for (const auto& s : in.surfaces) sensors += std::uint64_t(s.grid.size());
+    in.observers = observers_of(file, gatherer, set, box, sensors);
+    power_area(a, file, metres, in);
+
+    const auto html = rad::report_html(in);
+    radfmt::OutputBatch outputs;
+    rad::tool::write_output(a.output, [&](std::FILE* out) { std::fputs(html.c_str(), out); });
+    if (!a.pdf.empty())
+        radfmt::write_atomically(
+            a.pdf, [&](const std::filesystem::path& temp) { rad::tool::print_pdf(html, temp); });
+    outputs.commit();
+    if (!a.quiet) {
+        long failing = 0;
+        for (const auto& s : in.surfaces) failing += !s.verdict.passes();
+        std::fprintf(stderr,
+                     "rad-report: %zu surface(s) (%llu points, %ld failing their requirements), "
+                     "%zu observer(s): %s%s%s\n",
+                     in.surfaces.size(), static_cast<unsigned long long>(sensors), failing,
+                     in.observers.size(), a.output.c_str(), a.pdf.empty() ? "" : ", ",
+                     a.pdf.c_str());
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "A lighting report: for each calculation surface of a CSV file (work planes, task\n"
+        "areas, walls, ceilings, floors) the maintained illuminance's Em, Emin, Emax, U0 and\n"
+        "Emin/Emax against the requirements the file gives, with a false-colour isolux plan;\n"
+        "the luminaires' schedule, polar curves and installed power density; the UGR at the\n"
+        "file's observers (CIE 117). One self-contained HTML page (no network), printable at\n"
+        "A4, and with --pdf a PDF of it. Its numbers are the ones rad-gather --surfaces writes\n"
+        "for the same inputs and options."};
+    ReportArgs args;
+    add_options(app, args);
+    if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
+    return rad::tool::run_tool("rad-report", [&] { return report(args); });
+}

@@ -1,0 +1,109 @@
+// Printing the report's page to PDF with headless Chromium.
+#include "report_pdf.hpp"
+
+#include "radiosity/error.hpp"
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <spawn.h>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+extern char** environ;
+
+namespace rad::tool {
+namespace fs = std::filesystem;
+namespace {
+
+// The Chromium to run: $RAD_CHROMIUM, or the first of the usual names on PATH.
+std::string find_chromium() {
+    if (const char* given = std::getenv("RAD_CHROMIUM"); given && *given) return given;
+    const char* path = std::getenv("PATH");
+    std::stringstream dirs(path ? path : "/usr/bin:/bin");
+    std::string dir;
+    while (std::getline(dirs, dir, ':'))
+        for (const char* name : {"chromium", "chromium-browser", "google-chrome"})
+            if (::access((fs::path(dir) / name).c_str(), X_OK) == 0) return (fs::path(dir) / name);
+    throw SystemError("--pdf prints the page with headless Chromium, and none was found: install "
+                      "it (apt-get install chromium) or set RAD_CHROMIUM to its path");
+}
+
+// A private temporary folder, removed when done.
+struct TempFolder {
+    fs::path path;
+    TempFolder() {
+        std::string pattern = (fs::temp_directory_path() / "rad-report-XXXXXX").string();
+        if (!::mkdtemp(pattern.data()))
+            throw SystemError("cannot make a temporary folder: " +
+                              std::string(std::strerror(errno)));
+        path = pattern;
+    }
+    ~TempFolder() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+std::string tail_of(const fs::path& log) {
+    std::ifstream in(log);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return text.size() > 600 ? "..." + text.substr(text.size() - 600) : text;
+}
+
+} // namespace
+
+void print_pdf(const std::string& html, const fs::path& pdf, int timeout_seconds) {
+    const auto chromium = find_chromium();
+    TempFolder temp;
+    const auto page = temp.path / "report.html";
+    {
+        std::ofstream out(page, std::ios::binary);
+        out << html;
+        if (!out) throw SystemError(page.string() + ": cannot write the page to print");
+    }
+    const auto log = temp.path / "chromium.log";
+    std::vector<std::string> args = {"timeout",
+                                     std::to_string(timeout_seconds),
+                                     chromium,
+                                     "--headless",
+                                     "--no-sandbox",
+                                     "--disable-gpu",
+                                     "--no-first-run",
+                                     "--disable-extensions",
+                                     "--user-data-dir=" + (temp.path / "profile").string(),
+                                     "--no-pdf-header-footer",
+                                     "--print-to-pdf=" + fs::absolute(pdf).string(),
+                                     "file://" + page.string()};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, "timeout", &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0) throw SystemError("cannot run " + chromium + ": " + std::strerror(spawned));
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            throw SystemError("waiting for Chromium: " + std::string(std::strerror(errno)));
+    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    std::error_code ec;
+    if (!ok || !fs::exists(pdf, ec) || fs::file_size(pdf, ec) == 0) {
+        const bool timed_out = WIFEXITED(status) && WEXITSTATUS(status) == 124;
+        throw SystemError(chromium +
+                          (timed_out ? " took over " + std::to_string(timeout_seconds) + " s"
+                                     : std::string(" failed")) +
+                          " printing the page to PDF; its output: " + tail_of(log));
+    }
+}
+
+} // namespace rad::tool
