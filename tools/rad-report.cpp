@@ -183,6 +183,8 @@ int report(ReportArgs& a) {
     in.inputs = {{mesh_path, mesh_header.file_hash},
                  {rad_path, rad_header.file_hash},
                  {a.surfaces, radfmt::hash_file(a.surfaces)}};
+    for (const auto& record : rad_header.inputs) // what the solution was made from
+        in.inputs.emplace_back(record.path + " (read by rad-solve)", record.hash);
     in.provenance = rad_header.chain();
     in.method = method_text(a, rad_header);
     in.metres_per_unit = metres;

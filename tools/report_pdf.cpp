@@ -22,7 +22,13 @@ namespace {
 
 // The Chromium to run: $RAD_CHROMIUM, or the first of the usual names on PATH.
 std::string find_chromium() {
-    if (const char* given = std::getenv("RAD_CHROMIUM"); given && *given) return given;
+    if (const char* given = std::getenv("RAD_CHROMIUM"); given && *given) {
+        if (::access(given, X_OK) != 0)
+            throw SystemError(std::string("RAD_CHROMIUM=") + given +
+                              " is not a program this user may run: set it to Chromium's path, "
+                              "or unset it to use chromium on PATH");
+        return given;
+    }
     const char* path = std::getenv("PATH");
     std::stringstream dirs(path ? path : "/usr/bin:/bin");
     std::string dir;

@@ -15,6 +15,13 @@ std::string fixed(double v, int decimals) {
     return text;
 }
 
+// A number the user wrote (a requirement), as short as it is.
+std::string short_number(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
 const char* kStyle = R"(
 @page { size: A4; margin: 14mm 14mm 16mm 14mm; }
 body { font: 10pt/1.35 "DejaVu Sans", Helvetica, Arial, sans-serif; color: #111; margin: 0 auto;
@@ -47,6 +54,7 @@ svg.polar tspan.c0 { fill: #b00020; } svg.polar tspan.c90 { fill: #1040b0; }
 .polars { display: flex; flex-wrap: wrap; gap: 8pt; }
 .note { font-size: 9pt; color: #333; }
 nav ol { margin: 2pt 0; }
+table.surfaces td:first-child { white-space: nowrap; }
 )";
 
 std::string verdict_text(bool required, bool passes) {
@@ -61,9 +69,9 @@ bool has_requirements(const Requirements& r) {
 std::string required_text(const Requirements& r) {
     std::string out;
     const auto add = [&](const std::string& part) { out += (out.empty() ? "" : ", ") + part; };
-    if (!std::isnan(r.em)) add("Em &#8805; " + lux_text(r.em) + " lx");
-    if (!std::isnan(r.u0)) add("U0 &#8805; " + ratio_text(r.u0));
-    if (!std::isnan(r.emin)) add("Emin &#8805; " + lux_text(r.emin) + " lx");
+    if (!std::isnan(r.em)) add("Em &#8805; " + short_number(r.em) + " lx");
+    if (!std::isnan(r.u0)) add("U0 &#8805; " + short_number(r.u0));
+    if (!std::isnan(r.emin)) add("Emin &#8805; " + short_number(r.emin) + " lx");
     return out.empty() ? "-" : out;
 }
 
@@ -293,7 +301,7 @@ std::string glare_section(const ReportInput& in) {
 }
 
 std::string method_section(const ReportInput& in) {
-    return "<section class=\"part\" id=\"method\"><h2>Method</h2><p>" + html_escape(in.method) +
+    return "<section id=\"method\"><h2>Method</h2><p>" + html_escape(in.method) +
            "</p><p>Calculation grids follow EN 12464-1: points at the centres of cells of at most "
            "p = 0.2 &#215; 5<sup>log<sub>10</sub> d</sup> m (d: the calculation area's longer "
            "side; at most 10 m) unless the file gives a spacing, a work plane's 0.5 m border "

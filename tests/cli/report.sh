@@ -1,0 +1,86 @@
+# rad-report (#52): the lighting example's surfaces (formats/README.md's example, as it stands)
+# through rad-gather --surfaces and rad-report; the page, in headless Chromium, loads with no
+# console error and no network request, its figures equal rad-gather's to the digits shown and
+# its isolines lie at their levels; the PDF has the page count and the tables; the same bytes
+# at any thread count; refusals name the file, the line and the fix, and leave no output.
+source "$(dirname "$0")/lib.sh"
+WEB="$SRC/web"
+[ -d "$WEB/node_modules/puppeteer-core" ] || { echo "FAIL: web/node_modules is missing: run scripts/install-deps"; exit 1; }
+command -v chromium >/dev/null || { echo "FAIL: chromium is missing: run scripts/install-deps"; exit 1; }
+command -v pdftotext >/dev/null || { echo "FAIL: pdftotext is missing: run scripts/install-deps"; exit 1; }
+L="$SRC/scenes/lighting"
+"$BIN/rad-mesh" "$L/room.obj" -o "$TMP/l.mesh" --unit m -q 2>/dev/null || fail "rad-mesh"
+"$BIN/rad-ff" "$TMP/l.mesh" -o "$TMP/l.ff" -q || fail "rad-ff"
+"$BIN/rad-ff" "$TMP/l.mesh" --luminaires "$L/layout.csv" -o "$TMP/l.lum" -q || fail "rad-ff --luminaires"
+"$BIN/rad-solve" "$TMP/l.mesh" "$TMP/l.ff" --direct "$TMP/l.lum" -o "$TMP/l.rad" -q || fail "rad-solve"
+# The example in formats/README.md, as it stands: the first code block after its heading.
+awk '/^### Calculation surfaces/ {on=1} on && /^```csv/ {copy=1; next} copy && /^```/ {exit} copy' \
+  "$SRC/formats/README.md" > "$TMP/calc.csv"
+grep -q '^name,kind,' "$TMP/calc.csv" || fail "no example in formats/README.md: $(head -3 "$TMP/calc.csv")"
+cmp -s "$TMP/calc.csv" "$L/calc.csv" || fail "scenes/lighting/calc.csv is not formats/README.md's example"
+
+# rad-gather --surfaces: a line per sensor, surface by surface, and the figures on stderr.
+"$BIN/rad-gather" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" -o "$TMP/g.csv" 2> "$TMP/g.err" ||
+  fail "rad-gather --surfaces: $(cat "$TMP/g.err")"
+[ "$(head -1 "$TMP/g.csv")" = "surface,index,column,row,x,y,z,lux" ] || fail "rad-gather --surfaces header: $(head -1 "$TMP/g.csv")"
+# The work plane: 9 x 5 sensors (5 m x 3 m after the 0.5 m band, p = 0.616 m), then the desk's 16 x 8.
+[ "$(grep -c '^work plane,' "$TMP/g.csv")" = 45 ] || fail "work plane sensors: $(grep -c '^work plane,' "$TMP/g.csv")"
+[ "$(grep -c '^desk,' "$TMP/g.csv")" = 128 ] || fail "desk sensors: $(grep -c '^desk,' "$TMP/g.csv")"
+grep -q "^rad-gather: work plane (workplane, 9 x 5 sensors at 0.616 m, 0 without a value): Em" "$TMP/g.err" ||
+  fail "rad-gather's work plane line: $(cat "$TMP/g.err")"
+grep -q "south wall.*meets its requirements" "$TMP/g.err" || fail "the wall's verdict: $(cat "$TMP/g.err")"
+# Sensors face where the file says: the ceiling's down (gathered from below, they see the room).
+grep -q '^ceiling,0,0,0,0.333333,3,0.333333,[0-9]' "$TMP/g.csv" || fail "the ceiling's first sensor: $(grep -m1 '^ceiling' "$TMP/g.csv")"
+
+# The report, and its PDF.
+"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" -o "$TMP/r.html" --pdf "$TMP/r.pdf" \
+  --date 2026-12-05 --project "Lighting example" 2> "$TMP/r.err" || fail "rad-report: $(cat "$TMP/r.err")"
+grep -q "4 surface(s) (272 points, 3 failing their requirements), 1 observer(s)" "$TMP/r.err" || fail "rad-report summary: $(cat "$TMP/r.err")"
+out=$(node "$WEB/test-report.mjs" --page "$TMP/r.html" --values "$TMP/g.csv" 2>&1) || fail "the page in Chromium: $out"
+echo "$out" | head -3
+# Title block, summary and method; one page per surface; luminaires; glare and method.
+pages=$(pdfinfo "$TMP/r.pdf" | awk '/^Pages:/ {print $2}')
+[ "$pages" = 7 ] || fail "the PDF has $pages pages (wanted 7: summary, 4 surfaces, luminaires, glare)"
+pdftotext -layout "$TMP/r.pdf" "$TMP/r.txt" || fail "pdftotext"
+em=$(grep -o '<td class="num em">[^<]*' "$TMP/r.html" | head -1 | sed 's/.*>//')
+for text in "Lighting report: Lighting example" "2026-12-05" "Summary" "Em (lx)" "Emin/Emax" "work plane" \
+            "south wall" "Panarc Corridor" "erco_panarc.ies" "W/m²" "UGR" "desk chair" "Calculation area" "$em"; do
+  grep -qF -- "$text" "$TMP/r.txt" || fail "the PDF's text lacks '$text'"
+done
+# Each surface's page starts with its name, and its table is on the same page (no table split).
+for surface in "work plane" desk "south wall" ceiling; do
+  awk -v s="$surface" 'BEGIN {RS="\f"} index($0, s "\n") && index($0, "Calculation area") && index($0, "Verdict") {found=1} END {exit !found}' \
+    "$TMP/r.txt" || fail "no page of the PDF holds $surface's heading and whole table"
+done
+# The same bytes at one thread and two; the page names its inputs' hashes.
+"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" -o "$TMP/r1.html" --date 2026-12-05 \
+  --project "Lighting example" --threads 1 -q || fail "rad-report --threads 1"
+cmp -s "$TMP/r.html" "$TMP/r1.html" || fail "rad-report differs at 1 and 2 threads"
+[ "$(grep -o '<td class="hash">xxh64:[0-9a-f]\{16\}</td>' "$TMP/r.html" | wc -l)" = 6 ] ||
+  fail "the page does not name its inputs' and the solution's inputs' hashes (6)"
+# --area: the power density over the area given.
+"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" -o "$TMP/a.html" --area 12 -q --date x ||
+  fail "rad-report --area"
+grep -q '<span class="density">13.00</span>' "$TMP/a.html" || fail "156 W over 12 m^2: $(grep -o 'class="density">[^<]*' "$TMP/a.html")"
+
+# Refusals: the file and line, the fix; no output left.
+printf 'name,kind,x,y,z,ux,uy,uz,vx,vy,vz\nwp,workplane,0,0.8,4,6,0,0,0,0,-4\nwp,wall,0,0,0,6,0,0,0,3,0\n' > "$TMP/twice.csv"
+expect_error "twice.csv:3: 'wp' is named twice" "$TMP/x.html" \
+  "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/twice.csv" -o "$TMP/x.html"
+expect_error "twice.csv:3: 'wp' is named twice" "$TMP/x.csv" \
+  "$BIN/rad-gather" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/twice.csv" -o "$TMP/x.csv"
+expect_error "--surfaces writes lux at its own sensors" "$TMP/x.csv" \
+  "$BIN/rad-gather" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" --grid "0 0 1 1 1 2 2" -o "$TMP/x.csv"
+# Glare needs luminaires: a Cornell box lit by its own lamp has none.
+cornell_mesh 0.25
+"$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/c.ff" -q && "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/c.rad" -q || fail "cornell"
+printf 'name,kind,x,y,z,ux,uy,uz\neye,observer,0,0.5,0.5,0,0,-1\n' > "$TMP/eye.csv"
+expect_error "the solution has none" "$TMP/x.html" \
+  "$BIN/rad-report" "$TMP/c.mesh" "$TMP/c.rad" --surfaces "$TMP/eye.csv" -o "$TMP/x.html"
+# No Chromium: a system error (exit 2) saying how to get it, and neither output written.
+err=$(RAD_CHROMIUM=/nonexistent/chromium "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" \
+  -o "$TMP/y.html" --pdf "$TMP/y.pdf" 2>&1); rc=$?
+[ $rc -eq 2 ] || fail "a missing Chromium: exit $rc ($err)"
+grep -qF "RAD_CHROMIUM" <<<"$err" || fail "a missing Chromium: '$err' does not say what to set"
+[ ! -e "$TMP/y.html" ] && [ ! -e "$TMP/y.pdf" ] || fail "a failed --pdf left an output"
+finish

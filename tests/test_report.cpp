@@ -1,0 +1,239 @@
+// The lighting report's parts against hand-worked values: CIE 117's UGR of a luminaire whose
+// luminance, solid angle and position index are computed here, EN 12464-1's grid rule, the
+// calculation-surfaces file and its refusals, isolines whose every end lies at its level, and
+// the figures and verdicts.
+#include "helpers.hpp"
+#include "radiosity/calc_surfaces.hpp"
+#include "radiosity/contours.hpp"
+#include "radiosity/glare.hpp"
+#include "radiosity/report.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+using namespace testing_helpers;
+
+namespace {
+constexpr double kDeg = 180 / std::numbers::pi;
+
+// A 0.6 m x 0.6 m opening giving `candela` in every direction (absolute photometry).
+std::string square_panel(double candela) {
+    const auto c = std::to_string(candela);
+    return "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0.6 0.6 0\n1 1 0\n0 180\n0\n" + c + " " +
+           c + "\n";
+}
+
+rad::LuminaireSet panels(const std::string& rows, double candela) {
+    rad::LuminaireSources sources{
+        "layout.csv",
+        "name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,maintenance,group\n" + rows,
+        {{"panel.ies", square_panel(candela)}}};
+    return rad::build_luminaires(sources, 1);
+}
+
+// Guth's position index as the IES Lighting Handbook fits it (restated, not the library's).
+double guth(double tau, double sigma) {
+    return std::exp((35.2 - 0.31889 * tau - 1.22 * std::exp(-2 * tau / 9)) * 1e-3 * sigma +
+                    (21 + 0.26667 * tau - 0.002963 * tau * tau) * 1e-5 * sigma * sigma);
+}
+
+rad::CalcFile calc_from(const std::string& text) {
+    const auto dir = temp_dir("calc");
+    write_text(dir / "calc.csv", text);
+    return rad::read_calc_file((dir / "calc.csv").string());
+}
+
+const std::string kHeader = "name,kind,x,y,z,ux,uy,uz,vx,vy,vz,spacing,border,Em,U0,Emin,UGRL\n";
+
+// The message read_calc_file gives for `text` (empty when it reads it).
+std::string refusal(const std::string& text) {
+    try {
+        calc_from(text);
+    } catch (const rad::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+} // namespace
+
+TEST_CASE("UGR of one luminaire equals CIE 117's formula worked by hand") {
+    // The eye at 1.2 m looks along -z; the panel is 1.8 m above the eye, 4 m ahead, 1.5 m aside.
+    const auto set = panels("P,panel.ies,1.5,3,-4,,,,,1,g\n", 1000);
+    const rad::Vec3 eye{0, 1.2, 0}, view{0, 0, -1};
+    const double h = 1.8, r = 4, t = 1.5, lb = 10;
+    const double distance = std::sqrt(h * h + r * r + t * t);
+    const double cos_gamma = h / distance; // the opening faces down
+    const double area = 0.36 * cos_gamma, luminance = 1000 / area;
+    const double omega = area / (distance * distance);
+    const double sigma = std::acos(r / distance) * kDeg, tau = std::atan2(t, h) * kDeg;
+    const double p = guth(tau, sigma);
+    const double expected = 8 * std::log10(0.25 / lb * luminance * luminance * omega / (p * p));
+
+    const auto glare = rad::observer_glare(set, nullptr, eye, view, lb);
+    REQUIRE(glare.terms.size() == 1);
+    CHECK(glare.terms[0].luminance == Approx(luminance).epsilon(1e-6));
+    CHECK(glare.terms[0].solid_angle == Approx(omega).epsilon(1e-6));
+    CHECK(glare.terms[0].sigma_deg == Approx(sigma).epsilon(1e-9));
+    CHECK(glare.terms[0].tau_deg == Approx(tau).epsilon(1e-9));
+    CHECK(std::abs(glare.ugr - expected) < 0.1);
+    CHECK(std::abs(glare.ugr - expected) < 1e-6); // the same formula: to rounding
+    // Straight ahead the position index is 1; it grows off the line of sight.
+    CHECK(rad::guth_position_index(0, 0) == Approx(1));
+    CHECK(rad::guth_position_index(0, 30) > rad::guth_position_index(0, 10));
+}
+
+TEST_CASE("UGR counts luminaires in front and above the line of sight, and sums them") {
+    const auto set = panels("A,panel.ies,0,3,-3,,,,,1,g\nB,panel.ies,0,3,-6,,,,,1,g\n"
+                            "behind,panel.ies,0,3,3,,,,,1,g\nbelow,panel.ies,0,0.5,-3,,,,,1,g\n",
+                            2000);
+    const auto glare = rad::observer_glare(set, nullptr, {0, 1.2, 0}, {0, 0, -1}, 20);
+    REQUIRE(glare.terms.size() == 2);
+    CHECK(glare.behind_or_below == 2);
+    double sum = 0;
+    for (const auto& term : glare.terms) sum += term.contribution();
+    CHECK(glare.ugr == Approx(8 * std::log10(0.25 / 20 * sum)));
+    // Twice the background lowers UGR by 8 log10(2).
+    const auto brighter = rad::observer_glare(set, nullptr, {0, 1.2, 0}, {0, 0, -1}, 40);
+    CHECK(glare.ugr - brighter.ugr == Approx(8 * std::log10(2.0)));
+    // A luminaire with no luminous opening has no luminance: it is counted apart.
+    rad::LuminaireSources point{"layout.csv",
+                                "name,photometry,x,y,z\nP,p.ies,0,3,-3\n",
+                                {{"p.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n"
+                                           "1 1 0\n0 180\n0\n100 100\n"}}};
+    const auto pointlike =
+        rad::observer_glare(rad::build_luminaires(point, 1), nullptr, {0, 1.2, 0}, {0, 0, -1}, 20);
+    CHECK(pointlike.pointlike == 1);
+    CHECK(std::isnan(pointlike.ugr));
+}
+
+TEST_CASE("EN 12464-1's grid: p = 0.2 x 5^log10(d), at most 10 m, the border band left out") {
+    CHECK(rad::en12464_spacing(1) == Approx(0.2));
+    CHECK(rad::en12464_spacing(10) == Approx(1.0));
+    CHECK(rad::en12464_spacing(100) == Approx(5.0));
+    CHECK(rad::en12464_spacing(1000) == Approx(10.0));
+    const auto file = calc_from(kHeader + "wp,workplane,0,0.8,4,6,0,0,0,0,-4,,,500,0.6,,\n"
+                                          "wall,wall,0,0,0,6,0,0,0,3,0,0.5,,,,,\n");
+    const auto wp = rad::surface_grid(file.surfaces[0], 1);
+    CHECK(wp.border_m == 0.5);
+    CHECK(wp.width_m == Approx(5));
+    CHECK(wp.depth_m == Approx(3));
+    CHECK(wp.spacing_m == Approx(0.2 * std::pow(5, std::log10(5.0))));
+    CHECK(wp.columns == 9); // ceil(5 / 0.616)
+    CHECK(wp.rows == 5);    // ceil(3 / 0.616)
+    CHECK(wp.normal[1] == Approx(1));
+    // The first sensor: half a cell in from the calculation area's corner (0.5, 0.8, 3.5).
+    const auto first = wp.position(0);
+    CHECK(first[0] == Approx(0.5 + 5.0 / 9 / 2));
+    CHECK(first[2] == Approx(3.5 - 3.0 / 5 / 2));
+    CHECK(wp.position(9)[2] == Approx(3.5 - 3.0 / 5 * 1.5)); // the next row
+    const auto wall = rad::surface_grid(file.surfaces[1], 1);
+    CHECK(wall.border_m == 0);
+    CHECK(wall.columns == 12);
+    CHECK(wall.rows == 6);
+    CHECK(wall.normal[2] == Approx(1)); // out of the wall at z = 0, into the room
+    // In centimetres the same room gives the same grid.
+    const auto cm = calc_from(kHeader + "wp,workplane,0,80,400,600,0,0,0,0,-400,,,,,,\n");
+    const auto wp_cm = rad::surface_grid(cm.surfaces[0], 0.01);
+    CHECK(wp_cm.columns == 9);
+    CHECK(wp_cm.position(0)[0] == Approx(100 * first[0]));
+}
+
+TEST_CASE("the calculation-surfaces file is refused with its line and the fix") {
+    CHECK(refusal(kHeader + "a,shelf,0,0,0,1,0,0,0,0,-1,,,,,,\n").find("calc.csv:2: kind") !=
+          std::string::npos);
+    CHECK(refusal(kHeader + "a,,0,0,0,1,0,0,0,0,-1,,,,,,\na,,0,0,0,1,0,0,0,0,-1,,,,,,\n")
+              .find("calc.csv:3: 'a' is named twice") != std::string::npos);
+    CHECK(refusal(kHeader + "a,,0,0,0,1,0,0,2,0,0,,,,,,\n").find("span no area") !=
+          std::string::npos);
+    CHECK(refusal(kHeader + "a,,0,0,0,1,0,0,0,0,-1,,,,1.5,,\n").find("U0 is Emin/Em") !=
+          std::string::npos);
+    CHECK(refusal(kHeader + "a,,0,0,0,1,0,0,0,0,-1,,,x,,,\n").find("Em is 'x', not a number") !=
+          std::string::npos);
+    CHECK(refusal(kHeader + "o,observer,0,1,0,0,0,-1,,,,,,300,,,\n").find("no Em") !=
+          std::string::npos);
+    CHECK(refusal(kHeader + "o,observer,0,1,0,0,0,0,,,,,,,,,\n").find("line of sight") !=
+          std::string::npos);
+    CHECK(refusal("x,y,z\n").find("calc.csv:1: the first line names the columns") !=
+          std::string::npos);
+    CHECK(refusal("name,x,y,z,ux,uy,uz,colour\n").find("unknown column 'colour'") !=
+          std::string::npos);
+    CHECK(refusal(kHeader).find("no surface and no observer") != std::string::npos);
+    // A border that leaves nothing is refused when the grid is made, at the surface's line.
+    const auto small = calc_from(kHeader + "# a comment\n\ntiny,,0,0,0,0.8,0,0,0,0,-3,,,,,,\n");
+    REQUIRE_THROWS_WITH(rad::surface_grid(small.surfaces[0], 1),
+                        Catch::Contains("calc.csv:4: the border band"));
+    // A name with a comma and quotes, quoted in the file, reads back as written out.
+    const std::string name = "bay \"A\", east";
+    const auto quoted =
+        calc_from(kHeader + rad::csv_field(name) + ",task,0,0,0,1,0,0,0,0,-1,,,,,,\n");
+    CHECK(quoted.surfaces[0].name == name);
+    CHECK(quoted.surfaces[0].kind == rad::CalcKind::Task);
+}
+
+TEST_CASE(
+    "every end of an isoline lies where the values, linear between sensors, equal its level") {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> value(0, 100);
+    const long columns = 13, rows = 9;
+    std::vector<double> grid(columns * rows);
+    for (auto& v : grid) v = value(rng);
+    grid[20] = std::nan(""); // a sensor without a value: no line through its squares
+    // An end lies on a square's edge: the values linear along that edge.
+    const auto at = [&](double x, double y) {
+        const auto v = [&](long c, long r) { return grid[std::size_t(r * columns + c)]; };
+        if (x == std::floor(x)) {
+            const long r = std::min(long(std::floor(y)), rows - 2);
+            return v(long(x), r) + (y - double(r)) * (v(long(x), r + 1) - v(long(x), r));
+        }
+        const long c = std::min(long(std::floor(x)), columns - 2);
+        return v(c, long(y)) + (x - double(c)) * (v(c + 1, long(y)) - v(c, long(y)));
+    };
+    long ends = 0;
+    for (const double level : {20.0, 50.0, 75.0}) {
+        const auto segments = rad::isolines(grid, columns, rows, level);
+        CHECK(!segments.empty());
+        for (const auto& s : segments) {
+            for (const auto& [x, y] : {std::pair{s.x0, s.y0}, std::pair{s.x1, s.y1}}) {
+                const bool on_edge = x == std::floor(x) || y == std::floor(y);
+                CHECK(on_edge);
+                CHECK(at(x, y) == Approx(level).epsilon(1e-9));
+                CHECK(std::hypot(x - 20 % columns, y - 20 / columns) >= 1 - 1e-12);
+                ++ends;
+            }
+        }
+    }
+    CHECK(ends > 50);
+    // A saddle: two pieces.
+    const std::vector<double> saddle{1, 0, 0, 1};
+    CHECK(rad::isolines(saddle, 2, 2, 0.5).size() == 2);
+    CHECK(rad::isolines(saddle, 2, 2, 2).empty());
+    // Round levels inside the range.
+    CHECK(rad::contour_levels(85.5, 145) == std::vector<double>{90, 100, 110, 120, 130, 140});
+    CHECK(rad::contour_levels(23.5, 27.5) == std::vector<double>{24, 25, 26, 27});
+    CHECK(rad::contour_levels(5, 5).empty());
+}
+
+TEST_CASE("a surface's figures leave out sensors without a value, and its verdict follows them") {
+    const std::vector<double> lux{400, 600, std::nan(""), 500};
+    const auto stats = rad::illuminance_stats(lux);
+    CHECK(stats.count == 3);
+    CHECK(stats.without_value == 1);
+    CHECK(stats.mean == Approx(500));
+    CHECK(stats.u0() == Approx(0.8));
+    CHECK(stats.min_over_max() == Approx(400.0 / 600));
+    rad::Requirements required;
+    CHECK(rad::judge(stats, required).passes()); // nothing required
+    required.em = 500, required.u0 = 0.6;
+    CHECK(rad::judge(stats, required).passes());
+    required.emin = 450;
+    CHECK(!rad::judge(stats, required).passes());
+    CHECK(!rad::judge(stats, required).emin);
+    CHECK(rad::lux_text(412.4) == "412");
+    CHECK(rad::lux_text(41.24) == "41.2");
+    CHECK(rad::lux_text(4.124) == "4.12");
+    CHECK(rad::lux_text(std::nan("")) == "-");
+    CHECK(rad::html_escape("<a & \"b\">") == "&lt;a &amp; &quot;b&quot;&gt;");
+}
