@@ -73,26 +73,44 @@ void write_png(const DaylightRun& run, const std::vector<double>& values, const 
                            run.lux_max);
 }
 
+// --surfaces: each surface's daylight factors' summary.
+void print_surface_factors(const DaylightRun& run, const std::vector<double>& values) {
+    std::size_t first = 0;
+    for (const auto& [name, count] : run.surfaces) {
+        const auto s = summarise_daylight_factors(std::vector<double>(
+            values.begin() + long(first), values.begin() + long(first + count)));
+        std::fprintf(stderr,
+                     "rad-gather: %s: daylight factor mean %.3g%%, median %.3g%%, min %.3g%%, max "
+                     "%.3g%%; %.1f%% of its %zu sensor(s) at 2%% or more\n",
+                     name.c_str(), s.mean, s.median, s.min, s.max, 100 * s.above2, count);
+        first += count;
+    }
+}
+
 int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
     const auto sky = sky_of(a.choice, a.epw, sensors.frame());
     if (a.daylight_factor && sky.horizontal_illuminance() <= 0)
         throw InputError("--daylight-factor: the sky has no horizontal illuminance");
     const std::size_t n = run.positions.size();
-    std::vector<DaylightSensors::Illuminance> lux(n);
-    Progress progress("rad-gather", n, run.quiet);
-    tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
-        lux[k] = sensors.illuminance(sky, run.positions[k], run.normals[k], k);
-        progress.advance(1);
-    });
-    progress.finish();
+    const auto lux = sensors.illuminance(sky, run.positions, run.normals, run.quiet);
     std::vector<double> values;
     for (const auto& l : lux)
         values.push_back(a.daylight_factor ? 100 * l.total() / sky.horizontal_illuminance()
                                            : l.total());
     write_output(run.output, [&](std::FILE* out) {
         if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
-        for (double v : values) std::fprintf(out, "%.6g\n", v);
+        if (run.labels.empty()) {
+            for (double v : values) std::fprintf(out, "%.6g\n", v);
+            return;
+        }
+        std::fprintf(out, "surface,index,column,row,x,y,z,%s\n", a.daylight_factor ? "df" : "lux");
+        for (std::size_t k = 0; k < n; ++k) {
+            const auto& p = run.positions[k];
+            std::fprintf(out, "%s,%.6g,%.6g,%.6g,%.6g\n", run.labels[k].c_str(), p[0], p[1], p[2],
+                         values[k]);
+        }
     });
+    if (a.daylight_factor && !run.quiet) print_surface_factors(run, values);
     if (a.daylight_factor) {
         write_png(run, values, "%", "daylight factor (%)");
         const auto s = summarise_daylight_factors(values);
@@ -109,12 +127,14 @@ int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors
 }
 
 void write_metrics_csv(const std::string& path, const radfmt::AnnualData& year,
-                       const AnnualMetrics& m) {
+                       const AnnualMetrics& m, const std::vector<std::string>& labels) {
     radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
         std::ofstream out(temp);
+        if (!labels.empty()) out << "surface,index,column,row,";
         out << "x,y,z,dx,dy,dz,da300,udi_low,udi_useful,udi_high,sun_hours\n";
         char line[256];
         for (std::size_t k = 0; k < year.sensors(); ++k) {
+            if (!labels.empty()) out << labels[k] << ',';
             const auto& p = year.positions[k];
             const auto& d = year.normals[k];
             const auto& s = m.sensors[k];
@@ -144,7 +164,7 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
     header.set("occupancy", a.occupancy.empty() ? "08:00-18:00 every day" : a.occupancy);
     radfmt::write_annual(run.output, header, year);
     const auto m = annual_metrics(year);
-    if (!a.metrics.empty()) write_metrics_csv(a.metrics, year, m);
+    if (!a.metrics.empty()) write_metrics_csv(a.metrics, year, m, run.labels);
     if (!run.png.empty()) {
         std::vector<double> da;
         for (const auto& s : m.sensors) da.push_back(100 * s.da300);
@@ -162,6 +182,17 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
                 100 * m.ase);
     std::printf("  DA300 mean     %6.1f %% of occupied hours\n", 100 * m.da300);
     std::printf("  UDI 100-3000   %6.1f %% of occupied hours (mean)\n", 100 * m.udi_useful);
+    std::size_t first = 0;
+    for (const auto& [name, count] : run.surfaces) { // --surfaces: each surface's figures
+        const auto part = summarise_sensor_metrics(
+            {m.sensors.begin() + long(first), m.sensors.begin() + long(first + count)},
+            m.occupied_hours);
+        std::printf("  %s: sDA300/50%% %.1f %%, ASE1000,250h %.1f %%, DA300 mean %.1f %%, UDI "
+                    "100-3000 %.1f %%\n",
+                    name.c_str(), 100 * part.sda, 100 * part.ase, 100 * part.da300,
+                    100 * part.udi_useful);
+        first += count;
+    }
     return 0;
 }
 } // namespace

@@ -35,6 +35,10 @@ struct DaylightRun {
     std::string command;
     std::vector<Vec3> positions, normals;
     int grid_columns = 0, grid_rows = 0; // a --grid's, for --png; 0: points
+    // --surfaces: each sensor's "surface,index,column,row" (the output is CSV), and each
+    // surface's name and sensor count, in order.
+    std::vector<std::string> labels;
+    std::vector<std::pair<std::string, std::size_t>> surfaces;
     int rays = kDaylightRays;
     std::uint64_t seed = 1;
     bool quiet = false;

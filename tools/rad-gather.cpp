@@ -179,7 +179,9 @@ void add_output_options(CLI::App& app, GatherArgs& a) {
                    "CSV (formats/README.md: work planes, task areas, walls, ceilings, by "
                    "EN 12464-1's grid rule); writes 'surface,index,column,row,x,y,z,lux' lines "
                    "and each surface's Em, Emin, Emax, U0 and verdict on stderr, the numbers "
-                   "rad-report shows");
+                   "rad-report shows; daylight: the last column is df (--daylight-factor) or "
+                   "lux (--sky), and --annual's --metrics lines start with the surface's "
+                   "columns");
     app.add_option("--png", a.png,
                    "With --grid: also write a false-colour PNG of the illuminance (lux) with a "
                    "legend");
@@ -209,11 +211,10 @@ void check_combinations(const GatherArgs& a) {
         throw rad::InputError("--png draws a --grid: give --grid \"x0 z0 x1 z1 y nx nz\"");
     if (!a.grid_text.empty() && !a.points_path.empty())
         throw rad::InputError("give --grid or --points, not both");
-    if (!a.surfaces_path.empty() &&
-        (!a.grid_text.empty() || !a.points_path.empty() || !a.rows.empty() || !a.png.empty() ||
-         a.lux || a.keep_going || rad::tool::wants_daylight(a.daylight)))
+    if (!a.surfaces_path.empty() && (!a.grid_text.empty() || !a.points_path.empty() ||
+                                     !a.rows.empty() || !a.png.empty() || a.lux || a.keep_going))
         throw rad::InputError("--surfaces writes lux at its own sensors: not with --points, "
-                              "--grid, --rows, --png, --lux, --keep-going or daylight");
+                              "--grid, --rows, --png, --lux or --keep-going");
 }
 
 // Streams blocks of sensors: parsed, gathered in parallel, written in order; keeps what the
@@ -390,6 +391,57 @@ std::string sensors_and_preamble(const GatherArgs& a, const Grid& grid,
     return part_preamble(a, grid, range, total, mesh_header, rad_header, argc, argv);
 }
 
+// Daylight's sensors from --points or --grid, every one read first.
+void read_daylight_sensors(const GatherArgs& a, const Grid& grid, const rad::Box& box,
+                           rad::tool::DaylightRun& run) {
+    std::unique_ptr<rad::LineReader> points;
+    std::unique_ptr<SensorSource> source;
+    if (a.grid_text.empty()) {
+        points = std::make_unique<rad::LineReader>(a.points_path);
+        source = std::make_unique<LineSource>(*points);
+    } else {
+        source = std::make_unique<GridSource>(grid);
+        run.grid_columns = int(grid.nx);
+        run.grid_rows = int(grid.nz);
+    }
+    std::vector<Sensor> sensors;
+    while (source->next(sensors, sensors.size() + 4096)) {
+        if (sensors.size() == run.positions.size()) break;
+        for (std::size_t k = run.positions.size(); k < sensors.size(); ++k) {
+            const auto& s = sensors[k];
+            const auto where = a.points_path.empty() ? std::string("<stdin>") : a.points_path;
+            if (!s.problem.empty())
+                throw rad::InputError(where + ":" + std::to_string(s.line) + ": " + s.problem);
+            if (const auto why = rad::out_of_reach(s.position, box); !why.empty())
+                throw rad::InputError(where + ":" + std::to_string(s.line) + ": " + why);
+            run.positions.push_back(s.position);
+            run.normals.push_back(s.direction);
+        }
+    }
+}
+
+// Daylight's sensors from --surfaces: every surface's grid, in order, each line labelled.
+void surface_daylight_sensors(const GatherArgs& a, double metres_per_unit, const rad::Box& box,
+                              rad::tool::DaylightRun& run) {
+    const auto file = rad::read_calc_file(a.surfaces_path);
+    if (file.surfaces.empty())
+        throw rad::InputError(a.surfaces_path + ": it has observers only: add a surface");
+    for (const auto& surface : file.surfaces) {
+        const auto grid = rad::surface_grid(surface, metres_per_unit);
+        run.surfaces.emplace_back(surface.name, std::size_t(grid.size()));
+        for (long k = 0; k < grid.size(); ++k) {
+            const auto p = grid.position(k);
+            if (const auto why = rad::out_of_reach(p, box); !why.empty())
+                throw rad::InputError(surface.where, surface.name + "'s sensors: " + why);
+            run.positions.push_back(p);
+            run.normals.push_back(grid.normal);
+            run.labels.push_back(rad::csv_field(surface.name) + "," + std::to_string(k) + "," +
+                                 std::to_string(k % grid.columns) + "," +
+                                 std::to_string(k / grid.columns));
+        }
+    }
+}
+
 // Daylight (--sky, --epw --annual): every sensor read first, then gathered in parallel.
 int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
              const radfmt::RadiosityData& solution, const radfmt::Header& rad_header,
@@ -409,34 +461,15 @@ int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
     run.lux_max = a.lux_max;
     run.command = radfmt::command_line(argc, argv);
     run.inputs = {a.mesh_path, a.rad_path};
-    for (const auto* extra : {&a.points_path, &a.daylight.epw, &a.daylight.occupancy})
+    for (const auto* extra :
+         {&a.points_path, &a.surfaces_path, &a.daylight.epw, &a.daylight.occupancy})
         if (!extra->empty()) run.inputs.push_back(*extra);
     if (a.header) run.header_line = header_line(a, run.command, mesh_header, rad_header);
-    std::unique_ptr<rad::LineReader> points;
-    std::unique_ptr<SensorSource> source;
-    if (a.grid_text.empty()) {
-        points = std::make_unique<rad::LineReader>(a.points_path);
-        source = std::make_unique<LineSource>(*points);
-    } else {
-        source = std::make_unique<GridSource>(grid);
-        run.grid_columns = int(grid.nx);
-        run.grid_rows = int(grid.nz);
-    }
     const rad::Box box = rad::bounds(mesh.vertices);
-    std::vector<Sensor> sensors;
-    while (source->next(sensors, sensors.size() + 4096)) {
-        if (sensors.size() == run.positions.size()) break;
-        for (std::size_t k = run.positions.size(); k < sensors.size(); ++k) {
-            const auto& s = sensors[k];
-            const auto where = a.points_path.empty() ? std::string("<stdin>") : a.points_path;
-            if (!s.problem.empty())
-                throw rad::InputError(where + ":" + std::to_string(s.line) + ": " + s.problem);
-            if (const auto why = rad::out_of_reach(s.position, box); !why.empty())
-                throw rad::InputError(where + ":" + std::to_string(s.line) + ": " + why);
-            run.positions.push_back(s.position);
-            run.normals.push_back(s.direction);
-        }
-    }
+    if (a.surfaces_path.empty())
+        read_daylight_sensors(a, grid, box, run);
+    else
+        surface_daylight_sensors(a, rad::metres_per_unit(mesh_header), box, run);
     if (run.positions.empty()) throw rad::InputError("no sensors: give --points FILE or --grid");
     return rad::tool::gather_daylight(a.daylight, run);
 }

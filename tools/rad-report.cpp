@@ -1,14 +1,17 @@
 // rad-report: mesh + solution + calculation surfaces -> a lighting report (HTML, and PDF).
+#include "gather_daylight.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/calc_surfaces.hpp"
+#include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/glare.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/report.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/version.hpp"
+#include "radiosity/weather.hpp"
 #include "report_pdf.hpp"
 #include "tool.hpp"
 
@@ -24,6 +27,10 @@ namespace {
 struct ReportArgs {
     std::vector<std::string> inputs;
     std::string surfaces, output, pdf, project, date, direct, smooth = "crease";
+    std::string epw, occupancy;
+    double ground = 0.2;
+    int sky_samples = 64;
+    CLI::Option* rays_option = nullptr;
     rad::GatherOptions options;
     double area = 0;
     int threads = 0;
@@ -55,7 +62,22 @@ void add_options(CLI::App& app, ReportArgs& a) {
                    "The floor area (m^2) the installed power density is over (default: the "
                    "largest floor or work plane's whole rectangle)")
         ->check(rad::tool::finite_range(1e-9, 1e12));
-    rad::tool::add_sensor_gather_options(app, a.options, a.smooth, "; as rad-gather");
+    app.add_option("--epw", a.epw,
+                   "A daylight solution: also the year's metrics (sDA300/50%, ASE1000,250h, "
+                   "DA300, UDI) and DA300 plans from this weather file, as rad-gather --epw "
+                   "--annual");
+    app.add_option("--occupancy", a.occupancy,
+                   "With --epw: the occupied hours, one 0 or 1 a line (default 08:00-18:00 "
+                   "local standard time, every day)");
+    app.add_option("--ground", a.ground, "A daylight solution: the ground's reflectance")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(0, 1));
+    app.add_option("--sky-samples", a.sky_samples,
+                   "A daylight solution: directions per sky patch a sensor traces (as rad-gather)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 10000));
+    a.rays_option = rad::tool::add_sensor_gather_options(
+        app, a.options, a.smooth, "; daylight: 1024 unless given; as rad-gather");
     rad::tool::add_threads_option(app, a.threads);
     app.add_flag("-q,--quiet", a.quiet, "No progress and no summary");
 }
@@ -81,7 +103,7 @@ std::vector<rad::ReportSurface> surfaces_of(const rad::CalcFile& file,
     auto lux = rad::gather_surfaces(gatherer, luminaires, box, grids, quiet);
     std::vector<rad::ReportSurface> out;
     for (std::size_t k = 0; k < grids.size(); ++k) {
-        rad::ReportSurface s{file.surfaces[k], grids[k], std::move(lux[k]), {}, {}};
+        rad::ReportSurface s{file.surfaces[k], grids[k], std::move(lux[k]), {}, {}, {}};
         s.stats = rad::illuminance_stats(s.lux);
         s.verdict = rad::judge(s.stats, s.surface.required);
         out.push_back(std::move(s));
@@ -150,10 +172,140 @@ std::string method_text(const ReportArgs& a, const radfmt::Header& rad_header) {
     return text;
 }
 
+// A daylight solution: each surface's daylight factor under the CIE overcast sky, and with
+// --epw the year's metrics, by the functions rad-gather --surfaces calls, in its order.
+void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radfmt::MeshData& mesh,
+                      const radfmt::RadiosityData& solution, const radfmt::Header& mesh_header,
+                      const radfmt::Header& rad_header, rad::ReportInput& in) {
+    if (!file.observers.empty())
+        throw rad::InputError(file.name + ": observers' glare (UGR) is from luminaires, and a "
+                                          "daylight solution has none: remove the observer lines");
+    rad::DaylightOptions options;
+    options.sky_side = std::max(1, int(std::lround(std::sqrt(double(a.sky_samples)))));
+    options.rays = a.rays_option->count() ? a.options.rays : rad::tool::kDaylightRays;
+    options.seed = a.options.seed;
+    const rad::DaylightSensors sensors(
+        mesh, rad::daylight_solution(solution, rad_header, a.inputs[1]), options);
+    const double metres = rad::metres_per_unit(mesh_header);
+    const rad::Box box = rad::bounds(mesh.vertices);
+    std::vector<rad::SurfaceGrid> grids;
+    std::vector<rad::Vec3> positions, normals;
+    for (const auto& surface : file.surfaces) {
+        grids.push_back(rad::surface_grid(surface, metres));
+        for (long k = 0; k < grids.back().size(); ++k) {
+            positions.push_back(grids.back().position(k));
+            if (const auto why = rad::out_of_reach(positions.back(), box); !why.empty())
+                throw rad::InputError(surface.where, surface.name + "'s sensors: " + why);
+            normals.push_back(grids.back().normal);
+        }
+    }
+    rad::tool::SkyChoice overcast;
+    overcast.sky = "cie-overcast";
+    overcast.ground = a.ground;
+    const auto sky = rad::tool::sky_of(overcast, "", sensors.frame());
+    const auto lux = sensors.illuminance(sky, positions, normals, a.quiet);
+    std::optional<rad::AnnualMetrics> year;
+    if (!a.epw.empty()) {
+        const auto weather = rad::read_epw(a.epw);
+        const auto occupied = a.occupancy.empty()
+                                  ? rad::default_occupancy(weather)
+                                  : rad::read_occupancy(a.occupancy, weather.hours.size());
+        year = rad::annual_metrics(rad::annual_illuminance(sensors, positions, normals, weather,
+                                                           occupied, a.ground, a.quiet));
+        in.weather = weather.place + " (" + a.epw + ")";
+        in.occupancy =
+            a.occupancy.empty() ? "08:00-18:00 local standard time, every day" : a.occupancy;
+    }
+    std::size_t first = 0;
+    for (std::size_t s = 0; s < grids.size(); ++s) {
+        const auto n = std::size_t(grids[s].size());
+        rad::SurfaceDaylight d;
+        for (std::size_t k = first; k < first + n; ++k)
+            d.factor.push_back(100 * lux[k].total() / sky.horizontal_illuminance());
+        d.summary = rad::summarise_daylight_factors(d.factor);
+        if (year) {
+            d.annual = true;
+            d.metrics = rad::summarise_sensor_metrics(
+                {year->sensors.begin() + long(first), year->sensors.begin() + long(first + n)},
+                year->occupied_hours);
+            for (const auto& m : d.metrics.sensors) d.da300.push_back(100 * m.da300);
+        }
+        in.surfaces.push_back({file.surfaces[s], grids[s], {}, {}, {}, std::move(d)});
+        first += n;
+    }
+    in.daylight = true;
+    in.daylight_sky = sky.describe();
+    in.metres_per_unit = metres;
+    in.method = "Daylight at each point by daylight coefficients (rad-ff --sky, rad-solve "
+                "--direct): the sky seen directly traced from the point (" +
+                std::to_string(options.sky_side * options.sky_side) +
+                " directions per sky patch, through glass), the light the room reflects from " +
+                std::to_string(options.rays) +
+                " cosine-weighted rays over each patch's radiosity per sky patch, the sun's beam "
+                "traced each hour; seed " +
+                std::to_string(options.seed) + ".";
+}
+
+void print_summary(const ReportArgs& a, const rad::ReportInput& in) {
+    long failing = 0, points = 0;
+    for (const auto& s : in.surfaces) failing += !s.verdict.passes(), points += s.grid.size();
+    std::fprintf(stderr,
+                 "rad-report: %zu surface(s) (%ld points, %ld failing their requirements), %zu "
+                 "observer(s)%s: %s%s%s\n",
+                 in.surfaces.size(), points, failing, in.observers.size(),
+                 in.daylight ? ", daylight" : "", a.output.c_str(), a.pdf.empty() ? "" : ", ",
+                 a.pdf.c_str());
+}
+
+// The title block's facts: project, date, this tool, the inputs' hashes, the solution's
+// provenance.
+rad::ReportInput title_of(const ReportArgs& a, const radfmt::Header& mesh_header,
+                          const radfmt::Header& rad_header) {
+    rad::ReportInput in;
+    const auto& mesh_path = a.inputs[0];
+    in.project = a.project.empty() ? std::filesystem::path(mesh_path).stem().string() : a.project;
+    in.date = a.date.empty() ? today() : a.date;
+    in.producer = rad::tool_version("rad-report");
+    in.inputs = {{mesh_path, mesh_header.file_hash},
+                 {a.inputs[1], rad_header.file_hash},
+                 {a.surfaces, radfmt::hash_file(a.surfaces)}};
+    for (const auto& record : rad_header.inputs) // what the solution was made from
+        in.inputs.emplace_back(record.path + " (read by rad-solve)", record.hash);
+    if (!a.epw.empty()) in.inputs.emplace_back(a.epw, radfmt::hash_file(a.epw));
+    if (!a.occupancy.empty()) in.inputs.emplace_back(a.occupancy, radfmt::hash_file(a.occupancy));
+    in.provenance = rad_header.chain();
+    return in;
+}
+
+// Illuminance: the surfaces' lux, the luminaires, the observers' glare.
+void lighting_figures(const ReportArgs& a, const rad::CalcFile& file, radfmt::MeshData& mesh,
+                      const radfmt::RadiosityData& solution, const radfmt::Header& mesh_header,
+                      const radfmt::Header& rad_header, rad::ReportInput& in,
+                      std::optional<rad::LuminaireSet>& luminaires) {
+    if (!a.epw.empty() || !a.occupancy.empty())
+        throw rad::InputError("--epw and --occupancy are for a daylight solution (rad-solve "
+                              "--direct FILE.sky); " +
+                              a.inputs[1] + " is not one");
+    const rad::Gatherer gatherer(mesh, solution.radiosity, a.options);
+    luminaires =
+        rad::solution_luminaires(rad_header, a.inputs[1], a.direct, mesh, a.inputs[0], mesh_header);
+    const auto* set = luminaires ? &*luminaires : nullptr;
+    const double metres = rad::metres_per_unit(mesh_header);
+    const rad::Box box = rad::bounds(mesh.vertices);
+    in.method = method_text(a, rad_header);
+    in.metres_per_unit = metres;
+    in.luminaires = set;
+    in.surfaces = surfaces_of(file, gatherer, set, box, metres, a.quiet);
+    std::uint64_t sensors = 0;
+    for (const auto& s : in.surfaces) sensors += std::uint64_t(s.grid.size());
+    in.observers = observers_of(file, gatherer, set, box, sensors);
+    power_area(a, file, metres, in);
+}
+
 int report(ReportArgs& a) {
     const auto& mesh_path = a.inputs[0];
     const auto& rad_path = a.inputs[1];
-    rad::tool::check_outputs({mesh_path, rad_path, a.surfaces, a.direct},
+    rad::tool::check_outputs({mesh_path, rad_path, a.surfaces, a.direct, a.epw, a.occupancy},
                              {{"-o", a.output}, {"--pdf", a.pdf}});
     a.options.smoothing = rad::parse_smoothing(a.smooth);
     rad::ThreadLimit thread_limit(a.threads);
@@ -163,37 +315,13 @@ int report(ReportArgs& a) {
     const auto solution = radfmt::read_radiosity(rad_path, &rad_header);
     radfmt::require_same_geometry(rad_path, rad_header, solution.radiosity.size(), mesh_path, mesh,
                                   "run rad-ff and rad-solve on " + mesh_path + " again");
-    if (rad_header.find("sky_subdivision"))
-        throw rad::InputError(rad_path + " is a daylight solution (one light group per sky "
-                                         "patch): rad-report does not report daylight yet; "
-                                         "rad-gather --sky ... --daylight-factor and --epw ... "
-                                         "--annual give its figures");
     rad::apply_recorded_overrides(mesh, rad_header);
-    const rad::Gatherer gatherer(mesh, solution.radiosity, a.options);
-    const auto luminaires =
-        rad::solution_luminaires(rad_header, rad_path, a.direct, mesh, mesh_path, mesh_header);
-    const auto* set = luminaires ? &*luminaires : nullptr;
-    const double metres = rad::metres_per_unit(mesh_header);
-    const rad::Box box = rad::bounds(mesh.vertices);
-
-    rad::ReportInput in;
-    in.project = a.project.empty() ? std::filesystem::path(mesh_path).stem().string() : a.project;
-    in.date = a.date.empty() ? today() : a.date;
-    in.producer = rad::tool_version("rad-report");
-    in.inputs = {{mesh_path, mesh_header.file_hash},
-                 {rad_path, rad_header.file_hash},
-                 {a.surfaces, radfmt::hash_file(a.surfaces)}};
-    for (const auto& record : rad_header.inputs) // what the solution was made from
-        in.inputs.emplace_back(record.path + " (read by rad-solve)", record.hash);
-    in.provenance = rad_header.chain();
-    in.method = method_text(a, rad_header);
-    in.metres_per_unit = metres;
-    in.luminaires = set;
-    in.surfaces = surfaces_of(file, gatherer, set, box, metres, a.quiet);
-    std::uint64_t sensors = 0;
-    for (const auto& s : in.surfaces) sensors += std::uint64_t(s.grid.size());
-    in.observers = observers_of(file, gatherer, set, box, sensors);
-    power_area(a, file, metres, in);
+    auto in = title_of(a, mesh_header, rad_header);
+    std::optional<rad::LuminaireSet> luminaires;
+    if (rad::is_daylight_solution(rad_header))
+        daylight_figures(a, file, mesh, solution, mesh_header, rad_header, in);
+    else
+        lighting_figures(a, file, mesh, solution, mesh_header, rad_header, in, luminaires);
 
     const auto html = rad::report_html(in);
     radfmt::OutputBatch outputs;
@@ -202,16 +330,7 @@ int report(ReportArgs& a) {
         radfmt::write_atomically(
             a.pdf, [&](const std::filesystem::path& temp) { rad::tool::print_pdf(html, temp); });
     outputs.commit();
-    if (!a.quiet) {
-        long failing = 0;
-        for (const auto& s : in.surfaces) failing += !s.verdict.passes();
-        std::fprintf(stderr,
-                     "rad-report: %zu surface(s) (%llu points, %ld failing their requirements), "
-                     "%zu observer(s): %s%s%s\n",
-                     in.surfaces.size(), static_cast<unsigned long long>(sensors), failing,
-                     in.observers.size(), a.output.c_str(), a.pdf.empty() ? "" : ", ",
-                     a.pdf.c_str());
-    }
+    if (!a.quiet) print_summary(a, in);
     return 0;
 }
 

@@ -4,7 +4,10 @@
 // to the digits shown; every isoline's ends lie where rad-gather's values, linear between
 // sensors, equal its level, and its pixels are drawn there; every line has its label.
 //
-//   node test-report.mjs --page R.html --values G.csv [--screenshot-dir D]
+//   node test-report.mjs --page R.html --values G.csv [--quantity lux|df|da300]
+//     lux:   G.csv is rad-gather --surfaces' output (its lux column)
+//     df:    rad-gather --surfaces --sky cie-overcast --daylight-factor's (its df column)
+//     da300: rad-gather --surfaces --epw F --annual --metrics G.csv's metrics
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
@@ -22,40 +25,69 @@ function options() {
   return out;
 }
 
-// rad-gather --surfaces' CSV: surface name -> { columns, rows, lux[] } (names here are plain).
+// rad-gather's CSV: surface name -> { columns, rows, rows of fields by column name }.
 function readValues(file) {
   const surfaces = new Map();
   const lines = readFileSync(file, 'utf8').split('\n').filter((l) => l && !l.startsWith('#'));
-  if (lines[0] !== 'surface,index,column,row,x,y,z,lux') throw new Error(`${file}: not rad-gather --surfaces output`);
+  const header = lines[0].split(',');
+  if (header.slice(0, 4).join(',') !== 'surface,index,column,row') throw new Error(`${file}: not rad-gather --surfaces output`);
   for (const line of lines.slice(1)) {
     const f = line.split(',');
-    const name = f[0];
-    if (!surfaces.has(name)) surfaces.set(name, { columns: 0, rows: 0, lux: [] });
-    const s = surfaces.get(name);
-    s.columns = Math.max(s.columns, Number(f[2]) + 1);
-    s.rows = Math.max(s.rows, Number(f[3]) + 1);
-    s.lux.push(f[7] === 'nan' ? NaN : Number(f[7]));
+    const row = Object.fromEntries(header.map((name, k) => [name, f[k] === 'nan' ? NaN : Number(f[k])]));
+    if (!surfaces.has(f[0])) surfaces.set(f[0], { columns: 0, rows: 0, sensors: [] });
+    const s = surfaces.get(f[0]);
+    s.columns = Math.max(s.columns, row.column + 1);
+    s.rows = Math.max(s.rows, row.row + 1);
+    s.sensors.push(row);
   }
   return surfaces;
 }
 
-function figures(lux) {
-  const v = lux.filter((x) => Number.isFinite(x));
-  const min = Math.min(...v), max = Math.max(...v), mean = v.reduce((a, b) => a + b, 0) / v.length;
-  return { em: mean, emin: min, emax: max, u0: min / mean, ratio: min / max };
-}
+const mean = (v) => v.reduce((a, b) => a + b, 0) / v.length;
+const share = (v, test) => 100 * v.filter(test).length / v.length;
+
+// What the page shows of a surface, by the table cells' classes, from rad-gather's values; and
+// the values its plan is drawn from.
+const quantities = {
+  lux: {
+    plan: (s) => s.sensors.map((r) => r.lux),
+    figures(s) {
+      const v = s.sensors.map((r) => r.lux).filter((x) => Number.isFinite(x));
+      const min = Math.min(...v), max = Math.max(...v), m = mean(v);
+      return { em: m, emin: min, emax: max, u0: min / m, ratio: min / max };
+    },
+  },
+  df: {
+    plan: (s) => s.sensors.map((r) => r.df),
+    figures(s) {
+      const v = s.sensors.map((r) => r.df).sort((a, b) => a - b), n = v.length;
+      const median = n % 2 ? v[(n - 1) / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+      return { 'df-mean': mean(v), 'df-median': median, 'df-min': v[0], 'df-max': v[n - 1], 'df-above2': share(v, (x) => x >= 2) };
+    },
+  },
+  da300: {
+    plan: (s) => s.sensors.map((r) => 100 * r.da300),
+    figures(s) {
+      const da = s.sensors.map((r) => r.da300);
+      return {
+        sda: share(da, (x) => x >= 0.5), ase: share(s.sensors, (r) => r.sun_hours > 250),
+        da300: 100 * mean(da), udi: 100 * mean(s.sensors.map((r) => r.udi_useful)),
+      };
+    },
+  },
+};
 
 // The shown text equals `value` to its digits: within half a unit of its last decimal (and
 // the rounding of rad-gather's six significant digits).
 function sameToDigits(shown, value) {
   const decimals = (shown.split('.')[1] ?? '').length;
   const half = 0.5 * 10 ** -decimals;
-  return Math.abs(Number(shown) - value) <= half + 1e-5 * Math.abs(value);
+  return Math.abs(Number(shown) - value) <= half + 1e-5 * Math.abs(value) + 1e-9;
 }
 
 // The value at an isoline's end (sensor coordinates, on a square's edge), linear along it.
 function valueAt(s, c, r) {
-  const v = (cc, rr) => s.lux[rr * s.columns + cc];
+  const v = (cc, rr) => s.plan[rr * s.columns + cc];
   const near = (x) => Math.abs(x - Math.round(x)) < 1e-3;
   if (near(c)) {
     const cc = Math.round(c), r0 = Math.min(Math.floor(r), s.rows - 2);
@@ -67,6 +99,8 @@ function valueAt(s, c, r) {
 
 const opts = options();
 const values = readValues(opts.values);
+const quantity = quantities[opts.quantity ?? 'lux'];
+if (!quantity) throw new Error(`--quantity: lux, df or da300, not ${opts.quantity}`);
 const profile = mkdtempSync(join(tmpdir(), 'radiosity-chromium-'));
 const browser = await puppeteer.launch({
   executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
@@ -90,44 +124,47 @@ try {
   });
   await page.setViewport({ width: 900, height: 1200, deviceScaleFactor: 1 });
   await page.goto(pageUrl, { waitUntil: 'load' });
-  const shown = await page.evaluate(() => {
-    const text = (el, sel) => el.querySelector(sel)?.textContent.trim();
+  // Plans at their own size (the page may shrink two side by side): lines one pixel wide or more.
+  await page.addStyleTag({ content: '.plans figure, .plans svg { max-width: none !important; }' });
+  const shown = await page.evaluate((q) => {
     const out = [];
     for (const table of document.querySelectorAll('table.figures')) {
       const name = table.dataset.surface;
       const row = [...document.querySelectorAll('table.surfaces tr')].find((r) => r.dataset.surface === name);
-      const summary = row ? [...row.querySelectorAll('td')].map((td) => td.textContent.trim()) : [];
-      const section = table.closest('section');
-      const iso = section.querySelector('g.isolux');
+      const summary = row ? [...row.querySelectorAll('td.num')].map((td) => td.textContent.trim()) : [];
+      const cells = {};
+      for (const td of table.querySelectorAll('td.num')) cells[[...td.classList].find((c) => c !== 'num')] = td.textContent.trim();
+      const iso = table.closest('section').querySelector(`g.isolux[data-quantity="${q}"]`);
+      if (!iso) { out.push({ name, missing: true }); continue; }
+      const svg = iso.closest('svg');
       const [x0, y0] = iso.dataset.sensorOrigin.split(' ').map(Number);
       const [dx, dy] = iso.dataset.sensorStep.split(' ').map(Number);
-      const lines = [...iso.querySelectorAll('path.isoline')].map((p) => ({ lux: p.dataset.lux, d: p.getAttribute('d') }));
-      const labels = [...iso.querySelectorAll('text.isolabel')].map((t) => ({ lux: t.dataset.lux, text: t.textContent }));
-      out.push({
-        name, summary, lines, labels, x0, y0, dx, dy,
-        em: text(table, 'td.em'), emin: text(table, 'td.emin'), emax: text(table, 'td.emax'),
-        u0: text(table, 'td.u0'), ratio: text(table, 'td.ratio'),
-      });
+      const lines = [...iso.querySelectorAll('path.isoline')].map((p) => ({ level: p.dataset.level, d: p.getAttribute('d') }));
+      const labels = [...iso.querySelectorAll('text.isolabel')].map((t) => ({ level: t.dataset.level, text: t.textContent }));
+      const zoom = svg.getBoundingClientRect().width / svg.viewBox.baseVal.width;
+      svg.id = svg.id || `plan-${out.length}-${q}`;
+      out.push({ name, summary, cells, lines, labels, x0, y0, dx, dy, zoom, svg: svg.id });
     }
     return out;
-  });
+  }, opts.quantity ?? 'lux');
   if (shown.length !== values.size) fail(`the page has ${shown.length} surfaces, rad-gather wrote ${values.size}`);
   let checked = 0, ends = 0, drawn = 0, sampled = 0;
   for (const s of shown) {
     const v = values.get(s.name);
     if (!v) { fail(`surface '${s.name}' is not in ${opts.values}`); continue; }
-    const f = figures(v.lux);
-    for (const key of ['em', 'emin', 'emax', 'u0', 'ratio']) {
-      if (!sameToDigits(s[key], f[key])) fail(`${s.name}: ${key} shown ${s[key]}, rad-gather's values give ${f[key]}`);
-      ++checked;
+    if (s.missing) { fail(`${s.name}: no ${opts.quantity ?? 'lux'} plan`); continue; }
+    const f = quantity.figures(v);
+    for (const [key, value] of Object.entries(f)) {
+      if (s.cells[key] === undefined) { fail(`${s.name}: the table has no ${key}`); continue; }
+      if (!sameToDigits(s.cells[key], value)) fail(`${s.name}: ${key} shown ${s.cells[key]}, rad-gather's values give ${value}`);
+      else ++checked;
+      // The summary row shows the same text.
+      if (!s.summary.includes(s.cells[key]) && (opts.quantity ?? 'lux') !== 'da300')
+        fail(`${s.name}: the summary row (${s.summary.join(' ')}) lacks ${key} ${s.cells[key]}`);
     }
-    // The summary row: Em, Emin, Emax, U0, Emin/Emax in columns 2 to 6.
-    ['em', 'emin', 'emax', 'u0', 'ratio'].forEach((key, k) => {
-      if (s.summary[2 + k] !== s[key]) fail(`${s.name}: the summary shows ${s.summary[2 + k]} for ${key}, the section ${s[key]}`);
-    });
+    v.plan = quantity.plan(v);
     // Isolines: every end at its level; every level labelled, with its own value.
-    const element = await page.$(`section:has(table.figures[data-surface="${s.name}"]) svg.plan`);
-    const box = await element.boundingBox();
+    const element = await page.$(`#${s.svg}`);
     const shot = await element.screenshot({ encoding: 'base64' });
     const pixels = await page.evaluate(async (src) => {
       const image = new Image();
@@ -137,32 +174,35 @@ try {
       canvas.width = image.width; canvas.height = image.height;
       const context = canvas.getContext('2d');
       context.drawImage(image, 0, 0);
-      return { width: image.width, data: Array.from(context.getImageData(0, 0, image.width, image.height).data) };
+      return { width: image.width, height: image.height, data: Array.from(context.getImageData(0, 0, image.width, image.height).data) };
     }, shot);
     const dark = (x, y) => {
+      const px = Math.round(x * s.zoom), py = Math.round(y * s.zoom);
       for (let j = -1; j <= 1; ++j) for (let i = -1; i <= 1; ++i) {
-        const k = 4 * ((Math.round(y) + j) * pixels.width + Math.round(x) + i);
+        const k = 4 * ((py + j) * pixels.width + px + i);
         if (pixels.data[k] + pixels.data[k + 1] + pixels.data[k + 2] < 200) return true;
       }
       return false;
     };
     for (const line of s.lines) {
-      const level = Number(line.lux);
-      if (!s.labels.some((l) => l.lux === line.lux)) fail(`${s.name}: the ${line.lux} lx line has no label`);
+      const level = Number(line.level);
+      if (!s.labels.some((l) => l.level === line.level)) fail(`${s.name}: the ${line.level} line has no label`);
       const numbers = line.d.match(/-?[0-9.]+/g).map(Number);
       for (let k = 0; k + 3 < numbers.length; k += 4) {
         for (const [x, y] of [[numbers[k], numbers[k + 1]], [numbers[k + 2], numbers[k + 3]]]) {
           const at = valueAt(v, (x - s.x0) / s.dx, (s.y0 - y) / s.dy);
-          const tolerance = at.spread * 0.006 / Math.min(s.dx, s.dy) + 1e-4 * level;
-          if (!(Math.abs(at.value - level) <= tolerance)) fail(`${s.name}: an end of the ${line.lux} lx line at (${x}, ${y}) lies at ${at.value.toFixed(3)} lx`);
+          // The ends' pixels are written to 0.01 px, and rad-gather's values rounded (six
+          // digits; the metrics' shares to 0.0001, 0.01 in %).
+          const rounding = (opts.quantity === 'da300' ? 0.0051 : 0) + 2e-5 * Math.abs(level) + 1e-6;
+          const tolerance = at.spread * 0.006 / Math.min(s.dx, s.dy) + rounding;
+          if (!(Math.abs(at.value - level) <= tolerance)) fail(`${s.name}: an end of the ${line.level} line at (${x}, ${y}) lies at ${at.value.toPrecision(7)} (tolerance ${tolerance.toPrecision(2)})`);
           ++ends;
         }
-        const mx = (numbers[k] + numbers[k + 2]) / 2, my = (numbers[k + 1] + numbers[k + 3]) / 2;
         ++sampled;
-        if (dark(mx - 0 * box.x, my)) ++drawn;
+        if (dark((numbers[k] + numbers[k + 2]) / 2, (numbers[k + 1] + numbers[k + 3]) / 2)) ++drawn;
       }
     }
-    for (const label of s.labels) if (label.text !== label.lux) fail(`${s.name}: a label reads ${label.text} on the ${label.lux} lx line`);
+    for (const label of s.labels) if (label.text !== label.level) fail(`${s.name}: a label reads ${label.text} on the ${label.level} line`);
   }
   if (sampled === 0) fail('no isoline in the page');
   else if (drawn < 0.9 * sampled) fail(`only ${drawn} of ${sampled} isoline pieces are drawn dark at their place`);

@@ -63,6 +63,36 @@ cmp -s "$TMP/r.html" "$TMP/r1.html" || fail "rad-report differs at 1 and 2 threa
   fail "rad-report --area"
 grep -q '<span class="density">13.00</span>' "$TMP/a.html" || fail "156 W over 12 m^2: $(grep -o 'class="density">[^<]*' "$TMP/a.html")"
 
+# Daylight: the glazed room's daylight factor and a year in Denver, the same numbers as
+# rad-gather --surfaces (its df column; its --metrics' da300, sun_hours, udi_useful).
+D="$SRC/scenes/daylight-room"
+"$BIN/rad-mesh" "$D/daylight-room-glazed.obj" -o "$TMP/d.mesh" --unit m -q 2>/dev/null || fail "rad-mesh daylight"
+{ "$BIN/rad-ff" "$TMP/d.mesh" -o "$TMP/d.ff" -q && "$BIN/rad-ff" "$TMP/d.mesh" --sky reinhart:1 -o "$TMP/d.sky" -q; } ||
+  fail "rad-ff daylight"
+"$BIN/rad-solve" "$TMP/d.mesh" "$TMP/d.ff" --direct "$TMP/d.sky" -o "$TMP/d.rad" -q || fail "rad-solve daylight"
+EPW="$SRC/tests/data/denver-tmy3.epw"
+"$BIN/rad-gather" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$D/calc.csv" --sky cie-overcast --daylight-factor \
+  -o "$TMP/df.csv" 2> "$TMP/df.err" || fail "rad-gather --surfaces --daylight-factor: $(cat "$TMP/df.err")"
+grep -q "^rad-gather: work plane: daylight factor mean" "$TMP/df.err" || fail "no work plane DF line: $(cat "$TMP/df.err")"
+"$BIN/rad-gather" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$D/calc.csv" --epw "$EPW" --annual -o "$TMP/d.ill" \
+  --metrics "$TMP/m.csv" > "$TMP/year.txt" -q || fail "rad-gather --surfaces --annual"
+grep -q "^  work plane: sDA300/50%" "$TMP/year.txt" || fail "no work plane sDA line: $(cat "$TMP/year.txt")"
+"$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$D/calc.csv" --epw "$EPW" -o "$TMP/d.html" --pdf "$TMP/d.pdf" \
+  --date 2026-12-05 -q || fail "rad-report daylight"
+for q in df:df da300:m; do
+  out=$(node "$WEB/test-report.mjs" --page "$TMP/d.html" --values "$TMP/${q#*:}.csv" --quantity "${q%:*}" 2>&1) ||
+    fail "the daylight page's ${q%:*} in Chromium: $out"
+done
+[ "$(pdfinfo "$TMP/d.pdf" | awk '/^Pages:/ {print $2}')" = 3 ] || fail "the daylight PDF is not 3 pages"
+pdftotext "$TMP/d.pdf" - | grep -q "sDA300/50%" || fail "the daylight PDF's text lacks sDA300/50%"
+"$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$D/calc.csv" --epw "$EPW" -o "$TMP/d1.html" \
+  --date 2026-12-05 -q --threads 1 || fail "rad-report daylight --threads 1"
+cmp -s "$TMP/d.html" "$TMP/d1.html" || fail "the daylight report differs at 1 and 2 threads"
+expect_error "observers' glare (UGR) is from luminaires" "$TMP/x.html" \
+  "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/calc.csv" -o "$TMP/x.html"
+expect_error "--epw and --occupancy are for a daylight solution" "$TMP/x.html" \
+  "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" --epw "$EPW" -o "$TMP/x.html"
+
 # Refusals: the file and line, the fix; no output left.
 printf 'name,kind,x,y,z,ux,uy,uz,vx,vy,vz\nwp,workplane,0,0.8,4,6,0,0,0,0,-4\nwp,wall,0,0,0,6,0,0,0,3,0\n' > "$TMP/twice.csv"
 expect_error "twice.csv:3: 'wp' is named twice" "$TMP/x.html" \
@@ -73,7 +103,7 @@ expect_error "--surfaces writes lux at its own sensors" "$TMP/x.csv" \
   "$BIN/rad-gather" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" --grid "0 0 1 1 1 2 2" -o "$TMP/x.csv"
 # Glare needs luminaires: a Cornell box lit by its own lamp has none.
 cornell_mesh 0.25
-"$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/c.ff" -q && "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/c.rad" -q || fail "cornell"
+{ "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/c.ff" -q && "$BIN/rad-solve" "$TMP/c.mesh" "$TMP/c.ff" -o "$TMP/c.rad" -q; } || fail "cornell"
 printf 'name,kind,x,y,z,ux,uy,uz\neye,observer,0,0.5,0.5,0,0,-1\n' > "$TMP/eye.csv"
 expect_error "the solution has none" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/c.mesh" "$TMP/c.rad" --surfaces "$TMP/eye.csv" -o "$TMP/x.html"
@@ -82,5 +112,5 @@ err=$(RAD_CHROMIUM=/nonexistent/chromium "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l
   -o "$TMP/y.html" --pdf "$TMP/y.pdf" 2>&1); rc=$?
 [ $rc -eq 2 ] || fail "a missing Chromium: exit $rc ($err)"
 grep -qF "RAD_CHROMIUM" <<<"$err" || fail "a missing Chromium: '$err' does not say what to set"
-[ ! -e "$TMP/y.html" ] && [ ! -e "$TMP/y.pdf" ] || fail "a failed --pdf left an output"
+if [ -e "$TMP/y.html" ] || [ -e "$TMP/y.pdf" ]; then fail "a failed --pdf left an output"; fi
 finish

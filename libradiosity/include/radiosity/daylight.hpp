@@ -146,6 +146,10 @@ class DaylightSensors {
     };
     Illuminance illuminance(const Sky& sky, const Vec3& point, const Vec3& normal,
                             std::uint64_t index) const;
+    // The same at every sensor, in parallel (sensor k's stream from k); progress on stderr
+    // when it is a terminal and not `quiet`.
+    std::vector<Illuminance> illuminance(const Sky& sky, std::span<const Vec3> points,
+                                         std::span<const Vec3> normals, bool quiet) const;
     // The sun's beam at a sensor (lux), see sensor_sun.
     double sun(const Vec3& point, const Vec3& normal, const Vec3& direction, double lux) const;
     const SkyPatches& patches() const { return solution_.patches; }
@@ -192,6 +196,9 @@ struct AnnualMetrics {
     double sda = 0, ase = 0, udi_useful = 0, da300 = 0; // shares in [0, 1]; means over sensors
 };
 AnnualMetrics annual_metrics(const radfmt::AnnualData& year);
+// The plane's figures (sDA, ASE, means) of some sensors' metrics: a part of a plane (a
+// calculation surface) is summarised as annual_metrics summarises the whole.
+AnnualMetrics summarise_sensor_metrics(std::vector<SensorMetrics> sensors, int occupied_hours);
 
 // Daylight factors' summary: mean, median, min, max (%) and the share of sensors at 2% or more.
 struct DaylightFactorSummary {

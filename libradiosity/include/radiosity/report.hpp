@@ -4,21 +4,35 @@
 // number comes from what the caller computed (the same functions rad-gather calls).
 #pragma once
 #include "radiosity/calc_surfaces.hpp"
+#include "radiosity/daylight.hpp"
 #include "radiosity/glare.hpp"
 #include "radiosity/luminaires.hpp"
 
+#include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace rad {
 
+// A daylight solution's figures on a surface: the daylight factor under the CIE overcast
+// sky, and with a weather file the year's metrics.
+struct SurfaceDaylight {
+    std::vector<double> factor; // % per sensor
+    DaylightFactorSummary summary;
+    bool annual = false;
+    std::vector<double> da300; // % of occupied hours, per sensor
+    AnnualMetrics metrics;     // this surface's
+};
+
 struct ReportSurface {
     CalcSurface surface;
     SurfaceGrid grid;
-    std::vector<double> lux; // per sensor, NaN: none
+    std::vector<double> lux; // per sensor, NaN: none (empty for daylight)
     IlluminanceStats stats;
     Verdict verdict;
+    std::optional<SurfaceDaylight> daylight;
 };
 
 struct ReportObserver {
@@ -38,6 +52,10 @@ struct ReportInput {
     double metres_per_unit = 1;
     double power_area_m2 = 0;    // the area the power density is over (0: not given)
     std::string power_area_what; // which area that is, for the page
+    // A daylight solution: the sky the factors are under, and the year's weather file (its
+    // place) and occupied hours, when there is one.
+    bool daylight = false;
+    std::string daylight_sky, weather, occupancy;
 };
 
 // Lux as the page shows it: three significant figures without an exponent (412, 41.2, 4.12;
@@ -50,9 +68,16 @@ std::string ratio_text(double ratio);
 std::string report_html(const ReportInput& input);
 
 // Parts of the page (each its own file):
-// a surface's false-colour plan with isolux lines labelled in lux and the luminaires above it,
-// as SVG; `top` is the colour scale's top (lux).
-std::string surface_plan_svg(const ReportSurface& surface, const LuminaireSet* luminaires,
+// a surface's false-colour plan of `values` (per sensor) with isolines labelled in `unit` and
+// the luminaires above it, as SVG. `quantity` names what is drawn ("lux", "df", "da300": the
+// isolines' group carries it); `top` is the colour scale's top (0: a round number at or over
+// the largest value).
+struct PlanScale {
+    std::string quantity, unit;
+    double top = 0;
+};
+std::string surface_plan_svg(const ReportSurface& surface, std::span<const double> values,
+                             const PlanScale& scale, const LuminaireSet* luminaires,
                              double metres_per_unit);
 // A photometric file's polar curve (C0-C180 and C90-C270, cd/klm) as SVG, from `luminaire`'s
 // frame.

@@ -51,7 +51,8 @@ svg.polar .grid circle, svg.polar .grid path { fill: none; stroke: #bbb; stroke-
 svg.polar path.c0 { fill: none; stroke: #b00020; stroke-width: 1.6; }
 svg.polar path.c90 { fill: none; stroke: #1040b0; stroke-width: 1.6; stroke-dasharray: 5 3; }
 svg.polar tspan.c0 { fill: #b00020; } svg.polar tspan.c90 { fill: #1040b0; }
-.polars { display: flex; flex-wrap: wrap; gap: 8pt; }
+.polars, .plans { display: flex; flex-wrap: wrap; gap: 8pt; }
+.plans figure { max-width: 48%; } .plans svg { max-width: 100%; height: auto; }
 .note { font-size: 9pt; color: #333; }
 nav ol { margin: 2pt 0; }
 table.surfaces td:first-child { white-space: nowrap; }
@@ -79,16 +80,28 @@ std::string cell(const std::string& text, const char* cls = "num") {
     return std::string("<td class=\"") + cls + "\">" + text + "</td>";
 }
 
+std::string report_kind(const ReportInput& in) {
+    return in.daylight ? "Daylight report" : "Lighting report";
+}
+
 std::string title_block(const ReportInput& in) {
-    std::string out =
-        "<header class=\"title-block\"><h1>Lighting report: " + html_escape(in.project) +
-        "</h1><table>";
+    std::string out = "<header class=\"title-block\"><h1>" + report_kind(in) + ": " +
+                      html_escape(in.project) + "</h1><table>";
     out += "<tr><th>Project</th><td>" + html_escape(in.project) + "</td></tr>";
     out += "<tr><th>Date</th><td>" + html_escape(in.date) + "</td></tr>";
     out += "<tr><th>Made by</th><td>" + html_escape(in.producer) + "</td></tr>";
-    out += "<tr><th>Units</th><td>illuminance in lux (lx), maintained: each luminaire's "
-           "maintenance factor applied (see the schedule); luminance in cd/m&#178;; lengths in "
-           "metres</td></tr>";
+    if (in.daylight) {
+        out += "<tr><th>Units</th><td>daylight factor (DF): the illuminance at a point over the "
+               "unobstructed outdoor horizontal illuminance under the " +
+               html_escape(in.daylight_sky) + ", in %; lengths in metres</td></tr>";
+        if (!in.weather.empty())
+            out += "<tr><th>Year</th><td>" + html_escape(in.weather) +
+                   "; occupied hours: " + html_escape(in.occupancy) + "</td></tr>";
+    } else {
+        out += "<tr><th>Units</th><td>illuminance in lux (lx), maintained: each luminaire's "
+               "maintenance factor applied (see the schedule); luminance in cd/m&#178;; lengths "
+               "in metres</td></tr>";
+    }
     out += "</table><h3>Inputs</h3><table>";
     for (const auto& [path, hash] : in.inputs)
         out += "<tr><td>" + html_escape(path) + "</td><td class=\"hash\">" + html_escape(hash) +
@@ -154,8 +167,44 @@ std::string observers_table(const ReportInput& in) {
     return out + "</tbody></table>";
 }
 
+std::string percent(double share) {
+    return fixed(100 * share, 1);
+}
+
+std::string daylight_table(const ReportInput& in) {
+    const bool annual = !in.weather.empty();
+    std::string out = "<table class=\"surfaces daylight\"><thead><tr><th>Surface</th><th>Kind"
+                      "</th><th class=\"num\">DF mean (%)</th><th class=\"num\">DF median (%)"
+                      "</th><th class=\"num\">DF min (%)</th><th class=\"num\">DF max (%)</th>"
+                      "<th class=\"num\">At 2% or more (% of points)</th>";
+    if (annual)
+        out += "<th class=\"num\">sDA300/50% (%)</th><th class=\"num\">ASE1000,250h (%)</th>";
+    out += "</tr></thead><tbody>";
+    for (std::size_t k = 0; k < in.surfaces.size(); ++k) {
+        const auto& s = in.surfaces[k];
+        const auto& d = s.daylight->summary;
+        out += "<tr data-surface=\"" + html_escape(s.surface.name) + "\"><td><a href=\"#surface-" +
+               std::to_string(k + 1) + "\">" + html_escape(s.surface.name) + "</a></td><td>" +
+               calc_kind_name(s.surface.kind) + "</td>" + cell(fixed(d.mean, 2)) +
+               cell(fixed(d.median, 2)) + cell(fixed(d.min, 2)) + cell(fixed(d.max, 2)) +
+               cell(percent(d.above2));
+        if (annual)
+            out += cell(percent(s.daylight->metrics.sda)) + cell(percent(s.daylight->metrics.ase));
+        out += "</tr>";
+    }
+    return out + "</tbody></table>";
+}
+
 std::string summary(const ReportInput& in) {
     std::string out = "<section id=\"summary\"><h2>Summary</h2>";
+    if (in.daylight) {
+        out += daylight_table(in);
+        out += "<p class=\"note\">DF: daylight factor; sDA300/50%: the share of points lit to "
+               "300 lx or more by daylight for half the occupied hours or more; ASE1000,250h: "
+               "the share of points the sun's beam alone lights to 1000 lx or more for over 250 "
+               "occupied hours (IES LM-83).</p>";
+        return out + "</section>";
+    }
     if (!in.surfaces.empty()) out += surfaces_table(in);
     if (!in.observers.empty()) out += observers_table(in);
     out += "<p class=\"note\">Em: average maintained illuminance over a surface's calculation "
@@ -164,28 +213,66 @@ std::string summary(const ReportInput& in) {
     return out + "</section>";
 }
 
+// The calculation area and its grid, the first rows of a surface's table.
+std::string grid_rows(const ReportSurface& s) {
+    const auto& g = s.grid;
+    return "<tr><th>Kind</th><td>" + std::string(calc_kind_name(s.surface.kind)) + "</td></tr>" +
+           "<tr><th>Calculation area</th><td>" + fixed(g.width_m, 2) + " m &#215; " +
+           fixed(g.depth_m, 2) + " m (border band " + fixed(g.border_m, 2) +
+           " m left out)</td></tr><tr><th>Grid</th><td>" + std::to_string(g.columns) + " &#215; " +
+           std::to_string(g.rows) + " points, spacing at most " + fixed(g.spacing_m, 3) +
+           " m</td></tr>";
+}
+
+std::string figure_row(const char* name, const std::string& value, const char* cls) {
+    return std::string("<tr><th>") + name + "</th><td class=\"num " + cls + "\">" + value +
+           "</td></tr>";
+}
+
+std::string daylight_section(const ReportSurface& s, std::size_t index) {
+    const auto& d = *s.daylight;
+    std::string out = "<section class=\"part surface\" id=\"surface-" + std::to_string(index + 1) +
+                      "\"><h2>" + html_escape(s.surface.name) +
+                      "</h2><table class=\"figures daylight\" data-surface=\"" +
+                      html_escape(s.surface.name) + "\"><tbody>" + grid_rows(s);
+    out += figure_row("DF mean (%)", fixed(d.summary.mean, 2), "df-mean");
+    out += figure_row("DF median (%)", fixed(d.summary.median, 2), "df-median");
+    out += figure_row("DF min (%)", fixed(d.summary.min, 2), "df-min");
+    out += figure_row("DF max (%)", fixed(d.summary.max, 2), "df-max");
+    out += figure_row("Points at 2% or more (%)", percent(d.summary.above2), "df-above2");
+    if (d.annual) {
+        out += figure_row("sDA300/50% (%)", percent(d.metrics.sda), "sda");
+        out += figure_row("ASE1000,250h (%)", percent(d.metrics.ase), "ase");
+        out += figure_row("DA300 mean (% of hours)", percent(d.metrics.da300), "da300");
+        out +=
+            figure_row("UDI 100-3000 lx mean (% of hours)", percent(d.metrics.udi_useful), "udi");
+    }
+    // The two plans side by side when they fit across the page, else one under the other.
+    out += "</tbody></table><div class=\"plans\"><figure>" +
+           surface_plan_svg(s, d.factor, {"df", "%", 0}, nullptr, 1) +
+           "<figcaption>Daylight factor on " + html_escape(s.surface.name) +
+           ", seen from the side its points face; lines labelled in %.</figcaption></figure>";
+    if (d.annual)
+        out += "<figure>" + surface_plan_svg(s, d.da300, {"da300", "%", 100}, nullptr, 1) +
+               "<figcaption>DA300 on " + html_escape(s.surface.name) +
+               ": the share of occupied hours at 300 lx or more from daylight, lines labelled "
+               "in %.</figcaption></figure>";
+    return out + "</div></section>";
+}
+
 std::string surface_section(const ReportInput& in, const ReportSurface& s, std::size_t index) {
+    if (s.daylight) return daylight_section(s, index);
     const auto& g = s.grid;
     const auto& st = s.stats;
     std::string out = "<section class=\"part surface\" id=\"surface-" + std::to_string(index + 1) +
                       "\"><h2>" + html_escape(s.surface.name) + "</h2>";
     out += "<table class=\"figures\" data-surface=\"" + html_escape(s.surface.name) + "\"><tbody>";
-    out += "<tr><th>Kind</th><td>" + std::string(calc_kind_name(s.surface.kind)) + "</td></tr>";
-    out += "<tr><th>Calculation area</th><td>" + fixed(g.width_m, 2) + " m &#215; " +
-           fixed(g.depth_m, 2) + " m (border band " + fixed(g.border_m, 2) +
-           " m left out)</td></tr>";
-    out += "<tr><th>Grid</th><td>" + std::to_string(g.columns) + " &#215; " +
-           std::to_string(g.rows) + " points, spacing at most " + fixed(g.spacing_m, 3) +
-           " m</td></tr>";
-    const auto row = [&](const char* name, const std::string& value, const char* cls) {
-        out += std::string("<tr><th>") + name + "</th><td class=\"num " + cls + "\">" + value +
-               "</td></tr>";
-    };
-    row("Em (lx)", lux_text(st.mean), "em");
-    row("Emin (lx)", lux_text(st.min), "emin");
-    row("Emax (lx)", lux_text(st.max), "emax");
-    row("U0 = Emin/Em", ratio_text(st.u0()), "u0");
-    row("Emin/Emax", ratio_text(st.min_over_max()), "ratio");
+    out += grid_rows(s);
+    out += figure_row("Em (lx)", lux_text(st.mean), "em");
+    out += figure_row("Emin (lx)", lux_text(st.min), "emin");
+    out += figure_row("Emax (lx)", lux_text(st.max), "emax");
+    out += figure_row("U0 = Emin/Em", ratio_text(st.u0()), "u0");
+    out += figure_row("Emin/Emax", ratio_text(st.min_over_max()), "ratio");
     if (st.without_value)
         out += "<tr><th>Points without a value</th><td>" + std::to_string(st.without_value) +
                " (inside or under objects; grey in the plan)</td></tr>";
@@ -193,7 +280,8 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
     out += "<tr><th>Verdict</th>" +
            verdict_text(has_requirements(s.surface.required), s.verdict.passes()) + "</tr>";
     out += "</tbody></table>";
-    out += "<figure>" + surface_plan_svg(s, in.luminaires, in.metres_per_unit) +
+    out += "<figure>" +
+           surface_plan_svg(s, s.lux, {"lux", "lx", 0}, in.luminaires, in.metres_per_unit) +
            "<figcaption>Illuminance on " + html_escape(s.surface.name) +
            ", seen from the side its points face; isolux lines labelled in lx";
     if (in.luminaires && std::abs(g.normal[1]) >= 0.9)
@@ -344,10 +432,9 @@ std::string html_escape(const std::string& text) {
 
 std::string report_html(const ReportInput& in) {
     std::string out = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-                      "<meta name=\"viewport\" content=\"width=device-width\"><title>Lighting "
-                      "report: " +
-                      html_escape(in.project) + "</title><style>" + kStyle +
-                      "</style></head><body>\n";
+                      "<meta name=\"viewport\" content=\"width=device-width\"><title>" +
+                      report_kind(in) + ": " + html_escape(in.project) + "</title><style>" +
+                      kStyle + "</style></head><body>\n";
     out += title_block(in) + "\n" + contents(in) + "\n" + summary(in) + "\n";
     for (std::size_t k = 0; k < in.surfaces.size(); ++k)
         out += surface_section(in, in.surfaces[k], k) + "\n";

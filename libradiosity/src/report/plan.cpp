@@ -52,13 +52,14 @@ PlanFrame frame_of(const SurfaceGrid& grid) {
     return f;
 }
 
-std::string cells_svg(const ReportSurface& s, const PlanFrame& f, double top) {
+std::string cells_svg(const ReportSurface& s, std::span<const double> values, const PlanFrame& f,
+                      double top) {
     const auto& g = s.grid;
     const double du = g.width_m / double(g.columns), dv = g.depth_m / double(g.rows);
     std::string out = "<g class=\"cells\" shape-rendering=\"crispEdges\">";
     for (long k = 0; k < g.size(); ++k) {
         const long c = k % g.columns, r = k / g.columns;
-        const double v = s.lux[std::size_t(k)];
+        const double v = values[std::size_t(k)];
         const auto fill =
             std::isnan(v) ? std::string("#bbbbbb") : colour_hex(false_colour(v / top));
         // Cells overlap a hair so that no seam of the background shows between them.
@@ -121,8 +122,8 @@ std::string label_level(const std::vector<IsoSegment>& pixels, const std::string
                          my = (pixels[k].y0 + pixels[k].y1) / 2;
             if (!places.free(mx, my, spacing)) continue;
             places.taken.push_back({mx, my, 70});
-            out += "<text class=\"isolabel\" data-lux=\"" + text + "\" x=\"" + px(mx) + "\" y=\"" +
-                   px(my + 4) + "\">" + text + "</text>";
+            out += "<text class=\"isolabel\" data-level=\"" + text + "\" x=\"" + px(mx) +
+                   "\" y=\"" + px(my + 4) + "\">" + text + "</text>";
             ++count;
         }
         if (count) break;
@@ -131,19 +132,25 @@ std::string label_level(const std::vector<IsoSegment>& pixels, const std::string
 }
 
 // The isolines, each level one path in pixels, with its labels.
-std::string isolines_svg(const ReportSurface& s, const PlanFrame& f,
+std::string isolines_svg(const ReportSurface& s, std::span<const double> values,
+                         const std::string& quantity, const PlanFrame& f,
                          const std::vector<PlacedLuminaire>& luminaires) {
     const auto& g = s.grid;
     const double du = g.width_m / double(g.columns), dv = g.depth_m / double(g.rows);
     // Sensor (c, r) at pixel (x0 + c dx, y0 - r dy).
     const double x0 = f.x(du / 2), y0 = f.y(dv / 2), dx = du * f.scale, dy = dv * f.scale;
-    std::string out = "<g class=\"isolux\" data-sensor-origin=\"" + px(x0) + " " + px(y0) +
-                      "\" data-sensor-step=\"" + px(dx) + " " + px(dy) + "\">";
+    // The sensors' frame, to more digits than the drawing's (a test maps the lines' ends back).
+    char frame[160];
+    std::snprintf(frame, sizeof frame,
+                  "data-sensor-origin=\"%.6f %.6f\" data-sensor-step=\"%.6f %.6f\"", x0, y0, dx,
+                  dy);
+    std::string out = "<g class=\"isolux\" data-quantity=\"" + quantity + "\" " + frame + ">";
     std::string labels;
     LabelPlaces places;
     for (const auto& l : luminaires) places.taken.push_back({l.x, l.y, 22});
-    for (const double level : contour_levels(s.stats.min, s.stats.max)) {
-        auto segments = isolines(s.lux, g.columns, g.rows, level);
+    const auto range = illuminance_stats(values); // the finite values' min and max
+    for (const double level : contour_levels(range.min, range.max)) {
+        auto segments = isolines(values, g.columns, g.rows, level);
         if (segments.empty()) continue;
         std::string d;
         for (auto& seg : segments) {
@@ -153,7 +160,7 @@ std::string isolines_svg(const ReportSurface& s, const PlanFrame& f,
             d += 'L';
             d += px(seg.x1) + ' ' + px(seg.y1);
         }
-        out += "<path class=\"isoline\" data-lux=\"" + round_text(level) + "\" d=\"" + d + "\"/>";
+        out += "<path class=\"isoline\" data-level=\"" + round_text(level) + "\" d=\"" + d + "\"/>";
         labels += label_level(segments, round_text(level), places);
     }
     return out + labels + "</g>";
@@ -170,7 +177,8 @@ std::string luminaires_svg(const std::vector<PlacedLuminaire>& luminaires) {
     return out + "</g>";
 }
 
-std::string legend_svg(double left, double top_px, double height, double top_lux) {
+std::string legend_svg(double left, double top_px, double height, double top_lux,
+                       const std::string& unit) {
     std::string out = "<g class=\"legend\">";
     const int steps = 40;
     for (int k = 0; k < steps; ++k) {
@@ -184,13 +192,14 @@ std::string legend_svg(double left, double top_px, double height, double top_lux
         out += "<text x=\"" + px(left + 22) + "\" y=\"" + px(y + 4) + "\">" +
                round_text(top_lux * k / 4) + "</text>";
     }
-    out += "<text x=\"" + px(left) + "\" y=\"" + px(top_px - 6) + "\">lx</text>";
+    out += "<text x=\"" + px(left) + "\" y=\"" + px(top_px - 6) + "\">" + unit + "</text>";
     return out + "</g>";
 }
 
 } // namespace
 
-std::string surface_plan_svg(const ReportSurface& s, const LuminaireSet* luminaires,
+std::string surface_plan_svg(const ReportSurface& s, std::span<const double> values,
+                             const PlanScale& scale, const LuminaireSet* luminaires,
                              double metres_per_unit) {
     const auto& g = s.grid;
     const PlanFrame f = frame_of(g);
@@ -198,19 +207,21 @@ std::string surface_plan_svg(const ReportSurface& s, const LuminaireSet* luminai
     const double whole_v = (g.depth_m + 2 * g.border_m) * f.scale;
     const double width = kMargin * 2 + whole_u + kLegendWidth;
     const double height = std::max(kMargin * 2 + whole_v, 180.0);
-    const double top = false_colour_top(s.stats.count ? s.stats.max : 1);
+    const auto range = illuminance_stats(values);
+    const double top = scale.top > 0 ? scale.top : false_colour_top(range.count ? range.max : 1);
     std::string out = "<svg class=\"plan\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
                       px(width) + "\" height=\"" + px(height) + "\" viewBox=\"0 0 " + px(width) +
-                      " " + px(height) + "\" role=\"img\" aria-label=\"isolux plan of " +
-                      html_escape(s.surface.name) + "\">";
-    // The whole surface (its border band hatched by the background), then the area computed.
+                      " " + px(height) + "\" role=\"img\" aria-label=\"" + scale.quantity +
+                      " plan of " + html_escape(s.surface.name) + "\">";
+    // The whole surface (its border band shows as the background), then the area computed.
     out += "<rect class=\"surface\" x=\"" + px(kMargin) + "\" y=\"" + px(kMargin) + "\" width=\"" +
            px(whole_u) + "\" height=\"" + px(whole_v) + "\"/>";
-    out += cells_svg(s, f, top);
+    out += cells_svg(s, values, f, top);
     const auto placed = luminaires_over(g, f, luminaires, metres_per_unit);
-    out += isolines_svg(s, f, placed);
+    out += isolines_svg(s, values, scale.quantity, f, placed);
     out += luminaires_svg(placed);
-    out += legend_svg(kMargin * 2 + whole_u + 10, kMargin + 16, std::min(whole_v, 300.0) - 16, top);
+    out += legend_svg(kMargin * 2 + whole_u + 10, kMargin + 16, std::min(whole_v, 300.0) - 16, top,
+                      scale.unit);
     return out + "</svg>";
 }
 

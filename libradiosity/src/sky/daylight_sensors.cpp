@@ -4,7 +4,10 @@
 #include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/gather.hpp"
+#include "radiosity/progress.hpp"
 #include "radiosity/random.hpp"
+
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -144,6 +147,19 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
     for (std::size_t s = 0; s < luminance.size(); ++s) out.reflected += c[s] * luminance[s];
     if (sky.sun_up())
         out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
+    return out;
+}
+
+std::vector<DaylightSensors::Illuminance>
+DaylightSensors::illuminance(const Sky& sky, std::span<const Vec3> points,
+                             std::span<const Vec3> normals, bool quiet) const {
+    std::vector<Illuminance> out(points.size());
+    Progress progress("sensors", points.size(), quiet);
+    tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
+        out[k] = illuminance(sky, points[k], normals[k], k);
+        progress.advance(1);
+    });
+    progress.finish();
     return out;
 }
 

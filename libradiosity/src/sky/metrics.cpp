@@ -35,15 +35,26 @@ AnnualMetrics annual_metrics(const radfmt::AnnualData& year) {
         m.udi_low /= hours;
         m.udi_useful /= hours;
         m.udi_high /= hours;
+    }
+    return summarise_sensor_metrics(std::move(out.sensors), out.occupied_hours);
+}
+
+AnnualMetrics summarise_sensor_metrics(std::vector<SensorMetrics> sensors, int occupied_hours) {
+    AnnualMetrics out;
+    out.sensors = std::move(sensors);
+    out.occupied_hours = occupied_hours;
+    if (out.sensors.empty()) return out;
+    for (const auto& m : out.sensors) {
         out.sda += m.da300 >= kDaylitShare;
         out.ase += m.sun_hours > kSunHours;
         out.udi_useful += m.udi_useful;
         out.da300 += m.da300;
     }
-    out.sda /= double(n);
-    out.ase /= double(n);
-    out.udi_useful /= double(n);
-    out.da300 /= double(n);
+    const double n = double(out.sensors.size());
+    out.sda /= n;
+    out.ase /= n;
+    out.udi_useful /= n;
+    out.da300 /= n;
     return out;
 }
 
