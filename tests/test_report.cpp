@@ -156,11 +156,22 @@ TEST_CASE("the calculation-surfaces file is refused with its line and the fix") 
           std::string::npos);
     CHECK(refusal(kHeader + "o,observer,0,1,0,0,0,0,,,,,,,,,\n").find("line of sight") !=
           std::string::npos);
+    CHECK(refusal(kHeader + "c,camera,0,1,0,0,0,-1,0,0,-2,,,,,,\n").find("along its direction") !=
+          std::string::npos);
+    CHECK(refusal("name,kind,x,y,z,ux,uy,uz,angle\nc,camera,0,1,0,0,0,-1,200\n").find("angle is") !=
+          std::string::npos);
+    CHECK(refusal("name,kind,x,y,z,ux,uy,uz,vx,vy,vz,angle\nc,,0,1,0,1,0,0,0,0,-1,20\n")
+              .find("angle is an") != std::string::npos);
+    const auto camera = calc_from("name,kind,x,y,z,ux,uy,uz,angle\nc,camera,0,1,0,0,0,-2,90\n");
+    REQUIRE(camera.cameras.size() == 1);
+    CHECK(camera.cameras[0].direction[2] == Approx(-1));
+    CHECK(camera.cameras[0].up[1] == 1);
+    CHECK(camera.cameras[0].angle_deg == 90);
     CHECK(refusal("x,y,z\n").find("calc.csv:1: the first line names the columns") !=
           std::string::npos);
     CHECK(refusal("name,x,y,z,ux,uy,uz,colour\n").find("unknown column 'colour'") !=
           std::string::npos);
-    CHECK(refusal(kHeader).find("no surface and no observer") != std::string::npos);
+    CHECK(refusal(kHeader).find("no surface, observer or camera") != std::string::npos);
     // A border that leaves nothing is refused when the grid is made, at the surface's line.
     const auto small = calc_from(kHeader + "# a comment\n\ntiny,,0,0,0,0.8,0,0,0,0,-3,,,,,,\n");
     REQUIRE_THROWS_WITH(rad::surface_grid(small.surfaces[0], 1),

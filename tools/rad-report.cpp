@@ -6,11 +6,15 @@
 #include "radiosity/calc_surfaces.hpp"
 #include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/gathered.hpp"
 #include "radiosity/glare.hpp"
+#include "radiosity/image_io.hpp"
+#include "radiosity/luminaire_image.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/report.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/version.hpp"
+#include "radiosity/view.hpp"
 #include "radiosity/weather.hpp"
 #include "report_pdf.hpp"
 #include "tool.hpp"
@@ -180,6 +184,10 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     if (!file.observers.empty())
         throw rad::InputError(file.name + ": observers' glare (UGR) is from luminaires, and a "
                                           "daylight solution has none: remove the observer lines");
+    if (!file.cameras.empty())
+        throw rad::InputError(file.name + ": views of a daylight solution are not in the report "
+                                          "yet (rad-shade --sky renders them): remove the camera "
+                                          "lines");
     rad::DaylightOptions options;
     options.sky_side = std::max(1, int(std::lround(std::sqrt(double(a.sky_samples)))));
     options.rays = a.rays_option->count() ? a.options.rays : rad::tool::kDaylightRays;
@@ -277,6 +285,56 @@ rad::ReportInput title_of(const ReportArgs& a, const radfmt::Header& mesh_header
     return in;
 }
 
+// The number as a command line takes it back exactly enough (%.6g), and that value.
+std::string view_number(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", v);
+    return text;
+}
+
+// The cameras' views: rad-shade --gather's image at 640 x 400, its luminaires drawn, exposed
+// from the solution; the view as text first, and parsed back, so rad-shade given that text
+// renders the same pixels.
+std::vector<rad::ReportView> views_of(const ReportArgs& a, const rad::CalcFile& file,
+                                      const rad::Gatherer& gatherer, const rad::LuminaireSet* set,
+                                      const radfmt::RadiosityData& solution) {
+    constexpr int kWidth = 640, kHeight = 400, kSupersampling = 2;
+    std::vector<rad::ReportView> views;
+    const double exposure = rad::solution_exposure(gatherer.mesh(), solution.radiosity);
+    const rad::Box box = rad::bounds(gatherer.mesh().vertices);
+    for (const auto& c : file.cameras) {
+        if (const auto why = rad::out_of_reach(c.position, box); !why.empty())
+            throw rad::InputError(c.where, "the camera: " + why);
+        const double half = c.angle_deg * std::numbers::pi / 360;
+        const double vertical =
+            360 / std::numbers::pi * std::atan(std::tan(half) * kHeight / kWidth);
+        const auto v3 = [](const rad::Vec3& p) {
+            return view_number(p[0]) + " " + view_number(p[1]) + " " + view_number(p[2]);
+        };
+        const std::string text = "-vp " + v3(c.position) + " -vd " + v3(c.direction) + " -vu " +
+                                 v3(c.up) + " -vh " + view_number(c.angle_deg) + " -vv " +
+                                 view_number(vertical);
+        const auto view = rad::parse_view(text, c.where);
+        auto image =
+            rad::render_gathered(gatherer, view, kWidth, kHeight, kSupersampling, a.quiet, set);
+        if (set) rad::draw_luminaires(image, *set, gatherer.scene(), view, kSupersampling);
+        std::vector<std::uint8_t> pixels(image.rgb.size());
+        for (std::size_t i = 0; i < pixels.size(); ++i)
+            pixels[i] = rad::to_srgb8(image.rgb[i] * exposure);
+        rad::ReportView out;
+        out.name = c.name;
+        out.width = kWidth, out.height = kHeight;
+        out.png = rad::encode_png_rgb8(kWidth, kHeight, pixels);
+        out.command = "rad-shade " + a.inputs[0] + " " + a.inputs[1] + " --view \"" + text +
+                      "\" -x " + std::to_string(kWidth) + " -y " + std::to_string(kHeight) +
+                      " --gather " + std::to_string(a.options.rays) + " --shadow-rays " +
+                      std::to_string(a.options.shadow_rays) + " --smooth " + a.smooth +
+                      " --crease-angle " + view_number(a.options.crease_deg) + " --png FILE";
+        views.push_back(std::move(out));
+    }
+    return views;
+}
+
 // Illuminance: the surfaces' lux, the luminaires, the observers' glare.
 void lighting_figures(const ReportArgs& a, const rad::CalcFile& file, radfmt::MeshData& mesh,
                       const radfmt::RadiosityData& solution, const radfmt::Header& mesh_header,
@@ -299,6 +357,7 @@ void lighting_figures(const ReportArgs& a, const rad::CalcFile& file, radfmt::Me
     std::uint64_t sensors = 0;
     for (const auto& s : in.surfaces) sensors += std::uint64_t(s.grid.size());
     in.observers = observers_of(file, gatherer, set, box, sensors);
+    in.views = views_of(a, file, gatherer, set, solution);
     power_area(a, file, metres, in);
 }
 

@@ -20,7 +20,10 @@ grep -q '^name,kind,' "$TMP/calc.csv" || fail "no example in formats/README.md: 
 cmp -s "$TMP/calc.csv" "$L/calc.csv" || fail "scenes/lighting/calc.csv is not formats/README.md's example"
 
 # rad-gather --surfaces: a line per sensor, surface by surface, and the figures on stderr.
-"$BIN/rad-gather" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" -o "$TMP/g.csv" 2> "$TMP/g.err" ||
+# 32 rays (not 256) for the gather: the view in the report is a final gather at every pixel.
+RAYS="--rays 32"
+# shellcheck disable=SC2086
+"$BIN/rad-gather" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" $RAYS -o "$TMP/g.csv" 2> "$TMP/g.err" ||
   fail "rad-gather --surfaces: $(cat "$TMP/g.err")"
 [ "$(head -1 "$TMP/g.csv")" = "surface,index,column,row,x,y,z,lux" ] || fail "rad-gather --surfaces header: $(head -1 "$TMP/g.csv")"
 # The work plane: 9 x 5 sensors (5 m x 3 m after the 0.5 m band, p = 0.616 m), then the desk's 16 x 8.
@@ -33,14 +36,26 @@ grep -q "south wall.*meets its requirements" "$TMP/g.err" || fail "the wall's ve
 grep -q '^ceiling,0,0,0,0.333333,3,0.333333,[0-9]' "$TMP/g.csv" || fail "the ceiling's first sensor: $(grep -m1 '^ceiling' "$TMP/g.csv")"
 
 # The report, and its PDF.
-"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" -o "$TMP/r.html" --pdf "$TMP/r.pdf" \
+# shellcheck disable=SC2086
+"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" $RAYS -o "$TMP/r.html" --pdf "$TMP/r.pdf" \
   --date 2026-12-05 --project "Lighting example" 2> "$TMP/r.err" || fail "rad-report: $(cat "$TMP/r.err")"
 grep -q "4 surface(s) (272 points, 3 failing their requirements), 1 observer(s)" "$TMP/r.err" || fail "rad-report summary: $(cat "$TMP/r.err")"
 out=$(node "$WEB/test-report.mjs" --page "$TMP/r.html" --values "$TMP/g.csv" 2>&1) || fail "the page in Chromium: $out"
 echo "$out" | head -3
-# Title block, summary and method; one page per surface; luminaires; glare and method.
+# Title block, summary and method; one page per surface; luminaires; glare; the view and method.
 pages=$(pdfinfo "$TMP/r.pdf" | awk '/^Pages:/ {print $2}')
-[ "$pages" = 7 ] || fail "the PDF has $pages pages (wanted 7: summary, 4 surfaces, luminaires, glare)"
+[ "$pages" = 8 ] || fail "the PDF has $pages pages (wanted 8: summary, 4 surfaces, luminaires, glare, views)"
+# The camera's view is rad-shade's image, byte for byte, by the command the page gives.
+python3 - "$TMP/r.html" "$TMP/view.png" "$TMP/shade.sh" <<'PY' || fail "no view in the page"
+import base64, html, re, sys
+page = open(sys.argv[1]).read()
+png = re.search(r'src="data:image/png;base64,([^"]*)"', page).group(1)
+open(sys.argv[2], "wb").write(base64.b64decode(png.replace("\n", "")))
+command = html.unescape(re.search(r'<code class="command">([^<]*)</code>', page).group(1))
+open(sys.argv[3], "w").write(command.replace("--png FILE", "--png shade.png -o shade.exr -q") + "\n")
+PY
+(cd "$TMP" && PATH="$BIN:$PATH" bash shade.sh) || fail "the page's rad-shade command: $(cat "$TMP/shade.sh")"
+cmp -s "$TMP/view.png" "$TMP/shade.png" || fail "the page's view is not rad-shade's image ($(cat "$TMP/shade.sh"))"
 pdftotext -layout "$TMP/r.pdf" "$TMP/r.txt" || fail "pdftotext"
 em=$(grep -o '<td class="num em">[^<]*' "$TMP/r.html" | head -1 | sed 's/.*>//')
 for text in "Lighting report: Lighting example" "2026-12-05" "Summary" "Em (lx)" "Emin/Emax" "work plane" \
@@ -53,13 +68,15 @@ for surface in "work plane" desk "south wall" ceiling; do
     "$TMP/r.txt" || fail "no page of the PDF holds $surface's heading and whole table"
 done
 # The same bytes at one thread and two; the page names its inputs' hashes.
-"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" -o "$TMP/r1.html" --date 2026-12-05 \
+# shellcheck disable=SC2086
+"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" $RAYS -o "$TMP/r1.html" --date 2026-12-05 \
   --project "Lighting example" --threads 1 -q || fail "rad-report --threads 1"
 cmp -s "$TMP/r.html" "$TMP/r1.html" || fail "rad-report differs at 1 and 2 threads"
 [ "$(grep -o '<td class="hash">xxh64:[0-9a-f]\{16\}</td>' "$TMP/r.html" | wc -l)" = 6 ] ||
   fail "the page does not name its inputs' and the solution's inputs' hashes (6)"
 # --area: the power density over the area given.
-"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" -o "$TMP/a.html" --area 12 -q --date x ||
+grep -v ',camera,' "$TMP/calc.csv" > "$TMP/nocamera.csv"
+"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" -o "$TMP/a.html" --area 12 -q --date x ||
   fail "rad-report --area"
 grep -q '<span class="density">13.00</span>' "$TMP/a.html" || fail "156 W over 12 m^2: $(grep -o 'class="density">[^<]*' "$TMP/a.html")"
 
@@ -90,6 +107,9 @@ pdftotext "$TMP/d.pdf" - | grep -q "sDA300/50%" || fail "the daylight PDF's text
 cmp -s "$TMP/d.html" "$TMP/d1.html" || fail "the daylight report differs at 1 and 2 threads"
 expect_error "observers' glare (UGR) is from luminaires" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/calc.csv" -o "$TMP/x.html"
+grep -v ',observer,' "$TMP/calc.csv" > "$TMP/noobserver.csv"
+expect_error "views of a daylight solution" "$TMP/x.html" \
+  "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/noobserver.csv" -o "$TMP/x.html"
 expect_error "--epw and --occupancy are for a daylight solution" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" --epw "$EPW" -o "$TMP/x.html"
 
@@ -108,7 +128,7 @@ printf 'name,kind,x,y,z,ux,uy,uz\neye,observer,0,0.5,0.5,0,0,-1\n' > "$TMP/eye.c
 expect_error "the solution has none" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/c.mesh" "$TMP/c.rad" --surfaces "$TMP/eye.csv" -o "$TMP/x.html"
 # No Chromium: a system error (exit 2) saying how to get it, and neither output written.
-err=$(RAD_CHROMIUM=/nonexistent/chromium "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" \
+err=$(RAD_CHROMIUM=/nonexistent/chromium "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" \
   -o "$TMP/y.html" --pdf "$TMP/y.pdf" 2>&1); rc=$?
 [ $rc -eq 2 ] || fail "a missing Chromium: exit $rc ($err)"
 grep -qF "RAD_CHROMIUM" <<<"$err" || fail "a missing Chromium: '$err' does not say what to set"

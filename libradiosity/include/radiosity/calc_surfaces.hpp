@@ -14,8 +14,8 @@
 
 namespace rad {
 
-enum class CalcKind { WorkPlane, Task, Wall, Ceiling, Floor, Observer };
-// "workplane", "task", "wall", "ceiling", "floor", "observer".
+enum class CalcKind { WorkPlane, Task, Wall, Ceiling, Floor, Observer, Camera };
+// "workplane", "task", "wall", "ceiling", "floor", "observer", "camera".
 const char* calc_kind_name(CalcKind kind);
 
 inline constexpr double kNoRequirement = std::numeric_limits<double>::quiet_NaN();
@@ -46,10 +46,20 @@ struct CalcObserver {
     double ugr_limit = kNoRequirement;
 };
 
+// A view the report shows: the eye, the direction, the up vector and the horizontal angle
+// (degrees); the vertical angle follows from the picture's shape.
+struct CalcCamera {
+    std::string name;
+    FileLoc where;
+    Vec3 position{0, 0, 0}, direction{0, 0, -1}, up{0, 1, 0};
+    double angle_deg = 60;
+};
+
 struct CalcFile {
     std::string name;
     std::vector<CalcSurface> surfaces;
     std::vector<CalcObserver> observers;
+    std::vector<CalcCamera> cameras;
 };
 
 // Reads a calculation-surfaces CSV. Throws InputError "FILE:LINE: ..." naming what is wrong

@@ -41,6 +41,13 @@ struct ReportObserver {
     ObserverGlare glare;
 };
 
+// A view of the lit scene, rendered as rad-shade renders it with `command`'s options.
+struct ReportView {
+    std::string name, command;
+    std::vector<std::uint8_t> png;
+    int width = 0, height = 0;
+};
+
 struct ReportInput {
     std::string project, date, producer;                     // producer: "rad-report 0.1.0"
     std::vector<std::pair<std::string, std::string>> inputs; // path, hash
@@ -48,6 +55,7 @@ struct ReportInput {
     std::string method;                                      // how the lux were gathered
     std::vector<ReportSurface> surfaces;
     std::vector<ReportObserver> observers;
+    std::vector<ReportView> views;
     const LuminaireSet* luminaires = nullptr; // none: no schedule, no glare
     double metres_per_unit = 1;
     double power_area_m2 = 0;    // the area the power density is over (0: not given)

@@ -1,5 +1,6 @@
 // The viewer page: HTML around the embedded glb, the camera, and the bundled viewer script.
 #include "radiosity/bake.hpp"
+#include "radiosity/base64.hpp"
 #include "radiosity/error.hpp"
 
 #include <string_view>
@@ -12,24 +13,6 @@ extern "C" const char radiosity_viewer_script_end[];
 namespace rad {
 
 namespace {
-
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-    static constexpr char kDigits[] =
-        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    out.reserve((bytes.size() + 2) / 3 * 4 + bytes.size() / 57 + 1);
-    for (std::size_t i = 0; i < bytes.size(); i += 3) {
-        const std::uint32_t n = (std::uint32_t(bytes[i]) << 16) |
-                                (i + 1 < bytes.size() ? std::uint32_t(bytes[i + 1]) << 8 : 0) |
-                                (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-        out += kDigits[(n >> 18) & 63];
-        out += kDigits[(n >> 12) & 63];
-        out += i + 1 < bytes.size() ? kDigits[(n >> 6) & 63] : '=';
-        out += i + 2 < bytes.size() ? kDigits[n & 63] : '=';
-        if ((i / 3 + 1) % 19 == 0) out += '\n'; // 76-character lines
-    }
-    return out;
-}
 
 // Text inside <script> or <title> must not close it early.
 std::string escape_for_html(std::string_view text, std::string_view closing) {

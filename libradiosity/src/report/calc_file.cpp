@@ -10,13 +10,15 @@
 namespace rad {
 namespace {
 
-constexpr const char* kColumns = "name,kind,x,y,z,ux,uy,uz,vx,vy,vz,spacing,border,Em,U0,Emin,UGRL";
+constexpr const char* kColumns =
+    "name,kind,x,y,z,ux,uy,uz,vx,vy,vz,spacing,border,Em,U0,Emin,UGRL,angle";
 
 const std::map<std::string, CalcKind>& kinds() {
     static const std::map<std::string, CalcKind> table{
         {"workplane", CalcKind::WorkPlane}, {"task", CalcKind::Task},
         {"wall", CalcKind::Wall},           {"ceiling", CalcKind::Ceiling},
-        {"floor", CalcKind::Floor},         {"observer", CalcKind::Observer}};
+        {"floor", CalcKind::Floor},         {"observer", CalcKind::Observer},
+        {"camera", CalcKind::Camera}};
     return table;
 }
 
@@ -65,9 +67,9 @@ std::map<std::string, std::size_t> header_columns(const std::vector<std::string>
         throw InputError(where, std::string("the first line names the columns, the first "
                                             "being 'name' (") +
                                     kColumns + ")");
-    static const std::set<std::string> known{"name",   "kind", "x",  "y",    "z",   "ux",
-                                             "uy",     "uz",   "vx", "vy",   "vz",  "spacing",
-                                             "border", "Em",   "U0", "Emin", "UGRL"};
+    static const std::set<std::string> known{"name",   "kind", "x",  "y",    "z",    "ux",
+                                             "uy",     "uz",   "vx", "vy",   "vz",   "spacing",
+                                             "border", "Em",   "U0", "Emin", "UGRL", "angle"};
     std::map<std::string, std::size_t> columns;
     for (std::size_t k = 0; k < header.size(); ++k) {
         if (!known.count(header[k]))
@@ -99,8 +101,11 @@ CalcSurface surface_of(const CsvRow& row, CalcKind kind) {
     s.required.u0 = row.at_least_zero("U0", kNoRequirement);
     s.required.emin = row.at_least_zero("Emin", kNoRequirement);
     if (s.required.u0 > 1) throw InputError(row.where(), "U0 is Emin/Em, at most 1: give e.g. 0.6");
-    if (!row.text("UGRL").empty())
-        throw InputError(row.where(), "UGRL is an observer's limit: give it on an observer line");
+    for (const char* column : {"UGRL", "angle"})
+        if (!row.text(column).empty())
+            throw InputError(row.where(), std::string(column) +
+                                              " is an observer's or a camera's: leave it empty "
+                                              "on a surface's line");
     return s;
 }
 
@@ -115,11 +120,38 @@ CalcObserver observer_of(const CsvRow& row) {
                                       "way the observer looks");
     o.view = normalized(view);
     o.ugr_limit = row.at_least_zero("UGRL", kNoRequirement);
-    for (const char* column : {"vx", "vy", "vz", "spacing", "border", "Em", "U0", "Emin"})
+    for (const char* column : {"vx", "vy", "vz", "spacing", "border", "Em", "U0", "Emin", "angle"})
         if (!row.text(column).empty())
             throw InputError(row.where(),
                              std::string("an observer has no ") + column + ": leave it empty");
     return o;
+}
+
+CalcCamera camera_of(const CsvRow& row) {
+    CalcCamera c;
+    c.name = row.text("name");
+    c.where = row.where();
+    c.position = row.vector("", true);
+    const Vec3 direction = row.vector("u", true);
+    if (!(length(direction) > 0))
+        throw InputError(row.where(), "a camera's direction ux uy uz is zero: give the way it "
+                                      "looks");
+    c.direction = normalized(direction);
+    const bool up_given =
+        !row.text("vx").empty() || !row.text("vy").empty() || !row.text("vz").empty();
+    if (up_given) c.up = row.vector("v", true);
+    if (!(length(c.up) > 0) || length(cross(c.direction, c.up)) < 1e-6 * length(c.up))
+        throw InputError(row.where(), "a camera's up vx vy vz is zero or along its direction: "
+                                      "give another (empty: 0 1 0)");
+    c.angle_deg = row.number("angle", 60);
+    if (!(c.angle_deg > 0 && c.angle_deg < 180))
+        throw InputError(row.where(), "angle is the camera's horizontal view in degrees, "
+                                      "between 0 and 180 (empty: 60)");
+    for (const char* column : {"spacing", "border", "Em", "U0", "Emin", "UGRL"})
+        if (!row.text(column).empty())
+            throw InputError(row.where(),
+                             std::string("a camera has no ") + column + ": leave it empty");
+    return c;
 }
 
 } // namespace
@@ -172,15 +204,18 @@ CalcFile read_calc_file(const std::string& path) {
         const auto kind = kinds().find(kind_text.empty() ? "workplane" : kind_text);
         if (kind == kinds().end())
             throw InputError(where, "kind is " + photometry::quoted(kind_text) +
-                                        ": workplane, task, wall, ceiling, floor or observer");
+                                        ": workplane, task, wall, ceiling, floor, observer or "
+                                        "camera");
         if (kind->second == CalcKind::Observer)
             file.observers.push_back(observer_of(row));
+        else if (kind->second == CalcKind::Camera)
+            file.cameras.push_back(camera_of(row));
         else
             file.surfaces.push_back(surface_of(row, kind->second));
     }
     if (columns.empty()) throw InputError(FileLoc{file.name, 0}, "empty: no header line");
-    if (file.surfaces.empty() && file.observers.empty())
-        throw InputError(FileLoc{file.name, 0}, "no surface and no observer: add a line");
+    if (file.surfaces.empty() && file.observers.empty() && file.cameras.empty())
+        throw InputError(FileLoc{file.name, 0}, "no surface, observer or camera: add a line");
     return file;
 }
 

@@ -2,6 +2,8 @@
 // luminaires and the observers' glare; self-contained HTML with print rules for A4.
 #include "radiosity/report.hpp"
 
+#include "radiosity/base64.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -38,7 +40,9 @@ td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
 .provenance { font-family: "DejaVu Sans Mono", monospace; font-size: 7.5pt; word-break: break-all; }
 .pass { color: #0a6b1f; font-weight: bold; } .fail { color: #b00020; font-weight: bold; }
 section.part { break-before: page; }
-figure { margin: 6pt 0; break-inside: avoid; } figcaption { font-size: 9pt; color: #333; }
+figure { margin: 6pt 0; break-inside: avoid; }
+figure.view img { max-width: 100%; height: auto; }
+code.command { font-size: 8pt; word-break: break-all; } figcaption { font-size: 9pt; color: #333; }
 svg text { font: 11px "DejaVu Sans", Helvetica, Arial, sans-serif; fill: #111; }
 svg.plan rect.surface { fill: #eee; stroke: #555; stroke-width: 1; }
 svg.plan .isoline { fill: none; stroke: #000; stroke-width: 1.3; }
@@ -123,6 +127,7 @@ std::string contents(const ReportInput& in) {
                html_escape(in.surfaces[k].surface.name) + "</a></li>";
     if (in.luminaires) out += "<li><a href=\"#luminaires\">Luminaires</a></li>";
     if (!in.observers.empty()) out += "<li><a href=\"#glare\">Glare (UGR)</a></li>";
+    if (!in.views.empty()) out += "<li><a href=\"#views\">Views</a></li>";
     out += "<li><a href=\"#method\">Method</a></li>";
     return out + "</ol></nav>";
 }
@@ -388,6 +393,18 @@ std::string glare_section(const ReportInput& in) {
     return out + "</section>";
 }
 
+std::string views_section(const ReportInput& in) {
+    std::string out = "<section class=\"part\" id=\"views\"><h2>Views</h2>";
+    for (const auto& v : in.views)
+        out += "<figure class=\"view\" data-view=\"" + html_escape(v.name) + "\"><img alt=\"" +
+               html_escape(v.name) + "\" width=\"" + std::to_string(v.width) + "\" height=\"" +
+               std::to_string(v.height) + "\" src=\"data:image/png;base64," + base64(v.png) +
+               "\"><figcaption>" + html_escape(v.name) +
+               ": the final gather over the solution, as <code class=\"command\">" +
+               html_escape(v.command) + "</code> renders it.</figcaption></figure>";
+    return out + "</section>";
+}
+
 std::string method_section(const ReportInput& in) {
     return "<section id=\"method\"><h2>Method</h2><p>" + html_escape(in.method) +
            "</p><p>Calculation grids follow EN 12464-1: points at the centres of cells of at most "
@@ -440,6 +457,7 @@ std::string report_html(const ReportInput& in) {
         out += surface_section(in, in.surfaces[k], k) + "\n";
     if (in.luminaires) out += luminaires_section(in) + "\n";
     if (!in.observers.empty()) out += glare_section(in) + "\n";
+    if (!in.views.empty()) out += views_section(in) + "\n";
     out += method_section(in) + "\n</body></html>\n";
     return out;
 }
