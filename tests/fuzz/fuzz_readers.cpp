@@ -16,6 +16,8 @@
 #include "../helpers.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
+#include "radiosity/calc_surfaces.hpp"
+#include "radiosity/report.hpp"
 #include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
@@ -329,7 +331,7 @@ int main(int argc, char** argv) {
     if (argc < 2) {
         std::cerr << "usage: fuzz_readers DATA_DIR [--iterations N] [--seconds S] [--seed K] "
                      "[--kind NAME[,NAME...]] [--min-cases N]\n  kinds: mesh formfactors "
-                     "links radiosity luminaires ies ldt sky annual epw obj mtl gltf glb ply "
+                     "links radiosity luminaires ies ldt sky annual epw calc obj mtl gltf glb ply "
                      "plyb dae stl fbx\n";
         return 1;
     }
@@ -490,6 +492,35 @@ int main(int argc, char** argv) {
         }
     };
 
+    // A calculation-surfaces file (rad-gather --surfaces, rad-report): its grids, and the
+    // report's page of made-up values on them (hostile names, sizes and numbers reach the
+    // page's plans, isolines and escaping).
+    const std::string calc_seed =
+        "name,kind,x,y,z,ux,uy,uz,vx,vy,vz,spacing,border,Em,U0,Emin,UGRL,angle\n"
+        "work plane,workplane,0,0.8,4,6,0,0,0,0,-4,,,500,0.6,,,\n"
+        "\"desk, <east>\",task,2.2,0.72,2.4,1.6,0,0,0,0,-0.8,0.1,,500,0.6,,,\n"
+        "south wall,wall,0,0,0,6,0,0,0,3,0,,0.2,50,0.1,20,,\n"
+        "desk chair,observer,3,1.2,3.6,0,0,-1,,,,,,,,,19,\n"
+        "door,camera,0.3,1.6,0.3,1,-0.1,0.7,,,,,,,,,,85\n";
+    const auto use_calc = [](const fs::path& p) {
+        const auto file = rad::read_calc_file(p.string());
+        rad::ReportInput in;
+        long sensors = 0;
+        for (const auto& surface : file.surfaces) {
+            rad::ReportSurface s{surface, rad::surface_grid(surface, 1), {}, {}, {}, {}};
+            if ((sensors += s.grid.size()) > 200000) return; // a big grid is not a hostile one
+            for (long k = 0; k < s.grid.size(); ++k) {
+                const auto x = s.grid.position(k);
+                s.lux.push_back(k % 7 == 3 ? std::nan("") : 100 + 50 * std::sin(x[0] + 2 * x[2]));
+            }
+            s.stats = rad::illuminance_stats(s.lux);
+            s.verdict = rad::judge(s.stats, surface.required);
+            in.surfaces.push_back(std::move(s));
+        }
+        if (rad::report_html(in).find("</html>") == std::string::npos)
+            throw std::logic_error("the report's page has no end");
+    };
+
     struct Kind {
         std::string name;
         std::vector<Bytes> seeds;
@@ -570,6 +601,7 @@ int main(int argc, char** argv) {
          false,
          [&](const fs::path& p) { (void)rad::annual_metrics(radfmt::read_annual(p)); }},
         {"epw", {read_bytes(epw)}, true, [&](const fs::path& p) { use_weather(p); }},
+        {"calc", {Bytes(calc_seed.begin(), calc_seed.end())}, true, use_calc},
         {"ies", {read_bytes(ies)}, true, [&](const fs::path& p) { use_photometry(p, "f.ies"); }},
         {"ldt", {read_bytes(ldt)}, true, [&](const fs::path& p) { use_photometry(p, "f.ldt"); }},
         {"obj",
