@@ -420,12 +420,19 @@ void read_daylight_sensors(const GatherArgs& a, const Grid& grid, const rad::Box
     }
 }
 
+// --surfaces' file, which must name a surface.
+rad::CalcFile read_surfaces_file(const std::string& path) {
+    auto file = rad::read_calc_file(path);
+    if (file.surfaces.empty())
+        throw rad::InputError(path + ": it names no surface (observers and cameras are for "
+                                     "rad-report): add one");
+    return file;
+}
+
 // Daylight's sensors from --surfaces: every surface's grid, in order, each line labelled.
 void surface_daylight_sensors(const GatherArgs& a, double metres_per_unit, const rad::Box& box,
                               rad::tool::DaylightRun& run) {
-    const auto file = rad::read_calc_file(a.surfaces_path);
-    if (file.surfaces.empty())
-        throw rad::InputError(a.surfaces_path + ": it has observers only: add a surface");
+    const auto file = read_surfaces_file(a.surfaces_path);
     for (const auto& surface : file.surfaces) {
         const auto grid = rad::surface_grid(surface, metres_per_unit);
         run.surfaces.emplace_back(surface.name, std::size_t(grid.size()));
@@ -497,9 +504,7 @@ void gather_surfaces(const GatherArgs& a, const rad::Gatherer& gatherer,
                      const rad::LuminaireSet* luminaires, const rad::Box& scene_box,
                      double metres_per_unit, int argc, char** argv,
                      const radfmt::Header& mesh_header, const radfmt::Header& rad_header) {
-    const auto file = rad::read_calc_file(a.surfaces_path);
-    if (file.surfaces.empty())
-        throw rad::InputError(a.surfaces_path + ": it has observers only: add a surface");
+    const auto file = read_surfaces_file(a.surfaces_path);
     std::vector<rad::SurfaceGrid> grids;
     for (const auto& surface : file.surfaces)
         grids.push_back(rad::surface_grid(surface, metres_per_unit));
