@@ -79,10 +79,11 @@ std::string report_html(const ReportInput& input);
 // a surface's false-colour plan of `values` (per sensor) with isolines labelled in `unit` and
 // the luminaires above it, as SVG. `quantity` names what is drawn ("lux", "df", "da300": the
 // isolines' group carries it); `top` is the colour scale's top (0: a round number at or over
-// the largest value).
+// the largest value); `width` x `height` the room the surface is drawn in, px.
 struct PlanScale {
     std::string quantity, unit;
     double top = 0;
+    double width = 540, height = 400; // px the surface may take (the legend comes beside it)
 };
 std::string surface_plan_svg(const ReportSurface& surface, std::span<const double> values,
                              const PlanScale& scale, const LuminaireSet* luminaires,

@@ -56,7 +56,8 @@ svg.polar path.c0 { fill: none; stroke: #b00020; stroke-width: 1.6; }
 svg.polar path.c90 { fill: none; stroke: #1040b0; stroke-width: 1.6; stroke-dasharray: 5 3; }
 svg.polar tspan.c0 { fill: #b00020; } svg.polar tspan.c90 { fill: #1040b0; }
 .polars, .plans { display: flex; flex-wrap: wrap; gap: 8pt; }
-.plans figure { max-width: 48%; } .plans svg { max-width: 100%; height: auto; }
+.plans figure { width: min-content; }
+
 .note { font-size: 9pt; color: #333; }
 nav ol { margin: 2pt 0; }
 table.surfaces td:first-child { white-space: nowrap; }
@@ -234,6 +235,9 @@ std::string figure_row(const char* name, const std::string& value, const char* c
            "</td></tr>";
 }
 
+// Two plans side by side across the page, at their own size (labels stay readable in print).
+constexpr double kHalfWidth = 200, kHalfHeight = 330;
+
 std::string daylight_section(const ReportSurface& s, std::size_t index) {
     const auto& d = *s.daylight;
     std::string out = "<section class=\"part surface\" id=\"surface-" + std::to_string(index + 1) +
@@ -254,14 +258,16 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
     }
     // The two plans side by side when they fit across the page, else one under the other.
     out += "</tbody></table><div class=\"plans\"><figure>" +
-           surface_plan_svg(s, d.factor, {"df", "%", 0}, nullptr, 1) +
+           surface_plan_svg(s, d.factor, {"df", "%", 0, kHalfWidth, kHalfHeight}, nullptr, 1) +
            "<figcaption>Daylight factor on " + html_escape(s.surface.name) +
            ", seen from the side its points face; lines labelled in %.</figcaption></figure>";
     if (d.annual)
-        out += "<figure>" + surface_plan_svg(s, d.da300, {"da300", "%", 100}, nullptr, 1) +
-               "<figcaption>DA300 on " + html_escape(s.surface.name) +
-               ": the share of occupied hours at 300 lx or more from daylight, lines labelled "
-               "in %.</figcaption></figure>";
+        out +=
+            "<figure>" +
+            surface_plan_svg(s, d.da300, {"da300", "%", 100, kHalfWidth, kHalfHeight}, nullptr, 1) +
+            "<figcaption>DA300 on " + html_escape(s.surface.name) +
+            ": the share of occupied hours at 300 lx or more from daylight, lines labelled "
+            "in %.</figcaption></figure>";
     return out + "</div></section>";
 }
 

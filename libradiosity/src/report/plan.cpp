@@ -12,7 +12,6 @@
 namespace rad {
 namespace {
 
-constexpr double kPlanWidth = 540, kPlanHeight = 400; // px available to the surface
 constexpr double kMargin = 12, kLegendWidth = 90;
 
 std::string px(double v) {
@@ -42,11 +41,11 @@ struct PlanFrame {
     double y(double v_m) const { return bottom - v_m * scale; }
 };
 
-PlanFrame frame_of(const SurfaceGrid& grid) {
+PlanFrame frame_of(const SurfaceGrid& grid, const PlanScale& size) {
     const double whole_u = grid.width_m + 2 * grid.border_m;
     const double whole_v = grid.depth_m + 2 * grid.border_m;
     PlanFrame f;
-    f.scale = std::min(kPlanWidth / whole_u, kPlanHeight / whole_v);
+    f.scale = std::min(size.width / whole_u, size.height / whole_v);
     f.left = kMargin + grid.border_m * f.scale;
     f.bottom = kMargin + whole_v * f.scale - grid.border_m * f.scale;
     return f;
@@ -202,7 +201,7 @@ std::string surface_plan_svg(const ReportSurface& s, std::span<const double> val
                              const PlanScale& scale, const LuminaireSet* luminaires,
                              double metres_per_unit) {
     const auto& g = s.grid;
-    const PlanFrame f = frame_of(g);
+    const PlanFrame f = frame_of(g, scale);
     const double whole_u = (g.width_m + 2 * g.border_m) * f.scale;
     const double whole_v = (g.depth_m + 2 * g.border_m) * f.scale;
     const double width = kMargin * 2 + whole_u + kLegendWidth;
