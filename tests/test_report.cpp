@@ -154,6 +154,10 @@ TEST_CASE("the calculation-surfaces file is refused with its line and the fix") 
           std::string::npos);
     CHECK(refusal(kHeader + "o,observer,0,1,0,0,0,-1,,,,,,300,,,\n").find("no Em") !=
           std::string::npos);
+    CHECK(refusal("name,kind,x,y,z,ux,uy,uz,DF\no,observer,0,1,0,0,0,-1,2\n").find("no DF") !=
+          std::string::npos);
+    CHECK(refusal("name,x,y,z,ux,uy,uz,vx,vy,vz,sDA\na,0,0,0,1,0,0,0,0,-1,120\n")
+              .find("sDA is a share") != std::string::npos);
     CHECK(refusal(kHeader + "o,observer,0,1,0,0,0,0,,,,,,,,,\n").find("line of sight") !=
           std::string::npos);
     CHECK(refusal(kHeader + "c,camera,0,1,0,0,0,-1,0,0,-2,,,,,,\n").find("along its direction") !=
@@ -242,6 +246,14 @@ TEST_CASE("a surface's figures leave out sensors without a value, and its verdic
     required.emin = 450;
     CHECK(!rad::judge(stats, required).passes());
     CHECK(!rad::judge(stats, required).emin);
+    rad::Requirements day;
+    CHECK(rad::judge_daylight(1.5, nullptr, nullptr, day).passes());
+    day.df = 2, day.sda = 55, day.ase = 10;
+    CHECK(!rad::judge_daylight(1.5, nullptr, nullptr, day).passes()); // DF 1.5% < 2%
+    const double sda = 0.6, ase = 0.05, ase_high = 0.4;
+    CHECK(rad::judge_daylight(2, &sda, &ase, day).passes());
+    CHECK(!rad::judge_daylight(2, &sda, &ase_high, day).ase);      // 40% > 10%
+    CHECK(rad::judge_daylight(2, nullptr, nullptr, day).passes()); // no year: not judged
     CHECK(rad::lux_text(412.4) == "412");
     CHECK(rad::lux_text(41.24) == "41.2");
     CHECK(rad::lux_text(4.124) == "4.12");

@@ -244,6 +244,9 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
                 year->occupied_hours);
             for (const auto& m : d.metrics.sensors) d.da300.push_back(100 * m.da300);
         }
+        d.verdict =
+            rad::judge_daylight(d.summary.mean, d.annual ? &d.metrics.sda : nullptr,
+                                d.annual ? &d.metrics.ase : nullptr, file.surfaces[s].required);
         in.surfaces.push_back({file.surfaces[s], grids[s], {}, {}, {}, std::move(d)});
         first += n;
     }
@@ -262,7 +265,10 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
 
 void print_summary(const ReportArgs& a, const rad::ReportInput& in) {
     long failing = 0, points = 0;
-    for (const auto& s : in.surfaces) failing += !s.verdict.passes(), points += s.grid.size();
+    for (const auto& s : in.surfaces) {
+        failing += s.daylight ? !s.daylight->verdict.passes() : !s.verdict.passes();
+        points += s.grid.size();
+    }
     std::fprintf(stderr,
                  "rad-report: %zu surface(s) (%ld points, %ld failing their requirements), %zu "
                  "observer(s)%s: %s%s%s\n",

@@ -101,6 +101,22 @@ for q in df:df da300:m; do
     fail "the daylight page's ${q%:*} in Chromium: $out"
 done
 [ "$(pdfinfo "$TMP/d.pdf" | awk '/^Pages:/ {print $2}')" = 3 ] || fail "the daylight PDF is not 3 pages"
+# The work plane's requirements (DF 2%, sDA 55%, ASE 10%) judged from its figures: the verdict
+# is "fails" exactly when one of them is missed.
+python3 - "$TMP/m.csv" "$TMP/df.csv" "$TMP/d.html" <<'PY' || fail "the daylight verdict"
+import csv, re, sys
+plane = lambda path: [r for r in csv.DictReader(open(path)) if r["surface"] == "work plane"]
+m, df = plane(sys.argv[1]), plane(sys.argv[2])
+mean_df = sum(float(r["df"]) for r in df) / len(df)
+sda = 100 * sum(float(r["da300"]) >= 0.5 for r in m) / len(m)
+ase = 100 * sum(int(r["sun_hours"]) > 250 for r in m) / len(m)
+meets = mean_df >= 2 and sda >= 55 and ase <= 10
+page = open(sys.argv[3]).read()
+row = re.search(r'<tr data-surface="work plane">.*?</tr>', page).group(0)
+shown = "meets" if 'class="pass"' in row else "fails" if 'class="fail"' in row else "none"
+print("work plane: DF %.2f%%, sDA %.1f%%, ASE %.1f%%: %s (page: %s)" % (mean_df, sda, ase, "meets" if meets else "fails", shown))
+sys.exit(0 if shown == ("meets" if meets else "fails") else 1)
+PY
 pdftotext "$TMP/d.pdf" - | grep -q "sDA300/50%" || fail "the daylight PDF's text lacks sDA300/50%"
 "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$D/calc.csv" --epw "$EPW" -o "$TMP/d1.html" \
   --date 2026-12-05 -q --threads 1 || fail "rad-report daylight --threads 1"

@@ -21,9 +21,11 @@ const char* calc_kind_name(CalcKind kind);
 inline constexpr double kNoRequirement = std::numeric_limits<double>::quiet_NaN();
 
 // What the user requires of a surface (NaN: nothing): a maintained average, a uniformity
-// Emin/Em and a minimum (lux).
+// Emin/Em and a minimum (lux); of daylight, a mean daylight factor and an sDA300/50% at least,
+// an ASE1000,250h at most (%).
 struct Requirements {
     double em = kNoRequirement, u0 = kNoRequirement, emin = kNoRequirement;
+    double df = kNoRequirement, sda = kNoRequirement, ase = kNoRequirement;
 };
 
 // A rectangle from `corner` along the edges `u` and `v` (scene units); its sensors face
@@ -110,5 +112,14 @@ struct Verdict {
     bool passes() const { return em && u0 && emin; }
 };
 Verdict judge(const IlluminanceStats& stats, const Requirements& required);
+
+// Whether a surface's daylight meets the daylight requirements (true where nothing is
+// required; sDA and ASE only when the year was computed). Shares in [0, 1], DF in %.
+struct DaylightVerdict {
+    bool df = true, sda = true, ase = true;
+    bool passes() const { return df && sda && ase; }
+};
+DaylightVerdict judge_daylight(double mean_df, const double* sda, const double* ase,
+                               const Requirements& required);
 
 } // namespace rad

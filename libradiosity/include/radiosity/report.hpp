@@ -24,6 +24,7 @@ struct SurfaceDaylight {
     bool annual = false;
     std::vector<double> da300; // % of occupied hours, per sensor
     AnnualMetrics metrics;     // this surface's
+    DaylightVerdict verdict;   // against the surface's DF, sDA and ASE requirements
 };
 
 struct ReportSurface {

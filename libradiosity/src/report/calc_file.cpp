@@ -11,7 +11,7 @@ namespace rad {
 namespace {
 
 constexpr const char* kColumns =
-    "name,kind,x,y,z,ux,uy,uz,vx,vy,vz,spacing,border,Em,U0,Emin,UGRL,angle";
+    "name,kind,x,y,z,ux,uy,uz,vx,vy,vz,spacing,border,Em,U0,Emin,UGRL,angle,DF,sDA,ASE";
 
 const std::map<std::string, CalcKind>& kinds() {
     static const std::map<std::string, CalcKind> table{
@@ -67,9 +67,9 @@ std::map<std::string, std::size_t> header_columns(const std::vector<std::string>
         throw InputError(where, std::string("the first line names the columns, the first "
                                             "being 'name' (") +
                                     kColumns + ")");
-    static const std::set<std::string> known{"name",   "kind", "x",  "y",    "z",    "ux",
-                                             "uy",     "uz",   "vx", "vy",   "vz",   "spacing",
-                                             "border", "Em",   "U0", "Emin", "UGRL", "angle"};
+    static const std::set<std::string> known{
+        "name",    "kind",   "x",  "y",  "z",    "ux",   "uy",    "uz", "vx",  "vy", "vz",
+        "spacing", "border", "Em", "U0", "Emin", "UGRL", "angle", "DF", "sDA", "ASE"};
     std::map<std::string, std::size_t> columns;
     for (std::size_t k = 0; k < header.size(); ++k) {
         if (!known.count(header[k]))
@@ -100,6 +100,13 @@ CalcSurface surface_of(const CsvRow& row, CalcKind kind) {
     s.required.em = row.at_least_zero("Em", kNoRequirement);
     s.required.u0 = row.at_least_zero("U0", kNoRequirement);
     s.required.emin = row.at_least_zero("Emin", kNoRequirement);
+    s.required.df = row.at_least_zero("DF", kNoRequirement);
+    s.required.sda = row.at_least_zero("sDA", kNoRequirement);
+    s.required.ase = row.at_least_zero("ASE", kNoRequirement);
+    for (const char* share : {"sDA", "ASE"})
+        if (row.number(share, 0) > 100)
+            throw InputError(row.where(), std::string(share) + " is a share of the points in %, "
+                                                               "at most 100");
     if (s.required.u0 > 1) throw InputError(row.where(), "U0 is Emin/Em, at most 1: give e.g. 0.6");
     for (const char* column : {"UGRL", "angle"})
         if (!row.text(column).empty())
@@ -120,7 +127,8 @@ CalcObserver observer_of(const CsvRow& row) {
                                       "way the observer looks");
     o.view = normalized(view);
     o.ugr_limit = row.at_least_zero("UGRL", kNoRequirement);
-    for (const char* column : {"vx", "vy", "vz", "spacing", "border", "Em", "U0", "Emin", "angle"})
+    for (const char* column :
+         {"vx", "vy", "vz", "spacing", "border", "Em", "U0", "Emin", "angle", "DF", "sDA", "ASE"})
         if (!row.text(column).empty())
             throw InputError(row.where(),
                              std::string("an observer has no ") + column + ": leave it empty");
@@ -147,7 +155,7 @@ CalcCamera camera_of(const CsvRow& row) {
     if (!(c.angle_deg > 0 && c.angle_deg < 180))
         throw InputError(row.where(), "angle is the camera's horizontal view in degrees, "
                                       "between 0 and 180 (empty: 60)");
-    for (const char* column : {"spacing", "border", "Em", "U0", "Emin", "UGRL"})
+    for (const char* column : {"spacing", "border", "Em", "U0", "Emin", "UGRL", "DF", "sDA", "ASE"})
         if (!row.text(column).empty())
             throw InputError(row.where(),
                              std::string("a camera has no ") + column + ": leave it empty");

@@ -61,6 +61,7 @@ svg.polar tspan.c0 { fill: #b00020; } svg.polar tspan.c90 { fill: #1040b0; }
 .note { font-size: 9pt; color: #333; }
 nav ol { margin: 2pt 0; }
 table.surfaces td:first-child { white-space: nowrap; }
+table.daylight { font-size: 9pt; }
 )";
 
 std::string verdict_text(bool required, bool passes) {
@@ -70,6 +71,19 @@ std::string verdict_text(bool required, bool passes) {
 
 bool has_requirements(const Requirements& r) {
     return !std::isnan(r.em) || !std::isnan(r.u0) || !std::isnan(r.emin);
+}
+
+bool has_daylight_requirements(const Requirements& r) {
+    return !std::isnan(r.df) || !std::isnan(r.sda) || !std::isnan(r.ase);
+}
+
+std::string daylight_required_text(const Requirements& r) {
+    std::string out;
+    const auto add = [&](const std::string& part) { out += (out.empty() ? "" : ", ") + part; };
+    if (!std::isnan(r.df)) add("DF &#8805; " + short_number(r.df) + "%");
+    if (!std::isnan(r.sda)) add("sDA &#8805; " + short_number(r.sda) + "%");
+    if (!std::isnan(r.ase)) add("ASE &#8804; " + short_number(r.ase) + "%");
+    return out.empty() ? "-" : out;
 }
 
 std::string required_text(const Requirements& r) {
@@ -182,10 +196,9 @@ std::string daylight_table(const ReportInput& in) {
     std::string out = "<table class=\"surfaces daylight\"><thead><tr><th>Surface</th><th>Kind"
                       "</th><th class=\"num\">DF mean (%)</th><th class=\"num\">DF median (%)"
                       "</th><th class=\"num\">DF min (%)</th><th class=\"num\">DF max (%)</th>"
-                      "<th class=\"num\">At 2% or more (% of points)</th>";
-    if (annual)
-        out += "<th class=\"num\">sDA300/50% (%)</th><th class=\"num\">ASE1000,250h (%)</th>";
-    out += "</tr></thead><tbody>";
+                      "<th class=\"num\">DF &#8805; 2% (% of points)</th>";
+    if (annual) out += "<th class=\"num\">sDA (%)</th><th class=\"num\">ASE (%)</th>";
+    out += "<th>Required</th><th>Verdict</th></tr></thead><tbody>";
     for (std::size_t k = 0; k < in.surfaces.size(); ++k) {
         const auto& s = in.surfaces[k];
         const auto& d = s.daylight->summary;
@@ -196,7 +209,10 @@ std::string daylight_table(const ReportInput& in) {
                cell(percent(d.above2));
         if (annual)
             out += cell(percent(s.daylight->metrics.sda)) + cell(percent(s.daylight->metrics.ase));
-        out += "</tr>";
+        out += "<td>" + daylight_required_text(s.surface.required) + "</td>" +
+               verdict_text(has_daylight_requirements(s.surface.required),
+                            s.daylight->verdict.passes()) +
+               "</tr>";
     }
     return out + "</tbody></table>";
 }
@@ -205,8 +221,8 @@ std::string summary(const ReportInput& in) {
     std::string out = "<section id=\"summary\"><h2>Summary</h2>";
     if (in.daylight) {
         out += daylight_table(in);
-        out += "<p class=\"note\">DF: daylight factor; sDA300/50%: the share of points lit to "
-               "300 lx or more by daylight for half the occupied hours or more; ASE1000,250h: "
+        out += "<p class=\"note\">DF: daylight factor; sDA: sDA300/50%, the share of points lit to "
+               "300 lx or more by daylight for half the occupied hours or more; ASE: ASE1000,250h, "
                "the share of points the sun's beam alone lights to 1000 lx or more for over 250 "
                "occupied hours (IES LM-83).</p>";
         return out + "</section>";
@@ -257,6 +273,10 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
             figure_row("UDI 100-3000 lx mean (% of hours)", percent(d.metrics.udi_useful), "udi");
     }
     // The two plans side by side when they fit across the page, else one under the other.
+    out += "<tr><th>Required</th><td>" + daylight_required_text(s.surface.required) + "</td></tr>";
+    out += "<tr><th>Verdict</th>" +
+           verdict_text(has_daylight_requirements(s.surface.required), d.verdict.passes()) +
+           "</tr>";
     out += "</tbody></table><div class=\"plans\"><figure>" +
            surface_plan_svg(s, d.factor, {"df", "%", 0, kHalfWidth, kHalfHeight}, nullptr, 1) +
            "<figcaption>Daylight factor on " + html_escape(s.surface.name) +

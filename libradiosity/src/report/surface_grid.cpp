@@ -49,4 +49,13 @@ Verdict judge(const IlluminanceStats& stats, const Requirements& required) {
     return v;
 }
 
+DaylightVerdict judge_daylight(double mean_df, const double* sda, const double* ase,
+                               const Requirements& required) {
+    DaylightVerdict v;
+    if (!std::isnan(required.df)) v.df = mean_df >= required.df;
+    if (!std::isnan(required.sda) && sda) v.sda = 100 * *sda >= required.sda;
+    if (!std::isnan(required.ase) && ase) v.ase = 100 * *ase <= required.ase;
+    return v;
+}
+
 } // namespace rad
