@@ -2,6 +2,7 @@
 #include "helpers.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
+#include "radiosity/progress.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/solver.hpp"
 
@@ -257,6 +258,50 @@ TEST_CASE("right-hand sides with any number of channels: each channel solves on 
                 CHECK(std::abs(rboth.radiosity.at(i, 3 + c) - rb.radiosity.at(i, c)) <
                       1e-6 * scale);
             }
+    }
+}
+
+TEST_CASE("many channels (a sky's light groups) solve in parallel blocks, each channel as on its "
+          "own, the same bytes at any thread count") {
+    // 50 RGB groups (150 channels: blocks of 48, the last of 6), each lit from one patch.
+    const auto mesh = occluded_scene();
+    Problem p;
+    for (const auto& patch : mesh.patches) {
+        p.area.push_back(patch.area);
+        p.reflectance.push_back(patch.group == 6 ? Rgb{0.7, 0.3, 0.1} : Rgb{0.6, 0.5, 0.4});
+    }
+    p.ff = sparse(reciprocal(dense(analytic(mesh)), p.area));
+    const std::size_t n = mesh.patches.size(), groups = 50;
+    rad::Channels all(n, 3 * groups);
+    for (std::size_t g = 0; g < groups; ++g)
+        for (int c = 0; c < 3; ++c) all.at((g * 7) % n, 3 * g + c) = 1.0 + g + c;
+    rad::SolveControl control;
+    control.tolerance = 1e-12;
+    control.max_iterations = 100000;
+    for (const char* method : {"gs", "jacobi"}) {
+        CAPTURE(method);
+        const auto& solver = rad::solver(method);
+        rad::SolveResult one, two;
+        {
+            rad::ThreadLimit limit(1);
+            one = solver.solve(p.op(), all, control);
+        }
+        {
+            rad::ThreadLimit limit(2);
+            two = solver.solve(p.op(), all, control);
+        }
+        CHECK(one.radiosity.values == two.radiosity.values);
+        CHECK(one.iterations == two.iterations);
+        for (std::size_t g = 0; g < groups; g += 7) { // against the group solved alone (RGB)
+            rad::Channels alone(n, 3);
+            for (std::size_t i = 0; i < n; ++i)
+                for (int c = 0; c < 3; ++c) alone.at(i, c) = all.at(i, 3 * g + c);
+            const auto single = solver.solve(p.op(), alone, control);
+            for (std::size_t i = 0; i < n; ++i)
+                for (int c = 0; c < 3; ++c)
+                    CHECK(one.radiosity.at(i, 3 * g + c) ==
+                          Approx(single.radiosity.at(i, c)).epsilon(1e-9).margin(1e-12));
+        }
     }
 }
 

@@ -2,6 +2,8 @@
 
 #include "radfmt/packed_rows.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <emmintrin.h>
 #include <xmmintrin.h>
 
@@ -18,8 +20,12 @@ namespace {
 struct GatherCopy {
     std::size_t stride;
     std::vector<float> values;
-    GatherCopy(const Channels& b, std::size_t channels)
-        : stride(channels == 3 ? 4 : channels), values(b.patches() * stride, 0.0f) {
+    // `stride` 0: RGB padded to four lanes (gather_rgb's loads), any other count as it is.
+    GatherCopy(const Channels& b, std::size_t channels, std::size_t stride_or_0 = 0)
+        : stride(stride_or_0     ? stride_or_0
+                 : channels == 3 ? 4
+                                 : channels),
+          values(b.patches() * stride, 0.0f) {
         for (std::size_t i = 0; i < b.patches(); ++i) set(i, b.row(i), channels);
     }
     void set(std::size_t i, const double* row, std::size_t channels) {
@@ -113,6 +119,53 @@ std::pair<double, double> sweep_rows(const TransportOperator& op, const Channels
     }
     return {change, magnitude};
 }
+// Many channels (a light group per sky patch: 146 groups, 438 channels): channels are
+// independent, so the sweep runs over blocks of kBlockChannels of them in parallel, each over
+// every row with its own float copy of its channels. The blocks do not depend on the thread
+// count, and their sums are added in block order: the same bytes at any thread count (each
+// channel's values are what one sweep over all channels gives).
+constexpr std::size_t kBlockChannels = 48;
+
+std::pair<double, double> sweep_block(const TransportOperator& op, const Channels& emission,
+                                      Channels& b, const Channels& source, std::size_t first,
+                                      std::size_t count) {
+    const auto& ff = *op.form_factors;
+    const std::size_t n = b.patches();
+    Channels block_source(n, count);
+    for (std::size_t i = 0; i < n; ++i)
+        std::copy_n(source.row(i) + first, count, block_source.row(i));
+    GatherCopy copy(block_source, count, count); // gather_any's layout, even for 3
+    const bool in_place = &source == &b;
+    std::vector<double> gathered(count);
+    double change = 0, magnitude = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        gather_row<0>(ff, i, copy.values.data(), count, gathered.data());
+        double* bi = b.row(i) + first;
+        const double* ei = emission.row(i) + first;
+        for (std::size_t c = 0; c < count; ++c) {
+            const double value = ei[c] + op.rho(i, first + c) * gathered[c];
+            change += std::abs(value - bi[c]);
+            magnitude += std::abs(value);
+            bi[c] = value;
+        }
+        if (in_place) copy.set(i, bi, count);
+    }
+    return {change, magnitude};
+}
+
+std::pair<double, double> sweep_blocks(const TransportOperator& op, const Channels& emission,
+                                       Channels& b, const Channels& source) {
+    const std::size_t blocks = (b.channels + kBlockChannels - 1) / kBlockChannels;
+    std::vector<std::pair<double, double>> sums(blocks);
+    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t k) {
+        const std::size_t first = k * kBlockChannels;
+        sums[k] = sweep_block(op, emission, b, source, first,
+                              std::min(kBlockChannels, b.channels - first));
+    });
+    double change = 0, magnitude = 0;
+    for (const auto& [c, m] : sums) change += c, magnitude += m;
+    return {change, magnitude};
+}
 } // namespace
 
 std::pair<double, double> sweep(const TransportOperator& op, const Channels& emission, Channels& b,
@@ -132,6 +185,7 @@ std::pair<double, double> sweep(const TransportOperator& op, const Channels& emi
     case 12:
         return sweep_rows<12>(op, emission, b, source);
     default:
+        if (b.channels > kBlockChannels) return sweep_blocks(op, emission, b, source);
         return sweep_rows<0>(op, emission, b, source);
     }
 }
