@@ -239,6 +239,14 @@ TEST_CASE("a surface's figures leave out sensors without a value, and its verdic
     CHECK(stats.mean == Approx(500));
     CHECK(stats.u0() == Approx(0.8));
     CHECK(stats.min_over_max() == Approx(400.0 / 600));
+    const std::vector<double> none{std::nan(""), std::nan("")}; // every sensor inside furniture
+    const auto empty = rad::illuminance_stats(none);
+    CHECK(empty.without_value == 2);
+    CHECK(rad::lux_text(empty.mean) == "-");
+    CHECK(rad::ratio_text(empty.u0()) == "-");
+    rad::Requirements em;
+    em.em = 1;
+    CHECK(!rad::judge(empty, em).passes()); // no value meets no requirement
     rad::Requirements required;
     CHECK(rad::judge(stats, required).passes()); // nothing required
     required.em = 500, required.u0 = 0.6;

@@ -488,6 +488,14 @@ void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid
     const auto verdict = rad::judge(stats, surface.required);
     const bool required = !std::isnan(surface.required.em) || !std::isnan(surface.required.u0) ||
                           !std::isnan(surface.required.emin);
+    if (stats.count == 0) {
+        std::fprintf(stderr,
+                     "rad-gather: %s (%s): no sensor has a value (%ld inside or behind objects: "
+                     "nan)%s\n",
+                     surface.name.c_str(), rad::calc_kind_name(surface.kind), stats.without_value,
+                     required ? ": FAILS its requirements" : "");
+        return;
+    }
     std::fprintf(stderr,
                  "rad-gather: %s (%s, %ld x %ld sensors at %.3g m, %ld without a value): Em %.4g "
                  "lx, Emin %.4g lx, Emax %.4g lx, U0 %.3f, Emin/Emax %.3f%s\n",

@@ -10,6 +10,7 @@
 #include "radiosity/vec.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 
@@ -46,12 +47,14 @@ Irradiance gather_sensor(const Gatherer& gatherer, const LuminaireSet* luminaire
                          const Box& scene_box, const Vec3& position, const Vec3& direction,
                          std::uint64_t index, std::string& problem);
 
-// Emin, Em, Emax over the sensors with a value (NaN: none), and how many had none.
+// Emin, Em, Emax over the sensors with a value (NaN: none), and how many had none; all NaN
+// when no sensor has a value.
 struct IlluminanceStats {
+    static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
     long count = 0, without_value = 0;
-    double min = 0, mean = 0, max = 0;
-    double u0() const { return mean > 0 ? min / mean : 0; }         // Emin / Em
-    double min_over_max() const { return max > 0 ? min / max : 0; } // Emin / Emax
+    double min = kNone, mean = kNone, max = kNone;
+    double u0() const { return count == 0 ? kNone : mean > 0 ? min / mean : 0; } // Emin / Em
+    double min_over_max() const { return count == 0 ? kNone : max > 0 ? min / max : 0; }
 };
 IlluminanceStats illuminance_stats(std::span<const double> lux);
 
