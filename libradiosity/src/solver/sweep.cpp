@@ -20,13 +20,10 @@ namespace {
 struct GatherCopy {
     std::size_t stride;
     std::vector<float> values;
-    // `stride` 0: RGB padded to four lanes (gather_rgb's loads), any other count as it is.
-    GatherCopy(const Channels& b, std::size_t channels, std::size_t stride_or_0 = 0)
-        : stride(stride_or_0     ? stride_or_0
-                 : channels == 3 ? 4
-                                 : channels),
-          values(b.patches() * stride, 0.0f) {
-        for (std::size_t i = 0; i < b.patches(); ++i) set(i, b.row(i), channels);
+    // Channels [first, first + count) of b; `padded`: RGB in four lanes (gather_rgb's loads).
+    GatherCopy(const Channels& b, std::size_t first, std::size_t count, bool padded)
+        : stride(padded ? 4 : count), values(b.patches() * stride, 0.0f) {
+        for (std::size_t i = 0; i < b.patches(); ++i) set(i, b.row(i) + first, count);
     }
     void set(std::size_t i, const double* row, std::size_t channels) {
         for (std::size_t c = 0; c < channels; ++c)
@@ -95,22 +92,25 @@ inline void gather_row(const radfmt::FormFactorData& ff, std::size_t i, const fl
     });
 }
 
+// One sweep over channels [first, first + count) (kChannels: that count, known to the
+// compiler; 0: read at run time).
 template <std::size_t kChannels>
 std::pair<double, double> sweep_rows(const TransportOperator& op, const Channels& emission,
-                                     Channels& b, const Channels& source) {
+                                     Channels& b, const Channels& source, std::size_t first,
+                                     std::size_t count) {
     const auto& ff = *op.form_factors;
     const std::size_t n = b.patches();
-    const std::size_t channels = kChannels ? kChannels : b.channels;
+    const std::size_t channels = kChannels ? kChannels : count;
     std::vector<double> gathered(channels);
-    GatherCopy copy(source, channels);
+    GatherCopy copy(source, first, channels, kChannels == 3);
     const bool in_place = &source == &b;
     double change = 0, magnitude = 0;
     for (std::size_t i = 0; i < n; ++i) {
         gather_row<kChannels>(ff, i, copy.values.data(), channels, gathered.data());
-        double* bi = b.row(i);
-        const double* ei = emission.row(i);
+        double* bi = b.row(i) + first;
+        const double* ei = emission.row(i) + first;
         for (std::size_t c = 0; c < channels; ++c) {
-            const double value = ei[c] + op.rho(i, c) * gathered[c];
+            const double value = ei[c] + op.rho(i, first + c) * gathered[c];
             change += std::abs(value - bi[c]);
             magnitude += std::abs(value);
             bi[c] = value;
@@ -119,6 +119,7 @@ std::pair<double, double> sweep_rows(const TransportOperator& op, const Channels
     }
     return {change, magnitude};
 }
+
 // Many channels (a light group per sky patch: 146 groups, 438 channels): channels are
 // independent, so the sweep runs over blocks of kBlockChannels of them in parallel, each over
 // every row with its own float copy of its channels. The blocks do not depend on the thread
@@ -126,41 +127,14 @@ std::pair<double, double> sweep_rows(const TransportOperator& op, const Channels
 // channel's values are what one sweep over all channels gives).
 constexpr std::size_t kBlockChannels = 48;
 
-std::pair<double, double> sweep_block(const TransportOperator& op, const Channels& emission,
-                                      Channels& b, const Channels& source, std::size_t first,
-                                      std::size_t count) {
-    const auto& ff = *op.form_factors;
-    const std::size_t n = b.patches();
-    Channels block_source(n, count);
-    for (std::size_t i = 0; i < n; ++i)
-        std::copy_n(source.row(i) + first, count, block_source.row(i));
-    GatherCopy copy(block_source, count, count); // gather_any's layout, even for 3
-    const bool in_place = &source == &b;
-    std::vector<double> gathered(count);
-    double change = 0, magnitude = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        gather_row<0>(ff, i, copy.values.data(), count, gathered.data());
-        double* bi = b.row(i) + first;
-        const double* ei = emission.row(i) + first;
-        for (std::size_t c = 0; c < count; ++c) {
-            const double value = ei[c] + op.rho(i, first + c) * gathered[c];
-            change += std::abs(value - bi[c]);
-            magnitude += std::abs(value);
-            bi[c] = value;
-        }
-        if (in_place) copy.set(i, bi, count);
-    }
-    return {change, magnitude};
-}
-
 std::pair<double, double> sweep_blocks(const TransportOperator& op, const Channels& emission,
                                        Channels& b, const Channels& source) {
     const std::size_t blocks = (b.channels + kBlockChannels - 1) / kBlockChannels;
     std::vector<std::pair<double, double>> sums(blocks);
     tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t k) {
         const std::size_t first = k * kBlockChannels;
-        sums[k] = sweep_block(op, emission, b, source, first,
-                              std::min(kBlockChannels, b.channels - first));
+        sums[k] = sweep_rows<0>(op, emission, b, source, first,
+                                std::min(kBlockChannels, b.channels - first));
     });
     double change = 0, magnitude = 0;
     for (const auto& [c, m] : sums) change += c, magnitude += m;
@@ -177,16 +151,16 @@ std::pair<double, double> sweep(const TransportOperator& op, const Channels& emi
     // compiler so the channel loops unroll; any other count reads it at run time.
     switch (b.channels) {
     case 3:
-        return sweep_rows<3>(op, emission, b, source);
+        return sweep_rows<3>(op, emission, b, source, 0, 3);
     case 6:
-        return sweep_rows<6>(op, emission, b, source);
+        return sweep_rows<6>(op, emission, b, source, 0, 6);
     case 9:
-        return sweep_rows<9>(op, emission, b, source);
+        return sweep_rows<9>(op, emission, b, source, 0, 9);
     case 12:
-        return sweep_rows<12>(op, emission, b, source);
+        return sweep_rows<12>(op, emission, b, source, 0, 12);
     default:
         if (b.channels > kBlockChannels) return sweep_blocks(op, emission, b, source);
-        return sweep_rows<0>(op, emission, b, source);
+        return sweep_rows<0>(op, emission, b, source, 0, b.channels);
     }
 }
 
