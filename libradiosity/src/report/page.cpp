@@ -3,6 +3,7 @@
 #include "radiosity/report.hpp"
 
 #include "radiosity/base64.hpp"
+#include "report/number_text.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -10,19 +11,8 @@
 
 namespace rad {
 namespace {
-
-std::string fixed(double v, int decimals) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.*f", decimals, v);
-    return text;
-}
-
-// A number the user wrote (a requirement), as short as it is.
-std::string short_number(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", v);
-    return text;
-}
+using report_text::fixed;
+using report_text::short_number;
 
 const char* kStyle = R"(
 @page { size: A4; margin: 14mm 14mm 16mm 14mm; }

@@ -3,6 +3,7 @@
 #include "radiosity/contours.hpp"
 #include "radiosity/falsecolour.hpp"
 #include "radiosity/report.hpp"
+#include "report/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,21 +12,10 @@
 
 namespace rad {
 namespace {
+using report_text::px;
+using report_text::short_number;
 
 constexpr double kMargin = 12, kLegendWidth = 90;
-
-std::string px(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2f", v);
-    return text;
-}
-
-// A round value (a contour level, a legend tick) as short as it is.
-std::string round_text(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", v);
-    return text;
-}
 
 std::string colour_hex(std::array<std::uint8_t, 3> c) {
     char text[8];
@@ -159,8 +149,9 @@ std::string isolines_svg(const ReportSurface& s, std::span<const double> values,
             d += 'L';
             d += px(seg.x1) + ' ' + px(seg.y1);
         }
-        out += "<path class=\"isoline\" data-level=\"" + round_text(level) + "\" d=\"" + d + "\"/>";
-        labels += label_level(segments, round_text(level), places);
+        out +=
+            "<path class=\"isoline\" data-level=\"" + short_number(level) + "\" d=\"" + d + "\"/>";
+        labels += label_level(segments, short_number(level), places);
     }
     return out + labels + "</g>";
 }
@@ -189,7 +180,7 @@ std::string legend_svg(double left, double top_px, double height, double top_lux
     for (int k = 0; k <= 4; ++k) {
         const double y = top_px + height * (1 - k / 4.0);
         out += "<text x=\"" + px(left + 22) + "\" y=\"" + px(y + 4) + "\">" +
-               round_text(top_lux * k / 4) + "</text>";
+               short_number(top_lux * k / 4) + "</text>";
     }
     out += "<text x=\"" + px(left) + "\" y=\"" + px(top_px - 6) + "\">" + unit + "</text>";
     return out + "</g>";

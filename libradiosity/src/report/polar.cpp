@@ -1,6 +1,7 @@
 // A luminaire type's polar intensity curve for the report: the C0-C180 and C90-C270 planes
 // in cd/klm of the luminaire's flux, gamma 0 (the nadir) pointing down; SVG.
 #include "radiosity/report.hpp"
+#include "report/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,14 +10,9 @@
 
 namespace rad {
 namespace {
+using report_text::px;
 
 constexpr double kSize = 300, kRadius = 125;
-
-std::string px(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2f", v);
-    return text;
-}
 
 // The file's intensity (no maintenance, no TILT) in the C plane `c_deg` at `gamma_deg`, in
 // the luminaire's own frame (so that type A and B files are drawn as mounted).
