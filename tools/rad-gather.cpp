@@ -420,6 +420,12 @@ void read_daylight_sensors(const GatherArgs& a, const Grid& grid, const rad::Box
     }
 }
 
+// A surface sensor's first CSV columns: "surface,index,column,row".
+std::string sensor_label(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid, long k) {
+    return rad::csv_field(surface.name) + "," + std::to_string(k) + "," +
+           std::to_string(k % grid.columns) + "," + std::to_string(k / grid.columns);
+}
+
 // --surfaces' file, which must name a surface.
 rad::CalcFile read_surfaces_file(const std::string& path) {
     auto file = rad::read_calc_file(path);
@@ -433,19 +439,12 @@ rad::CalcFile read_surfaces_file(const std::string& path) {
 void surface_daylight_sensors(const GatherArgs& a, double metres_per_unit, const rad::Box& box,
                               rad::tool::DaylightRun& run) {
     const auto file = read_surfaces_file(a.surfaces_path);
-    for (const auto& surface : file.surfaces) {
-        const auto grid = rad::surface_grid(surface, metres_per_unit);
-        run.surfaces.emplace_back(surface.name, std::size_t(grid.size()));
-        for (long k = 0; k < grid.size(); ++k) {
-            const auto p = grid.position(k);
-            if (const auto why = rad::out_of_reach(p, box); !why.empty())
-                throw rad::InputError(surface.where, surface.name + "'s sensors: " + why);
-            run.positions.push_back(p);
-            run.normals.push_back(grid.normal);
-            run.labels.push_back(rad::csv_field(surface.name) + "," + std::to_string(k) + "," +
-                                 std::to_string(k % grid.columns) + "," +
-                                 std::to_string(k / grid.columns));
-        }
+    const auto grids = rad::surface_grids(file, metres_per_unit);
+    rad::surface_sensors(file, grids, box, run.positions, run.normals);
+    for (std::size_t s = 0; s < grids.size(); ++s) {
+        run.surfaces.emplace_back(file.surfaces[s].name, std::size_t(grids[s].size()));
+        for (long k = 0; k < grids[s].size(); ++k)
+            run.labels.push_back(sensor_label(file.surfaces[s], grids[s], k));
     }
 }
 
@@ -513,9 +512,7 @@ void gather_surfaces(const GatherArgs& a, const rad::Gatherer& gatherer,
                      double metres_per_unit, int argc, char** argv,
                      const radfmt::Header& mesh_header, const radfmt::Header& rad_header) {
     const auto file = read_surfaces_file(a.surfaces_path);
-    std::vector<rad::SurfaceGrid> grids;
-    for (const auto& surface : file.surfaces)
-        grids.push_back(rad::surface_grid(surface, metres_per_unit));
+    const auto grids = rad::surface_grids(file, metres_per_unit);
     const auto lux = rad::gather_surfaces(gatherer, luminaires, scene_box, grids, a.quiet);
     const auto header = header_line(a, radfmt::command_line(argc, argv), mesh_header, rad_header);
     rad::tool::write_output(a.output, [&](std::FILE* out) {
@@ -524,9 +521,9 @@ void gather_surfaces(const GatherArgs& a, const rad::Gatherer& gatherer,
         for (std::size_t s = 0; s < grids.size(); ++s)
             for (long k = 0; k < grids[s].size(); ++k) {
                 const auto p = grids[s].position(k);
-                std::fprintf(out, "%s,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g\n",
-                             rad::csv_field(file.surfaces[s].name).c_str(), k, k % grids[s].columns,
-                             k / grids[s].columns, p[0], p[1], p[2], lux[s][std::size_t(k)]);
+                std::fprintf(out, "%s,%.6g,%.6g,%.6g,%.6g\n",
+                             sensor_label(file.surfaces[s], grids[s], k).c_str(), p[0], p[1], p[2],
+                             lux[s][std::size_t(k)]);
             }
     });
     if (a.quiet) return;

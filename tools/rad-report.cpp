@@ -101,9 +101,7 @@ std::vector<rad::ReportSurface> surfaces_of(const rad::CalcFile& file,
                                             const rad::LuminaireSet* luminaires,
                                             const rad::Box& box, double metres_per_unit,
                                             bool quiet) {
-    std::vector<rad::SurfaceGrid> grids;
-    for (const auto& surface : file.surfaces)
-        grids.push_back(rad::surface_grid(surface, metres_per_unit));
+    const auto grids = rad::surface_grids(file, metres_per_unit);
     auto lux = rad::gather_surfaces(gatherer, luminaires, box, grids, quiet);
     std::vector<rad::ReportSurface> out;
     for (std::size_t k = 0; k < grids.size(); ++k) {
@@ -176,21 +174,6 @@ std::string method_text(const ReportArgs& a, const radfmt::Header& rad_header) {
     return text;
 }
 
-// Every surface's grid, and all their sensors in order (as rad-gather --surfaces has them).
-void all_sensors(const rad::CalcFile& file, double metres, const rad::Box& box,
-                 std::vector<rad::SurfaceGrid>& grids, std::vector<rad::Vec3>& positions,
-                 std::vector<rad::Vec3>& normals) {
-    for (const auto& surface : file.surfaces) {
-        grids.push_back(rad::surface_grid(surface, metres));
-        for (long k = 0; k < grids.back().size(); ++k) {
-            positions.push_back(grids.back().position(k));
-            if (const auto why = rad::out_of_reach(positions.back(), box); !why.empty())
-                throw rad::InputError(surface.where, surface.name + "'s sensors: " + why);
-            normals.push_back(grids.back().normal);
-        }
-    }
-}
-
 // A daylight solution: each surface's daylight factor under the CIE overcast sky, and with
 // --epw the year's metrics, by the functions rad-gather --surfaces calls, in its order.
 void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radfmt::MeshData& mesh,
@@ -210,9 +193,9 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     const rad::DaylightSensors sensors(
         mesh, rad::daylight_solution(solution, rad_header, a.inputs[1]), options);
     const double metres = rad::metres_per_unit(mesh_header);
-    std::vector<rad::SurfaceGrid> grids;
+    const auto grids = rad::surface_grids(file, metres);
     std::vector<rad::Vec3> positions, normals;
-    all_sensors(file, metres, rad::bounds(mesh.vertices), grids, positions, normals);
+    rad::surface_sensors(file, grids, rad::bounds(mesh.vertices), positions, normals);
     rad::tool::SkyChoice overcast;
     overcast.sky = "cie-overcast";
     overcast.ground = a.ground;

@@ -98,6 +98,15 @@ struct SurfaceGrid {
 // exceed a million sensors.
 SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit);
 
+// Every surface's grid, in the file's order.
+std::vector<SurfaceGrid> surface_grids(const CalcFile& file, double metres_per_unit);
+
+// Every grid's sensors in order, surface after surface (as gather_surfaces numbers them): where
+// they are and the way they face. InputError at a surface's line when one is too far from the
+// scene in `box` to trace (out_of_reach).
+void surface_sensors(const CalcFile& file, const std::vector<SurfaceGrid>& grids, const Box& box,
+                     std::vector<Vec3>& positions, std::vector<Vec3>& normals);
+
 // Illuminance (lux) at every sensor of every grid, in order: surface by surface, each
 // sensor's random stream from its index over all of them (so rad-gather --surfaces and
 // rad-report give the same numbers). A sensor inside an object or behind a surface has NaN.

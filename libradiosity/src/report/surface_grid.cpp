@@ -41,6 +41,25 @@ SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit) {
     return grid;
 }
 
+std::vector<SurfaceGrid> surface_grids(const CalcFile& file, double metres_per_unit) {
+    std::vector<SurfaceGrid> grids;
+    for (const auto& surface : file.surfaces)
+        grids.push_back(surface_grid(surface, metres_per_unit));
+    return grids;
+}
+
+void surface_sensors(const CalcFile& file, const std::vector<SurfaceGrid>& grids, const Box& box,
+                     std::vector<Vec3>& positions, std::vector<Vec3>& normals) {
+    for (std::size_t s = 0; s < grids.size(); ++s)
+        for (long k = 0; k < grids[s].size(); ++k) {
+            positions.push_back(grids[s].position(k));
+            if (const auto why = out_of_reach(positions.back(), box); !why.empty())
+                throw InputError(file.surfaces[s].where,
+                                 file.surfaces[s].name + "'s sensors: " + why);
+            normals.push_back(grids[s].normal);
+        }
+}
+
 Verdict judge(const IlluminanceStats& stats, const Requirements& required) {
     Verdict v;
     if (!std::isnan(required.em)) v.em = stats.count > 0 && stats.mean >= required.em;
