@@ -485,8 +485,7 @@ void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid
                    const std::vector<double>& lux) {
     const auto stats = rad::illuminance_stats(lux);
     const auto verdict = rad::judge(stats, surface.required);
-    const bool required = !std::isnan(surface.required.em) || !std::isnan(surface.required.u0) ||
-                          !std::isnan(surface.required.emin);
+    const bool required = surface.required.of_light();
     if (stats.count == 0) {
         std::fprintf(stderr,
                      "rad-gather: %s (%s): no sensor has a value (%ld inside or behind objects: "

@@ -26,6 +26,9 @@ inline constexpr double kNoRequirement = std::numeric_limits<double>::quiet_NaN(
 struct Requirements {
     double em = kNoRequirement, u0 = kNoRequirement, emin = kNoRequirement;
     double df = kNoRequirement, sda = kNoRequirement, ase = kNoRequirement;
+    // Whether anything is required of the light (Em, U0, Emin), of daylight (DF, sDA, ASE).
+    bool of_light() const { return !std::isnan(em) || !std::isnan(u0) || !std::isnan(emin); }
+    bool of_daylight() const { return !std::isnan(df) || !std::isnan(sda) || !std::isnan(ase); }
 };
 
 // A rectangle from `corner` along the edges `u` and `v` (scene units); its sensors face

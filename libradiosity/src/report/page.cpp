@@ -59,14 +59,6 @@ std::string verdict_text(bool required, bool passes) {
     return passes ? "<td class=\"pass\">meets</td>" : "<td class=\"fail\">fails</td>";
 }
 
-bool has_requirements(const Requirements& r) {
-    return !std::isnan(r.em) || !std::isnan(r.u0) || !std::isnan(r.emin);
-}
-
-bool has_daylight_requirements(const Requirements& r) {
-    return !std::isnan(r.df) || !std::isnan(r.sda) || !std::isnan(r.ase);
-}
-
 std::string daylight_required_text(const Requirements& r) {
     std::string out;
     const auto add = [&](const std::string& part) { out += (out.empty() ? "" : ", ") + part; };
@@ -144,8 +136,7 @@ std::string surface_row(const ReportSurface& s, std::size_t index) {
            calc_kind_name(s.surface.kind) + "</td>" + cell(lux_text(st.mean)) +
            cell(lux_text(st.min)) + cell(lux_text(st.max)) + cell(ratio_text(st.u0())) +
            cell(ratio_text(st.min_over_max())) + "<td>" + required_text(s.surface.required) +
-           "</td>" + verdict_text(has_requirements(s.surface.required), s.verdict.passes()) +
-           "</tr>";
+           "</td>" + verdict_text(s.surface.required.of_light(), s.verdict.passes()) + "</tr>";
 }
 
 std::string surfaces_table(const ReportInput& in) {
@@ -200,8 +191,7 @@ std::string daylight_table(const ReportInput& in) {
         if (annual)
             out += cell(percent(s.daylight->metrics.sda)) + cell(percent(s.daylight->metrics.ase));
         out += "<td>" + daylight_required_text(s.surface.required) + "</td>" +
-               verdict_text(has_daylight_requirements(s.surface.required),
-                            s.daylight->verdict.passes()) +
+               verdict_text(s.surface.required.of_daylight(), s.daylight->verdict.passes()) +
                "</tr>";
     }
     return out + "</tbody></table>";
@@ -265,8 +255,7 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
     // The two plans side by side when they fit across the page, else one under the other.
     out += "<tr><th>Required</th><td>" + daylight_required_text(s.surface.required) + "</td></tr>";
     out += "<tr><th>Verdict</th>" +
-           verdict_text(has_daylight_requirements(s.surface.required), d.verdict.passes()) +
-           "</tr>";
+           verdict_text(s.surface.required.of_daylight(), d.verdict.passes()) + "</tr>";
     out += "</tbody></table><div class=\"plans\"><figure>" +
            surface_plan_svg(s, d.factor, {"df", "%", 0, kHalfWidth, kHalfHeight}, nullptr, 1) +
            "<figcaption>Daylight factor on " + html_escape(s.surface.name) +
@@ -299,7 +288,7 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
                " (inside or under objects; grey in the plan)</td></tr>";
     out += "<tr><th>Required</th><td>" + required_text(s.surface.required) + "</td></tr>";
     out += "<tr><th>Verdict</th>" +
-           verdict_text(has_requirements(s.surface.required), s.verdict.passes()) + "</tr>";
+           verdict_text(s.surface.required.of_light(), s.verdict.passes()) + "</tr>";
     out += "</tbody></table>";
     out += "<figure>" +
            surface_plan_svg(s, s.lux, {"lux", "lx", 0}, in.luminaires, in.metres_per_unit) +
