@@ -153,8 +153,7 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
     if (weather.missing > 0)
         std::fprintf(stderr, "rad-gather: %s: %d hour(s) with missing radiation, taken as 0\n",
                      a.epw.c_str(), weather.missing);
-    const auto occupied = a.occupancy.empty() ? default_occupancy(weather)
-                                              : read_occupancy(a.occupancy, weather.hours.size());
+    const auto occupied = occupied_hours(a.occupancy, weather);
     const auto year = annual_illuminance(sensors, run.positions, run.normals, weather, occupied,
                                          a.choice.ground, run.quiet);
     std::vector<radfmt::Parent> parents;
@@ -174,9 +173,7 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
     std::printf("annual daylight at %zu sensor(s), %s (%.2f N, %.2f E), %d occupied hour(s) "
                 "(%s):\n",
                 year.sensors(), weather.place.c_str(), weather.location.latitude,
-                weather.location.longitude, m.occupied_hours,
-                a.occupancy.empty() ? "08:00-18:00 local standard time, every day"
-                                    : a.occupancy.c_str());
+                weather.location.longitude, m.occupied_hours, occupancy_text(a.occupancy).c_str());
     std::printf("  sDA300/50%%     %6.1f %% of sensors (DA300 >= 50%%)\n", 100 * m.sda);
     std::printf("  ASE1000,250h   %6.1f %% of sensors (direct sun >= 1000 lx for > 250 h)\n",
                 100 * m.ase);
@@ -197,14 +194,28 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
 }
 } // namespace
 
+DaylightOptions daylight_options(int sky_samples, int rays, std::uint64_t seed) {
+    DaylightOptions options;
+    options.sky_side = std::max(1, int(std::lround(std::sqrt(double(sky_samples)))));
+    options.rays = rays; // 0: no reflected light
+    options.seed = seed;
+    return options;
+}
+
+std::vector<std::uint8_t> occupied_hours(const std::string& occupancy, const Weather& weather) {
+    return occupancy.empty() ? default_occupancy(weather)
+                             : read_occupancy(occupancy, weather.hours.size());
+}
+
+std::string occupancy_text(const std::string& occupancy) {
+    return occupancy.empty() ? "08:00-18:00 local standard time, every day" : occupancy;
+}
+
 int gather_daylight(const DaylightArgs& a, const DaylightRun& run) {
     check_daylight_args(a, run);
-    DaylightOptions options;
-    options.sky_side = std::max(1, int(std::lround(std::sqrt(double(a.sky_samples)))));
-    options.rays = run.rays; // 0: no reflected light
-    options.seed = run.seed;
-    const DaylightSensors sensors(
-        *run.mesh, daylight_solution(*run.solution, *run.rad_header, run.rad_path), options);
+    const DaylightSensors sensors(*run.mesh,
+                                  daylight_solution(*run.solution, *run.rad_header, run.rad_path),
+                                  daylight_options(a.sky_samples, run.rays, run.seed));
     if (a.annual) return annual(a, run, sensors);
     return instant(a, run, sensors);
 }

@@ -2,7 +2,9 @@
 // weather file (--epw --annual), at the sensors of a solution solved with a .sky.
 #pragma once
 #include "radfmt/kinds.hpp"
+#include "radiosity/daylight.hpp"
 #include "radiosity/vec.hpp"
+#include "radiosity/weather.hpp"
 #include "tool.hpp"
 
 #include <CLI/CLI.hpp>
@@ -45,5 +47,13 @@ struct DaylightRun {
     double lux_max = 0;
 };
 int gather_daylight(const DaylightArgs& a, const DaylightRun& run);
+
+// What a command line makes of the sensors' daylight (rad-gather, rad-report): --sky-samples
+// rounded to a square, the room's reflected light's rays, the seed.
+DaylightOptions daylight_options(int sky_samples, int rays, std::uint64_t seed);
+// The occupied hours: --occupancy's file, or LM-83's default (empty `occupancy`); and how a
+// summary or a page names them.
+std::vector<std::uint8_t> occupied_hours(const std::string& occupancy, const Weather& weather);
+std::string occupancy_text(const std::string& occupancy);
 
 } // namespace rad::tool

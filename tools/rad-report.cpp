@@ -186,10 +186,9 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
         throw rad::InputError(file.name + ": views of a daylight solution are not in the report "
                                           "yet (rad-shade --sky renders them): remove the camera "
                                           "lines");
-    rad::DaylightOptions options;
-    options.sky_side = std::max(1, int(std::lround(std::sqrt(double(a.sky_samples)))));
-    options.rays = a.rays_option->count() ? a.options.rays : rad::tool::kDaylightRays;
-    options.seed = a.options.seed;
+    const auto options = rad::tool::daylight_options(
+        a.sky_samples, a.rays_option->count() ? a.options.rays : rad::tool::kDaylightRays,
+        a.options.seed);
     const rad::DaylightSensors sensors(
         mesh, rad::daylight_solution(solution, rad_header, a.inputs[1]), options);
     const double metres = rad::metres_per_unit(mesh_header);
@@ -204,14 +203,11 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     std::optional<rad::AnnualMetrics> year;
     if (!a.epw.empty()) {
         const auto weather = rad::read_epw(a.epw);
-        const auto occupied = a.occupancy.empty()
-                                  ? rad::default_occupancy(weather)
-                                  : rad::read_occupancy(a.occupancy, weather.hours.size());
+        const auto occupied = rad::tool::occupied_hours(a.occupancy, weather);
         year = rad::annual_metrics(rad::annual_illuminance(sensors, positions, normals, weather,
                                                            occupied, a.ground, a.quiet));
         in.weather = weather.place + " (" + a.epw + ")";
-        in.occupancy =
-            a.occupancy.empty() ? "08:00-18:00 local standard time, every day" : a.occupancy;
+        in.occupancy = rad::tool::occupancy_text(a.occupancy);
     }
     std::size_t first = 0;
     for (std::size_t s = 0; s < grids.size(); ++s) {
