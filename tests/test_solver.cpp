@@ -219,16 +219,23 @@ TEST_CASE("every method agrees with a direct dense solve on an occluded scene") 
     }
 }
 
-TEST_CASE("right-hand sides with any number of channels: each channel solves on its own") {
-    // Two RGB light groups stacked as 6 channels (channel c reflects with colour c % 3) give,
-    // channel by channel, the same numbers as two separate RGB solves.
-    const auto mesh = occluded_scene();
+// The occluded scene's operator, its block (group 6) coloured: for right-hand sides of any
+// number of channels (no emission of its own).
+Problem coloured_occluded_problem(const radfmt::MeshData& mesh) {
     Problem p;
     for (const auto& patch : mesh.patches) {
         p.area.push_back(patch.area);
         p.reflectance.push_back(patch.group == 6 ? Rgb{0.7, 0.3, 0.1} : Rgb{0.6, 0.5, 0.4});
     }
     p.ff = sparse(reciprocal(dense(analytic(mesh)), p.area));
+    return p;
+}
+
+TEST_CASE("right-hand sides with any number of channels: each channel solves on its own") {
+    // Two RGB light groups stacked as 6 channels (channel c reflects with colour c % 3) give,
+    // channel by channel, the same numbers as two separate RGB solves.
+    const auto mesh = occluded_scene();
+    const auto p = coloured_occluded_problem(mesh);
     const std::size_t n = mesh.patches.size();
     rad::Channels a(n, 3), b(n, 3), both(n, 6);
     for (std::size_t i = 0; i < n; ++i) {
@@ -265,12 +272,7 @@ TEST_CASE("many channels (a sky's light groups) solve in parallel blocks, each c
           "own, the same bytes at any thread count") {
     // 50 RGB groups (150 channels: blocks of 48, the last of 6), each lit from one patch.
     const auto mesh = occluded_scene();
-    Problem p;
-    for (const auto& patch : mesh.patches) {
-        p.area.push_back(patch.area);
-        p.reflectance.push_back(patch.group == 6 ? Rgb{0.7, 0.3, 0.1} : Rgb{0.6, 0.5, 0.4});
-    }
-    p.ff = sparse(reciprocal(dense(analytic(mesh)), p.area));
+    const auto p = coloured_occluded_problem(mesh);
     const std::size_t n = mesh.patches.size(), groups = 50;
     rad::Channels all(n, 3 * groups);
     for (std::size_t g = 0; g < groups; ++g)
