@@ -56,6 +56,13 @@ class CsvRow {
         return value;
     }
 
+    // `columns` that `who` ("an observer") does not have must be empty.
+    void refuse_any(std::initializer_list<const char*> columns, const std::string& who) const {
+        for (const char* column : columns)
+            if (!text(column).empty())
+                throw InputError(where_, who + " has no " + column + ": leave it empty");
+    }
+
   private:
     FileLoc where_;
     std::map<std::string, std::string> fields_;
@@ -127,11 +134,9 @@ CalcObserver observer_of(const CsvRow& row) {
                                       "way the observer looks");
     o.view = normalized(view);
     o.ugr_limit = row.at_least_zero("UGRL", kNoRequirement);
-    for (const char* column :
-         {"vx", "vy", "vz", "spacing", "border", "Em", "U0", "Emin", "angle", "DF", "sDA", "ASE"})
-        if (!row.text(column).empty())
-            throw InputError(row.where(),
-                             std::string("an observer has no ") + column + ": leave it empty");
+    row.refuse_any(
+        {"vx", "vy", "vz", "spacing", "border", "Em", "U0", "Emin", "angle", "DF", "sDA", "ASE"},
+        "an observer");
     return o;
 }
 
@@ -155,10 +160,8 @@ CalcCamera camera_of(const CsvRow& row) {
     if (!(c.angle_deg > 0 && c.angle_deg < 180))
         throw InputError(row.where(), "angle is the camera's horizontal view in degrees, "
                                       "between 0 and 180 (empty: 60)");
-    for (const char* column : {"spacing", "border", "Em", "U0", "Emin", "UGRL", "DF", "sDA", "ASE"})
-        if (!row.text(column).empty())
-            throw InputError(row.where(),
-                             std::string("a camera has no ") + column + ": leave it empty");
+    row.refuse_any({"spacing", "border", "Em", "U0", "Emin", "UGRL", "DF", "sDA", "ASE"},
+                   "a camera");
     return c;
 }
 
