@@ -59,22 +59,31 @@ std::string verdict_text(bool required, bool passes) {
     return passes ? "<td class=\"pass\">meets</td>" : "<td class=\"fail\">fails</td>";
 }
 
-std::string daylight_required_text(const Requirements& r) {
+// What is asked of a surface, the quantities the file gives ("-": none).
+struct Asked {
+    const char *name, *relation;
+    double value; // NaN: not asked
+    const char* unit;
+};
+std::string asked_text(std::initializer_list<Asked> asked) {
     std::string out;
-    const auto add = [&](const std::string& part) { out += (out.empty() ? "" : ", ") + part; };
-    if (!std::isnan(r.df)) add("DF &#8805; " + short_number(r.df) + "%");
-    if (!std::isnan(r.sda)) add("sDA &#8805; " + short_number(r.sda) + "%");
-    if (!std::isnan(r.ase)) add("ASE &#8804; " + short_number(r.ase) + "%");
+    for (const auto& a : asked)
+        if (!std::isnan(a.value))
+            out += (out.empty() ? "" : ", ") + std::string(a.name) + " " + a.relation + " " +
+                   short_number(a.value) + a.unit;
     return out.empty() ? "-" : out;
 }
 
 std::string required_text(const Requirements& r) {
-    std::string out;
-    const auto add = [&](const std::string& part) { out += (out.empty() ? "" : ", ") + part; };
-    if (!std::isnan(r.em)) add("Em &#8805; " + short_number(r.em) + " lx");
-    if (!std::isnan(r.u0)) add("U0 &#8805; " + short_number(r.u0));
-    if (!std::isnan(r.emin)) add("Emin &#8805; " + short_number(r.emin) + " lx");
-    return out.empty() ? "-" : out;
+    return asked_text({{"Em", "&#8805;", r.em, " lx"},
+                       {"U0", "&#8805;", r.u0, ""},
+                       {"Emin", "&#8805;", r.emin, " lx"}});
+}
+
+std::string daylight_required_text(const Requirements& r) {
+    return asked_text({{"DF", "&#8805;", r.df, "%"},
+                       {"sDA", "&#8805;", r.sda, "%"},
+                       {"ASE", "&#8804;", r.ase, "%"}});
 }
 
 std::string cell(const std::string& text, const char* cls = "num") {
