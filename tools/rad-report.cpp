@@ -156,21 +156,23 @@ void power_area(const ReportArgs& a, const rad::CalcFile& file, double metres_pe
     }
 }
 
-std::string method_text(const ReportArgs& a, const radfmt::Header& rad_header) {
+std::string method_text(const ReportArgs& a, const radfmt::Header& rad_header, bool luminaires) {
     const auto* method = rad_header.find("method");
-    char text[600];
+    char text[700];
     std::snprintf(text, sizeof text,
                   "Illuminance at each point by a final gather over the radiosity solution "
-                  "(solver %s): the light of the room's surfaces from %s%s, the luminaires' "
-                  "direct light exactly from their photometric files with a visibility ray per "
-                  "point (the luminous opening sampled where near), %d shadow rays for bright "
-                  "surfaces, seed %llu.",
+                  "(solver %s): the light of the room's surfaces from %s%s, %s%d shadow rays "
+                  "for emitting and bright surfaces, seed %llu.",
                   method ? method->c_str() : "?",
                   a.options.exact
                       ? "the exact sum over every patch"
                       : (std::to_string(a.options.rays) + " cosine-weighted rays").c_str(),
-                  a.options.exact ? "" : " per point", a.options.shadow_rays,
-                  static_cast<unsigned long long>(a.options.seed));
+                  a.options.exact ? "" : " per point",
+                  luminaires ? "the luminaires' direct light exactly from their photometric "
+                               "files with a visibility ray per point (the luminous opening "
+                               "sampled where near), "
+                             : "",
+                  a.options.shadow_rays, static_cast<unsigned long long>(a.options.seed));
     return text;
 }
 
@@ -341,7 +343,7 @@ void lighting_figures(const ReportArgs& a, const rad::CalcFile& file, radfmt::Me
     const auto* set = luminaires ? &*luminaires : nullptr;
     const double metres = rad::metres_per_unit(mesh_header);
     const rad::Box box = rad::bounds(mesh.vertices);
-    in.method = method_text(a, rad_header);
+    in.method = method_text(a, rad_header, set != nullptr);
     in.metres_per_unit = metres;
     in.luminaires = set;
     in.surfaces = surfaces_of(file, gatherer, set, box, metres, a.quiet);
