@@ -29,9 +29,9 @@ std::string floor_and_box(double lift, double box_x = 0) {
 }
 
 radfmt::MeshData meshed(const std::string& obj, rad::ImprintReport* report = nullptr,
-                        double max_edge = 0.1) {
+                        double max_edge = 0.1, double gap = rad::kContactGap) {
     auto scene = scene_from_obj(obj, kGreyMtl, "imprint");
-    const auto r = rad::imprint_contacts(scene);
+    const auto r = rad::imprint_contacts(scene, 1e-7, {}, gap);
     if (report) *report = r;
     rad::SubdivisionOptions options;
     options.max_edge = max_edge;
@@ -105,13 +105,26 @@ TEST_CASE("near-coincident contacts are contacts, without slivers or cracks") {
 
 TEST_CASE("what does not touch, or belongs to the same object, is left whole") {
     rad::ImprintReport report;
-    // A box 1 mm above the floor does not touch it.
-    const auto floating = meshed(floor_and_box(1e-3), &report);
-    CHECK(report.faces_imprinted == 0);
-    CHECK(group_area(floating, "floor") == Approx(4).epsilon(1e-12));
+    // A box 2 cm above the floor does not touch it (the scene's size is 2.87; the contact
+    // gap 2e-3 of that is 5.7 mm); nor does one 1 mm above, with no contact gap.
+    for (const auto& [lift, gap] : {std::pair{0.02, rad::kContactGap}, std::pair{1e-3, 0.0}}) {
+        INFO("lift " << lift << ", gap " << gap);
+        const auto floating = meshed(floor_and_box(lift), &report, 0.1, gap);
+        CHECK(report.faces_imprinted == 0);
+        CHECK(group_area(floating, "floor") == Approx(4).epsilon(1e-12));
+    }
     // A closed room's walls meet along shared edges: nothing to imprint.
     meshed(cube_obj(1), &report);
     CHECK(report.faces_imprinted == 0);
+}
+
+TEST_CASE("a box 1 mm above the floor, within the contact gap, imprints it as if standing on it") {
+    rad::ImprintReport report;
+    const auto mesh = meshed(floor_and_box(1e-3), &report);
+    CHECK(report.faces_imprinted == 2);
+    CHECK(report.regions_removed == 2); // the floor under it sees the box's inside
+    CHECK(group_area(mesh, "floor") == Approx(4 - 0.25).epsilon(1e-12));
+    CHECK(open_length(mesh, "floor") == Approx(8 + 2).epsilon(1e-9));
 }
 
 TEST_CASE("a contact a hair over a face's edge removes nothing there, and keeps grids") {

@@ -81,6 +81,7 @@ struct MeshArgs {
     std::vector<std::string> mtl_paths, flip, two_sided, thin, transmittance;
     bool keep_lamps = false, verbose = false;
     bool two_sided_emission = false, no_imprint = false;
+    double contact_gap = rad::kContactGap;
 };
 
 // The input, output and subdivision options.
@@ -178,6 +179,14 @@ void add_stage_options(CLI::App& app, MeshArgs& a) {
                  "Do not imprint contacts (by default, where another object touches or crosses "
                  "a face, the contact lines are cut into it before subdividing, so no patch "
                  "straddles a contact, and regions hidden inside other geometry are removed)");
+    app.add_option("--contact-gap", a.contact_gap,
+                   "Imprinting: an edge of another object's face this far in front of a surface, "
+                   "as a fraction of the scene's size (its bounding box's diagonal), touches it "
+                   "when that face reaches 20 times as far out: a wall ending a hair below a "
+                   "ceiling cuts it, so the ceiling's patches on each side see their own room "
+                   "(0: only contacts within rounding)")
+        ->default_val(rad::kContactGap)
+        ->check(CLI::Range(0.0, 0.05));
     app.add_option("--surfaces", a.surfaces,
                    "What is gridded into patches: regions (connected faces in one plane with one "
                    "material and group are merged into one surface, gridded into near-square "
@@ -257,6 +266,7 @@ rad::MeshOptions mesh_options_of(MeshArgs& a) {
     mesh_options.subdivision = options;
     mesh_options.regions = a.surfaces == "regions";
     mesh_options.imprint = !a.no_imprint;
+    mesh_options.contact_gap = a.contact_gap;
     mesh_options.orient_fix = a.orient == "fix";
     mesh_options.turn_lamps = !a.keep_lamps;
     mesh_options.verbose = a.verbose;

@@ -114,6 +114,109 @@ else: assert low < 0.9  # the straddling patches this guards against
 PY
 done
 
+# Near contacts (#53 item 5): a Cornell-size box (0.556 x 0.5488 x 0.5592 m, facing in) split
+# by a wall, each room with a lamp 1 cm under the ceiling, the left one ten times the right.
+# 'gap': the wall a 2 cm slab (its sides and top, x = 0.268 .. 0.288) ending 1 mm below the
+# ceiling; 'sheet': one face at x = 0.3 from floor to ceiling, not sharing the ceiling's
+# vertices; 'welded': that face's top is the edge between the ceiling's two quads.
+two_rooms() { # VARIANT OUT.obj
+  python3 - "$1" "$2" <<'PY'
+import sys
+variant, out = sys.argv[1], sys.argv[2]
+W, H, D, x0, x1, xm = 0.556, 0.5488, 0.5592, 0.268, 0.288, 0.3
+V, F = [], []
+def face(points, group, material):
+    F.append((group, material, [len(V) + k + 1 for k in range(len(points))]))
+    V.extend(points)
+face([(0,0,D),(W,0,D),(W,0,0),(0,0,0)], 'floor', 'white')
+if variant == 'welded':  # two quads sharing the edge x = xm (vertices 7 and 8)
+    face([(W,H,0),(W,H,D),(xm,H,D),(xm,H,0)], 'ceiling', 'white')
+    F.append(('ceiling', 'white', [8, 7, 9, 10]))
+    V.extend([(0,H,D),(0,H,0)])
+else:
+    face([(W,H,0),(W,H,D),(0,H,D),(0,H,0)], 'ceiling', 'white')
+face([(0,H,0),(0,H,D),(0,0,D),(0,0,0)], 'left', 'white')
+face([(W,0,D),(W,H,D),(W,H,0),(W,0,0)], 'right', 'white')
+face([(W,0,0),(W,H,0),(0,H,0),(0,0,0)], 'back', 'white')
+face([(0,H,D),(W,H,D),(W,0,D),(0,0,D)], 'front', 'white')
+if variant == 'gap':
+    t = H - 0.001
+    face([(x0,0,0),(x0,0,D),(x0,t,D),(x0,t,0)], 'wall', 'white')
+    face([(x1,0,0),(x1,t,0),(x1,t,D),(x1,0,D)], 'wall', 'white')
+    face([(x0,t,0),(x0,t,D),(x1,t,D),(x1,t,0)], 'wall', 'white')
+elif variant == 'sheet':
+    face([(xm,0,0),(xm,H,0),(xm,H,D),(xm,0,D)], 'wall', 'white')
+else:
+    F.append(('wall', 'white', [len(V) + 1, 7, 8, len(V) + 2]))
+    V.extend([(xm,0,D),(xm,0,0)])
+for cx, m in ((0.134, 'bright'), (0.422, 'dim')):
+    y, s = H - 0.01, 0.05
+    face([(cx-s,y,D/2-s),(cx+s,y,D/2-s),(cx+s,y,D/2+s),(cx-s,y,D/2+s)], 'lamp', m)
+with open(out, 'w') as f:
+    f.write('mtllib two-rooms.mtl\n' + ''.join('v %.6f %.6f %.6f\n' % v for v in V))
+    for g, m, c in F: f.write('g %s\nusemtl %s\nf %s\n' % (g, m, ' '.join(map(str, c))))
+PY
+}
+printf 'newmtl white\nKd 0.75 0.75 0.75\nnewmtl bright\nKd 0 0 0\nKe 100 100 100\nnewmtl dim\nKd 0 0 0\nKe 10 10 10\n' > "$TMP/two-rooms.mtl"
+# The ceiling's patches whose centroids lie left of LO cover exactly x = 0 .. LO, and those
+# right of HI exactly HI .. 0.556: none reaches across the wall.
+check_ceiling_sides() { # MESH LO HI
+  "$BIN/rad-info" --csv "$1" > "$TMP/sides.csv"
+  python3 - "$TMP/sides.csv" "$2" "$3" <<'PY'
+import csv, sys
+lo, hi, D = float(sys.argv[2]), float(sys.argv[3]), 0.5592
+left = right = 0.0
+for p in csv.DictReader(open(sys.argv[1])):
+    if p['group'] != 'ceiling': continue
+    x = float(p['cx'])
+    if x < lo: left += float(p['area'])
+    if x > hi: right += float(p['area'])
+print(f"ceiling left of the wall {left:.9f} (exactly {lo * D:.9f}), right {right:.9f} ({(0.556 - hi) * D:.9f})")
+assert abs(left - lo * D) < 1e-9 and abs(right - (0.556 - hi) * D) < 1e-9
+PY
+}
+for variant in sheet welded; do
+  two_rooms $variant "$TMP/$variant.obj"
+  "$BIN/rad-mesh" "$TMP/$variant.obj" -o "$TMP/$variant.mesh" --max-edge 0.05 -q 2>/dev/null || fail "mesh $variant"
+  check_ceiling_sides "$TMP/$variant.mesh" 0.3 0.3 || fail "a ceiling patch reaches across the $variant wall"
+done
+# The slab 1 mm below the ceiling: with the default contact gap the ceiling is cut along the
+# slab's top edges. Each ceiling patch along the junction (centroid within 2 cm of the slab)
+# is compared with rad-gather --exact at its centroid (rho x irradiance, the exact sum over
+# every patch): within 5% on both sides. With --contact-gap 0 the ceiling's patches straddle
+# the slab and average both rooms, as before: the bright side's read low, the dim side's high.
+two_rooms gap "$TMP/gap.obj"
+for gap in default 0; do
+  flags=(); [ $gap = 0 ] && flags=(--contact-gap 0)
+  "$BIN/rad-mesh" "$TMP/gap.obj" -o "$TMP/gap.mesh" --max-edge 0.02 "${flags[@]}" -q 2>/dev/null || fail "mesh gap $gap"
+  "$BIN/rad-ff" "$TMP/gap.mesh" -o "$TMP/gap.ff" -q 2>/dev/null || fail "ff gap $gap"
+  "$BIN/rad-solve" "$TMP/gap.mesh" "$TMP/gap.ff" -o "$TMP/gap.rad" -q || fail "solve gap $gap"
+  "$BIN/rad-info" --csv "$TMP/gap.mesh" > "$TMP/gap.mesh.csv"
+  "$BIN/rad-info" --csv "$TMP/gap.rad" > "$TMP/gap.rad.csv"
+  python3 - "$TMP/gap.mesh.csv" <<'PY' > "$TMP/junction.txt"
+import csv, sys
+for p in csv.DictReader(open(sys.argv[1])):
+    x = float(p['cx'])
+    if p['group'] == 'ceiling' and (0.248 < x < 0.268 or 0.288 < x < 0.308):
+        print(p['patch'], p['rho_r'], p['cx'], float(p['cy']) - 1e-6, p['cz'], 0, -1, 0)
+PY
+  cut -d' ' -f3- "$TMP/junction.txt" | "$BIN/rad-gather" "$TMP/gap.mesh" "$TMP/gap.rad" --exact -q > "$TMP/junction.gathered" || fail "gather gap $gap"
+  python3 - "$TMP/junction.txt" "$TMP/junction.gathered" "$TMP/gap.rad.csv" $gap <<'PY' || fail "ceiling along the slab 1 mm under it, contact gap $gap"
+import csv, sys
+b = {int(r['patch']): float(r['b_r']) for r in csv.DictReader(open(sys.argv[3]))}
+ratios = {'bright': [], 'dim': []}
+for line, gathered in zip(open(sys.argv[1]), open(sys.argv[2])):
+    w = line.split()
+    ratios['bright' if float(w[2]) < 0.268 else 'dim'].append(b[int(w[0])] / (float(w[1]) * float(gathered.split()[0])))
+for side, r in ratios.items():
+    print(f"contact gap {sys.argv[4]}: {side} room, {len(r)} ceiling patches along the slab: patch / gathered {min(r):.3f} .. {max(r):.3f}")
+assert all(ratios.values())
+worst = max(abs(x - 1) for r in ratios.values() for x in r)
+if sys.argv[4] == 'default': assert worst <= 0.05, worst
+else: assert min(ratios['bright']) < 0.9 and max(ratios['dim']) > 1.1, ratios
+PY
+done
+
 # Foot test: a box on a lit floor. No floor patch is under the box; the mean radiosity of
 # the box's lowest 20 cm (its lowest row at h) converges under refinement (h, h/2, h/4: the
 # second change at most 3/4 of the first). First-order convergence halves the change, and

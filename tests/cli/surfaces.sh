@@ -377,14 +377,16 @@ python3 -c "import sys; sys.exit(not abs($(column_area columns.mesh) - $(column_
 # and the map's size kept (tests/data/zdm2-cap): three refinement points side by side at the
 # cap's centre before, 436 patches, 6 specks, aspect <= 3 for 76.7%; then 433, 5 and 82.5%.
 # With specks joined into their neighbours (polygon patches) 428 patches, none a speck, 94.3%
-# (without the rule: 430 and 89.2%).
+# (without the rule: 430 and 89.2%). Then regions stop where a wall welded to their edge
+# rises between two sides, or along a contact line (#53 item 5): 268 regions instead of 227,
+# 449 patches, none a speck, 91.3%.
 # (--patches 1: the limit from the map's size, as before patch budgets.)
 "$BIN/rad-mesh" "$SRC/tests/data/zdm2-cap/zdm2-cap.obj" -o cap.mesh --patches 1 2> cap.err || fail "zdm2 cap: $(cat cap.err)"
 grep -q "max-edge 55.41 (the scene's size 1108" cap.err || fail "zdm2 cap: the map's size not kept: $(grep max-edge cap.err)"
 read -r tenth wide < <(shape_share cap.err)
 specks=$(specks cap.err)
 echo "zdm2 cap: $(patches cap.err) patches, $specks specks, aspect <= 3 for $tenth%"
-[ "${specks:-999}" -eq 0 ] && [ "$(patches cap.err)" -le 428 ] && at_least "${tenth:-0}" 92 ||
+[ "${specks:-999}" -eq 0 ] && [ "$(patches cap.err)" -le 449 ] && at_least "${tenth:-0}" 91 ||
   fail "zdm2 cap: $(grep planar cap.err)"
 
 # 18. Where the region is thinner than a tenth of a cell is decided exactly: no circle a tenth of

@@ -14,14 +14,15 @@
 namespace rad {
 
 struct MeshOptions {
-    SceneOptions scene;             // reading: materials, strictness
-    SubdivisionOptions subdivision; // limits, planarity; for --surfaces faces the subdivision
-    bool regions = true;            // grid planar regions (false: each face on its own)
-    bool imprint = true;            // cut contacts, remove hidden regions
-    bool orient_fix = false;        // --orient fix (else only warn)
-    std::vector<std::string> flip;  // groups (or materials) reversed by hand
-    bool turn_lamps = true;         // emitters facing into their fixture turned (--keep-lamps)
-    bool verbose = false;           // every warning line (else at most 20 of a kind)
+    SceneOptions scene;               // reading: materials, strictness
+    SubdivisionOptions subdivision;   // limits, planarity; for --surfaces faces the subdivision
+    bool regions = true;              // grid planar regions (false: each face on its own)
+    bool imprint = true;              // cut contacts, remove hidden regions
+    double contact_gap = kContactGap; // a gap this much of the scene's size is a contact
+    bool orient_fix = false;          // --orient fix (else only warn)
+    std::vector<std::string> flip;    // groups (or materials) reversed by hand
+    bool turn_lamps = true;           // emitters facing into their fixture turned (--keep-lamps)
+    bool verbose = false;             // every warning line (else at most 20 of a kind)
     std::vector<std::string> two_sided;
     std::vector<std::string> thin;          // refracting materials or groups made thin panes
     std::vector<std::string> transmittance; // MATERIAL=r,g,b: glass's transmittance
@@ -57,7 +58,8 @@ void duplicates_pass(Scene& scene, MeshReport& report);
 std::vector<bool> orientation_pass(Scene& scene, const MeshOptions& options, MeshReport& report);
 // Returns the index before the pass of each face kept.
 std::vector<std::size_t> coincident_pass(Scene& scene, MeshReport& report);
-void imprint_pass(Scene& scene, const std::vector<bool>& turned, MeshReport& report);
+void imprint_pass(Scene& scene, const std::vector<bool>& turned, double contact_gap,
+                  MeshReport& report);
 // Gridding planar regions, it releases the scene's polygons and vertices once they are clean
 // faces (on a large input, the memory they hold is needed for the regions).
 radfmt::MeshData patch_pass(Scene& scene, const MeshOptions& options, MeshReport& report);

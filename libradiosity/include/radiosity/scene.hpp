@@ -5,6 +5,7 @@
 #include "radiosity/texture.hpp"
 #include "radiosity/vec.hpp"
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -42,6 +43,9 @@ struct Scene {
         std::string origin;
     };
     std::vector<FaceRange> face_ranges;
+    // Where another object touches a face (imprint_contacts' contact lines, in 3D): planar
+    // regions are not joined across them, since each side can see another room.
+    std::vector<std::array<radfmt::Vec3, 2>> contact_lines;
 };
 
 // A face for messages. OBJ: "12" (its line); others: "face 12 (node 'Cube', mesh 'Cube', its
@@ -221,8 +225,13 @@ struct ImprintReport {
 };
 // `turned[f]`: face f faces the other way for the hidden-region test (what --orient fix would
 // flip), so that whether a region is enclosed does not depend on wrongly facing walls.
+// `gap` (relative to the scene's size, like `tolerance`): an edge of another object's face
+// lying within it in front of a face is a contact too, when that face reaches at least 20
+// times as far out from the plane (a wall ending a hair below a ceiling, not a trim as deep as
+// its distance). The contact lines are added to scene.contact_lines.
+inline constexpr double kContactGap = 2e-3;
 ImprintReport imprint_contacts(Scene& scene, double tolerance = 1e-7,
-                               const std::vector<bool>& turned = {});
+                               const std::vector<bool>& turned = {}, double gap = kContactGap);
 
 struct Topology {
     std::size_t edges = 0;

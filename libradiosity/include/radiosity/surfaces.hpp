@@ -6,6 +6,7 @@
 #pragma once
 #include "radfmt/kinds.hpp"
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <span>
@@ -25,6 +26,9 @@ struct SurfaceOptions {
     // their corners lie within `plane_tolerance` x the scene's size of the region's plane.
     double angle_tolerance = 0.5;
     double plane_tolerance = 1e-5;
+    // Lines planar regions are not joined across (Scene::contact_lines): where a wall meets a
+    // ceiling, the ceiling's patches on each side see their own room.
+    std::vector<std::array<radfmt::Vec3, 2>> creases;
     double max_patches = 2e7;   // refused before gridding when the cells would be more
     std::string source;         // the scene file, for messages
     StageLog* stages = nullptr; // shows how far the stage is (optional)

@@ -32,7 +32,7 @@ radfmt::MeshData build_mesh(const std::filesystem::path& input, const MeshOption
         begin_stage(stages, "imprinting");
         std::vector<bool> kept_turned; // `turned` was for the faces before coincident ones went
         for (const auto f : kept) kept_turned.push_back(turned[f]);
-        imprint_pass(scene, kept_turned, report);
+        imprint_pass(scene, kept_turned, options.contact_gap, report);
     }
     auto mesh = patch_pass(scene, options, report);
     begin_stage(stages, "two-sided, materials, order");

@@ -465,13 +465,16 @@ void Imprinter::add_edge_points(Polygon& poly) const {
 
 } // namespace
 
-ImprintReport imprint_contacts(Scene& scene, double tolerance, const std::vector<bool>& turned) {
+ImprintReport imprint_contacts(Scene& scene, double tolerance, const std::vector<bool>& turned,
+                               double gap) {
     if (scene.polygons.size() < 2) return {};
     const double size = bounds(scene.vertices).diagonal();
     if (!(size > 0)) return {};
     const double tol = tolerance * size;
     auto welded = weld_by_position(scene.vertices);
-    auto lines = find_cut_lines(scene, welded, tol, size);
+    auto lines = find_cut_lines(scene, welded, tol, gap * size, size);
+    scene.contact_lines.insert(scene.contact_lines.end(), lines.contacts.begin(),
+                               lines.contacts.end());
     // Rays over the scene as written decide which regions are hidden.
     if (lines.cuts.empty()) return {};
     Imprinter imprinter(scene, tol, turned, std::move(welded), std::move(lines));

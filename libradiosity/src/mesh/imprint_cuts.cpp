@@ -47,25 +47,25 @@ bool clip_to_convex(Segment& s, const std::vector<XY>& poly) {
     return true;
 }
 
-// Where face q meets face p's plane, as a segment in p's coordinates (false: it does not,
-// or only at a point). Coplanar faces facing p give their outline instead (in `outline`).
-bool contact(const Face& p, const Face& q, double tol, Segment& segment,
-             std::vector<Segment>& outline) {
+// q's corners' heights over p's plane, those within [-below, above] of it set to 0 (on it).
+struct Heights {
     std::vector<double> d;
     int above = 0, below = 0, on = 0;
+};
+Heights heights(const Face& p, const Face& q, double below, double above) {
+    Heights h;
     for (const auto& x : q.points) {
-        const double h = dot(x - p.frame.origin, p.frame.normal);
-        d.push_back(std::abs(h) <= tol ? 0.0 : h);
-        above += d.back() > 0, below += d.back() < 0, on += d.back() == 0;
+        const double z = dot(x - p.frame.origin, p.frame.normal);
+        h.d.push_back(z >= -below && z <= above ? 0.0 : z);
+        h.above += h.d.back() > 0, h.below += h.d.back() < 0, h.on += h.d.back() == 0;
     }
-    if (on == static_cast<int>(q.points.size())) {                    // coplanar
-        if (dot(q.frame.normal, p.frame.normal) > -0.5) return false; // same side: no contact
-        for (std::size_t k = 0; k < q.points.size(); ++k)
-            outline.push_back(
-                {p.frame.to2d(q.points[k]), p.frame.to2d(q.points[(k + 1) % q.points.size()])});
-        return false;
-    }
-    if (!(above && below) && on < 2) return false;
+    return h;
+}
+
+// Where convex q's corners at heights d meet the plane: its on-corners and edge crossings,
+// the extremes of which are the segment.
+bool crossing_segment(const Face& p, const Face& q, const std::vector<double>& d,
+                      Segment& segment) {
     std::vector<Vec3> hits;
     for (std::size_t k = 0; k < q.points.size(); ++k) {
         const std::size_t l = (k + 1) % q.points.size();
@@ -74,7 +74,6 @@ bool contact(const Face& p, const Face& q, double tol, Segment& segment,
             hits.push_back(q.points[k] + (q.points[l] - q.points[k]) * (d[k] / (d[k] - d[l])));
     }
     if (hits.size() < 2) return false;
-    // Convex q: the points lie on one line; its extremes are the segment.
     const Vec3 along = hits[1] - hits[0];
     std::size_t lo = 0, hi = 0;
     for (std::size_t k = 1; k < hits.size(); ++k) {
@@ -83,6 +82,36 @@ bool contact(const Face& p, const Face& q, double tol, Segment& segment,
     }
     segment = {p.frame.to2d(hits[lo]), p.frame.to2d(hits[hi])};
     return true;
+}
+
+// The gap q's edge may leave in front of p's plane and still touch it: `gap`, and at most
+// 1/20 of how far q reaches out in front of the plane. A wall ending a hair below a ceiling
+// touches it; a trim or a lamp as deep as its distance from the surface does not.
+double gap_for(const std::vector<Vec3>& q, const Vec3& origin, const Vec3& normal, double gap) {
+    double reach = 0;
+    for (const auto& x : q) reach = std::max(reach, dot(x - origin, normal));
+    return std::min(gap, reach / 20);
+}
+
+// Where face q meets face p's plane, as a segment in p's coordinates (false: it does not,
+// or only at a point). Coplanar faces facing p give their outline instead (in `outline`).
+// Within `tol` of the plane a corner is on it. Failing a contact so, an edge of q within
+// gap_for in front of the plane lies on it: the gap is closed as a contact would be.
+bool contact(const Face& p, const Face& q, double tol, double gap, Segment& segment,
+             std::vector<Segment>& outline) {
+    auto h = heights(p, q, tol, tol);
+    if (!(h.above && h.below) && h.on < 2)
+        if (const double g = gap_for(q.points, p.frame.origin, p.frame.normal, gap); g > tol)
+            h = heights(p, q, tol, g);
+    if (h.on == static_cast<int>(q.points.size())) {                  // coplanar
+        if (dot(q.frame.normal, p.frame.normal) > -0.5) return false; // same side: no contact
+        for (std::size_t k = 0; k < q.points.size(); ++k)
+            outline.push_back(
+                {p.frame.to2d(q.points[k]), p.frame.to2d(q.points[(k + 1) % q.points.size()])});
+        return false;
+    }
+    if (!(h.above && h.below) && h.on < 2) return false;
+    return crossing_segment(p, q, h.d, segment);
 }
 
 Face make_face(const Scene& scene, const Polygon& poly, const std::vector<std::uint32_t>& welded,
@@ -115,23 +144,27 @@ void corners_of(const Scene& scene, std::uint32_t f, std::vector<Vec3>& points) 
 }
 
 // Whether `contact` can find anything between face p and face q: q crosses p's plane, or
-// lies on it along an edge, or lies in it facing the other way. Most pairs of nearby faces
-// do not: those of a curved surface, and the tiles of one floor that meet at a corner. The
-// plane as make_face has it (Newell's normal, through the first corner).
-bool reaches_plane(const Scene& scene, std::uint32_t p, std::uint32_t q, double tol,
+// lies on it along an edge (within gap_for in front of it), or lies in it facing the other way.
+// Most pairs of nearby faces do not: those of a curved surface, and the tiles of one floor
+// that meet at a corner. The plane as make_face has it (Newell's normal, through the first
+// corner).
+bool reaches_plane(const Scene& scene, std::uint32_t p, std::uint32_t q, double tol, double gap,
                    std::vector<Vec3>& points) {
     corners_of(scene, p, points);
     const Vec3 normal = normalized(newell_normal(points));
     const Vec3 origin = points[0];
     corners_of(scene, q, points);
-    int above = 0, below = 0, on = 0;
+    const double within = std::max(tol, gap_for(points, origin, normal, gap));
+    int above = 0, below = 0, on = 0, near = 0;
     for (const auto& x : points) {
         const double h = dot(x - origin, normal);
         above += h > tol, below += h < -tol, on += std::abs(h) <= tol;
+        near += h >= -tol && h <= within;
     }
-    if (on == static_cast<int>(points.size())) // coplanar: only a face facing p's front counts
+    if ((above && below) || (on >= 2 && on < static_cast<int>(points.size()))) return true;
+    if (near == static_cast<int>(points.size())) // coplanar: only a face facing p's front counts
         return dot(normalized(newell_normal(points)), normal) <= -0.5;
-    return (above && below) || on >= 2;
+    return near >= 2;
 }
 
 // One object (or two faces meeting at an edge): a welded corner in common.
@@ -168,7 +201,8 @@ std::vector<std::uint32_t> busiest_corners(const Scene& scene,
 // larger than the face (up to 16). The box of a sliver lying diagonally is mostly empty: a
 // cylinder's cap drawn as a fan put every sliver's box over the side's quads, and their pairs
 // grew as the square of the segments.
-void piece_boxes(const std::vector<Vec3>& points, double area, double tol, std::vector<Box>& out) {
+void piece_boxes(const std::vector<Vec3>& points, double area, double reach,
+                 std::vector<Box>& out) {
     out.clear();
     const Box whole = bounds(points);
     const Vec3 extent = whole.hi - whole.lo;
@@ -191,7 +225,7 @@ void piece_boxes(const std::vector<Vec3>& points, double area, double tol, std::
         }
     }
     for (auto& box : out)
-        for (int c = 0; c < 3; ++c) box.lo[c] -= tol / 2, box.hi[c] += tol / 2;
+        for (int c = 0; c < 3; ++c) box.lo[c] -= reach / 2, box.hi[c] += reach / 2;
 }
 
 // Candidate pairs: faces whose pieces' boxes overlap within `tol` (for_each_overlapping_pair),
@@ -199,7 +233,8 @@ void piece_boxes(const std::vector<Vec3>& points, double area, double tol, std::
 // plane). Faces of no area take no part. Sorted, so they do not depend on the order the pairs
 // are found in.
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
-touching_pairs(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol) {
+touching_pairs(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol,
+               double gap) {
     std::vector<Box> boxes, pieces;
     std::vector<std::uint32_t> face_of;                    // each box's face
     std::vector<bool> split(scene.polygons.size(), false); // faces of several boxes
@@ -210,15 +245,15 @@ touching_pairs(const Scene& scene, const std::vector<std::uint32_t>& welded, dou
         corners_of(scene, f, points);
         const double area = points.size() < 3 ? 0 : 0.5 * length(newell_normal(points));
         if (!(area > 0)) continue;
-        piece_boxes(points, area, tol, pieces);
+        piece_boxes(points, area, std::max(tol, gap), pieces);
         split[f] = pieces.size() > 1;
         for (const auto& box : pieces)
             boxes.push_back(box), face_of.push_back(f), groups.push_back(busiest[f]);
     }
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
     auto add_if_reaching = [&](std::uint32_t a, std::uint32_t b) {
-        if (reaches_plane(scene, a, b, tol, points)) pairs.emplace_back(a, b);
-        if (reaches_plane(scene, b, a, tol, points)) pairs.emplace_back(b, a);
+        if (reaches_plane(scene, a, b, tol, gap, points)) pairs.emplace_back(a, b);
+        if (reaches_plane(scene, b, a, tol, gap, points)) pairs.emplace_back(b, a);
     };
     // A pair of whole boxes is met once; one with a split face maybe more often: kept aside.
     std::vector<std::uint64_t> again;
@@ -288,14 +323,15 @@ class FacesAtPoints {
 // closely: on a large scene, nearly none.
 class CutFinder {
   public:
-    CutFinder(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol, double size)
-        : scene_(scene), welded_(welded), tol_(tol), size_(size) {}
+    CutFinder(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol, double gap,
+              double size)
+        : scene_(scene), welded_(welded), tol_(tol), gap_(gap), size_(size) {}
     void add_contacts(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& touching) {
         for (const auto& [f, q] : touching) {
             if (!face(f).face.planar) continue;
             Segment s;
             std::vector<Segment> found;
-            if (contact(face(f).face, face(q).face, tol_, s, found)) found.push_back(s);
+            if (contact(face(f).face, face(q).face, tol_, gap_, s, found)) found.push_back(s);
             for (const auto& c : found) add_cut(f, c, false);
         }
     }
@@ -319,8 +355,9 @@ class CutFinder {
 
     const Scene& scene_;
     const std::vector<std::uint32_t>& welded_;
-    double tol_, size_;
+    double tol_, gap_, size_;
     std::unordered_map<std::uint32_t, Entry> entries_; // made when first needed
+    CutLines lines_;                                   // the contacts as found
 };
 
 CutFinder::Entry& CutFinder::face(std::uint32_t f) {
@@ -372,6 +409,8 @@ void CutFinder::add_cut(std::uint32_t f, Segment c, bool run_on) {
     if (!run_on) {
         if (e.convex && !clip_to_convex(c, e.outline)) return;
         if (std::hypot(c.b[0] - c.a[0], c.b[1] - c.a[1]) <= tol_) return;
+        lines_.contacts.push_back(
+            {e.face.frame.to3d(c.a[0], c.a[1]), e.face.frame.to3d(c.b[0], c.b[1])});
     }
     if (e.convex && parallel) {
         const double reach = 4 * size_ / len;
@@ -457,7 +496,7 @@ void CutFinder::run_on() {
 }
 
 CutLines CutFinder::result() {
-    CutLines lines;
+    CutLines lines = std::move(lines_);
     for (auto& [f, e] : entries_)
         if (!e.cuts.empty()) {
             lines.cuts.emplace(f, std::move(e.cuts));
@@ -470,9 +509,9 @@ CutLines CutFinder::result() {
 } // namespace
 
 CutLines find_cut_lines(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol,
-                        double size) {
-    CutFinder finder(scene, welded, tol, size);
-    finder.add_contacts(touching_pairs(scene, welded, tol));
+                        double gap, double size) {
+    CutFinder finder(scene, welded, tol, gap, size);
+    finder.add_contacts(touching_pairs(scene, welded, tol, gap));
     finder.run_on();
     return finder.result();
 }

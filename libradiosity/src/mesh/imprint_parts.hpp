@@ -43,12 +43,16 @@ bool convex(const std::vector<XY>& poly);
 // `tol`), and the lines where they do, in each face's plane coordinates: contacts that reach
 // into it, and (for a convex face) lines parallel to a side run on to its outline and across
 // the coplanar faces of its surface, so cut rectangles stay rectangles. Faces without cuts are
-// in neither map.
+// in neither map. An edge of another object within `gap` in front of a face may touch it
+// (gap_for in imprint_cuts.cpp).
 struct CutLines {
     std::map<std::size_t, Face> faces;
     std::map<std::size_t, std::vector<Segment>> cuts; // by face
+    // Each contact (not run on) in 3D, those along a face's outline too: where each side
+    // may see another room (Scene::contact_lines).
+    std::vector<std::array<Vec3, 2>> contacts;
 };
 CutLines find_cut_lines(const Scene& scene, const std::vector<std::uint32_t>& welded, double tol,
-                        double size);
+                        double gap, double size);
 
 } // namespace rad::imprinting

@@ -38,9 +38,10 @@ std::string summary(const Scene& scene, const ImprintReport& imprint) {
 
 } // namespace
 
-void imprint_pass(Scene& scene, const std::vector<bool>& turned, MeshReport& report) {
+void imprint_pass(Scene& scene, const std::vector<bool>& turned, double contact_gap,
+                  MeshReport& report) {
     const auto group_area = area_by_group(scene);
-    const auto imprint = imprint_contacts(scene, 1e-7, turned);
+    const auto imprint = imprint_contacts(scene, 1e-7, turned, contact_gap);
     // More than 1% of a group lost, not as footprints bounded by contact lines: worth a look.
     for (const auto& [group, area] : imprint.removed_by_group) {
         const double of = group_area.at(group);

@@ -123,8 +123,9 @@ radfmt::MeshData patch_pass(Scene& scene, const MeshOptions& options, MeshReport
     if (options.regions) {
         begin_stage(options.scene.stages, "faces"); // cleaned first, gridded as regions
         const auto clean = clean_faces(scene, limits, &faces);
-        mesh = mesh_surfaces(clean, surface_options(limits, scene.path, options.scene.stages),
-                             &report.surfaces);
+        auto surface = surface_options(limits, scene.path, options.scene.stages);
+        surface.creases = scene.contact_lines;
+        mesh = mesh_surfaces(clean, surface, &report.surfaces);
     } else {
         begin_stage(options.scene.stages, "patches");
         mesh = subdivide(scene, limits, &faces);

@@ -15,9 +15,9 @@ PointBuckets::PointBuckets(const std::vector<std::uint32_t>& ids, const Points& 
     std::sort(by_cell_.begin(), by_cell_.end());
 }
 
-std::vector<std::uint32_t> PointBuckets::on_segment(std::uint32_t a, std::uint32_t b,
-                                                    double tolerance) const {
-    const Vec3 pa = points_.position[a], pb = points_.position[b];
+std::vector<std::pair<double, std::uint32_t>>
+PointBuckets::near_segment(const Vec3& pa, const Vec3& pb, double tolerance,
+                           std::array<std::uint32_t, 2> skip, double slack) const {
     const Vec3 d = pb - pa;
     const double len2 = dot(d, d);
     std::vector<std::pair<double, std::uint32_t>> found;
@@ -34,18 +34,38 @@ std::vector<std::uint32_t> PointBuckets::on_segment(std::uint32_t a, std::uint32
             for (const auto last = code({i, j, hi[2]}); it != by_cell_.end() && it->first <= last;
                  ++it) {
                 const auto c = it->second;
-                if (c == a || c == b) continue;
+                if (c == skip[0] || c == skip[1]) continue;
                 const Vec3 pc = points_.position[c];
                 const double t = len2 > 0 ? dot(pc - pa, d) / len2 : 0;
-                if (t <= 0 || t >= 1) continue;
-                if (length(pa + d * t - pc) < tolerance && length(pc - pa) > tolerance &&
-                    length(pc - pb) > tolerance)
+                // slack < 0: strictly inside, as before; else up to slack past either end.
+                if (slack < 0 ? t <= 0 || t >= 1 : t < -slack || t > 1 + slack) continue;
+                if (length(pa + d * std::clamp(t, 0.0, 1.0) - pc) < tolerance)
                     found.emplace_back(t, c);
             }
         }
     std::sort(found.begin(), found.end());
+    return found;
+}
+
+std::vector<std::uint32_t> PointBuckets::on_segment(std::uint32_t a, std::uint32_t b,
+                                                    double tolerance) const {
+    const Vec3 pa = points_.position[a], pb = points_.position[b];
     std::vector<std::uint32_t> out;
-    for (const auto& [t, c] : found) out.push_back(c);
+    for (const auto& [t, c] : near_segment(pa, pb, tolerance, {a, b}, -1))
+        if (length(points_.position[c] - pa) > tolerance &&
+            length(points_.position[c] - pb) > tolerance)
+            out.push_back(c);
+    return out;
+}
+
+std::vector<std::uint32_t> PointBuckets::along(const Vec3& a, const Vec3& b,
+                                               double tolerance) const {
+    const Vec3 d = b - a;
+    const double len = length(d);
+    const double slack = len > 0 ? tolerance / len : 0;
+    std::vector<std::uint32_t> out;
+    for (const auto& [t, c] : near_segment(a, b, tolerance, {kNone, kNone}, slack))
+        out.push_back(c);
     return out;
 }
 

@@ -15,11 +15,19 @@ class PointBuckets {
     PointBuckets(const std::vector<std::uint32_t>& ids, const Points& points);
     // Points strictly inside segment ab (within `tolerance` of it), ordered from a to b.
     std::vector<std::uint32_t> on_segment(std::uint32_t a, std::uint32_t b, double tolerance) const;
+    // Points within `tolerance` of segment ab, its ends included, ordered from a to b.
+    std::vector<std::uint32_t> along(const Vec3& a, const Vec3& b, double tolerance) const;
 
   private:
     static constexpr std::int64_t kCells = 256; // the box's diagonal in cells
     using Cell = std::array<std::int64_t, 3>;
     Cell cell_of(const Vec3& p) const;
+    // Points near segment pa-pb, except `skip`, by t along it: strictly between its ends
+    // (slack < 0), or up to `slack` (of its length) past them.
+    std::vector<std::pair<double, std::uint32_t>> near_segment(const Vec3& pa, const Vec3& pb,
+                                                               double tolerance,
+                                                               std::array<std::uint32_t, 2> skip,
+                                                               double slack) const;
     static std::uint64_t code(const Cell& k) {
         return std::uint64_t((k[0] * (kCells + 1) + k[1]) * (kCells + 1) + k[2]);
     }

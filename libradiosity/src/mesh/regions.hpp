@@ -125,6 +125,8 @@ struct Region {
 // Pass 1: faces connected across welded edges, or along an edge that a neighbour's corner
 // splits (a T-junction, a point within `tolerance` of the edge), with the same group and
 // material, whose normals agree and whose corners lie in the seed face's plane, are one region.
+// Not across an edge along one of options.creases (a contact line), nor one that another
+// surface leaves the plane from (a wall welded to the floor between two rooms).
 std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
                                         const std::vector<std::uint32_t>& weld,
                                         const Points& points, const SurfaceOptions& options,
