@@ -54,6 +54,61 @@ python3 "$GEN" sheet sheet.obj
 "$BIN/rad-mesh" sheet.obj -o sheet.mesh --max-edge 0.25 2> sheet.err || fail "mesh sheet"
 grep -q "changed: coincident: kept 1 face(s) of area 2 drawn both ways, both sides facing the scene" sheet.err || fail "twins not reported: $(cat sheet.err)"
 [ "$(total_area sheet.err)" = 64 ] || fail "the sheet's two sides are not both kept: $(cat sheet.err)"
+# Two coincident faces drawn both ways render as one sheet's two sides (#53 item 2): a room
+# 2 x 1 x 1 split at x = 1 by a partition drawn once red (facing the lamp's half) and once
+# blue (facing the dark half). Each side gets the same grid, reversed: the same centroids and
+# areas, so rays meet the side facing them. Before, each side was gridded on its own axes,
+# the two grids crossed, and a ray met either: the lit side speckled black, the dark side
+# showed red patches.
+python3 - <<'PY'
+V, F = [], []
+def face(points, group, material):
+    F.append((group, material, [len(V) + k + 1 for k in range(len(points))]))
+    V.extend(points)
+face([(0,0,1),(2,0,1),(2,0,0),(0,0,0)], 'floor', 'white')
+face([(2,1,0),(2,1,1),(0,1,1),(0,1,0)], 'ceiling', 'white')
+face([(0,1,0),(0,1,1),(0,0,1),(0,0,0)], 'left', 'white')
+face([(2,0,1),(2,1,1),(2,1,0),(2,0,0)], 'right', 'white')
+face([(2,0,0),(2,1,0),(0,1,0),(0,0,0)], 'back', 'white')
+face([(0,1,1),(2,1,1),(2,0,1),(0,0,1)], 'front', 'white')
+face([(1,0,0),(1,0,1),(1,1,1),(1,1,0)], 'partition', 'red')
+face([(1,0,0),(1,1,0),(1,1,1),(1,0,1)], 'partition', 'blue')
+face([(0.4,0.99,0.4),(0.6,0.99,0.4),(0.6,0.99,0.6),(0.4,0.99,0.6)], 'lamp', 'light')
+with open('twins.obj', 'w') as f:
+    f.write('mtllib twins.mtl\n' + ''.join('v %g %g %g\n' % v for v in V))
+    for g, m, c in F: f.write('g %s\nusemtl %s\nf %s\n' % (g, m, ' '.join(map(str, c))))
+open('twins.mtl', 'w').write('newmtl white\nKd 0.7 0.7 0.7\nnewmtl red\nKd 0.7 0.1 0.1\n'
+                             'newmtl blue\nKd 0.1 0.1 0.7\nnewmtl light\nKd 0 0 0\nKe 20 20 20\n')
+PY
+"$BIN/rad-mesh" twins.obj -o twins.mesh --max-edge 0.1 -q 2>/dev/null || fail "mesh twins"
+"$BIN/rad-ff" twins.mesh -o twins.ff -q 2>/dev/null && "$BIN/rad-solve" twins.mesh twins.ff -o twins.rad -q || fail "solve twins"
+"$BIN/rad-info" --csv twins.mesh > twins.mesh.csv; "$BIN/rad-info" --csv twins.rad > twins.rad.csv
+python3 - <<'PY' || fail "the partition's two sides"
+import csv
+mesh, rad = list(csv.DictReader(open('twins.mesh.csv'))), list(csv.DictReader(open('twins.rad.csv')))
+def side(m): return sorted((round(float(p['cy']), 9), round(float(p['cz']), 9), p['area']) for p in mesh if p['material'] == m)
+red, blue = side('red'), side('blue')
+print(f"partition: {len(red)} red and {len(blue)} blue patches")
+assert red == blue and len(red) > 50
+b = {m: [float(r['b_r']) for p, r in zip(mesh, rad) if p['material'] == m] for m in ('red', 'blue')}
+print(f"red side's mean radiosity {sum(b['red']) / len(b['red']):.4f}, blue side's largest {max(b['blue']):.2g}")
+assert max(b['blue']) < 1e-4 * sum(b['red']) / len(b['red'])
+PY
+# Flat images facing each side: the lit side has no dark pixel, the dark side no lit one.
+"$BIN/rad-shade" twins.mesh twins.rad --flat --view "-vp 0.1 0.5 0.5 -vd 1 0 0 -vu 0 1 0 -vh 40 -vv 40" \
+  -x 120 -y 120 --png twins-red.png -o twins-red.exr -q || fail "shade red side"
+"$BIN/rad-shade" twins.mesh twins.rad --flat --view "-vp 1.9 0.5 0.5 -vd -1 0 0 -vu 0 1 0 -vh 40 -vv 40" \
+  -x 120 -y 120 --png twins-blue.png -o twins-blue.exr -q 2>/dev/null || fail "shade blue side"
+python3 - "$SRC/tests/cli" <<'PY' || fail "the partition speckles"
+import sys
+sys.path.insert(0, sys.argv[1])
+from png_stats import read_png
+_, _, red = read_png('twins-red.png')
+_, _, blue = read_png('twins-blue.png')
+reds = [row[k] for row in red for k in range(0, len(row), 3)]
+print(f"lit side: red channel {min(reds)} .. {max(reds)}; dark side: largest value {max(max(row) for row in blue)}")
+assert min(reds) > 0.5 * max(reds) and max(max(row) for row in blue) == 0
+PY
 
 # 3. Imprinting judges hidden regions as if the walls faced the right way: a room whose walls
 # all face out loses only what the same room facing in loses (the boxes' footprints).

@@ -24,6 +24,11 @@ struct TwoSidedReport {
 TwoSidedReport make_two_sided(radfmt::MeshData& mesh, const std::vector<std::string>& selection,
                               bool emission_on_both_sides);
 
+// The back of `front`: its corners in reverse order (a polygon from the same first corner, the
+// one it is star-shaped from), the opposite normal, the rest the same. A polygon's corners
+// are added to `mesh`.
+radfmt::Patch back_of(radfmt::MeshData& mesh, const radfmt::Patch& front);
+
 // For every patch, the patch on the same spot facing the other way (same corner positions,
 // opposite normal), or -1.
 std::vector<std::int64_t> find_twins(const radfmt::MeshData& mesh);

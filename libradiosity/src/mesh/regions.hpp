@@ -132,6 +132,14 @@ std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
                                         const Points& points, const SurfaceOptions& options,
                                         double scene_size, double tolerance);
 
+// For each region, the earlier region that is its other side (the same welded points and
+// area, facing the opposite way: a window drawn both ways, twins the coincident pass kept),
+// or kNone. Pass 4 gives it that region's patches reversed, so the two are one sheet's two
+// sides (find_twins pairs them; a ray meets the side facing it), not two grids crossing.
+std::vector<std::uint32_t> twin_regions(const std::vector<Region>& regions,
+                                        const radfmt::MeshData& faces,
+                                        const std::vector<std::uint32_t>& weld);
+
 // Pass 2: the region's outline (edges between its inside and outside, holes included), from a
 // constrained triangulation of its faces' edges; crossings of overlapping faces become points.
 // Refuses a region whose faces' edges cross at many more points than they have corners

@@ -5,6 +5,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/stages.hpp"
+#include "radiosity/two_sided.hpp"
 #include "regions.hpp"
 #include "square_index.hpp"
 #include "weld.hpp"
@@ -185,17 +186,52 @@ void classify_patches(const surfaces::Region& region, const surfaces::Points& po
 
 // Pass 4 over every region: its patches (over `points`), classified, its specks joined, and
 // the shapes' summary in the report.
-radfmt::MeshData grid_regions(const std::vector<surfaces::Region>& regions,
-                              surfaces::Points& points, const SurfaceOptions& options,
-                              double tolerance, SurfaceReport& rep) {
-    radfmt::MeshData mesh;
-    std::vector<WidthClass> classes;
-    std::vector<double> cell_of_patch;
+// What pass 4 knows of each patch, for the summary.
+struct PatchClasses {
+    std::vector<WidthClass> width;
+    std::vector<double> cell;
     std::vector<bool> at_detail;
+    // Patches [from, to) again, for their copies.
+    void repeat(std::size_t from, std::size_t to) {
+        for (auto i = from; i < to; ++i) {
+            width.push_back(width[i]);
+            cell.push_back(cell[i]);
+            at_detail.push_back(at_detail[i]);
+        }
+    }
+};
+
+// The patches [from, to) of a region's twin, reversed, as `region`'s.
+void add_backs(const surfaces::Region& region, std::size_t from, std::size_t to,
+               radfmt::MeshData& mesh) {
+    for (auto i = from; i < to; ++i) {
+        auto back = back_of(mesh, mesh.patches[i]);
+        back.group = region.group;
+        back.material = region.material;
+        mesh.patches.push_back(back);
+    }
+}
+
+radfmt::MeshData grid_regions(const std::vector<surfaces::Region>& regions,
+                              const std::vector<std::uint32_t>& twin, surfaces::Points& points,
+                              const SurfaceOptions& options, double tolerance, SurfaceReport& rep) {
+    radfmt::MeshData mesh;
+    PatchClasses known;
+    auto& classes = known.width;
+    auto& cell_of_patch = known.cell;
+    auto& at_detail = known.at_detail;
+    std::vector<std::pair<std::size_t, std::size_t>> patches_of(regions.size());
     for (std::size_t r = 0; r < regions.size(); ++r) {
         const auto& region = regions[r];
         if (r % 1024 == 0) stage_fraction(options.stages, double(r) / regions.size());
         const auto first = mesh.patches.size();
+        if (twin[r] != surfaces::kNone) {
+            const auto [from, to] = patches_of[twin[r]];
+            add_backs(region, from, to, mesh);
+            known.repeat(from, to);
+            patches_of[r] = {first, mesh.patches.size()};
+            continue;
+        }
         surfaces::grid_region(region, points, mesh, rep, tolerance);
         // Where a region is thinner than a tenth of a cell its patches are slivers by its own
         // shape; where under a cell, it is cut across into near-square patches.
@@ -207,6 +243,7 @@ radfmt::MeshData grid_regions(const std::vector<surfaces::Region>& regions,
             classify_patches(region, points, mesh, first, classes, cell_of_patch);
         }
         mark_specks_at_detail(region, points, mesh, first, at_detail);
+        patches_of[r] = {first, mesh.patches.size()};
     }
     compact_polygon_corners(mesh);
     mesh.vertices = points.position;
@@ -269,7 +306,8 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptio
     begin_stage(options.stages, "outline refinement");
     surfaces::refine_outline_pieces(regions, points, tolerance, 6);
     begin_stage(options.stages, "grids");
-    auto mesh = grid_regions(regions, points, options, tolerance, rep);
+    auto mesh = grid_regions(regions, surfaces::twin_regions(regions, faces, weld), points, options,
+                             tolerance, rep);
     mesh.groups = faces.groups;
     mesh.materials = faces.materials;
     drop_unused_vertices(mesh);

@@ -37,6 +37,16 @@ std::vector<std::int64_t> find_twins(const radfmt::MeshData& mesh) {
     return twin;
 }
 
+radfmt::Patch back_of(radfmt::MeshData& mesh, const radfmt::Patch& front) {
+    radfmt::Patch back = front;
+    const auto corners = mesh.corners(front);
+    std::vector<std::uint32_t> reversed(corners.rbegin(), corners.rend());
+    if (front.is_polygon()) std::rotate(reversed.begin(), reversed.end() - 1, reversed.end());
+    mesh.set_corners(back, reversed, front.is_polygon());
+    back.normal = front.normal * -1.0;
+    return back;
+}
+
 TwoSidedReport make_two_sided(radfmt::MeshData& mesh, const std::vector<std::string>& selection,
                               bool emission_on_both_sides) {
     std::vector<bool> group_selected(mesh.groups.size(), false);
@@ -67,14 +77,7 @@ TwoSidedReport make_two_sided(radfmt::MeshData& mesh, const std::vector<std::str
         const auto front = mesh.patches[i];
         if (twins[i] >= 0 || !(group_selected[front.group] || material_selected[front.material]))
             continue;
-        radfmt::Patch back = front;
-        // Wound the other way; a polygon from the same first corner, the one it is
-        // star-shaped from.
-        const auto corners = mesh.corners(front);
-        std::vector<std::uint32_t> reversed(corners.rbegin(), corners.rend());
-        if (front.is_polygon()) std::rotate(reversed.begin(), reversed.end() - 1, reversed.end());
-        mesh.set_corners(back, reversed, front.is_polygon());
-        back.normal = front.normal * -1.0;
+        radfmt::Patch back = back_of(mesh, front);
         const auto& material = mesh.materials[front.material];
         if (material.emits() && !emission_on_both_sides) {
             auto [it, added] = back_material.try_emplace(
