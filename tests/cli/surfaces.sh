@@ -99,12 +99,20 @@ PY
   -x 120 -y 120 --png twins-red.png -o twins-red.exr -q || fail "shade red side"
 "$BIN/rad-shade" twins.mesh twins.rad --flat --view "-vp 1.9 0.5 0.5 -vd -1 0 0 -vu 0 1 0 -vh 40 -vv 40" \
   -x 120 -y 120 --png twins-blue.png -o twins-blue.exr -q 2>/dev/null || fail "shade blue side"
+# Smoothed, the dark half seen whole (partition, ceiling, floor and walls along it) is black
+# too: the lit half's ceiling and floor are not averaged into its own across the partition
+# (before, a lit frame ran round the partition).
+"$BIN/rad-shade" twins.mesh twins.rad --view "-vp 1.9 0.5 0.9 -vd -1 0 -0.8 -vu 0 1 0 -vh 70 -vv 55" \
+  -x 160 -y 120 --png twins-dark.png -o twins-dark.exr -q 2>/dev/null || fail "shade the dark half"
 python3 - "$SRC/tests/cli" <<'PY' || fail "the partition speckles"
 import sys
 sys.path.insert(0, sys.argv[1])
 from png_stats import read_png
 _, _, red = read_png('twins-red.png')
 _, _, blue = read_png('twins-blue.png')
+_, _, dark = read_png('twins-dark.png')
+print(f"the dark half, smoothed: largest value {max(max(row) for row in dark)}")
+assert max(max(row) for row in dark) == 0
 reds = [row[k] for row in red for k in range(0, len(row), 3)]
 print(f"lit side: red channel {min(reds)} .. {max(reds)}; dark side: largest value {max(max(row) for row in blue)}")
 assert min(reds) > 0.5 * max(reds) and max(max(row) for row in blue) == 0

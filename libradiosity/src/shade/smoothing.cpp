@@ -8,12 +8,43 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 namespace rad {
 
 namespace {
 constexpr double kDeg = std::numbers::pi / 180;
+
+// Whether point x, on patch r's plane, lies in r (convex, its corners counter-clockwise about
+// its normal), its edges included.
+bool inside_patch(const radfmt::MeshData& mesh, const radfmt::Patch& r,
+                  std::span<const std::uint32_t> corners, const Vec3& x) {
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+        const Vec3 a = mesh.vertices[corners[k]],
+                   b = mesh.vertices[corners[(k + 1) % corners.size()]];
+        if (dot(cross(b - a, x - a), r.normal) < -1e-6 * dot(b - a, b - a)) return false;
+    }
+    return true;
 }
+
+// Whether a surface standing at the corner (a patch there at more than 60 degrees to p)
+// separates patches p and q: the segment between their centroids goes through it. A wall
+// between two rooms keeps the ceiling's light on each side from being averaged across it;
+// around a block's corner the segment passes outside the block, and the floor is smoothed.
+bool walled_apart(const radfmt::MeshData& mesh, std::span<const std::uint32_t> around,
+                  const radfmt::Patch& p, const radfmt::Patch& q) {
+    for (const auto w : around) {
+        const auto& r = mesh.patches[w];
+        if (std::abs(dot(r.normal, p.normal)) > 0.5) continue;
+        const double sp = dot(p.centroid - r.centroid, r.normal);
+        const double sq = dot(q.centroid - r.centroid, r.normal);
+        if (!(sp * sq < 0)) continue;
+        const Vec3 x = p.centroid + (q.centroid - p.centroid) * (sp / (sp - sq));
+        if (inside_patch(mesh, r, mesh.corners(r), x)) return true;
+    }
+    return false;
+}
+} // namespace
 
 Smoothing parse_smoothing(const std::string& name) {
     if (name == "flat") return Smoothing::Flat;
@@ -55,6 +86,7 @@ CornerColours corner_colours(const radfmt::MeshData& mesh, const std::vector<Rgb
                     (pq.material != p.material || pq.group != p.group ||
                      dot(pq.normal, p.normal) < cos_crease))
                     continue;
+                if (q != i && walled_apart(mesh, around[corners[k]], p, pq)) continue;
                 const double w = mode == Smoothing::Average ? 1.0 : pq.area;
                 for (int c = 0; c < 3; ++c) sum[c] += w * patch[q][c];
                 weight += w;
