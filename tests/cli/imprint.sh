@@ -188,7 +188,11 @@ done
 two_rooms gap "$TMP/gap.obj"
 for gap in default 0; do
   flags=(); [ $gap = 0 ] && flags=(--contact-gap 0)
-  "$BIN/rad-mesh" "$TMP/gap.obj" -o "$TMP/gap.mesh" --max-edge 0.02 "${flags[@]}" -q 2>/dev/null || fail "mesh gap $gap"
+  "$BIN/rad-mesh" "$TMP/gap.obj" -o "$TMP/gap.mesh" --max-edge 0.02 "${flags[@]}" -q 2>"$TMP/gap.err" || fail "mesh gap $gap"
+  # The strips under the slab and at its ends are footprints (bounded mostly by contact
+  # lines), though they reach the floor's and walls' outlines: no warning (there was one a
+  # group, 3.6% removed, "reaching the faces' own outlines").
+  ! grep -q "imprinting removed" "$TMP/gap.err" || fail "the slab's footprints warned of: $(cat "$TMP/gap.err")"
   "$BIN/rad-ff" "$TMP/gap.mesh" -o "$TMP/gap.ff" -q 2>/dev/null || fail "ff gap $gap"
   "$BIN/rad-solve" "$TMP/gap.mesh" "$TMP/gap.ff" -o "$TMP/gap.rad" -q || fail "solve gap $gap"
   "$BIN/rad-info" --csv "$TMP/gap.mesh" > "$TMP/gap.mesh.csv"

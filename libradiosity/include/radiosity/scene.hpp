@@ -219,8 +219,8 @@ struct ImprintReport {
     std::size_t faces_imprinted = 0, regions_removed = 0;
     double area_imprinted = 0, area_removed = 0;
     std::vector<int> removed_lines; // OBJ lines of faces that lost a region
-    // Area removed by group, of regions reaching the face's outline (not footprints bounded
-    // by contact lines alone): what may be a mistake.
+    // Area removed by group, of regions bounded mostly by the face's own outline (not
+    // footprints, bounded mostly by contact lines): what may be a mistake.
     std::map<std::uint32_t, double> removed_by_group;
 };
 // `turned[f]`: face f faces the other way for the hidden-region test (what --orient fix would

@@ -174,17 +174,28 @@ simple_outlines(const CDT& cdt, int count, const Frame& frame, const std::vector
     return outline_of;
 }
 
-// Which regions touch the face's own outline (the rest are bounded by contact lines alone).
-std::vector<char> reaching_outline(const CDT& cdt, int count) {
-    std::vector<char> reaches(count, 0);
+// Which regions are bounded mostly by the face's own outline, not by contact lines: the
+// strip under a wall standing across a floor reaches the floor's outline only at its ends.
+std::vector<char> mostly_outline(const CDT& cdt, int count) {
+    std::vector<double> outline(count, 0), boundary(count, 0);
     for (auto fh = cdt.finite_faces_begin(); fh != cdt.finite_faces_end(); ++fh) {
         if (!fh->info().inside) continue;
+        const int r = fh->info().region;
         for (int e = 0; e < 3; ++e) {
             const auto h = fh->neighbor(e);
-            if (cdt.is_infinite(h) || !h->info().inside) reaches[fh->info().region] = 1;
+            const bool out = cdt.is_infinite(h) || !h->info().inside;
+            if (!out && h->info().region == r) continue;
+            const auto& a = fh->vertex((e + 1) % 3)->point();
+            const auto& b = fh->vertex((e + 2) % 3)->point();
+            const double length =
+                std::hypot(CGAL::to_double(b.x() - a.x()), CGAL::to_double(b.y() - a.y()));
+            boundary[r] += length;
+            if (out) outline[r] += length;
         }
     }
-    return reaches;
+    std::vector<char> mostly(count, 0);
+    for (int r = 0; r < count; ++r) mostly[r] = outline[r] > 0.5 * boundary[r];
+    return mostly;
 }
 
 class Imprinter {
@@ -369,9 +380,10 @@ void Imprinter::cut_face(std::size_t f) {
     const auto hidden = hidden_regions(f, regions);
     number_vertices(f, cut);
     emit_pieces(f, cut, regions, hidden);
-    // A hidden region wholly bounded by contact lines is a footprint (under a block, a beam's
-    // end in a wall); one that reaches the face's own outline hides part of it.
-    const auto reaches_outline = reaching_outline(cut.cdt, regions.count);
+    // A hidden region bounded by contact lines is a footprint (under a block, a beam's end in
+    // a wall, under a wall across a floor); one bounded mostly by the face's own outline hides
+    // part of the face itself.
+    const auto reaches_outline = mostly_outline(cut.cdt, regions.count);
     const auto& poly = scene_.polygons[f];
     bool removed = false;
     for (int r = 0; r < regions.count; ++r)

@@ -47,12 +47,13 @@ void imprint_pass(Scene& scene, const std::vector<bool>& turned, double contact_
         const double of = group_area.at(group);
         if (!(area > 0.01 * of)) continue;
         char text[400];
-        std::snprintf(text, sizeof text,
-                      "imprinting removed %.6g of group %s's area %.6g (%.1f%%), reaching the "
-                      "faces' own outlines, as hidden inside or behind other geometry; if that "
-                      "is wrong, check which way the surfaces around it face (--orient fix) or "
-                      "use --no-imprint",
-                      area, scene.groups[group].c_str(), of, 100 * area / of);
+        std::snprintf(
+            text, sizeof text,
+            "imprinting removed %.6g of group %s's area %.6g (%.1f%%), bounded mostly "
+            "by the faces' own outlines, as hidden inside or behind other geometry; if that "
+            "is wrong, check which way the surfaces around it face (--orient fix) or "
+            "use --no-imprint",
+            area, scene.groups[group].c_str(), of, 100 * area / of);
         report.add(MeshReport::Kind::Warning, text);
     }
     if (imprint.faces_imprinted) report.add(MeshReport::Kind::Change, summary(scene, imprint));
