@@ -383,14 +383,14 @@ void Imprinter::cut_face(std::size_t f) {
     // A hidden region bounded by contact lines is a footprint (under a block, a beam's end in
     // a wall, under a wall across a floor); one bounded mostly by the face's own outline hides
     // part of the face itself.
-    const auto reaches_outline = mostly_outline(cut.cdt, regions.count);
+    const auto outline_bounded = mostly_outline(cut.cdt, regions.count);
     const auto& poly = scene_.polygons[f];
     bool removed = false;
     for (int r = 0; r < regions.count; ++r)
         if (hidden[r]) {
             ++report.regions_removed;
             report.area_removed += regions.area[r];
-            if (reaches_outline[r]) report.removed_by_group[poly.group] += regions.area[r];
+            if (outline_bounded[r]) report.removed_by_group[poly.group] += regions.area[r];
             removed = true;
         }
     if (removed) report.removed_lines.push_back(poly.line);

@@ -139,18 +139,11 @@ class RegionBounds {
 
 // Faces no wider than the tolerance (their area over their longest edge): rounding, such as a
 // glTF's float sliver beside an edge, not a side of anything.
-std::vector<char> rounding_slivers(const radfmt::MeshData& faces,
-                                   const std::vector<std::uint32_t>& weld, const Points& points,
-                                   double tolerance) {
+std::vector<char> rounding_slivers(const radfmt::MeshData& faces, double tolerance) {
     std::vector<char> sliver;
     sliver.reserve(faces.patches.size());
-    for (const auto& p : faces.patches) {
-        double longest = 0;
-        for (int k = 0, n = p.corner_count(); k < n; ++k)
-            longest = std::max(longest, length(points.position[weld[p.corners[(k + 1) % n]]] -
-                                               points.position[weld[p.corners[k]]]));
-        sliver.push_back(p.area <= tolerance * longest);
-    }
+    for (const auto& p : faces.patches)
+        sliver.push_back(p.area <= tolerance * longest_edge(faces, p));
     return sliver;
 }
 
@@ -173,9 +166,9 @@ class RegionGrower {
     RegionGrower(const radfmt::MeshData& faces, const std::vector<std::uint32_t>& weld,
                  const Points& points, const FaceSubEdges& sub_edges, const FacesByEdge& by_edge,
                  const RegionBounds& bounds, double min_cos, double max_offset)
-        : faces_(faces), weld_(weld), points_(points), sub_edges_(sub_edges), by_edge_(by_edge),
-          bounds_(bounds), min_cos_(min_cos), max_offset_(max_offset),
-          region_of(faces.patches.size(), kNone) {}
+        : region_of(faces.patches.size(), kNone), faces_(faces), weld_(weld), points_(points),
+          sub_edges_(sub_edges), by_edge_(by_edge), bounds_(bounds), min_cos_(min_cos),
+          max_offset_(max_offset) {}
 
     // A region grown from `seed` over the faces `may_join` allows.
     template <class MayJoin> void grow(std::uint32_t seed, MayJoin&& may_join) {
@@ -192,14 +185,17 @@ class RegionGrower {
             const auto f = todo.front();
             todo.pop();
             region.faces.push_back(f);
-            for (auto k = sub_edges_.start[f]; k < sub_edges_.start[f + 1]; ++k)
-                by_edge_.for_each_face(sub_edges_.keys[k], [&](std::uint32_t g) {
-                    if (region_of[g] == kNone && may_join(g) && fits(region, g) &&
-                        !bounds_.apart(sub_edges_.keys[k], region.plane.normal)) {
-                        region_of[g] = id;
-                        todo.push(g);
-                    }
+            for (auto k = sub_edges_.start[f]; k < sub_edges_.start[f + 1]; ++k) {
+                const auto key = sub_edges_.keys[k];
+                int apart = -1; // whether the edge bounds the region: asked once a face fits
+                by_edge_.for_each_face(key, [&](std::uint32_t g) {
+                    if (region_of[g] != kNone || !may_join(g) || !fits(region, g)) return;
+                    if (apart < 0) apart = bounds_.apart(key, region.plane.normal);
+                    if (apart) return;
+                    region_of[g] = id;
+                    todo.push(g);
                 });
+            }
         }
         regions.push_back(std::move(region));
     }
@@ -224,6 +220,7 @@ class RegionGrower {
     }
 
     std::vector<Region> regions;
+    std::vector<std::uint32_t> region_of; // each face's region (kNone: none yet)
 
   private:
     // Same group and material, normals within the angle, corners within the plane's offset.
@@ -245,9 +242,6 @@ class RegionGrower {
     const FacesByEdge& by_edge_;
     const RegionBounds& bounds_;
     double min_cos_, max_offset_;
-
-  public:
-    std::vector<std::uint32_t> region_of;
 };
 
 } // namespace
@@ -268,7 +262,7 @@ std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
                         options.plane_tolerance * scene_size);
     // Slivers of rounding first left out, then each given to a region beside it: through
     // them a region would reach across a wall's edge it stops at.
-    const auto sliver = rounding_slivers(faces, weld, points, tolerance);
+    const auto sliver = rounding_slivers(faces, tolerance);
     const auto whole = [&](std::uint32_t g) { return !sliver[g]; };
     for (std::uint32_t f = 0; f < faces.patches.size(); ++f)
         if (!sliver[f] && grower.region_of[f] == kNone) grower.grow(f, whole);

@@ -184,8 +184,6 @@ void classify_patches(const surfaces::Region& region, const surfaces::Points& po
         if (!held[k]) classes[first + k] = WidthClass::Thin;
 }
 
-// Pass 4 over every region: its patches (over `points`), classified, its specks joined, and
-// the shapes' summary in the report.
 // What pass 4 knows of each patch, for the summary.
 struct PatchClasses {
     std::vector<WidthClass> width;
@@ -212,6 +210,9 @@ void add_backs(const surfaces::Region& region, std::size_t from, std::size_t to,
     }
 }
 
+// Pass 4 over every region: its patches (over `points`), classified, its specks joined, and
+// the shapes' summary in the report. A region with a twin (twin_regions) gets the twin's
+// patches reversed.
 radfmt::MeshData grid_regions(const std::vector<surfaces::Region>& regions,
                               const std::vector<std::uint32_t>& twin, surfaces::Points& points,
                               const SurfaceOptions& options, double tolerance, SurfaceReport& rep) {

@@ -17,8 +17,8 @@ constexpr double kDeg = std::numbers::pi / 180;
 
 // Whether point x, on patch r's plane, lies in r (convex, its corners counter-clockwise about
 // its normal), its edges included.
-bool inside_patch(const radfmt::MeshData& mesh, const radfmt::Patch& r,
-                  std::span<const std::uint32_t> corners, const Vec3& x) {
+bool inside_patch(const radfmt::MeshData& mesh, const radfmt::Patch& r, const Vec3& x) {
+    const auto corners = mesh.corners(r);
     for (std::size_t k = 0; k < corners.size(); ++k) {
         const Vec3 a = mesh.vertices[corners[k]],
                    b = mesh.vertices[corners[(k + 1) % corners.size()]];
@@ -40,7 +40,7 @@ bool walled_apart(const radfmt::MeshData& mesh, std::span<const std::uint32_t> a
         const double sq = dot(q.centroid - r.centroid, r.normal);
         if (!(sp * sq < 0)) continue;
         const Vec3 x = p.centroid + (q.centroid - p.centroid) * (sp / (sp - sq));
-        if (inside_patch(mesh, r, mesh.corners(r), x)) return true;
+        if (inside_patch(mesh, r, x)) return true;
     }
     return false;
 }
