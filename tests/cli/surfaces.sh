@@ -442,14 +442,16 @@ python3 -c "import sys; sys.exit(not abs($(column_area columns.mesh) - $(column_
 # With specks joined into their neighbours (polygon patches) 428 patches, none a speck, 94.3%
 # (without the rule: 430 and 89.2%). Then regions stop where a wall welded to their edge
 # rises between two sides, or along a contact line (#53 item 5): 268 regions instead of 227,
-# 449 patches, none a speck, 91.3%.
+# 449 patches, none a speck, 91.3%. Then imprinting stops removing small faces of which every
+# region sees the backs of one open surface alike (#53 item 4: that may be a vault drawn the
+# wrong way over a floor): 274 regions, 462 patches, none a speck, 90.6%.
 # (--patches 1: the limit from the map's size, as before patch budgets.)
 "$BIN/rad-mesh" "$SRC/tests/data/zdm2-cap/zdm2-cap.obj" -o cap.mesh --patches 1 2> cap.err || fail "zdm2 cap: $(cat cap.err)"
 grep -q "max-edge 55.41 (the scene's size 1108" cap.err || fail "zdm2 cap: the map's size not kept: $(grep max-edge cap.err)"
 read -r tenth wide < <(shape_share cap.err)
 specks=$(specks cap.err)
 echo "zdm2 cap: $(patches cap.err) patches, $specks specks, aspect <= 3 for $tenth%"
-[ "${specks:-999}" -eq 0 ] && [ "$(patches cap.err)" -le 449 ] && at_least "${tenth:-0}" 91 ||
+[ "${specks:-999}" -eq 0 ] && [ "$(patches cap.err)" -le 462 ] && at_least "${tenth:-0}" 90.5 ||
   fail "zdm2 cap: $(grep planar cap.err)"
 
 # 18. Where the region is thinner than a tenth of a cell is decided exactly: no circle a tenth of

@@ -2,6 +2,7 @@
 // constrained Delaunay triangulation in the face's plane), drop the regions hidden inside
 // other geometry, and keep the edges conforming.
 #include "imprint_parts.hpp"
+#include "imprint_views.hpp"
 #include "polygon2d.hpp"
 #include "radiosity/rays.hpp"
 #include "weld.hpp"
@@ -10,6 +11,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -198,12 +200,50 @@ std::vector<char> mostly_outline(const CDT& cdt, int count) {
     return mostly;
 }
 
+// Whether region r (of a face's regions, each seen from the same side) sees mostly backs
+// that set it apart from the rest of its face. The backs of a surface count when
+// - it closes around r and clearly not around another region: a block standing on the face,
+//   a wall it runs through (a vault or a room over the whole face does not count, whichever
+//   way it was drawn);
+// - it is a room that clearly does not close around r, but does around another region, or
+//   is closed: r is outside it;
+// - it is not a closed object, and another region sees its front (at most a quarter as many
+//   rays on its back), or, unless it is a room, at most a quarter as many of its backs as r:
+//   a wall made of two sheets over a strip of floor, a cavity behind a game map's wall, a
+//   baseboard standing against a wall (the backs of a ceiling below a floor drawn facing
+//   down, of a vault near its mouth, or of a room drawn facing out, seen alike from all of
+//   the face or from nowhere else, do not count).
+// A closed object's backs seen from outside it say only that it was drawn inside out.
+bool behind_object(const SurfaceViews& surfaces, const std::vector<SurfaceViews::View>& views,
+                   std::size_t r) {
+    const auto& view = views[r];
+    const auto any = [&](auto&& test) { return std::any_of(views.begin(), views.end(), test); };
+    const auto counts = [&](std::uint32_t s) {
+        if (view.inside(s)) return any([&](const auto& other) { return other.outside(s); });
+        const bool enclosing = any([&](const auto& other) { return other.inside(s); });
+        const bool closes = enclosing || surfaces.closed(s);
+        if (surfaces.room(s) && view.outside(s) && closes) return true;
+        if (!surfaces.room(s) && surfaces.closed(s)) return false;
+        // Another region sees its front; or, for an object, far fewer of its backs.
+        return any([&](const auto& other) {
+            const int fronts = other.fronts_of(s), other_backs = other.backs_of(s);
+            return (fronts > 0 && 4 * other_backs <= fronts) ||
+                   (!surfaces.room(s) && 4 * other_backs <= view.backs_of(s));
+        });
+    };
+    int backs = 0;
+    for (const auto& [surface, count] : view.backs)
+        if (counts(surface)) backs += count;
+    return view.hits > 0 &&
+           sees_mostly_backs(double(view.hits) / view.rays, double(backs) / view.hits);
+}
+
 class Imprinter {
   public:
     Imprinter(Scene& scene, double tol, const std::vector<bool>& turned,
               std::vector<std::uint32_t> welded, CutLines lines)
         : scene_(scene), tol_(tol), turned_(turned), welded_(std::move(welded)),
-          lines_(std::move(lines)), rays_(facing_triangles(), RayBuild::Fast),
+          lines_(std::move(lines)), views_(scene, turned, welded_),
           replaced_(scene.polygons.size(), 0) {}
     void cut_faces() {
         for (const auto& [f, cuts] : lines_.cuts) cut_face(f);
@@ -212,11 +252,6 @@ class Imprinter {
     ImprintReport report;
 
   private:
-    // Which way a face points counts as the orientation checks would fix it, so that a scene
-    // whose walls face out does not make everything inside it look hidden.
-    radfmt::MeshData facing_triangles() const {
-        return face_triangles(scene_, nullptr, nullptr, &turned_);
-    }
     void cut_face(std::size_t f);
     void triangulate_cuts(std::size_t f, CutFace& cut);
     std::vector<char> hidden_regions(std::size_t f, const Regions& regions) const;
@@ -240,7 +275,9 @@ class Imprinter {
     const std::vector<bool>& turned_;
     std::vector<std::uint32_t> welded_;
     CutLines lines_;
-    RayScene rays_;
+    // Which way a face points counts as the orientation checks would fix it, so that a scene
+    // whose walls face out does not make everything inside it look hidden.
+    SurfaceViews views_;
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<EdgePoint>> edge_points_;
     std::map<std::size_t, std::vector<Polygon>> out_; // what each cut face becomes
     std::vector<char> replaced_;
@@ -270,29 +307,50 @@ void Imprinter::triangulate_cuts(std::size_t f, CutFace& cut) {
     }
 }
 
-// A region is hidden when, from just above its largest triangle, most of what the rays meet
-// are backs (inside an object, under a block, behind a wall).
+// A region is hidden when, from just off its largest triangle on either side (the face may
+// point either way), it sees mostly the backs of an object that the rest of the face does not
+// (behind_object).
 std::vector<char> Imprinter::hidden_regions(std::size_t f, const Regions& regions) const {
     const auto& p = lines_.faces.at(f);
     std::vector<char> hidden(regions.count, 0);
-    const double lift = std::max(2 * rays_.epsilon(), 100 * tol_);
-    for (int r = 0; r < regions.count; ++r) {
-        const auto g = regions.seed[r];
-        const auto c =
-            CGAL::centroid(g->vertex(0)->point(), g->vertex(1)->point(), g->vertex(2)->point());
-        const Vec3 front =
-            f < turned_.size() && turned_[f] ? p.frame.normal * -1.0 : p.frame.normal;
-        const Vec3 from = p.frame.to3d(c.x(), c.y()) + front * lift;
-        int hits = 0, backs = 0;
-        const int count = 64;
-        for (int k = 0; k < count; ++k) {
-            const double u = (k + 0.5) / count, w = std::fmod(k * 0.6180339887498949, 1.0);
-            const auto hit = rays_.trace(from, cosine_direction(front, p.frame.u, p.frame.v, u, w));
-            if (hit.patch < 0) continue;
-            ++hits;
-            backs += !hit.front;
+    const double lift = std::max(2 * views_.epsilon(), 100 * tol_);
+    const bool turned = f < turned_.size() && turned_[f];
+    for (const Vec3& side : {p.frame.normal, p.frame.normal * -1.0}) {
+        std::vector<Vec3> from;
+        for (int r = 0; r < regions.count; ++r) {
+            const auto g = regions.seed[r];
+            const auto c =
+                CGAL::centroid(g->vertex(0)->point(), g->vertex(1)->point(), g->vertex(2)->point());
+            from.push_back(p.frame.to3d(c.x(), c.y()) + side * lift);
         }
-        hidden[r] = hits > 0 && sees_mostly_backs(double(hits) / count, double(backs) / hits);
+        std::vector<SurfaceViews::View> views(regions.count);
+        tbb::parallel_for(0, regions.count, [&](int r) {
+            views[r] = views_.view(from[r], side, p.frame.u, p.frame.v);
+        });
+        // Only backs can hide a region: where no region sees mostly backs of anything, the
+        // rays need not be followed to the end.
+        const bool some_backs = std::any_of(views.begin(), views.end(), [](const auto& view) {
+            int backs = 0;
+            for (const auto& [surface, count] : view.backs) backs += count;
+            return view.hits > 0 &&
+                   sees_mostly_backs(double(view.hits) / view.rays, double(backs) / view.hits);
+        });
+        if (!some_backs) continue;
+        std::vector<std::uint32_t> seen_backs; // the surfaces whose backs any region sees
+        for (const auto& view : views)
+            for (const auto& [surface, count] : view.backs) seen_backs.push_back(surface);
+        std::sort(seen_backs.begin(), seen_backs.end());
+        seen_backs.erase(std::unique(seen_backs.begin(), seen_backs.end()), seen_backs.end());
+        tbb::parallel_for(0, regions.count, [&](int r) {
+            views_.add_parity(views[r], from[r], side, p.frame.u, p.frame.v, seen_backs);
+        });
+        // Behind the face, inside its own closed object (a sphere's inside, where a water
+        // line running through it shows its underside), nothing is seen.
+        const bool back = (dot(side, p.frame.normal) > 0) == turned;
+        const auto own = views_.surface_of(f);
+        for (int r = 0; r < regions.count; ++r)
+            if (!(back && views[r].inside(own)))
+                hidden[r] |= behind_object(views_, views, std::size_t(r));
     }
     return hidden;
 }

@@ -5,6 +5,7 @@
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/vec.hpp"
+#include "room_box.hpp"
 #include "weld.hpp"
 
 #include <tbb/parallel_for.h>
@@ -154,16 +155,6 @@ void name_surfaces(std::vector<OrientationFinding>& findings, const Scene& scene
             first = std::min(first, scene.polygons[f].line);
         finding.surface_line = first;
     }
-}
-
-// A surface encloses the rest of the scene (a room) when its box holds the scene's box, give
-// or take 1% of the scene's size: exporters let water or furniture poke a few millimetres
-// through a wall.
-bool encloses(const Box& surface, const Box& scene) {
-    const double tol = 0.01 * length(scene.hi - scene.lo);
-    for (int c = 0; c < 3; ++c)
-        if (scene.lo[c] < surface.lo[c] - tol || scene.hi[c] > surface.hi[c] + tol) return false;
-    return true;
 }
 
 // Each face's geometry, once: Newell normal (length twice the area), centroid, area.
