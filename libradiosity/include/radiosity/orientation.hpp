@@ -21,6 +21,10 @@ struct OrientationFinding {
     std::uint32_t group = 0;           // the group of the faces found
     std::vector<std::size_t> polygons; // indices into Scene::polygons, ascending
     std::vector<std::size_t> to_flip;  // what --orient fix reverses (a subset of polygons)
+    // AgainstNeighbours: the rest of those faces' surfaces, which --orient fix reverses
+    // instead when reversing to_flip would have the scene see more backs (a vault whose
+    // larger part was drawn facing out).
+    std::vector<std::size_t> instead;
     // When the group is the file's unnamed one ("default": an OBJ with no g/o lines), the
     // finding is the faces of one material, and names it and the connected surface of its
     // first face (that surface's first line).

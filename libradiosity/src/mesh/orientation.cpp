@@ -210,6 +210,23 @@ bool winding_parity(const std::vector<std::size_t>& faces, const SurfaceGraph& s
     return orientable;
 }
 
+// The faces of the surfaces of `faces` that are not to be flipped: flipped instead, they make
+// those surfaces just as consistent, the other way round (ascending).
+std::vector<std::size_t> rest_of_surfaces(const std::vector<std::size_t>& faces,
+                                          const SurfaceGraph& surfaces,
+                                          const std::vector<bool>& flip) {
+    std::vector<std::size_t> ids;
+    for (auto f : faces) ids.push_back(surfaces.surface_of[f]);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    std::vector<std::size_t> rest;
+    for (auto id : ids)
+        for (auto f : surfaces.members[id])
+            if (!flip[f]) rest.push_back(f);
+    std::sort(rest.begin(), rest.end());
+    return rest;
+}
+
 struct SurfaceVerdict {
     int minority = 1; // the parity class of lesser area
     int right = 0;    // the parity class facing the right way
@@ -288,6 +305,9 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
     }
     add_finding(findings, OrientationFinding::Kind::AgainstNeighbours, scene, against_neighbours,
                 flip);
+    for (auto& finding : findings)
+        if (finding.kind == OrientationFinding::Kind::AgainstNeighbours)
+            finding.instead = rest_of_surfaces(finding.to_flip, surfaces, flip);
     add_finding(findings, OrientationFinding::Kind::InsideOut, scene, inside_out, flip);
     add_finding(findings, OrientationFinding::Kind::RoomOutward, scene, room_outward, flip);
     name_surfaces(findings, scene, surfaces);

@@ -46,8 +46,20 @@ void fix_doing_no_harm(Scene& scene, const std::vector<OrientationFinding>& find
     for (const auto& finding : findings) {
         if (finding.to_flip.empty()) continue;
         Scene trial = scene;
-        const auto flipped = fix_orientation(trial, {finding});
-        const double after = seen_backs(trial);
+        auto flipped = fix_orientation(trial, {finding});
+        double after = seen_backs(trial);
+        if (after >= before && !finding.instead.empty()) {
+            // The other way round: the rest of the surface turned to agree with these faces.
+            auto other = finding;
+            other.to_flip = finding.instead;
+            Scene second = scene;
+            auto second_flipped = fix_orientation(second, {other});
+            if (const double backs = seen_backs(second); backs < after) {
+                trial = std::move(second);
+                flipped = std::move(second_flipped);
+                after = backs;
+            }
+        }
         if (after < before) {
             scene = std::move(trial);
             char text[160];
