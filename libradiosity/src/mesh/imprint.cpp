@@ -234,8 +234,7 @@ bool behind_object(const SurfaceViews& surfaces, const std::vector<SurfaceViews:
     int backs = 0;
     for (const auto& [surface, count] : view.backs)
         if (counts(surface)) backs += count;
-    return view.hits > 0 &&
-           sees_mostly_backs(double(view.hits) / view.rays, double(backs) / view.hits);
+    return view.mostly(backs);
 }
 
 class Imprinter {
@@ -332,8 +331,7 @@ std::vector<char> Imprinter::hidden_regions(std::size_t f, const Regions& region
         const bool some_backs = std::any_of(views.begin(), views.end(), [](const auto& view) {
             int backs = 0;
             for (const auto& [surface, count] : view.backs) backs += count;
-            return view.hits > 0 &&
-                   sees_mostly_backs(double(view.hits) / view.rays, double(backs) / view.hits);
+            return view.mostly(backs);
         });
         if (!some_backs) continue;
         std::vector<std::uint32_t> seen_backs; // the surfaces whose backs any region sees

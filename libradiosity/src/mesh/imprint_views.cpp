@@ -34,15 +34,10 @@ bool holds_most_of(const Box& surface, const Box& scene) {
     return held >= 0.5 * whole;
 }
 
-// Each face's surface (faces connected across welded edges), and by surface id whether it is
-// closed (every edge it has is shared by an even number of its faces) and a room (its box
-// holds the scene's, or most of it).
-struct Surfaces {
-    std::vector<std::uint32_t> of;
-    std::vector<char> closed, room;
-    std::vector<Box> box;
-};
-Surfaces connected_surfaces(const Scene& scene, const std::vector<std::uint32_t>& welded) {
+// Each face's surface: closed when every edge it has is shared by an even number of its
+// faces, a room when its box holds the scene's, or most of it.
+SurfaceViews::Surfaces connected_surfaces(const Scene& scene,
+                                          const std::vector<std::uint32_t>& welded) {
     UnionFind sets(scene.polygons.size());
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::size_t, int>> edges;
     for (std::size_t f = 0; f < scene.polygons.size(); ++f) {
@@ -57,7 +52,7 @@ Surfaces connected_surfaces(const Scene& scene, const std::vector<std::uint32_t>
                 sets.unite(f, first);
         }
     }
-    Surfaces out;
+    SurfaceViews::Surfaces out;
     out.of.resize(scene.polygons.size());
     for (std::size_t f = 0; f < out.of.size(); ++f)
         out.of[f] = static_cast<std::uint32_t>(sets.find(f));
@@ -77,13 +72,8 @@ Surfaces connected_surfaces(const Scene& scene, const std::vector<std::uint32_t>
 
 SurfaceViews::SurfaceViews(const Scene& scene, const std::vector<bool>& turned,
                            const std::vector<std::uint32_t>& welded)
-    : rays_(face_triangles(scene, &face_of_, nullptr, &turned), RayBuild::Fast) {
-    auto surfaces = connected_surfaces(scene, welded);
-    surface_of_ = std::move(surfaces.of);
-    closed_ = std::move(surfaces.closed);
-    room_ = std::move(surfaces.room);
-    box_ = std::move(surfaces.box);
-}
+    : surfaces_(connected_surfaces(scene, welded)),
+      rays_(face_triangles(scene, &face_of_, nullptr, &turned), RayBuild::Fast) {}
 
 double SurfaceViews::leaves_boxes(const Vec3& from, const Vec3& dir,
                                   const std::vector<std::uint32_t>& surfaces) const {
@@ -92,7 +82,8 @@ double SurfaceViews::leaves_boxes(const Vec3& from, const Vec3& dir,
     for (auto s : surfaces) {
         double enter = 0, leave = 1e300;
         for (int c = 0; c < 3; ++c) {
-            const double lo = box_[s].lo[c] - pad - from[c], hi = box_[s].hi[c] + pad - from[c];
+            const double lo = surfaces_.box[s].lo[c] - pad - from[c],
+                         hi = surfaces_.box[s].hi[c] + pad - from[c];
             if (dir[c] == 0) {
                 if (lo > 0 || hi < 0) leave = -1;
                 continue;
@@ -117,7 +108,7 @@ bool SurfaceViews::odd_crossings(const Vec3& from, const Vec3& dir,
         const auto hit = rays_.trace(origin, dir);
         travelled += hit.distance;
         if (hit.patch < 0 || travelled > reach) return true;
-        const auto s = surface_of_[face_of_[hit.patch]];
+        const auto s = surfaces_.of[face_of_[hit.patch]];
         origin = origin + dir * hit.distance;
         if (!std::binary_search(surfaces.begin(), surfaces.end(), s)) continue;
         const auto it = std::find(odd.begin(), odd.end(), s);
@@ -138,7 +129,7 @@ SurfaceViews::View SurfaceViews::view(const Vec3& from, const Vec3& side, const 
         const auto hit = rays_.trace(from, direction(k, side, u, v));
         if (hit.patch < 0) continue;
         ++out.hits;
-        ++(hit.front ? fronts : backs)[surface_of_[face_of_[hit.patch]]];
+        ++(hit.front ? fronts : backs)[surfaces_.of[face_of_[hit.patch]]];
     }
     out.backs.assign(backs.begin(), backs.end());
     out.fronts.assign(fronts.begin(), fronts.end());

@@ -34,6 +34,10 @@ class SurfaceViews {
         std::vector<std::pair<std::uint32_t, int>> odd;
         int parity_rays = 0;
         int backs_of(std::uint32_t surface) const { return count(backs, surface); }
+        // Whether `counted` backs are most of what the rays met (sees_mostly_backs).
+        bool mostly(int counted) const {
+            return hits > 0 && sees_mostly_backs(double(hits) / rays, double(counted) / hits);
+        }
         int fronts_of(std::uint32_t surface) const { return count(fronts, surface); }
         // The surface closes around the point: nearly every ray crosses it an odd number of
         // times (a block over a footprint, a wall around a beam's end, a vault over a floor,
@@ -61,11 +65,19 @@ class SurfaceViews {
     void add_parity(View& view, const Vec3& from, const Vec3& side, const Vec3& u, const Vec3& v,
                     const std::vector<std::uint32_t>& surfaces) const;
     double epsilon() const { return rays_.epsilon(); }
-    std::uint32_t surface_of(std::size_t face) const { return surface_of_[face]; }
+    std::uint32_t surface_of(std::size_t face) const { return surfaces_.of[face]; }
     // Whether a surface is closed: each of its edges shared by an even number of its faces.
-    bool closed(std::uint32_t surface) const { return closed_[surface]; }
+    bool closed(std::uint32_t surface) const { return surfaces_.closed[surface]; }
     // Whether a surface is a room: its box holds the rest of the scene, or most of it.
-    bool room(std::uint32_t surface) const { return room_[surface]; }
+    bool room(std::uint32_t surface) const { return surfaces_.room[surface]; }
+
+    // Each face's surface (faces connected across welded edges), and by surface id (its
+    // first face's index) whether it is closed and a room, and its box.
+    struct Surfaces {
+        std::vector<std::uint32_t> of;
+        std::vector<char> closed, room;
+        std::vector<Box> box;
+    };
 
   private:
     // Which of `surfaces` (sorted) a ray from `from` along `dir` crosses an odd number of
@@ -78,10 +90,8 @@ class SurfaceViews {
     double leaves_boxes(const Vec3& from, const Vec3& dir,
                         const std::vector<std::uint32_t>& surfaces) const;
 
-    std::vector<std::size_t> face_of_;      // per traced triangle
-    std::vector<std::uint32_t> surface_of_; // per face
-    std::vector<char> closed_, room_;       // per surface id
-    std::vector<Box> box_;                  // per surface id
+    std::vector<std::size_t> face_of_; // per traced triangle
+    Surfaces surfaces_;
     RayScene rays_;
 };
 

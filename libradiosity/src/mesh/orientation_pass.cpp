@@ -50,7 +50,7 @@ void fix_doing_no_harm(Scene& scene, const std::vector<OrientationFinding>& find
         double after = seen_backs(trial);
         if (after >= before && !finding.instead.empty()) {
             // The other way round: the rest of the surface turned to agree with these faces.
-            auto other = finding;
+            OrientationFinding other;
             other.to_flip = finding.instead;
             Scene second = scene;
             auto second_flipped = fix_orientation(second, {other});
