@@ -1,6 +1,8 @@
 // Hierarchical form factors (rad-ff --method hierarchical) and the solve over their links,
 // against closed forms, a furnace, reciprocity, the analytic matrix and themselves.
 #include "helpers.hpp"
+#include "hierarchy/direct_light.hpp"
+#include "hierarchy/surfaces.hpp"
 #include "radfmt/container.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/hierarchy.hpp"
@@ -264,6 +266,84 @@ TEST_CASE("hierarchical: a link reaches its receiver's parts and reads its sourc
         flat_total += mesh.patches[p].area * flat_sums[p];
     }
     CHECK(total == Approx(flat_total).epsilon(1e-4));
+}
+
+TEST_CASE("hierarchical: the oracle's direct light is the lamp's form factor where it is seen, "
+          "none in a full shadow") {
+    // A 2 x 2 floor, a 0.4 x 0.4 lamp 1 above its middle facing down, and a square 0.2 above
+    // the floor's corner [0, 0.8]^2 that hides the lamp from the floor where x and y are both
+    // under 0.8 - 0.2 (1.2 - 0.8) / 0.8 = 0.7 and lets all of it be seen where either is
+    // over 0.8.
+    std::string obj;
+    int count = 0;
+    append_obj_face(obj, count, {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}}, "grey", "floor");
+    append_obj_face(obj, count, {{0.8, 0.8, 1}, {0.8, 1.2, 1}, {1.2, 1.2, 1}, {1.2, 0.8, 1}},
+                    "lamp", "lamp");
+    append_obj_face(obj, count, {{0, 0, 0.2}, {0.8, 0, 0.2}, {0.8, 0.8, 0.2}, {0, 0.8, 0.2}},
+                    "grey", "shelf");
+    const auto mesh = mesh_from_obj(obj, 0.1);
+    const rad::RayScene scene(mesh);
+    const rad::FormFactorContext context(mesh, scene);
+    const auto surface = rad::hierarchy::connected_surfaces(mesh);
+    const auto tree = rad::hierarchy::build_surface_tree(mesh, surface);
+    std::vector<bool> emitter;
+    for (const auto& m : mesh.materials) emitter.push_back(m.emits());
+    const rad::hierarchy::NodeGeometries geometry(mesh, context.polygons, tree, emitter, surface);
+    const auto light = rad::hierarchy::estimate_direct_light(mesh, tree, geometry, scene, 1);
+    REQUIRE(!light.empty());
+    const std::vector<rad::Vec3> lamp = {
+        {0.8, 0.8, 1}, {0.8, 1.2, 1}, {1.2, 1.2, 1}, {1.2, 0.8, 1}};
+    int lit = 0, shadowed = 0;
+    std::uint32_t floor_node = radfmt::kNoNode;
+    for (std::uint32_t i = 0; i < tree.nodes.size(); ++i) {
+        if (geometry[i].one_surface && geometry[i].planar && geometry[i].normal[2] > 0.5 &&
+            std::abs(geometry[i].area - 4) < 1e-9)
+            floor_node = i;
+        if (!tree.is_leaf(i)) continue;
+        const auto& patch = mesh.patches[tree.leaf_order[tree.nodes[i].first]];
+        if (mesh.groups[patch.group] != "floor") continue;
+        CHECK(light.spread[i] == 0); // one patch: nothing varies inside its one part
+        const double x = patch.centroid[0], y = patch.centroid[1];
+        if (x > 0.85 || y > 0.85) {
+            INFO("floor patch at " << x << ", " << y);
+            const double exact =
+                rad::point_to_polygon_form_factor(patch.centroid, patch.normal, lamp);
+            CHECK(light.mean[i] == Approx(exact).epsilon(0.03));
+            ++lit;
+        } else if (x < 0.65 && y < 0.65) {
+            CHECK(light.mean[i] == 0);
+            ++shadowed;
+        }
+    }
+    CHECK(lit > 250);
+    CHECK(shadowed > 20);
+    // The floor, lit in its middle and dark in its corner, varies inside its parts.
+    REQUIRE(floor_node != radfmt::kNoNode);
+    CHECK(light.spread[floor_node] > 0.2 * light.mean[floor_node]);
+}
+
+TEST_CASE("hierarchical: light that varies inside a source's parts is linked finer") {
+    // The ceiling sees most of the floor's middle, where the lamp lights it most: a link from
+    // the whole floor that reads the mean of each of its quarters undercounts what the
+    // ceiling's middle gets. Without the refinement for it, at this size: the ceiling 0.54%
+    // dark, the worst surface 0.59% off, 2.23% rms per patch; with it 0.13%, 0.34% and 1.56%.
+    const auto mesh = cornell_mesh(0.04);
+    const auto [ff, reference] = analytic_solution(mesh);
+    const auto links = rad::compute_links(mesh, {});
+    const auto b = solve(mesh, rad::make_operator(mesh, links), rad::emission_of(mesh));
+    double got = 0, expected = 0;
+    for (std::size_t p = 0; p < mesh.patches.size(); ++p)
+        if (mesh.groups[mesh.patches[p].group] == "ceiling" &&
+            !mesh.materials[mesh.patches[p].material].emits())
+            for (std::size_t c = 0; c < 3; ++c) {
+                got += mesh.patches[p].area * b.at(p, c);
+                expected += mesh.patches[p].area * reference.at(p, c);
+            }
+    const auto [rms, worst] = distance(mesh, b, reference);
+    INFO("ceiling " << got / expected << ", worst surface " << worst << ", rms " << rms);
+    CHECK(got / expected == Approx(1).margin(0.0025));
+    CHECK(worst < 0.004);
+    CHECK(rms < 0.018);
 }
 
 TEST_CASE("hierarchical: a strip close in front of a large wall sees it, as analytic says") {

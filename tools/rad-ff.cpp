@@ -218,8 +218,9 @@ void add_method_options(CLI::App& app, FfArgs& a) {
         ->capture_default_str()
         ->check(rad::tool::finite_range(1e-9, 1));
     app.add_option("--emitters", a.hierarchy.emitters,
-                   "hierarchical: materials to link as emitters (finer) besides those that emit "
-                   "in the mesh, comma-separated: for a lamp made to emit at solve time")
+                   "hierarchical: materials to link as emitters (finer, and finer where their "
+                   "light varies over what reflects it) besides those that emit in the mesh, "
+                   "comma-separated: for a lamp made to emit at solve time")
         ->delimiter(',');
 }
 
