@@ -86,15 +86,22 @@ function sameToDigits(shown, value) {
 }
 
 // The value at an isoline's end (sensor coordinates, on a square's edge), linear along it.
-function valueAt(s, c, r) {
+// The plan's value at (c, r) on a grid edge, interpolated along it. An end within 1e-3 of a
+// node lies on two edges (a line through a node whose value is within a hair of its level):
+// the edge where the value comes out nearest the line's level is the one it was drawn on.
+function valueAt(s, c, r, level) {
   const v = (cc, rr) => s.plan[rr * s.columns + cc];
   const near = (x) => Math.abs(x - Math.round(x)) < 1e-3;
+  const edges = [];
   if (near(c)) {
     const cc = Math.round(c), r0 = Math.min(Math.floor(r), s.rows - 2);
-    return { value: v(cc, r0) + (r - r0) * (v(cc, r0 + 1) - v(cc, r0)), spread: Math.abs(v(cc, r0 + 1) - v(cc, r0)) };
+    edges.push({ value: v(cc, r0) + (r - r0) * (v(cc, r0 + 1) - v(cc, r0)), spread: Math.abs(v(cc, r0 + 1) - v(cc, r0)) });
   }
-  const rr = Math.round(r), c0 = Math.min(Math.floor(c), s.columns - 2);
-  return { value: v(c0, rr) + (c - c0) * (v(c0 + 1, rr) - v(c0, rr)), spread: Math.abs(v(c0 + 1, rr) - v(c0, rr)) };
+  if (near(r) || !near(c)) {
+    const rr = Math.round(r), c0 = Math.min(Math.floor(c), s.columns - 2);
+    edges.push({ value: v(c0, rr) + (c - c0) * (v(c0 + 1, rr) - v(c0, rr)), spread: Math.abs(v(c0 + 1, rr) - v(c0, rr)) });
+  }
+  return edges.reduce((best, e) => (Math.abs(e.value - level) < Math.abs(best.value - level) ? e : best));
 }
 
 const opts = options();
@@ -190,7 +197,7 @@ try {
       const numbers = line.d.match(/-?[0-9.]+/g).map(Number);
       for (let k = 0; k + 3 < numbers.length; k += 4) {
         for (const [x, y] of [[numbers[k], numbers[k + 1]], [numbers[k + 2], numbers[k + 3]]]) {
-          const at = valueAt(v, (x - s.x0) / s.dx, (s.y0 - y) / s.dy);
+          const at = valueAt(v, (x - s.x0) / s.dx, (s.y0 - y) / s.dy, level);
           // The ends' pixels are written to 0.01 px, and rad-gather's values rounded (six
           // digits; the metrics' shares to 0.0001, 0.01 in %).
           const rounding = (opts.quantity === 'da300' ? 0.0051 : 0) + 2e-5 * Math.abs(level) + 1e-6;
