@@ -91,6 +91,40 @@ TEST_CASE("a polygon patch, not convex, is drawn as the surface it covers") {
     }
 }
 
+TEST_CASE("smoothing kept to each patch's mean: the slope stays, the mean is the patch's") {
+    // A (area 1, value 1) and B (area 3, value 3) side by side, and a polygon patch apart
+    // (value 2): averaged corners give A a mean of 1.5 and B 2.5; scaled back, each has its
+    // own mean again and keeps its slope towards the other.
+    radfmt::MeshData m;
+    m.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {4, 0, 0}, {4, 1, 0}};
+    radfmt::Patch a, b;
+    a.corners = {0, 1, 2, 3};
+    a.area = 1;
+    a.normal = {0, 0, 1};
+    b.corners = {1, 4, 5, 2};
+    b.area = 3;
+    b.normal = {0, 0, 1};
+    m.patches = {a, b};
+    m.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}, {}}};
+    m.groups = {"g"};
+    add_polygon_patch(m, {{5, 0, 0}, {7, 0, 0}, {7, 1, 0}, {6, 1, 0}, {5, 2, 0}}, 2.5,
+                      {5.9, 0.8, 0}, {0, 0, 1});
+    const std::vector<Rgb> values{{1, 1, 1}, {3, 3, 3}, {2, 2, 2}};
+    auto corners = rad::corner_colours(m, values, rad::Smoothing::Average);
+    rad::keep_patch_means(m, values, corners);
+    CHECK((corners[0][0][0] + corners[0][1][0] + corners[0][2][0] + corners[0][3][0]) / 4 ==
+          Approx(1));
+    CHECK((corners[1][0][0] + corners[1][1][0] + corners[1][2][0] + corners[1][3][0]) / 4 ==
+          Approx(3));
+    CHECK(corners[0][1][0] > corners[0][0][0]); // A still rises towards B
+    CHECK(corners[1][0][0] < corners[1][1][0]); // B still falls towards A
+    for (std::size_t k = 0; k < 5; ++k) CHECK(corners.at(m, 2, k)[0] == Approx(2));
+    // A black patch stays black; one whose corners average to nothing takes its value.
+    auto zero = rad::corner_colours(m, {{0, 0, 0}, {3, 3, 3}, {2, 2, 2}}, rad::Smoothing::Average);
+    rad::keep_patch_means(m, {{0, 0, 0}, {3, 3, 3}, {2, 2, 2}}, zero);
+    for (std::size_t k = 0; k < 4; ++k) CHECK(zero[0][k][0] == 0);
+}
+
 TEST_CASE("interpolation is perspective-correct") {
     // A plane receding in depth, coloured by its own depth: every pixel must show the depth
     // where its ray meets the plane (screen-space interpolation would not).

@@ -295,7 +295,8 @@ CLI::Option* add_sensor_gather_options(CLI::App& app, GatherOptions& options, st
                  "the patches; for small scenes");
     app.add_option("--smooth", smooth,
                    "How the radiosity where a ray lands is interpolated: crease, area, average "
-                   "or flat (as rad-shade)")
+                   "or flat (as rad-shade), then scaled so that each patch keeps its solved "
+                   "mean")
         ->capture_default_str();
     app.add_option("--crease-angle", options.crease_deg, "crease: largest angle smoothed over")
         ->capture_default_str()

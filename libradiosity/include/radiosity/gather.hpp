@@ -6,7 +6,8 @@
 // point-to-polygon form factor, a far group of lights as one, each times the visible fraction
 // from shadow rays shared by what each contributes. Indirect light comes from cosine-weighted
 // rays, each taking the reflected radiosity (B - E) where it lands (nothing on a bright
-// patch: that is direct light), interpolated over the patch as rad-shade's smoothing does;
+// patch: that is direct light), interpolated over the patch as rad-shade's smoothing does
+// and scaled so that each patch keeps its mean (keep_patch_means);
 // or (exact) the point-to-polygon sum over every patch.
 #pragma once
 #include "radfmt/kinds.hpp"

@@ -40,6 +40,15 @@ struct CornerColours {
 CornerColours corner_colours(const radfmt::MeshData& mesh, const std::vector<Rgb>& patch,
                              Smoothing mode, double crease_deg = 30);
 
+// `corners` scaled patch by patch so that the mean of each patch's corner values (the
+// interpolant's mean over a triangle or a parallelogram; a polygon's, its fan triangles' by
+// area) is its value in `patch` again, the slope inside kept: averaging at corners lifts a
+// dark patch among brighter ones (a floor in a narrow gap, read from a point beside it, came
+// out 2% bright). Not continuous across edges: for light gathered by rays, which blur it,
+// not for pictures of the surfaces themselves.
+void keep_patch_means(const radfmt::MeshData& mesh, const std::vector<Rgb>& patch,
+                      CornerColours& corners);
+
 // The corner values where a ray met a patch: bilinear on a quad, barycentric on a triangle
 // or on the polygon's fan triangle the ray met (RayScene::Hit's u, v and piece).
 Rgb interpolate_corners(const radfmt::MeshData& mesh, const CornerColours& corners,

@@ -102,6 +102,50 @@ CornerColours corner_colours(const radfmt::MeshData& mesh, const std::vector<Rgb
     return out;
 }
 
+namespace {
+// The mean of a patch's corner values: over a polygon, its fan triangles' by area.
+Rgb corner_mean(const radfmt::MeshData& mesh, const CornerColours& c, std::size_t patch) {
+    const auto corners = mesh.corners(patch);
+    Rgb mean{0, 0, 0};
+    if (!mesh.patches[patch].is_polygon()) {
+        for (std::size_t k = 0; k < corners.size(); ++k)
+            for (int ch = 0; ch < 3; ++ch) mean[ch] += c.at(mesh, patch, k)[ch] / corners.size();
+        return mean;
+    }
+    const Vec3 origin = mesh.vertices[corners[0]];
+    double area = 0;
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
+        const double w = length(
+            cross(mesh.vertices[corners[k]] - origin, mesh.vertices[corners[k + 1]] - origin));
+        area += w;
+        for (int ch = 0; ch < 3; ++ch)
+            mean[ch] += w *
+                        (c.at(mesh, patch, 0)[ch] + c.at(mesh, patch, k)[ch] +
+                         c.at(mesh, patch, k + 1)[ch]) /
+                        3;
+    }
+    for (int ch = 0; ch < 3; ++ch) mean[ch] = area > 0 ? mean[ch] / area : 0;
+    return mean;
+}
+} // namespace
+
+void keep_patch_means(const radfmt::MeshData& mesh, const std::vector<Rgb>& patch,
+                      CornerColours& corners) {
+    tbb::parallel_for(std::size_t(0), mesh.patches.size(), [&](std::size_t i) {
+        const Rgb mean = corner_mean(mesh, corners, i);
+        const std::size_t count = mesh.corners(i).size();
+        for (std::size_t k = 0; k < count; ++k) {
+            auto& value = corners.at(mesh, i, k);
+            for (int ch = 0; ch < 3; ++ch)
+                value[ch] = mean[ch] > 0 ? value[ch] * (patch[i][ch] / mean[ch]) : patch[i][ch];
+        }
+        if (mesh.patches[i].is_polygon())
+            for (std::size_t k = 0; k < 4; ++k) corners[i][k] = corners.at(mesh, i, k);
+        else if (count == 3)
+            corners[i][3] = corners[i][2];
+    });
+}
+
 Rgb interpolate_corners(const radfmt::MeshData& mesh, const CornerColours& c, std::int64_t hit,
                         double u, double v, std::int32_t piece_in) {
     const auto patch = static_cast<std::size_t>(hit);
