@@ -15,11 +15,13 @@ namespace rad {
 
 // A link carries light into node i from node j when F_ij, the share of i's view that j
 // fills (grown by up to 5x when i's patches face j unevenly, and up to 2x when visibility
-// varies across the pair), is at most epsilon (a 64th of it when j holds an emitter); else a
-// node is split. On the Cornell box at 5144 patches (bench/hierarchical), 2e-2 gives about
-// 36 links a patch (1/68 of the analytic matrix's non-zeros), every surface's mean within
-// 0.3% of the analytic solution and 1.9% rms per patch (each link's shares carry its light
-// to and from the quarters of its nodes); 1e-2 about 60 (1/40), 0.3% and 1.5%.
+// varies across the pair), is at most epsilon (a 64th of it when j holds an emitter), and F_ij
+// times how much the emitters' direct light varies inside j's parts is at most a 50th of
+// epsilon times the light i gets; else a node is split. On the Cornell box at 5120 patches
+// (bench/hierarchical), 2e-2 gives about 44 links a patch (1/56 of the analytic matrix's
+// non-zeros), every surface's mean within 0.2% of the analytic solution and 1.6% rms per
+// patch (each link's shares carry its light to and from the quarters of its nodes); 1e-2
+// about 75 (1/33), 0.12% and 1.2%.
 inline constexpr double kDefaultLinkEpsilon = 2e-2;
 inline constexpr int kDefaultLinkSamples = 64;
 
