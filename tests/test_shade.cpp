@@ -35,6 +35,23 @@ rad::View straight_view() {
     return rad::parse_view("-vp 0 0 0 -vd 0 0 -1 -vu 0 1 0 -vh 90 -vv 90", {"test"});
 }
 
+// Two patches sharing the edge x = 1, facing +z: A = [0, 1] x [0, 1] (area 1) and
+// B = [1, 4] x [0, 1] (area 3), one material and group.
+radfmt::MeshData two_patches() {
+    radfmt::MeshData m;
+    m.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {4, 0, 0}, {4, 1, 0}};
+    radfmt::Patch a, b;
+    a.corners = {0, 1, 2, 3};
+    a.area = 1;
+    a.normal = {0, 0, 1};
+    b.corners = {1, 4, 5, 2};
+    b.area = 3;
+    b.normal = {0, 0, 1};
+    m.patches = {a, b};
+    m.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}, {}}};
+    m.groups = {"g"};
+    return m;
+}
 } // namespace
 
 TEST_CASE("a quad filling the view shows the interpolated vertex values") {
@@ -95,18 +112,7 @@ TEST_CASE("smoothing kept to each patch's mean: the slope stays, the mean is the
     // A (area 1, value 1) and B (area 3, value 3) side by side, and a polygon patch apart
     // (value 2): averaged corners give A a mean of 1.5 and B 2.5; scaled back, each has its
     // own mean again and keeps its slope towards the other.
-    radfmt::MeshData m;
-    m.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {4, 0, 0}, {4, 1, 0}};
-    radfmt::Patch a, b;
-    a.corners = {0, 1, 2, 3};
-    a.area = 1;
-    a.normal = {0, 0, 1};
-    b.corners = {1, 4, 5, 2};
-    b.area = 3;
-    b.normal = {0, 0, 1};
-    m.patches = {a, b};
-    m.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}, {}}};
-    m.groups = {"g"};
+    auto m = two_patches();
     add_polygon_patch(m, {{5, 0, 0}, {7, 0, 0}, {7, 1, 0}, {6, 1, 0}, {5, 2, 0}}, 2.5,
                       {5.9, 0.8, 0}, {0, 0, 1});
     const std::vector<Rgb> values{{1, 1, 1}, {3, 3, 3}, {2, 2, 2}};
@@ -201,18 +207,7 @@ TEST_CASE("back faces are counted and marked; a two-sided sheet shows the side f
 
 TEST_CASE("smoothing: averages, area weights, creases and flat") {
     // Two patches sharing the edge x = 1: A (area 1, value 1) and B (area 3, value 3).
-    radfmt::MeshData m;
-    m.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {4, 0, 0}, {4, 1, 0}};
-    radfmt::Patch a, b;
-    a.corners = {0, 1, 2, 3};
-    a.area = 1;
-    a.normal = {0, 0, 1};
-    b.corners = {1, 4, 5, 2};
-    b.area = 3;
-    b.normal = {0, 0, 1};
-    m.patches = {a, b};
-    m.materials = {{"m", {0.5, 0.5, 0.5}, {0, 0, 0}, {}}};
-    m.groups = {"g"};
+    auto m = two_patches();
     const std::vector<Rgb> values{{1, 1, 1}, {3, 3, 3}};
     const auto average = rad::corner_colours(m, values, rad::Smoothing::Average);
     CHECK(average[0][0][0] == 1); // vertex 0 touches A only
