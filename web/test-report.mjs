@@ -86,9 +86,9 @@ function sameToDigits(shown, value) {
 }
 
 // The value at an isoline's end (sensor coordinates, on a square's edge), linear along it.
-// The plan's value at (c, r) on a grid edge, interpolated along it. An end within 1e-3 of a
-// node lies on two edges (a line through a node whose value is within a hair of its level):
-// the edge where the value comes out nearest the line's level is the one it was drawn on.
+// An end within 1e-3 of a node lies on two edges (a line through a node whose value is
+// within a hair of its level): the edge where the value comes out nearest the line's level
+// is the one it was drawn on.
 function valueAt(s, c, r, level) {
   const v = (cc, rr) => s.plan[rr * s.columns + cc];
   const near = (x) => Math.abs(x - Math.round(x)) < 1e-3;

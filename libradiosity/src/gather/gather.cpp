@@ -54,10 +54,11 @@ Gatherer::Gatherer(const radfmt::MeshData& mesh, std::span<const Rgb> radiosity,
     build_light_tree();
     total_corners_ = corner_colours(mesh, total, options.smoothing, options.crease_deg);
     // Each patch keeps its solved mean under the smoothing (keep_patch_means): a point beside
-    // a dark patch among brighter ones sees it at a wide angle.
+    // a dark patch among brighter ones sees it at a wide angle. Flat values have it already.
     reflected_corners_ =
         corner_colours(mesh, reflected_flat_, options.smoothing, options.crease_deg);
-    keep_patch_means(mesh, reflected_flat_, reflected_corners_);
+    if (options.smoothing != Smoothing::Flat)
+        keep_patch_means(mesh, reflected_flat_, reflected_corners_);
     // Normals smoothed over neighbours of the same material within the crease angle (never
     // round a box's edges), or not at all when the values are flat.
     std::vector<Rgb> normals;

@@ -44,6 +44,15 @@ bool walled_apart(const radfmt::MeshData& mesh, std::span<const std::uint32_t> a
     }
     return false;
 }
+
+// After patch i's corners were set through CornerColours::at: its four-entry copy, which
+// holds a polygon's first corners and repeats a triangle's corner 2 as corner 3.
+void fill_four(const radfmt::MeshData& mesh, CornerColours& c, std::size_t i) {
+    if (mesh.patches[i].is_polygon())
+        for (std::size_t k = 0; k < 4; ++k) c[i][k] = c.at(mesh, i, k);
+    else if (mesh.patches[i].corner_count() == 3)
+        c[i][3] = c[i][2];
+}
 } // namespace
 
 Smoothing parse_smoothing(const std::string& name) {
@@ -94,10 +103,7 @@ CornerColours corner_colours(const radfmt::MeshData& mesh, const std::vector<Rgb
             auto& value = out.at(mesh, i, k);
             for (int c = 0; c < 3; ++c) value[c] = weight > 0 ? sum[c] / weight : patch[i][c];
         }
-        if (p.is_polygon())
-            for (std::size_t k = 0; k < 4; ++k) out[i][k] = out.at(mesh, i, k);
-        else if (p.corner_count() == 3)
-            out[i][3] = out[i][2];
+        fill_four(mesh, out, i);
     });
     return out;
 }
@@ -139,10 +145,7 @@ void keep_patch_means(const radfmt::MeshData& mesh, const std::vector<Rgb>& patc
             for (int ch = 0; ch < 3; ++ch)
                 value[ch] = mean[ch] > 0 ? value[ch] * (patch[i][ch] / mean[ch]) : patch[i][ch];
         }
-        if (mesh.patches[i].is_polygon())
-            for (std::size_t k = 0; k < 4; ++k) corners[i][k] = corners.at(mesh, i, k);
-        else if (count == 3)
-            corners[i][3] = corners[i][2];
+        fill_four(mesh, corners, i);
     });
 }
 
