@@ -163,7 +163,8 @@ void add_stage_options(CLI::App& app, MeshArgs& a) {
     app.add_option("--transmittance", a.transmittance,
                    "MATERIAL=r,g,b: what a glass material lets through instead of what its file "
                    "says (a pane: at normal incidence; a refracting solid: a passage through "
-                   "it; MTL's Tf is that filter: Tf 0.1 lets a tenth through; repeatable)");
+                   "it; MTL's Tf is that filter: Tf 0.1 lets a tenth through). 0 makes it "
+                   "opaque; a value above 0 makes an opaque material a thin pane (repeatable)");
     app.add_flag("--keep-lamps", a.keep_lamps,
                  "Leave emitters as drawn: without it, an emitting material most of whose light "
                  "meets the back of surfaces (a lamp facing into its fixture) while its other "

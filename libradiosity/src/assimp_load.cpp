@@ -212,7 +212,8 @@ void add_materials(const aiScene& ai, const fs::path& path, const SceneOptions& 
             auto pbr = extras.pbr[m];
             pbr.base = material.reflectance;
             material.specular = specular_from_pbr(pbr, material.reflectance);
-            check_specular_energy(material, path.string() + ": material '" + material.name + "'");
+            if (const auto fitted = fit_specular_energy(material); !fitted.empty())
+                report.materials_changed.push_back("material '" + material.name + "': " + fitted);
         }
         scene.materials.push_back(std::move(material));
         scene.material_sources.push_back({});

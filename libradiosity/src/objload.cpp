@@ -289,9 +289,10 @@ LintResult lint_obj(const fs::path& path, const SceneOptions& options) {
 // repeated or trailing whitespace names "name"; colours (Ka, Kd, Ks, Ke, Tf) are checked with
 // the chain's number grammar (tinyobjloader reads "abc" or "nan" as 0, and a light silently
 // goes out) and a single value means grey ("Kd 0.9" is 0.9 0.9 0.9, the MTL convention, not
-// 0.9 0 0). Also notes which materials state a Kd and which an Ns.
-std::string normalised_mtl(const fs::path& path, std::set<std::string>& states_kd,
-                           std::set<std::string>& states_ns) {
+// 0.9 0 0). Also notes which lines each material has (Kd, Ns, Tf, Ni, d, Tr): a value left
+// out is tinyobjloader's default, no evidence of anything.
+std::string normalised_mtl(const fs::path& path,
+                           std::map<std::string, std::set<std::string>>& stated) {
     LineReader in(path.string(), "", kMaxSceneLineBytes);
     std::ostringstream out;
     std::string line, current;
@@ -310,7 +311,8 @@ std::string normalised_mtl(const fs::path& path, std::set<std::string>& states_k
             out << "newmtl " << current << '\n';
             continue;
         }
-        if (keyword == "Ns") states_ns.insert(current);
+        if (keyword == "Ns" || keyword == "Ni" || keyword == "d" || keyword == "Tr")
+            stated[current].insert(keyword);
         if (keyword == "Ka" || keyword == "Kd" || keyword == "Ks" || keyword == "Ke" ||
             keyword == "Tf") {
             std::vector<double> values;
@@ -332,7 +334,7 @@ std::string normalised_mtl(const fs::path& path, std::set<std::string>& states_k
                                  keyword + " needs 1 value (grey) or 3 (r g b), not " +
                                      std::to_string(values.size()));
             if (values.size() == 1) values.assign(3, values[0]);
-            if (keyword == "Kd") states_kd.insert(current);
+            stated[current].insert(keyword);
             char rgb[128];
             std::snprintf(rgb, sizeof rgb, " %.17g %.17g %.17g", values[0], values[1], values[2]);
             out << keyword << rgb << '\n';
@@ -377,8 +379,12 @@ struct MaterialLibraries {
     std::vector<tinyobj::material_t> materials;
     std::map<std::string, int> index;
     std::vector<fs::path> folder, library; // per material: textures are named relative to it
-    std::set<std::string> states_kd;       // materials whose library gives a Kd line
-    std::set<std::string> states_ns;       // and an Ns line
+    // Per material, the keywords of the lines its library gives (Kd, Ns, Tf, Ni, d, Tr).
+    std::map<std::string, std::set<std::string>> stated;
+    bool states(const std::string& material, const char* keyword) const {
+        const auto it = stated.find(material);
+        return it != stated.end() && it->second.count(keyword);
+    }
 };
 
 MaterialLibraries read_material_libraries(const fs::path& path, const LintResult& lint,
@@ -402,7 +408,7 @@ MaterialLibraries read_material_libraries(const fs::path& path, const LintResult
                                                      lib.found.lexically_normal().string());
         const auto canonical = fs::weakly_canonical(lib.found);
         if (!loaded.insert(canonical).second) continue;
-        std::istringstream text(normalised_mtl(lib.found, libs.states_kd, libs.states_ns));
+        std::istringstream text(normalised_mtl(lib.found, libs.stated));
         std::string warn, err;
         tinyobj::LoadMtl(&libs.index, &libs.materials, &text, &warn, &err);
         libs.folder.resize(libs.materials.size(), lib.found.parent_path());
@@ -450,7 +456,7 @@ void apply_texture(const tinyobj::material_t& m, std::size_t index, const Materi
         source.texture_missing = true;
     } else if (const auto mean =
                    mean_texture_colour(texture, problem, options.max_texture_pixels)) {
-        const bool kd_black = !libs.states_kd.count(m.name) ||
+        const bool kd_black = !libs.states(m.name, "Kd") ||
                               (m.diffuse[0] == 0 && m.diffuse[1] == 0 && m.diffuse[2] == 0);
         for (int k = 0; k < 3; ++k)
             material.reflectance[k] = kd_black ? (*mean)[k] : (*mean)[k] * m.diffuse[k];
@@ -492,17 +498,24 @@ void add_materials(const fs::path& path, const MaterialLibraries& libs, const Sc
         }
         if (!m.diffuse_texname.empty())
             apply_texture(m, index, libs, options, material, source, scene, report);
-        MtlSpecularInput specular;
-        specular.illum = m.illum;
-        specular.diffuse = material.reflectance;
-        specular.specular = source.specular;
-        specular.filter = source.transmittance;
-        specular.ior = m.ior;
-        specular.dissolve = m.dissolve;
-        if (libs.states_ns.count(m.name)) specular.shininess = m.shininess;
-        material.specular = specular_from_mtl(specular);
-        check_specular_energy(material,
-                              libs.library[index].string() + ": material '" + m.name + "'");
+        MtlSpecularInput mtl;
+        mtl.name = m.name;
+        mtl.illum = m.illum;
+        mtl.diffuse = material.reflectance;
+        mtl.specular = source.specular;
+        mtl.filter = source.transmittance;
+        mtl.ior = m.ior;
+        mtl.dissolve = m.dissolve;
+        if (libs.states(m.name, "Ns")) mtl.shininess = m.shininess;
+        mtl.states_filter = libs.states(m.name, "Tf");
+        mtl.states_ior = libs.states(m.name, "Ni");
+        mtl.states_dissolve = libs.states(m.name, "d") || libs.states(m.name, "Tr");
+        const auto reading = read_mtl_material(mtl);
+        material.specular = reading.specular;
+        material.reflectance = reading.diffuse;
+        if (!reading.why.empty())
+            (reading.changed ? report.materials_changed : report.materials_read)
+                .push_back("material '" + m.name + "': " + reading.why);
         scene.materials.push_back(material);
         scene.material_sources.push_back(source);
     }

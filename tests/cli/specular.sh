@@ -15,8 +15,8 @@ grep -q "material 'rightSphere': refracting boundary of a medium of index 2.5" <
 "$BIN/rad-mesh" "$TMP/CornellBox-Sphere.obj" -o "$TMP/clear.mesh" --max-edge 0.2 \
   --transmittance rightSphere=1 -q 2>/dev/null || fail "rad-mesh --transmittance"
 "$BIN/rad-mesh" "$TMP/diffuse.obj" -o "$TMP/d.mesh" --max-edge 0.2 -q 2>/dev/null || fail "rad-mesh diffuse"
-expect_error "material 'floor' transmits nothing in its file" "$TMP/x.mesh" \
-  "$BIN/rad-mesh" "$TMP/CornellBox-Sphere.obj" -o "$TMP/x.mesh" --transmittance floor=0.5
+expect_error "material 'leftSphere' is a mirror in its file" "$TMP/x.mesh" \
+  "$BIN/rad-mesh" "$TMP/CornellBox-Sphere.obj" -o "$TMP/x.mesh" --transmittance leftSphere=0.5
 expect_error "--thin leftSphere: material 'leftSphere' is a mirror" "$TMP/x.mesh" \
   "$BIN/rad-mesh" "$TMP/CornellBox-Sphere.obj" -o "$TMP/x.mesh" --thin leftSphere
 

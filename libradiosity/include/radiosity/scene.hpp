@@ -105,6 +105,10 @@ struct SceneReport {
     std::vector<std::string> textures_averaged;     // "material: file, mean r g b"
     std::vector<std::string> textures_replacing_kd; // materials whose Kd was 0 or absent
     std::vector<std::string> texture_problems;      // missing or unreadable textures
+    // How a material's file lines were taken and why ("material 'X': opaque: illum 4, but
+    // ..."), where the file says more than a diffuse colour; changed: a value was scaled or
+    // clamped to make it hold together.
+    std::vector<std::string> materials_read, materials_changed;
     // OBJ face corners naming a vt or vn that does not exist, ignored (neither shapes a
     // patch): how many, and the first ("line 62: '5/1/1' refers to normal (vn) 1, ...").
     std::size_t dangling_corners = 0;

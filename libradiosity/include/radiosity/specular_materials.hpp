@@ -7,22 +7,47 @@
 
 namespace rad {
 
-// What an MTL material says (tinyobjloader's defaults for what it leaves out: d 1, Ni 1).
+// What an MTL material says (tinyobjloader's defaults for what it leaves out: d 1, Ni 1), and
+// which of its lines the file has: a value left out is no evidence of anything.
 struct MtlSpecularInput {
+    std::string name;
     int illum = -1;
-    radfmt::Rgb diffuse{}, specular{}, filter{}; // Kd, Ks, Tf
+    radfmt::Rgb diffuse{}, specular{}, filter{}; // Kd (times its texture's mean), Ks, Tf
     double ior = 1;                              // Ni
     double dissolve = 1;                         // d (1 - Tr)
     double shininess = -1;                       // Ns (-1: not given)
+    bool states_filter = false, states_ior = false, states_dissolve = false; // Tf, Ni, d or Tr
 };
-// illum 3: a mirror of reflectance Ks; 5: Fresnel reflection from Ks at normal incidence;
-// 6, 7: refraction, the boundary of a medium of index Ni (1.5 when not above 1) filtered by
-// Tf (Ks is not used: a smooth boundary reflects by Fresnel); 4, 9 ("glass on"): a thin pane
-// transmitting Tf at normal incidence (else 1 - d, else what Kd and the glass's own
-// reflection leave); any other with d < 1: a pane transmitting (1 - d) x Tf. Tf alone makes
-// nothing transmit (exporters write Tf 1 1 1 on every material). Roughness from Ns
-// (sqrt(2 / (Ns + 2)), Phong's lobe as a microfacet width), kept and treated as smooth.
-radfmt::Specular specular_from_mtl(const MtlSpecularInput& in);
+
+// How a material is taken, and why.
+struct MtlReading {
+    radfmt::Specular specular;
+    radfmt::Rgb diffuse{}; // the diffuse reflectance the solve uses (Kd, scaled to fit)
+    // One line, "" for a plain material the file says nothing more of: what was decided from
+    // which lines, and what was scaled or clamped to make it hold together.
+    std::string why;
+    bool changed = false; // a value differs from the file's (scaled or clamped)
+};
+
+// What exporters mean, over the letter of the MTL spec (docs/mirrors-and-glass.md, "What an
+// MTL material means", with the exporters each rule comes from):
+// - illum 3: a mirror of reflectance Ks; 5: Fresnel reflection from Ks at normal incidence.
+// - illum 6, 7: the refracting boundary of a medium of index Ni (1.5 when not above 1)
+//   filtered by Tf (Ks is not used: a smooth boundary reflects by Fresnel).
+// - Glass is what the file marks as see-through: d < 1 (or Tr > 0) with any illum, a pane
+//   transmitting (1 - d) x Tf whose diffuse part is Kd x d (the share that is covered); or,
+//   with illum 4 or 9 ("glass on"), Tf stated below 1 (a pane transmitting Tf), an index Ni
+//   other than 1 or a name that says glass (a pane transmitting what Kd and its own
+//   reflection leave). illum 4 with d 1, Tf 1 and Ni 1 and no such name is opaque: Maya and
+//   CityEngine write illum 4 on every material.
+// - Tf 0 transmits nothing, whatever the illum. Tf alone makes nothing transmit.
+// - Shares that add up to more than the light a surface gets are not refused: a pane's Kd is
+//   lowered to what its reflection and transmission leave, a mirror's Kd and Ks are scaled
+//   to add up to 1; Ks, Tf and d are clamped to [0, 1], an Ni that is no index (not in
+//   (1, 10]) replaced by glass's. Each is said in `why`.
+// Roughness from Ns (sqrt(2 / (Ns + 2)), Phong's lobe as a microfacet width), kept and treated
+// as smooth.
+MtlReading read_mtl_material(const MtlSpecularInput& in);
 
 // What a glTF metallic-roughness material says.
 struct PbrSpecularInput {
@@ -41,10 +66,14 @@ struct PbrSpecularInput {
 inline constexpr double kMaxSmoothRoughness = 0.3;
 radfmt::Specular specular_from_pbr(const PbrSpecularInput& in, radfmt::Rgb& diffuse);
 
-// Refuses (InputError: `where`, e.g. "scene.obj: material 'glass'", and the fix) a material
-// whose diffuse, specular and transmitted shares add up to more than 1 in a channel (at
-// normal incidence).
-void check_specular_energy(const radfmt::Material& material, const std::string& where);
+// Makes a material whose diffuse, specular and transmitted shares add up to more than 1 in a
+// channel (at normal incidence) hold together: a pane's or a refracting boundary's diffuse
+// part is lowered to what the glass leaves, a mirror's diffuse and specular parts are scaled
+// to add up to 1. Returns what it did ("" when nothing needed doing).
+std::string fit_specular_energy(radfmt::Material& material);
+
+// The index of a pane of glass when its file gives none (Radiance's glass).
+inline constexpr double kPaneIndex = 1.52;
 
 // One line for rad-mesh and rad-info: "mirror, reflectance 0.95" and the like.
 std::string specular_summary(const radfmt::Specular& specular);

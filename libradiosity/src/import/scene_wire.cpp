@@ -117,7 +117,8 @@ std::string encode_scene(const Scene& scene, const SceneReport& report) {
     w.text(report.default_material);
     for (const auto* list :
          {&report.unknown_materials, &report.missing_libraries, &report.libraries_found_by_name,
-          &report.textures_averaged, &report.textures_replacing_kd, &report.texture_problems})
+          &report.textures_averaged, &report.textures_replacing_kd, &report.texture_problems,
+          &report.materials_read, &report.materials_changed})
         w.texts(*list);
     w.put<std::uint64_t>(report.dangling_corners);
     w.text(report.first_dangling);
@@ -173,7 +174,8 @@ void decode_scene(std::string_view bytes, Scene& scene, SceneReport& report) {
     report.default_material = r.text();
     for (auto* list :
          {&report.unknown_materials, &report.missing_libraries, &report.libraries_found_by_name,
-          &report.textures_averaged, &report.textures_replacing_kd, &report.texture_problems})
+          &report.textures_averaged, &report.textures_replacing_kd, &report.texture_problems,
+          &report.materials_read, &report.materials_changed})
         *list = r.texts();
     report.dangling_corners = r.get<std::uint64_t>();
     report.first_dangling = r.text();

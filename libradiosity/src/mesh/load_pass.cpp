@@ -37,6 +37,8 @@ void report_materials(const SceneReport& scene, const SceneOptions& options, Mes
         report.add(Kind::Warning, "material(s) not defined in any material library: " + names);
     }
     report_texture_problems(scene, report);
+    for (const auto& line : scene.materials_read) report.add(Kind::Note, line);
+    for (const auto& line : scene.materials_changed) report.add(Kind::Change, line);
     if (scene.dangling_corners)
         report.add(Kind::Change, "ignored: " + std::to_string(scene.dangling_corners) +
                                      " face corner(s) name a texture coordinate or normal that "

@@ -53,28 +53,41 @@ std::size_t thin_group(radfmt::MeshData& mesh, std::uint32_t group) {
 
 namespace {
 // --transmittance MATERIAL=r,g,b: a pane's transmittance at normal incidence, or what a
-// passage through a refracting solid keeps, instead of what the scene file says.
+// passage through a refracting solid keeps, instead of what the scene file says. 0 makes the
+// material opaque; a value above 0 makes an opaque one a thin pane of glass (an exporter that
+// wrote glass as opaque). Kd is lowered where the glass then leaves it less.
 void set_transmittance(radfmt::MeshData& mesh, const std::string& spec, MeshReport& report) {
     const auto given = parse_material_override(spec, "--transmittance");
     const long m = index_of(names_of_materials(mesh), given.material);
     if (m < 0)
         throw InputError("--transmittance " + spec + ": no material '" + given.material +
                          "' (it has: " + rad::material_names(mesh) + ")");
-    auto& material = mesh.materials[static_cast<std::size_t>(m)];
-    const auto kind = material.specular.kind;
-    if (kind != SpecularKind::pane && kind != SpecularKind::dielectric)
-        throw InputError("--transmittance " + spec + ": material '" + given.material +
-                         "' transmits nothing in its file (" + specular_summary(material.specular) +
-                         "): give it glass there (MTL illum 4, 6 or 7, or d < 1)");
     for (int k = 0; k < 3; ++k)
         if (given.value[k] > 1) throw InputError("--transmittance " + spec + ": a share above 1");
-    const auto was = material.specular.transmittance;
-    material.specular.transmittance = given.value;
-    check_specular_energy(material,
-                          "--transmittance " + spec + ": material '" + given.material + "'");
-    report.add(MeshReport::Kind::Change, "material '" + given.material + "': transmittance " +
-                                             rgb_text(given.value) + " (was " + rgb_text(was) +
-                                             ", --transmittance)");
+    auto& material = mesh.materials[static_cast<std::size_t>(m)];
+    auto& specular = material.specular;
+    const std::string what = "material '" + given.material + "': ";
+    const auto was = specular_summary(specular);
+    if (given.value == radfmt::Rgb{}) {
+        if (specular.kind == SpecularKind::pane || specular.kind == SpecularKind::dielectric)
+            specular = {};
+        report.add(MeshReport::Kind::Change,
+                   what + "opaque (--transmittance 0; its file: " + was + ")");
+        return;
+    }
+    if (specular.kind == SpecularKind::mirror || specular.kind == SpecularKind::fresnel)
+        throw InputError("--transmittance " + spec + ": material '" + given.material +
+                         "' is a mirror in its file (" + was +
+                         "), and a mirror lets nothing through");
+    if (specular.kind == SpecularKind::none) {
+        specular.kind = SpecularKind::pane;
+        specular.ior = kPaneIndex;
+    }
+    specular.transmittance = given.value;
+    std::string text = what + "transmittance " + rgb_text(given.value) +
+                       " (--transmittance; its file: " + was + ")";
+    if (const auto fitted = fit_specular_energy(material); !fitted.empty()) text += "; " + fitted;
+    report.add(MeshReport::Kind::Change, text);
 }
 } // namespace
 
@@ -110,9 +123,15 @@ void specular_pass(radfmt::MeshData& mesh, const MeshOptions& options, MeshRepor
                          "materials:" +
                          (known.empty() ? std::string(" none") : known) + ")");
     }
-    for (const auto m : mesh.specular_materials())
-        report.add(MeshReport::Kind::Note, "material '" + mesh.materials[m].name + "': " +
-                                               specular_summary(mesh.materials[m].specular));
+    for (const auto m : mesh.specular_materials()) {
+        const auto what = "material '" + mesh.materials[m].name + "': ";
+        // A line from the load pass (how its file was read) or --transmittance says it already.
+        const bool said =
+            std::any_of(report.lines.begin(), report.lines.end(),
+                        [&](const auto& line) { return line.text.rfind(what, 0) == 0; });
+        if (!said)
+            report.add(MeshReport::Kind::Note, what + specular_summary(mesh.materials[m].specular));
+    }
 }
 
 } // namespace rad

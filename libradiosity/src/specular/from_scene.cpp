@@ -35,51 +35,155 @@ double pane_reflectance(double ior) {
     const double r = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
     return 2 * r / (1 + r);
 }
-constexpr double kPaneIor = 1.52; // Radiance's glass
 } // namespace
 
-Specular specular_from_mtl(const MtlSpecularInput& in) {
-    Specular s;
-    s.roughness = roughness_of(in.shininess);
-    const double dielectric_ior = in.ior > 1 && in.ior <= 10 ? in.ior : 1.5;
-    const double pane_ior = in.ior > 1 && in.ior <= 10 ? in.ior : kPaneIor;
-    const bool filter_given = any_positive(in.filter);
-    switch (in.illum) {
-    case 3:
-    case 5:
-        if (!any_positive(in.specular)) return {};
-        s.kind = in.illum == 3 ? SpecularKind::mirror : SpecularKind::fresnel;
-        s.reflectance = clamped(in.specular);
-        return s;
-    case 6:
-    case 7:
-        s.kind = SpecularKind::dielectric;
-        s.ior = dielectric_ior;
-        s.transmittance = filter_given ? clamped(in.filter) : Rgb{{1, 1, 1}};
-        return s;
-    case 4:
-    case 9:
-        s.kind = SpecularKind::pane;
-        s.ior = pane_ior;
-        if (filter_given) {
-            s.transmittance = clamped(in.filter);
-        } else {
-            const double t = in.dissolve < 1
-                                 ? 1 - in.dissolve
-                                 : 1 - brightest(in.diffuse) - pane_reflectance(pane_ior);
-            s.transmittance = clamped(Rgb{{t, t, t}});
-        }
-        return s;
-    default:
-        break;
+namespace {
+bool any_below_one(const Rgb& c) {
+    return c[0] < 1 || c[1] < 1 || c[2] < 1;
+}
+bool all_zero(const Rgb& c) {
+    return c[0] == 0 && c[1] == 0 && c[2] == 0;
+}
+std::string number_text(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", x);
+    return text;
+}
+void add_clause(std::string& text, const std::string& clause) {
+    if (!clause.empty()) text += (text.empty() ? "" : "; ") + clause;
+}
+
+// Material names that say glass in the languages exporters' users write them in.
+bool named_as_glass(const std::string& name) {
+    std::string lower;
+    for (const char c : name)
+        lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* word : {"glas", "glazing", "glazed", "vitre", "verre", "vidrio", "vetro"})
+        if (lower.find(word) != std::string::npos) return true;
+    return false;
+}
+
+// The MTL's values brought into range, each change said: Ks, Tf and d are shares.
+struct MtlValues {
+    Rgb specular, filter;
+    double dissolve = 1;
+    std::string clamps;
+};
+MtlValues clamped_values(const MtlSpecularInput& in) {
+    MtlValues v{clamped(in.specular), clamped(in.filter), in.dissolve, ""};
+    if (brightest(in.specular) > 1)
+        add_clause(v.clamps, "Ks " + rgb_text(in.specular) + " clamped to 1");
+    if (in.states_filter && brightest(in.filter) > 1)
+        add_clause(v.clamps, "Tf " + rgb_text(in.filter) + " clamped to 1");
+    if (!std::isfinite(in.dissolve) || in.dissolve < 0 || in.dissolve > 1) {
+        v.dissolve = std::isfinite(in.dissolve) ? std::clamp(in.dissolve, 0.0, 1.0) : 1.0;
+        add_clause(v.clamps,
+                   "d " + number_text(in.dissolve) + " taken as " + number_text(v.dissolve));
     }
-    if (!(in.dissolve < 1)) return {};
+    return v;
+}
+
+// A glass's index from Ni: what the file says when it is one (in (1, 10]), else `fallback`,
+// said when the file gave something else than 1.
+double glass_index(const MtlSpecularInput& in, double fallback, std::string& clamps) {
+    if (in.ior > 1 && in.ior <= 10) return in.ior;
+    if (in.states_ior && in.ior != 1)
+        add_clause(clamps, "Ni " + number_text(in.ior) +
+                               " is no glass's index: " + number_text(fallback) + " used");
+    return fallback;
+}
+
+// Why an illum 4 or 9 material is glass: the first line of the file that marks it see-through.
+std::string glass_evidence(const MtlSpecularInput& in, const MtlValues& v) {
+    const std::string illum = "illum " + std::to_string(in.illum);
+    if (in.states_filter && any_below_one(v.filter))
+        return "Tf " + rgb_text(v.filter) + " with " + illum;
+    if (in.states_ior && in.ior != 1) return "Ni " + number_text(in.ior) + " with " + illum;
+    if (named_as_glass(in.name)) return "its name, with " + illum;
+    return "";
+}
+
+// A thin pane from what the file says: d's open share, else Tf, else what Kd and the
+// glass's reflection leave.
+Specular pane_of(const MtlSpecularInput& in, const MtlValues& v, double ior, Rgb& diffuse) {
+    Specular s;
     s.kind = SpecularKind::pane;
-    s.ior = pane_ior;
-    const double open = 1 - std::max(0.0, in.dissolve);
-    for (int k = 0; k < 3; ++k) s.transmittance[k] = open * (filter_given ? in.filter[k] : 1.0);
-    s.transmittance = clamped(s.transmittance);
+    s.ior = ior;
+    s.roughness = roughness_of(in.shininess);
+    if (v.dissolve < 1) {
+        for (int k = 0; k < 3; ++k) {
+            s.transmittance[k] = (1 - v.dissolve) * (in.states_filter ? v.filter[k] : 1.0);
+            diffuse[k] *= v.dissolve; // the covered share reflects; the open one lets through
+        }
+    } else if (in.states_filter && any_below_one(v.filter)) {
+        s.transmittance = v.filter;
+    } else {
+        const double t = 1 - brightest(diffuse) - pane_reflectance(ior);
+        s.transmittance = clamped(Rgb{{t, t, t}});
+    }
     return s;
+}
+
+// What an illum 4 material that is taken as opaque says of transparency: "Tf 1,1,1, Ni 1, no d".
+std::string stated_glass_lines(const MtlSpecularInput& in) {
+    std::string text = in.states_filter ? "Tf " + rgb_text(in.filter) : "no Tf";
+    text += in.states_ior ? ", Ni " + number_text(in.ior) : ", no Ni";
+    return text + (in.states_dissolve ? ", d 1" : ", no d");
+}
+
+const char* kOpaqueAdvice = "--transmittance NAME=T makes it a pane";
+} // namespace
+
+MtlReading read_mtl_material(const MtlSpecularInput& in) {
+    MtlReading out;
+    out.diffuse = in.diffuse;
+    auto v = clamped_values(in);
+    std::string why;
+    const bool glass_illum = in.illum == 4 || in.illum == 9;
+    const bool tf_zero = in.states_filter && all_zero(v.filter);
+    const bool refracting = in.illum == 6 || in.illum == 7;
+    if ((in.illum == 3 || in.illum == 5) && any_positive(v.specular)) {
+        out.specular.kind = in.illum == 3 ? SpecularKind::mirror : SpecularKind::fresnel;
+        out.specular.reflectance = v.specular;
+        out.specular.roughness = roughness_of(in.shininess);
+    } else if (tf_zero && (refracting || glass_illum || v.dissolve < 1)) {
+        why = "opaque: Tf 0 transmits nothing (" + std::string(kOpaqueAdvice) + ")";
+    } else if (refracting) {
+        out.specular.kind = SpecularKind::dielectric;
+        out.specular.ior = glass_index(in, 1.5, v.clamps);
+        out.specular.transmittance = in.states_filter ? v.filter : Rgb{{1, 1, 1}};
+        out.specular.roughness = roughness_of(in.shininess);
+    } else if (v.dissolve < 1) {
+        out.specular = pane_of(in, v, glass_index(in, kPaneIndex, v.clamps), out.diffuse);
+        why = "see-through: d " + number_text(v.dissolve) + " (a pane transmitting 1 - d" +
+              (in.states_filter ? " times Tf" : "") +
+              "; its diffuse part Kd x d, the covered share)";
+    } else if (glass_illum) {
+        const auto evidence = glass_evidence(in, v);
+        if (evidence.empty()) {
+            why = "opaque: illum " + std::to_string(in.illum) + " with " + stated_glass_lines(in) +
+                  ": nothing marks it see-through (Maya and CityEngine write illum 4 on every "
+                  "material; " +
+                  kOpaqueAdvice + ")";
+        } else {
+            out.specular = pane_of(in, v, glass_index(in, kPaneIndex, v.clamps), out.diffuse);
+            why = "see-through: " + evidence;
+        }
+    } else if (named_as_glass(in.name)) {
+        why = "opaque, though named like glass: nothing in the file makes it see-through (" +
+              std::string(kOpaqueAdvice) + ")";
+    }
+    radfmt::Material m{"", out.diffuse, {}, out.specular};
+    const auto fitted = fit_specular_energy(m);
+    out.diffuse = m.reflectance;
+    out.specular = m.specular;
+    add_clause(why, v.clamps);
+    add_clause(why, fitted);
+    out.changed = !v.clamps.empty() || !fitted.empty();
+    // Glass and mirrors say what they became, with why, in one line.
+    out.why =
+        out.specular.any() && !why.empty() ? specular_summary(out.specular) + ": " + why : why;
+    return out;
 }
 
 Specular specular_from_pbr(const PbrSpecularInput& in, Rgb& diffuse) {
@@ -118,41 +222,45 @@ Specular specular_from_pbr(const PbrSpecularInput& in, Rgb& diffuse) {
     return {};
 }
 
-void check_specular_energy(const radfmt::Material& m, const std::string& where) {
-    const auto& s = m.specular;
-    if (!s.any()) return;
-    double reflected[3] = {0, 0, 0}, transmitted[3] = {0, 0, 0};
+std::string fit_specular_energy(radfmt::Material& m) {
+    auto& s = m.specular;
+    if (!s.any()) return "";
+    Rgb reflected{}, transmitted{};
     for (int k = 0; k < 3; ++k) {
-        switch (s.kind) {
-        case SpecularKind::mirror:
-        case SpecularKind::fresnel:
+        if (s.kind == SpecularKind::mirror || s.kind == SpecularKind::fresnel) {
             reflected[k] = s.reflectance[k];
-            break;
-        case SpecularKind::pane: {
+        } else if (s.kind == SpecularKind::pane) {
             const auto shares =
                 pane_shares(pane_transmissivity(s.transmittance[k], s.ior), s.ior, 1);
             reflected[k] = shares.reflected;
             transmitted[k] = shares.transmitted;
-            break;
         }
-        case SpecularKind::dielectric:
-            break; // its boundary takes what the diffuse part leaves
-        case SpecularKind::none:
-            break;
-        }
+        // A refracting boundary takes what the diffuse part leaves (optics.cpp).
+    }
+    // One factor for all channels keeps the colour.
+    double scale = 1;
+    for (int k = 0; k < 3; ++k) {
         const double sum = m.reflectance[k] + reflected[k] + transmitted[k];
         if (sum <= 1 + 1e-9) continue;
-        static const char* channel[] = {"red", "green", "blue"};
-        char text[400];
-        std::snprintf(text, sizeof text,
-                      " is a %s whose diffuse reflectance %.3g, specular reflectance %.3g and "
-                      "transmittance %.3g add up to %.3g in %s, more than the light it gets: "
-                      "lower Kd (the diffuse part), Ks or the transmission (Tf, 1 - d) so "
-                      "that they add up to 1 at most",
-                      radfmt::specular_kind_name(s.kind), m.reflectance[k], reflected[k],
-                      transmitted[k], sum, channel[k]);
-        throw InputError(where + text);
+        if (s.kind == SpecularKind::mirror || s.kind == SpecularKind::fresnel)
+            scale = std::min(scale, 1 / sum);
+        else
+            scale = std::min(scale,
+                             std::max(0.0, 1 - reflected[k] - transmitted[k]) / m.reflectance[k]);
     }
+    if (scale >= 1) return "";
+    const Rgb was = m.reflectance;
+    for (int k = 0; k < 3; ++k) m.reflectance[k] *= scale;
+    if (s.kind == SpecularKind::mirror || s.kind == SpecularKind::fresnel) {
+        const Rgb ks = s.reflectance;
+        for (int k = 0; k < 3; ++k) s.reflectance[k] *= scale;
+        return "Kd " + rgb_text(was) + " and Ks " + rgb_text(ks) +
+               " add up to more than 1: both scaled by " + number_text(scale) + " to " +
+               rgb_text(m.reflectance) + " and " + rgb_text(s.reflectance);
+    }
+    return "Kd " + rgb_text(was) +
+           " with the glass's reflection and transmission adds up to more than 1: Kd scaled to " +
+           rgb_text(m.reflectance);
 }
 
 std::string specular_summary(const Specular& s) {
