@@ -433,6 +433,9 @@ int direct_light(FfArgs& a, int argc, char** argv) {
                               " (join luminaires in fewer groups: the layout's group column; "
                               "or a larger --max-memory)");
     for (const auto& w : set.warnings) std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());
+    for (const auto& w :
+         rad::luminaire_position_warnings(set, rad::bounds(mesh.vertices), a.luminaires))
+        std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());
     const rad::RayScene scene(mesh);
     for (const auto& w : rad::enclosed_luminaire_warnings(set, scene, a.luminaires))
         std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());

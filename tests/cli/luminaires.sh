@@ -130,4 +130,27 @@ grep -q "'bulb'" "$TMP/under.err" && fail "bulb warned: $(cat "$TMP/under.err")"
 # The channels a solve holds grow with its light groups: checked against --max-memory (#55 item 3).
 expect_error "1 light group(s) over" "$TMP/mem.rad" "$BIN/rad-solve" "$TMP/box.mesh" "$TMP/box.ff" --direct "$TMP/box.lum" -o "$TMP/mem.rad" --max-memory 10K
 expect_error "layout.csv: 1 light group(s) over" "$TMP/mem.lum" "$BIN/rad-ff" "$TMP/box.mesh" --luminaires "$TMP/box/layout.csv" -o "$TMP/mem.lum" --max-memory 1K
+
+# Positions (#70 items 4 and 7): a row far past the scene is refused at its row (at 1e20 it
+# aborted on Embree's assertion), an empty x is refused, one outside the box is warned about,
+# and an aim of 1e200,-1e200,0 is the direction it says (it was normalised to zero).
+H='name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,maintenance,group'
+for x in 1e20 1e300; do
+  printf '%s\nlamp,cos.ies,%s,1,1,,,,,,\n' "$H" "$x" > "$TMP/box/far.csv"
+  expect_error "far.csv:2: luminaire 'lamp' at (${x/e/e+}, 1, 1) lies" "$TMP/far.lum" \
+    "$BIN/rad-ff" "$TMP/box.mesh" --luminaires "$TMP/box/far.csv" -o "$TMP/far.lum"
+done
+printf '%s\nlamp,cos.ies,,1,1,,,,,,\n' "$H" > "$TMP/box/nox.csv"
+expect_error "nox.csv:2: x is empty: every luminaire needs its x, y and z" "$TMP/nox.lum" \
+  "$BIN/rad-ff" "$TMP/box.mesh" --luminaires "$TMP/box/nox.csv" -o "$TMP/nox.lum"
+printf '%s\nlamp,cos.ies,1,1,3,,,,,,\n' "$H" > "$TMP/box/out.csv"
+err=$("$BIN/rad-ff" "$TMP/box.mesh" --luminaires "$TMP/box/out.csv" -o "$TMP/out.lum" -q 2>&1) || fail "outside: $err"
+grep -q "out.csv:2: luminaire 'lamp' at (1, 1, 3) lies 1 units outside the scene's bounds" <<<"$err" || fail "no warning outside the box: $err"
+"$BIN/rad-ff" "$TMP/box.mesh" --luminaires "$TMP/box/layout.csv" -o "$TMP/in.lum" -q 2>&1 | grep -q "outside" && fail "a lamp inside warned"
+for aim in "1,-1,0" "1e200,-1e200,0"; do
+  printf '%s\nlamp,cos.ies,1,1,1,%s,,,\n' "$H" "$aim" > "$TMP/box/aim.csv"
+  "$BIN/rad-ff" "$TMP/box.mesh" --luminaires "$TMP/box/aim.csv" -o "$TMP/aim.lum" -q || fail "aim $aim"
+  "$BIN/rad-info" --csv "$TMP/aim.lum" > "$TMP/aim-${aim%%,*}.csv"
+done
+cmp -s "$TMP/aim-1.csv" "$TMP/aim-1e200.csv" || fail "aim 1e200,-1e200,0 differs from 1,-1,0"
 finish

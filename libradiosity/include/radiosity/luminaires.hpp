@@ -121,4 +121,14 @@ solution_luminaires(const radfmt::Header& solution_header, const std::string& so
 std::vector<std::string> enclosed_luminaire_warnings(const LuminaireSet& set, const RayScene& scene,
                                                      const std::string& layout_name);
 
+// Luminaires are refused (InputError at their layout row) farther than this many times the
+// scene's size outside its bounds: the ray tracer cannot follow their light, and a layout
+// that puts one there has a typo or the wrong unit.
+inline constexpr double kMaxLuminaireDistance = 1000;
+// A warning per luminaire more than 1% of the scene's size outside its bounds (`scene`, the
+// mesh's box; none for a scene with no depth, a floor alone), naming it and its row;
+// InputError for one past kMaxLuminaireDistance.
+std::vector<std::string> luminaire_position_warnings(const LuminaireSet& set, const Box& scene,
+                                                     const std::string& layout_name);
+
 } // namespace rad

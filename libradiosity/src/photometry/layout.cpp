@@ -231,9 +231,18 @@ LuminaireSet build_luminaires(const LuminaireSources& sources, double metres_per
         const auto number = [&](const char* column, double fallback) {
             return field_number(row, column, fallback, sources.layout_name);
         };
+        for (const char* column : {"x", "y", "z"})
+            if (row[column].empty())
+                throw InputError(where, std::string(column) +
+                                            " is empty: every luminaire needs its x, y and z");
         l.position = {number("x", 0), number("y", 0), number("z", 0)};
-        const Vec3 aim{number("aim_x", 0), number("aim_y", -1), number("aim_z", 0)};
-        if (!(length(aim) > 0)) throw InputError(where, "the aim is the zero vector");
+        Vec3 aim{number("aim_x", 0), number("aim_y", -1), number("aim_z", 0)};
+        // A direction: scaled by its largest component first, so that 1e200 squared does not
+        // overflow to a length of infinity (and the aim to zero).
+        const double largest = std::max({std::abs(aim[0]), std::abs(aim[1]), std::abs(aim[2])});
+        if (!(largest > 0) || !std::isfinite(largest))
+            throw InputError(where, "the aim is the zero vector");
+        aim = aim * (1 / largest);
         orient(l, aim, number("spin", 0));
         l.maintenance = number("maintenance", 1);
         if (!(l.maintenance > 0 && l.maintenance <= 1))
