@@ -109,6 +109,80 @@ TEST_CASE("UGR counts luminaires in front and above the line of sight, and sums 
     CHECK(std::isnan(pointlike.ugr));
 }
 
+TEST_CASE("UGR leaves out luminaires past CIE 117's position-index table instead of capping p") {
+    // The eye at 1.2 m looks along -z. X lies 77 degrees off the line of sight and 66 degrees
+    // above the horizontal, 0.7 m away: H/R = 4.06, past the table's 1.9.
+    const double sigma = 77 / kDeg, elevation = 66 / kDeg, d = 0.7;
+    const double ahead = std::cos(sigma), above = std::sin(elevation);
+    const double across = std::sqrt(1 - ahead * ahead - above * above);
+    const rad::Vec3 eye{0, 1.2, 0}, view{0, 0, -1};
+    const rad::Vec3 x{across * d, 1.2 + above * d, -ahead * d};
+    char rows[200];
+    std::snprintf(rows, sizeof rows,
+                  "A,panel.ies,1,3,-5,,,,,1,g\nX,panel.ies,%.9f,%.9f,%.9f,,,,,1,g\n", x[0], x[1],
+                  x[2]);
+    const auto set = panels(rows, 1000);
+    const auto glare = rad::observer_glare(set, nullptr, eye, view, 10);
+    REQUIRE(glare.terms.size() == 1);
+    CHECK(set.luminaires[glare.terms[0].luminaire].name == "A");
+    REQUIRE(glare.outside_table.size() == 1);
+    CHECK(set.luminaires[glare.outside_table[0]].name == "X");
+    CHECK(glare.ugr == Approx(8 * std::log10(0.25 / 10 * glare.terms[0].contribution())));
+    // Capped at 16 as before, X would have added a term of its own (the issue's room: 97% of
+    // the sum, 19.4 where the rule gives 6.7).
+    const double area = 0.36 * above, luminance = 1000 / area; // its opening faces down
+    const double x_term = luminance * luminance * (area / (d * d)) / (16.0 * 16.0);
+    const double capped = 8 * std::log10(0.25 / 10 * (x_term + glare.terms[0].contribution()));
+    CHECK(capped - glare.ugr > 0.5);
+    // The table's edges: H/R 1.8 and T/R 2.9 count, 2.0 and 3.1 do not (R = 1 m ahead).
+    const auto edges =
+        panels("h18,panel.ies,0,3.0,-1,,,,,1,g\nh20,panel.ies,0,3.2,-1,,,,,1,g\n"
+               "t29,panel.ies,2.9,1.3,-1,,,,,1,g\nt31,panel.ies,3.1,1.3,-1,,,,,1,g\n",
+               1000);
+    const auto edge = rad::observer_glare(edges, nullptr, eye, view, 10);
+    std::vector<std::string> counted, left_out;
+    for (const auto& t : edge.terms) counted.push_back(edges.luminaires[t.luminaire].name);
+    for (const auto k : edge.outside_table) left_out.push_back(edges.luminaires[k].name);
+    CHECK(counted == std::vector<std::string>{"h18", "t29"});
+    CHECK(left_out == std::vector<std::string>{"h20", "t31"});
+}
+
+TEST_CASE("UGR over a grid of luminaires equals CIE 117's sum worked here") {
+    // A room 8 m x 8 m, panels 1.8 m above the eye at 2 m spacing, the eye at a wall's middle
+    // looking across: the sum over the table's extent, each term restated from H, R and T.
+    std::string rows;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            char row[80];
+            std::snprintf(row, sizeof row, "P%d%d,panel.ies,%d,3,%g,,,,,1,g\n", i, j, -3 + 2 * i,
+                          -0.5 - 2 * j);
+            rows += row;
+        }
+    const auto set = panels(rows, 2500);
+    const rad::Vec3 eye{0, 1.2, 0}, view{0, 0, -1};
+    const double lb = 25;
+    double sum = 0;
+    int counted = 0, left_out = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            const double t = std::abs(-3.0 + 2 * i), r = 0.5 + 2 * j, h = 1.8;
+            if (h / r > 1.9 || t / r > 3.0) {
+                ++left_out;
+                continue;
+            }
+            const double dist = std::sqrt(h * h + r * r + t * t);
+            const double area = 0.36 * h / dist, luminance = 2500 / area;
+            const double p = guth(std::atan2(t, h) * kDeg, std::acos(r / dist) * kDeg);
+            sum += luminance * luminance * (area / (dist * dist)) / (p * p);
+            ++counted;
+        }
+    const auto glare = rad::observer_glare(set, nullptr, eye, view, lb);
+    CHECK(glare.terms.size() == static_cast<std::size_t>(counted));
+    CHECK(glare.outside_table.size() == static_cast<std::size_t>(left_out));
+    CHECK(left_out == 4); // the nearest row (R = 0.5 m: H/R = 3.6) is past the table
+    CHECK(glare.ugr == Approx(8 * std::log10(0.25 / lb * sum)).epsilon(1e-9));
+}
+
 TEST_CASE("EN 12464-1's grid: p = 0.2 x 5^log10(d), at most 10 m, the border band left out") {
     CHECK(rad::en12464_spacing(1) == Approx(0.2));
     CHECK(rad::en12464_spacing(10) == Approx(1.0));

@@ -16,8 +16,15 @@ namespace rad {
 
 // Guth's position index (the IES Lighting Handbook's fit, as Radiance's evalglare uses it):
 // `tau_deg`, the angle from the vertical of the plane holding the line of sight and the
-// source; `sigma_deg`, the angle between the line of sight and the source. Capped at 16.
+// source; `sigma_deg`, the angle between the line of sight and the source. Not capped: a
+// luminaire outside the table's extent is left out (inside_position_table), as CIE 117 does.
 double guth_position_index(double tau_deg, double sigma_deg);
+
+// The extent of CIE 117's position-index table (Luckiesh and Guth's, as the IES tabulates it):
+// H/R, the source's height above the line of sight over its distance along it, up to 1.9;
+// T/R, its distance to the side over R, up to 3.
+inline constexpr double kMaxHeightRatio = 1.9, kMaxLateralRatio = 3.0;
+bool inside_position_table(double height_ratio, double lateral_ratio);
 
 struct GlareTerm {
     std::size_t luminaire = 0; // index into LuminaireSet::luminaires
@@ -44,7 +51,10 @@ struct ObserverGlare {
     long behind_or_below = 0;     // in the set but behind the eye or below the line of sight
     long hidden = 0;              // blocked by the scene
     long pointlike = 0;           // no luminous opening in their file: no luminance
-    double ugr = 0;               // NaN when no luminaire counts
+    // In front and above, but past CIE 117's position-index table (inside_position_table):
+    // left out, by index into LuminaireSet::luminaires.
+    std::vector<std::size_t> outside_table;
+    double ugr = 0; // NaN when no luminaire counts
 };
 
 // The glare at an eye at `eye` (scene units) looking along `view` (unit; the vertical is +Y),

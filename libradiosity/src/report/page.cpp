@@ -374,7 +374,11 @@ std::string glare_section(const ReportInput& in) {
            "photometric file); &#969;: that area's solid angle; p: Guth's position index; "
            "L<sub>b</sub>: the illuminance at the eye from the room's surfaces (the solution, "
            "luminaires' direct light excluded) over &#960;. Luminaires behind the eye, below "
-           "the line of sight or hidden do not count.</p>";
+           "the line of sight or hidden do not count. The position index p is Guth's (the IES "
+           "fit of Luckiesh and Guth's table), over that table's extent as CIE 117 uses it: a "
+           "luminaire higher above the line of sight than 1.9 times its distance along it "
+           "(H/R), or farther to the side than 3 times (T/R), is left out and named, not "
+           "given a capped p.</p>";
     for (const auto& o : in.observers) {
         const auto& ob = o.observer;
         out += "<h3>" + html_escape(ob.name) + "</h3><table class=\"observer\" data-observer=\"" +
@@ -389,7 +393,17 @@ std::string glare_section(const ReportInput& in) {
         out += "<tr><th>Luminaires counted</th><td>" + std::to_string(o.glare.terms.size()) +
                " (behind or below the line of sight " + std::to_string(o.glare.behind_or_below) +
                ", hidden " + std::to_string(o.glare.hidden) + ", no luminous area " +
-               std::to_string(o.glare.pointlike) + ")</td></tr></tbody></table>";
+               std::to_string(o.glare.pointlike) + ", outside the position-index table " +
+               std::to_string(o.glare.outside_table.size()) + ")</td></tr>";
+        if (!o.glare.outside_table.empty()) {
+            std::string names;
+            for (const auto k : o.glare.outside_table)
+                names +=
+                    (names.empty() ? "" : ", ") + html_escape(in.luminaires->luminaires[k].name);
+            out += "<tr><th>Left out (CIE 117)</th><td class=\"outside-table\">" + names +
+                   "</td></tr>";
+        }
+        out += "</tbody></table>";
         if (o.glare.terms.empty()) continue;
         out += "<table class=\"terms\"><thead><tr><th>Luminaire</th><th class=\"num\">L "
                "(cd/m&#178;)</th><th class=\"num\">&#969; (sr)</th><th class=\"num\">&#963; "

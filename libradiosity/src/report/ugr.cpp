@@ -14,7 +14,12 @@ double guth_position_index(double tau_deg, double sigma_deg) {
     const double t = tau_deg, s = sigma_deg;
     const double p = std::exp((35.2 - 0.31889 * t - 1.22 * std::exp(-2 * t / 9)) * 1e-3 * s +
                               (21 + 0.26667 * t - 0.002963 * t * t) * 1e-5 * s * s);
-    return std::min(p, 16.0);
+    return p;
+}
+
+bool inside_position_table(double height_ratio, double lateral_ratio) {
+    constexpr double kSlack = 1e-9; // a luminaire on the table's edge is in it
+    return height_ratio <= kMaxHeightRatio + kSlack && lateral_ratio <= kMaxLateralRatio + kSlack;
 }
 
 double unified_glare_rating(double lb, std::span<const GlareTerm> terms) {
@@ -53,6 +58,12 @@ ObserverGlare observer_glare(const LuminaireSet& set, const RayScene* scene, con
         const double ahead = dot(s, view), above = dot(s, up), across = dot(s, right);
         if (ahead <= 0 || above <= 0) {
             ++glare.behind_or_below;
+            continue;
+        }
+        // CIE 117 defines the position index over its table's extent only: a luminaire past
+        // it (far above or beside the line of sight) is left out, not capped.
+        if (!inside_position_table(above / ahead, std::abs(across) / ahead)) {
+            glare.outside_table.push_back(k);
             continue;
         }
         if (scene && !scene->visible(eye, l.position + s * (-1e-4 * distance))) {
