@@ -68,4 +68,21 @@ check_make parallel HOSTS="$LOGIN" SSH="$SSH"
 # The job log: the lost part's line dropped and run again last, the others' lines kept.
 [[ "$(tail -n 1 "$WORK/mk/office.ff.parts/office.ff.joblog")" == *"--rows 1/3 "* ]] || fail "make SCHEDULER=parallel again: the lost part did not run again last: $(cut -f 1,7,9 "$WORK/mk/office.ff.parts/office.ff.joblog")"
 [ "$(wc -l <"$WORK/mk/office.ff.parts/office.ff.joblog")" = 4 ] || fail "make SCHEDULER=parallel again: the job log has other than one line a shard"
+
+step "hostile names (#70 item 1): OUTPUT and --parts never run as code"
+mkdir -p "$WORK/hostile" && cd "$WORK/hostile" || exit 1
+cp "$WORK/office.mesh" .
+# GNU parallel's {= perl =} in a path: refused, and nothing runs.
+"$SHARDS" -n 2 'r{=system("touch PWNED")=}.ff' -- "$BIN/rad-ff" office.mesh --rays 64 -q 2> braces.txt &&
+  fail "an OUTPUT with {= =} was taken"
+grep -q "may not contain { or }" braces.txt || fail "the brace refusal does not say why: $(cat braces.txt)"
+"$SHARDS" -n 2 --parts 'p{=system("touch PWNED")=}' x.ff -- "$BIN/rad-ff" office.mesh --rays 64 -q 2>/dev/null &&
+  fail "--parts with {= =} was taken"
+# A shell's $(...) in a path is a file name, first run and rerun (the rerun read the job log
+# through sh -c before).
+for run in first second; do
+  "$SHARDS" -n 2 'd$(touch PWNED).ff' -- "$BIN/rad-ff" office.mesh --rays 64 -q 2>/dev/null || fail "d\$(...).ff: $run run"
+done
+[ -e 'd$(touch PWNED).ff' ] || fail "d\$(touch PWNED).ff was not written"
+[ ! -e PWNED ] && [ ! -e "$WORK/PWNED" ] || fail "a path ran as code (PWNED exists)"
 finish
