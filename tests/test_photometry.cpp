@@ -191,6 +191,21 @@ TEST_CASE("malformed photometric files are refused with FILE:LINE and what is wr
         {"negative.ldt", ldt_with(110, "-3"), "negative.ldt:110: a negative intensity"},
         {"cut.ldt", ldt.substr(0, ldt.size() / 2), "cut.ldt:"},
         {"truncated.ldt", "\n1\n1\n", "truncated.ldt:3: the file ends where line 4"},
+        // Overflow is not light (#70 item 5): a multiplier or candela that makes more than
+        // 1e12 cd, or infinity, is refused at its value, as is a TILT factor of 1e308.
+        {"mult.ies",
+         small_ies("1 1000 1e300 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n100 80 10\n100 60 5\n"),
+         "mult.ies:8: an intensity of 100 times the file's multipliers 1e+300 is 1e+302 cd"},
+        {"huge.ies",
+         small_ies("1 1000 1e10 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n1e300 80 10\n100 60 5\n"),
+         "huge.ies:8: an intensity of 1e+300 times the file's multipliers 1e+10 is inf cd"},
+        {"max.ies",
+         small_ies("1 1000 1 3 2 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0 90\n1.7e308 80 10\n100 60 5\n"),
+         "max.ies:8: an intensity of 1.7e+308 times"},
+        {"tiltbig.ies", small_ies("", "TILT=INCLUDE\n1\n2\n0 90\n1 1e308\n"),
+         "tiltbig.ies:7: a TILT multiplier of 1e+308"},
+        {"flux.ldt", ldt_with(29, "1e306"),
+         "flux.ldt:104: an intensity of 226.6 times the file's multipliers 1e+303"},
     };
     for (const auto& c : cases) {
         INFO(c.name);

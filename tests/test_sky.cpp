@@ -352,3 +352,38 @@ TEST_CASE("the daylight basis reproduces the skies it was made for, better with 
     CHECK(error <= four.worst_error + 1e-9);
     CHECK(error > 0.01); // four components of twelve random skies cannot be exact
 }
+
+TEST_CASE("skies, places and times out of range are refused, not taken as light (#70 items 5, 6)",
+          "[sky]") {
+    const rad::SkyFrame frame;
+    rad::SunPosition sun;
+    sun.zenith = 40;
+    sun.azimuth = 180;
+    const auto refusal = [&](const std::string& spec) {
+        try {
+            rad::parse_sky(spec, &sun, 172, frame, 0.2);
+        } catch (const rad::InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    // 1e308 made NaN lux; now each names its option and range.
+    CHECK_THAT(refusal("uniform:1e308"),
+               Catch::Contains("--sky uniform:L (cd/m^2): 1e+308 is outside"));
+    CHECK_THAT(refusal("cie-overcast:1e308"), Catch::Contains("--sky cie-overcast:LUX"));
+    CHECK_THAT(refusal("cie:12:1e308"), Catch::Contains("--sky cie:TYPE:LUX"));
+    CHECK_THAT(refusal("cie-overcast:-5"), Catch::Contains("outside 0"));
+    CHECK_THAT(refusal("perez:1e300,20"), Catch::Contains("DNI"));
+    CHECK(refusal("cie-overcast:20000").empty());
+    CHECK(refusal("perez:800,100").empty());
+    // Calendar days and clock times only.
+    CHECK_THROWS_AS(rad::parse_local_time("2023-02-31", "12:00"), rad::InputError);
+    CHECK_THROWS_AS(rad::parse_local_time("2023-02-29", "12:00"), rad::InputError);
+    CHECK_NOTHROW(rad::parse_local_time("2024-02-29", "12:00"));
+    CHECK_THROWS_AS(rad::parse_local_time("2023-06-21", "24:59"), rad::InputError);
+    CHECK_NOTHROW(rad::parse_local_time("2023-06-21", "24:00"));
+    CHECK_THROWS_AS(rad::parse_local_time("99999-06-21", "12:00"), rad::InputError);
+    CHECK_THROWS_WITH(rad::parse_location("40,-105,-7,1e308"),
+                      Catch::Contains("an elevation of 1e+308 m is outside"));
+    CHECK(rad::parse_location("40,-105,-7,1600").elevation == 1600);
+}

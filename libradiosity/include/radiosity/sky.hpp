@@ -124,12 +124,15 @@ double air_mass(double zenith_deg);
 // A sky named on a command line: "uniform[:L]" (L cd/m^2, default 10000 / pi),
 // "cie-overcast[:LUX]", "cie:TYPE[:LUX]" (LUX: the sky's horizontal illuminance, default
 // 10000), "perez:DNI,DHI" (W/m^2), "clear" (Sky::clear). The CIE standard and Perez skies need
-// `sun`; Perez also the day of the year. InputError naming what is wrong and the forms accepted.
+// `sun`; Perez also the day of the year. InputError naming what is wrong and the forms accepted,
+// and for a value past what a sky keeps (L over 1e6 cd/m^2, LUX over 1e6 lx, DNI or DHI over
+// 1500 W/m^2, any below 0).
 Sky parse_sky(const std::string& spec, const SunPosition* sun, int day_of_year,
               const SkyFrame& frame, double ground_reflectance);
-// "LAT,LON,TZ[,ELEVATION]" (degrees north, east, hours east of UTC, m).
+// "LAT,LON,TZ[,ELEVATION]" (degrees north, east, hours east of UTC, m from -500 to 9000).
 Location parse_location(const std::string& text);
-// "YYYY-MM-DD" and "HH:MM" (local standard time) into a LocalTime.
+// "YYYY-MM-DD" (a day of the calendar, year 1 to 9999) and "HH:MM" (local standard time,
+// 00:00 to 24:00) into a LocalTime.
 LocalTime parse_local_time(const std::string& date, const std::string& time);
 // "ALT,AZ" degrees (azimuth from north towards east) into a sun position.
 SunPosition parse_sun(const std::string& text);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace rad {
 using photometry::TokenCursor;
@@ -60,6 +61,14 @@ TiltTable read_tilt_numbers(TokenCursor& in) {
     for (long k = 0; k < n; ++k) {
         const double f = in.number("a TILT multiplier");
         if (f < 0) in.fail("a TILT multiplier is negative (" + std::to_string(f) + ")");
+        if (f > photometry::kMaxTiltFactor) {
+            char text[160];
+            std::snprintf(text, sizeof text,
+                          "a TILT multiplier of %.4g: tilt factors scale the output around 1 "
+                          "(at most %.0f here)",
+                          f, photometry::kMaxTiltFactor);
+            in.fail(text);
+        }
         tilt.factors.push_back(f);
     }
     for (std::size_t k = 1; k < tilt.angles.size(); ++k)
@@ -158,7 +167,7 @@ Photometry parse_ies(std::string_view text, const std::string& name,
         const double cd = in.number("candela value " + std::to_string(k + 1) + " of " +
                                     std::to_string(head.nv * head.nh));
         if (cd < 0) in.fail("a negative candela value (" + std::to_string(cd) + ")");
-        values.push_back(cd * scale);
+        values.push_back(photometry::checked_candela(cd, scale, in));
     }
     if (!in.at_end()) {
         in.number("the end of the file");

@@ -155,7 +155,7 @@ Photometry parse_ldt(std::string_view text, const std::string& name) {
         for (long k = 0; k < ng; ++k) {
             const double cd = in.number("an intensity (cd/klm) of C" + std::to_string(c[plane]));
             if (cd < 0) in.fail("a negative intensity (" + std::to_string(cd) + ")");
-            values.push_back(cd * scale);
+            values.push_back(photometry::checked_candela(cd, scale, in));
         }
     }
     if (!in.at_end()) {

@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace rad::photometry {
@@ -112,6 +113,18 @@ bool TokenCursor::at_end() {
 
 void TokenCursor::fail(const std::string& message) const {
     throw InputError(where(), message);
+}
+
+double checked_candela(double value, double scale, const TokenCursor& in) {
+    const double cd = value * scale;
+    if (std::isfinite(cd) && cd <= kMaxCandela) return cd;
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "an intensity of %.4g times the file's multipliers %.4g is %.4g cd, more than "
+                  "the %.0e cd no luminaire reaches: check the candela multiplier (IES) or the "
+                  "conversion factor and lamp flux (LDT)",
+                  value, scale, cd, kMaxCandela);
+    in.fail(text);
 }
 
 } // namespace rad::photometry

@@ -48,4 +48,14 @@ class TokenCursor {
     std::string file_;
 };
 
+// The brightest intensity a file may give, far past any luminaire's (a stadium floodlight's
+// is about 1e6 cd): a larger one is a wrong multiplier, and past it products overflow.
+inline constexpr double kMaxCandela = 1e12;
+// A TILT multiplier scales the output with the lamp's tilt, around 1: past this, a typo.
+inline constexpr double kMaxTiltFactor = 10;
+
+// `value` (as the file gives it) times `scale` (its multipliers): refused at the cursor's
+// line when that is not finite or above kMaxCandela, naming both.
+double checked_candela(double value, double scale, const TokenCursor& in);
+
 } // namespace rad::photometry

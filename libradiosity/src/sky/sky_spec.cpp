@@ -5,6 +5,7 @@
 #include "radiosity/weather.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 
@@ -23,6 +24,26 @@ std::vector<double> numbers_of(const std::string& text, char separator, const st
         out.push_back(v);
     }
     return out;
+}
+
+// The ranges a real sky keeps, with room: past them a value is a typo, and past them light
+// products overflow (1e308 lux gave NaN lux).
+constexpr double kMaxSkyLuminance = 1e6; // cd/m^2: a bright overcast sky is about 1e4
+constexpr double kMaxSkyLux = 1e6;       // lux: sun and sky together stay under 1.5e5
+constexpr double kMaxIrradiance = 1500;  // W/m^2: the solar constant is 1361
+
+// `value` within [0, high], or InputError naming the option and the range.
+double in_range(double value, double high, const std::string& what) {
+    if (value >= 0 && value <= high) return value;
+    char text[200];
+    std::snprintf(text, sizeof text, ": %.4g is outside 0 to %.4g", value, high);
+    throw InputError(what + text);
+}
+
+int days_in_month(int year, int month) {
+    static const int days[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+    return month == 2 && leap ? 29 : days[month - 1];
 }
 
 const char* kSkyForms = "uniform[:L], cie-overcast[:LUX], cie:TYPE[:LUX] (TYPE 1..15), "
@@ -45,28 +66,33 @@ Sky parse_sky(const std::string& spec, const SunPosition* sun, int day_of_year,
         const auto v = rest.empty() ? std::vector<double>{kDefaultSkyLux / std::numbers::pi}
                                     : numbers_of(rest, ',', "--sky uniform:L");
         if (v.size() != 1) throw InputError("--sky uniform:L takes one luminance (cd/m^2)");
-        return Sky::uniform(v[0], frame, ground);
+        return Sky::uniform(in_range(v[0], kMaxSkyLuminance, "--sky uniform:L (cd/m^2)"), frame,
+                            ground);
     }
     if (name == "cie-overcast") {
         const auto v = rest.empty() ? std::vector<double>{kDefaultSkyLux}
                                     : numbers_of(rest, ',', "--sky cie-overcast:LUX");
         if (v.size() != 1) throw InputError("--sky cie-overcast:LUX takes one illuminance");
-        return Sky::cie_overcast(v[0], frame, ground);
+        return Sky::cie_overcast(in_range(v[0], kMaxSkyLux, "--sky cie-overcast:LUX"), frame,
+                                 ground);
     }
     if (name == "cie") {
         const auto v = numbers_of(rest, ':', "--sky cie:TYPE[:LUX]");
         if (v.empty() || v.size() > 2 || v[0] != std::floor(v[0]))
             throw InputError("--sky cie:TYPE[:LUX]: TYPE is 1..15, LUX the sky's horizontal "
                              "illuminance");
-        return Sky::cie_standard(int(v[0]), need_sun(), v.size() > 1 ? v[1] : kDefaultSkyLux, frame,
-                                 ground);
+        const double lux =
+            v.size() > 1 ? in_range(v[1], kMaxSkyLux, "--sky cie:TYPE:LUX") : kDefaultSkyLux;
+        return Sky::cie_standard(int(v[0]), need_sun(), lux, frame, ground);
     }
     if (name == "perez") {
         const auto v = numbers_of(rest, ',', "--sky perez:DNI,DHI");
         if (v.size() != 2)
             throw InputError("--sky perez:DNI,DHI takes direct normal and diffuse horizontal "
                              "irradiance (W/m^2)");
-        return Sky::perez(v[0], v[1], need_sun(), day_of_year, 10, frame, ground);
+        return Sky::perez(in_range(v[0], kMaxIrradiance, "--sky perez: DNI (W/m^2)"),
+                          in_range(v[1], kMaxIrradiance, "--sky perez: DHI (W/m^2)"), need_sun(),
+                          day_of_year, 10, frame, ground);
     }
     if (name == "clear") {
         if (!rest.empty()) throw InputError("--sky clear takes nothing after it");
@@ -86,18 +112,26 @@ Location parse_location(const std::string& text) {
     l.longitude = v[1];
     l.time_zone = v[2];
     if (v.size() == 4) l.elevation = v[3];
+    if (!(l.elevation >= -500 && l.elevation <= 9000)) {
+        char message[120];
+        std::snprintf(message, sizeof message,
+                      "--location: an elevation of %.4g m is outside -500 to 9000 m", l.elevation);
+        throw InputError(message);
+    }
     return l;
 }
 
 LocalTime parse_local_time(const std::string& date, const std::string& time) {
     int y = 0, mo = 0, d = 0, h = 0, mi = 0;
     char tail = 0;
-    if (std::sscanf(date.c_str(), "%d-%d-%d%c", &y, &mo, &d, &tail) != 3 || mo < 1 || mo > 12 ||
-        d < 1 || d > 31)
-        throw InputError("--date '" + date + "': give YYYY-MM-DD");
+    if (std::sscanf(date.c_str(), "%d-%d-%d%c", &y, &mo, &d, &tail) != 3 || y < 1 || y > 9999 ||
+        mo < 1 || mo > 12 || d < 1 || d > days_in_month(y, mo))
+        throw InputError("--date '" + date +
+                         "': give YYYY-MM-DD, a day of the calendar (year 1 to 9999)");
     if (std::sscanf(time.c_str(), "%d:%d%c", &h, &mi, &tail) != 2 || h < 0 || h > 24 || mi < 0 ||
-        mi > 59)
-        throw InputError("--time '" + time + "': give HH:MM, local standard time");
+        mi > 59 || (h == 24 && mi > 0))
+        throw InputError("--time '" + time +
+                         "': give HH:MM from 00:00 to 24:00, local standard time");
     return {y, mo, d, h + mi / 60.0};
 }
 
