@@ -27,7 +27,8 @@
 namespace rad {
 namespace gather {
 class LightTree;
-}
+class VirtualSources;
+} // namespace gather
 
 struct GatherOptions {
     int rays = 256; // indirect: cosine-weighted rays per point
@@ -105,10 +106,11 @@ class Gatherer {
     Rgb direct(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
     Rgb shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
                  Rng& rng) const;
-    double cluster_visible_fraction(const Vec3& point, const Vec3& normal, std::uint32_t node,
-                                    int rays, Rng& rng) const;
-    double pooled_visible_fraction(const Vec3& point, std::span<const Seen* const> pooled,
-                                   double weight, int rays, Rng& rng) const;
+    Rgb cluster_visible_fraction(const Vec3& point, const Vec3& normal, std::uint32_t node,
+                                 int rays, Rng& rng) const;
+    Rgb pooled_visible_fraction(const Vec3& point, std::span<const Seen* const> pooled,
+                                double weight, int rays, Rng& rng) const;
+    Rgb seen_through(const Vec3& from, const Vec3& to) const;
     Vec3 point_on_light(std::size_t patch, double u, Rng& rng) const;
     Rgb exact_indirect(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
     // What an indirect ray from a point brings through mirrors and glass (its first surface
@@ -116,20 +118,21 @@ class Gatherer {
     Rgb specular_ray(const Vec3& point, const Vec3& d, int& hits, int& backs) const;
     double form_factor_to(const Vec3& point, const Vec3& normal, std::size_t patch,
                           std::vector<Vec3>& clipped) const;
-    double visible_fraction(const Vec3& point, const Vec3& normal, std::size_t patch,
-                            const std::vector<Vec3>& clipped, int rays, Rng& rng) const;
+    Rgb visible_fraction(const Vec3& point, const Vec3& normal, std::size_t patch,
+                         const std::vector<Vec3>& clipped, int rays, Rng& rng) const;
 
     const radfmt::MeshData& mesh_;
     GatherOptions options_;
     std::unique_ptr<RayScene> scene_;
-    std::unique_ptr<SpecularSurfaces> specular_; // mirrors and glass
-    std::vector<Rgb> emission_;                  // E per patch
-    CornerColours total_corners_;                // B at the corners
-    CornerColours reflected_corners_;            // B - E at the corners
-    std::vector<Rgb> reflected_flat_;            // B - E per patch
-    std::vector<std::uint8_t> bright_;           // lit so much it is a light
-    std::unique_ptr<gather::LightTree> lights_;  // emitters and bright patches
-    CornerColours corner_normals_;               // smoothed normals at the corners
+    std::unique_ptr<SpecularSurfaces> specular_;      // mirrors and glass
+    std::vector<Rgb> emission_;                       // E per patch
+    CornerColours total_corners_;                     // B at the corners
+    CornerColours reflected_corners_;                 // B - E at the corners
+    std::vector<Rgb> reflected_flat_;                 // B - E per patch
+    std::vector<std::uint8_t> bright_;                // lit so much it is a light
+    std::unique_ptr<gather::LightTree> lights_;       // emitters and bright patches
+    std::unique_ptr<gather::VirtualSources> virtual_; // emitters seen in planar mirrors
+    CornerColours corner_normals_;                    // smoothed normals at the corners
 };
 
 // Luminous efficacy of Radiance's white (lm/W) and its RGB luminance weights: illuminance

@@ -9,6 +9,7 @@
 #include "radiosity/vec.hpp"
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace rad {
@@ -59,6 +60,9 @@ class SpecularSurfaces {
                  std::array<SpecularBranch, 2>& out, const RayScene::Hit* hit = nullptr) const;
     // The normal at a hit: interpolated over the patch's corners within the crease angle.
     Vec3 normal_at(const RayScene::Hit& hit) const;
+    // Its corners' normals are its own: it reflects as the plane it lies in (not a facet of a
+    // curved mirror, whose normal is interpolated across it).
+    bool flat(std::size_t patch) const;
 
   private:
     const radfmt::MeshData& mesh_;
@@ -74,6 +78,8 @@ struct PathHit {
     radfmt::Rgb weight;
     int events = 0;
     Vec3 origin, direction; // of the path's last segment
+    std::int64_t from = -1; // the patch of the last specular event (-1: none)
+    bool straight = true;   // every event let the ray through unturned (thin panes)
 };
 
 // Follows a ray from `origin` along unit `direction` through up to `depth` specular events,
@@ -90,8 +96,10 @@ void follow_specular(const RayScene& scene, const SpecularSurfaces& surfaces, co
         Vec3 origin, direction;
         radfmt::Rgb weight;
         int events;
+        std::int64_t from;
+        bool straight;
     };
-    std::vector<Segment> stack{{origin, direction, weight, 0}};
+    std::vector<Segment> stack{{origin, direction, weight, 0, -1, true}};
     while (!stack.empty()) {
         const Segment s = stack.back();
         stack.pop_back();
@@ -100,7 +108,7 @@ void follow_specular(const RayScene& scene, const SpecularSurfaces& surfaces, co
             escape(s.direction, s.weight);
             continue;
         }
-        visit(PathHit{hit, s.weight, s.events, s.origin, s.direction});
+        visit(PathHit{hit, s.weight, s.events, s.origin, s.direction, s.from, s.straight});
         const auto patch = static_cast<std::size_t>(hit.patch);
         if (s.events >= depth || !surfaces.is_specular(patch)) continue;
         std::array<SpecularBranch, 2> next;
@@ -113,7 +121,10 @@ void follow_specular(const RayScene& scene, const SpecularSurfaces& surfaces, co
                 w[c] = s.weight[c] * next[b].weight[c];
                 alive = alive || w[c] >= kMinPathWeight;
             }
-            if (alive) stack.push_back({at, next[b].direction, w, s.events + 1});
+            const bool unturned = dot(next[b].direction, s.direction) > 1 - 1e-12;
+            if (alive)
+                stack.push_back(
+                    {at, next[b].direction, w, s.events + 1, hit.patch, s.straight && unturned});
         }
     }
 }

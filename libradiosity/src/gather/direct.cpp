@@ -2,6 +2,7 @@
 // its exact form factor (a single light) or as one (a far group), times its visible fraction.
 #include "formfactor/sampling.hpp"
 #include "gather/light_tree.hpp"
+#include "gather/virtual_sources.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
 #include "radiosity/patch_geometry.hpp"
@@ -17,9 +18,11 @@ namespace {
 // form-factor kernel cos cos / r^2, so a half-hidden light counts by what it gives (the
 // plain share of rays when none has weight).
 struct KernelTally {
-    double weight_sum = 0, visible_sum = 0, plain_visible = 0;
+    double weight_sum = 0, plain_rays = 0;
+    Rgb visible_sum{0, 0, 0}, plain_visible{0, 0, 0};
     // One ray from `point` (facing `normal`) to `q` on a light facing `light_normal`;
-    // `visible` casts it (not when q is the point itself).
+    // `visible` casts it (not when q is the point itself) and says what of each channel
+    // arrives (1 unblocked, 0 blocked, a pane's transmission through glass).
     template <class Visible>
     void add(const Vec3& point, const Vec3& normal, const Vec3& q, const Vec3& light_normal,
              Visible visible) {
@@ -28,13 +31,18 @@ struct KernelTally {
         if (!(r2 > 0)) return;
         const double w =
             std::max(0.0, dot(d, normal)) * std::max(0.0, -dot(d, light_normal)) / (r2 * r2);
-        const bool seen = visible(q);
+        const Rgb seen = visible(q);
         weight_sum += w;
-        visible_sum += seen ? w : 0;
-        plain_visible += seen ? 1 : 0;
+        for (int c = 0; c < 3; ++c) {
+            visible_sum[c] += w * seen[c];
+            plain_visible[c] += seen[c];
+        }
     }
-    double fraction(int rays) const {
-        return weight_sum > 0 ? visible_sum / weight_sum : plain_visible / rays;
+    Rgb fraction(int rays) const {
+        Rgb out;
+        for (int c = 0; c < 3; ++c)
+            out[c] = weight_sum > 0 ? visible_sum[c] / weight_sum : plain_visible[c] / rays;
+        return out;
     }
 };
 
@@ -81,9 +89,9 @@ double Gatherer::form_factor_to(const Vec3& point, const Vec3& normal, std::size
 
 // The part of `clipped` (of `patch`) the point sees: shadow rays to stratified points,
 // weighted by the form-factor kernel, so a half-hidden patch counts by what it contributes.
-double Gatherer::visible_fraction(const Vec3& point, const Vec3& normal, std::size_t patch,
-                                  const std::vector<Vec3>& clipped, int rays, Rng& rng) const {
-    if (rays <= 0) return 1;
+Rgb Gatherer::visible_fraction(const Vec3& point, const Vec3& normal, std::size_t patch,
+                               const std::vector<Vec3>& clipped, int rays, Rng& rng) const {
+    if (rays <= 0) return {1, 1, 1};
     const auto& p = mesh_.patches[patch];
     // A polygon clipped need not be star-shaped, so its fan could reach outside it: the
     // points are drawn on the whole polygon, where those behind the point weigh nothing.
@@ -96,7 +104,7 @@ double Gatherer::visible_fraction(const Vec3& point, const Vec3& normal, std::si
         const Vec3 q =
             ff::uniform_point(region, cdf, stratum(s, rays, offset), rng.uniform(), rng.uniform());
         tally.add(point, normal, q, p.normal,
-                  [&](const Vec3& at) { return scene_->visible(point, at); });
+                  [&](const Vec3& at) { return seen_through(point, at); });
     }
     return tally.fraction(rays);
 }
@@ -112,8 +120,8 @@ Vec3 Gatherer::point_on_light(std::size_t patch, double u, Rng& rng) const {
 
 // A cluster's visible fraction: shadow rays to its lights, each chosen in proportion to its
 // power and a point on it uniformly, so the kernel-weighted ratio weighs them as they shine.
-double Gatherer::cluster_visible_fraction(const Vec3& point, const Vec3& normal, std::uint32_t node,
-                                          int rays, Rng& rng) const {
+Rgb Gatherer::cluster_visible_fraction(const Vec3& point, const Vec3& normal, std::uint32_t node,
+                                       int rays, Rng& rng) const {
     const double offset = rng.uniform();
     KernelTally tally;
     for (int s = 0; s < rays; ++s) {
@@ -121,17 +129,17 @@ double Gatherer::cluster_visible_fraction(const Vec3& point, const Vec3& normal,
         const auto& light = lights_->pick(node, stratum(s, rays, offset), &along);
         const Vec3 q = point_on_light(light.patch, along, rng);
         tally.add(point, normal, q, mesh_.patches[light.patch].normal,
-                  [&](const Vec3& at) { return scene_->visible(point, at); });
+                  [&](const Vec3& at) { return seen_through(point, at); });
     }
     return tally.fraction(rays);
 }
 
 // The visible fraction of lights too faint for a shadow ray each, together: each ray goes to
 // one of them chosen by its weight, and the share of rays that arrive stands for them all.
-double Gatherer::pooled_visible_fraction(const Vec3& point, std::span<const Seen* const> pooled,
-                                         double weight, int rays, Rng& rng) const {
+Rgb Gatherer::pooled_visible_fraction(const Vec3& point, std::span<const Seen* const> pooled,
+                                      double weight, int rays, Rng& rng) const {
     const double offset = rng.uniform();
-    int visible = 0;
+    Rgb visible{0, 0, 0};
     std::size_t at = 0;
     double below = 0; // the weight of pooled[0, at)
     for (int s = 0; s < rays; ++s) {
@@ -150,9 +158,11 @@ double Gatherer::pooled_visible_fraction(const Vec3& point, std::span<const Seen
             const auto cdf = ff::fan_cdf(seen.clipped);
             q = ff::uniform_point(seen.clipped, cdf, rng.uniform(), rng.uniform(), rng.uniform());
         }
-        visible += scene_->visible(point, q) ? 1 : 0;
+        const Rgb arrives = seen_through(point, q);
+        for (int c = 0; c < 3; ++c) visible[c] += arrives[c];
     }
-    return double(visible) / rays;
+    for (int c = 0; c < 3; ++c) visible[c] /= rays;
+    return visible;
 }
 
 // Shadow rays shared by what each seen light gives: one with a share of at least half a ray
@@ -173,16 +183,16 @@ Rgb Gatherer::shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> se
             continue;
         }
         const int rays = budget <= 0 ? 0 : static_cast<int>(std::lround(share));
-        const double visible = rays == 0 ? 1
-                               : s.cluster
-                                   ? cluster_visible_fraction(point, normal, s.id, rays, rng)
-                                   : visible_fraction(point, normal, s.id, s.clipped, rays, rng);
-        for (int k = 0; k < 3; ++k) sum[k] += s.irradiance[k] * visible;
+        const Rgb visible = rays == 0 ? Rgb{1, 1, 1}
+                            : s.cluster
+                                ? cluster_visible_fraction(point, normal, s.id, rays, rng)
+                                : visible_fraction(point, normal, s.id, s.clipped, rays, rng);
+        for (int k = 0; k < 3; ++k) sum[k] += s.irradiance[k] * visible[k];
     }
     if (!pooled.empty()) {
         const int rays = std::max(1, static_cast<int>(std::lround(budget * pooled_weight / total)));
-        const double visible = pooled_visible_fraction(point, pooled, pooled_weight, rays, rng);
-        for (int k = 0; k < 3; ++k) sum[k] += pooled_sum[k] * visible;
+        const Rgb visible = pooled_visible_fraction(point, pooled, pooled_weight, rays, rng);
+        for (int k = 0; k < 3; ++k) sum[k] += pooled_sum[k] * visible[k];
     }
     return sum;
 }
@@ -221,8 +231,39 @@ Rgb Gatherer::direct(const Vec3& point, const Vec3& normal, std::uint64_t index)
         s.weight = brightness(c.irradiance);
         total += s.weight;
     }
-    if (!(total > 0)) return {0, 0, 0};
-    return shadowed(point, normal, std::span<Seen>(seen.data(), count), total, rng);
+    Rgb out = total > 0 ? shadowed(point, normal, std::span<Seen>(seen.data(), count), total, rng)
+                        : Rgb{0, 0, 0};
+    // The emitters seen in planar mirrors (nothing, and no random number drawn, without them).
+    const Rgb imaged = virtual_->irradiance(point, normal, *scene_, options_.shadow_rays, rng);
+    for (int k = 0; k < 3; ++k) out[k] += imaged[k];
+    return out;
+}
+
+// What of each channel travels from `from` to `to`: 1 unblocked, 0 blocked, and through thin
+// panes of glass their transmission at the angle met (the light of lamps behind glazing).
+Rgb Gatherer::seen_through(const Vec3& from, const Vec3& to) const {
+    if (!specular_->any()) return scene_->visible(from, to) ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
+    Rgb kept{1, 1, 1};
+    Vec3 origin = from;
+    const Vec3 d = to - from;
+    const double distance = length(d);
+    if (!(distance > 0)) return kept;
+    const Vec3 dir = d * (1 / distance);
+    double left = distance;
+    std::array<SpecularBranch, 2> branch;
+    for (int crossed = 0; crossed <= options_.specular_depth; ++crossed) {
+        if (scene_->visible(origin, origin + dir * left)) return kept;
+        const auto hit = scene_->trace(origin, dir);
+        if (hit.patch < 0 || hit.distance >= left) return kept; // grazing the target itself
+        const auto patch = static_cast<std::size_t>(hit.patch);
+        if (specular_->of(patch).kind != radfmt::SpecularKind::pane) return {0, 0, 0};
+        const int count = specular_->branches(patch, dir, hit.front, branch);
+        if (count < 1) return {0, 0, 0};
+        for (int c = 0; c < 3; ++c) kept[c] *= branch[0].weight[c]; // the pane's straight branch
+        origin = origin + dir * hit.distance;
+        left -= hit.distance;
+    }
+    return {0, 0, 0};
 }
 
 } // namespace rad

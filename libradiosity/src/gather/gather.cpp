@@ -4,6 +4,7 @@
 
 #include "formfactor/sampling.hpp"
 #include "gather/light_tree.hpp"
+#include "gather/virtual_sources.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/random.hpp"
@@ -52,6 +53,7 @@ Gatherer::Gatherer(const radfmt::MeshData& mesh, std::span<const Rgb> radiosity,
     }
     find_bright_patches();
     build_light_tree();
+    virtual_ = std::make_unique<gather::VirtualSources>(mesh, *specular_, emission_);
     total_corners_ = corner_colours(mesh, total, options.smoothing, options.crease_deg);
     // Each patch keeps its solved mean under the smoothing (keep_patch_means): a point beside
     // a dark patch among brighter ones sees it at a wide angle. Flat values have it already.
@@ -126,8 +128,8 @@ Rgb Gatherer::exact_indirect(const Vec3& point, const Vec3& normal, std::uint64_
         if (!(b[0] > 0 || b[1] > 0 || b[2] > 0)) continue;
         const double f = form_factor_to(point, normal, j, clipped);
         if (f <= 0) continue;
-        const double seen = visible_fraction(point, normal, j, clipped, options_.shadow_rays, rng);
-        for (int k = 0; k < 3; ++k) sum[k] += b[k] * f * seen;
+        const Rgb seen = visible_fraction(point, normal, j, clipped, options_.shadow_rays, rng);
+        for (int k = 0; k < 3; ++k) sum[k] += b[k] * f * seen[k];
     }
     return sum;
 }
@@ -191,9 +193,20 @@ Rgb Gatherer::specular_ray(const Vec3& point, const Vec3& d, int& hits, int& bac
                             for (int k = 0; k < 3; ++k) sum[k] += b[k];
                             return;
                         }
-                        // Beyond a mirror or glass, direct() does not see: all of it.
                         if (!h.hit.front) return;
-                        const auto b = radiosity_at(h.hit);
+                        // Through thin panes only, the lights are direct()'s, as when seen
+                        // with nothing between; once off a planar mirror, the emitters are
+                        // (their images); beyond anything else, direct() does not see: all.
+                        Rgb b;
+                        if (h.straight) {
+                            if (bright_[j]) return;
+                            b = reflected_at(h.hit);
+                        } else if (h.events == 1 &&
+                                   virtual_->images(static_cast<std::size_t>(h.from))) {
+                            b = reflected_at(h.hit);
+                        } else {
+                            b = radiosity_at(h.hit);
+                        }
                         for (int k = 0; k < 3; ++k) sum[k] += h.weight[k] * b[k];
                     });
     return sum;

@@ -18,8 +18,9 @@ struct SideTally {
 };
 
 // From each side of one triangle: the rays that meet a surface, and those that meet a back.
+// Glass (`passes`, per triangle) lets the light on: meeting its back is no fixture.
 void tally_triangle(const radfmt::MeshData& mesh, std::size_t t, double area, const RayScene& rays,
-                    SideTally& front, SideTally& back) {
+                    const std::vector<bool>& passes, SideTally& front, SideTally& back) {
     const auto& p = mesh.patches[t];
     const Vec3 centroid =
         (mesh.vertices[p.corners[0]] + mesh.vertices[p.corners[1]] + mesh.vertices[p.corners[2]]) *
@@ -31,9 +32,9 @@ void tally_triangle(const radfmt::MeshData& mesh, std::size_t t, double area, co
         auto& tally = side > 0 ? front : back;
         for (int k = 0; k < kRays; ++k) {
             bool met_front = false;
-            if (rays.first_hit(from, cosine_direction(n, u, v, rng.uniform(), rng.uniform()),
-                               met_front) < 0)
-                continue;
+            const auto hit = rays.first_hit(
+                from, cosine_direction(n, u, v, rng.uniform(), rng.uniform()), met_front);
+            if (hit < 0 || passes[static_cast<std::size_t>(hit)]) continue;
             tally.hits += area;
             if (!met_front) tally.backs += area;
         }
@@ -47,11 +48,17 @@ std::vector<LampTurn> turn_lamps_facing_backs(Scene& scene, const std::vector<st
     const auto mesh = face_triangles(scene, &face_of, &area);
     if (mesh.patches.empty()) return {};
     const RayScene rays(mesh, RayBuild::Fast);
+    std::vector<bool> passes(mesh.patches.size());
+    for (std::size_t t = 0; t < mesh.patches.size(); ++t) {
+        const auto kind = scene.materials[scene.polygons[face_of[t]].material].specular.kind;
+        passes[t] = kind == radfmt::SpecularKind::pane || kind == radfmt::SpecularKind::dielectric;
+    }
     std::vector<SideTally> front(scene.materials.size()), back(scene.materials.size());
     for (std::size_t t = 0; t < mesh.patches.size(); ++t) {
         const auto& polygon = scene.polygons[face_of[t]];
         if (!scene.materials[polygon.material].emits()) continue;
-        tally_triangle(mesh, t, area[t], rays, front[polygon.material], back[polygon.material]);
+        tally_triangle(mesh, t, area[t], rays, passes, front[polygon.material],
+                       back[polygon.material]);
     }
     std::vector<LampTurn> turned;
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {

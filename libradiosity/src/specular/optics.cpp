@@ -85,6 +85,18 @@ Vec3 SpecularSurfaces::normal_at(const RayScene::Hit& hit) const {
     return n * (1 / len);
 }
 
+bool SpecularSurfaces::flat(std::size_t patch) const {
+    if (corner_normals_.patches.empty()) return true;
+    const auto& n = mesh_.patches[patch].normal;
+    for (int k = 0; k < mesh_.patches[patch].corner_count(); ++k) {
+        const auto& c = corner_normals_.at(mesh_, patch, static_cast<std::size_t>(k));
+        const Vec3 v{c[0], c[1], c[2]};
+        const double len = length(v);
+        if (!(len > 0) || dot(v, n) < (1 - 1e-9) * len) return false;
+    }
+    return true;
+}
+
 int SpecularSurfaces::branches(std::size_t patch, const Vec3& d, bool front,
                                std::array<SpecularBranch, 2>& out, const RayScene::Hit* hit) const {
     using radfmt::SpecularKind;

@@ -1,0 +1,145 @@
+"""Scenes with known answers for light through mirrors and glass (tests/cli/direct_specular.sh).
+
+  specular_boxes.py mirror DIR R   a closed black 2 m box whose x = 0 wall is a mirror of
+                                   reflectance R, lit by a 0.4 m ceiling panel off its middle;
+                                   writes DIR/box.obj, box.mtl, pts.txt (96 sensors on the floor
+                                   and the wall facing the mirror) and closed.txt, the lux at
+                                   each: E (F(panel) + R F(its image)) by Lambert's contour
+                                   formula, in rad-gather's lux (179 lm/W of white).
+  specular_boxes.py pane DIR 0|1   a closed black 2 m box lit by a 0.2 m panel in the ceiling's
+                                   middle, with (1) or without (0) a pane of glass of normal
+                                   transmittance 0.8 (index 1.52) across it at y = 1.5;
+                                   writes DIR/box.obj, box.mtl, pts.txt (6 floor sensors from
+                                   under the panel to the wall) and, with 1, expected.txt:
+                                   each sensor's transmission by Radiance's glass at its angle
+                                   to the panel's centre.
+"""
+import math
+import sys
+
+SIZE = 2.0
+E = 10.0  # the panel's exitance, W/m^2
+
+
+def write_box(folder, extra, materials):
+    vertices, faces = [], []
+
+    def quad(a, b, c, d, material):
+        i = len(vertices)
+        vertices.extend([a, b, c, d])
+        faces.append((material, [i + 4, i + 3, i + 2, i + 1]))  # wound to face inward
+
+    s = SIZE
+    quad((0, 0, 0), (s, 0, 0), (s, 0, s), (0, 0, s), "black")
+    quad((0, s, 0), (0, s, s), (s, s, s), (s, s, 0), "black")
+    quad((0, 0, 0), (0, 0, s), (0, s, s), (0, s, 0), extra.get("x0", "black"))
+    quad((s, 0, 0), (s, s, 0), (s, s, s), (s, 0, s), "black")
+    quad((0, 0, 0), (0, s, 0), (s, s, 0), (s, 0, 0), "black")
+    quad((0, 0, s), (s, 0, s), (s, s, s), (0, s, s), "black")
+    for corners, material in extra["quads"]:
+        quad(*corners, material)
+    with open(folder + "/box.obj", "w") as f:
+        f.write("mtllib box.mtl\n")
+        for v in vertices:
+            f.write("v %.9g %.9g %.9g\n" % v)
+        for material, idx in faces:
+            f.write("usemtl %s\nf %s\n" % (material, " ".join(map(str, idx))))
+    with open(folder + "/box.mtl", "w") as f:
+        f.write("newmtl black\nKd 0 0 0\nnewmtl lamp\nKd 0 0 0\nKe %g %g %g\n" % (E, E, E))
+        f.write(materials)
+
+
+def panel(cx, cz, half, y):
+    """Corners of a square panel facing down, as written (inward winding applied by quad)."""
+    return [(cx - half, y, cz - half), (cx - half, y, cz + half), (cx + half, y, cz + half),
+            (cx + half, y, cz - half)]
+
+
+def sub(a, b):
+    return [a[i] - b[i] for i in range(3)]
+
+
+def dot(a, b):
+    return sum(a[i] * b[i] for i in range(3))
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def unit(a):
+    length = math.sqrt(dot(a, a))
+    return [x / length for x in a]
+
+
+def form_factor(point, normal, polygon):
+    """Point to polygon (Lambert): the polygon wholly in front of the point."""
+    total = 0.0
+    for i in range(len(polygon)):
+        a, b = unit(sub(polygon[i], point)), unit(sub(polygon[(i + 1) % len(polygon)], point))
+        angle = math.acos(max(-1.0, min(1.0, dot(a, b))))
+        c = cross(a, b)
+        length = math.sqrt(dot(c, c))
+        if length > 0:
+            total += angle * dot(normal, [x / length for x in c])
+    return abs(total) / (2 * math.pi)
+
+
+def pane_transmission(normal_transmittance, ior, cos_incident):
+    """Radiance's glass: both faces and the light between them, both polarisations."""
+    r = ((ior - 1) / (ior + 1)) ** 2
+    a = (1 - r) ** 2
+    t = (-a + math.sqrt(a * a + 4 * normal_transmittance ** 2 * r * r)) / (
+        2 * normal_transmittance * r * r)
+    cos_t = math.sqrt(1 - (1 - cos_incident ** 2) / ior ** 2)
+    path = t ** (1 / cos_t)
+    out = 0.0
+    for rr in (((cos_incident - ior * cos_t) / (cos_incident + ior * cos_t)) ** 2,
+               ((ior * cos_incident - cos_t) / (ior * cos_incident + cos_t)) ** 2):
+        out += 0.5 * (1 - rr) ** 2 * path / (1 - rr * rr * path * path)
+    return out
+
+
+def mirror(folder, reflectance):
+    lamp = panel(1.4, 1.0, 0.2, SIZE - 0.001)
+    write_box(folder, {"x0": "mirror", "quads": [(lamp, "lamp")]},
+              "newmtl mirror\nillum 3\nKd 0 0 0\nKs %g %g %g\n" % ((reflectance,) * 3))
+    image = [(-x, y, z) for (x, y, z) in lamp]
+    sensors = [((i + 0.5) / 4, 0.0, (j + 0.5) / 4, 0, 1, 0) for i in range(8) for j in range(8)]
+    sensors += [(SIZE, 0.25 + i * 0.45, (j + 0.5) / 4, -1, 0, 0) for i in range(4)
+                for j in range(8)]
+    with open(folder + "/pts.txt", "w") as f:
+        for p in sensors:
+            f.write("%g %g %g %g %g %g\n" % p)
+    with open(folder + "/closed.txt", "w") as f:
+        for p in sensors:
+            at, normal = p[:3], p[3:]
+            irradiance = E * (form_factor(at, normal, lamp) +
+                              reflectance * form_factor(at, normal, image))
+            f.write("%.9g\n" % (179 * irradiance))
+
+
+def pane(folder, with_pane):
+    lamp_y = SIZE - 0.001
+    quads = [(panel(1.0, 1.0, 0.1, lamp_y), "lamp")]
+    if with_pane:
+        quads.append(([(0, 1.5, 0), (0, 1.5, SIZE), (SIZE, 1.5, SIZE), (SIZE, 1.5, 0)], "glass"))
+    write_box(folder, {"quads": quads},
+              "newmtl glass\nillum 4\nKd 0 0 0\nTf 0.8 0.8 0.8\nNi 1.52\n")
+    xs = [1.0, 1.2, 1.4, 1.6, 1.8, 1.95]
+    with open(folder + "/pts.txt", "w") as f:
+        for x in xs:
+            f.write("%g 0 1 0 1 0\n" % x)
+    if with_pane:
+        with open(folder + "/expected.txt", "w") as f:
+            for x in xs:
+                cos_incident = lamp_y / math.hypot(lamp_y, x - 1.0)
+                f.write("%.9g\n" % pane_transmission(0.8, 1.52, cos_incident))
+
+
+if __name__ == "__main__":
+    kind, folder, value = sys.argv[1], sys.argv[2], sys.argv[3]
+    if kind == "mirror":
+        mirror(folder, float(value))
+    else:
+        pane(folder, value == "1")
