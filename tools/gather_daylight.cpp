@@ -11,6 +11,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -66,6 +67,13 @@ void check_daylight_args(const DaylightArgs& a, const DaylightRun& run) {
         throw InputError("--occupancy and --metrics go with --annual");
 }
 
+// "; 3 sensor(s) inside or behind objects: no value" (nothing when none).
+std::string inside_text(std::size_t without) {
+    if (without == 0) return "";
+    return "; " + std::to_string(without) +
+           " sensor(s) inside or behind objects: no value (nan), in no figure";
+}
+
 void write_png(const DaylightRun& run, const std::vector<double>& values, const std::string& unit,
                const std::string& title) {
     if (run.png.empty()) return;
@@ -81,8 +89,9 @@ void print_surface_factors(const DaylightRun& run, const std::vector<double>& va
             values.begin() + long(first), values.begin() + long(first + count)));
         std::fprintf(stderr,
                      "rad-gather: %s: daylight factor mean %.3g%%, median %.3g%%, min %.3g%%, max "
-                     "%.3g%%; %.1f%% of its %zu sensor(s) at 2%% or more\n",
-                     name.c_str(), s.mean, s.median, s.min, s.max, 100 * s.above2, count);
+                     "%.3g%%; %.1f%% of its %zu sensor(s) at 2%% or more%s\n",
+                     name.c_str(), s.mean, s.median, s.min, s.max, 100 * s.above2, s.counted,
+                     inside_text(s.without).c_str());
         first += count;
     }
 }
@@ -93,10 +102,14 @@ int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors
         throw InputError("--daylight-factor: the sky has no horizontal illuminance");
     const std::size_t n = run.positions.size();
     const auto lux = sensors.illuminance(sky, run.positions, run.normals, run.quiet);
+    // A sensor inside furniture has no value (NaN), as in the lighting mode.
+    const auto inside = sensors.inside(run.positions, run.normals);
     std::vector<double> values;
-    for (const auto& l : lux)
-        values.push_back(a.daylight_factor ? 100 * l.total() / sky.horizontal_illuminance()
-                                           : l.total());
+    for (std::size_t k = 0; k < n; ++k)
+        values.push_back(inside[k]           ? std::nan("")
+                         : a.daylight_factor ? 100 * lux[k].total() / sky.horizontal_illuminance()
+                                             : lux[k].total());
+    const auto without = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), 1));
     write_output(run.output, [&](std::FILE* out) {
         if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
         if (run.labels.empty()) {
@@ -117,11 +130,14 @@ int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors
         std::fprintf(stderr,
                      "rad-gather: daylight factor at %zu sensor(s) under the %s: mean %.3g%%, "
                      "median %.3g%%, min %.3g%%, max %.3g%%; %.1f%% of the sensors at 2%% or "
-                     "more\n",
-                     n, sky.describe().c_str(), s.mean, s.median, s.min, s.max, 100 * s.above2);
+                     "more%s\n",
+                     s.counted, sky.describe().c_str(), s.mean, s.median, s.min, s.max,
+                     100 * s.above2, inside_text(without).c_str());
     } else {
         write_png(run, values, "lux", "illuminance (lux) under the " + sky.describe());
-        if (!run.quiet) std::fprintf(stderr, "rad-gather: %s\n", sky.describe().c_str());
+        if (!run.quiet || without > 0)
+            std::fprintf(stderr, "rad-gather: %s%s\n", sky.describe().c_str(),
+                         inside_text(without).c_str());
     }
     return 0;
 }
@@ -162,7 +178,8 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
     header.set("place", weather.place);
     header.set("occupancy", a.occupancy.empty() ? "08:00-18:00 every day" : a.occupancy);
     radfmt::write_annual(run.output, header, year);
-    const auto m = annual_metrics(year);
+    const auto inside = sensors.inside(run.positions, run.normals);
+    const auto m = annual_metrics(year, inside);
     if (!a.metrics.empty()) write_metrics_csv(a.metrics, year, m, run.labels);
     if (!run.png.empty()) {
         std::vector<double> da;
@@ -171,9 +188,10 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
                                "DA300: % of hours at 300 lx or more", 100);
     }
     std::printf("annual daylight at %zu sensor(s), %s (%.2f N, %.2f E), %d occupied hour(s) "
-                "(%s):\n",
-                year.sensors(), weather.place.c_str(), weather.location.latitude,
-                weather.location.longitude, m.occupied_hours, occupancy_text(a.occupancy).c_str());
+                "(%s)%s:\n",
+                m.counted, weather.place.c_str(), weather.location.latitude,
+                weather.location.longitude, m.occupied_hours, occupancy_text(a.occupancy).c_str(),
+                inside_text(year.sensors() - m.counted).c_str());
     std::printf("  sDA300/50%%     %6.1f %% of sensors (DA300 >= 50%%)\n", 100 * m.sda);
     std::printf("  ASE1000,250h   %6.1f %% of sensors (direct sun >= 1000 lx for > 250 h)\n",
                 100 * m.ase);

@@ -202,12 +202,15 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     overcast.ground = a.ground;
     const auto sky = rad::tool::sky_of(overcast, "", sensors.frame());
     const auto lux = sensors.illuminance(sky, positions, normals, a.quiet);
+    // Sensors inside furniture: no value (greyed on the plans), in no figure.
+    const auto inside = sensors.inside(positions, normals);
     std::optional<rad::AnnualMetrics> year;
     if (!a.epw.empty()) {
         const auto weather = rad::read_epw(a.epw);
         const auto occupied = rad::tool::occupied_hours(a.occupancy, weather);
         year = rad::annual_metrics(rad::annual_illuminance(sensors, positions, normals, weather,
-                                                           occupied, a.ground, a.quiet));
+                                                           occupied, a.ground, a.quiet),
+                                   inside);
         in.weather = weather.place + " (" + a.epw + ")";
         in.occupancy = rad::tool::occupancy_text(a.occupancy);
     }
@@ -216,7 +219,8 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
         const auto n = std::size_t(grids[s].size());
         rad::SurfaceDaylight d;
         for (std::size_t k = first; k < first + n; ++k)
-            d.factor.push_back(100 * lux[k].total() / sky.horizontal_illuminance());
+            d.factor.push_back(inside[k] ? std::nan("")
+                                         : 100 * lux[k].total() / sky.horizontal_illuminance());
         d.summary = rad::summarise_daylight_factors(d.factor);
         if (year) {
             d.annual = true;

@@ -82,4 +82,42 @@ expect_error "short.epw:21: a record has" "$TMP/x.ill" \
   "$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad" --grid "0 0 4 6 0.8 2 2" --epw "$TMP/short.epw" --annual -o "$TMP/x.ill"
 expect_error "sky subdivision 'klems' is not known" "$TMP/x.sky" \
   "$BIN/rad-ff" "$TMP/daylight-room.mesh" --sky klems -o "$TMP/x.sky"
+
+# Sensors inside furniture (#65 item 4): a closed cabinet on the floor of the open room; the
+# sensor inside it has no value (nan) and counts in no figure, as in the lighting mode (it
+# read 0 and pulled the mean, the minimum and sDA down).
+{
+  cat "$S/daylight-room.obj"
+  echo "g cabinet"
+  echo "usemtl wall"
+  n=$(grep -c '^v ' "$S/daylight-room.obj")
+  for v in "0.5 0 2" "1.5 0 2" "1.5 0 3" "0.5 0 3" "0.5 1.2 2" "1.5 1.2 2" "1.5 1.2 3" "0.5 1.2 3"; do
+    echo "v $v"
+  done
+  for f in "1 2 3 4" "5 8 7 6" "1 5 6 2" "2 6 7 3" "3 7 8 4" "4 8 5 1"; do
+    printf 'f'; for i in $f; do printf ' %d' $((n + i)); done; echo
+  done
+} > "$TMP/cabinet.obj"
+cp "$S/daylight-room.mtl" "$TMP/"
+"$BIN/rad-mesh" "$TMP/cabinet.obj" -o "$TMP/cabinet.mesh" --max-edge 0.5 -q 2>/dev/null || fail "rad-mesh cabinet"
+"$BIN/rad-ff" "$TMP/cabinet.mesh" --sky reinhart:1 -o "$TMP/cabinet.sky" -q || fail "rad-ff --sky cabinet"
+"$BIN/rad-ff" "$TMP/cabinet.mesh" -o "$TMP/cabinet.ff" --rays 512 -q || fail "rad-ff cabinet"
+"$BIN/rad-solve" "$TMP/cabinet.mesh" "$TMP/cabinet.ff" --direct "$TMP/cabinet.sky" -o "$TMP/cabinet.rad" -q || fail "rad-solve cabinet"
+printf '2 0.8 5 0 1 0\n1 0.8 2.5 0 1 0\n3 0.8 2.5 0 1 0\n' > "$TMP/cab.txt"
+err=$("$BIN/rad-gather" "$TMP/cabinet.mesh" "$TMP/cabinet.rad" --points "$TMP/cab.txt" --sky cie-overcast \
+  --daylight-factor -o "$TMP/cab.df" 2>&1) || fail "rad-gather --daylight-factor cabinet: $err"
+[ "$(sed -n 2p "$TMP/cab.df")" = nan ] || fail "the sensor inside the cabinet has a value: $(cat "$TMP/cab.df")"
+grep -q "daylight factor at 2 sensor(s) .*; 1 sensor(s) inside or behind objects: no value" <<<"$err" \
+  || fail "the summary counts the sensor inside: $err"
+python3 - "$TMP/cab.df" "$err" <<'PY' || fail "the minimum is not the lowest sensor with a value"
+import re, sys
+values = [float(l) for l in open(sys.argv[1]) if l.strip() and l.strip() != "nan"]
+shown = float(re.search(r"min ([0-9.]+)%", sys.argv[2]).group(1))
+assert abs(shown - min(values)) < 1e-3 * max(1, min(values)), (shown, values)
+PY
+"$BIN/rad-gather" "$TMP/cabinet.mesh" "$TMP/cabinet.rad" --points "$TMP/cab.txt" --epw "$EPW" --annual \
+  -o "$TMP/cab.ill" --metrics "$TMP/cab.csv" > "$TMP/cab.txt.out" 2>&1 || fail "rad-gather --annual cabinet"
+grep -q "annual daylight at 2 sensor(s).*1 sensor(s) inside or behind objects" "$TMP/cab.txt.out" \
+  || fail "the year counts the sensor inside: $(cat "$TMP/cab.txt.out")"
+sed -n 3p "$TMP/cab.csv" | grep -q ",nan,nan,nan,nan," || fail "the sensor inside has metrics: $(cat "$TMP/cab.csv")"
 finish

@@ -152,6 +152,12 @@ class DaylightSensors {
                                          std::span<const Vec3> normals, bool quiet) const;
     // The sun's beam at a sensor (lux), see sensor_sun.
     double sun(const Vec3& point, const Vec3& normal, const Vec3& direction, double lux) const;
+    // Per sensor, 1 where it is inside a closed object or behind a surface (of 64 rays from
+    // it, most that meet a surface meet a back that lets no light through: sees_mostly_backs),
+    // as rad-gather's lighting mode judges its sensors: such a sensor has no value (NaN) and
+    // counts in no statistic. Deterministic.
+    std::vector<std::uint8_t> inside(std::span<const Vec3> points,
+                                     std::span<const Vec3> normals) const;
     const SkyPatches& patches() const { return solution_.patches; }
     const SkyFrame& frame() const { return solution_.frame; }
 
@@ -189,20 +195,28 @@ std::vector<std::uint8_t> read_occupancy(const std::string& path, std::size_t ho
 struct SensorMetrics {
     double da300 = 0, udi_low = 0, udi_useful = 0, udi_high = 0;
     int sun_hours = 0;
+    bool valid = true; // false: inside an object (NaN shares); left out of the plane's figures
 };
 struct AnnualMetrics {
     std::vector<SensorMetrics> sensors;
     int occupied_hours = 0;
+    std::size_t counted = 0;                            // sensors with a value
     double sda = 0, ase = 0, udi_useful = 0, da300 = 0; // shares in [0, 1]; means over sensors
 };
-AnnualMetrics annual_metrics(const radfmt::AnnualData& year);
+// `inside` (empty, or one flag per sensor, DaylightSensors::inside): those sensors get no
+// value and count in no figure of the plane.
+AnnualMetrics annual_metrics(const radfmt::AnnualData& year,
+                             std::span<const std::uint8_t> inside = {});
 // The plane's figures (sDA, ASE, means) of some sensors' metrics: a part of a plane (a
-// calculation surface) is summarised as annual_metrics summarises the whole.
+// calculation surface) is summarised as annual_metrics summarises the whole. Sensors not
+// valid are left out; `counted` is how many are in.
 AnnualMetrics summarise_sensor_metrics(std::vector<SensorMetrics> sensors, int occupied_hours);
 
-// Daylight factors' summary: mean, median, min, max (%) and the share of sensors at 2% or more.
+// Daylight factors' summary: mean, median, min, max (%) and the share of sensors at 2% or more,
+// over the sensors with a value (NaN: inside an object, counted apart).
 struct DaylightFactorSummary {
     double mean = 0, median = 0, min = 0, max = 0, above2 = 0;
+    std::size_t counted = 0, without = 0;
 };
 DaylightFactorSummary summarise_daylight_factors(std::vector<double> factors);
 

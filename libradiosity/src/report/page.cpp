@@ -254,6 +254,9 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
     out += figure_row("DF min (%)", fixed(d.summary.min, 2), "df-min");
     out += figure_row("DF max (%)", fixed(d.summary.max, 2), "df-max");
     out += figure_row("Points at 2% or more (%)", percent(d.summary.above2), "df-above2");
+    if (d.summary.without)
+        out += "<tr><th>Points without a value</th><td>" + std::to_string(d.summary.without) +
+               " (inside or under objects; grey in the plan; in no figure)</td></tr>";
     if (d.annual) {
         out += figure_row("sDA300/50% (%)", percent(d.metrics.sda), "sda");
         out += figure_row("ASE1000,250h (%)", percent(d.metrics.ase), "ase");

@@ -65,6 +65,27 @@ DaylightSensors::DaylightSensors(const radfmt::MeshData& mesh, DaylightSolution 
 
 DaylightSensors::~DaylightSensors() = default;
 
+std::vector<std::uint8_t> DaylightSensors::inside(std::span<const Vec3> points,
+                                                  std::span<const Vec3> normals) const {
+    constexpr int kRays = 64;
+    std::vector<std::uint8_t> out(points.size(), 0);
+    tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
+        const Vec3 n = normals[k], tu = orthogonal(n), tv = cross(n, tu);
+        Rng rng(0x1A51DE, k);
+        int hits = 0, backs = 0;
+        for (int r = 0; r < kRays; ++r) {
+            const double u = (r + rng.uniform()) / kRays, v = rng.uniform();
+            const auto hit = scene_->trace(points[k], cosine_direction(n, tu, tv, u, v));
+            if (hit.patch < 0) continue;
+            ++hits;
+            // Glass is met from behind as often as from the front.
+            if (!hit.front && !specular_->transmits(static_cast<std::size_t>(hit.patch))) ++backs;
+        }
+        out[k] = sees_mostly_backs(double(hits) / kRays, hits ? double(backs) / hits : 0);
+    });
+    return out;
+}
+
 DaylightSensors::Coefficients DaylightSensors::coefficients(const Vec3& point, const Vec3& normal,
                                                             std::uint64_t index) const {
     Coefficients out{std::vector<double>(patches().count(), 0.0), reflected(point, normal, index)};

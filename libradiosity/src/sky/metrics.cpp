@@ -3,6 +3,7 @@
 #include "radiosity/daylight.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rad {
 namespace {
@@ -11,10 +12,12 @@ constexpr double kDaylitShare = 0.5;
 constexpr int kSunHours = 250;
 } // namespace
 
-AnnualMetrics annual_metrics(const radfmt::AnnualData& year) {
+AnnualMetrics annual_metrics(const radfmt::AnnualData& year, std::span<const std::uint8_t> inside) {
     AnnualMetrics out;
     const std::size_t n = year.sensors();
     out.sensors.assign(n, SensorMetrics{});
+    if (inside.size() == n)
+        for (std::size_t k = 0; k < n; ++k) out.sensors[k].valid = !inside[k];
     for (auto o : year.occupied) out.occupied_hours += o;
     if (n == 0 || out.occupied_hours == 0) return out;
     for (std::size_t t = 0; t < year.hours.size(); ++t) {
@@ -31,10 +34,11 @@ AnnualMetrics annual_metrics(const radfmt::AnnualData& year) {
     }
     const double hours = out.occupied_hours;
     for (auto& m : out.sensors) {
-        m.da300 /= hours;
-        m.udi_low /= hours;
-        m.udi_useful /= hours;
-        m.udi_high /= hours;
+        const double scale = m.valid ? 1 / hours : std::nan("");
+        m.da300 *= scale;
+        m.udi_low *= scale;
+        m.udi_useful *= scale;
+        m.udi_high *= scale;
     }
     return summarise_sensor_metrics(std::move(out.sensors), out.occupied_hours);
 }
@@ -43,14 +47,16 @@ AnnualMetrics summarise_sensor_metrics(std::vector<SensorMetrics> sensors, int o
     AnnualMetrics out;
     out.sensors = std::move(sensors);
     out.occupied_hours = occupied_hours;
-    if (out.sensors.empty()) return out;
     for (const auto& m : out.sensors) {
+        if (!m.valid) continue;
+        ++out.counted;
         out.sda += m.da300 >= kDaylitShare;
         out.ase += m.sun_hours > kSunHours;
         out.udi_useful += m.udi_useful;
         out.da300 += m.da300;
     }
-    const double n = double(out.sensors.size());
+    if (out.counted == 0) return out;
+    const double n = double(out.counted);
     out.sda /= n;
     out.ase /= n;
     out.udi_useful /= n;
@@ -60,6 +66,11 @@ AnnualMetrics summarise_sensor_metrics(std::vector<SensorMetrics> sensors, int o
 
 DaylightFactorSummary summarise_daylight_factors(std::vector<double> factors) {
     DaylightFactorSummary out;
+    const auto with_value =
+        std::remove_if(factors.begin(), factors.end(), [](double f) { return std::isnan(f); });
+    out.without = static_cast<std::size_t>(factors.end() - with_value);
+    factors.erase(with_value, factors.end());
+    out.counted = factors.size();
     if (factors.empty()) return out;
     std::sort(factors.begin(), factors.end());
     const std::size_t n = factors.size();
