@@ -71,6 +71,38 @@ class SpecularSurfaces {
     bool any_ = false;
 };
 
+// The planar mirrors of a mesh: mirror and Fresnel patches that are flat (SpecularSurfaces::
+// flat), grouped by material and plane (to a millionth of the scene's size). Light sources
+// seen in them are taken as their images (virtual sources): the gather's emitters, luminaires.
+struct PlanarMirrors {
+    struct Plane {
+        Vec3 point, normal; // a point on it and its unit normal (the mirror's front)
+    };
+    std::vector<Plane> planes;
+    std::vector<int> plane_of; // per patch: its plane, or -1
+    bool empty() const { return planes.empty(); }
+    Vec3 mirrored(std::size_t plane, const Vec3& p) const {
+        const auto& m = planes[plane];
+        return p - m.normal * (2 * dot(p - m.point, m.normal));
+    }
+    Vec3 mirrored_direction(std::size_t plane, const Vec3& d) const {
+        return d - planes[plane].normal * (2 * dot(d, planes[plane].normal));
+    }
+};
+PlanarMirrors planar_mirrors(const radfmt::MeshData& mesh, const SpecularSurfaces& specular);
+
+// What of each channel goes from `from` to `to` in a straight line: 1 unblocked, 0 blocked,
+// and through thin panes (up to `max_panes`) their transmission at the angle met.
+radfmt::Rgb straight_transmission(const RayScene& scene, const SpecularSurfaces& specular,
+                                  const Vec3& from, const Vec3& to, int max_panes);
+
+// What of each channel of a source at `source` reaches `point` by way of mirror `plane`: the
+// ray from the point toward the source's image must meet that mirror's front first, the
+// reflected segment reach the source unblocked; the mirror's reflectance at that angle, or 0.
+radfmt::Rgb via_mirror(const RayScene& scene, const SpecularSurfaces& specular,
+                       const PlanarMirrors& mirrors, std::size_t plane, const Vec3& point,
+                       const Vec3& source);
+
 // A surface a path reached: the hit, the weight of the light that comes from it along the
 // path, and how many specular events came before it (0: the first surface the ray met).
 struct PathHit {

@@ -242,28 +242,7 @@ Rgb Gatherer::direct(const Vec3& point, const Vec3& normal, std::uint64_t index)
 // What of each channel travels from `from` to `to`: 1 unblocked, 0 blocked, and through thin
 // panes of glass their transmission at the angle met (the light of lamps behind glazing).
 Rgb Gatherer::seen_through(const Vec3& from, const Vec3& to) const {
-    if (!specular_->any()) return scene_->visible(from, to) ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
-    Rgb kept{1, 1, 1};
-    Vec3 origin = from;
-    const Vec3 d = to - from;
-    const double distance = length(d);
-    if (!(distance > 0)) return kept;
-    const Vec3 dir = d * (1 / distance);
-    double left = distance;
-    std::array<SpecularBranch, 2> branch;
-    for (int crossed = 0; crossed <= options_.specular_depth; ++crossed) {
-        if (scene_->visible(origin, origin + dir * left)) return kept;
-        const auto hit = scene_->trace(origin, dir);
-        if (hit.patch < 0 || hit.distance >= left) return kept; // grazing the target itself
-        const auto patch = static_cast<std::size_t>(hit.patch);
-        if (specular_->of(patch).kind != radfmt::SpecularKind::pane) return {0, 0, 0};
-        const int count = specular_->branches(patch, dir, hit.front, branch);
-        if (count < 1) return {0, 0, 0};
-        for (int c = 0; c < 3; ++c) kept[c] *= branch[0].weight[c]; // the pane's straight branch
-        origin = origin + dir * hit.distance;
-        left -= hit.distance;
-    }
-    return {0, 0, 0};
+    return straight_transmission(*scene_, *specular_, from, to, options_.specular_depth);
 }
 
 } // namespace rad

@@ -8,18 +8,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <tuple>
 
 namespace rad::gather {
 
 namespace {
-Vec3 mirrored_point(const Vec3& p, const Vec3& on_plane, const Vec3& n) {
-    return p - n * (2 * dot(p - on_plane, n));
-}
-Vec3 mirrored_direction(const Vec3& d, const Vec3& n) {
-    return d - n * (2 * dot(d, n));
-}
 bool emits(const Rgb& e) {
     return e[0] > 0 || e[1] > 0 || e[2] > 0;
 }
@@ -27,24 +19,8 @@ bool emits(const Rgb& e) {
 
 VirtualSources::VirtualSources(const radfmt::MeshData& mesh, const SpecularSurfaces& specular,
                                std::span<const Rgb> emission)
-    : mesh_(mesh), specular_(specular), plane_of_(mesh.patches.size(), -1) {
-    using radfmt::SpecularKind;
-    if (!specular.any()) return;
-    const double size = std::max(1e-300, bounds(mesh.vertices).diagonal());
-    // Mirror patches of one material in one plane (to a millionth) are one mirror.
-    std::map<std::tuple<std::uint32_t, long long, long long, long long, long long>, int> plane_of;
-    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
-        const auto kind = specular.of(i).kind;
-        if ((kind != SpecularKind::mirror && kind != SpecularKind::fresnel) || !specular.flat(i))
-            continue;
-        const auto& p = mesh.patches[i];
-        const auto q = [](double x) { return std::llround(x * 1e6); };
-        const auto key = std::make_tuple(p.material, q(p.normal[0]), q(p.normal[1]), q(p.normal[2]),
-                                         q(dot(p.centroid, p.normal) / size));
-        const auto [at, added] = plane_of.try_emplace(key, static_cast<int>(planes_.size()));
-        if (added) planes_.push_back({p.centroid, p.normal});
-        plane_of_[i] = at->second;
-    }
+    : mesh_(mesh), specular_(specular), mirrors_(planar_mirrors(mesh, specular)) {
+    if (mirrors_.empty()) return;
     for (std::size_t i = 0; i < mesh.patches.size(); ++i)
         if (emits(emission[i])) {
             emitters_.push_back(static_cast<std::uint32_t>(i));
@@ -58,8 +34,8 @@ Rgb VirtualSources::irradiance(const Vec3& point, const Vec3& normal, const RayS
     if (empty()) return sum;
     thread_local std::vector<Image> images;
     std::vector<Vec3> mirrored;
-    for (std::size_t k = 0; k < planes_.size(); ++k) {
-        const auto& plane = planes_[k];
+    for (std::size_t k = 0; k < mirrors_.planes.size(); ++k) {
+        const auto& plane = mirrors_.planes[k];
         if (dot(point - plane.point, plane.normal) <= scene.epsilon()) continue; // behind it
         std::size_t count = 0;
         double total = 0;
@@ -67,13 +43,13 @@ Rgb VirtualSources::irradiance(const Vec3& point, const Vec3& normal, const RayS
             const auto patch = emitters_[e];
             const auto& p = mesh_.patches[patch];
             if (dot(p.centroid - plane.point, plane.normal) <= 0) continue; // behind the mirror
-            const Vec3 image_normal = mirrored_direction(p.normal, plane.normal);
-            const Vec3 image_centre = mirrored_point(p.centroid, plane.point, plane.normal);
+            const Vec3 image_normal = mirrors_.mirrored_direction(k, p.normal);
+            const Vec3 image_centre = mirrors_.mirrored(k, p.centroid);
             if (dot(point - image_centre, image_normal) <= 0) continue; // its image faces away
             // Mirrored, the corners run the other way: reversed, they face as the image shines.
             mirrored.clear();
             for (const auto& v : patch_points(mesh_, patch))
-                mirrored.push_back(mirrored_point(v, plane.point, plane.normal));
+                mirrored.push_back(mirrors_.mirrored(k, v));
             std::reverse(mirrored.begin(), mirrored.end());
             if (count == images.size()) images.emplace_back();
             Image& image = images[count];
@@ -103,14 +79,12 @@ Rgb VirtualSources::irradiance(const Vec3& point, const Vec3& normal, const RayS
 Rgb VirtualSources::through_mirror(const Vec3& point, const Vec3& normal, std::size_t plane,
                                    std::span<const Image> images, double total,
                                    const RayScene& scene, int rays, Rng& rng) const {
-    const auto& mirror = planes_[plane];
     rays = std::max(rays, 1);
     const double offset = rng.uniform();
     double weight_sum = 0, plain = 0;
     Rgb seen_sum{0, 0, 0}, plain_seen{0, 0, 0};
     std::size_t at = 0;
     double below = 0;
-    std::array<SpecularBranch, 2> branch;
     for (int s = 0; s < rays; ++s) {
         const double target = ff::wrap((s + 0.5) / rays + offset) * total;
         if (target < below) at = 0, below = 0;
@@ -123,22 +97,12 @@ Rgb VirtualSources::through_mirror(const Vec3& point, const Vec3& normal, std::s
         const Vec3 d = q - point;
         const double r2 = dot(d, d);
         if (!(r2 > 0)) continue;
-        const double distance = std::sqrt(r2);
-        const Vec3 dir = d * (1 / distance);
         const Vec3 image_normal =
-            mirrored_direction(mesh_.patches[emitters_[image.emitter]].normal, mirror.normal);
+            mirrors_.mirrored_direction(plane, mesh_.patches[emitters_[image.emitter]].normal);
         const double w =
             std::max(0.0, dot(d, normal)) * std::max(0.0, -dot(d, image_normal)) / (r2 * r2);
-        Rgb seen{0, 0, 0};
-        const auto hit = scene.trace(point, dir);
-        if (hit.patch >= 0 && plane_of_[static_cast<std::size_t>(hit.patch)] == int(plane) &&
-            hit.front && hit.distance < distance) {
-            const Vec3 on_mirror = point + dir * hit.distance;
-            const Vec3 real = mirrored_point(q, mirror.point, mirror.normal);
-            if (scene.visible(on_mirror, real) &&
-                specular_.branches(static_cast<std::size_t>(hit.patch), dir, true, branch) > 0)
-                seen = branch[0].weight;
-        }
+        const Rgb seen =
+            via_mirror(scene, specular_, mirrors_, plane, point, mirrors_.mirrored(plane, q));
         weight_sum += w;
         plain += 1;
         for (int c = 0; c < 3; ++c) {

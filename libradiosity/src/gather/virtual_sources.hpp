@@ -24,10 +24,12 @@ class VirtualSources {
     // plane) and its emitting patches (`emission` per patch).
     VirtualSources(const radfmt::MeshData& mesh, const SpecularSurfaces& specular,
                    std::span<const Rgb> emission);
-    bool empty() const { return planes_.empty() || emitters_.empty(); }
+    bool empty() const { return mirrors_.empty() || emitters_.empty(); }
     // `patch` belongs to a planar mirror whose emitters' images are taken here: a path that
     // turns on it once and reaches an emitter brings that emitter's light twice otherwise.
-    bool images(std::size_t patch) const { return !emitters_.empty() && plane_of_[patch] >= 0; }
+    bool images(std::size_t patch) const {
+        return !emitters_.empty() && mirrors_.plane_of[patch] >= 0;
+    }
     // The irradiance at `point` (facing unit `normal`) from every emitter's image in every
     // planar mirror, with `rays` shadow rays per mirror shared among its images by what each
     // gives unshadowed.
@@ -35,9 +37,6 @@ class VirtualSources {
                    Rng& rng) const;
 
   private:
-    struct Plane {
-        Vec3 point, normal; // a point on it and its unit normal (the mirror's front)
-    };
     struct Image {
         std::uint32_t emitter = 0;
         std::vector<Vec3> clipped; // the mirrored emitter, clipped to the point's front
@@ -50,8 +49,7 @@ class VirtualSources {
 
     const radfmt::MeshData& mesh_;
     const SpecularSurfaces& specular_;
-    std::vector<Plane> planes_;
-    std::vector<int> plane_of_; // per patch: its planar mirror, or -1
+    PlanarMirrors mirrors_;
     std::vector<std::uint32_t> emitters_;
     std::vector<Rgb> emission_; // of each emitter
 };

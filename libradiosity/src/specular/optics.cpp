@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 namespace rad {
 
@@ -159,6 +161,73 @@ int SpecularSurfaces::branches(std::size_t patch, const Vec3& d, bool front,
     }
     }
     return 0;
+}
+
+PlanarMirrors planar_mirrors(const radfmt::MeshData& mesh, const SpecularSurfaces& specular) {
+    using radfmt::SpecularKind;
+    PlanarMirrors out;
+    out.plane_of.assign(mesh.patches.size(), -1);
+    if (!specular.any()) return out;
+    const double size = std::max(1e-300, bounds(mesh.vertices).diagonal());
+    std::map<std::tuple<std::uint32_t, long long, long long, long long, long long>, int> plane_of;
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
+        const auto kind = specular.of(i).kind;
+        if ((kind != SpecularKind::mirror && kind != SpecularKind::fresnel) || !specular.flat(i))
+            continue;
+        const auto& p = mesh.patches[i];
+        const auto q = [](double x) { return std::llround(x * 1e6); };
+        const auto key = std::make_tuple(p.material, q(p.normal[0]), q(p.normal[1]), q(p.normal[2]),
+                                         q(dot(p.centroid, p.normal) / size));
+        const auto [at, added] = plane_of.try_emplace(key, static_cast<int>(out.planes.size()));
+        if (added) out.planes.push_back({p.centroid, p.normal});
+        out.plane_of[i] = at->second;
+    }
+    return out;
+}
+
+radfmt::Rgb straight_transmission(const RayScene& scene, const SpecularSurfaces& specular,
+                                  const Vec3& from, const Vec3& to, int max_panes) {
+    if (!specular.any()) return scene.visible(from, to) ? grey(1) : grey(0);
+    radfmt::Rgb kept = grey(1);
+    Vec3 origin = from;
+    const Vec3 d = to - from;
+    const double distance = length(d);
+    if (!(distance > 0)) return kept;
+    const Vec3 dir = d * (1 / distance);
+    double left = distance;
+    std::array<SpecularBranch, 2> branch;
+    for (int crossed = 0; crossed <= max_panes; ++crossed) {
+        if (scene.visible(origin, origin + dir * left)) return kept;
+        const auto hit = scene.trace(origin, dir);
+        if (hit.patch < 0 || hit.distance >= left) return kept; // grazing the target itself
+        const auto patch = static_cast<std::size_t>(hit.patch);
+        if (specular.of(patch).kind != radfmt::SpecularKind::pane) return grey(0);
+        if (specular.branches(patch, dir, hit.front, branch) < 1) return grey(0);
+        for (int c = 0; c < 3; ++c) kept[c] *= branch[0].weight[c]; // the straight branch
+        origin = origin + dir * hit.distance;
+        left -= hit.distance;
+    }
+    return grey(0);
+}
+
+radfmt::Rgb via_mirror(const RayScene& scene, const SpecularSurfaces& specular,
+                       const PlanarMirrors& mirrors, std::size_t plane, const Vec3& point,
+                       const Vec3& source) {
+    const Vec3 image = mirrors.mirrored(plane, source);
+    const Vec3 d = image - point;
+    const double distance = length(d);
+    if (!(distance > 0)) return grey(0);
+    const Vec3 dir = d * (1 / distance);
+    const auto hit = scene.trace(point, dir);
+    if (hit.patch < 0 || mirrors.plane_of[static_cast<std::size_t>(hit.patch)] != int(plane) ||
+        !hit.front || hit.distance >= distance)
+        return grey(0);
+    const Vec3 on_mirror = point + dir * hit.distance;
+    std::array<SpecularBranch, 2> branch;
+    if (!scene.visible(on_mirror, source) ||
+        specular.branches(static_cast<std::size_t>(hit.patch), dir, true, branch) < 1)
+        return grey(0);
+    return branch[0].weight;
 }
 
 } // namespace rad
