@@ -12,6 +12,7 @@
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/rays.hpp"
+#include "radiosity/specular.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
@@ -437,18 +438,21 @@ int direct_light(FfArgs& a, int argc, char** argv) {
          rad::luminaire_position_warnings(set, rad::bounds(mesh.vertices), a.luminaires))
         std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());
     const rad::RayScene scene(mesh);
+    // Their light passes thin panes and is seen in planar mirrors.
+    const rad::SpecularSurfaces glass(mesh);
+    const auto mirrors = rad::planar_mirrors(mesh, glass);
     for (const auto& w : rad::enclosed_luminaire_warnings(set, scene, a.luminaires))
         std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());
     rad::DirectLightStats stats;
     const auto range =
         a.rows.empty() ? rad::RowRange{} : rad::parse_rows(a.rows, mesh.patches.size());
-    radfmt::LuminaireData lum{
-        sources.layout_name,
-        sources.layout_text,
-        sources.files,
-        set.groups,
-        mesh.patches.size(),
-        rad::patch_direct_light(mesh, set, scene, range.begin, range.end, &stats, a.options.quiet)};
+    radfmt::LuminaireData lum{sources.layout_name,
+                              sources.layout_text,
+                              sources.files,
+                              set.groups,
+                              mesh.patches.size(),
+                              rad::patch_direct_light(mesh, set, scene, range.begin, range.end,
+                                                      &stats, a.options.quiet, {&glass, &mirrors})};
     // The inputs: the mesh, the layout and every file it names, so Make and the chain see a
     // changed photometric file.
     std::vector<radfmt::Parent> parents{{input, &mesh_header}, {a.luminaires, nullptr}};

@@ -51,4 +51,64 @@ for b, g, t in zip(bare, behind, expected):
     assert abs(g / b - t) < 0.005 * t, (g / b, t)
 assert abs(behind[0] / bare[0] - 0.8) < 0.008
 PY
+
+# Luminaires too: a 1000 cd point luminaire in the mirror box is seen as its image (I cos / r^2
+# from both, the image's times 0.9), and behind the pane by the pane's transmission; the
+# luminaires' direct light on the patches (rad-ff --luminaires) takes both, so the solve and
+# the points agree.
+lum_chain() { # DIR
+  "$BIN/rad-mesh" "$1/box.obj" -o "$1/box.mesh" -q 2>/dev/null &&
+    "$BIN/rad-ff" "$1/box.mesh" -o "$1/box.ff" -q 2>/dev/null &&
+    "$BIN/rad-ff" "$1/box.mesh" --luminaires "$1/layout.csv" -o "$1/box.lum" -q 2>/dev/null &&
+    "$BIN/rad-solve" "$1/box.mesh" "$1/box.ff" --direct "$1/box.lum" -o "$1/box.rad" -q
+}
+mkdir -p "$TMP/lmirror"
+python3 "$BOXES" lum-mirror "$TMP/lmirror" 0.9 || fail "writing the luminaire mirror box"
+lum_chain "$TMP/lmirror" || fail "the luminaire mirror box's chain"
+"$BIN/rad-gather" "$TMP/lmirror/box.mesh" "$TMP/lmirror/box.rad" --points "$TMP/lmirror/pts.txt" --lux -q \
+  > "$TMP/lmirror/got.txt" || fail "rad-gather on the luminaire mirror box"
+python3 - "$TMP/lmirror/got.txt" "$TMP/lmirror/closed.txt" <<'PY' || fail "the luminaire's image is off"
+import sys
+got = [float(l.split()[0]) for l in open(sys.argv[1]) if l.strip()]
+closed = [float(l) for l in open(sys.argv[2])]
+errors = [abs(g - c) / c for g, c in zip(got, closed)]
+print("luminaire in the mirror box: worst %.3f%%" % (100 * max(errors)))
+assert len(got) == 96 and max(errors) < 0.005
+PY
+# The .lum: the luminaire's light on the floor's patches, its image's included, adds up to
+# the closed form's flux onto the floor (quadrature).
+"$BIN/rad-info" --csv "$TMP/lmirror/box.mesh" > "$TMP/lmirror/mesh.csv"
+"$BIN/rad-info" --csv "$TMP/lmirror/box.lum" > "$TMP/lmirror/lum.csv"
+python3 - "$TMP/lmirror" <<'PY' || fail "the .lum's floor flux is off"
+import csv, math, sys
+folder = sys.argv[1]
+mesh = list(csv.DictReader(open(folder + "/mesh.csv")))
+lum = {int(r["patch"]): float(r["e_g"]) for r in csv.DictReader(open(folder + "/lum.csv"))}
+floor = [r for r in mesh if abs(float(r["cy"])) < 1e-9 and float(r["ny"]) > 0.99]
+got = 179 * sum(lum.get(int(r["patch"]), 0) * float(r["area"]) for r in floor)
+n, h, closed = 400, 2.0 / 400, 0.0
+for i in range(n):
+    for j in range(n):
+        x, z = (i + 0.5) * h, (j + 0.5) * h
+        for s, w in (((1.4, 1.8, 1.0), 1), ((-1.4, 1.8, 1.0), 0.9)):
+            d = (x - s[0], -s[1], z - s[2])
+            r2 = sum(c * c for c in d)
+            closed += w * 1000 * s[1] / math.sqrt(r2) / r2 * h * h
+print("floor flux from the .lum %.2f lm, closed form %.2f lm" % (got, closed))
+assert abs(got - closed) < 0.002 * closed
+PY
+for w in 0 1; do
+  mkdir -p "$TMP/lpane$w"
+  python3 "$BOXES" lum-pane "$TMP/lpane$w" $w || fail "writing luminaire pane box $w"
+  lum_chain "$TMP/lpane$w" || fail "luminaire pane box $w's chain"
+  "$BIN/rad-gather" "$TMP/lpane$w/box.mesh" "$TMP/lpane$w/box.rad" --points "$TMP/lpane$w/pts.txt" --lux -q \
+    > "$TMP/lpane$w/got.txt" || fail "rad-gather on luminaire pane box $w"
+done
+python3 - "$TMP/lpane0/got.txt" "$TMP/lpane1/got.txt" "$TMP/lpane1/expected.txt" <<'PY' || fail "the luminaire's light through the pane is off"
+import sys
+bare, behind, expected = ([float(l.split()[0]) for l in open(p) if l.strip()] for p in sys.argv[1:4])
+for b, g, t in zip(bare, behind, expected):
+    print("luminaire through the pane: %.4f of the light, expected %.4f" % (g / b, t))
+    assert abs(g / b - t) < 0.002 * t, (g / b, t)
+PY
 finish

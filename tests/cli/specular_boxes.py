@@ -1,5 +1,13 @@
 """Scenes with known answers for light through mirrors and glass (tests/cli/direct_specular.sh).
 
+  specular_boxes.py lum-mirror DIR R   the mirror box lit by a 1000 cd isotropic point luminaire
+                                   (layout.csv, iso.ies) where its panel was, no emitting
+                                   surface; closed.txt: I cos / r^2 from it and R times the same
+                                   from its image.
+  specular_boxes.py lum-pane DIR 0|1   the pane box lit by that luminaire 0.1 m under the
+                                   ceiling's middle; expected.txt as for `pane`, at the angle to
+                                   the luminaire.
+
   specular_boxes.py mirror DIR R   a closed black 2 m box whose x = 0 wall is a mirror of
                                    reflectance R, lit by a 0.4 m ceiling panel off its middle;
                                    writes DIR/box.obj, box.mtl, pts.txt (96 sensors on the floor
@@ -100,6 +108,58 @@ def pane_transmission(normal_transmittance, ior, cos_incident):
     return out
 
 
+ISO_IES = ("IESNA:LM-63-2002\n[TEST] isotropic 1000 cd\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n"
+           "1 1 0\n0 180\n0\n1000 1000\n")
+
+
+def write_luminaire(folder, x, y, z):
+    with open(folder + "/iso.ies", "w") as f:
+        f.write(ISO_IES)
+    with open(folder + "/layout.csv", "w") as f:
+        f.write("name,photometry,x,y,z\nbulb,iso.ies,%g,%g,%g\n" % (x, y, z))
+
+
+def lum_mirror(folder, reflectance):
+    at = (1.4, 1.8, 1.0)
+    write_box(folder, {"x0": "mirror", "quads": []},
+              "newmtl mirror\nillum 3\nKd 0 0 0\nKs %g %g %g\n" % ((reflectance,) * 3))
+    write_luminaire(folder, *at)
+    image = (-at[0], at[1], at[2])
+    sensors = [((i + 0.5) / 4, 0.0, (j + 0.5) / 4, 0, 1, 0) for i in range(8) for j in range(8)]
+    sensors += [(SIZE, 0.25 + i * 0.45, (j + 0.5) / 4, -1, 0, 0) for i in range(4)
+                for j in range(8)]
+
+    def point_lux(p, n, source):
+        d = sub(p, source)
+        r2 = dot(d, d)
+        return max(0.0, -dot(d, n)) / math.sqrt(r2) * 1000 / r2
+
+    with open(folder + "/pts.txt", "w") as f:
+        for p in sensors:
+            f.write("%g %g %g %g %g %g\n" % p)
+    with open(folder + "/closed.txt", "w") as f:
+        for p in sensors:
+            at_p, n = p[:3], p[3:]
+            f.write("%.9g\n" % (point_lux(at_p, n, at) + reflectance * point_lux(at_p, n, image)))
+
+
+def lum_pane(folder, with_pane):
+    quads = []
+    if with_pane:
+        quads.append(([(0, 1.5, 0), (0, 1.5, SIZE), (SIZE, 1.5, SIZE), (SIZE, 1.5, 0)], "glass"))
+    write_box(folder, {"quads": quads},
+              "newmtl glass\nillum 4\nKd 0 0 0\nTf 0.8 0.8 0.8\nNi 1.52\n")
+    write_luminaire(folder, 1.0, 1.9, 1.0)
+    xs = [1.0, 1.2, 1.4, 1.6, 1.8, 1.95]
+    with open(folder + "/pts.txt", "w") as f:
+        for x in xs:
+            f.write("%g 0 1 0 1 0\n" % x)
+    if with_pane:
+        with open(folder + "/expected.txt", "w") as f:
+            for x in xs:
+                f.write("%.9g\n" % pane_transmission(0.8, 1.52, 1.9 / math.hypot(1.9, x - 1.0)))
+
+
 def mirror(folder, reflectance):
     lamp = panel(1.4, 1.0, 0.2, SIZE - 0.001)
     write_box(folder, {"x0": "mirror", "quads": [(lamp, "lamp")]},
@@ -141,5 +201,9 @@ if __name__ == "__main__":
     kind, folder, value = sys.argv[1], sys.argv[2], sys.argv[3]
     if kind == "mirror":
         mirror(folder, float(value))
-    else:
+    elif kind == "pane":
         pane(folder, value == "1")
+    elif kind == "lum-mirror":
+        lum_mirror(folder, float(value))
+    else:
+        lum_pane(folder, value == "1")

@@ -90,6 +90,8 @@ class Gatherer {
     const radfmt::MeshData& mesh() const { return mesh_; }
     const RayScene& scene() const { return *scene_; }
     const SpecularSurfaces& specular() const { return *specular_; }
+    // Its planar mirrors (luminaires are seen in them as images too).
+    const PlanarMirrors& mirrors() const;
     int specular_depth() const { return options_.specular_depth; }
     const GatherOptions& options() const { return options_; }
     // Patches sampled as lights because they reflect so much (see bright_factor).

@@ -75,17 +75,31 @@ double metres_per_unit(const radfmt::Header& mesh_header);
 // "m", "cm", "mm", "ft", "in" -> metres; InputError otherwise.
 double unit_metres(const std::string& unit);
 
+class SpecularSurfaces;
+struct PlanarMirrors;
+// What lies between luminaires and what they light besides opaque surfaces (both may be null):
+// thin panes, which pass their light by their transmission at each angle (its luminous share:
+// a tinted pane dims, it does not tint), and planar mirrors, in which each luminaire is seen as
+// its image, a point source at the mirrored position shining the mirrored direction's
+// intensity, times the mirror's reflectance where the path meets it.
+struct LuminaireOptics {
+    const SpecularSurfaces* specular = nullptr;
+    const PlanarMirrors* mirrors = nullptr;
+};
+
 // Illuminance (lux) at `point` on a surface facing `normal` from one luminaire: a point
 // source with one visibility ray where the point is farther than five times the luminous
 // opening, else the opening sampled (64 points, each its share of the intensity, each with
 // its ray). `scene` may be null (nothing shadows). The luminaire's own surface never shadows
 // it: rays end a hair in front of its centre.
 double luminaire_illuminance(const LuminaireSet& set, const Luminaire& l, const Vec3& point,
-                             const Vec3& normal, const RayScene* scene);
+                             const Vec3& normal, const RayScene* scene,
+                             const LuminaireOptics& optics = {});
 
 // Irradiance (W/m^2, RGB) at a point from every luminaire, per group (groups x RGB).
 std::vector<Rgb> luminaire_irradiance(const LuminaireSet& set, const Vec3& point,
-                                      const Vec3& normal, const RayScene* scene);
+                                      const Vec3& normal, const RayScene* scene,
+                                      const LuminaireOptics& optics = {});
 
 // Per patch and group, the mean irradiance (W/m^2, RGB through the 179 lm/W white) the
 // luminaires give the patch's front: the patch's exact solid angle from the luminaire times
@@ -98,7 +112,8 @@ struct DirectLightStats {
 // `progress`: patches done, on stderr when it is a terminal (not when quiet).
 std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const LuminaireSet& set,
                                     const RayScene& scene, std::uint64_t begin, std::uint64_t end,
-                                    DirectLightStats* stats = nullptr, bool quiet = true);
+                                    DirectLightStats* stats = nullptr, bool quiet = true,
+                                    const LuminaireOptics& optics = {});
 
 // Joins .lum parts (rad-ff --luminaires --rows) of one mesh, layout and files into the .lum one
 // run would have written to `output`, byte for byte; every row exactly once (InputError naming

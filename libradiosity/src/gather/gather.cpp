@@ -88,6 +88,10 @@ void Gatherer::find_bright_patches() {
 
 Gatherer::~Gatherer() = default;
 
+const PlanarMirrors& Gatherer::mirrors() const {
+    return virtual_->mirrors();
+}
+
 std::size_t Gatherer::bright_patches() const {
     return static_cast<std::size_t>(std::count(bright_.begin(), bright_.end(), 1));
 }

@@ -89,7 +89,8 @@ Irradiance gather_sensor(const Gatherer& gatherer, const LuminaireSet* luminaire
     }
     if (luminaires) // the luminaires' direct light, exactly at the point
         for (const auto& g :
-             luminaire_irradiance(*luminaires, position, direction, &gatherer.scene()))
+             luminaire_irradiance(*luminaires, position, direction, &gatherer.scene(),
+                                  {&gatherer.specular(), &gatherer.mirrors()}))
             for (std::size_t c = 0; c < 3; ++c) result.direct[c] += g[c];
     return result;
 }

@@ -25,6 +25,7 @@ class VirtualSources {
     VirtualSources(const radfmt::MeshData& mesh, const SpecularSurfaces& specular,
                    std::span<const Rgb> emission);
     bool empty() const { return mirrors_.empty() || emitters_.empty(); }
+    const PlanarMirrors& mirrors() const { return mirrors_; }
     // `patch` belongs to a planar mirror whose emitters' images are taken here: a path that
     // turns on it once and reaches an emitter brings that emitter's light twice otherwise.
     bool images(std::size_t patch) const {

@@ -6,6 +6,7 @@
 #include "radiosity/luminaires.hpp"
 #include "radiosity/patch_geometry.hpp"
 #include "radiosity/progress.hpp"
+#include "radiosity/specular.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -50,11 +51,51 @@ std::vector<Vec3> opening_points(const LuminaireSet& set, const Luminaire& l) {
     return out;
 }
 
+// Radiance's luminance weights of R, G and B (they add up to 1).
+double luminous_share(const Rgb& t) {
+    return 0.265 * t[0] + 0.670 * t[1] + 0.065 * t[2];
+}
+
+// The share of a luminaire's light that goes from `point` to `target` (its centre a hair in
+// front): 1 or 0, or through thin panes their luminous transmission.
+double passes(const RayScene& scene, const LuminaireOptics& optics, const Vec3& point,
+              const Vec3& target) {
+    if (!optics.specular) return scene.visible(point, target) ? 1 : 0;
+    return luminous_share(
+        straight_transmission(scene, *optics.specular, point, target, kDefaultSpecularDepth));
+}
+
+// Lux at `point` from the luminaire's images in the planar mirrors (point sources).
+double image_lux(const LuminaireSet& set, const Luminaire& l, const Vec3& point, const Vec3& normal,
+                 const RayScene& scene, const LuminaireOptics& optics) {
+    if (!optics.specular || !optics.mirrors) return 0;
+    const auto& mirrors = *optics.mirrors;
+    double lux = 0;
+    const Vec3 source = ray_target(l.position, l, &scene);
+    for (std::size_t k = 0; k < mirrors.planes.size(); ++k) {
+        const auto& plane = mirrors.planes[k];
+        if (dot(source - plane.point, plane.normal) <= 0) continue; // behind the mirror
+        const Vec3 d = point - mirrors.mirrored(k, l.position);     // from the image
+        const double r = length(d);
+        if (!(r > 0)) continue;
+        const double cosine = -dot(d, normal) / r;
+        if (cosine <= 0) continue;
+        const double intensity = set.intensity(l, mirrors.mirrored_direction(k, d * (1 / r)));
+        if (intensity <= 0) continue;
+        const double reflected =
+            luminous_share(via_mirror(scene, *optics.specular, mirrors, k, point, source));
+        if (!(reflected > 0)) continue;
+        const double metres = r * set.metres_per_unit;
+        lux += intensity * cosine / (metres * metres) * reflected;
+    }
+    return lux;
+}
+
 // Lux at `point` from a point source at `from` with the luminaire's distribution, shadowed
 // by `scene`; `share` of its intensity.
 double point_source_lux(const LuminaireSet& set, const Luminaire& l, const Vec3& from,
-                        const Vec3& point, const Vec3& normal, const RayScene* scene,
-                        double share) {
+                        const Vec3& point, const Vec3& normal, const RayScene* scene, double share,
+                        const LuminaireOptics& optics) {
     const Vec3 d = point - from;
     const double r = length(d);
     if (!(r > 0)) return 0;
@@ -62,9 +103,10 @@ double point_source_lux(const LuminaireSet& set, const Luminaire& l, const Vec3&
     if (cosine <= 0) return 0;
     const double intensity = set.intensity(l, d * (1 / r)) * share;
     if (intensity <= 0) return 0;
-    if (scene && !scene->visible(point, ray_target(from, l, scene))) return 0;
+    const double through = scene ? passes(*scene, optics, point, ray_target(from, l, scene)) : 1;
+    if (!(through > 0)) return 0;
     const double metres = r * set.metres_per_unit;
-    return intensity * cosine / (metres * metres);
+    return intensity * cosine / (metres * metres) * through;
 }
 
 // The solid angle of a planar polygon seen from `eye` (Van Oosterom and Strackee, over its
@@ -97,21 +139,30 @@ PatchPolygon polygon_of(std::span<const Vec3> points) {
 // Mean lux over a patch from one luminaire (see patch_direct_light); adds rays cast.
 double patch_lux(const LuminaireSet& set, const Luminaire& l, const radfmt::Patch& patch,
                  std::span<const Vec3> corners, const std::vector<ff::Sample>& samples,
-                 double diameter, const RayScene& scene, std::uint64_t& rays) {
+                 double diameter, const RayScene& scene, std::uint64_t& rays,
+                 const LuminaireOptics& optics) {
     const Vec3 to_light = l.position - patch.centroid;
-    if (dot(to_light, patch.normal) <= 0) return 0;
+    double imaged = 0; // the luminaire's images in planar mirrors, over the Gauss points
+    if (optics.mirrors && !optics.mirrors->empty())
+        for (const auto& s : samples) {
+            imaged += s.weight * image_lux(set, l, s.point, patch.normal, scene, optics);
+            rays += optics.mirrors->planes.size();
+        }
+    if (dot(to_light, patch.normal) <= 0) return imaged;
     const double distance = length(to_light);
     const double opening = set.opening_size(l);
     if (opening > 0 && distance < kNearFactor * opening) {
         double lux = 0;
         for (const auto& s : samples) {
-            lux += s.weight * luminaire_illuminance(set, l, s.point, patch.normal, &scene);
+            // The images are `imaged`'s.
+            lux += s.weight * luminaire_illuminance(set, l, s.point, patch.normal, &scene,
+                                                    {optics.specular, nullptr});
             rays += kOpeningSamples;
         }
-        return lux;
+        return lux + imaged;
     }
     const double omega = solid_angle(corners, patch.normal, l.position);
-    if (omega <= 0) return 0;
+    if (omega <= 0) return imaged;
     // Far: the solid angle exact, the intensity and visibility averaged over the patch's
     // points weighted by what each receives (cos / r^2).
     const auto one = std::vector<ff::Sample>{{patch.centroid, 1.0}};
@@ -126,30 +177,34 @@ double patch_lux(const LuminaireSet& set, const Luminaire& l, const radfmt::Patc
         const double intensity = set.intensity(l, d * (1 / std::sqrt(r2)));
         if (intensity <= 0) continue;
         ++rays;
-        if (scene.visible(s.point, ray_target(l.position, l, &scene))) weighted += w * intensity;
+        weighted +=
+            w * intensity * passes(scene, optics, s.point, ray_target(l.position, l, &scene));
     }
-    if (!(weights > 0)) return 0;
+    if (!(weights > 0)) return imaged;
     const double s = set.metres_per_unit;
-    return weighted / weights * omega / (patch.area * s * s);
+    return weighted / weights * omega / (patch.area * s * s) + imaged;
 }
 } // namespace
 
 double luminaire_illuminance(const LuminaireSet& set, const Luminaire& l, const Vec3& point,
-                             const Vec3& normal, const RayScene* scene) {
+                             const Vec3& normal, const RayScene* scene,
+                             const LuminaireOptics& optics) {
     const double opening = set.opening_size(l);
+    const double imaged = scene ? image_lux(set, l, point, normal, *scene, optics) : 0;
     if (opening <= 0 || length(point - l.position) >= kNearFactor * opening)
-        return point_source_lux(set, l, l.position, point, normal, scene, 1);
+        return point_source_lux(set, l, l.position, point, normal, scene, 1, optics) + imaged;
     double lux = 0;
     for (const auto& q : opening_points(set, l))
-        lux += point_source_lux(set, l, q, point, normal, scene, 1.0 / kOpeningSamples);
-    return lux;
+        lux += point_source_lux(set, l, q, point, normal, scene, 1.0 / kOpeningSamples, optics);
+    return lux + imaged;
 }
 
 std::vector<Rgb> luminaire_irradiance(const LuminaireSet& set, const Vec3& point,
-                                      const Vec3& normal, const RayScene* scene) {
+                                      const Vec3& normal, const RayScene* scene,
+                                      const LuminaireOptics& optics) {
     std::vector<Rgb> out(set.groups.size(), Rgb{});
     for (const auto& l : set.luminaires) {
-        const double lux = luminaire_illuminance(set, l, point, normal, scene);
+        const double lux = luminaire_illuminance(set, l, point, normal, scene, optics);
         auto& g = out[set.group_of(l)];
         for (int c = 0; c < 3; ++c)
             g[std::size_t(c)] += lux / kRadianceEfficacy * l.tint[std::size_t(c)];
@@ -159,7 +214,8 @@ std::vector<Rgb> luminaire_irradiance(const LuminaireSet& set, const Vec3& point
 
 std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const LuminaireSet& set,
                                     const RayScene& scene, std::uint64_t begin, std::uint64_t end,
-                                    DirectLightStats* stats, bool quiet) {
+                                    DirectLightStats* stats, bool quiet,
+                                    const LuminaireOptics& optics) {
     const auto start = std::chrono::steady_clock::now();
     const std::size_t groups = set.groups.size();
     end = std::min<std::uint64_t>(end, mesh.patches.size());
@@ -177,7 +233,8 @@ std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const Luminair
             for (const auto& b : corners) diameter = std::max(diameter, length(a - b));
         std::uint64_t cast = 0;
         for (const auto& l : set.luminaires) {
-            const double lux = patch_lux(set, l, patch, corners, samples, diameter, scene, cast);
+            const double lux =
+                patch_lux(set, l, patch, corners, samples, diameter, scene, cast, optics);
             if (lux <= 0) continue;
             auto& g = out[i * groups + set.group_of(l)];
             for (int c = 0; c < 3; ++c)

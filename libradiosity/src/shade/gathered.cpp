@@ -24,7 +24,8 @@ Rgb gathered_colour(const Gatherer& gatherer, const LuminaireSet* luminaires,
     const auto normal = gatherer.shading_normal(hit);
     auto h = gatherer.gather(point, normal, patch.normal, index).total();
     if (luminaires) // their direct light, exactly at the point
-        for (const auto& g : luminaire_irradiance(*luminaires, point, normal, &gatherer.scene()))
+        for (const auto& g : luminaire_irradiance(*luminaires, point, normal, &gatherer.scene(),
+                                                  {&gatherer.specular(), &gatherer.mirrors()}))
             for (int c = 0; c < 3; ++c) h[c] += g[c];
     Rgb out;
     for (int c = 0; c < 3; ++c) out[c] = material.emission[c] + material.reflectance[c] * h[c];
