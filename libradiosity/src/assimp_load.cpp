@@ -343,6 +343,29 @@ class FolderBoundIO final : public Assimp::DefaultIOSystem {
 
 } // namespace
 
+namespace {
+// The file's lights (glTF's KHR_lights_punctual, COLLADA's and FBX's lamps): not surfaces, so
+// nothing the chain lights with; each "'NAME' (point) at (x, y, z)", where its node puts it.
+std::vector<std::string> lights_of(const aiScene& ai) {
+    static const char* kind[] = {"undefined", "directional", "point", "spot", "ambient", "area"};
+    std::vector<std::string> out;
+    for (unsigned k = 0; k < ai.mNumLights; ++k) {
+        const auto& light = *ai.mLights[k];
+        aiVector3D at = light.mPosition;
+        aiMatrix4x4 place;
+        for (const aiNode* node = ai.mRootNode->FindNode(light.mName); node; node = node->mParent)
+            place = node->mTransformation * place;
+        at = place * at;
+        const unsigned type = static_cast<unsigned>(light.mType);
+        char text[300];
+        std::snprintf(text, sizeof text, "'%.100s' (%s) at (%.4g, %.4g, %.4g)", light.mName.C_Str(),
+                      type < 6 ? kind[type] : "light", at.x, at.y, at.z);
+        out.push_back(text);
+    }
+    return out;
+}
+} // namespace
+
 Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneReport* report_out) {
     if (!fs::is_regular_file(path)) throw InputError(path.string() + ": no such scene file");
     SceneReport local_report;
@@ -378,6 +401,7 @@ Scene load_with_assimp(const fs::path& path, const SceneOptions& options, SceneR
     add_materials(*ai, path, options, scene, report);
     std::map<std::string, std::uint32_t> group_of;
     add_nodes(*ai, *ai->mRootNode, aiMatrix4x4(), "", path, group_of, scene);
+    report.lights = lights_of(*ai);
     if (scene.polygons.empty())
         throw InputError(path.string() + ": scene is empty (no faces; points and lines are not "
                                          "surfaces)");

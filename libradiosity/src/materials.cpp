@@ -66,10 +66,13 @@ std::vector<std::string> material_warnings(const radfmt::MeshData& mesh,
         }
     }
     if (!any_emitter(mesh))
-        lines.push_back("no material emits light (Ke > 0): a solve needs light from elsewhere "
-                        "(rad-solve --emission MATERIAL=r,g,b; luminaires: rad-ff "
-                        "--luminaires LAYOUT; the sky through windows: rad-ff --sky "
-                        "reinhart:1; then rad-solve --direct)");
+        lines.push_back("no surface emits light: no material has an emission (Ke > 0), and a "
+                        "lamp the modelling program kept as a light (Blender's lamps, say), not "
+                        "as a surface, is not read; light the scene with a material or "
+                        "group that should glow (rad-solve --emission NAME=r,g,b), luminaires "
+                        "where the lamps are (rad-ff --luminaires LAYOUT: rows of x, y, z and an "
+                        "IES or LDT file; then rad-solve --direct), or the sky through its "
+                        "windows (rad-ff --sky reinhart:1; then rad-solve --direct)");
     return lines;
 }
 

@@ -230,4 +230,26 @@ first_finding=$(grep -m 1 "rad-mesh: warning: .*group cube" "$TMP/cubes.txt")
 [[ "$first_finding" == *"group cube24:"* ]] || fail "the largest finding is not first: $first_finding"
 "$BIN/rad-mesh" "$TMP/cubes.obj" -o "$TMP/cubes.mesh" --max-edge none --no-imprint -q -v 2> "$TMP/cubes-v.txt"
 [ "$(grep -c "rad-mesh: warning: .*group cube" "$TMP/cubes-v.txt")" = 25 ] || fail "-v does not list every finding"
+
+# A glTF whose lamp is a light (KHR_lights_punctual, as Blender exports its lamps), not a
+# surface (#66 item 6): named with where it is, and what lights the scene said.
+mkdir -p "$TMP/lit" && cp "$SRC/tests/data/gltf-square/square.bin" "$TMP/lit/"
+cat > "$TMP/lit/lit.gltf" <<'GLTF'
+{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+ "extensionsUsed": ["KHR_lights_punctual"],
+ "extensions": {"KHR_lights_punctual": {"lights": [{"name": "Light", "type": "point", "intensity": 1000}]}},
+ "nodes": [{"name": "floor", "mesh": 0, "scale": [4,4,4]},
+           {"name": "Light", "translation": [2, 3, 1], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+ "materials": [{"name": "grey", "pbrMetallicRoughness": {"baseColorFactor": [0.6,0.6,0.6,1]}}],
+ "buffers": [{"uri": "square.bin", "byteLength": 60}],
+ "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]},
+               {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}]}
+GLTF
+err=$("$BIN/rad-mesh" "$TMP/lit/lit.gltf" -o "$TMP/lit.mesh" 2>&1) || fail "rad-mesh lit.gltf: $err"
+grep -q "1 light(s) of the file are not surfaces and light nothing here: 'Light' (point) at (2, 3, 1); put a luminaire at each (rad-ff --luminaires" <<<"$err" \
+  || fail "the glTF's light is not named with its place: $err"
+grep -q "no surface emits light: .* luminaires where the lamps are .* or the sky" <<<"$err" \
+  || fail "the advice does not say how to light the scene: $err"
 finish

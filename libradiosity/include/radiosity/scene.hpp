@@ -109,6 +109,10 @@ struct SceneReport {
     // ..."), where the file says more than a diffuse colour; changed: a value was scaled or
     // clamped to make it hold together.
     std::vector<std::string> materials_read, materials_changed;
+    // Lights the file holds that are not surfaces (a glTF's punctual lights, a modelling
+    // program's lamps): "'NAME' (point) at (x, y, z)". The chain lights with surfaces,
+    // luminaires and the sky, so they light nothing.
+    std::vector<std::string> lights;
     // OBJ face corners naming a vt or vn that does not exist, ignored (neither shapes a
     // patch): how many, and the first ("line 62: '5/1/1' refers to normal (vn) 1, ...").
     std::size_t dangling_corners = 0;

@@ -118,7 +118,7 @@ std::string encode_scene(const Scene& scene, const SceneReport& report) {
     for (const auto* list :
          {&report.unknown_materials, &report.missing_libraries, &report.libraries_found_by_name,
           &report.textures_averaged, &report.textures_replacing_kd, &report.texture_problems,
-          &report.materials_read, &report.materials_changed})
+          &report.materials_read, &report.materials_changed, &report.lights})
         w.texts(*list);
     w.put<std::uint64_t>(report.dangling_corners);
     w.text(report.first_dangling);
@@ -175,7 +175,7 @@ void decode_scene(std::string_view bytes, Scene& scene, SceneReport& report) {
     for (auto* list :
          {&report.unknown_materials, &report.missing_libraries, &report.libraries_found_by_name,
           &report.textures_averaged, &report.textures_replacing_kd, &report.texture_problems,
-          &report.materials_read, &report.materials_changed})
+          &report.materials_read, &report.materials_changed, &report.lights})
         *list = r.texts();
     report.dangling_corners = r.get<std::uint64_t>();
     report.first_dangling = r.text();

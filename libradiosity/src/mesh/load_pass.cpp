@@ -37,6 +37,17 @@ void report_materials(const SceneReport& scene, const SceneOptions& options, Mes
         report.add(Kind::Warning, "material(s) not defined in any material library: " + names);
     }
     report_texture_problems(scene, report);
+    if (!scene.lights.empty()) {
+        std::string text = std::to_string(scene.lights.size()) +
+                           " light(s) of the file are not surfaces and light nothing here:";
+        for (std::size_t k = 0; k < scene.lights.size() && k < 4; ++k)
+            text += (k ? ", " : " ") + scene.lights[k];
+        if (scene.lights.size() > 4) text += ", ...";
+        report.add(Kind::Warning,
+                   text + "; put a luminaire at each (rad-ff --luminaires LAYOUT, a row with its "
+                          "x, y, z and an IES or LDT file), or give a surface an emission "
+                          "(rad-solve --emission NAME=r,g,b)");
+    }
     for (const auto& line : scene.materials_read) report.add(Kind::Note, line);
     for (const auto& line : scene.materials_changed) report.add(Kind::Change, line);
     if (scene.dangling_corners)
