@@ -573,6 +573,11 @@ static void check_kind(const Header& h, const std::string& path, const Kind* exp
 static std::uint64_t open_sized(std::ifstream& in, const fs::path& path) {
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw FormatError(path.string() + ": is a folder, not a file");
+    // Opening a FIFO blocks until something writes to it: a chain file is a regular file.
+    const auto status = fs::status(path, ec);
+    if (!ec && fs::exists(status) && !fs::is_regular_file(status))
+        throw FormatError(path.string() +
+                          ": is not a regular file (a FIFO, socket or device): give a chain file");
     in.open(path, std::ios::binary);
     if (!in)
         throw FormatError(path.string() + ": cannot open for reading (" + std::strerror(errno) +
