@@ -370,6 +370,13 @@ TEST_CASE("bad layouts are refused with LAYOUT:LINE") {
               .rfind("lay.csv:1: unknown column 'colour'", 0) == 0);
     CHECK(refused("name,photometry,x,y,z\n").rfind("lay.csv: the layout places no luminaire", 0) ==
           0);
+    // As spreadsheets write them (#70 item 11): "CSV UTF-8" starts with a byte-order mark (it
+    // was "has no column 'name'"); UTF-16 is named as such.
+    CHECK(refused("\xEF\xBB\xBFname,photometry,x,y,z\nL,lamp.ies,0,1,0\n").empty());
+    CHECK(refused(std::string("\xFF\xFEn\0a\0m\0e\0", 10))
+              .rfind("lay.csv:1: is UTF-16 or UTF-32 text", 0) == 0);
+    CHECK(refusal("\xFF\xFEI\0E\0S\0", "wide.ies").rfind("wide.ies:1: is UTF-16", 0) == 0);
+    CHECK(refusal("\xEF\xBB\xBF" + std::string(kIsotropic), "bom.ies").empty());
 }
 
 #include "radiosity/luminaire_image.hpp"

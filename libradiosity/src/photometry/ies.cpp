@@ -146,6 +146,7 @@ std::vector<double> read_angles(TokenCursor& in, long count, const std::string& 
 
 Photometry parse_ies(std::string_view text, const std::string& name,
                      const IncludeReader& read_include) {
+    text = photometry::plain_text(text, name);
     Photometry p;
     p.source = name;
     const auto lines = photometry::split_lines(text);

@@ -88,7 +88,7 @@ struct Row {
 };
 
 std::vector<Row> layout_rows(const std::string& text, const std::string& name) {
-    const auto lines = photometry::split_lines(text);
+    const auto lines = photometry::split_lines(photometry::plain_text(text, name));
     std::vector<Row> rows;
     std::map<std::string, std::size_t> columns;
     bool header = true;

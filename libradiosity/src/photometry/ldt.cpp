@@ -104,6 +104,7 @@ std::vector<std::size_t> stored_planes(int isym, const std::vector<double>& c, T
 } // namespace
 
 Photometry parse_ldt(std::string_view text, const std::string& name) {
+    text = photometry::plain_text(text, name);
     const LdtLines ldt(photometry::split_lines(text), name);
     Photometry p;
     p.source = name;

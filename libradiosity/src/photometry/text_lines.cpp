@@ -13,6 +13,16 @@ std::string quoted(std::string_view text) {
     return quoted_prefix(text);
 }
 
+std::string_view plain_text(std::string_view text, const std::string& name) {
+    if (text.starts_with("\xEF\xBB\xBF")) return text.substr(3);
+    const bool wide = text.starts_with("\xFF\xFE") || text.starts_with("\xFE\xFF") ||
+                      text.substr(0, 4096).find('\0') != std::string_view::npos;
+    if (wide)
+        throw InputError(FileLoc{name, 1}, "is UTF-16 or UTF-32 text (a byte-order mark or NUL "
+                                           "bytes): save it as UTF-8 or ASCII");
+    return text;
+}
+
 std::vector<std::string_view> split_lines(std::string_view text) {
     std::vector<std::string_view> lines;
     std::size_t start = 0;

@@ -14,6 +14,11 @@ namespace rad::photometry {
 // A quoted prefix of a line for a message: never the whole of a huge line.
 std::string quoted(std::string_view text);
 
+// The text without a UTF-8 byte-order mark (a spreadsheet's "CSV UTF-8" starts with one);
+// InputError naming `name` for UTF-16 or UTF-32 text (a byte-order mark of those, or NUL
+// bytes): the readers read ASCII and UTF-8.
+std::string_view plain_text(std::string_view text, const std::string& name);
+
 // The text's lines without their line ends.
 std::vector<std::string_view> split_lines(std::string_view text);
 

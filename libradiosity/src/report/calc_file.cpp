@@ -192,6 +192,7 @@ CalcFile read_calc_file(const std::string& path) {
     std::string line;
     while (in.next(line)) {
         const FileLoc where{file.name, in.line_number()};
+        if (in.line_number() == 1) line = std::string(photometry::plain_text(line, file.name));
         const auto first = line.find_first_not_of(" \t\r");
         if (first == std::string::npos || line[first] == '#') continue;
         const auto fields = photometry::csv_fields(line);
