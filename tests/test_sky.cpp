@@ -387,3 +387,36 @@ TEST_CASE("skies, places and times out of range are refused, not taken as light 
                       Catch::Contains("an elevation of 1e+308 m is outside"));
     CHECK(rad::parse_location("40,-105,-7,1600").elevation == 1600);
 }
+
+TEST_CASE("Perez's sky holds over every hour a weather file can hold (#70 item 6)", "[sky]") {
+    const rad::SkyFrame frame;
+    rad::SunPosition sun;
+    sun.azimuth = 180;
+    // 11 Jul 12:00 of a real EPW: DNI 120, DHI 46 W/m^2, the sun at 72 degrees. Its Perez
+    // distribution is negative over the whole sky at the hour's brightness: the year stopped.
+    sun.zenith = 18;
+    const auto hour = rad::Sky::perez(120, 46, sun, 192, 10, frame, 0.2);
+    CHECK(hour.horizontal_illuminance() > 0);
+    CHECK_THAT(hour.adjusted(), Catch::Contains("taken at"));
+    // Every combination over the sun's zenith, DNI and DHI gives a sky.
+    int refused = 0;
+    for (double z = 0; z < 90; z += 6)
+        for (double dni = 0; dni <= 1000; dni += 50)
+            for (double dhi = 1; dhi <= 500; dhi += 15) {
+                sun.zenith = z;
+                try {
+                    const auto sky = rad::Sky::perez(dni, dhi, sun, 192, 10, frame, 0.2);
+                    CHECK(std::isfinite(sky.horizontal_illuminance()));
+                } catch (const rad::InputError&) {
+                    ++refused;
+                }
+            }
+    CHECK(refused == 0);
+    // No diffuse light with the sun up: the beam is kept (it gave 0 lx).
+    sun.zenith = 30;
+    const auto beam_only = rad::Sky::perez(800, 0, sun, 172, 10, frame, 0.2);
+    CHECK(beam_only.sun_normal_illuminance() > 800 * 80);
+    CHECK(beam_only.horizontal_illuminance() == 0);
+    // An ordinary hour is not adjusted.
+    CHECK(rad::Sky::perez(700, 120, sun, 172, 10, frame, 0.2).adjusted().empty());
+}

@@ -170,8 +170,10 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
         std::fprintf(stderr, "rad-gather: %s: %d hour(s) with missing radiation, taken as 0\n",
                      a.epw.c_str(), weather.missing);
     const auto occupied = occupied_hours(a.occupancy, weather);
+    std::vector<std::string> notes;
     const auto year = annual_illuminance(sensors, run.positions, run.normals, weather, occupied,
-                                         a.choice.ground, run.quiet);
+                                         a.choice.ground, run.quiet, &notes);
+    for (const auto& note : notes) std::fprintf(stderr, "rad-gather: %s\n", note.c_str());
     std::vector<radfmt::Parent> parents;
     for (const auto& i : run.inputs) parents.push_back({i, nullptr});
     auto header = radfmt::derived_header(tool_version("rad-gather"), run.command, parents);

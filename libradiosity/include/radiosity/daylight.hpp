@@ -174,12 +174,13 @@ class DaylightSensors {
 // A year at sensors from a weather file: per hour Perez's sky from its radiation (the sun at
 // mid-hour), the sky's light through the coefficients, the sun's beam traced at each sensor.
 // `occupied`: one flag per hour. `ground`: the ground's reflectance. Parallel over the
-// sensors; deterministic.
+// sensors; deterministic. `notes` (may be null) receives one line for the hours whose Perez
+// sky was adjusted at the model's edges (Sky::adjusted), with their count and the first.
 radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
                                       const std::vector<Vec3>& positions,
                                       const std::vector<Vec3>& normals, const Weather& weather,
                                       const std::vector<std::uint8_t>& occupied, double ground,
-                                      bool quiet = true);
+                                      bool quiet = true, std::vector<std::string>* notes = nullptr);
 
 // The occupied hours: 08:00 to 18:00 local standard time every day (LM-83's default), or
 // read from `path`: one 0 or 1 a line for each hour of the year (# comments and blank lines

@@ -86,10 +86,17 @@ class Sky {
     // Perez's all-weather sky (1993) from direct normal and diffuse horizontal irradiance
     // (W/m^2), with the sun: Perez's 1990 luminous efficacies give the illuminances
     // (`dew_point` in degrees C for the precipitable water; `day_of_year` for the Earth's
-    // distance). The sun's beam is its direct normal illuminance.
+    // distance). The sun's beam is its direct normal illuminance. At the model's edges (see
+    // docs/daylight.md): with no diffuse irradiance and the sun up, the beam keeps the clearest
+    // bin's efficacy (it was dropped); where Perez's distribution for the hour's clearness and
+    // brightness is negative over the whole sky, the brightness its parameters are taken at
+    // is raised until it is not (gendaylit's rule for low brightness, extended), and said by
+    // adjusted().
     static Sky perez(double direct_normal, double diffuse_horizontal, const SunPosition& sun,
                      int day_of_year, double dew_point, const SkyFrame& frame,
                      double ground_reflectance);
+    // A Perez sky whose distribution needed a raised brightness (perez): what was done, else "".
+    const std::string& adjusted() const { return adjusted_; }
 
     // A clear day for a place and time with no weather file: CIE type 12 (the standard
     // clear sky) with the IES clear-sky daylight availability (IES Lighting Handbook): the
@@ -104,6 +111,7 @@ class Sky {
   private:
     double sun_zenith_rad() const;
     void normalise_to(double lux);
+    double relative_integral() const; // the horizontal illuminance at scale 1
     void set_ground(double reflectance);
     Model model_ = Model::uniform;
     SkyFrame frame_;
@@ -113,7 +121,7 @@ class Sky {
     double scale_ = 1;          // luminance = scale_ x relative
     double cie_zenith_ = 1;     // CIE: phi(0) f(Zs), relative's denominator
     double horizontal_ = 0, ground_ = 0, sun_normal_lux_ = 0;
-    std::string name_;
+    std::string name_, adjusted_;
 };
 
 // The Earth's eccentricity correction (r0 / r)^2 on `day_of_year` (Spencer 1971).

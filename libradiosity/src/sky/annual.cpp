@@ -8,6 +8,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cstdio>
+
 namespace rad {
 namespace {
 // Directions per sky patch for the hourly patch means: 4 x 4 (3 degrees apart on Tregenza's
@@ -19,6 +22,7 @@ struct HourlySkies {
     std::vector<float> direct, reflected; // [hour * count + s], cd/m^2
     std::vector<Vec3> sun;                // per hour
     std::vector<double> sun_lux;          // the beam's normal illuminance, 0 when down
+    std::vector<std::uint8_t> adjusted;   // per hour: its Perez sky was adjusted
 };
 
 HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, const SkyFrame& frame,
@@ -30,6 +34,7 @@ HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, cons
     out.reflected.assign(hours * out.count, 0.0f);
     out.sun.assign(hours, Vec3{0, 1, 0});
     out.sun_lux.assign(hours, 0.0);
+    out.adjusted.assign(hours, 0);
     const auto cells = patches.cells(frame, kHourlySide); // once for the year
     tbb::parallel_for(std::size_t(0), hours, [&](std::size_t t) {
         const auto& h = weather.hours[t];
@@ -37,6 +42,7 @@ HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, cons
         if (h.diffuse_horizontal <= 0 && (h.direct_normal <= 0 || sun.zenith >= 90)) return;
         const auto sky = Sky::perez(h.direct_normal, h.diffuse_horizontal, sun, h.day_of_year(),
                                     h.dew_point, frame, ground);
+        out.adjusted[t] = !sky.adjusted().empty();
         const auto mean = patches.mean_luminance(sky, cells);
         for (std::size_t s = 0; s < out.count; ++s)
             out.direct[t * out.count + s] = out.reflected[t * out.count + s] = float(mean[s]);
@@ -55,8 +61,23 @@ radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
                                       const std::vector<Vec3>& positions,
                                       const std::vector<Vec3>& normals, const Weather& weather,
                                       const std::vector<std::uint8_t>& occupied, double ground,
-                                      bool quiet) {
+                                      bool quiet, std::vector<std::string>* notes) {
     const auto skies = hourly_skies(weather, sensors.patches(), sensors.frame(), ground);
+    if (notes) {
+        const auto first = std::find(skies.adjusted.begin(), skies.adjusted.end(), 1);
+        if (first != skies.adjusted.end()) {
+            const auto& h = weather.hours[std::size_t(first - skies.adjusted.begin())];
+            char text[400];
+            std::snprintf(text, sizeof text,
+                          "%s: %ld hour(s) whose Perez distribution is negative over the whole "
+                          "sky at the hour's brightness were taken at the least brightness that "
+                          "gives a sky (first: line %d, %02d-%02d %02d:00, DNI %g, DHI %g W/m^2)",
+                          weather.path.c_str(),
+                          long(std::count(skies.adjusted.begin(), skies.adjusted.end(), 1)), h.line,
+                          h.month, h.day, h.hour, h.direct_normal, h.diffuse_horizontal);
+            notes->push_back(text);
+        }
+    }
     const std::size_t n = positions.size(), hours = weather.hours.size(), count = skies.count;
     radfmt::AnnualData year;
     year.positions = positions;

@@ -6,12 +6,16 @@
 #include "radiosity/sky.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace rad {
 namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kSolarConstant = 1367; // W/m^2
+constexpr int kClearestBin = 7;
+// Perez's sky brightness, clamped to where his fits hold.
+constexpr double kLeastBrightness = 0.01, kMostBrightness = 0.6;
 
 // Table 1 of the 1993 paper: per clearness bin, a..e each as (x1, x2, x3, x4).
 constexpr double kPerez[8][20] = {
@@ -82,18 +86,23 @@ Sky Sky::perez(double direct_normal, double diffuse_horizontal, const SunPositio
     s.name_ = "Perez sky";
     const double beam = sun.zenith < 90 ? direct_normal : 0.0;
     const double z = s.sun_.zenith * kPi / 180;
+    const double water = std::exp(0.07 * dew_point - 0.075); // precipitable, cm
     if (diffuse_horizontal <= 0) { // night, or no data: a dark sky, the sun alone
         s.p_ = {0, -1, 0, -1, 0};
         s.scale_ = s.horizontal_ = 0;
+        // No diffuse light is the clearest sky there is: the beam keeps that bin's efficacy.
+        const auto& be = kDirectEfficacy[kClearestBin];
+        s.sun_normal_lux_ =
+            beam * std::max(0.0, be[0] + be[1] * water + be[2] * std::exp(5.73 * z - 5) +
+                                     be[3] * kLeastBrightness);
     } else {
         const double z3 = 1.041 * z * z * z;
         const double epsilon = std::clamp(
             ((diffuse_horizontal + beam) / diffuse_horizontal + z3) / (1 + z3), 1.0, 12.0);
         const double brightness = std::clamp(diffuse_horizontal * air_mass(s.sun_.zenith) /
                                                  (kSolarConstant * eccentricity(day_of_year)),
-                                             0.01, 0.6);
+                                             kLeastBrightness, kMostBrightness);
         const int bin = clearness_bin(epsilon);
-        const double water = std::exp(0.07 * dew_point - 0.075); // precipitable, cm
         const auto& de = kDiffuseEfficacy[bin];
         const double diffuse_lux =
             diffuse_horizontal *
@@ -103,6 +112,26 @@ Sky Sky::perez(double direct_normal, double diffuse_horizontal, const SunPositio
             beam * std::max(0.0, be[0] + be[1] * water + be[2] * std::exp(5.73 * z - 5) +
                                      be[3] * brightness);
         s.p_ = perez_parameters(bin, z, brightness, epsilon);
+        // Low brightness at some clearness makes the distribution negative over the whole
+        // sky: its parameters are taken at the least brightness that gives a sky.
+        double raised = brightness;
+        while (!(s.relative_integral() > 0) && raised < kMostBrightness) {
+            raised = std::min(kMostBrightness, raised * 1.25 + 0.005);
+            s.p_ = perez_parameters(bin, z, raised, epsilon);
+        }
+        if (!(s.relative_integral() > 0)) { // never met: the overcast distribution
+            s.p_ = {0, -1, 0, -1, 0};
+            s.model_ = Model::cie_overcast;
+            s.adjusted_ = "Perez's distribution is negative over the whole sky at every "
+                          "brightness for its clearness: the CIE overcast distribution";
+        } else if (raised != brightness) {
+            char text[200];
+            std::snprintf(text, sizeof text,
+                          "Perez's distribution is negative over the whole sky at its brightness "
+                          "%.3g: taken at %.3g",
+                          brightness, raised);
+            s.adjusted_ = text;
+        }
         s.normalise_to(std::max(0.0, diffuse_lux));
     }
     s.set_ground(ground_reflectance);

@@ -83,7 +83,7 @@ double Sky::luminance(const Vec3& d) const {
 // cos over the hemisphere, Gauss-Legendre in sin(altitude) by 0.75-degree steps of azimuth
 // from the sun's (a sun's corona a few degrees wide is resolved). The integrand is
 // symmetric about the sun's vertical plane: half the circle, twice.
-void Sky::normalise_to(double lux) {
+double Sky::relative_integral() const {
     static const auto table = [] {
         struct Table {
             std::vector<double> nodes, weights, cos_step;
@@ -103,6 +103,11 @@ void Sky::normalise_to(double lux) {
             ring += relative_cos(u, u * sun_sin + c * sun_cos * cos_step);
         integral += table.weights[k] * u * ring * (2 * kPi / double(table.cos_step.size()));
     }
+    return integral;
+}
+
+void Sky::normalise_to(double lux) {
+    const double integral = relative_integral();
     if (!(integral > 0)) throw InputError("the sky's luminance integrates to nothing");
     scale_ = lux > 0 ? lux / integral : 0;
     horizontal_ = lux;
