@@ -57,6 +57,17 @@ expect_error "are in two parts" "$TMP/g/x.txt" "$BIN/rad-gather" --merge "$TMP/g
 (cd "$TMP/g" && "$BIN/rad-gather" ../c.mesh ../c.rad --points ../pts.txt -o o1.part --lux --rays 32 --keep-going --rows 1/3 -q 2>/dev/null)
 expect_error "are parts of different runs" "$TMP/g/x.txt" "$BIN/rad-gather" --merge "$TMP/g/g0.part" "$TMP/g/o1.part" "$TMP/g/g2.part" -o "$TMP/g/x.txt"
 expect_error "not a part from rad-gather --rows" "$TMP/g/x.txt" "$BIN/rad-gather" --merge "$TMP/g/single.txt" -o "$TMP/g/x.txt"
+# A part changed after it was written (#70 item 9): a line that is no value (markup, an empty
+# line) is refused at its line, never copied into the output; a line too many is said as such.
+for extra in '<script>alert(1)</script>' '' '1.5'; do
+  { cat "$TMP/g/g1.part"; printf '%s\n' "$extra"; } > "$TMP/g/bad1.part"
+  err=$("$BIN/rad-gather" --merge "$TMP/g/g0.part" "$TMP/g/bad1.part" "$TMP/g/g2.part" -o "$TMP/g/x.txt" 2>&1); rc=$?
+  [ $rc -eq 1 ] && [ ! -e "$TMP/g/x.txt" ] || fail "a part with the line '$extra' added: exit $rc"
+  case "$extra" in
+    1.5) grep -q "bad1.part: holds 21 value line(s) for the 20 sensors 20:40 (lines were added" <<<"$err" || fail "one line too many: $err" ;;
+    *) grep -q "bad1.part:[0-9]*: not a value line as rad-gather writes them" <<<"$err" || fail "'$extra' is not named: $err" ;;
+  esac
+done
 expect_error "--rows splits a --points FILE or a --grid" "$TMP/g/x.part" "$BIN/rad-gather" "$M" "$TMP/c.rad" -o "$TMP/g/x.part" --rows 0/2
 expect_error "(the sensors)" "$TMP/g/x.part" "$BIN/rad-gather" "$M" "$TMP/c.rad" --points "$TMP/pts.txt" -o "$TMP/g/x.part" --rows 0/62
 GRID="0.05 0.05 0.5 0.5 0.01 7 5"

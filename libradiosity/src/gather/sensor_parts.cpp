@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <sstream>
 
 namespace rad {
 
@@ -62,6 +63,19 @@ ReadPart read_preamble(const std::string& path, LineReader& in) {
 }
 } // namespace
 
+namespace {
+// A line of values as rad-gather writes them: one lux or three irradiances, numbers or nan.
+bool is_value_line(const std::string& line) {
+    std::istringstream words(line);
+    int count = 0;
+    for (std::string word; words >> word; ++count) {
+        double value = 0;
+        if (word != "nan" && !parse_number(word, value)) return false;
+    }
+    return count == 1 || count == 3;
+}
+} // namespace
+
 std::string sensor_part_preamble(const SensorPart& part) {
     return std::string(kMagic) + "\n#?rows=" + std::to_string(part.begin) + ":" +
            std::to_string(part.end) + " of " + std::to_string(part.total) +
@@ -103,15 +117,24 @@ std::uint64_t merge_sensor_parts(const std::vector<std::string>& paths, const st
                 read_preamble(p.path, in);
                 std::string line;
                 std::uint64_t values = 0;
+                const std::uint64_t want = p.part.end - p.part.begin;
                 while (ok && in.next(line)) {
+                    if (!is_value_line(line))
+                        throw InputError(p.path + ":" + std::to_string(in.line_number()) +
+                                         ": not a value line as rad-gather writes them (numbers "
+                                         "or nan): the part was changed after it was written; "
+                                         "compute it again");
                     ok = std::fprintf(out, "%s\n", line.c_str()) >= 0;
                     ++values;
                 }
-                if (values != p.part.end - p.part.begin)
+                if (values != want)
                     throw InputError(p.path + ": holds " + std::to_string(values) +
-                                     " value line(s) for sensors " + std::to_string(p.part.begin) +
-                                     ":" + std::to_string(p.part.end) +
-                                     " (it was cut short: compute it again)");
+                                     " value line(s) for the " + std::to_string(want) +
+                                     " sensors " + std::to_string(p.part.begin) + ":" +
+                                     std::to_string(p.part.end) +
+                                     (values < want ? " (it was cut short: compute it again)"
+                                                    : " (lines were added after it was written: "
+                                                      "compute it again)"));
             }
         } catch (...) {
             std::fclose(out);

@@ -244,7 +244,7 @@ std::string fit_specular_energy(radfmt::Material& m) {
         if (sum <= 1 + 1e-9) continue;
         if (s.kind == SpecularKind::mirror || s.kind == SpecularKind::fresnel)
             scale = std::min(scale, 1 / sum);
-        else
+        else if (m.reflectance[k] > 0)
             scale = std::min(scale,
                              std::max(0.0, 1 - reflected[k] - transmitted[k]) / m.reflectance[k]);
     }
