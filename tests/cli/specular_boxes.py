@@ -119,82 +119,72 @@ def write_luminaire(folder, x, y, z):
         f.write("name,photometry,x,y,z\nbulb,iso.ies,%g,%g,%g\n" % (x, y, z))
 
 
-def lum_mirror(folder, reflectance):
-    at = (1.4, 1.8, 1.0)
-    write_box(folder, {"x0": "mirror", "quads": []},
-              "newmtl mirror\nillum 3\nKd 0 0 0\nKs %g %g %g\n" % ((reflectance,) * 3))
-    write_luminaire(folder, *at)
-    image = (-at[0], at[1], at[2])
+MIRROR_GLASS = "newmtl mirror\nillum 3\nKd 0 0 0\nKs %g %g %g\n"
+PANE_GLASS = "newmtl glass\nillum 4\nKd 0 0 0\nTf 0.8 0.8 0.8\nNi 1.52\n"
+PANE = [(0, 1.5, 0), (0, 1.5, SIZE), (SIZE, 1.5, SIZE), (SIZE, 1.5, 0)]
+
+
+def write_lines(path, lines):
+    with open(path, "w") as f:
+        f.writelines(line + "\n" for line in lines)
+
+
+def mirror_box_sensors(folder):
+    """64 floor sensors and 32 on the wall facing the mirror, written to pts.txt."""
     sensors = [((i + 0.5) / 4, 0.0, (j + 0.5) / 4, 0, 1, 0) for i in range(8) for j in range(8)]
     sensors += [(SIZE, 0.25 + i * 0.45, (j + 0.5) / 4, -1, 0, 0) for i in range(4)
                 for j in range(8)]
+    write_lines(folder + "/pts.txt", ["%g %g %g %g %g %g" % p for p in sensors])
+    return sensors
+
+
+def lum_mirror(folder, reflectance):
+    at = (1.4, 1.8, 1.0)
+    write_box(folder, {"x0": "mirror", "quads": []}, MIRROR_GLASS % ((reflectance,) * 3))
+    write_luminaire(folder, *at)
+    image = (-at[0], at[1], at[2])
 
     def point_lux(p, n, source):
         d = sub(p, source)
         r2 = dot(d, d)
         return max(0.0, -dot(d, n)) / math.sqrt(r2) * 1000 / r2
 
-    with open(folder + "/pts.txt", "w") as f:
-        for p in sensors:
-            f.write("%g %g %g %g %g %g\n" % p)
-    with open(folder + "/closed.txt", "w") as f:
-        for p in sensors:
-            at_p, n = p[:3], p[3:]
-            f.write("%.9g\n" % (point_lux(at_p, n, at) + reflectance * point_lux(at_p, n, image)))
-
-
-def lum_pane(folder, with_pane):
-    quads = []
-    if with_pane:
-        quads.append(([(0, 1.5, 0), (0, 1.5, SIZE), (SIZE, 1.5, SIZE), (SIZE, 1.5, 0)], "glass"))
-    write_box(folder, {"quads": quads},
-              "newmtl glass\nillum 4\nKd 0 0 0\nTf 0.8 0.8 0.8\nNi 1.52\n")
-    write_luminaire(folder, 1.0, 1.9, 1.0)
-    xs = [1.0, 1.2, 1.4, 1.6, 1.8, 1.95]
-    with open(folder + "/pts.txt", "w") as f:
-        for x in xs:
-            f.write("%g 0 1 0 1 0\n" % x)
-    if with_pane:
-        with open(folder + "/expected.txt", "w") as f:
-            for x in xs:
-                f.write("%.9g\n" % pane_transmission(0.8, 1.52, 1.9 / math.hypot(1.9, x - 1.0)))
+    write_lines(folder + "/closed.txt",
+                ["%.9g" % (point_lux(p[:3], p[3:], at) + reflectance * point_lux(p[:3], p[3:], image))
+                 for p in mirror_box_sensors(folder)])
 
 
 def mirror(folder, reflectance):
     lamp = panel(1.4, 1.0, 0.2, SIZE - 0.001)
     write_box(folder, {"x0": "mirror", "quads": [(lamp, "lamp")]},
-              "newmtl mirror\nillum 3\nKd 0 0 0\nKs %g %g %g\n" % ((reflectance,) * 3))
+              MIRROR_GLASS % ((reflectance,) * 3))
     image = [(-x, y, z) for (x, y, z) in lamp]
-    sensors = [((i + 0.5) / 4, 0.0, (j + 0.5) / 4, 0, 1, 0) for i in range(8) for j in range(8)]
-    sensors += [(SIZE, 0.25 + i * 0.45, (j + 0.5) / 4, -1, 0, 0) for i in range(4)
-                for j in range(8)]
-    with open(folder + "/pts.txt", "w") as f:
-        for p in sensors:
-            f.write("%g %g %g %g %g %g\n" % p)
-    with open(folder + "/closed.txt", "w") as f:
-        for p in sensors:
-            at, normal = p[:3], p[3:]
-            irradiance = E * (form_factor(at, normal, lamp) +
-                              reflectance * form_factor(at, normal, image))
-            f.write("%.9g\n" % (179 * irradiance))
+    write_lines(folder + "/closed.txt",
+                ["%.9g" % (179 * E * (form_factor(p[:3], p[3:], lamp) +
+                                      reflectance * form_factor(p[:3], p[3:], image)))
+                 for p in mirror_box_sensors(folder)])
+
+
+def pane_box(folder, with_pane, quads, source_y):
+    """The black box, with the pane when asked, 6 floor sensors from x = 1 (under a source at
+    height source_y over x = 1) to the wall, and the pane's transmission toward the source."""
+    write_box(folder, {"quads": quads + ([(PANE, "glass")] if with_pane else [])}, PANE_GLASS)
+    xs = [1.0, 1.2, 1.4, 1.6, 1.8, 1.95]
+    write_lines(folder + "/pts.txt", ["%g 0 1 0 1 0" % x for x in xs])
+    if with_pane:
+        write_lines(folder + "/expected.txt",
+                    ["%.9g" % pane_transmission(0.8, 1.52, source_y / math.hypot(source_y, x - 1.0))
+                     for x in xs])
+
+
+def lum_pane(folder, with_pane):
+    pane_box(folder, with_pane, [], 1.9)
+    write_luminaire(folder, 1.0, 1.9, 1.0)
 
 
 def pane(folder, with_pane):
     lamp_y = SIZE - 0.001
-    quads = [(panel(1.0, 1.0, 0.1, lamp_y), "lamp")]
-    if with_pane:
-        quads.append(([(0, 1.5, 0), (0, 1.5, SIZE), (SIZE, 1.5, SIZE), (SIZE, 1.5, 0)], "glass"))
-    write_box(folder, {"quads": quads},
-              "newmtl glass\nillum 4\nKd 0 0 0\nTf 0.8 0.8 0.8\nNi 1.52\n")
-    xs = [1.0, 1.2, 1.4, 1.6, 1.8, 1.95]
-    with open(folder + "/pts.txt", "w") as f:
-        for x in xs:
-            f.write("%g 0 1 0 1 0\n" % x)
-    if with_pane:
-        with open(folder + "/expected.txt", "w") as f:
-            for x in xs:
-                cos_incident = lamp_y / math.hypot(lamp_y, x - 1.0)
-                f.write("%.9g\n" % pane_transmission(0.8, 1.52, cos_incident))
+    pane_box(folder, with_pane, [(panel(1.0, 1.0, 0.1, lamp_y), "lamp")], lamp_y)
 
 
 if __name__ == "__main__":
