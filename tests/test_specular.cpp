@@ -227,8 +227,15 @@ TEST_CASE("MTL values out of range are clamped and shares over 1 scaled, each sa
     CHECK(tamed.specular.transmittance[0] == 1);
     CHECK(tamed.specular.ior == Approx(rad::kPaneIndex));
     CHECK_THAT(tamed.why, Catch::Contains("Tf 3,0.5,0.5 clamped to 1") &&
-                              Catch::Contains("Ni 0 is no glass's index") &&
-                              Catch::Contains("Ks 1.5,1.5,1.5 clamped"));
+                              Catch::Contains("Ni 0 is no glass's index"));
+    // Ks is said where a mirror uses it, not on glass or a diffuse material that ignores it.
+    CHECK_THAT(tamed.why, !Catch::Contains("Ks"));
+    auto bright = mtl(3);
+    bright.specular = {{1.5, 1.5, 1.5}};
+    bright.diffuse = {};
+    CHECK_THAT(rad::read_mtl_material(bright).why, Catch::Contains("Ks 1.5,1.5,1.5 clamped to 1"));
+    bright.illum = 2;
+    CHECK(rad::read_mtl_material(bright).why.empty());
     wild.dissolve = std::nan("");
     wild.states_dissolve = true;
     CHECK_THAT(rad::read_mtl_material(wild).why, Catch::Contains("d nan taken as 1"));

@@ -67,14 +67,14 @@ bool named_as_glass(const std::string& name) {
 struct MtlValues {
     Rgb specular, filter;
     double dissolve = 1;
-    std::string clamps;
+    std::string clamps;             // said whatever the material becomes
+    std::string ks_clamp, tf_clamp; // said when a mirror, or glass, uses them
 };
 MtlValues clamped_values(const MtlSpecularInput& in) {
-    MtlValues v{clamped(in.specular), clamped(in.filter), in.dissolve, ""};
-    if (brightest(in.specular) > 1)
-        add_clause(v.clamps, "Ks " + rgb_text(in.specular) + " clamped to 1");
+    MtlValues v{clamped(in.specular), clamped(in.filter), in.dissolve, "", "", ""};
+    if (brightest(in.specular) > 1) v.ks_clamp = "Ks " + rgb_text(in.specular) + " clamped to 1";
     if (in.states_filter && brightest(in.filter) > 1)
-        add_clause(v.clamps, "Tf " + rgb_text(in.filter) + " clamped to 1");
+        v.tf_clamp = "Tf " + rgb_text(in.filter) + " clamped to 1";
     if (!std::isfinite(in.dissolve) || in.dissolve < 0 || in.dissolve > 1) {
         v.dissolve = std::isfinite(in.dissolve) ? std::clamp(in.dissolve, 0.0, 1.0) : 1.0;
         add_clause(v.clamps,
@@ -173,6 +173,11 @@ MtlReading read_mtl_material(const MtlSpecularInput& in) {
         why = "opaque, though named like glass: nothing in the file makes it see-through (" +
               std::string(kOpaqueAdvice) + ")";
     }
+    const auto kind = out.specular.kind;
+    if (kind == SpecularKind::mirror || kind == SpecularKind::fresnel)
+        add_clause(v.clamps, v.ks_clamp);
+    if (kind == SpecularKind::pane || kind == SpecularKind::dielectric)
+        add_clause(v.clamps, v.tf_clamp);
     radfmt::Material m{"", out.diffuse, {}, out.specular};
     const auto fitted = fit_specular_energy(m);
     out.diffuse = m.reflectance;
