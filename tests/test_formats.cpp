@@ -750,3 +750,20 @@ TEST_CASE("names: one rule for every output, and readers refuse what breaks it")
     CHECK_FALSE(fs::exists(dir / "k.rad"));
     fs::remove_all(dir);
 }
+
+TEST_CASE("a .sky that passes its checksums but says north 1e308 is refused (#70 item 8)") {
+    const auto dir = temp_dir("sky-north");
+    radfmt::SkyData sky;
+    sky.subdivision = "reinhart:1";
+    sky.patch_count = 1;
+    sky.sky_patches = 146;
+    sky.coefficients.assign(146 * 3, 0.01f);
+    sky.north_deg = 30;
+    radfmt::write_sky(dir / "ok.sky", header_for("rad-ff"), sky);
+    CHECK(radfmt::read_sky(dir / "ok.sky").north_deg == 30);
+    sky.north_deg = 1e308; // written whole, hashes and all: only its range tells
+    radfmt::write_sky(dir / "far.sky", header_for("rad-ff"), sky);
+    CHECK_THROWS_WITH(radfmt::read_sky(dir / "far.sky"),
+                      Contains("is outside -360 to 360 degrees, which rad-ff writes"));
+    fs::remove_all(dir);
+}

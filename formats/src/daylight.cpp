@@ -58,6 +58,9 @@ SkyData read_sky(const fs::path& path, Header* header_out) {
     sky.north_deg = std::strtod(north.c_str(), &end);
     if (end == north.c_str() || *end || !std::isfinite(sky.north_deg))
         r.fail("north '" + north + "' is not a number");
+    // As rad-ff --north allows: a file that passes its checksum may still say 1e308.
+    if (!(sky.north_deg >= -360 && sky.north_deg <= 360))
+        r.fail("north " + north + " is outside -360 to 360 degrees, which rad-ff writes");
     require_finite_nonnegative(r, sky.coefficients, "coefficient");
     if (header_out) *header_out = r.take_header();
     return sky;

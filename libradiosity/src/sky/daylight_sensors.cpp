@@ -23,8 +23,9 @@ SkyFrame daylight_frame(const radfmt::Header& header, const std::string& path) {
     const auto& north = header.get("north", path);
     char* end = nullptr;
     SkyFrame frame{std::strtod(north.c_str(), &end)};
-    if (end == north.c_str() || *end || !std::isfinite(frame.north_deg))
-        throw InputError(path + ": north '" + north + "' is no angle");
+    if (end == north.c_str() || *end || !(frame.north_deg >= -360 && frame.north_deg <= 360))
+        throw InputError(path + ": north '" + north +
+                         "' is no angle from -360 to 360 degrees, which rad-ff writes");
     return frame;
 }
 
