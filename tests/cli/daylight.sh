@@ -113,11 +113,67 @@ python3 - "$TMP/cab.df" "$err" <<'PY' || fail "the minimum is not the lowest sen
 import re, sys
 values = [float(l) for l in open(sys.argv[1]) if l.strip() and l.strip() != "nan"]
 shown = float(re.search(r"min ([0-9.]+)%", sys.argv[2]).group(1))
-assert abs(shown - min(values)) < 1e-3 * max(1, min(values)), (shown, values)
+assert abs(shown - min(values)) <= 0.005 * min(values), (shown, values)  # printed to 3 digits
 PY
 "$BIN/rad-gather" "$TMP/cabinet.mesh" "$TMP/cabinet.rad" --points "$TMP/cab.txt" --epw "$EPW" --annual \
   -o "$TMP/cab.ill" --metrics "$TMP/cab.csv" > "$TMP/cab.txt.out" 2>&1 || fail "rad-gather --annual cabinet"
 grep -q "annual daylight at 2 sensor(s).*1 sensor(s) inside or behind objects" "$TMP/cab.txt.out" \
   || fail "the year counts the sensor inside: $(cat "$TMP/cab.txt.out")"
 sed -n 3p "$TMP/cab.csv" | grep -q ",nan,nan,nan,nan," || fail "the sensor inside has metrics: $(cat "$TMP/cab.csv")"
+
+# A roof opening at the defaults (#65 item 2): a black 4 x 3 x 4 m room with a 1 x 1 m opening
+# in its ceiling's middle under the CIE overcast sky; the daylight factor at 7 points (under
+# the opening's middle and its edge, beside it, raised) within 1% of the sky component by
+# quadrature over the opening. The 64 directions a sky patch cannot resolve the opening's
+# edge: where it crosses a patch, the patch is sampled at 3 times the side (before: +5.5%
+# under the middle, -1.9% beside it).
+mkdir -p "$TMP/roof"
+python3 - "$TMP/roof" <<'PY' || fail "writing the roof-opening room"
+import math, sys
+folder = sys.argv[1]
+vertices, faces = [], []
+def quad(a, b, c, d):
+    i = len(vertices)
+    vertices.extend([a, b, c, d])
+    faces.append([i + 1, i + 2, i + 3, i + 4])
+W, H = 4.0, 3.0
+quad((0, 0, 0), (0, 0, W), (W, 0, W), (W, 0, 0))
+quad((0, 0, 0), (W, 0, 0), (W, H, 0), (0, H, 0))
+quad((0, 0, W), (0, H, W), (W, H, W), (W, 0, W))
+quad((0, 0, 0), (0, H, 0), (0, H, W), (0, 0, W))
+quad((W, 0, 0), (W, 0, W), (W, H, W), (W, H, 0))
+for x0, z0, x1, z1 in ((0, 0, W, 1.5), (0, 2.5, W, W), (0, 1.5, 1.5, 2.5), (2.5, 1.5, W, 2.5)):
+    quad((x0, H, z0), (x1, H, z0), (x1, H, z1), (x0, H, z1))
+with open(folder + "/room.obj", "w") as f:
+    f.write("mtllib room.mtl\nusemtl black\n")
+    f.writelines("v %g %g %g\n" % v for v in vertices)
+    f.writelines("f %d %d %d %d\n" % tuple(q) for q in faces)
+open(folder + "/room.mtl", "w").write("newmtl black\nKd 0 0 0\n")
+points = [(2, 0, 2), (2.5, 0, 2), (3, 0, 2), (2, 0, 3), (3.5, 0, 3.5), (1, 0, 2), (2.2, 0.8, 2.3)]
+open(folder + "/pts.txt", "w").writelines("%g %g %g 0 1 0\n" % p for p in points)
+def sky_component(px, py, pz, n=300):  # CIE overcast: L ~ (1 + 2 cos), E_h = 7 pi L_z / 9
+    total = 0.0
+    for i in range(n):
+        for j in range(n):
+            dx, dy, dz = 1.5 + (i + 0.5) / n - px, H - py, 1.5 + (j + 0.5) / n - pz
+            r2 = dx * dx + dy * dy + dz * dz
+            c = dy / math.sqrt(r2)
+            total += (1 + 2 * c) / 3 * c * c / r2 / (n * n)
+    return 100 * total / (7 * math.pi / 9)
+open(folder + "/expected.txt", "w").writelines("%.6f\n" % sky_component(*p) for p in points)
+PY
+R="$TMP/roof"
+"$BIN/rad-mesh" "$R/room.obj" -o "$R/room.mesh" -q 2>/dev/null && "$BIN/rad-ff" "$R/room.mesh" -o "$R/room.ff" --rays 64 -q &&
+  "$BIN/rad-ff" "$R/room.mesh" --sky reinhart:1 -o "$R/room.sky" -q &&
+  "$BIN/rad-solve" "$R/room.mesh" "$R/room.ff" --direct "$R/room.sky" -o "$R/room.rad" -q || fail "the roof-opening room's chain"
+"$BIN/rad-gather" "$R/room.mesh" "$R/room.rad" --points "$R/pts.txt" --sky cie-overcast --daylight-factor \
+  -o "$R/df.txt" 2>/dev/null || fail "rad-gather under the roof opening"
+python3 - "$R/df.txt" "$R/expected.txt" <<'PY' || fail "the daylight factor under the roof opening is off"
+import sys
+got = [float(l) for l in open(sys.argv[1]) if l.strip()]
+expected = [float(l) for l in open(sys.argv[2])]
+errors = [abs(g - e) / e for g, e in zip(got, expected)]
+print("roof opening: worst %.2f%%" % (100 * max(errors)))
+assert len(got) == 7 and max(errors) < 0.01
+PY
 finish

@@ -50,28 +50,77 @@ std::vector<radfmt::Rgb> patch_sky_view(const radfmt::MeshData& mesh, const RayS
 // overlap or a part of other inputs). Returns the rows merged.
 std::uint64_t merge_sky_parts(const std::vector<std::string>& paths, const std::string& output);
 
+// Where a sensor's view of the sky is sampled finer: each sky patch's cells at a finer side,
+// and each patch's neighbours (patches whose directions border on its own).
+struct SkyRefinement {
+    SkyPatches::Cells fine;
+    std::vector<std::vector<std::uint32_t>> neighbours;
+    bool empty() const { return fine.empty(); }
+};
+// The refinement for `cells` at `side` (see sensor_sky_paths): 3 times the side, at most 32;
+// empty when side is 32 or more.
+SkyRefinement sky_refinement(const SkyPatches& patches, const SkyFrame& frame,
+                             const SkyPatches::Cells& cells, int side);
+
 // What a sensor sees of the sky directly: every sky patch (and the ground) sampled by its
 // `cells` (SkyPatches::cells: directions of equal solid angle), each followed through mirrors
 // and glass; escape(direction, weight) for each path that leaves the scene, weight = the
 // path's RGB x its cell's solid angle x cos to `normal`. Directions behind the sensor are
-// skipped.
+// skipped. Where an opening's edge may cross a patch (some of its directions leave the scene
+// and some do not, or a neighbour's do otherwise than its own), the patch is sampled again by
+// `refine`'s finer cells instead, when given: the sky's direct part is resolved where it
+// changes, not everywhere.
 template <class Escape>
 void sensor_sky_paths(const RayScene& scene, const SpecularSurfaces& specular,
                       const SkyPatches& patches, const SkyPatches::Cells& cells, int depth,
-                      const Vec3& point, const Vec3& normal, Escape&& escape) {
-    for (std::size_t p = 0; p < patches.count(); ++p) {
-        const double cell = patches.solid_angle(p) / double(cells[p].size());
-        for (const auto& d : cells[p]) {
+                      const Vec3& point, const Vec3& normal, Escape&& escape,
+                      const SkyRefinement* refine = nullptr) {
+    struct Out {
+        Vec3 direction;
+        radfmt::Rgb weight;
+    };
+    thread_local std::vector<std::vector<Out>> found;
+    thread_local std::vector<std::uint8_t> state; // 0 none facing, 1 closed, 2 partial, 3 open
+    const std::size_t count = patches.count();
+    found.resize(count);
+    state.assign(count, 0);
+    const auto trace = [&](std::size_t p, const std::vector<Vec3>& directions) {
+        found[p].clear();
+        const double cell = patches.solid_angle(p) / double(directions.size());
+        int open = 0, facing = 0;
+        for (const auto& d : directions) {
             const double cosine = dot(d, normal);
             if (cosine <= 0) continue;
+            ++facing;
+            bool left = false;
             follow_specular(
                 scene, specular, point, d, radfmt::Rgb{{1, 1, 1}}, depth, [](const PathHit&) {},
                 [&](const Vec3& out, const radfmt::Rgb& w) {
-                    escape(out, radfmt::Rgb{{w[0] * cell * cosine, w[1] * cell * cosine,
-                                             w[2] * cell * cosine}});
+                    left = true;
+                    found[p].push_back(
+                        {out, radfmt::Rgb{{w[0] * cell * cosine, w[1] * cell * cosine,
+                                           w[2] * cell * cosine}}});
                 });
+            open += left ? 1 : 0;
         }
+        state[p] = facing == 0 ? 0 : open == 0 ? 1 : open < facing ? 2 : 3;
+    };
+    for (std::size_t p = 0; p < count; ++p) trace(p, cells[p]);
+    if (refine && !refine->empty()) {
+        thread_local std::vector<std::uint8_t> again;
+        again.assign(count, 0);
+        for (std::size_t p = 0; p < count; ++p) {
+            if (state[p] == 0) continue;
+            bool edge = state[p] == 2;
+            for (const auto q : refine->neighbours[p])
+                edge = edge || (state[q] != 0 && state[q] != state[p]);
+            again[p] = edge;
+        }
+        for (std::size_t p = 0; p < count; ++p)
+            if (again[p]) trace(p, refine->fine[p]);
     }
+    for (std::size_t p = 0; p < count; ++p)
+        for (const auto& o : found[p]) escape(o.direction, o.weight);
 }
 
 // The direct sun at a sensor (lux): the beam's normal illuminance x cos x what glass lets
@@ -167,6 +216,7 @@ class DaylightSensors {
     DaylightSolution solution_;
     DaylightOptions options_;
     SkyPatches::Cells cells_; // each sky patch's directions at a sensor
+    SkyRefinement refine_;    // finer, where an opening's edge crosses a patch
     std::unique_ptr<RayScene> scene_;
     std::unique_ptr<SpecularSurfaces> specular_;
 };

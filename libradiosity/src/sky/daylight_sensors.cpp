@@ -14,6 +14,40 @@
 #include <numbers>
 
 namespace rad {
+namespace {
+// Where an opening's edge crosses a sky patch it is sampled at 3 times the side (576
+// directions at the default 8 x 8; 4 times read 0.16% off under a roof opening for 3 times
+// the time, 2 times 2.4% for 1.5 times), at most 32.
+constexpr int kRefineFactor = 3, kFinestSkySide = 32;
+} // namespace
+
+SkyRefinement sky_refinement(const SkyPatches& patches, const SkyFrame& frame,
+                             const SkyPatches::Cells& cells, int side) {
+    SkyRefinement out;
+    if (side >= kFinestSkySide) return out;
+    out.fine = patches.cells(frame, std::min(kRefineFactor * side, kFinestSkySide));
+    // Each patch's centre and angular radius from its cells; neighbours overlap when grown by
+    // half.
+    const std::size_t count = cells.size();
+    std::vector<Vec3> centre(count);
+    std::vector<double> radius(count, 0);
+    for (std::size_t p = 0; p < count; ++p) {
+        Vec3 sum{0, 0, 0};
+        for (const auto& d : cells[p]) sum = sum + d;
+        centre[p] = length(sum) > 0 ? normalized(sum) : Vec3{0, 1, 0};
+        for (const auto& d : cells[p])
+            radius[p] = std::max(radius[p], std::acos(std::clamp(dot(d, centre[p]), -1.0, 1.0)));
+    }
+    out.neighbours.resize(count);
+    for (std::size_t p = 0; p < count; ++p)
+        for (std::size_t q = 0; q < count; ++q) {
+            if (q == p) continue;
+            const double apart = std::acos(std::clamp(dot(centre[p], centre[q]), -1.0, 1.0));
+            if (apart < 1.5 * (radius[p] + radius[q]))
+                out.neighbours[p].push_back(static_cast<std::uint32_t>(q));
+        }
+    return out;
+}
 
 bool is_daylight_solution(const radfmt::Header& header) {
     return header.find("sky_subdivision") != nullptr;
@@ -61,6 +95,7 @@ DaylightSensors::DaylightSensors(const radfmt::MeshData& mesh, DaylightSolution 
                                  DaylightOptions options)
     : mesh_(mesh), solution_(std::move(solution)), options_(options),
       cells_(solution_.patches.cells(solution_.frame, options.sky_side)),
+      refine_(sky_refinement(solution_.patches, solution_.frame, cells_, options.sky_side)),
       scene_(std::make_unique<RayScene>(mesh)),
       specular_(std::make_unique<SpecularSurfaces>(mesh)) {}
 
@@ -90,10 +125,12 @@ std::vector<std::uint8_t> DaylightSensors::inside(std::span<const Vec3> points,
 DaylightSensors::Coefficients DaylightSensors::coefficients(const Vec3& point, const Vec3& normal,
                                                             std::uint64_t index) const {
     Coefficients out{std::vector<double>(patches().count(), 0.0), reflected(point, normal, index)};
-    sensor_sky_paths(*scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
-                     [&](const Vec3& d, const Rgb& w) {
-                         out.direct[patches().patch_of(frame(), d)] += luminous(w);
-                     });
+    sensor_sky_paths(
+        *scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
+        [&](const Vec3& d, const Rgb& w) {
+            out.direct[patches().patch_of(frame(), d)] += luminous(w);
+        },
+        &refine_);
     return out;
 }
 
@@ -163,7 +200,7 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
     Illuminance out;
     sensor_sky_paths(
         *scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
-        [&](const Vec3& d, const Rgb& w) { out.sky += luminous(w) * sky.luminance(d); });
+        [&](const Vec3& d, const Rgb& w) { out.sky += luminous(w) * sky.luminance(d); }, &refine_);
     const auto c = reflected(point, normal, index);
     const auto luminance = patch_luminance_with_sun(patches(), sky);
     for (std::size_t s = 0; s < luminance.size(); ++s) out.reflected += c[s] * luminance[s];
