@@ -3,6 +3,7 @@
 
 #include "radiosity/error.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -61,6 +62,32 @@ std::string tail_of(const fs::path& log) {
     return text.size() > 600 ? "..." + text.substr(text.size() - 600) : text;
 }
 
+// A file:// URL for `path`, every byte but the unreserved ones percent-encoded: a '#' or '%'
+// in TMPDIR made the URL point elsewhere (a '#' at the folder above, whose listing became the
+// PDF).
+std::string file_url(const fs::path& path) {
+    static const char* kHex = "0123456789ABCDEF";
+    std::string url = "file://";
+    for (const unsigned char c : path.string()) {
+        if (std::isalnum(c) || c == '/' || c == '-' || c == '.' || c == '_' || c == '~') {
+            url += static_cast<char>(c);
+        } else {
+            url += '%';
+            url += kHex[c >> 4];
+            url += kHex[c & 15];
+        }
+    }
+    return url;
+}
+
+// The file starts as a PDF does.
+bool looks_like_pdf(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    char head[5] = {};
+    in.read(head, 5);
+    return in.gcount() == 5 && std::string(head, 5) == "%PDF-";
+}
+
 } // namespace
 
 void print_pdf(const std::string& html, const fs::path& pdf, int timeout_seconds) {
@@ -73,18 +100,17 @@ void print_pdf(const std::string& html, const fs::path& pdf, int timeout_seconds
         if (!out) throw SystemError(page.string() + ": cannot write the page to print");
     }
     const auto log = temp.path / "chromium.log";
-    std::vector<std::string> args = {"timeout",
-                                     std::to_string(timeout_seconds),
-                                     chromium,
-                                     "--headless",
-                                     "--no-sandbox",
-                                     "--disable-gpu",
-                                     "--no-first-run",
-                                     "--disable-extensions",
-                                     "--user-data-dir=" + (temp.path / "profile").string(),
-                                     "--no-pdf-header-footer",
-                                     "--print-to-pdf=" + fs::absolute(pdf).string(),
-                                     "file://" + page.string()};
+    std::vector<std::string> args = {
+        "timeout", std::to_string(timeout_seconds), chromium, "--headless", "--no-sandbox",
+        "--disable-gpu", "--no-first-run", "--disable-extensions",
+        // Nothing but the page: no update, account, sync or
+        // metrics traffic from a browser printing a local file.
+        "--disable-background-networking", "--disable-component-update", "--disable-sync",
+        "--disable-default-apps", "--disable-domain-reliability",
+        "--disable-client-side-phishing-detection", "--disable-breakpad",
+        "--no-default-browser-check", "--metrics-recording-only",
+        "--user-data-dir=" + (temp.path / "profile").string(), "--no-pdf-header-footer",
+        "--print-to-pdf=" + fs::absolute(pdf).string(), file_url(page)};
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -103,6 +129,11 @@ void print_pdf(const std::string& html, const fs::path& pdf, int timeout_seconds
             throw SystemError("waiting for Chromium: " + std::string(std::strerror(errno)));
     const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
     std::error_code ec;
+    if (ok && fs::exists(pdf, ec) && !looks_like_pdf(pdf))
+        throw SystemError(chromium +
+                          " wrote a file that is not a PDF (no %PDF- at its start) "
+                          "printing the page; its output: " +
+                          tail_of(log));
     if (!ok || !fs::exists(pdf, ec) || fs::file_size(pdf, ec) == 0) {
         const bool timed_out = WIFEXITED(status) && WEXITSTATUS(status) == 124;
         throw SystemError(chromium +

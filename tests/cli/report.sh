@@ -149,4 +149,37 @@ err=$(RAD_CHROMIUM=/nonexistent/chromium "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l
 [ $rc -eq 2 ] || fail "a missing Chromium: exit $rc ($err)"
 grep -qF "RAD_CHROMIUM" <<<"$err" || fail "a missing Chromium: '$err' does not say what to set"
 if [ -e "$TMP/y.html" ] || [ -e "$TMP/y.pdf" ]; then fail "a failed --pdf left an output"; fi
+
+# The PDF step (#70 item 3), with stand-in browsers (RAD_CHROMIUM): the page's file:// URL is
+# percent-encoded (a TMPDIR holding '#' pointed it at the folder above), the browser is told
+# to keep off the network, and a "PDF" that is not one is refused (it gave exit 0).
+mkdir -p "$TMP/browsers" "$TMP/tmp#dir%41"
+cat > "$TMP/browsers/recording" <<'SH'
+#!/usr/bin/env bash
+# Decodes the page's URL, checks the page is there, records the flags, writes a tiny PDF.
+out="" url=""
+for a in "$@"; do case "$a" in --print-to-pdf=*) out="${a#--print-to-pdf=}" ;; file://*) url="$a" ;; esac; done
+printf '%s\n' "$@" > "$FLAGS"
+page=$(python3 -c 'import sys, urllib.parse; print(urllib.parse.unquote(sys.argv[1][len("file://"):]))' "$url")
+grep -q "<html" "$page" || { echo "no page at $page (from $url)" >&2; exit 3; }
+printf '%%PDF-1.4\n%%stand-in\n' > "$out"
+SH
+cat > "$TMP/browsers/liar" <<'SH'
+#!/usr/bin/env bash
+for a in "$@"; do case "$a" in --print-to-pdf=*) echo "this is not a PDF" > "${a#--print-to-pdf=}" ;; esac; done
+SH
+chmod +x "$TMP/browsers/recording" "$TMP/browsers/liar"
+err=$(FLAGS="$TMP/flags.txt" TMPDIR="$TMP/tmp#dir%41" RAD_CHROMIUM="$TMP/browsers/recording" "$BIN/rad-report" \
+  "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" -o "$TMP/u.html" --pdf "$TMP/u.pdf" -q 2>&1) \
+  || fail "--pdf with a TMPDIR holding '#' and '%41': $err"
+head -c 5 "$TMP/u.pdf" 2>/dev/null | grep -q '%PDF-' || fail "the stand-in's PDF was not kept"
+for flag in --disable-background-networking --disable-component-update --disable-sync; do
+  grep -qx -- "$flag" "$TMP/flags.txt" || fail "the browser is not given $flag"
+done
+err=$(RAD_CHROMIUM="$TMP/browsers/liar" "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" \
+  -o "$TMP/z.html" --pdf "$TMP/z.pdf" 2>&1); rc=$?
+[ $rc -eq 2 ] || fail "a browser that writes no PDF: exit $rc ($err)"
+grep -q "wrote a file that is not a PDF" <<<"$err" || fail "the non-PDF is not named: $err"
+if [ -e "$TMP/z.html" ] || [ -e "$TMP/z.pdf" ]; then fail "a non-PDF left an output"; fi
+ls -A "$TMP" | grep -q '\.tmp\.' && fail "a temporary file was left: $(ls -A "$TMP" | grep '\.tmp\.')"
 finish
