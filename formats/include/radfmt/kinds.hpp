@@ -53,6 +53,12 @@ struct Specular {
     double ior = 1.5;     // pane, dielectric
     double roughness = 0; // as the scene gave it (0 smooth); treated as smooth
     bool any() const { return kind != SpecularKind::none; }
+    // Reflects as a mirror (plain or Fresnel).
+    bool mirrors() const { return kind == SpecularKind::mirror || kind == SpecularKind::fresnel; }
+    // Lets light through (a thin pane or a refracting boundary).
+    bool transmits() const {
+        return kind == SpecularKind::pane || kind == SpecularKind::dielectric;
+    }
     bool operator==(const Specular&) const = default;
 };
 

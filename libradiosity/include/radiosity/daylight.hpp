@@ -17,12 +17,6 @@
 
 namespace rad {
 
-// Luminance-weighted sum of an RGB coefficient (0.265 R + 0.670 G + 0.065 B): the lux a
-// unit of white luminance (1 cd/m^2) gives through it.
-inline double luminous(const Rgb& c) {
-    return 0.265 * c[0] + 0.670 * c[1] + 0.065 * c[2];
-}
-
 struct SkyViewOptions {
     SkyPatches patches;
     SkyFrame frame;

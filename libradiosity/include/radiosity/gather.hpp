@@ -141,8 +141,7 @@ class Gatherer {
 // in lux = 179 x (0.265 R + 0.670 G + 0.065 B) for irradiance R, G, B in W/m^2.
 inline constexpr double kRadianceEfficacy = 179;
 inline double lux(const Rgb& irradiance) {
-    return kRadianceEfficacy *
-           (0.265 * irradiance[0] + 0.670 * irradiance[1] + 0.065 * irradiance[2]);
+    return kRadianceEfficacy * luminous(irradiance);
 }
 
 } // namespace rad

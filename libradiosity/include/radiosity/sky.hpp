@@ -111,7 +111,8 @@ class Sky {
   private:
     double sun_zenith_rad() const;
     void normalise_to(double lux);
-    double relative_integral() const; // the horizontal illuminance at scale 1
+    void normalise_to(double lux, double integral); // relative_integral() already known
+    double relative_integral() const;               // the horizontal illuminance at scale 1
     void set_ground(double reflectance);
     Model model_ = Model::uniform;
     SkyFrame frame_;

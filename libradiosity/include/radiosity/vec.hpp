@@ -8,6 +8,13 @@
 
 namespace rad {
 using radfmt::Rgb;
+
+// Luminance-weighted sum of an RGB value (0.265 R + 0.670 G + 0.065 B, Radiance's weights,
+// which add up to 1): the lux a unit of white luminance gives through a coefficient, the
+// luminous share of a transmission.
+inline double luminous(const Rgb& c) {
+    return 0.265 * c[0] + 0.670 * c[1] + 0.065 * c[2];
+}
 using radfmt::Vec3;
 
 inline Vec3 operator+(const Vec3& a, const Vec3& b) {

@@ -128,7 +128,7 @@ void add_specular_parameters(const radfmt::Specular& s, json& material) {
     material["extras"]["specular"] = specular_summary(s);
     auto& pbr = material["pbrMetallicRoughness"];
     pbr["roughnessFactor"] = s.roughness;
-    if (s.kind == radfmt::SpecularKind::mirror || s.kind == radfmt::SpecularKind::fresnel) {
+    if (s.mirrors()) {
         pbr["metallicFactor"] = 1.0;
         pbr["baseColorFactor"] = {s.reflectance[0], s.reflectance[1], s.reflectance[2], 1.0};
         return;

@@ -18,7 +18,7 @@ namespace {
 // form-factor kernel cos cos / r^2, so a half-hidden light counts by what it gives (the
 // plain share of rays when none has weight).
 struct KernelTally {
-    double weight_sum = 0, plain_rays = 0;
+    double weight_sum = 0;
     Rgb visible_sum{0, 0, 0}, plain_visible{0, 0, 0};
     // One ray from `point` (facing `normal`) to `q` on a light facing `light_normal`;
     // `visible` casts it (not when q is the point itself) and says what of each channel

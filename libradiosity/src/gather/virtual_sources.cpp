@@ -33,7 +33,7 @@ Rgb VirtualSources::irradiance(const Vec3& point, const Vec3& normal, const RayS
     Rgb sum{0, 0, 0};
     if (empty()) return sum;
     thread_local std::vector<Image> images;
-    std::vector<Vec3> mirrored;
+    thread_local std::vector<Vec3> mirrored;
     for (std::size_t k = 0; k < mirrors_.planes.size(); ++k) {
         const auto& plane = mirrors_.planes[k];
         if (dot(point - plane.point, plane.normal) <= scene.epsilon()) continue; // behind it
@@ -57,7 +57,8 @@ Rgb VirtualSources::irradiance(const Vec3& point, const Vec3& normal, const RayS
             if (image.clipped.size() < 3) continue;
             const double f = point_to_polygon_form_factor(point, normal, image.clipped);
             if (!(f > 0)) continue;
-            image.emitter = static_cast<std::uint32_t>(e);
+            image.cdf = ff::fan_cdf(image.clipped);
+            image.normal = image_normal;
             for (int c = 0; c < 3; ++c) image.irradiance[c] = emission_[e][c] * f;
             image.weight = brightness(image.irradiance);
             total += image.weight;
@@ -91,16 +92,13 @@ Rgb VirtualSources::through_mirror(const Vec3& point, const Vec3& normal, std::s
         while (at + 1 < images.size() && below + images[at].weight <= target)
             below += images[at++].weight;
         const Image& image = images[at];
-        const auto cdf = ff::fan_cdf(image.clipped);
-        const Vec3 q =
-            ff::uniform_point(image.clipped, cdf, rng.uniform(), rng.uniform(), rng.uniform());
+        const Vec3 q = ff::uniform_point(image.clipped, image.cdf, rng.uniform(), rng.uniform(),
+                                         rng.uniform());
         const Vec3 d = q - point;
         const double r2 = dot(d, d);
         if (!(r2 > 0)) continue;
-        const Vec3 image_normal =
-            mirrors_.mirrored_direction(plane, mesh_.patches[emitters_[image.emitter]].normal);
         const double w =
-            std::max(0.0, dot(d, normal)) * std::max(0.0, -dot(d, image_normal)) / (r2 * r2);
+            std::max(0.0, dot(d, normal)) * std::max(0.0, -dot(d, image.normal)) / (r2 * r2);
         const Rgb seen =
             via_mirror(scene, specular_, mirrors_, plane, point, mirrors_.mirrored(plane, q));
         weight_sum += w;

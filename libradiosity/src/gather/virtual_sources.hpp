@@ -39,8 +39,9 @@ class VirtualSources {
 
   private:
     struct Image {
-        std::uint32_t emitter = 0;
         std::vector<Vec3> clipped; // the mirrored emitter, clipped to the point's front
+        std::vector<double> cdf;   // its fan's, for points on it (ff::fan_cdf)
+        Vec3 normal{};             // the side it shines from
         Rgb irradiance{0, 0, 0};   // unshadowed
         double weight = 0;
     };

@@ -50,8 +50,7 @@ std::vector<LampTurn> turn_lamps_facing_backs(Scene& scene, const std::vector<st
     const RayScene rays(mesh, RayBuild::Fast);
     std::vector<bool> passes(mesh.patches.size());
     for (std::size_t t = 0; t < mesh.patches.size(); ++t) {
-        const auto kind = scene.materials[scene.polygons[face_of[t]].material].specular.kind;
-        passes[t] = kind == radfmt::SpecularKind::pane || kind == radfmt::SpecularKind::dielectric;
+        passes[t] = scene.materials[scene.polygons[face_of[t]].material].specular.transmits();
     }
     std::vector<SideTally> front(scene.materials.size()), back(scene.materials.size());
     for (std::size_t t = 0; t < mesh.patches.size(); ++t) {

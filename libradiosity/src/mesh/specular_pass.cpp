@@ -69,13 +69,12 @@ void set_transmittance(radfmt::MeshData& mesh, const std::string& spec, MeshRepo
     const std::string what = "material '" + given.material + "': ";
     const auto was = specular_summary(specular);
     if (given.value == radfmt::Rgb{}) {
-        if (specular.kind == SpecularKind::pane || specular.kind == SpecularKind::dielectric)
-            specular = {};
+        if (specular.transmits()) specular = {};
         report.add(MeshReport::Kind::Change,
                    what + "opaque (--transmittance 0; its file: " + was + ")");
         return;
     }
-    if (specular.kind == SpecularKind::mirror || specular.kind == SpecularKind::fresnel)
+    if (specular.mirrors())
         throw InputError("--transmittance " + spec + ": material '" + given.material +
                          "' is a mirror in its file (" + was +
                          "), and a mirror lets nothing through");

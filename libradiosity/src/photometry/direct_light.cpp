@@ -51,17 +51,12 @@ std::vector<Vec3> opening_points(const LuminaireSet& set, const Luminaire& l) {
     return out;
 }
 
-// Radiance's luminance weights of R, G and B (they add up to 1).
-double luminous_share(const Rgb& t) {
-    return 0.265 * t[0] + 0.670 * t[1] + 0.065 * t[2];
-}
-
 // The share of a luminaire's light that goes from `point` to `target` (its centre a hair in
 // front): 1 or 0, or through thin panes their luminous transmission.
 double passes(const RayScene& scene, const LuminaireOptics& optics, const Vec3& point,
               const Vec3& target) {
     if (!optics.specular) return scene.visible(point, target) ? 1 : 0;
-    return luminous_share(
+    return luminous(
         straight_transmission(scene, *optics.specular, point, target, kDefaultSpecularDepth));
 }
 
@@ -83,7 +78,7 @@ double image_lux(const LuminaireSet& set, const Luminaire& l, const Vec3& point,
         const double intensity = set.intensity(l, mirrors.mirrored_direction(k, d * (1 / r)));
         if (intensity <= 0) continue;
         const double reflected =
-            luminous_share(via_mirror(scene, *optics.specular, mirrors, k, point, source));
+            luminous(via_mirror(scene, *optics.specular, mirrors, k, point, source));
         if (!(reflected > 0)) continue;
         const double metres = r * set.metres_per_unit;
         lux += intensity * cosine / (metres * metres) * reflected;

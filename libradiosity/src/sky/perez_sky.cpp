@@ -115,15 +115,18 @@ Sky Sky::perez(double direct_normal, double diffuse_horizontal, const SunPositio
         // Low brightness at some clearness makes the distribution negative over the whole
         // sky: its parameters are taken at the least brightness that gives a sky.
         double raised = brightness;
-        while (!(s.relative_integral() > 0) && raised < kMostBrightness) {
+        double integral = s.relative_integral();
+        while (!(integral > 0) && raised < kMostBrightness) {
             raised = std::min(kMostBrightness, raised * 1.25 + 0.005);
             s.p_ = perez_parameters(bin, z, raised, epsilon);
+            integral = s.relative_integral();
         }
-        if (!(s.relative_integral() > 0)) { // never met: the overcast distribution
+        if (!(integral > 0)) { // never met: the overcast distribution
             s.p_ = {0, -1, 0, -1, 0};
             s.model_ = Model::cie_overcast;
             s.adjusted_ = "Perez's distribution is negative over the whole sky at every "
                           "brightness for its clearness: the CIE overcast distribution";
+            integral = s.relative_integral();
         } else if (raised != brightness) {
             char text[200];
             std::snprintf(text, sizeof text,
@@ -132,7 +135,7 @@ Sky Sky::perez(double direct_normal, double diffuse_horizontal, const SunPositio
                           brightness, raised);
             s.adjusted_ = text;
         }
-        s.normalise_to(std::max(0.0, diffuse_lux));
+        s.normalise_to(std::max(0.0, diffuse_lux), integral);
     }
     s.set_ground(ground_reflectance);
     return s;

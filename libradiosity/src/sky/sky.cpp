@@ -107,7 +107,10 @@ double Sky::relative_integral() const {
 }
 
 void Sky::normalise_to(double lux) {
-    const double integral = relative_integral();
+    normalise_to(lux, relative_integral());
+}
+
+void Sky::normalise_to(double lux, double integral) {
     if (!(integral > 0)) throw InputError("the sky's luminance integrates to nothing");
     scale_ = lux > 0 ? lux / integral : 0;
     horizontal_ = lux;

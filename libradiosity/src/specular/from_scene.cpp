@@ -35,9 +35,7 @@ double pane_reflectance(double ior) {
     const double r = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
     return 2 * r / (1 + r);
 }
-} // namespace
 
-namespace {
 bool any_below_one(const Rgb& c) {
     return c[0] < 1 || c[1] < 1 || c[2] < 1;
 }
@@ -173,11 +171,8 @@ MtlReading read_mtl_material(const MtlSpecularInput& in) {
         why = "opaque, though named like glass: nothing in the file makes it see-through (" +
               std::string(kOpaqueAdvice) + ")";
     }
-    const auto kind = out.specular.kind;
-    if (kind == SpecularKind::mirror || kind == SpecularKind::fresnel)
-        add_clause(v.clamps, v.ks_clamp);
-    if (kind == SpecularKind::pane || kind == SpecularKind::dielectric)
-        add_clause(v.clamps, v.tf_clamp);
+    if (out.specular.mirrors()) add_clause(v.clamps, v.ks_clamp);
+    if (out.specular.transmits()) add_clause(v.clamps, v.tf_clamp);
     radfmt::Material m{"", out.diffuse, {}, out.specular};
     const auto fitted = fit_specular_energy(m);
     out.diffuse = m.reflectance;
@@ -232,7 +227,7 @@ std::string fit_specular_energy(radfmt::Material& m) {
     if (!s.any()) return "";
     Rgb reflected{}, transmitted{};
     for (int k = 0; k < 3; ++k) {
-        if (s.kind == SpecularKind::mirror || s.kind == SpecularKind::fresnel) {
+        if (s.mirrors()) {
             reflected[k] = s.reflectance[k];
         } else if (s.kind == SpecularKind::pane) {
             const auto shares =
@@ -247,7 +242,7 @@ std::string fit_specular_energy(radfmt::Material& m) {
     for (int k = 0; k < 3; ++k) {
         const double sum = m.reflectance[k] + reflected[k] + transmitted[k];
         if (sum <= 1 + 1e-9) continue;
-        if (s.kind == SpecularKind::mirror || s.kind == SpecularKind::fresnel)
+        if (s.mirrors())
             scale = std::min(scale, 1 / sum);
         else if (m.reflectance[k] > 0)
             scale = std::min(scale,
@@ -256,7 +251,7 @@ std::string fit_specular_energy(radfmt::Material& m) {
     if (scale >= 1) return "";
     const Rgb was = m.reflectance;
     for (int k = 0; k < 3; ++k) m.reflectance[k] *= scale;
-    if (s.kind == SpecularKind::mirror || s.kind == SpecularKind::fresnel) {
+    if (s.mirrors()) {
         const Rgb ks = s.reflectance;
         for (int k = 0; k < 3; ++k) s.reflectance[k] *= scale;
         return "Kd " + rgb_text(was) + " and Ks " + rgb_text(ks) +

@@ -63,8 +63,7 @@ SpecularSurfaces::SpecularSurfaces(const radfmt::MeshData& mesh)
 }
 
 bool SpecularSurfaces::transmits(std::size_t patch) const {
-    const auto kind = of(patch).kind;
-    return kind == radfmt::SpecularKind::pane || kind == radfmt::SpecularKind::dielectric;
+    return of(patch).transmits();
 }
 
 namespace {
@@ -164,16 +163,13 @@ int SpecularSurfaces::branches(std::size_t patch, const Vec3& d, bool front,
 }
 
 PlanarMirrors planar_mirrors(const radfmt::MeshData& mesh, const SpecularSurfaces& specular) {
-    using radfmt::SpecularKind;
     PlanarMirrors out;
     out.plane_of.assign(mesh.patches.size(), -1);
     if (!specular.any()) return out;
     const double size = std::max(1e-300, bounds(mesh.vertices).diagonal());
     std::map<std::tuple<std::uint32_t, long long, long long, long long, long long>, int> plane_of;
     for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
-        const auto kind = specular.of(i).kind;
-        if ((kind != SpecularKind::mirror && kind != SpecularKind::fresnel) || !specular.flat(i))
-            continue;
+        if (!specular.of(i).mirrors() || !specular.flat(i)) continue;
         const auto& p = mesh.patches[i];
         const auto q = [](double x) { return std::llround(x * 1e6); };
         const auto key = std::make_tuple(p.material, q(p.normal[0]), q(p.normal[1]), q(p.normal[2]),
