@@ -140,6 +140,47 @@ TEST_CASE("a ray's hit on a polygon patch takes the values of the fan triangle i
     }
 }
 
+TEST_CASE("the error bar: in a furnace of known answer, +-2 standard errors hold it at 90-98% "
+          "of points, and the errors' rms is the rms error") {
+    // The furnace above (every point gathers exactly 1), at 1000 random points and directions.
+    // With 16 batches +-2 standard errors hold the truth at 93.6% of points were the batch
+    // means normal (Student's t, 15 degrees of freedom); they are not quite, and 92% is seen.
+    const std::string obj =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "usemtl lamp\nf 1 2 3 4\nf 1 5 6 2\nf 1 4 8 5\n"
+        "usemtl white\nf 5 8 7 6\nf 4 3 7 8\nf 2 6 7 3\n";
+    const auto mesh =
+        mesh_of(obj, "newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl white\nKd 0.5 0.5 0.5\n", 0.25);
+    std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
+    for (const double accuracy : {0.0, 0.005}) {
+        rad::GatherOptions options;
+        options.accuracy = accuracy; // 0: 256 rays; 0.5%: rounds until there
+        const rad::Gatherer gatherer(mesh, b, options);
+        const int points = 1000;
+        std::uint64_t state = 999;
+        auto next = [&] {
+            return double((state = state * 6364136223846793005ull + 1) >> 11) * 0x1.0p-53;
+        };
+        int covered = 0;
+        double squared_error = 0, squared_bar = 0;
+        for (int k = 0; k < points; ++k) {
+            const rad::Vec3 p{0.1 + 0.8 * next(), 0.1 + 0.8 * next(), 0.1 + 0.8 * next()};
+            const rad::Vec3 n =
+                rad::normalized(rad::Vec3{next() - 0.5, next() - 0.5, next() - 0.5});
+            const auto e = gatherer.gather(p, n, static_cast<std::uint64_t>(k));
+            const double err = e.total()[0] - 1;
+            covered += std::abs(err) <= 2 * e.error[0];
+            squared_error += err * err;
+            squared_bar += e.error[0] * e.error[0];
+            if (accuracy > 0) CHECK((e.error[0] <= accuracy * e.total()[0] || e.at_budget));
+        }
+        CAPTURE(accuracy, covered);
+        CHECK(covered >= 0.90 * points);
+        CHECK(covered <= 0.98 * points);
+        CHECK(std::sqrt(squared_bar / squared_error) == Approx(1).epsilon(0.1));
+    }
+}
+
 TEST_CASE("a blocker casts a full shadow, and half a blocker half of one") {
     // Black blockers at height 0.25 facing down, over all of the lamp or over x < 0.
     const std::string full = kLamp + "v -2 0.25 -2\nv -2 0.25 2\nv 2 0.25 2\nv 2 0.25 -2\n"
@@ -159,10 +200,16 @@ TEST_CASE("a blocker casts a full shadow, and half a blocker half of one") {
         rad::GatherOptions options;
         options.shadow_rays = 256;
         const rad::Gatherer gatherer(mesh, emission_only(mesh), options);
-        double mean = 0;
-        for (std::uint64_t k = 0; k < 20; ++k)
-            mean += gatherer.gather({0, 0, 0}, {0, 1, 0}, k).direct[0] / 20;
-        CHECK(mean == Approx(open / 2).epsilon(0.02));
+        // Half the lamp by the mean of 20 points' estimates, within 3 of its standard errors
+        // (from the points' own error bars), and within 3%.
+        double mean = 0, variance = 0;
+        for (std::uint64_t k = 0; k < 20; ++k) {
+            const auto e = gatherer.gather({0, 0, 0}, {0, 1, 0}, k);
+            mean += e.direct[0] / 20;
+            variance += e.error[0] * e.error[0] / 400;
+        }
+        CHECK(std::abs(mean - open / 2) < 3 * std::sqrt(variance));
+        CHECK(mean == Approx(open / 2).epsilon(0.03));
         // Far on the shadowed side the lamp is hidden; far on the open side it is not.
         CHECK(gatherer.gather({-0.5, 0, 0}, {0, 1, 0}, 1).direct[0] == 0);
         const auto lit = gatherer.gather({0.5, 0, 0}, {0, 1, 0}, 1).direct[0];
@@ -184,8 +231,10 @@ TEST_CASE("furnace: inside a closed box of uniform radiosity every point gathers
     auto rms_error = [&](int rays) {
         rad::GatherOptions options;
         options.rays = rays;
+        options.accuracy = 0; // exactly the rays given
         const rad::Gatherer gatherer(mesh, b, options);
         double sum = 0, sum2 = 0;
+
         const int points = 200;
         std::uint64_t state = 12345;
         auto next = [&] {
@@ -560,6 +609,7 @@ TEST_CASE("no fireflies: a patch lit so brightly that rays landing on it would b
     rad::GatherOptions options;
     options.rays = 16;
     options.shadow_rays = 8;
+    options.accuracy = 0; // exactly the rays given: more rounds would average fireflies away
     // One value a patch, as a light takes it (smoothing would spread the bright floor's value
     // over its dark neighbours' corners, and the rays would see less of it than a light does).
     options.smoothing = rad::Smoothing::Flat;

@@ -107,8 +107,27 @@ void check_grid_reach(const Grid& grid, const rad::Box& box) {
                                       number_text(grid.y) + ", " + number_text(z) + "): " + why);
 }
 
-// What lighting designers report of a work plane, over the sensors with a value (lux).
-void print_work_plane(const std::vector<double>& lux) {
+// "123.4 lx ± 0.56" (no ± when the error is not known).
+std::string with_error(double value, double error, const char* unit) {
+    char text[96];
+    if (std::isfinite(error))
+        std::snprintf(text, sizeof text, "%.4g%s ± %.2g", value, unit, error);
+    else
+        std::snprintf(text, sizeof text, "%.4g%s", value, unit);
+    return text;
+}
+
+// " ± 0.012", or nothing when the error is not known.
+std::string error_suffix(double error) {
+    if (!std::isfinite(error)) return "";
+    char text[48];
+    std::snprintf(text, sizeof text, " ± %.2g", error);
+    return text;
+}
+
+// What lighting designers report of a work plane, over the sensors with a value (lux), each
+// figure with its standard error.
+void print_work_plane(const std::vector<double>& lux, const std::vector<double>& error) {
     const auto stats = rad::illuminance_stats(lux);
     if (stats.count == 0) {
         std::fprintf(stderr,
@@ -117,10 +136,16 @@ void print_work_plane(const std::vector<double>& lux) {
                      stats.without_value);
         return;
     }
+    const auto errors = rad::illuminance_errors(lux, error);
+    char u0[64];
+    std::snprintf(u0, sizeof u0, "%.3f%s", stats.u0(), error_suffix(errors.u0).c_str());
     std::fprintf(stderr,
                  "rad-gather: work plane: %ld sensor(s) with a value, %ld inside or behind "
-                 "objects (nan): Emin %.4g lx, Eavg %.4g lx, Emax %.4g lx, U0 = Emin/Eavg = %.3f\n",
-                 stats.count, stats.without_value, stats.min, stats.mean, stats.max, stats.u0());
+                 "objects (nan): Emin %s lx, Eavg %s lx, Emax %s lx, U0 = Emin/Eavg = %s "
+                 "(± one standard error)\n",
+                 stats.count, stats.without_value, with_error(stats.min, errors.min, "").c_str(),
+                 with_error(stats.mean, errors.mean, "").c_str(),
+                 with_error(stats.max, errors.max, "").c_str(), u0);
 }
 
 // What the command line says.
@@ -131,7 +156,7 @@ struct GatherArgs {
     std::string direct_path, rows;
     bool merge = false;
     rad::GatherOptions options;
-    bool lux = false, header = false, keep_going = false, quiet = false;
+    bool lux = false, header = false, keep_going = false, quiet = false, error = false;
     double lux_max = 0;
     int threads = 0;
     rad::tool::DaylightArgs daylight;
@@ -165,6 +190,10 @@ void add_output_options(CLI::App& app, GatherArgs& a) {
     app.add_flag("--lux", a.lux,
                  "Write illuminance in lux, one number per line: 179 lm/W x (0.265 R + 0.670 G "
                  "+ 0.065 B), Radiance's convention");
+    app.add_flag("--error", a.error,
+                 "Write each value's standard error beside it (from the point's independent "
+                 "batches of rays: --batches): 'lux error' with --lux, 'r g b er eg eb' "
+                 "without, a lux_error column with --surfaces");
     app.add_flag("--header", a.header, "Start the output with a '#' provenance line");
     app.add_flag("--keep-going", a.keep_going,
                  "Write 'nan nan nan' for a point that cannot be gathered (bad line, zero "
@@ -258,6 +287,10 @@ class GatherRun {
     long problems() const { return problems_; }
     const std::string& first_problem() const { return first_problem_; }
     const std::vector<double>& grid_lux() const { return grid_lux_; }
+    const std::vector<double>& grid_error() const { return grid_error_; }
+    long at_budget() const { return at_budget_; }
+    const std::string& at_budget_names() const { return at_budget_names_; }
+    double mean_rays() const { return gathered_ ? double(rays_) / double(gathered_) : 0; }
 
   private:
     void gather(std::vector<Sensor>& block) {
@@ -279,18 +312,37 @@ class GatherRun {
                     throw rad::InputError(where + ": " + s.problem +
                                           " (--keep-going writes nan and goes on)");
                 if (problems_++ == 0) first_problem_ = where + ": " + s.problem;
-                std::fputs(args_.lux ? "nan\n" : "nan nan nan\n", out);
-                if (grid) grid_lux_.push_back(std::nan(""));
+                std::fputs(args_.lux
+                               ? (args_.error ? "nan nan\n" : "nan\n")
+                               : (args_.error ? "nan nan nan nan nan nan\n" : "nan nan nan\n"),
+                           out);
+                if (grid) grid_lux_.push_back(std::nan("")), grid_error_.push_back(std::nan(""));
                 continue;
             }
             const auto h = s.result.total();
             const double value = rad::lux(h);
-            if (grid) grid_lux_.push_back(value);
-            if (args_.lux)
+            const double error = rad::kRadianceEfficacy * s.result.luminous_error;
+            tally(s);
+            if (grid) grid_lux_.push_back(value), grid_error_.push_back(error);
+            if (args_.lux && args_.error)
+                std::fprintf(out, "%.6g %.3g\n", value, error);
+            else if (args_.lux)
                 std::fprintf(out, "%.6g\n", value);
+            else if (args_.error)
+                std::fprintf(out, "%.6g %.6g %.6g %.3g %.3g %.3g\n", h[0], h[1], h[2],
+                             s.result.error[0], s.result.error[1], s.result.error[2]);
             else
                 std::fprintf(out, "%.6g %.6g %.6g\n", h[0], h[1], h[2]);
         }
+    }
+    // What the sampling took: the rays, and the points that stopped at the budget.
+    void tally(const Sensor& s) {
+        rays_ += s.result.rays_cast;
+        ++gathered_;
+        if (!s.result.at_budget) return;
+        if (at_budget_++ < 3)
+            at_budget_names_ += (at_budget_names_.empty() ? "" : ", ") + source_name_ + ":" +
+                                std::to_string(s.line);
     }
 
     const GatherArgs& args_;
@@ -303,13 +355,27 @@ class GatherRun {
     rad::Progress progress_;
     long written_ = 0, problems_ = 0;
     std::string first_problem_;
-    std::vector<double> grid_lux_; // for --png
+    std::vector<double> grid_lux_, grid_error_; // for --png and the summary
+    long at_budget_ = 0, gathered_ = 0;
+    long long rays_ = 0;
+    std::string at_budget_names_;
 };
+
+// The points that stopped at --max-rays before --accuracy, counted and named (the first few).
+void print_at_budget(const rad::GatherOptions& o, long count, const std::string& names) {
+    if (count == 0) return;
+    std::fprintf(stderr,
+                 "rad-gather: warning: %ld point(s) stopped at --max-rays %d before a standard "
+                 "error of %g%%: %s%s (raise --max-rays, or accept the error written with "
+                 "--error)\n",
+                 count, o.max_rays, 100 * o.accuracy, names.c_str(), count > 3 ? ", ..." : "");
+}
 
 // The problems met (or the work plane's figures), then the summary.
 void report(const GatherArgs& a, const GatherRun& run, double seconds) {
+    print_at_budget(a.options, run.at_budget(), run.at_budget_names());
     if (!a.grid_text.empty()) {
-        print_work_plane(run.grid_lux());
+        print_work_plane(run.grid_lux(), run.grid_error());
     } else if (run.problems()) {
         std::fprintf(stderr,
                      "rad-gather: warning: %ld point(s) could not be gathered and were written "
@@ -318,11 +384,18 @@ void report(const GatherArgs& a, const GatherRun& run, double seconds) {
     }
     if (a.quiet) return;
     const long written = run.written();
+    std::string rays = a.options.exact ? "exact" : std::to_string(a.options.rays) + " rays";
+    if (a.options.accuracy > 0 && !a.options.exact && a.options.rays > 0) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "%.0f rays on average (to %g%% standard error, at most %d)", run.mean_rays(),
+                      100 * a.options.accuracy, a.options.max_rays);
+        rays = text;
+    }
     std::fprintf(stderr,
                  "rad-gather: %ld point(s) in %.3f s (%.0f/s), %s indirect, %d shadow ray(s) per "
-                 "point\n",
-                 written, seconds, seconds > 0 ? written / seconds : 0.0,
-                 a.options.exact ? "exact" : (std::to_string(a.options.rays) + " rays").c_str(),
+                 "point's first round\n",
+                 written, seconds, seconds > 0 ? written / seconds : 0.0, rays.c_str(),
                  a.options.shadow_rays);
 }
 
@@ -480,11 +553,20 @@ int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
     return rad::tool::gather_daylight(a.daylight, run);
 }
 
+// What a verdict says: met or not, and whether a margin lies within the calculation's
+// uncertainty (two standard errors).
+const char* verdict_text(const rad::Verdict& verdict) {
+    if (verdict.passes())
+        return verdict.close() ? ": meets its requirements, within the calculation's uncertainty"
+                               : ": meets its requirements";
+    return verdict.close() ? ": FAILS its requirements, within the calculation's uncertainty"
+                           : ": FAILS its requirements";
+}
+
 // A surface's figures and verdict, as rad-report shows them.
 void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid,
-                   const std::vector<double>& lux) {
-    const auto stats = rad::illuminance_stats(lux);
-    const auto verdict = rad::judge(stats, surface.required);
+                   const rad::GatheredSurface& gathered) {
+    const auto stats = rad::illuminance_stats(gathered.lux);
     const bool required = surface.required.of_light();
     if (stats.count == 0) {
         std::fprintf(stderr,
@@ -494,15 +576,17 @@ void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid
                      required ? ": FAILS its requirements" : "");
         return;
     }
-    std::fprintf(stderr,
-                 "rad-gather: %s (%s, %ld x %ld sensors at %.3g m, %ld without a value): Em %.4g "
-                 "lx, Emin %.4g lx, Emax %.4g lx, U0 %.3f, Emin/Emax %.3f%s\n",
-                 surface.name.c_str(), rad::calc_kind_name(surface.kind), grid.columns, grid.rows,
-                 grid.spacing_m, stats.without_value, stats.mean, stats.min, stats.max, stats.u0(),
-                 stats.min_over_max(),
-                 !required          ? ""
-                 : verdict.passes() ? ": meets its requirements"
-                                    : ": FAILS its requirements");
+    const auto errors = rad::illuminance_errors(gathered.lux, gathered.error);
+    const auto verdict = rad::judge(stats, surface.required, errors);
+    std::fprintf(
+        stderr,
+        "rad-gather: %s (%s, %ld x %ld sensors at %.3g m, %ld without a value): Em %s "
+        "lx, Emin %s lx, Emax %s lx, U0 %.3f%s, Emin/Emax %.3f%s\n",
+        surface.name.c_str(), rad::calc_kind_name(surface.kind), grid.columns, grid.rows,
+        grid.spacing_m, stats.without_value, with_error(stats.mean, errors.mean, "").c_str(),
+        with_error(stats.min, errors.min, "").c_str(),
+        with_error(stats.max, errors.max, "").c_str(), stats.u0(), error_suffix(errors.u0).c_str(),
+        stats.min_over_max(), required ? verdict_text(verdict) : "");
 }
 
 // --surfaces: every calculation surface's sensors, one CSV line each, and their figures.
@@ -512,22 +596,35 @@ void gather_surfaces(const GatherArgs& a, const rad::Gatherer& gatherer,
                      const radfmt::Header& mesh_header, const radfmt::Header& rad_header) {
     const auto file = read_surfaces_file(a.surfaces_path);
     const auto grids = rad::surface_grids(file, metres_per_unit);
-    const auto lux = rad::gather_surfaces(gatherer, luminaires, scene_box, grids, a.quiet);
+    const auto gathered = rad::gather_surfaces(gatherer, luminaires, scene_box, grids, a.quiet);
     const auto header = header_line(a, radfmt::command_line(argc, argv), mesh_header, rad_header);
     rad::tool::write_output(a.output, [&](std::FILE* out) {
         if (!header.empty()) std::fprintf(out, "%s\n", header.c_str());
-        std::fputs("surface,index,column,row,x,y,z,lux\n", out);
+        std::fputs(a.error ? "surface,index,column,row,x,y,z,lux,lux_error\n"
+                           : "surface,index,column,row,x,y,z,lux\n",
+                   out);
         for (std::size_t s = 0; s < grids.size(); ++s)
             for (long k = 0; k < grids[s].size(); ++k) {
                 const auto p = grids[s].position(k);
-                std::fprintf(out, "%s,%.6g,%.6g,%.6g,%.6g\n",
+                const auto i = std::size_t(k);
+                std::fprintf(out, "%s,%.6g,%.6g,%.6g,%.6g",
                              sensor_label(file.surfaces[s], grids[s], k).c_str(), p[0], p[1], p[2],
-                             lux[s][std::size_t(k)]);
+                             gathered[s].lux[i]);
+                if (a.error) std::fprintf(out, ",%.3g", gathered[s].error[i]);
+                std::fputc('\n', out);
             }
     });
+    long stopped = 0;
+    std::string names;
+    for (std::size_t s = 0; s < grids.size(); ++s)
+        for (const long k : gathered[s].at_budget)
+            if (stopped++ < 3)
+                names += (names.empty() ? "" : ", ") + file.surfaces[s].name + " sensor " +
+                         std::to_string(k);
+    print_at_budget(a.options, stopped, names);
     if (a.quiet) return;
     for (std::size_t s = 0; s < grids.size(); ++s)
-        print_surface(file.surfaces[s], grids[s], lux[s]);
+        print_surface(file.surfaces[s], grids[s], gathered[s]);
 }
 
 int gather(GatherArgs& a, int argc, char** argv) {

@@ -102,12 +102,18 @@ std::vector<rad::ReportSurface> surfaces_of(const rad::CalcFile& file,
                                             const rad::Box& box, double metres_per_unit,
                                             bool quiet) {
     const auto grids = rad::surface_grids(file, metres_per_unit);
-    auto lux = rad::gather_surfaces(gatherer, luminaires, box, grids, quiet);
+    auto gathered = rad::gather_surfaces(gatherer, luminaires, box, grids, quiet);
     std::vector<rad::ReportSurface> out;
     for (std::size_t k = 0; k < grids.size(); ++k) {
-        rad::ReportSurface s{file.surfaces[k], grids[k], std::move(lux[k]), {}, {}, {}};
+        rad::ReportSurface s;
+        s.surface = file.surfaces[k];
+        s.grid = grids[k];
+        s.lux = std::move(gathered[k].lux);
+        s.lux_error = std::move(gathered[k].error);
+        s.at_budget = std::move(gathered[k].at_budget);
         s.stats = rad::illuminance_stats(s.lux);
-        s.verdict = rad::judge(s.stats, s.surface.required);
+        s.errors = rad::illuminance_errors(s.lux, s.lux_error);
+        s.verdict = rad::judge(s.stats, s.surface.required, s.errors);
         out.push_back(std::move(s));
     }
     return out;
@@ -232,7 +238,11 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
         d.verdict =
             rad::judge_daylight(d.summary.mean, d.annual ? &d.metrics.sda : nullptr,
                                 d.annual ? &d.metrics.ase : nullptr, file.surfaces[s].required);
-        in.surfaces.push_back({file.surfaces[s], grids[s], {}, {}, {}, std::move(d)});
+        rad::ReportSurface surface;
+        surface.surface = file.surfaces[s];
+        surface.grid = grids[s];
+        surface.daylight = std::move(d);
+        in.surfaces.push_back(std::move(surface));
         first += n;
     }
     in.daylight = true;
@@ -297,8 +307,17 @@ std::vector<rad::ReportView> views_of(const ReportArgs& a, const rad::CalcFile& 
                                       const radfmt::RadiosityData& solution) {
     constexpr int kWidth = 640, kHeight = 400, kSupersampling = 2;
     std::vector<rad::ReportView> views;
+    if (file.cameras.empty()) return views;
+    // A view is rad-shade --gather's image, whose pixels take the rays given, not rounds to an
+    // accuracy: a gatherer of the same solution with the same options but that.
+    auto options = a.options;
+    options.accuracy = 0;
+    const rad::Gatherer view_gatherer(gatherer.mesh(), solution.radiosity, options);
     const double exposure = rad::solution_exposure(gatherer.mesh(), solution.radiosity);
     const rad::Box box = rad::bounds(gatherer.mesh().vertices);
+    const std::string batches = a.options.batches == rad::GatherOptions{}.batches
+                                    ? ""
+                                    : " --batches " + std::to_string(a.options.batches);
     for (const auto& c : file.cameras) {
         if (const auto why = rad::out_of_reach(c.position, box); !why.empty())
             throw rad::InputError(c.where, "the camera: " + why);
@@ -312,8 +331,8 @@ std::vector<rad::ReportView> views_of(const ReportArgs& a, const rad::CalcFile& 
                                  v3(c.up) + " -vh " + view_number(c.angle_deg) + " -vv " +
                                  view_number(vertical);
         const auto view = rad::parse_view(text, c.where);
-        auto image =
-            rad::render_gathered(gatherer, view, kWidth, kHeight, kSupersampling, a.quiet, set);
+        auto image = rad::render_gathered(view_gatherer, view, kWidth, kHeight, kSupersampling,
+                                          a.quiet, set);
         if (set) rad::draw_luminaires(image, *set, gatherer.scene(), view, kSupersampling);
         std::vector<std::uint8_t> pixels(image.rgb.size());
         for (std::size_t i = 0; i < pixels.size(); ++i)
@@ -325,7 +344,7 @@ std::vector<rad::ReportView> views_of(const ReportArgs& a, const rad::CalcFile& 
         out.command = "rad-shade " + a.inputs[0] + " " + a.inputs[1] + " --view \"" + text +
                       "\" -x " + std::to_string(kWidth) + " -y " + std::to_string(kHeight) +
                       " --gather " + std::to_string(a.options.rays) + " --shadow-rays " +
-                      std::to_string(a.options.shadow_rays) + " --smooth " + a.smooth +
+                      std::to_string(a.options.shadow_rays) + batches + " --smooth " + a.smooth +
                       " --crease-angle " + view_number(a.options.crease_deg) + " --png FILE";
         views.push_back(std::move(out));
     }

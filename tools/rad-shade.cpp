@@ -40,6 +40,12 @@ struct ShadeArgs {
     bool mix_only = false, layers = false;
     std::string backfaces = "show", max_memory, direct_path;
     int gather = 0, shadow_rays = 32;
+    // --gather's error bar and rounds: a pixel takes exactly its rays unless --accuracy.
+    rad::GatherOptions sampling = [] {
+        rad::GatherOptions o;
+        o.accuracy = 0;
+        return o;
+    }();
     rad::tool::SkyChoice sky; // a daylight solution under one sky
 };
 
@@ -144,6 +150,7 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
                    "on them would be fireflies) by what each contributes")
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
+    rad::tool::add_accuracy_options(app, a.sampling);
 }
 
 // Combinations that cannot work, refused before anything is read.
@@ -234,6 +241,9 @@ rad::Image render_image(const ShadeArgs& a, const ShadeInputs& in, const rad::Vi
     rad::GatherOptions options;
     options.rays = a.gather;
     options.shadow_rays = a.shadow_rays;
+    options.batches = a.sampling.batches;
+    options.accuracy = a.sampling.accuracy;
+    options.max_rays = a.sampling.max_rays;
     options.smoothing = mode;
     options.crease_deg = a.crease;
     const rad::Gatherer gatherer(solved, in.values, options);

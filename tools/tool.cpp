@@ -274,6 +274,27 @@ void write_output(const std::string& output, const std::function<void(std::FILE*
     });
 }
 
+void add_accuracy_options(CLI::App& app, GatherOptions& options) {
+    app.add_option("--accuracy", options.accuracy,
+                   "Keep sampling each point until the standard error of its illuminance is at "
+                   "most this share of it (0.01: 1%), or --max-rays is reached: the rays and "
+                   "shadow rays given are the first round, and more are added where the "
+                   "variance is, direct or indirect. 0: exactly the rays given, whatever the "
+                   "error")
+        ->capture_default_str()
+        ->check(finite_range(0, 1));
+    app.add_option("--max-rays", options.max_rays,
+                   "--accuracy: at most this many indirect rays per point, and as many shadow "
+                   "rays; points that stop here are counted and named")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000000));
+    app.add_option("--batches", options.batches,
+                   "The rays of a point are cast in this many independent batches; their "
+                   "spread is the point's standard error (1: none estimated)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1024));
+}
+
 CLI::Option* add_sensor_gather_options(CLI::App& app, GatherOptions& options, std::string& smooth,
                                        const std::string& rays_help) {
     auto* rays = app.add_option("--rays", options.rays,
@@ -289,6 +310,7 @@ CLI::Option* add_sensor_gather_options(CLI::App& app, GatherOptions& options, st
                    "for one each share theirs (--exact: per patch); 0: no shadows")
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
+    add_accuracy_options(app, options);
     app.add_flag("--exact", options.exact,
                  "Indirect light as the exact point-to-polygon sum over every patch (with "
                  "shadow rays for visibility) instead of rays: no ray noise, cost grows with "

@@ -98,23 +98,31 @@ python3 "$SRC/tests/cli/surface_scenes.py" inward "$TMP/inward.obj"
 "$BIN/rad-mesh" "$TMP/inward.obj" -o "$TMP/in.mesh" --max-edge 0.25 -q 2>/dev/null || fail "mesh inward"
 "$BIN/rad-ff" "$TMP/in.mesh" -o "$TMP/in.ff" -q 2>/dev/null || fail "ff inward"
 "$BIN/rad-solve" "$TMP/in.mesh" "$TMP/in.ff" -o "$TMP/in.rad" -q || fail "solve inward"
-err=$("$BIN/rad-gather" "$TMP/in.mesh" "$TMP/in.rad" --grid "0 0 4 3 0.5 8 6" --lux -o "$TMP/plane.txt" --png "$TMP/plane.png" 2>&1) ||
+err=$("$BIN/rad-gather" "$TMP/in.mesh" "$TMP/in.rad" --grid "0 0 4 3 0.5 8 6" --lux --error -o "$TMP/plane.txt" --png "$TMP/plane.png" 2>&1) ||
   fail "work plane through a box: $err"
 # The box stands on x 1..2, z 1..2 (below 0.8): the sensors at x, z = 1.25 and 1.75 are in it.
 python3 - "$TMP/plane.txt" "$err" <<'PY' || fail "work plane: $err"
 import math, re, sys
-values = [float(v) for v in open(sys.argv[1]).read().split()]
+rows = [[float(v) for v in line.split()] for line in open(sys.argv[1])]
+assert all(len(r) == 2 for r in rows), "--lux --error: two columns"
+values = [r[0] for r in rows]
+errors = [r[1] for r in rows if not math.isnan(r[0])]
+assert all(e > 0 for e in errors), "a sensor's standard error is not positive"
 inside = [k for k, v in enumerate(values) if math.isnan(v)]
 want = [j * 8 + i for j in (2, 3) for i in (2, 3)]
 assert inside == want, (inside, want)
 assert all(v > 0 for v in values if not math.isnan(v)), "a sensor with a value reads 0"
 good = [v for v in values if not math.isnan(v)]
-m = re.search(r"(\d+) sensor\(s\) with a value, (\d+) inside .*Emin ([0-9.e+]+) lx, Eavg ([0-9.e+]+) lx, "
-              r"Emax ([0-9.e+]+) lx, U0 = Emin/Eavg = ([0-9.]+)", sys.argv[2])
+m = re.search(r"(\d+) sensor\(s\) with a value, (\d+) inside .*Emin ([0-9.e+]+) ± [0-9.e+-]+ lx, "
+              r"Eavg ([0-9.e+]+) ± ([0-9.e+-]+) lx, Emax ([0-9.e+]+) ± [0-9.e+-]+ lx, "
+              r"U0 = Emin/Eavg = ([0-9.]+) ± [0-9.e+-]+", sys.argv[2])
 assert m, sys.argv[2]
-count, nan, emin, eavg, emax, u0 = m.groups()
+count, nan, emin, eavg, eavg_error, emax, u0 = m.groups()
 assert int(count) == len(good) and int(nan) == 4
 mean = sum(good) / len(good)
+# Eavg's error: the sensors' errors added in quadrature over their count (independent streams).
+pooled = math.sqrt(sum(e * e for e in errors)) / len(errors)
+assert abs(float(eavg_error) - pooled) <= 0.05 * pooled, (eavg_error, pooled)
 for said, value in ((emin, min(good)), (eavg, mean), (emax, max(good)), (u0, min(good) / mean)):
     assert abs(float(said) - value) <= 2e-3 * value, (said, value)
 PY

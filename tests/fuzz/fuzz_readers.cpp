@@ -17,7 +17,6 @@
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/calc_surfaces.hpp"
-#include "radiosity/report.hpp"
 #include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
@@ -25,6 +24,7 @@
 #include "radiosity/light_groups.hpp"
 #include "radiosity/luminaires.hpp"
 #include "radiosity/rays.hpp"
+#include "radiosity/report.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/smoothing.hpp"
 #include "radiosity/solver.hpp"
@@ -507,7 +507,9 @@ int main(int argc, char** argv) {
         rad::ReportInput in;
         long sensors = 0;
         for (const auto& surface : file.surfaces) {
-            rad::ReportSurface s{surface, rad::surface_grid(surface, 1), {}, {}, {}, {}};
+            rad::ReportSurface s;
+            s.surface = surface;
+            s.grid = rad::surface_grid(surface, 1);
             if ((sensors += s.grid.size()) > 200000) return; // a big grid is not a hostile one
             for (long k = 0; k < s.grid.size(); ++k) {
                 const auto x = s.grid.position(k);

@@ -113,17 +113,26 @@ void surface_sensors(const CalcFile& file, const std::vector<SurfaceGrid>& grids
 // Illuminance (lux) at every sensor of every grid, in order: surface by surface, each
 // sensor's random stream from its index over all of them (so rad-gather --surfaces and
 // rad-report give the same numbers). A sensor inside an object or behind a surface has NaN.
-std::vector<std::vector<double>> gather_surfaces(const Gatherer& gatherer,
-                                                 const LuminaireSet* luminaires,
-                                                 const Box& scene_box,
-                                                 const std::vector<SurfaceGrid>& grids, bool quiet);
+// Beside each value its standard error (lux); and the sensors that stopped at the ray budget
+// before the accuracy asked for (GatherOptions::accuracy), by index in the grid.
+struct GatheredSurface {
+    std::vector<double> lux, error;
+    std::vector<long> at_budget;
+};
+std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
+                                             const LuminaireSet* luminaires, const Box& scene_box,
+                                             const std::vector<SurfaceGrid>& grids, bool quiet);
 
-// Whether `stats` meet `required` (true where nothing is required).
+// Whether `stats` meet `required` (true where nothing is required), and which margins lie
+// within two standard errors (`errors`; none: not known), where the calculation cannot tell.
 struct Verdict {
     bool em = true, u0 = true, emin = true;
+    bool em_close = false, u0_close = false, emin_close = false;
     bool passes() const { return em && u0 && emin; }
+    bool close() const { return em_close || u0_close || emin_close; }
 };
-Verdict judge(const IlluminanceStats& stats, const Requirements& required);
+Verdict judge(const IlluminanceStats& stats, const Requirements& required,
+              const IlluminanceErrors& errors = {});
 
 // Whether a surface's daylight meets the daylight requirements (true where nothing is
 // required; sDA and ASE only when the year was computed). Shares in [0, 1], DF in %.

@@ -51,10 +51,26 @@ struct GatherOptions {
     double max_back_fraction = 0.5;
     // Mirrors and glass: indirect rays go on through up to this many specular events.
     int specular_depth = 12; // kDefaultSpecularDepth
+    // The error bar: `rays` and `shadow_rays` are cast in this many independent batches, each
+    // with its own random turn of the stratified patterns; their spread gives the standard
+    // error (batch_error.hpp). 1 (and `exact`): no error is estimated (NaN).
+    int batches = 16;
+    // Sampling to a stated accuracy: more batches until the illuminance's standard error is
+    // at most this share of it, or `max_rays` indirect rays (in proportion: shadow rays) have
+    // been cast; 0: exactly `rays`, whatever the error.
+    double accuracy = 0.01;
+    int max_rays = 4096;
 };
 
 struct Irradiance {
     Rgb direct{0, 0, 0}, indirect{0, 0, 0};
+    // The standard error of total() per channel and of its luminous value (NaN: not
+    // estimated), the indirect rays cast, and whether the point stopped at --max-rays before
+    // meeting the accuracy asked for.
+    Rgb error{0, 0, 0};
+    double luminous_error = 0;
+    int rays_cast = 0;
+    bool at_budget = false;
     // Of the rays cast from the point, the share that met a surface, and of those the share
     // that met the back of one.
     double hit_fraction = 0, back_fraction = 0;
@@ -78,11 +94,14 @@ class Gatherer {
     // Irradiance (W/m^2) at `point` on a sensor facing `normal` (unit); `index` seeds the
     // point's random stream. When the result sees_backs(options.max_back_fraction), the
     // point is inside an object or behind a surface: the caller refuses it.
-    Irradiance gather(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    // `known` is light the caller adds exactly (the luminaires'): it has no error, and counts
+    // in the accuracy's relative target.
+    Irradiance gather(const Vec3& point, const Vec3& normal, std::uint64_t index,
+                      const Rgb& known = {0, 0, 0}) const;
     // On a surface shaded with an interpolated normal: rays below the surface's own plane
     // (`surface`, its geometric normal) go into it, and count as nothing.
     Irradiance gather(const Vec3& point, const Vec3& normal, const Vec3& surface,
-                      std::uint64_t index) const;
+                      std::uint64_t index, const Rgb& known = {0, 0, 0}) const;
     // The normal where a ray hit a patch, interpolated from its corners (smoothed over
     // neighbours of its material within the crease angle; the patch's own when flat).
     Vec3 shading_normal(const RayScene::Hit& hit) const;
@@ -103,11 +122,20 @@ class Gatherer {
 
   private:
     struct Seen;
+    struct Evidence;
     void find_bright_patches();
     void build_light_tree();
-    Rgb direct(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    // The lights the point sees (its cut of the light tree, unshadowed), into a per-thread
+    // buffer; `total` is their weight.
+    std::span<Seen> seen_lights(const Vec3& point, const Vec3& normal, double& total) const;
+    // One batch: the direct light of `seen` with `shadow_rays` shadow rays, and the indirect
+    // light of `rays` rays (`evidence` counts what they hit).
+    Rgb direct_batch(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
+                     int shadow_rays, Rng& rng) const;
+    Rgb indirect_batch(const Vec3& point, const Vec3& normal, const Vec3& surface, int rays,
+                       Rng& rng, Evidence& evidence) const;
     Rgb shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
-                 Rng& rng) const;
+                 int budget, Rng& rng) const;
     Rgb cluster_visible_fraction(const Vec3& point, const Vec3& normal, std::uint32_t node,
                                  int rays, Rng& rng) const;
     Rgb pooled_visible_fraction(const Vec3& point, std::span<const Seen* const> pooled,

@@ -30,8 +30,11 @@ struct SurfaceDaylight {
 struct ReportSurface {
     CalcSurface surface;
     SurfaceGrid grid;
-    std::vector<double> lux; // per sensor, NaN: none (empty for daylight)
+    std::vector<double> lux;       // per sensor, NaN: none (empty for daylight)
+    std::vector<double> lux_error; // each sensor's standard error (lux)
+    std::vector<long> at_budget;   // sensors that stopped at the ray budget before the accuracy
     IlluminanceStats stats;
+    IlluminanceErrors errors;
     Verdict verdict;
     std::optional<SurfaceDaylight> daylight;
 };

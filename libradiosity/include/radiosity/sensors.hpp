@@ -58,4 +58,23 @@ struct IlluminanceStats {
 };
 IlluminanceStats illuminance_stats(std::span<const double> lux);
 
+// The standard errors of those figures, from each sensor's own (`error`, beside `lux`; NaN
+// where a sensor has none). The sensors' streams are independent, so Em's is the root of the
+// sum of squares over the count; Emin's and Emax's are their sensors' own (the least of noisy
+// values also leans low, which this does not count); U0's is by the usual first-order rule
+// for a ratio. NaN where a figure is NaN or an error is not known.
+struct IlluminanceErrors {
+    static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+    double min = kNone, mean = kNone, max = kNone, u0 = kNone;
+};
+IlluminanceErrors illuminance_errors(std::span<const double> lux, std::span<const double> error);
+
+// A figure's verdict against a requirement it must reach (at least, or at most when
+// `at_most`), and whether the margin lies within two standard errors, so that the calculation
+// cannot tell (a NaN error: it is not known, so never "close").
+struct Judged {
+    bool passes = true, close = false;
+};
+Judged judge_figure(double value, double error, double required, bool at_most = false);
+
 } // namespace rad

@@ -168,9 +168,8 @@ Rgb Gatherer::pooled_visible_fraction(const Vec3& point, std::span<const Seen* c
 // Shadow rays shared by what each seen light gives: one with a share of at least half a ray
 // gets its own (rounded), the rest share theirs as one pool.
 Rgb Gatherer::shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
-                       Rng& rng) const {
+                       int budget, Rng& rng) const {
     Rgb sum{0, 0, 0}, pooled_sum{0, 0, 0};
-    const int budget = options_.shadow_rays;
     thread_local std::vector<const Seen*> pooled;
     pooled.clear();
     double pooled_weight = 0;
@@ -197,17 +196,17 @@ Rgb Gatherer::shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> se
     return sum;
 }
 
-// Direct light: the point's cut of the light tree, single lights by their exact form factors,
-// groups as one, then shadow rays shared among them by what each gives.
-Rgb Gatherer::direct(const Vec3& point, const Vec3& normal, std::uint64_t index) const {
-    if (lights_->empty()) return {0, 0, 0};
-    Rng rng(options_.seed ^ 0xD1EC7ull, index);
+// The point's cut of the light tree: single lights by their exact form factors, groups as
+// one, unshadowed.
+std::span<Gatherer::Seen> Gatherer::seen_lights(const Vec3& point, const Vec3& normal,
+                                                double& total) const {
+    total = 0;
+    if (lights_->empty()) return {};
     thread_local gather::LightTree::Cut cut;
     thread_local std::vector<Seen> seen; // kept between points for their buffers
     // Exact: every light on its own too, no cluster's approximation.
     lights_->cut(point, normal, options_.exact ? 0 : options_.cluster_ratio, cut);
     std::size_t count = 0;
-    double total = 0;
     for (const auto i : cut.lights) {
         const auto& light = lights_->lights()[i];
         if (count == seen.size()) seen.emplace_back();
@@ -231,10 +230,16 @@ Rgb Gatherer::direct(const Vec3& point, const Vec3& normal, std::uint64_t index)
         s.weight = brightness(c.irradiance);
         total += s.weight;
     }
-    Rgb out = total > 0 ? shadowed(point, normal, std::span<Seen>(seen.data(), count), total, rng)
-                        : Rgb{0, 0, 0};
-    // The emitters seen in planar mirrors (nothing, and no random number drawn, without them).
-    const Rgb imaged = virtual_->irradiance(point, normal, *scene_, options_.shadow_rays, rng);
+    return {seen.data(), count};
+}
+
+// One batch's direct light: the seen lights with shadow rays shared among them by what each
+// gives, and the emitters seen in planar mirrors.
+Rgb Gatherer::direct_batch(const Vec3& point, const Vec3& normal, std::span<Seen> seen,
+                           double total, int shadow_rays, Rng& rng) const {
+    Rgb out = total > 0 ? shadowed(point, normal, seen, total, shadow_rays, rng) : Rgb{0, 0, 0};
+    // (Nothing, and no random number drawn, without mirrors.)
+    const Rgb imaged = virtual_->irradiance(point, normal, *scene_, shadow_rays, rng);
     for (int k = 0; k < 3; ++k) out[k] += imaged[k];
     return out;
 }

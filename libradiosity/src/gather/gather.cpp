@@ -5,12 +5,14 @@
 #include "formfactor/sampling.hpp"
 #include "gather/light_tree.hpp"
 #include "gather/virtual_sources.hpp"
+#include "radiosity/batch_error.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/random.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rad {
 using gather::brightness;
@@ -138,20 +140,127 @@ Rgb Gatherer::exact_indirect(const Vec3& point, const Vec3& normal, std::uint64_
     return sum;
 }
 
-Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, std::uint64_t index) const {
-    return gather(point, normal, normal, index);
+Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, std::uint64_t index,
+                            const Rgb& known) const {
+    return gather(point, normal, normal, index, known);
 }
 
+// What the rays from a point met: the evidence of where the point is (a point inside an
+// object sees the backs of its faces).
+struct Gatherer::Evidence {
+    long rays = 0, hits = 0, backs = 0;
+};
+
+namespace {
+// The random stream of batch `batch` of point `index`: independent of every other's.
+Rng batch_stream(std::uint64_t seed, std::uint64_t index, int batch) {
+    Rng mixer(seed, static_cast<std::uint64_t>(batch));
+    return Rng(mixer.next(), index);
+}
+
+// How a point's rays are cast: per batch, and how many batches at least and at most, of the
+// direct light's shadow rays and of the indirect rays (each its own set of batches).
+struct BatchPlan {
+    int rays = 0, shadow_rays = 0, first = 1, most_direct = 1, most_indirect = 1;
+};
+
+BatchPlan plan_batches(const GatherOptions& o) {
+    BatchPlan plan;
+    const int batches = o.exact ? 1 : std::max(1, o.batches);
+    // Without indirect rays (and --exact) the rays still look for where the point is.
+    const int rays = o.exact || o.rays <= 0 ? 64 : o.rays;
+    plan.first = std::min(batches, rays);
+    plan.rays = std::max(1, rays / plan.first);
+    plan.shadow_rays = o.shadow_rays <= 0 ? 0 : std::max(1, o.shadow_rays / plan.first);
+    plan.most_direct = plan.most_indirect = plan.first;
+    if (o.accuracy > 0 && plan.first > 1) {
+        const auto most = [&](int per_batch) {
+            return static_cast<int>(
+                std::clamp<long>(long(o.max_rays) / std::max(1, per_batch), plan.first, 1 << 24));
+        };
+        if (o.rays > 0 && !o.exact) plan.most_indirect = most(plan.rays);
+        if (plan.shadow_rays > 0) plan.most_direct = most(plan.shadow_rays);
+    }
+    return plan;
+}
+
+// The batches of each kind the accuracy asks for: rays shared between the direct light's
+// shadow rays and the indirect rays as the square roots of their variances per ray (which
+// reaches a variance at least cost), rounded up to whole batches, never fewer than cast.
+void more_batches(const BatchError& direct, const BatchError& indirect, const BatchPlan& plan,
+                  double wanted, int& direct_target, int& indirect_target) {
+    const double vd = direct.luminous_error(), vi = indirect.luminous_error();
+    // Variance of one ray's worth: the mean's variance x the rays it took.
+    const double per_d = vd * vd * direct.count() * std::max(1, plan.shadow_rays);
+    const double per_i = vi * vi * indirect.count() * plan.rays;
+    const double sd = std::sqrt(std::isfinite(per_d) ? per_d : 0);
+    const double si = std::sqrt(std::isfinite(per_i) ? per_i : 0);
+    const double scale = (sd + si) / (wanted * wanted);
+    const auto target = [&](double sigma, int per_batch, int now, int most) {
+        const double batches = std::ceil(sigma * scale / std::max(1, per_batch));
+        return static_cast<int>(std::clamp<double>(batches, now, most));
+    };
+    direct_target = target(sd, plan.shadow_rays, direct.count(), plan.most_direct);
+    indirect_target = target(si, plan.rays, indirect.count(), plan.most_indirect);
+}
+
+// The standard error of a sum of two independent estimates.
+double combined(double a, double b) {
+    return std::sqrt(a * a + b * b);
+}
+} // namespace
+
+// The direct light's batches and the indirect light's, each from its own stream, until the
+// error is below the accuracy asked for (or the budget is spent). The two sets are
+// independent, so the error of their sum is the root of the sum of their squared errors.
 Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, const Vec3& surface,
-                            std::uint64_t index) const {
+                            std::uint64_t index, const Rgb& known) const {
+    const BatchPlan plan = plan_batches(options_);
+    double total = 0;
+    const auto seen = seen_lights(point, normal, total);
+    BatchError direct, indirect;
+    Evidence evidence;
+    int direct_target = plan.first, indirect_target = plan.first;
+    for (;;) {
+        while (direct.count() < direct_target) {
+            Rng rng = batch_stream(options_.seed ^ 0xD1EC7ull, index, direct.count());
+            direct.add(direct_batch(point, normal, seen, total, plan.shadow_rays, rng));
+        }
+        while (indirect.count() < indirect_target) {
+            Rng rng = batch_stream(options_.seed, index, indirect.count());
+            indirect.add(indirect_batch(point, normal, surface, plan.rays, rng, evidence));
+        }
+        // The known light counts in the target: the error is relative to the whole value.
+        const double mean = direct.luminous_mean() + indirect.luminous_mean() + luminous(known);
+        const double wanted = options_.accuracy * std::abs(mean);
+        const double error = combined(direct.luminous_error(), indirect.luminous_error());
+        if (options_.accuracy <= 0 || !(error > wanted) || !(wanted > 0)) break;
+        const int had_direct = direct_target, had_indirect = indirect_target;
+        more_batches(direct, indirect, plan, wanted, direct_target, indirect_target);
+        if (direct_target == had_direct && indirect_target == had_indirect) break; // the budget
+    }
     Irradiance out;
-    out.direct = direct(point, normal, index);
-    // Rays from the point: the indirect estimate, and in any case the evidence of where the
-    // point is (a point inside an object sees the backs of its faces).
-    Rng rng(options_.seed, index);
+    out.direct = direct.mean();
+    out.indirect = indirect.mean();
+    if (options_.exact) out.indirect = exact_indirect(point, normal, index);
+    const Rgb ed = direct.standard_error(), ei = indirect.standard_error();
+    for (int k = 0; k < 3; ++k) out.error[k] = combined(ed[k], ei[k]);
+    out.luminous_error = combined(direct.luminous_error(), indirect.luminous_error());
+    out.rays_cast = options_.rays > 0 && !options_.exact ? indirect.count() * plan.rays : 0;
+    out.at_budget =
+        options_.accuracy > 0 &&
+        out.luminous_error > options_.accuracy * std::abs(luminous(out.total()) + luminous(known));
+    out.hit_fraction = evidence.rays ? double(evidence.hits) / evidence.rays : 0;
+    out.back_fraction = evidence.hits ? double(evidence.backs) / evidence.hits : 0;
+    return out;
+}
+
+// One batch's indirect light: cosine-weighted stratified rays turned by the batch's stream,
+// each taking the reflected radiosity where it lands (through mirrors and glass).
+Rgb Gatherer::indirect_batch(const Vec3& point, const Vec3& normal, const Vec3& surface, int rays,
+                             Rng& rng, Evidence& evidence) const {
     const double rotation[2] = {rng.uniform(), rng.uniform()};
     const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
-    const int rays = options_.exact || options_.rays <= 0 ? 64 : options_.rays;
     Rgb sum{0, 0, 0};
     int backs = 0, hits = 0;
     for (int r = 0; r < rays; ++r) {
@@ -173,13 +282,13 @@ Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, const Vec3& s
         const auto b = reflected_at(hit);
         for (int k = 0; k < 3; ++k) sum[k] += b[k];
     }
-    out.hit_fraction = double(hits) / rays;
-    out.back_fraction = hits ? double(backs) / hits : 0;
-    if (options_.exact)
-        out.indirect = exact_indirect(point, normal, index);
-    else if (options_.rays > 0)
-        for (int k = 0; k < 3; ++k) out.indirect[k] = sum[k] / rays;
-    return out;
+    evidence.rays += rays;
+    evidence.hits += hits;
+    evidence.backs += backs;
+    // Without indirect light (--rays 0, --exact) the rays only looked for where the point is.
+    if (options_.exact || options_.rays <= 0) return {0, 0, 0};
+    for (int k = 0; k < 3; ++k) sum[k] /= rays;
+    return sum;
 }
 
 Rgb Gatherer::specular_ray(const Vec3& point, const Vec3& d, int& hits, int& backs) const {

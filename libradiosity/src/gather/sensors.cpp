@@ -75,7 +75,15 @@ Irradiance gather_sensor(const Gatherer& gatherer, const LuminaireSet* luminaire
                          std::uint64_t index, std::string& problem) {
     problem = out_of_reach(position, scene_box);
     if (!problem.empty()) return {};
-    auto result = gatherer.gather(position, direction, index);
+    // The luminaires' direct light, exactly at the point (no error; it counts in the
+    // accuracy's relative target).
+    Rgb known{0, 0, 0};
+    if (luminaires)
+        for (const auto& g :
+             luminaire_irradiance(*luminaires, position, direction, &gatherer.scene(),
+                                  {&gatherer.specular(), &gatherer.mirrors()}))
+            for (std::size_t c = 0; c < 3; ++c) known[c] += g[c];
+    auto result = gatherer.gather(position, direction, index, known);
     const double max_back = gatherer.options().max_back_fraction;
     if (result.sees_backs(max_back)) {
         char text[200];
@@ -87,11 +95,7 @@ Irradiance gather_sensor(const Gatherer& gatherer, const LuminaireSet* luminaire
         problem = text;
         return result;
     }
-    if (luminaires) // the luminaires' direct light, exactly at the point
-        for (const auto& g :
-             luminaire_irradiance(*luminaires, position, direction, &gatherer.scene(),
-                                  {&gatherer.specular(), &gatherer.mirrors()}))
-            for (std::size_t c = 0; c < 3; ++c) result.direct[c] += g[c];
+    for (std::size_t c = 0; c < 3; ++c) result.direct[c] += known[c];
     return result;
 }
 
@@ -108,6 +112,40 @@ IlluminanceStats illuminance_stats(std::span<const double> lux) {
     if (s.count == 0) return s;
     s.min = low, s.max = high, s.mean = sum / double(s.count);
     return s;
+}
+
+IlluminanceErrors illuminance_errors(std::span<const double> lux, std::span<const double> error) {
+    IlluminanceErrors out;
+    const auto stats = illuminance_stats(lux);
+    if (stats.count == 0 || error.size() != lux.size()) return out;
+    double squares = 0;
+    std::size_t low = 0, high = 0;
+    bool first = true;
+    for (std::size_t k = 0; k < lux.size(); ++k) {
+        if (!std::isfinite(lux[k])) continue;
+        squares += error[k] * error[k];
+        if (first || lux[k] < lux[low]) low = k;
+        if (first || lux[k] > lux[high]) high = k;
+        first = false;
+    }
+    out.mean = std::sqrt(squares) / double(stats.count);
+    out.min = error[low];
+    out.max = error[high];
+    if (stats.mean > 0 && stats.min > 0) {
+        const double a = out.min / stats.min, b = out.mean / stats.mean;
+        out.u0 = stats.u0() * std::sqrt(a * a + b * b);
+    } else if (stats.mean > 0) {
+        out.u0 = out.min / stats.mean;
+    }
+    return out;
+}
+
+Judged judge_figure(double value, double error, double required, bool at_most) {
+    Judged j;
+    if (std::isnan(required)) return j;
+    j.passes = at_most ? value <= required : value >= required;
+    j.close = std::isfinite(error) && std::abs(value - required) <= 2 * error;
+    return j;
 }
 
 } // namespace rad

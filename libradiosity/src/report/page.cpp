@@ -54,9 +54,17 @@ table.surfaces td:first-child { white-space: nowrap; }
 table.daylight { font-size: 9pt; }
 )";
 
-std::string verdict_text(bool required, bool passes) {
+std::string verdict_text(bool required, bool passes, bool close = false) {
     if (!required) return "<td>-</td>";
-    return passes ? "<td class=\"pass\">meets</td>" : "<td class=\"fail\">fails</td>";
+    const std::string within = close ? ", within the calculation's uncertainty" : "";
+    return passes ? "<td class=\"pass\">meets" + within + "</td>"
+                  : "<td class=\"fail\">fails" + within + "</td>";
+}
+
+// "± 3.2" for a figure's standard error (empty when it is not known).
+std::string error_text(double error, bool ratio = false) {
+    if (!std::isfinite(error)) return "";
+    return "± " + (ratio ? fixed(error, error >= 0.005 ? 2 : 3) : lux_text(error));
 }
 
 // What is asked of a surface, the quantities the file gives ("-": none).
@@ -145,7 +153,9 @@ std::string surface_row(const ReportSurface& s, std::size_t index) {
            calc_kind_name(s.surface.kind) + "</td>" + cell(lux_text(st.mean)) +
            cell(lux_text(st.min)) + cell(lux_text(st.max)) + cell(ratio_text(st.u0())) +
            cell(ratio_text(st.min_over_max())) + "<td>" + required_text(s.surface.required) +
-           "</td>" + verdict_text(s.surface.required.of_light(), s.verdict.passes()) + "</tr>";
+           "</td>" +
+           verdict_text(s.surface.required.of_light(), s.verdict.passes(), s.verdict.close()) +
+           "</tr>";
 }
 
 std::string surfaces_table(const ReportInput& in) {
@@ -235,9 +245,10 @@ std::string grid_rows(const ReportSurface& s) {
            " m</td></tr>";
 }
 
-std::string figure_row(const char* name, const std::string& value, const char* cls) {
+std::string figure_row(const char* name, const std::string& value, const char* cls,
+                       const std::string& error = "") {
     return std::string("<tr><th>") + name + "</th><td class=\"num " + cls + "\">" + value +
-           "</td></tr>";
+           "</td>" + (error.empty() ? "" : "<td class=\"num error\">" + error + "</td>") + "</tr>";
 }
 
 // Two plans side by side across the page, at their own size (labels stay readable in print).
@@ -290,17 +301,22 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
                       "\"><h2>" + html_escape(s.surface.name) + "</h2>";
     out += "<table class=\"figures\" data-surface=\"" + html_escape(s.surface.name) + "\"><tbody>";
     out += grid_rows(s);
-    out += figure_row("Em (lx)", lux_text(st.mean), "em");
-    out += figure_row("Emin (lx)", lux_text(st.min), "emin");
-    out += figure_row("Emax (lx)", lux_text(st.max), "emax");
-    out += figure_row("U0 = Emin/Em", ratio_text(st.u0()), "u0");
+    const auto& e = s.errors;
+    out += figure_row("Em (lx)", lux_text(st.mean), "em", error_text(e.mean));
+    out += figure_row("Emin (lx)", lux_text(st.min), "emin", error_text(e.min));
+    out += figure_row("Emax (lx)", lux_text(st.max), "emax", error_text(e.max));
+    out += figure_row("U0 = Emin/Em", ratio_text(st.u0()), "u0", error_text(e.u0, true));
     out += figure_row("Emin/Emax", ratio_text(st.min_over_max()), "ratio");
     if (st.without_value)
         out += "<tr><th>Points without a value</th><td>" + std::to_string(st.without_value) +
                " (inside or under objects; grey in the plan)</td></tr>";
     out += "<tr><th>Required</th><td>" + required_text(s.surface.required) + "</td></tr>";
+    if (!s.at_budget.empty())
+        out += "<tr><th>Points short of the accuracy</th><td>" +
+               std::to_string(s.at_budget.size()) + " (stopped at the ray budget)</td></tr>";
     out += "<tr><th>Verdict</th>" +
-           verdict_text(s.surface.required.of_light(), s.verdict.passes()) + "</tr>";
+           verdict_text(s.surface.required.of_light(), s.verdict.passes(), s.verdict.close()) +
+           "</tr>";
     out += "</tbody></table>";
     out += "<figure>" +
            surface_plan_svg(s, s.lux, {"lux", "lx", 0}, in.luminaires, in.metres_per_unit) +

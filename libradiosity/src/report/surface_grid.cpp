@@ -60,11 +60,20 @@ void surface_sensors(const CalcFile& file, const std::vector<SurfaceGrid>& grids
         }
 }
 
-Verdict judge(const IlluminanceStats& stats, const Requirements& required) {
+Verdict judge(const IlluminanceStats& stats, const Requirements& required,
+              const IlluminanceErrors& errors) {
     Verdict v;
-    if (!std::isnan(required.em)) v.em = stats.count > 0 && stats.mean >= required.em;
-    if (!std::isnan(required.u0)) v.u0 = stats.count > 0 && stats.u0() >= required.u0;
-    if (!std::isnan(required.emin)) v.emin = stats.count > 0 && stats.min >= required.emin;
+    if (stats.count == 0) {
+        v.em = std::isnan(required.em), v.u0 = std::isnan(required.u0);
+        v.emin = std::isnan(required.emin);
+        return v;
+    }
+    const auto em = judge_figure(stats.mean, errors.mean, required.em);
+    const auto u0 = judge_figure(stats.u0(), errors.u0, required.u0);
+    const auto emin = judge_figure(stats.min, errors.min, required.emin);
+    v.em = em.passes, v.em_close = em.close;
+    v.u0 = u0.passes, v.u0_close = u0.close;
+    v.emin = emin.passes, v.emin_close = emin.close;
     return v;
 }
 
