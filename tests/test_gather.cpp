@@ -181,6 +181,42 @@ TEST_CASE("the error bar: in a furnace of known answer, +-2 standard errors hold
     }
 }
 
+TEST_CASE("a gathered image's error layer: +-2 errors hold each pixel's known value") {
+    // Inside the furnace the irradiance is 1 everywhere, so a white pixel is E + rho x 1 = 0.5
+    // exactly and an emitter's 1 with no error; the image's per-pixel errors must hold 0.5 at
+    // 90-98% of white pixels (one sample a pixel: no pixel mixes the two).
+    const std::string obj =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "usemtl lamp\nf 1 2 3 4\nf 1 5 6 2\nf 1 4 8 5\n"
+        "usemtl white\nf 5 8 7 6\nf 4 3 7 8\nf 2 6 7 3\n";
+    const auto mesh =
+        mesh_of(obj, "newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl white\nKd 0.5 0.5 0.5\n", 0.25);
+    std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
+    rad::GatherOptions options;
+    options.accuracy = 0;
+    const rad::Gatherer gatherer(mesh, b, options);
+    rad::View view;
+    view.position = {0.2, 0.3, 0.25};
+    view.direction = {1, 0.6, 1.2};
+    view.horizontal_deg = view.vertical_deg = 80;
+    const auto image = rad::render_gathered(gatherer, view, 40, 40, 1, true);
+    REQUIRE(image.error.size() == image.rgb.size());
+    int white = 0, covered = 0;
+    for (std::size_t i = 0; i < image.rgb.size(); i += 3) {
+        if (image.rgb[i] > 0.9) { // an emitter: exactly E, no error
+            CHECK(image.rgb[i] == Approx(1).epsilon(1e-6));
+            CHECK(image.error[i] == 0);
+            continue;
+        }
+        ++white;
+        covered += std::abs(image.rgb[i] - 0.5) <= 2 * image.error[i];
+    }
+    CAPTURE(white, covered);
+    REQUIRE(white > 400);
+    CHECK(covered >= 0.90 * white);
+    CHECK(covered <= 0.98 * white);
+}
+
 TEST_CASE("a blocker casts a full shadow, and half a blocker half of one") {
     // Black blockers at height 0.25 facing down, over all of the lamp or over x < 0.
     const std::string full = kLamp + "v -2 0.25 -2\nv -2 0.25 2\nv 2 0.25 2\nv 2 0.25 -2\n"

@@ -37,7 +37,7 @@ struct ShadeArgs {
     double exposure = 0, crease = 30;
     bool flat = false, albedo = false, quiet = false;
     std::vector<std::string> mix;
-    bool mix_only = false, layers = false;
+    bool mix_only = false, layers = false, error_layer = false;
     std::string backfaces = "show", max_memory, direct_path;
     int gather = 0, shadow_rays = 32;
     // --gather's error bar and rounds: a pixel takes exactly its rays unless --accuracy.
@@ -151,10 +151,19 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
     rad::tool::add_accuracy_options(app, a.sampling);
+    app.add_flag("--error-layer", a.error_layer,
+                 "--gather: add an EXR layer 'error' holding each pixel's standard error (RGB, "
+                 "the image's units): what the gather's sampling leaves uncertain there "
+                 "(docs/uncertainty.md)");
 }
 
 // Combinations that cannot work, refused before anything is read.
 void check_combinations(const ShadeArgs& a) {
+    if (a.error_layer && a.gather <= 0)
+        throw rad::InputError("--error-layer holds the final gather's errors: give --gather");
+    if (a.error_layer && !a.rows.empty())
+        throw rad::InputError("--error-layer is written by a run of the whole image, not by a "
+                              "--rows band");
     if (!a.rows.empty() && (!a.ply.empty() || a.layers))
         throw rad::InputError("--rows renders a band of the image: --ply and --layers are "
                               "written by a run of the whole image");
@@ -247,6 +256,10 @@ rad::Image render_image(const ShadeArgs& a, const ShadeInputs& in, const rad::Vi
     options.smoothing = mode;
     options.crease_deg = a.crease;
     const rad::Gatherer gatherer(solved, in.values, options);
+    if (a.error_layer && gatherer.specular().any())
+        throw rad::InputError("--error-layer: " + a.mesh_path +
+                              " has mirrors or glass, whose pixels' errors are not estimated "
+                              "yet: leave --error-layer out");
     return rad::render_gathered(gatherer, view, a.width, a.height, a.aa, a.quiet,
                                 in.luminaires ? &*in.luminaires : nullptr, band);
 }
@@ -475,6 +488,12 @@ int shade(ShadeArgs& a, int argc, char** argv) {
     std::vector<rad::ImageLayer> exr_layers;
     for (std::size_t g = 0; g < group_images.size(); ++g)
         exr_layers.push_back({in.radiosity.group_names[g], &group_images[g]});
+    rad::Image error;
+    if (a.error_layer) {
+        if (image.error.empty()) throw rad::InternalError("the gathered image has no errors");
+        error.width = image.width, error.height = image.height, error.rgb = image.error;
+        exr_layers.push_back({"error", &error});
+    }
     rad::write_exr(a.output, image, exr_attributes(a, in, argc, argv), exr_layers);
     if (!a.png.empty()) rad::write_png(a.png, image, scale);
     if (!a.ply.empty()) rad::write_ply(a.ply, in.mesh, corners, scale);

@@ -76,4 +76,12 @@ grep -q "plane (workplane.*Em [0-9.e+]* ± [0-9.e+-]* lx.*its requirements, with
 "$BIN/rad-report" "$TMP/c.mesh" "$TMP/c.rad" --surfaces "$TMP/calc.csv" -o "$TMP/r.html" -q 2>"$TMP/r.err" || fail "report: $(cat "$TMP/r.err")"
 grep -q 'class="num error">± ' "$TMP/r.html" || fail "the report shows no ± beside its figures"
 grep -q "within the calculation's uncertainty</td>" "$TMP/r.html" || fail "the report's verdict does not say it is within the uncertainty"
+# rad-shade --gather --error-layer: an EXR layer 'error'; refused without --gather, with --rows.
+view=(--view "-vp 0.278 0.273 -0.8 -vd 0 0 1 -vu 0 1 0 -vh 39 -vv 39" -x 48 -y 48)
+"$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" "${view[@]}" --gather 64 --error-layer -o "$TMP/e.exr" -q || fail "--error-layer"
+exrheader "$TMP/e.exr" | grep -q "error.R" || fail "no error layer in the EXR: $(exrheader "$TMP/e.exr")"
+expect_error "--error-layer holds the final gather's errors: give --gather" "$TMP/n.exr" \
+  "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" "${view[@]}" --error-layer -o "$TMP/n.exr"
+expect_error "not by a --rows band" "$TMP/n.exr" \
+  "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" "${view[@]}" --gather 64 --error-layer --rows 0:8 -o "$TMP/n.exr"
 finish

@@ -19,6 +19,9 @@ struct Image {
     std::vector<float> back_coverage;
     std::size_t back_face_pixels = 0;
     std::vector<std::uint8_t> covered; // per pixel: 1 where a sample sees geometry
+    // A final gather's per-pixel standard error (RGB, the image's units; empty when none):
+    // what the gather's sampling leaves uncertain in each pixel (rad-shade --error-layer).
+    std::vector<float> error;
 };
 
 // Image rows [begin, end) (end -1: to the bottom): a band of an image, rad-shade --rows.

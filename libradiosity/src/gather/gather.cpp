@@ -169,7 +169,9 @@ BatchPlan plan_batches(const GatherOptions& o) {
     const int batches = o.exact ? 1 : std::max(1, o.batches);
     // Without indirect rays (and --exact) the rays still look for where the point is.
     const int rays = o.exact || o.rays <= 0 ? 64 : o.rays;
-    plan.first = std::min(batches, rays);
+    // At least 8 rays a batch where there are 16 or more: a batch of very few rays takes few
+    // distinct values, and its batches can agree exactly where the value is not exact.
+    plan.first = std::min(batches, std::max(std::min(2, rays), rays / 8));
     plan.rays = std::max(1, rays / plan.first);
     plan.shadow_rays = o.shadow_rays <= 0 ? 0 : std::max(1, o.shadow_rays / plan.first);
     plan.most_direct = plan.most_indirect = plan.first;

@@ -15,20 +15,27 @@
 namespace rad {
 
 namespace {
-// E + rho x (what is gathered at the point, and the luminaires' direct light there).
+// E + rho x (what is gathered at the point, and the luminaires' direct light there); with
+// `error`, rho x the gather's standard error there.
 Rgb gathered_colour(const Gatherer& gatherer, const LuminaireSet* luminaires,
-                    const RayScene::Hit& hit, const Vec3& point, std::uint64_t index) {
+                    const RayScene::Hit& hit, const Vec3& point, std::uint64_t index,
+                    Rgb* error = nullptr) {
     const auto& mesh = gatherer.mesh();
     const auto& patch = mesh.patches[static_cast<std::size_t>(hit.patch)];
     const auto& material = mesh.materials[patch.material];
     const auto normal = gatherer.shading_normal(hit);
-    auto h = gatherer.gather(point, normal, patch.normal, index).total();
+    Rgb known{0, 0, 0};
     if (luminaires) // their direct light, exactly at the point
         for (const auto& g : luminaire_irradiance(*luminaires, point, normal, &gatherer.scene(),
                                                   {&gatherer.specular(), &gatherer.mirrors()}))
-            for (int c = 0; c < 3; ++c) h[c] += g[c];
+            for (int c = 0; c < 3; ++c) known[c] += g[c];
+    const auto gathered = gatherer.gather(point, normal, patch.normal, index, known);
+    const auto h = gathered.total();
     Rgb out;
-    for (int c = 0; c < 3; ++c) out[c] = material.emission[c] + material.reflectance[c] * h[c];
+    for (int c = 0; c < 3; ++c)
+        out[c] = material.emission[c] + material.reflectance[c] * (h[c] + known[c]);
+    if (error)
+        for (int c = 0; c < 3; ++c) (*error)[c] = material.reflectance[c] * gathered.error[c];
     return out;
 }
 
@@ -64,10 +71,11 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
     image.back_coverage.assign(std::size_t(width) * height, 0.0f);
     auto& covered = image.covered;
     covered.assign(std::size_t(width) * height, 0);
+    image.error.assign(std::size_t(width) * height * 3, 0.0f);
     Progress progress("rad-shade gather", std::uint64_t(end_row - first_row), quiet);
     tbb::parallel_for(first_row, end_row, [&](int y) {
         for (int x = 0; x < width; ++x) {
-            double sum[3] = {0, 0, 0};
+            double sum[3] = {0, 0, 0}, squared_error[3] = {0, 0, 0};
             int backs = 0;
             for (int sy = 0; sy < ss; ++sy)
                 for (int sx = 0; sx < ss; ++sx) {
@@ -82,13 +90,23 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
                         continue;
                     }
                     const std::uint64_t index = std::uint64_t(y * ss + sy) * W + (x * ss + sx);
-                    const auto colour = gathered_colour(gatherer, luminaires, hit,
-                                                        view.position + ray * hit.distance, index);
-                    for (int c = 0; c < 3; ++c) sum[c] += colour[c];
+                    Rgb error;
+                    const auto colour =
+                        gathered_colour(gatherer, luminaires, hit,
+                                        view.position + ray * hit.distance, index, &error);
+                    for (int c = 0; c < 3; ++c) {
+                        sum[c] += colour[c];
+                        squared_error[c] += error[c] * error[c];
+                    }
                 }
+            // The pixel is the mean of its samples, each gathered from its own streams: its
+            // error, theirs added in quadrature over the count.
             const std::size_t at = std::size_t(y) * width + x;
-            for (int c = 0; c < 3; ++c)
+            for (int c = 0; c < 3; ++c) {
                 image.rgb[3 * at + c] = static_cast<float>(sum[c] / (ss * ss));
+                image.error[3 * at + c] =
+                    static_cast<float>(std::sqrt(squared_error[c]) / (ss * ss));
+            }
             image.back_coverage[at] = float(backs) / float(ss * ss);
         }
         progress.advance(1);
