@@ -387,7 +387,14 @@ void say_written(const ShadeArgs& a, double scale) {
 int merge_parts(ShadeArgs& a) {
     if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
     auto merged = rad::merge_image_parts(a.inputs, a.output);
-    if (!a.png.empty()) merged.info.png = a.png;
+    // A merge writes only what its own command line names: the PNG path the parts recorded
+    // (their run's --png) is a reminder, never a place to write.
+    if (a.png.empty() && !merged.info.png.empty())
+        std::fprintf(stderr,
+                     "rad-shade: note: the parts were rendered with --png %s: give --png FILE "
+                     "to the merge to write the PNG\n",
+                     merged.info.png.c_str());
+    merged.info.png = a.png;
     rad::tool::check_outputs(a.inputs, {{"-o", a.output}, {"--png", merged.info.png}});
     radfmt::OutputBatch outputs;
     auto& image = merged.image;

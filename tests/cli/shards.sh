@@ -86,7 +86,10 @@ for look in "--smooth crease" "--gather 8" "--albedo" "--backfaces mark --exposu
     (cd "$TMP/s" && "$BIN/rad-shade" ../c.mesh $rad -o i$k.part --png img.png --view-file "$VF" -x 48 -y 40 $look --rows $k/3 --threads $((k % 2 + 1)) -q) || fail "shade band $k ($look)"
   done
   [ ! -e "$TMP/s/img.png" ] || fail "a band wrote the PNG ($look)"
+  # A merge writes only what its command line names (#70 item 2): without --png, no PNG.
   (cd "$TMP/s" && "$BIN/rad-shade" --merge i1.part i2.part i0.part -o img.exr -q) || fail "shade merge ($look)"
+  [ ! -e "$TMP/s/img.png" ] || fail "the merge wrote the PNG path a part recorded ($look)"
+  (cd "$TMP/s" && "$BIN/rad-shade" --merge i1.part i2.part i0.part -o img.exr --png img.png -q) || fail "shade merge --png ($look)"
   cmp -s "$TMP/s/img.exr" "$TMP/s/one.exr" || fail "merged bands' EXR differs from one run ($look)"
   cmp -s "$TMP/s/img.png" "$TMP/s/one.png" || fail "merged bands' PNG differs from one run ($look)"
 done
