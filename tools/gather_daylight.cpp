@@ -6,6 +6,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/falsecolour.hpp"
 #include "radiosity/progress.hpp"
+#include "radiosity/sensors.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
@@ -65,6 +66,9 @@ void check_daylight_args(const DaylightArgs& a, const DaylightRun& run) {
         throw InputError("--daylight-factor is for --sky cie-overcast, not --annual");
     if (!a.annual && (!a.occupancy.empty() || !a.metrics.empty()))
         throw InputError("--occupancy and --metrics go with --annual");
+    if (a.annual && run.error)
+        throw InputError("--error: the year's metrics carry no error bar yet "
+                         "(docs/uncertainty.md): leave --error out of --annual");
 }
 
 // "; 3 sensor(s) inside or behind objects: no value" (nothing when none).
@@ -82,16 +86,28 @@ void write_png(const DaylightRun& run, const std::vector<double>& values, const 
 }
 
 // --surfaces: each surface's daylight factors' summary.
-void print_surface_factors(const DaylightRun& run, const std::vector<double>& values) {
+// " ± 0.012" of a mean's standard error (the values' in quadrature over their count).
+std::string mean_error_text(std::span<const double> values, std::span<const double> errors) {
+    const double e = illuminance_errors(values, errors).mean;
+    if (!std::isfinite(e)) return "";
+    char text[48];
+    std::snprintf(text, sizeof text, " ± %.2g", e);
+    return text;
+}
+
+void print_surface_factors(const DaylightRun& run, const std::vector<double>& values,
+                           const std::vector<double>& errors) {
     std::size_t first = 0;
     for (const auto& [name, count] : run.surfaces) {
         const auto s = summarise_daylight_factors(std::vector<double>(
             values.begin() + long(first), values.begin() + long(first + count)));
+        const auto error = mean_error_text(std::span(values).subspan(first, count),
+                                           std::span(errors).subspan(first, count));
         std::fprintf(stderr,
-                     "rad-gather: %s: daylight factor mean %.3g%%, median %.3g%%, min %.3g%%, max "
-                     "%.3g%%; %.1f%% of its %zu sensor(s) at 2%% or more%s\n",
-                     name.c_str(), s.mean, s.median, s.min, s.max, 100 * s.above2, s.counted,
-                     inside_text(s.without).c_str());
+                     "rad-gather: %s: daylight factor mean %.3g%%%s, median %.3g%%, min %.3g%%, "
+                     "max %.3g%%; %.1f%% of its %zu sensor(s) at 2%% or more%s\n",
+                     name.c_str(), s.mean, error.c_str(), s.median, s.min, s.max, 100 * s.above2,
+                     s.counted, inside_text(s.without).c_str());
         first += count;
     }
 }
@@ -104,34 +120,45 @@ int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors
     const auto lux = sensors.illuminance(sky, run.positions, run.normals, run.quiet);
     // A sensor inside furniture has no value (NaN), as in the lighting mode.
     const auto inside = sensors.inside(run.positions, run.normals);
-    std::vector<double> values;
-    for (std::size_t k = 0; k < n; ++k)
-        values.push_back(inside[k]           ? std::nan("")
-                         : a.daylight_factor ? 100 * lux[k].total() / sky.horizontal_illuminance()
-                                             : lux[k].total());
+    std::vector<double> values, errors;
+    const double scale = a.daylight_factor ? 100 / sky.horizontal_illuminance() : 1;
+    for (std::size_t k = 0; k < n; ++k) {
+        values.push_back(inside[k] ? std::nan("") : scale * lux[k].total());
+        errors.push_back(inside[k] ? std::nan("") : scale * lux[k].reflected_error);
+    }
     const auto without = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), 1));
     write_output(run.output, [&](std::FILE* out) {
         if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
         if (run.labels.empty()) {
-            for (double v : values) std::fprintf(out, "%.6g\n", v);
+            for (std::size_t k = 0; k < n; ++k)
+                if (run.error)
+                    std::fprintf(out, "%.6g %.3g\n", values[k], errors[k]);
+                else
+                    std::fprintf(out, "%.6g\n", values[k]);
             return;
         }
-        std::fprintf(out, "surface,index,column,row,x,y,z,%s\n", a.daylight_factor ? "df" : "lux");
+        const char* column = a.daylight_factor ? "df" : "lux";
+        std::fprintf(out, "surface,index,column,row,x,y,z,%s", column);
+        if (run.error) std::fprintf(out, ",%s_error", column);
+        std::fputc('\n', out);
         for (std::size_t k = 0; k < n; ++k) {
             const auto& p = run.positions[k];
-            std::fprintf(out, "%s,%.6g,%.6g,%.6g,%.6g\n", run.labels[k].c_str(), p[0], p[1], p[2],
+            std::fprintf(out, "%s,%.6g,%.6g,%.6g,%.6g", run.labels[k].c_str(), p[0], p[1], p[2],
                          values[k]);
+            if (run.error) std::fprintf(out, ",%.3g", errors[k]);
+            std::fputc('\n', out);
         }
     });
-    if (a.daylight_factor && !run.quiet) print_surface_factors(run, values);
+    if (a.daylight_factor && !run.quiet) print_surface_factors(run, values, errors);
     if (a.daylight_factor) {
         write_png(run, values, "%", "daylight factor (%)");
         const auto s = summarise_daylight_factors(values);
         std::fprintf(stderr,
-                     "rad-gather: daylight factor at %zu sensor(s) under the %s: mean %.3g%%, "
+                     "rad-gather: daylight factor at %zu sensor(s) under the %s: mean %.3g%%%s, "
                      "median %.3g%%, min %.3g%%, max %.3g%%; %.1f%% of the sensors at 2%% or "
                      "more%s\n",
-                     s.counted, sky.describe().c_str(), s.mean, s.median, s.min, s.max,
+                     s.counted, sky.describe().c_str(), s.mean,
+                     mean_error_text(values, errors).c_str(), s.median, s.min, s.max,
                      100 * s.above2, inside_text(without).c_str());
     } else {
         write_png(run, values, "lux", "illuminance (lux) under the " + sky.describe());

@@ -44,6 +44,7 @@ struct DaylightRun {
     int rays = kDaylightRays;
     std::uint64_t seed = 1;
     bool quiet = false;
+    bool error = false; // --error: each value's standard error beside it
     double lux_max = 0;
 };
 int gather_daylight(const DaylightArgs& a, const DaylightRun& run);

@@ -537,6 +537,7 @@ int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
     run.rays = a.rays_option->count() ? a.options.rays : rad::tool::kDaylightRays;
     run.seed = a.options.seed;
     run.quiet = a.quiet;
+    run.error = a.error;
     run.lux_max = a.lux_max;
     run.command = radfmt::command_line(argc, argv);
     run.inputs = {a.mesh_path, a.rad_path};

@@ -224,10 +224,13 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     for (std::size_t s = 0; s < grids.size(); ++s) {
         const auto n = std::size_t(grids[s].size());
         rad::SurfaceDaylight d;
-        for (std::size_t k = first; k < first + n; ++k)
-            d.factor.push_back(inside[k] ? std::nan("")
-                                         : 100 * lux[k].total() / sky.horizontal_illuminance());
+        const double percent = 100 / sky.horizontal_illuminance();
+        for (std::size_t k = first; k < first + n; ++k) {
+            d.factor.push_back(inside[k] ? std::nan("") : percent * lux[k].total());
+            d.factor_error.push_back(inside[k] ? std::nan("") : percent * lux[k].reflected_error);
+        }
         d.summary = rad::summarise_daylight_factors(d.factor);
+        d.mean_error = rad::illuminance_errors(d.factor, d.factor_error).mean;
         if (year) {
             d.annual = true;
             d.metrics = rad::summarise_sensor_metrics(
@@ -235,9 +238,9 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
                 year->occupied_hours);
             for (const auto& m : d.metrics.sensors) d.da300.push_back(100 * m.da300);
         }
-        d.verdict =
-            rad::judge_daylight(d.summary.mean, d.annual ? &d.metrics.sda : nullptr,
-                                d.annual ? &d.metrics.ase : nullptr, file.surfaces[s].required);
+        d.verdict = rad::judge_daylight(d.summary.mean, d.annual ? &d.metrics.sda : nullptr,
+                                        d.annual ? &d.metrics.ase : nullptr,
+                                        file.surfaces[s].required, d.mean_error);
         rad::ReportSurface surface;
         surface.surface = file.surfaces[s];
         surface.grid = grids[s];

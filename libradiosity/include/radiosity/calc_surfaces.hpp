@@ -136,11 +136,15 @@ Verdict judge(const IlluminanceStats& stats, const Requirements& required,
 
 // Whether a surface's daylight meets the daylight requirements (true where nothing is
 // required; sDA and ASE only when the year was computed). Shares in [0, 1], DF in %.
+// `df_close`: the mean DF's margin lies within two of its standard errors (`mean_df_error`;
+// NaN: not known).
 struct DaylightVerdict {
     bool df = true, sda = true, ase = true;
+    bool df_close = false;
     bool passes() const { return df && sda && ase; }
 };
 DaylightVerdict judge_daylight(double mean_df, const double* sda, const double* ase,
-                               const Requirements& required);
+                               const Requirements& required,
+                               double mean_df_error = std::numeric_limits<double>::quiet_NaN());
 
 } // namespace rad

@@ -183,8 +183,12 @@ class DaylightSensors {
     // Under one sky: the sky seen directly, exactly (its luminance along each path), the
     // light the room reflects (the coefficients x the patches' mean luminance, the sun's
     // beam in the patch it is in) and the sun's beam; lux.
+    // `reflected_error`: the standard error of `reflected` from its rays' independent batches
+    // (NaN with a single batch); the sky seen directly and the sun are computed by fixed
+    // directions, not sampled, and have none.
     struct Illuminance {
         double sky = 0, reflected = 0, sun = 0;
+        double reflected_error = 0;
         double total() const { return sky + reflected + sun; }
     };
     Illuminance illuminance(const Sky& sky, const Vec3& point, const Vec3& normal,
@@ -206,6 +210,11 @@ class DaylightSensors {
 
   private:
     std::vector<double> reflected(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    // The reflected light's coefficients batch by batch: `each(coefficients)` once a batch,
+    // every batch of stratified rays from its own stream (their mean is reflected()).
+    template <class Each>
+    void reflected_batches(const Vec3& point, const Vec3& normal, std::uint64_t index,
+                           Each&& each) const;
     const radfmt::MeshData& mesh_;
     DaylightSolution solution_;
     DaylightOptions options_;

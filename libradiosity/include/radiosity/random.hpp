@@ -21,4 +21,11 @@ struct Rng {
     double uniform() { return double(next() >> 11) * 0x1.0p-53; }
 };
 
+// The stream of batch `batch` of point `index`: independent of every other batch's and point's
+// (the batches of an error bar, batch_error.hpp).
+inline Rng batch_stream(std::uint64_t seed, std::uint64_t index, int batch) {
+    Rng mixer(seed, static_cast<std::uint64_t>(batch));
+    return Rng(mixer.next(), index);
+}
+
 } // namespace rad

@@ -8,6 +8,7 @@
 #include "radiosity/glare.hpp"
 #include "radiosity/luminaires.hpp"
 
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -19,8 +20,10 @@ namespace rad {
 // A daylight solution's figures on a surface: the daylight factor under the CIE overcast
 // sky, and with a weather file the year's metrics.
 struct SurfaceDaylight {
-    std::vector<double> factor; // % per sensor
+    std::vector<double> factor;       // % per sensor
+    std::vector<double> factor_error; // its standard error (the reflected light's), % per sensor
     DaylightFactorSummary summary;
+    double mean_error = std::numeric_limits<double>::quiet_NaN(); // of summary.mean
     bool annual = false;
     std::vector<double> da300; // % of occupied hours, per sensor
     AnnualMetrics metrics;     // this surface's

@@ -152,12 +152,6 @@ struct Gatherer::Evidence {
 };
 
 namespace {
-// The random stream of batch `batch` of point `index`: independent of every other's.
-Rng batch_stream(std::uint64_t seed, std::uint64_t index, int batch) {
-    Rng mixer(seed, static_cast<std::uint64_t>(batch));
-    return Rng(mixer.next(), index);
-}
-
 // How a point's rays are cast: per batch, and how many batches at least and at most, of the
 // direct light's shadow rays and of the indirect rays (each its own set of batches).
 struct BatchPlan {

@@ -210,7 +210,8 @@ std::string daylight_table(const ReportInput& in) {
         if (annual)
             out += cell(percent(s.daylight->metrics.sda)) + cell(percent(s.daylight->metrics.ase));
         out += "<td>" + daylight_required_text(s.surface.required) + "</td>" +
-               verdict_text(s.surface.required.of_daylight(), s.daylight->verdict.passes()) +
+               verdict_text(s.surface.required.of_daylight(), s.daylight->verdict.passes(),
+                            s.daylight->verdict.df_close) +
                "</tr>";
     }
     return out + "</tbody></table>";
@@ -260,7 +261,10 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
                       "\"><h2>" + html_escape(s.surface.name) +
                       "</h2><table class=\"figures daylight\" data-surface=\"" +
                       html_escape(s.surface.name) + "\"><tbody>" + grid_rows(s);
-    out += figure_row("DF mean (%)", fixed(d.summary.mean, 2), "df-mean");
+    out += figure_row("DF mean (%)", fixed(d.summary.mean, 2), "df-mean",
+                      std::isfinite(d.mean_error)
+                          ? "± " + fixed(d.mean_error, d.mean_error >= 0.005 ? 2 : 3)
+                          : "");
     out += figure_row("DF median (%)", fixed(d.summary.median, 2), "df-median");
     out += figure_row("DF min (%)", fixed(d.summary.min, 2), "df-min");
     out += figure_row("DF max (%)", fixed(d.summary.max, 2), "df-max");
@@ -278,7 +282,8 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
     // The two plans side by side when they fit across the page, else one under the other.
     out += "<tr><th>Required</th><td>" + daylight_required_text(s.surface.required) + "</td></tr>";
     out += "<tr><th>Verdict</th>" +
-           verdict_text(s.surface.required.of_daylight(), d.verdict.passes()) + "</tr>";
+           verdict_text(s.surface.required.of_daylight(), d.verdict.passes(), d.verdict.df_close) +
+           "</tr>";
     out += "</tbody></table><div class=\"plans\"><figure>" +
            surface_plan_svg(s, d.factor, {"df", "%", 0, kHalfWidth, kHalfHeight}, nullptr, 1) +
            "<figcaption>Daylight factor on " + html_escape(s.surface.name) +

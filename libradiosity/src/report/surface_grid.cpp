@@ -78,9 +78,10 @@ Verdict judge(const IlluminanceStats& stats, const Requirements& required,
 }
 
 DaylightVerdict judge_daylight(double mean_df, const double* sda, const double* ase,
-                               const Requirements& required) {
+                               const Requirements& required, double mean_df_error) {
     DaylightVerdict v;
-    if (!std::isnan(required.df)) v.df = mean_df >= required.df;
+    const auto df = judge_figure(mean_df, mean_df_error, required.df);
+    v.df = df.passes, v.df_close = df.close;
     if (!std::isnan(required.sda) && sda) v.sda = 100 * *sda >= required.sda;
     if (!std::isnan(required.ase) && ase) v.ase = 100 * *ase <= required.ase;
     return v;

@@ -2,6 +2,8 @@
 // glass) and the light the room reflects (rays taking each patch's radiosity per sky patch
 // from the solve of the .sky's light groups).
 #include "radiosity/daylight.hpp"
+
+#include "radiosity/batch_error.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/gather.hpp"
 #include "radiosity/progress.hpp"
@@ -134,34 +136,65 @@ DaylightSensors::Coefficients DaylightSensors::coefficients(const Vec3& point, c
     return out;
 }
 
+namespace {
+// The reflected light's rays as batches: `batches` of side x side jittered strata (16 of a
+// quarter of the side where each then has at least 9 rays; else 4 of half; else 1).
+struct ReflectedBatches {
+    int batches = 1, side = 1;
+};
+ReflectedBatches reflected_plan(int rays) {
+    const int side = std::max(1, int(std::lround(std::sqrt(double(rays)))));
+    if (side / 4 >= 3) return {16, side / 4};
+    if (side / 2 >= 2) return {4, side / 2};
+    return {1, side};
+}
+} // namespace
+
 // The room's reflected light per sky patch: E = (1 / M) sum of B where M cosine-weighted
-// rays (jittered strata) land, through mirrors and glass.
-std::vector<double> DaylightSensors::reflected(const Vec3& point, const Vec3& normal,
-                                               std::uint64_t index) const {
+// rays (jittered strata) land, through mirrors and glass; batch by batch.
+template <class Each>
+void DaylightSensors::reflected_batches(const Vec3& point, const Vec3& normal, std::uint64_t index,
+                                        Each&& each) const {
     const std::size_t count = patches().count();
-    std::vector<double> out(count, 0.0);
-    if (options_.rays <= 0) return out;
-    const int side = std::max(1, int(std::lround(std::sqrt(double(options_.rays)))));
+    const auto plan = reflected_plan(options_.rays);
+    const int side = plan.side;
     const double share = 1.0 / (side * side);
     const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
-    Rng rng(options_.seed, index);
     const auto& b = solution_.radiosity;
-    for (int k = 0; k < side * side; ++k) {
-        const double u = ((k / side) + rng.uniform()) / side;
-        const double v = ((k % side) + rng.uniform()) / side;
-        follow_specular(*scene_, *specular_, point, cosine_direction(normal, tu, tv, u, v),
-                        Rgb{{1, 1, 1}}, options_.specular_depth, [&](const PathHit& h) {
-                            if (!h.hit.front) return;
-                            const float* row = &b[std::size_t(h.hit.patch) * count * 3];
-                            const double w0 = 0.265 * h.weight[0] * share,
-                                         w1 = 0.670 * h.weight[1] * share,
-                                         w2 = 0.065 * h.weight[2] * share;
-                            for (std::size_t s = 0; s < count; ++s)
-                                out[s] +=
-                                    w0 * row[3 * s] + w1 * row[3 * s + 1] + w2 * row[3 * s + 2];
-                        });
+    thread_local std::vector<double> out;
+    for (int batch = 0; batch < plan.batches; ++batch) {
+        out.assign(count, 0.0);
+        Rng rng = batch_stream(options_.seed, index, batch);
+        for (int k = 0; k < side * side; ++k) {
+            const double u = ((k / side) + rng.uniform()) / side;
+            const double v = ((k % side) + rng.uniform()) / side;
+            follow_specular(*scene_, *specular_, point, cosine_direction(normal, tu, tv, u, v),
+                            Rgb{{1, 1, 1}}, options_.specular_depth, [&](const PathHit& h) {
+                                if (!h.hit.front) return;
+                                const float* row = &b[std::size_t(h.hit.patch) * count * 3];
+                                const double w0 = 0.265 * h.weight[0] * share,
+                                             w1 = 0.670 * h.weight[1] * share,
+                                             w2 = 0.065 * h.weight[2] * share;
+                                for (std::size_t s = 0; s < count; ++s)
+                                    out[s] +=
+                                        w0 * row[3 * s] + w1 * row[3 * s + 1] + w2 * row[3 * s + 2];
+                            });
+        }
+        each(static_cast<const std::vector<double>&>(out));
     }
-    return out;
+}
+
+std::vector<double> DaylightSensors::reflected(const Vec3& point, const Vec3& normal,
+                                               std::uint64_t index) const {
+    std::vector<double> sum(patches().count(), 0.0);
+    if (options_.rays <= 0) return sum;
+    int batches = 0;
+    reflected_batches(point, normal, index, [&](const std::vector<double>& c) {
+        for (std::size_t s = 0; s < c.size(); ++s) sum[s] += c[s];
+        ++batches;
+    });
+    for (auto& v : sum) v /= batches;
+    return sum;
 }
 
 std::optional<SunPatch> sun_patch(const SkyPatches& patches, const Sky& sky) {
@@ -201,9 +234,17 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
     sensor_sky_paths(
         *scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
         [&](const Vec3& d, const Rgb& w) { out.sky += luminous(w) * sky.luminance(d); }, &refine_);
-    const auto c = reflected(point, normal, index);
-    const auto luminance = patch_luminance_with_sun(patches(), sky);
-    for (std::size_t s = 0; s < luminance.size(); ++s) out.reflected += c[s] * luminance[s];
+    if (options_.rays > 0) {
+        const auto luminance = patch_luminance_with_sun(patches(), sky);
+        BatchError batches;
+        reflected_batches(point, normal, index, [&](const std::vector<double>& c) {
+            double lux = 0;
+            for (std::size_t s = 0; s < luminance.size(); ++s) lux += c[s] * luminance[s];
+            batches.add({lux, lux, lux});
+        });
+        out.reflected = batches.mean()[0];
+        out.reflected_error = batches.standard_error()[0];
+    }
     if (sky.sun_up())
         out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
     return out;
