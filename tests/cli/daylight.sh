@@ -80,6 +80,34 @@ head -20 "$EPW" > "$TMP/short.epw"
 sed -n 21p "$EPW" | cut -c1-30 >> "$TMP/short.epw"
 expect_error "short.epw:21: a record has" "$TMP/x.ill" \
   "$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad" --grid "0 0 4 6 0.8 2 2" --epw "$TMP/short.epw" --annual -o "$TMP/x.ill"
+# Weather that cannot be (#70 item 6): radiation over the solar constant is refused, not taken
+# as missing (only 9999 is); records out of calendar order (every one at 1/1 12:00, 2/29 in
+# place of 12/31 in 8760 records) are refused at the first wrong line; an occupancy with no
+# occupied hour is refused (sDA over no hour was 0% and "fails").
+python3 - "$EPW" "$TMP" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().splitlines(True)
+head, hours = lines[:8], lines[8:]
+def write(name, records):
+    open(sys.argv[2] + "/" + name, "w").writelines(head + records)
+def field(line, k, value):
+    f = line.split(",")
+    f[k] = value
+    return ",".join(f)
+r = list(hours); r[4000] = field(r[4000], 14, "12345"); write("dni.epw", r)
+write("noon.epw", [field(field(field(h, 1, "1"), 2, "1"), 3, "12") for h in hours])
+r = list(hours)
+for k in range(8760 - 24, 8760): r[k] = field(field(r[k], 1, "2"), 2, "29")
+write("feb29.epw", r)
+open(sys.argv[2] + "/nobody.txt", "w").write("0\n" * 8760)
+PY
+for bad in "dni.epw:4009: radiation of 12345 W/m^2" "noon.epw:9: the record for 1/1 hour 12 stands where 1/1 hour 1 belongs" \
+           "feb29.epw:8745: the record for 2/29 hour 1 stands where 12/31 hour 1 belongs"; do
+  expect_error "$bad" "$TMP/x.ill" \
+    "$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad" --grid "0 0 4 6 0.8 2 2" --epw "$TMP/${bad%%:*}" --annual -o "$TMP/x.ill"
+done
+expect_error "nobody.txt: no hour is occupied" "$TMP/x.ill" \
+  "$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad" --grid "0 0 4 6 0.8 2 2" --epw "$EPW" --annual --occupancy "$TMP/nobody.txt" -o "$TMP/x.ill"
 expect_error "sky subdivision 'klems' is not known" "$TMP/x.sky" \
   "$BIN/rad-ff" "$TMP/daylight-room.mesh" --sky klems -o "$TMP/x.sky"
 

@@ -134,6 +134,12 @@ std::vector<std::uint8_t> read_occupancy(const std::string& path, std::size_t ho
     if (out.size() != hours)
         throw InputError(path + ": " + std::to_string(out.size()) +
                          " hours of occupancy; the weather file has " + std::to_string(hours));
+    // sDA, ASE and DA are shares of occupied hours: with none they mean nothing (a 0% and a
+    // "fails" would be a verdict over no hour at all).
+    if (std::find(out.begin(), out.end(), 1) == out.end())
+        throw InputError(path + ": no hour is occupied (every line is 0): sDA, ASE and DA are "
+                                "shares of the occupied hours; mark the hours the space is used "
+                                "with 1");
     return out;
 }
 

@@ -8,6 +8,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 namespace rad {
 namespace {
@@ -92,15 +93,47 @@ WeatherHour parse_hour(const std::string& line, const FileLoc& at, int& missing)
     h.diffuse_horizontal = number(f, 15, at, "diffuse horizontal radiation");
     bool absent = false;
     for (double* v : {&h.direct_normal, &h.diffuse_horizontal}) {
-        if (*v >= kMissingRadiation) *v = 0, absent = true;
-        // The solar constant is 1361 W/m^2: more is no radiation on Earth.
-        if (*v < 0 || *v > kMaxRadiation)
-            throw InputError(at, "radiation of " + quoted_prefix(std::to_string(*v)) +
+        // 9999 is EPW's "missing"; any other value over the solar constant (1361 W/m^2) is
+        // no radiation on Earth, not a missing one (12345 or 1e300 were taken as missing).
+        if (*v == kMissingRadiation) *v = 0, absent = true;
+        if (!(*v >= 0 && *v <= kMaxRadiation))
+        {
+            char text[40];
+            std::snprintf(text, sizeof text, "%g", *v);
+            throw InputError(at, std::string("radiation of ") + text +
                                      " W/m^2 (fields 15, 16: 0 to 1500, 9999 when missing)");
+        }
     }
     if (absent) ++missing;
     if (h.dew_point > 70 || h.dew_point < -90) h.dew_point = 10; // 99.9: missing
     return h;
+}
+} // namespace
+
+namespace {
+// The records run hour by hour from 1 January 1:00 to 31 December 24:00, 29 February only in
+// a file of 8784 (the year field may change from month to month: a typical year is made of
+// months of several years). A file of 8760 records all at 1 January 12:00, or with 29 February
+// in place of 31 December, was taken as a year.
+void check_calendar(const Weather& w, const std::string& path) {
+    static constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    const bool leap = w.hours.size() == 8784;
+    std::size_t k = 0;
+    for (int month = 1; month <= 12; ++month)
+        for (int day = 1; day <= kDays[month - 1] + (leap && month == 2 ? 1 : 0); ++day)
+            for (int hour = 1; hour <= 24; ++hour, ++k) {
+                const auto& h = w.hours[k];
+                if (h.month == month && h.day == day && h.hour == hour) continue;
+                char text[200];
+                std::snprintf(text, sizeof text,
+                              "the record for %d/%d hour %d stands where %d/%d hour %d belongs "
+                              "(month/day; an EPW year runs hour by hour from 1/1 hour 1 to "
+                              "12/31 hour 24%s)",
+                              h.month, h.day, h.hour, month, day, hour,
+                              leap ? ", with 2/29 in its 8784 records"
+                                   : "; 2/29 only in a file of 8784 records");
+                throw InputError(FileLoc{path, h.line}, text);
+            }
 }
 } // namespace
 
@@ -127,6 +160,7 @@ Weather read_epw(const std::string& path) {
     if (w.hours.size() != 8760 && w.hours.size() != 8784)
         throw InputError(path + ": " + std::to_string(w.hours.size()) +
                          " hourly records; a year has 8760 (8784 in a leap year)");
+    check_calendar(w, path);
     return w;
 }
 
