@@ -445,3 +445,24 @@ TEST_CASE("EULUMDAT's lamp colour temperature tints the light, keeping its lumen
     const auto p = read("eulumdat-rs_floor_uplight_Isym0.ldt");
     CHECK(p.cct == 4200);
 }
+
+TEST_CASE("a luminous opening over 1 km is refused at its line, in IES and EULUMDAT (#70 item 7)") {
+    const std::string ies =
+        "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 1e300 0 0\n1 1 0\n0 180\n0\n1000 1000\n";
+    CHECK_THAT(refusal(ies), Catch::Matchers::Contains("bad.ies:3:") &&
+                                 Catch::Matchers::Contains("width is over 1000 m"));
+    // A foot-based file: 3300 ft is over 1 km, 3000 ft is not.
+    auto feet = [](const char* width) {
+        return "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 1 " + std::string(width) +
+               " 0 0\n1 1 0\n0 180\n0\n1000 1000\n";
+    };
+    CHECK_THAT(refusal(feet("3300")), Catch::Matchers::Contains("over 1000 m"));
+    CHECK(refusal(feet("3000")).empty());
+    // EULUMDAT's line 16 (length or diameter, mm) at 1e300.
+    auto lines = slurp(kData / "eulumdat-ugr_sample_01_Isym4.ldt");
+    std::size_t at = 0;
+    for (int k = 1; k < 16; ++k) at = lines.find('\n', at) + 1;
+    lines.replace(at, lines.find('\n', at) - at, "1e300");
+    CHECK_THAT(refusal(lines, "big.ldt"), Catch::Matchers::Contains("big.ldt:16:") &&
+                                              Catch::Matchers::Contains("over 1000 m"));
+}

@@ -13,6 +13,7 @@ using photometry::TokenCursor;
 
 namespace {
 constexpr double kFoot = 0.3048;
+constexpr double kMaxOpeningMetres = 1000;
 
 std::string_view trim(std::string_view s) {
     while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -117,9 +118,20 @@ IesHead read_head(TokenCursor& in, const std::string& edition) {
         in.fail("more than 10 million candela values: not a photometric file");
     h.type = int(in.count("the photometric type (1 = C, 2 = B, 3 = A)", 1, 3));
     h.units = int(in.count("the units type (1 = feet, 2 = metres)", 1, 2));
-    h.width = in.number("the luminous opening's width");
-    h.length = in.number("the luminous opening's length");
-    h.height = in.number("the luminous opening's height");
+    // An opening over 1 km (a 1e300 m one was drawn and sampled) is no luminaire's.
+    const double to_metres = h.units == 1 ? kFoot : 1;
+    const auto opening = [&](const char* what) {
+        const double v = in.number(what);
+        if (!(std::abs(v) * to_metres <= kMaxOpeningMetres)) {
+            char text[64];
+            std::snprintf(text, sizeof text, " (it is %g %s)", v, h.units == 1 ? "ft" : "m");
+            in.fail(std::string(what) + " is over 1000 m: not a luminaire's" + text);
+        }
+        return v;
+    };
+    h.width = opening("the luminous opening's width");
+    h.length = opening("the luminous opening's length");
+    h.height = opening("the luminous opening's height");
     h.ballast = in.number("the ballast factor");
     if (!(h.ballast > 0)) in.fail("the ballast factor must be positive");
     // 1991 and 1995 have the ballast-lamp photometric factor here; later editions a field for

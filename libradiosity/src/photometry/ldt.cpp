@@ -114,12 +114,20 @@ Photometry parse_ldt(std::string_view text, const std::string& name) {
     const long ng = ldt.count(6, "Ng (the number of gamma angles)", 2, 3600);
     if (isym == 0 && mc < 2) throw InputError(FileLoc{name, 4}, "Isym 0 needs Mc of 2 or more");
     const double mm = 1e-3;
-    p.length = ldt.number(16, "the luminous area's length or diameter (mm)") * mm;
-    p.width = ldt.number(17, "the luminous area's width (mm)") * mm;
+    // An area over 1 km (a 1e300 m one was drawn and sampled) is no luminaire's.
+    const auto area_size = [&](std::size_t line, const char* what) {
+        const double v = ldt.number(line, what);
+        if (!(std::abs(v) * mm <= 1000))
+            throw InputError(FileLoc{name, int(line)},
+                             std::string(what) + " is over 1000 m: not a luminaire's");
+        return v * mm;
+    };
+    p.length = area_size(16, "the luminous area's length or diameter (mm)");
+    p.width = area_size(17, "the luminous area's width (mm)");
     p.round = p.width == 0;
     if (p.round) p.width = p.length;
     for (std::size_t line = 18; line <= 21; ++line)
-        p.height = std::max(p.height, ldt.number(line, "a luminous area's height (mm)") * mm);
+        p.height = std::max(p.height, area_size(line, "a luminous area's height (mm)"));
     p.stated_downward_percent = ldt.number(22, "DFF (the downward flux fraction, %)");
     const double lorl = ldt.number(23, "LORL (the light output ratio, %)");
     const double cfli = ldt.number(24, "the conversion factor for luminous intensities");
