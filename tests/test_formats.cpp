@@ -767,3 +767,31 @@ TEST_CASE("a .sky that passes its checksums but says north 1e308 is refused (#70
                       Contains("is outside -360 to 360 degrees, which rad-ff writes"));
     fs::remove_all(dir);
 }
+
+TEST_CASE("a .lum whose embedded photometry is not the text its header records is refused "
+          "(#70 item 8)") {
+    const auto dir = temp_dir("lum-text");
+    radfmt::LuminaireData lum;
+    lum.layout_name = "room/layout.csv";
+    lum.layout_text = "name,photometry,x,y,z\nL,lamp.ies,0,2,0\n";
+    lum.files = {{"lamp.ies", "IESNA:LM-63-2002\nTILT=NONE\n"}};
+    lum.groups = {"all"};
+    lum.patch_count = 1;
+    lum.irradiance = {radfmt::Rgb{{1, 1, 1}}};
+    const auto hash = [](const std::string& text) {
+        return "xxh64:" + radfmt::hash_hex(radfmt::hash_bytes(text.data(), text.size()));
+    };
+    auto header = header_for("rad-ff");
+    header.inputs = {{"room/layout.csv", hash(lum.layout_text)},
+                     {"room/lamp.ies", hash(lum.files[0].second)}};
+    radfmt::write_luminaires(dir / "ok.lum", header, lum);
+    CHECK(radfmt::read_luminaires(dir / "ok.lum").files.size() == 1);
+    // The photometry swapped for other text, the file written whole, hashes and all.
+    lum.files[0].second = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1e300";
+    radfmt::write_luminaires(dir / "swapped.lum", header, lum);
+    CHECK_THROWS_WITH(radfmt::read_luminaires(dir / "swapped.lum"),
+                      Contains("the text of room/lamp.ies it holds is not the one its header "
+                               "records") &&
+                          Contains("contradicts itself"));
+    fs::remove_all(dir);
+}

@@ -466,3 +466,15 @@ TEST_CASE("a luminous opening over 1 km is refused at its line, in IES and EULUM
     CHECK_THAT(refusal(lines, "big.ldt"), Catch::Matchers::Contains("big.ldt:16:") &&
                                               Catch::Matchers::Contains("over 1000 m"));
 }
+
+TEST_CASE("a .lum whose groups or count its layout does not make is refused (#70 item 8)") {
+    const auto set = one_luminaire(kIsotropic, "L,lamp.ies,0,2,0,,,,,,downlights");
+    REQUIRE(set.groups == std::vector<std::string>{"downlights"});
+    CHECK_NOTHROW(rad::check_luminaires_file(set, {"downlights"}, 1, "a.lum"));
+    CHECK_NOTHROW(rad::check_luminaires_file(set, {"downlights"}, -1, "a.lum"));
+    CHECK_THROWS_WITH(rad::check_luminaires_file(set, {"downlights", "extra"}, 1, "a.lum"),
+                      Catch::Matchers::Contains("a.lum: its light groups (downlights, extra) are "
+                                                "not those its layout makes (downlights)"));
+    CHECK_THROWS_WITH(rad::check_luminaires_file(set, {"downlights"}, 7, "a.lum"),
+                      Catch::Matchers::Contains("records 7 luminaires, its layout places 1"));
+}

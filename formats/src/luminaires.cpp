@@ -33,6 +33,39 @@ void write_luminaires(const fs::path& path, Header header, const LuminaireData& 
     write_file(path, std::move(header), w);
 }
 
+namespace {
+// What a .lum embeds must be what its header records: its light groups, and the layout's and
+// each photometric file's text, whose hashes the header keeps among its inputs. A file edited
+// and given a new checksum passed before (an extra body group made 21,728 lm of 3,517 lm).
+void check_against_header(const fs::path& path, const LuminaireData& lum, const Header& header) {
+    const auto refuse = [&](const std::string& what) {
+        throw FormatError(path.string() + ": " + what +
+                          ": the file contradicts itself (edited?); make it again with rad-ff "
+                          "--luminaires");
+    };
+    std::string names;
+    for (const auto& g : lum.groups) names += (names.empty() ? "" : ",") + g;
+    if (const auto* recorded = header.find("light_groups"); recorded && *recorded != names)
+        refuse("its light groups '" + names + "' are not the '" + *recorded +
+               "' its header records");
+    const auto text_hash = [](const std::string& text) {
+        return "xxh64:" + hash_hex(hash_bytes(text.data(), text.size()));
+    };
+    const auto check_text = [&](const fs::path& source, const std::string& text) {
+        for (const auto& input : header.inputs)
+            if (fs::path(input.path).lexically_normal() == source.lexically_normal() &&
+                input.hash != text_hash(text))
+                refuse("the text of " + source.string() +
+                       " it holds is not the one its header "
+                       "records (" +
+                       input.hash + ")");
+    };
+    check_text(lum.layout_name, lum.layout_text);
+    const auto folder = fs::path(lum.layout_name).parent_path();
+    for (const auto& [name, text] : lum.files) check_text(folder / name, text);
+}
+} // namespace
+
 LuminaireData read_luminaires(const fs::path& path, Header* header_out) {
     const Kind kind = Kind::Luminaires;
     BodyReader r(path, &kind);
@@ -55,6 +88,7 @@ LuminaireData read_luminaires(const fs::path& path, Header* header_out) {
         for (int c = 0; c < 3; ++c)
             if (!(lum.irradiance[i][c] >= 0 && std::isfinite(lum.irradiance[i][c])))
                 r.fail("irradiance value " + std::to_string(i) + " is negative or not finite");
+    check_against_header(path, lum, r.header());
     if (header_out) *header_out = r.take_header();
     return lum;
 }

@@ -121,6 +121,12 @@ std::vector<Rgb> patch_direct_light(const radfmt::MeshData& mesh, const Luminair
 std::uint64_t merge_luminaire_parts(const std::vector<std::string>& paths,
                                     const std::string& output);
 
+// A .lum's light groups and luminaire count (`recorded_count`, its header's `luminaires`; < 0:
+// not recorded) must be those its layout makes (`set`): InputError naming `path` otherwise (an
+// extra group in a body given a new checksum counted its light twice).
+void check_luminaires_file(const LuminaireSet& set, const std::vector<std::string>& groups,
+                           long recorded_count, const std::string& path);
+
 // The luminaires a solution was solved with (rad-solve --direct: its `direct` field), rebuilt
 // from the .lum at `path` (empty: the recorded one, as recorded or, when that is not there,
 // beside the solution at `solution_path`), which must be the file the solve read (its hash as

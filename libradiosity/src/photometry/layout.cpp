@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -341,8 +342,31 @@ solution_luminaires(const radfmt::Header& solution_header, const std::string& so
         if (recorded && input.path == *recorded && input.hash != header.file_hash)
             throw InputError(lum_path + " is not the luminaires file the solution was solved "
                                         "with (it changed since): run rad-solve --direct again");
-    return build_luminaires({lum.layout_name, lum.layout_text, lum.files},
-                            metres_per_unit(mesh_header));
+    auto set = build_luminaires({lum.layout_name, lum.layout_text, lum.files},
+                                metres_per_unit(mesh_header));
+    const auto* count = header.find("luminaires");
+    check_luminaires_file(set, lum.groups, count ? std::atol(count->c_str()) : -1, lum_path);
+    return set;
+}
+
+void check_luminaires_file(const LuminaireSet& set, const std::vector<std::string>& groups,
+                           long recorded_count, const std::string& path) {
+    const auto join = [](const std::vector<std::string>& names) {
+        std::string out;
+        for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+        return out;
+    };
+    const std::string advice = ": the file contradicts itself (edited?); make it again with "
+                               "rad-ff --luminaires";
+    if (groups != set.groups)
+        throw InputError(path + ": its light groups (" + join(groups) +
+                         ") are not those its "
+                         "layout makes (" +
+                         join(set.groups) + ")" + advice);
+    if (recorded_count >= 0 && std::size_t(recorded_count) != set.luminaires.size())
+        throw InputError(path + ": its header records " + std::to_string(recorded_count) +
+                         " luminaires, its layout places " + std::to_string(set.luminaires.size()) +
+                         advice);
 }
 
 } // namespace rad
