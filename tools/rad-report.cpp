@@ -334,8 +334,10 @@ std::vector<rad::ReportView> views_of(const ReportArgs& a, const rad::CalcFile& 
                                  v3(c.up) + " -vh " + view_number(c.angle_deg) + " -vv " +
                                  view_number(vertical);
         const auto view = rad::parse_view(text, c.where);
+        // The irradiance cache at rad-shade's defaults, as the command below renders it.
+        const rad::IrradianceCacheOptions cache;
         auto image = rad::render_gathered(view_gatherer, view, kWidth, kHeight, kSupersampling,
-                                          a.quiet, set);
+                                          a.quiet, set, {}, &cache);
         if (set) rad::draw_luminaires(image, *set, gatherer.scene(), view, kSupersampling);
         std::vector<std::uint8_t> pixels(image.rgb.size());
         for (std::size_t i = 0; i < pixels.size(); ++i)

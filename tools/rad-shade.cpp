@@ -10,6 +10,7 @@
 #include "radiosity/gather.hpp"
 #include "radiosity/gathered.hpp"
 #include "radiosity/image_parts.hpp"
+#include "radiosity/irradiance_cache.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/luminaire_image.hpp"
 #include "radiosity/numbers.hpp"
@@ -37,7 +38,8 @@ struct ShadeArgs {
     double exposure = 0, crease = 30;
     bool flat = false, albedo = false, quiet = false;
     std::vector<std::string> mix;
-    bool mix_only = false, layers = false, error_layer = false;
+    bool mix_only = false, layers = false, error_layer = false, no_cache = false;
+    rad::IrradianceCacheOptions cache;
     std::string backfaces = "show", max_memory, direct_path;
     int gather = 0, shadow_rays = 32;
     // --gather's error bar and rounds: a pixel takes exactly its rays unless --accuracy.
@@ -151,6 +153,21 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
     rad::tool::add_accuracy_options(app, a.sampling);
+    app.add_flag("--no-cache", a.no_cache,
+                 "--gather: every sample casts all its indirect rays, instead of taking the "
+                 "indirect light from an irradiance cache of records spread over the view "
+                 "(docs/images.md); --error-layer and --accuracy imply it");
+    app.add_option("--cache-rays", a.cache.rays, "--gather: indirect rays of a cache record")
+        ->capture_default_str()
+        ->check(CLI::Range(16, 1000000));
+    app.add_option("--cache-spacing", a.cache.spacing,
+                   "--gather: a cache record every N pixels, across and down")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 64));
+    app.add_option("--cache-accuracy", a.cache.accuracy,
+                   "--gather: how far a record is reused (Ward's a: smaller is finer and slower)")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(0.01, 1));
     app.add_flag("--error-layer", a.error_layer,
                  "--gather: add an EXR layer 'error' holding each pixel's standard error (RGB, "
                  "the image's units): what the gather's sampling leaves uncertain there "
@@ -260,8 +277,12 @@ rad::Image render_image(const ShadeArgs& a, const ShadeInputs& in, const rad::Vi
         throw rad::InputError("--error-layer: " + a.mesh_path +
                               " has mirrors or glass, whose pixels' errors are not estimated "
                               "yet: leave --error-layer out");
+    // The cache shares rays among samples: a per-sample error bar or accuracy needs each
+    // sample's own.
+    const bool cached = !a.no_cache && !a.error_layer && !(options.accuracy > 0);
     return rad::render_gathered(gatherer, view, a.width, a.height, a.aa, a.quiet,
-                                in.luminaires ? &*in.luminaires : nullptr, band);
+                                in.luminaires ? &*in.luminaires : nullptr, band,
+                                cached ? &a.cache : nullptr);
 }
 
 // The luminaires' openings at their luminance, dimmed and tinted by --mix as their groups.
@@ -490,6 +511,11 @@ int shade(ShadeArgs& a, int argc, char** argv) {
     const double scale = run_exposure(a, in, solved, image);
     if (a.backfaces == "mark") rad::mark_back_faces(image, {1 / scale, 0, 1 / scale});
     warn_back_faces(a, image);
+    if (image.cache_records > 0 && !a.quiet)
+        std::fprintf(stderr,
+                     "rad-shade: irradiance cache: %zu records of %d rays; %ld of the samples "
+                     "no record covered gathered their own\n",
+                     image.cache_records, a.cache.rays, image.uncached_samples);
 
     const auto group_images = render_layers(a, in, view, mode);
     std::vector<rad::ImageLayer> exr_layers;

@@ -102,6 +102,19 @@ class Gatherer {
     // (`surface`, its geometric normal) go into it, and count as nothing.
     Irradiance gather(const Vec3& point, const Vec3& normal, const Vec3& surface,
                       std::uint64_t index, const Rgb& known = {0, 0, 0}) const;
+    // The direct light alone, its shadow rays in one set (no error bar): for a view whose
+    // indirect light comes from an irradiance cache.
+    Rgb direct_light(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    // An irradiance cache's record: the indirect light from `rays` stratified cosine-weighted
+    // rays in one set (`surface` as in gather()), and the harmonic mean distance of what they
+    // met (Ward, Rubinstein and Clear 1988: how far the indirect light may be reused). Not for
+    // meshes with mirrors or glass.
+    struct IndirectSample {
+        Rgb indirect{0, 0, 0};
+        double harmonic_distance = 0; // 0: nothing was met
+    };
+    IndirectSample indirect_sample(const Vec3& point, const Vec3& normal, const Vec3& surface,
+                                   int rays, std::uint64_t index) const;
     // The normal where a ray hit a patch, interpolated from its corners (smoothed over
     // neighbours of its material within the crease angle; the patch's own when flat).
     Vec3 shading_normal(const RayScene::Hit& hit) const;

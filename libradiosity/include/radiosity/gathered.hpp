@@ -3,6 +3,7 @@
 // shadows as sharp as the geometry, no blotches from noisy form factors.
 #pragma once
 #include "radiosity/gather.hpp"
+#include "radiosity/irradiance_cache.hpp"
 #include "radiosity/raster.hpp"
 #include "radiosity/view.hpp"
 
@@ -14,8 +15,11 @@ struct LuminaireSet;
 // `luminaires` (a solve's rad-solve --direct): their direct light is added exactly at each
 // visible point. Only the image rows in `rows` are gathered (the rest stay black and
 // uncovered): a band for rad-shade --rows, the same pixels a whole run gives there.
+// `cache`: the indirect light from an irradiance cache (irradiance_cache.hpp) instead of
+// every sample's rays; null: every sample gathers all its rays (and the image has the error
+// layer). Not for meshes with mirrors or glass, which always gather in full.
 Image render_gathered(const Gatherer& gatherer, const View& view, int width, int height,
                       int supersampling, bool quiet, const LuminaireSet* luminaires = nullptr,
-                      RowBand rows = {});
+                      RowBand rows = {}, const IrradianceCacheOptions* cache = nullptr);
 
 } // namespace rad

@@ -22,6 +22,10 @@ struct Image {
     // A final gather's per-pixel standard error (RGB, the image's units; empty when none):
     // what the gather's sampling leaves uncertain in each pixel (rad-shade --error-layer).
     std::vector<float> error;
+    // An irradiance cache's records, and the samples no record covered (they gathered their
+    // own indirect light).
+    std::size_t cache_records = 0;
+    long uncached_samples = 0;
 };
 
 // Image rows [begin, end) (end -1: to the bottom): a band of an image, rad-shade --rows.

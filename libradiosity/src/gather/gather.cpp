@@ -251,6 +251,42 @@ Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, const Vec3& s
     return out;
 }
 
+// No error bar is asked of it: one set of all the shadow rays (better stratified, and the
+// per-batch work once).
+Rgb Gatherer::direct_light(const Vec3& point, const Vec3& normal, std::uint64_t index) const {
+    double total = 0;
+    const auto seen = seen_lights(point, normal, total);
+    Rng rng = batch_stream(options_.seed ^ 0xD1EC7ull, index, 0);
+    return direct_batch(point, normal, seen, total, options_.shadow_rays, rng);
+}
+
+Gatherer::IndirectSample Gatherer::indirect_sample(const Vec3& point, const Vec3& normal,
+                                                   const Vec3& surface, int rays,
+                                                   std::uint64_t index) const {
+    if (specular_->any())
+        throw InternalError("an irradiance cache's record on a mesh with mirrors or glass");
+    Rng rng = batch_stream(options_.seed ^ 0xCAC4Eull, index, 0);
+    const double rotation[2] = {rng.uniform(), rng.uniform()};
+    const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
+    IndirectSample out;
+    double inverse_sum = 0;
+    int met = 0;
+    for (int r = 0; r < rays; ++r) {
+        const Vec3 d = stratified_direction(normal, tu, tv, r, rays, rotation);
+        if (dot(d, surface) <= 0) continue;
+        const auto hit = scene_->trace(point, d);
+        if (hit.patch < 0) continue;
+        inverse_sum += 1 / std::max(hit.distance, 1e-9);
+        ++met;
+        if (!hit.front || bright_[static_cast<std::size_t>(hit.patch)]) continue;
+        const auto b = reflected_at(hit);
+        for (int k = 0; k < 3; ++k) out.indirect[k] += b[k];
+    }
+    for (int k = 0; k < 3; ++k) out.indirect[k] /= std::max(rays, 1);
+    out.harmonic_distance = met > 0 ? met / inverse_sum : 0;
+    return out;
+}
+
 // One batch's indirect light: cosine-weighted stratified rays turned by the batch's stream,
 // each taking the reflected radiosity where it lands (through mirrors and glass).
 Rgb Gatherer::indirect_batch(const Vec3& point, const Vec3& normal, const Vec3& surface, int rays,

@@ -1,0 +1,55 @@
+// An irradiance cache for gathered views (Ward, Rubinstein and Clear 1988): the indirect
+// light is gathered with many rays at records spread over the view, and each sample between
+// them takes a weighted mean of the records valid there instead of casting its own rays. The
+// direct light stays per sample (sharp shadows). A record i is valid at x (normal n) while
+// e_i = |x - x_i| / R_i + sqrt(1 - n . n_i) < a, R_i the harmonic mean distance of what its
+// rays met (clamped to a pixel or two's footprint and to a share of the scene), and
+// weighs 1 / e_i - 1 / a there, which falls to 0 at the edge of its validity (Tabellion and
+// Lamorlette's smooth variant: no seams where records begin or end).
+//
+// Deterministic: the records sit at fixed pixels (every `spacing`-th, the image's own grid,
+// the same for a whole image and for each --rows band) and each is computed from its own
+// stream; a sample no record covers gathers its own indirect light.
+#pragma once
+#include "radiosity/vec.hpp"
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace rad {
+
+struct IrradianceCacheOptions {
+    int spacing = 4;       // a record every `spacing` pixels, across and down
+    int rays = 512;        // a record's indirect rays
+    double accuracy = 0.2; // Ward's a: how far a record is reused
+    // A record reaches at least this many pixels (its radius is at least that footprint over
+    // the accuracy); nearer edges and corners (small harmonic distance) samples between records
+    // no record reaches gather their own.
+    double min_reach_pixels = 0.5;
+};
+
+class IrradianceCache {
+  public:
+    struct Record {
+        Vec3 position{0, 0, 0}, normal{0, 0, 0};
+        Rgb indirect{0, 0, 0};
+        double radius = 0;
+    };
+    // `records`, each valid within accuracy x its radius; `cell` sizes the lookup grid.
+    IrradianceCache(std::vector<Record> records, double accuracy);
+    // The indirect light at `x` (shading normal `n`) interpolated from the records valid there;
+    // false when none is.
+    bool lookup(const Vec3& x, const Vec3& n, Rgb& out) const;
+    std::size_t size() const { return records_.size(); }
+
+  private:
+    using Key = std::uint64_t;
+    Key key(long i, long j, long k) const;
+    long cell_of(double v) const;
+    std::vector<Record> records_;
+    double accuracy_, cell_ = 1;
+    std::unordered_map<Key, std::vector<std::uint32_t>> grid_;
+};
+
+} // namespace rad
