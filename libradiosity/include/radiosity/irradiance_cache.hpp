@@ -27,6 +27,9 @@ struct IrradianceCacheOptions {
     // the accuracy); nearer edges and corners (small harmonic distance) samples between records
     // no record reaches gather their own.
     double min_reach_pixels = 0.5;
+    // ... and at most this many (a record reaching far only slows every lookup it is in, and
+    // its light is averaged over what it no longer sees).
+    double max_reach_pixels = 32;
 };
 
 class IrradianceCache {

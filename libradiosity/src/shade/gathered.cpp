@@ -70,7 +70,7 @@ Rgb luminaire_light(const Gatherer& gatherer, const LuminaireSet* luminaires, co
 // The cache's records at every `spacing`-th pixel of the whole image (a band builds the same
 // ones, so its pixels are those of a whole run), each from its own stream. A record's radius
 // is the harmonic mean distance its rays met, at least what reaches min_reach_pixels (their
-// footprint over the accuracy) and at most a tenth of the scene.
+// footprint over the accuracy), at most what reaches max_reach_pixels and a tenth of the scene.
 IrradianceCache build_cache(const Gatherer& gatherer, const View& view, int width, int height,
                             const IrradianceCacheOptions& o, bool quiet) {
     const int spacing = std::max(1, o.spacing);
@@ -96,12 +96,13 @@ IrradianceCache build_cache(const Gatherer& gatherer, const View& view, int widt
             const double footprint =
                 length(view_ray(view, (px + 1) / width, py / height) - ray) * hit.distance;
             const double smallest = o.min_reach_pixels * footprint / o.accuracy;
+            const double widest = std::min(largest, o.max_reach_pixels * footprint / o.accuracy);
             auto& r = slots[at];
             r.position = point;
             r.normal = normal;
             r.indirect = sample.indirect;
-            r.radius = std::clamp(sample.harmonic_distance > 0 ? sample.harmonic_distance : largest,
-                                  smallest, std::max(smallest, largest));
+            r.radius = std::clamp(sample.harmonic_distance > 0 ? sample.harmonic_distance : widest,
+                                  smallest, std::max(smallest, widest));
             used[at] = 1;
         }
         progress.advance(1);
