@@ -48,6 +48,16 @@ const char* kLampMtl = "newmtl lamp\nKd 0 0 0\nKe 10 20 40\nnewmtl black\nKd 0 0
 // A 1 x 1 lamp at height 0.5 facing down, centred over the origin.
 const std::string kLamp = "v -0.5 0.5 -0.5\nv 0.5 0.5 -0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n"
                           "usemtl lamp\nf 1 2 3 4\n";
+
+// A closed unit cube (faces inward): three faces emit E = 1, three reflect with rho = 0.5. With
+// B = 1 on every patch (the "furnace"), every point inside gathers exactly 1.
+radfmt::MeshData furnace_mesh() {
+    const std::string obj =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "usemtl lamp\nf 1 2 3 4\nf 1 5 6 2\nf 1 4 8 5\n"
+        "usemtl white\nf 5 8 7 6\nf 4 3 7 8\nf 2 6 7 3\n";
+    return mesh_of(obj, "newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl white\nKd 0.5 0.5 0.5\n", 0.25);
+}
 } // namespace
 
 TEST_CASE("on the axis of a lone emitting square the gather is E x the closed form") {
@@ -145,13 +155,8 @@ TEST_CASE("the error bar: in a furnace of known answer, +-2 standard errors hold
     // The furnace above (every point gathers exactly 1), at 1000 random points and directions.
     // With 16 batches +-2 standard errors hold the truth at 93.6% of points were the batch
     // means normal (Student's t, 15 degrees of freedom); they are not quite, and 92% is seen.
-    const std::string obj =
-        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-        "usemtl lamp\nf 1 2 3 4\nf 1 5 6 2\nf 1 4 8 5\n"
-        "usemtl white\nf 5 8 7 6\nf 4 3 7 8\nf 2 6 7 3\n";
-    const auto mesh =
-        mesh_of(obj, "newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl white\nKd 0.5 0.5 0.5\n", 0.25);
-    std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
+    const auto mesh = furnace_mesh();
+    const std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
     for (const double accuracy : {0.0, 0.005}) {
         rad::GatherOptions options;
         options.accuracy = accuracy; // 0: 256 rays; 0.5%: rounds until there
@@ -185,13 +190,8 @@ TEST_CASE("a gathered image's error layer: +-2 errors hold each pixel's known va
     // Inside the furnace the irradiance is 1 everywhere, so a white pixel is E + rho x 1 = 0.5
     // exactly and an emitter's 1 with no error; the image's per-pixel errors must hold 0.5 at
     // 90-98% of white pixels (one sample a pixel: no pixel mixes the two).
-    const std::string obj =
-        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-        "usemtl lamp\nf 1 2 3 4\nf 1 5 6 2\nf 1 4 8 5\n"
-        "usemtl white\nf 5 8 7 6\nf 4 3 7 8\nf 2 6 7 3\n";
-    const auto mesh =
-        mesh_of(obj, "newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl white\nKd 0.5 0.5 0.5\n", 0.25);
-    std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
+    const auto mesh = furnace_mesh();
+    const std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
     rad::GatherOptions options;
     options.accuracy = 0;
     const rad::Gatherer gatherer(mesh, b, options);
@@ -222,13 +222,8 @@ TEST_CASE("an irradiance cache's view agrees with every sample gathering its own
     // mean within 0.5%, 98.5% of pixels within 2% and every one within 8% of the truth (99.0%
     // and 6.1% seen: records carry no gradients, so where the indirect light turns fast, by an
     // edge, the interpolation lags); the same bytes at 1 and 2 threads.
-    const std::string obj =
-        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-        "usemtl lamp\nf 1 2 3 4\nf 1 5 6 2\nf 1 4 8 5\n"
-        "usemtl white\nf 5 8 7 6\nf 4 3 7 8\nf 2 6 7 3\n";
-    const auto mesh =
-        mesh_of(obj, "newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl white\nKd 0.5 0.5 0.5\n", 0.25);
-    std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
+    const auto mesh = furnace_mesh();
+    const std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
     const rad::Gatherer gatherer(mesh, b, {});
     rad::View view;
     view.position = {0.2, 0.3, 0.25};
@@ -301,13 +296,8 @@ TEST_CASE("furnace: inside a closed box of uniform radiosity every point gathers
     // A closed cube (faces inward) of radiosity 1 everywhere: three faces emit it (E = 1,
     // sampled directly), three reflect it (B - E = 1, found by rays). The total is 1 at any
     // point, in any direction, to the ray noise; the noise falls at least as 1/sqrt(N).
-    const std::string obj =
-        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-        "usemtl lamp\nf 1 2 3 4\nf 1 5 6 2\nf 1 4 8 5\n"
-        "usemtl white\nf 5 8 7 6\nf 4 3 7 8\nf 2 6 7 3\n";
-    const auto mesh =
-        mesh_of(obj, "newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl white\nKd 0.5 0.5 0.5\n", 0.25);
-    std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
+    const auto mesh = furnace_mesh();
+    const std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
     auto rms_error = [&](int rays) {
         rad::GatherOptions options;
         options.rays = rays;
