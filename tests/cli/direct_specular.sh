@@ -92,4 +92,38 @@ PY
 box lum-pane lpane0 0
 box lum-pane lpane1 1
 pane_ratio lpane0 lpane1 0.002
+# The sun in a planar mirror (#65 item 3): an open-topped black 4 x 1 x 2 m box whose west wall
+# (x = 0) is a 0.9 mirror, the sun 30 degrees up in the east (beam only: perez:800,0). A floor
+# sensor 1 m from the mirror sees the sun directly (over the east wall) and its image in the
+# mirror (at the same elevation): 1.9 times what it reads with a black west wall. It read 1.0.
+sunbox() { # $1: the west wall's material
+  python3 - "$TMP/sun-$1.obj" "$1" <<'PY'
+import sys
+v, f = [], []
+def quad(a, b, c, d, m):
+    i = len(v); v.extend([a, b, c, d]); f.append((m, [i + 1, i + 2, i + 3, i + 4]))
+X, Y, Z = 4.0, 1.0, 2.0
+quad((0, 0, 0), (0, 0, Z), (X, 0, Z), (X, 0, 0), "black")            # floor, up
+quad((0, 0, 0), (0, Y, 0), (0, Y, Z), (0, 0, Z), sys.argv[2])         # west wall, facing +x
+quad((X, 0, 0), (X, 0, Z), (X, Y, Z), (X, Y, 0), "black")             # east wall, facing -x
+quad((0, 0, 0), (X, 0, 0), (X, Y, 0), (0, Y, 0), "black")             # north wall (z = 0), +z
+quad((0, 0, Z), (0, Y, Z), (X, Y, Z), (X, 0, Z), "black")             # south wall, -z
+with open(sys.argv[1], "w") as out:
+    out.write("mtllib sun.mtl\n")
+    for p in v: out.write("v %g %g %g\n" % p)
+    for m, idx in f: out.write("usemtl %s\nf %s\n" % (m, " ".join(map(str, idx))))
+PY
+  printf 'newmtl black\nKd 0 0 0\nnewmtl mirror\nillum 3\nKd 0 0 0\nKs 0.9 0.9 0.9\n' > "$TMP/sun.mtl"
+  "$BIN/rad-mesh" "$TMP/sun-$1.obj" -o "$TMP/sun-$1.mesh" --max-edge 0.5 -q 2>/dev/null || fail "mesh sun-$1"
+  "$BIN/rad-ff" "$TMP/sun-$1.mesh" --sky reinhart:1 -o "$TMP/sun-$1.sky" -q 2>/dev/null || fail "sky sun-$1"
+  "$BIN/rad-ff" "$TMP/sun-$1.mesh" -o "$TMP/sun-$1.ff" -q 2>/dev/null || fail "ff sun-$1"
+  "$BIN/rad-solve" "$TMP/sun-$1.mesh" "$TMP/sun-$1.ff" --direct "$TMP/sun-$1.sky" -o "$TMP/sun-$1.rad" -q || fail "solve sun-$1"
+  echo "1 0.01 1 0 1 0" | "$BIN/rad-gather" "$TMP/sun-$1.mesh" "$TMP/sun-$1.rad" --sky perez:800,0 --sun 30,90 -q
+}
+black=$(sunbox black) || fail "the sun box, black"
+mirror=$(sunbox mirror) || fail "the sun box, mirror"
+python3 -c "
+b, m = float('$black'), float('$mirror')
+print('sun in a mirror: %.1f lx with a black wall, %.1f with a 0.9 mirror: ratio %.4f' % (b, m, m / b))
+assert b > 1000 and abs(m / b - 1.9) < 0.01 * 1.9, (b, m)" || fail "the sun's image in a mirror"
 finish

@@ -120,9 +120,12 @@ void sensor_sky_paths(const RayScene& scene, const SpecularSurfaces& specular,
 // The direct sun at a sensor (lux): the beam's normal illuminance x cos x what glass lets
 // through on the straight path to the sun (a path that leaves the scene within the sun's
 // disc, 0.533 degrees across); 0 when the sun is down or blocked.
+// With `mirrors`, the sun's image in each planar mirror it shines on counts too (a virtual
+// source: the beam seen in the mirror, by its reflectance at the angle, where the mirror is
+// in view and the reflected beam leaves the scene).
 double sensor_sun(const RayScene& scene, const SpecularSurfaces& specular, int depth,
                   const Vec3& point, const Vec3& normal, const Vec3& sun_direction,
-                  double normal_illuminance);
+                  double normal_illuminance, const PlanarMirrors* mirrors = nullptr);
 
 // The sky's part of a daylight solution (rad-solve --direct FILE.sky): each patch's radiosity
 // per sky patch at unit radiance, RGB.
@@ -222,6 +225,7 @@ class DaylightSensors {
     SkyRefinement refine_;    // finer, where an opening's edge crosses a patch
     std::unique_ptr<RayScene> scene_;
     std::unique_ptr<SpecularSurfaces> specular_;
+    PlanarMirrors mirrors_; // the sun's images in them
 };
 
 // A year at sensors from a weather file: per hour Perez's sky from its radiation (the sun at

@@ -98,8 +98,8 @@ DaylightSensors::DaylightSensors(const radfmt::MeshData& mesh, DaylightSolution 
     : mesh_(mesh), solution_(std::move(solution)), options_(options),
       cells_(solution_.patches.cells(solution_.frame, options.sky_side)),
       refine_(sky_refinement(solution_.patches, solution_.frame, cells_, options.sky_side)),
-      scene_(std::make_unique<RayScene>(mesh)),
-      specular_(std::make_unique<SpecularSurfaces>(mesh)) {}
+      scene_(std::make_unique<RayScene>(mesh)), specular_(std::make_unique<SpecularSurfaces>(mesh)),
+      mirrors_(planar_mirrors(mesh, *specular_)) {}
 
 DaylightSensors::~DaylightSensors() = default;
 
@@ -265,7 +265,8 @@ DaylightSensors::illuminance(const Sky& sky, std::span<const Vec3> points,
 
 double DaylightSensors::sun(const Vec3& point, const Vec3& normal, const Vec3& direction,
                             double lux) const {
-    return sensor_sun(*scene_, *specular_, options_.specular_depth, point, normal, direction, lux);
+    return sensor_sun(*scene_, *specular_, options_.specular_depth, point, normal, direction, lux,
+                      &mirrors_);
 }
 
 } // namespace rad

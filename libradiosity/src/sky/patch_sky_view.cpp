@@ -87,18 +87,38 @@ std::vector<Rgb> patch_sky_view(const radfmt::MeshData& mesh, const RayScene& sc
 
 double sensor_sun(const RayScene& scene, const SpecularSurfaces& specular, int depth,
                   const Vec3& point, const Vec3& normal, const Vec3& sun_direction,
-                  double normal_illuminance) {
-    const double cosine = dot(sun_direction, normal);
-    if (cosine <= 0 || normal_illuminance <= 0 || sun_direction[1] <= 0) return 0;
+                  double normal_illuminance, const PlanarMirrors* mirrors) {
+    if (normal_illuminance <= 0 || sun_direction[1] <= 0) return 0;
     // Within the sun's disc: half of 0.533 degrees.
     const double disc = std::cos(0.2665 * std::numbers::pi / 180);
-    double through = 0;
-    follow_specular(
-        scene, specular, point, sun_direction, Rgb{{1, 1, 1}}, depth, [](const PathHit&) {},
-        [&](const Vec3& out, const Rgb& w) {
-            if (dot(out, sun_direction) >= disc) through += luminous(w);
-        });
-    return normal_illuminance * cosine * through;
+    // The beam along `d` from the point: what of it leaves the scene toward the sun (through
+    // glass straight, off a mirror once when d is the sun's image in it), by cos to the normal.
+    const auto along = [&](const Vec3& d) {
+        const double cosine = dot(d, normal);
+        if (cosine <= 0) return 0.0;
+        double through = 0;
+        follow_specular(
+            scene, specular, point, d, Rgb{{1, 1, 1}}, depth, [](const PathHit&) {},
+            [&](const Vec3& out, const Rgb& w) {
+                if (dot(out, sun_direction) >= disc) through += luminous(w);
+            });
+        return cosine * through;
+    };
+    double sum = along(sun_direction);
+    // The sun's image in each planar mirror it shines on (a virtual source, as the lamps'):
+    // the direction it is seen in, once for parallel mirrors.
+    std::vector<Vec3> images;
+    if (mirrors)
+        for (std::size_t k = 0; k < mirrors->planes.size(); ++k) {
+            if (!(dot(sun_direction, mirrors->planes[k].normal) > 0)) continue;
+            const Vec3 d = mirrors->mirrored_direction(k, sun_direction);
+            if (std::any_of(images.begin(), images.end(),
+                            [&](const Vec3& e) { return dot(e, d) > 1 - 1e-12; }))
+                continue;
+            images.push_back(d);
+            sum += along(d);
+        }
+    return normal_illuminance * sum;
 }
 
 } // namespace rad
