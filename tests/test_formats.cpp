@@ -472,6 +472,14 @@ TEST_CASE("checksum-valid files with nonsense values are refused by the readers"
                }),
                Contains("patch 0 stores an area of") && Contains("its corners enclose 0"));
     CHECK(mesh_error([](auto&) {}) == "no error");
+    // A warped quad (#66 item 4): its area is the vector area the mesher stores (Newell's, the
+    // patch's area as the form factors see it), 1% under the sum of its fan's triangles; it
+    // was refused by every reader though rad-mesh wrote it.
+    CHECK(mesh_error([](auto& m) {
+              m.vertices[2] = {1, 1, 0.2};
+              m.patches[0].area = 0.5 * std::sqrt(0.2 * 0.2 + 0.2 * 0.2 + 2 * 2);
+              m.patches[1].area = 0.5 * std::sqrt(0.2 * 0.2 + 1);
+          }) == "no error");
 
     radfmt::FormFactorData ff;
     ff.patch_count = 2;
