@@ -85,4 +85,13 @@ for run in first second; do
 done
 [ -e 'd$(touch PWNED).ff' ] || fail "d\$(touch PWNED).ff was not written"
 [ ! -e PWNED ] && [ ! -e "$WORK/PWNED" ] || fail "a path ran as code (PWNED exists)"
+
+step "a part that is a link is not a done shard (#70 item 9)"
+"$SHARDS" -n 2 l.ff -- "$BIN/rad-ff" office.mesh --rays 64 -q 2>/dev/null || fail "sharded l.ff"
+cp l.ff l-first.ff
+rm l.ff && ln -sf /etc/passwd l.ff.parts/l.ff.part1
+"$SHARDS" -n 2 l.ff -- "$BIN/rad-ff" office.mesh --rays 64 -q 2> link.txt || fail "a linked part: $(cat link.txt)"
+grep -q "l.ff.part1 is a symbolic link, not a part a shard wrote: removed" link.txt || fail "the linked part is not named: $(cat link.txt)"
+cmp -s l.ff l-first.ff || fail "with a linked part, the merge is not the first run's bytes"
+[ ! -L l.ff.parts/l.ff.part1 ] || fail "the link is still there"
 finish

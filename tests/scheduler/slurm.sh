@@ -47,6 +47,13 @@ before=$(stat -c %Y office.ff.parts/office.ff.part0)
 grep -q "shard(s) 2 of 4" resubmit.txt || fail "the resubmission ran more than the missing task: $(cat resubmit.txt)"
 [ "$(stat -c %Y office.ff.parts/office.ff.part0)" = "$before" ] || fail "a finished part was computed again"
 same office.ff "form factors (hemisphere)"
+# A part that is a link (to /etc/passwd) is not a done task (#70 item 9): removed, named, and
+# its task run again.
+rm office.ff && ln -sf /etc/passwd office.ff.parts/office.ff.part1
+"$SHARDS" -n 4 --wait office.ff -- "$BIN/${FF[0]}" "${FF[@]:1}" 2> linked.txt || fail "a linked part: $(cat linked.txt)"
+grep -q "office.ff.part1 is a symbolic link, not a part a shard wrote: removed" linked.txt || fail "the linked part is not named: $(cat linked.txt)"
+grep -q "shard(s) 1 of 4" linked.txt || fail "the linked part's task did not run again: $(cat linked.txt)"
+same office.ff "form factors (hemisphere), a linked part computed again"
 
 # Hierarchical links, in 4 tasks.
 step "links (hierarchical)"
