@@ -5,10 +5,13 @@
 
 #include <cctype>
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <fcntl.h>
 #include <fstream>
+#include <signal.h>
 #include <spawn.h>
 #include <sstream>
 #include <sys/wait.h>
@@ -50,11 +53,59 @@ struct TempFolder {
                               std::string(std::strerror(errno)));
         path = pattern;
     }
-    ~TempFolder() {
+    TempFolder(const TempFolder&) = delete;
+    TempFolder& operator=(const TempFolder&) = delete;
+    ~TempFolder() { remove(); }
+    void remove() {
         std::error_code ec;
-        fs::remove_all(path, ec);
+        if (!path.empty()) fs::remove_all(path, ec);
+        path.clear();
     }
 };
+
+// A signal that came while Chromium printed (any thread may take it): noted, not acted on.
+volatile std::sig_atomic_t g_caught = 0;
+extern "C" void note_signal(int s) {
+    if (g_caught == 0) g_caught = s;
+}
+
+// While alive, SIGINT, SIGTERM and SIGHUP are noted instead of ending the process; the
+// handlers before (radfmt's cleanup) come back after.
+struct HeldSignals {
+    static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+    struct sigaction before[3];
+    HeldSignals() {
+        g_caught = 0;
+        struct sigaction note {};
+        note.sa_handler = note_signal;
+        sigemptyset(&note.sa_mask);
+        for (int k = 0; k < 3; ++k) sigaction(kSignals[k], &note, &before[k]);
+    }
+    HeldSignals(const HeldSignals&) = delete;
+    HeldSignals& operator=(const HeldSignals&) = delete;
+    ~HeldSignals() {
+        for (int k = 0; k < 3; ++k) sigaction(kSignals[k], &before[k], nullptr);
+    }
+};
+
+// Waits for `pid`; the first signal noted meanwhile is sent on to it (SIGTERM to timeout,
+// which passes it to Chromium's process group) and returned once it has gone; 0 when none
+// came. `status` receives the child's.
+int wait_or_pass_on(pid_t pid, int& status) {
+    bool passed = false;
+    for (;;) {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid) return g_caught;
+        if (done < 0 && errno != EINTR)
+            throw SystemError("waiting for Chromium: " + std::string(std::strerror(errno)));
+        if (g_caught != 0 && !passed) {
+            ::kill(pid, SIGTERM);
+            passed = true;
+        }
+        const timespec tick{0, 20'000'000};
+        ::nanosleep(&tick, nullptr);
+    }
+}
 
 std::string tail_of(const fs::path& log) {
     std::ifstream in(log);
@@ -119,14 +170,26 @@ void print_pdf(const std::string& html, const fs::path& pdf, int timeout_seconds
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
     posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    pid_t pid = 0;
-    const int spawned = posix_spawnp(&pid, "timeout", &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (spawned != 0) throw SystemError("cannot run " + chromium + ": " + std::strerror(spawned));
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0)
-        if (errno != EINTR)
-            throw SystemError("waiting for Chromium: " + std::string(std::strerror(errno)));
+    // Ctrl-C, a kill or a hang-up while Chromium prints must end Chromium too (`timeout`
+    // keeps it in a process group of its own, which the terminal's signal never reaches) and
+    // leave no file behind: a signal that comes is passed on to it, and raised here once it
+    // has gone.
+    int status = 0, caught = 0;
+    {
+        HeldSignals held;
+        pid_t pid = 0;
+        const int spawned = posix_spawnp(&pid, "timeout", &actions, nullptr, argv.data(), environ);
+        posix_spawn_file_actions_destroy(&actions);
+        if (spawned != 0)
+            throw SystemError("cannot run " + chromium + ": " + std::strerror(spawned));
+        caught = wait_or_pass_on(pid, status);
+    }
+    if (caught != 0) {
+        // Chromium has gone; the temporary folder goes now, the partial PDF with the handler
+        // the signal runs (radfmt's cleanup), which ends the process as the signal would.
+        temp.remove();
+        ::raise(caught);
+    }
     const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
     std::error_code ec;
     if (ok && fs::exists(pdf, ec) && !looks_like_pdf(pdf))

@@ -182,4 +182,34 @@ err=$(RAD_CHROMIUM="$TMP/browsers/liar" "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.
 grep -q "wrote a file that is not a PDF" <<<"$err" || fail "the non-PDF is not named: $err"
 if [ -e "$TMP/z.html" ] || [ -e "$TMP/z.pdf" ]; then fail "a non-PDF left an output"; fi
 ls -A "$TMP" | grep -q '\.tmp\.' && fail "a temporary file was left: $(ls -A "$TMP" | grep '\.tmp\.')"
+# Ctrl-C or a kill while the browser prints (#70 item 3): the browser ends too (timeout kept it
+# in a process group the signal never reached), and nothing is left: no PDF written after
+# rad-report has gone, no temporary folder; rad-report ends as the signal ends it.
+cat > "$TMP/browsers/slow" <<'SH'
+#!/usr/bin/env bash
+# Prints slowly, then writes its "PDF" (unless it is stopped first).
+echo $$ > "$SLOW_PID"
+for a in "$@"; do case "$a" in --print-to-pdf=*) out="${a#--print-to-pdf=}" ;; esac; done
+sleep 6
+printf '%%PDF-1.4\n%%late\n' > "$out"
+SH
+chmod +x "$TMP/browsers/slow"
+mkdir -p "$TMP/sig" "$TMP/sigtmp"
+for sig in INT TERM; do
+  rm -f "$TMP/slow.pid"
+  SLOW_PID="$TMP/slow.pid" TMPDIR="$TMP/sigtmp" RAD_CHROMIUM="$TMP/browsers/slow" "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" \
+    --surfaces "$TMP/nocamera.csv" -o "$TMP/sig/s.html" --pdf "$TMP/sig/s.pdf" -q 2>/dev/null &
+  report=$!
+  for _ in $(seq 100); do [ -s "$TMP/slow.pid" ] && break; sleep 0.1; done
+  [ -s "$TMP/slow.pid" ] || fail "the slow browser never started ($sig)"
+  kill -"$sig" "$report"
+  wait "$report"; rc=$?
+  [ $rc -ge 128 ] || fail "rad-report ended with $rc after SIG$sig (wanted a signal's end)"
+  browser=$(cat "$TMP/slow.pid" 2>/dev/null)
+  sleep 0.5
+  [ -n "$browser" ] && kill -0 "$browser" 2>/dev/null && fail "the browser still runs after SIG$sig to rad-report"
+  sleep 6.5 # past the time the browser would have written its PDF
+  [ -z "$(ls -A "$TMP/sig")" ] || fail "files left after SIG$sig: $(ls -A "$TMP/sig")"
+  [ -z "$(ls -A "$TMP/sigtmp")" ] || fail "a temporary folder left after SIG$sig: $(ls -A "$TMP/sigtmp")"
+done
 finish
