@@ -147,6 +147,8 @@ class Gatherer {
                      int shadow_rays, Rng& rng) const;
     Rgb indirect_batch(const Vec3& point, const Vec3& normal, const Vec3& surface, int rays,
                        Rng& rng, Evidence& evidence) const;
+    Rgb cast_indirect(const Vec3& point, const Vec3& normal, const Vec3& surface, int rays,
+                      Rng& rng, Evidence& evidence) const;
     Rgb shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
                  int budget, Rng& rng) const;
     Rgb cluster_visible_fraction(const Vec3& point, const Vec3& normal, std::uint32_t node,

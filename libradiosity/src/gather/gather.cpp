@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace rad {
 using gather::brightness;
@@ -149,6 +148,7 @@ Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, std::uint64_t
 // object sees the backs of its faces).
 struct Gatherer::Evidence {
     long rays = 0, hits = 0, backs = 0;
+    double inverse_distance = 0; // the sum of 1 / distance over the hits (not through glass)
 };
 
 namespace {
@@ -266,31 +266,26 @@ Gatherer::IndirectSample Gatherer::indirect_sample(const Vec3& point, const Vec3
     if (specular_->any())
         throw InternalError("an irradiance cache's record on a mesh with mirrors or glass");
     Rng rng = batch_stream(options_.seed ^ 0xCAC4Eull, index, 0);
-    const double rotation[2] = {rng.uniform(), rng.uniform()};
-    const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
+    Evidence evidence;
     IndirectSample out;
-    double inverse_sum = 0;
-    int met = 0;
-    for (int r = 0; r < rays; ++r) {
-        const Vec3 d = stratified_direction(normal, tu, tv, r, rays, rotation);
-        if (dot(d, surface) <= 0) continue;
-        const auto hit = scene_->trace(point, d);
-        if (hit.patch < 0) continue;
-        inverse_sum += 1 / std::max(hit.distance, 1e-9);
-        ++met;
-        if (!hit.front || bright_[static_cast<std::size_t>(hit.patch)]) continue;
-        const auto b = reflected_at(hit);
-        for (int k = 0; k < 3; ++k) out.indirect[k] += b[k];
-    }
-    for (int k = 0; k < 3; ++k) out.indirect[k] /= std::max(rays, 1);
-    out.harmonic_distance = met > 0 ? met / inverse_sum : 0;
+    out.indirect = cast_indirect(point, normal, surface, std::max(rays, 1), rng, evidence);
+    out.harmonic_distance = evidence.hits > 0 ? evidence.hits / evidence.inverse_distance : 0;
     return out;
 }
 
-// One batch's indirect light: cosine-weighted stratified rays turned by the batch's stream,
-// each taking the reflected radiosity where it lands (through mirrors and glass).
+// One batch's indirect light (none without indirect rays: --rays 0, --exact, where the rays
+// only look for where the point is).
 Rgb Gatherer::indirect_batch(const Vec3& point, const Vec3& normal, const Vec3& surface, int rays,
                              Rng& rng, Evidence& evidence) const {
+    const Rgb mean = cast_indirect(point, normal, surface, rays, rng, evidence);
+    if (options_.exact || options_.rays <= 0) return {0, 0, 0};
+    return mean;
+}
+
+// Cosine-weighted stratified rays turned by `rng`, each taking the reflected radiosity where it
+// lands (through mirrors and glass): their mean; `evidence` counts what they met.
+Rgb Gatherer::cast_indirect(const Vec3& point, const Vec3& normal, const Vec3& surface, int rays,
+                            Rng& rng, Evidence& evidence) const {
     const double rotation[2] = {rng.uniform(), rng.uniform()};
     const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
     Rgb sum{0, 0, 0};
@@ -306,6 +301,7 @@ Rgb Gatherer::indirect_batch(const Vec3& point, const Vec3& normal, const Vec3& 
         const auto hit = scene_->trace(point, d);
         if (hit.patch < 0) continue;
         ++hits;
+        evidence.inverse_distance += 1 / std::max(hit.distance, 1e-9);
         if (!hit.front) {
             ++backs;
             continue;
@@ -317,8 +313,6 @@ Rgb Gatherer::indirect_batch(const Vec3& point, const Vec3& normal, const Vec3& 
     evidence.rays += rays;
     evidence.hits += hits;
     evidence.backs += backs;
-    // Without indirect light (--rays 0, --exact) the rays only looked for where the point is.
-    if (options_.exact || options_.rays <= 0) return {0, 0, 0};
     for (int k = 0; k < 3; ++k) sum[k] /= rays;
     return sum;
 }
