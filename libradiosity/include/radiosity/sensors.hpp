@@ -40,6 +40,11 @@ struct WorkPlaneGrid {
 // Throws InputError "--grid: ..." naming what is wrong.
 WorkPlaneGrid parse_work_plane_grid(const std::string& text);
 
+// The direct light of `luminaires` at a point facing `normal`, summed over their groups, seen
+// through the gatherer's glass and in its planar mirrors; none without luminaires.
+Rgb luminaire_light(const Gatherer& gatherer, const LuminaireSet* luminaires, const Vec3& point,
+                    const Vec3& normal);
+
 // The irradiance at a sensor (the solution's light, and `luminaires`' direct light exactly;
 // null: none), or in `problem` why it has none: too far to trace, or inside an object or
 // behind a surface. `index` seeds its random stream.

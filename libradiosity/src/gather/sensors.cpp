@@ -70,6 +70,16 @@ WorkPlaneGrid parse_work_plane_grid(const std::string& text) {
     return {v[0], v[1], v[2], v[3], v[4], static_cast<long>(v[5]), static_cast<long>(v[6])};
 }
 
+Rgb luminaire_light(const Gatherer& gatherer, const LuminaireSet* luminaires, const Vec3& point,
+                    const Vec3& normal) {
+    Rgb sum{0, 0, 0};
+    if (luminaires)
+        for (const auto& g : luminaire_irradiance(*luminaires, point, normal, &gatherer.scene(),
+                                                  {&gatherer.specular(), &gatherer.mirrors()}))
+            for (int c = 0; c < 3; ++c) sum[c] += g[c];
+    return sum;
+}
+
 Irradiance gather_sensor(const Gatherer& gatherer, const LuminaireSet* luminaires,
                          const Box& scene_box, const Vec3& position, const Vec3& direction,
                          std::uint64_t index, std::string& problem) {
@@ -77,12 +87,7 @@ Irradiance gather_sensor(const Gatherer& gatherer, const LuminaireSet* luminaire
     if (!problem.empty()) return {};
     // The luminaires' direct light, exactly at the point (no error; it counts in the
     // accuracy's relative target).
-    Rgb known{0, 0, 0};
-    if (luminaires)
-        for (const auto& g :
-             luminaire_irradiance(*luminaires, position, direction, &gatherer.scene(),
-                                  {&gatherer.specular(), &gatherer.mirrors()}))
-            for (std::size_t c = 0; c < 3; ++c) known[c] += g[c];
+    const Rgb known = luminaire_light(gatherer, luminaires, position, direction);
     auto result = gatherer.gather(position, direction, index, known);
     const double max_back = gatherer.options().max_back_fraction;
     if (result.sees_backs(max_back)) {

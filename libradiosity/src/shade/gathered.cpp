@@ -5,6 +5,7 @@
 #include "radiosity/luminaires.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/rays.hpp"
+#include "radiosity/sensors.hpp"
 #include "radiosity/specular_view.hpp"
 
 #include <tbb/parallel_for.h>
@@ -28,11 +29,7 @@ Rgb gathered_colour(const Gatherer& gatherer, const LuminaireSet* luminaires,
     const auto& patch = mesh.patches[static_cast<std::size_t>(hit.patch)];
     const auto& material = mesh.materials[patch.material];
     const auto normal = gatherer.shading_normal(hit);
-    Rgb known{0, 0, 0};
-    if (luminaires) // their direct light, exactly at the point
-        for (const auto& g : luminaire_irradiance(*luminaires, point, normal, &gatherer.scene(),
-                                                  {&gatherer.specular(), &gatherer.mirrors()}))
-            for (int c = 0; c < 3; ++c) known[c] += g[c];
+    const Rgb known = luminaire_light(gatherer, luminaires, point, normal); // exactly
     const auto gathered = gatherer.gather(point, normal, patch.normal, index, known);
     const auto h = gathered.total();
     Rgb out;
@@ -56,17 +53,6 @@ Image render_gathered_specular(const Gatherer& gatherer, const View& view, int w
     };
     return render_specular(scene, view, width, height, supersampling, shade, quiet, rows);
 }
-// The luminaires' direct light at a point (none without them).
-Rgb luminaire_light(const Gatherer& gatherer, const LuminaireSet* luminaires, const Vec3& point,
-                    const Vec3& normal) {
-    Rgb sum{0, 0, 0};
-    if (luminaires)
-        for (const auto& g : luminaire_irradiance(*luminaires, point, normal, &gatherer.scene(),
-                                                  {&gatherer.specular(), &gatherer.mirrors()}))
-            for (int c = 0; c < 3; ++c) sum[c] += g[c];
-    return sum;
-}
-
 // The cache's records at every `spacing`-th pixel of the whole image (a band builds the same
 // ones, so its pixels are those of a whole run), each from its own stream. A record's radius
 // is the harmonic mean distance its rays met, at least what reaches min_reach_pixels (their
