@@ -106,18 +106,22 @@ double sensor_sun(const RayScene& scene, const SpecularSurfaces& specular, int d
     };
     double sum = along(sun_direction);
     // The sun's image in each planar mirror it shines on (a virtual source, as the lamps'):
-    // the direction it is seen in, once for parallel mirrors.
-    std::vector<Vec3> images;
-    if (mirrors)
-        for (std::size_t k = 0; k < mirrors->planes.size(); ++k) {
-            if (!(dot(sun_direction, mirrors->planes[k].normal) > 0)) continue;
-            const Vec3 d = mirrors->mirrored_direction(k, sun_direction);
-            if (std::any_of(images.begin(), images.end(),
-                            [&](const Vec3& e) { return dot(e, d) > 1 - 1e-12; }))
-                continue;
-            images.push_back(d);
-            sum += along(d);
-        }
+    // the direction it is seen in, once for parallel mirrors (an earlier plane that gives the
+    // same image has counted it; no list is kept, this runs per sensor and hour).
+    if (!mirrors) return normal_illuminance * sum;
+    const auto image = [&](std::size_t k, Vec3& d) {
+        if (!(dot(sun_direction, mirrors->planes[k].normal) > 0)) return false;
+        d = mirrors->mirrored_direction(k, sun_direction);
+        return true;
+    };
+    for (std::size_t k = 0; k < mirrors->planes.size(); ++k) {
+        Vec3 d, e;
+        if (!image(k, d)) continue;
+        bool counted = false;
+        for (std::size_t j = 0; j < k && !counted; ++j)
+            counted = image(j, e) && dot(e, d) > 1 - 1e-12;
+        if (!counted) sum += along(d);
+    }
     return normal_illuminance * sum;
 }
 
