@@ -88,11 +88,7 @@ void write_png(const DaylightRun& run, const std::vector<double>& values, const 
 // --surfaces: each surface's daylight factors' summary.
 // " ± 0.012" of a mean's standard error (the values' in quadrature over their count).
 std::string mean_error_text(std::span<const double> values, std::span<const double> errors) {
-    const double e = illuminance_errors(values, errors).mean;
-    if (!std::isfinite(e)) return "";
-    char text[48];
-    std::snprintf(text, sizeof text, " ± %.2g", e);
-    return text;
+    return error_suffix(illuminance_errors(values, errors).mean);
 }
 
 void print_surface_factors(const DaylightRun& run, const std::vector<double>& values,

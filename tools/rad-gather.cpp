@@ -107,22 +107,11 @@ void check_grid_reach(const Grid& grid, const rad::Box& box) {
                                       number_text(grid.y) + ", " + number_text(z) + "): " + why);
 }
 
-// "123.4 lx ± 0.56" (no ± when the error is not known).
-std::string with_error(double value, double error, const char* unit) {
-    char text[96];
-    if (std::isfinite(error))
-        std::snprintf(text, sizeof text, "%.4g%s ± %.2g", value, unit, error);
-    else
-        std::snprintf(text, sizeof text, "%.4g%s", value, unit);
-    return text;
-}
-
-// " ± 0.012", or nothing when the error is not known.
-std::string error_suffix(double error) {
-    if (!std::isfinite(error)) return "";
+// "123.4 ± 0.56" (no ± when the error is not known).
+std::string with_error(double value, double error) {
     char text[48];
-    std::snprintf(text, sizeof text, " ± %.2g", error);
-    return text;
+    std::snprintf(text, sizeof text, "%.4g", value);
+    return text + rad::tool::error_suffix(error);
 }
 
 // What lighting designers report of a work plane, over the sensors with a value (lux), each
@@ -138,14 +127,14 @@ void print_work_plane(const std::vector<double>& lux, const std::vector<double>&
     }
     const auto errors = rad::illuminance_errors(lux, error);
     char u0[64];
-    std::snprintf(u0, sizeof u0, "%.3f%s", stats.u0(), error_suffix(errors.u0).c_str());
+    std::snprintf(u0, sizeof u0, "%.3f%s", stats.u0(), rad::tool::error_suffix(errors.u0).c_str());
     std::fprintf(stderr,
                  "rad-gather: work plane: %ld sensor(s) with a value, %ld inside or behind "
                  "objects (nan): Emin %s lx, Eavg %s lx, Emax %s lx, U0 = Emin/Eavg = %s "
                  "(± one standard error)\n",
-                 stats.count, stats.without_value, with_error(stats.min, errors.min, "").c_str(),
-                 with_error(stats.mean, errors.mean, "").c_str(),
-                 with_error(stats.max, errors.max, "").c_str(), u0);
+                 stats.count, stats.without_value, with_error(stats.min, errors.min).c_str(),
+                 with_error(stats.mean, errors.mean).c_str(),
+                 with_error(stats.max, errors.max).c_str(), u0);
 }
 
 // What the command line says.
@@ -579,15 +568,15 @@ void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid
     }
     const auto errors = rad::illuminance_errors(gathered.lux, gathered.error);
     const auto verdict = rad::judge(stats, surface.required, errors);
-    std::fprintf(
-        stderr,
-        "rad-gather: %s (%s, %ld x %ld sensors at %.3g m, %ld without a value): Em %s "
-        "lx, Emin %s lx, Emax %s lx, U0 %.3f%s, Emin/Emax %.3f%s\n",
-        surface.name.c_str(), rad::calc_kind_name(surface.kind), grid.columns, grid.rows,
-        grid.spacing_m, stats.without_value, with_error(stats.mean, errors.mean, "").c_str(),
-        with_error(stats.min, errors.min, "").c_str(),
-        with_error(stats.max, errors.max, "").c_str(), stats.u0(), error_suffix(errors.u0).c_str(),
-        stats.min_over_max(), required ? verdict_text(verdict) : "");
+    std::fprintf(stderr,
+                 "rad-gather: %s (%s, %ld x %ld sensors at %.3g m, %ld without a value): Em %s "
+                 "lx, Emin %s lx, Emax %s lx, U0 %.3f%s, Emin/Emax %.3f%s\n",
+                 surface.name.c_str(), rad::calc_kind_name(surface.kind), grid.columns, grid.rows,
+                 grid.spacing_m, stats.without_value, with_error(stats.mean, errors.mean).c_str(),
+                 with_error(stats.min, errors.min).c_str(),
+                 with_error(stats.max, errors.max).c_str(), stats.u0(),
+                 rad::tool::error_suffix(errors.u0).c_str(), stats.min_over_max(),
+                 required ? verdict_text(verdict) : "");
 }
 
 // --surfaces: every calculation surface's sensors, one CSV line each, and their figures.

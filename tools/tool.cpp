@@ -7,6 +7,7 @@
 #include "radiosity/progress.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -272,6 +273,13 @@ void write_output(const std::string& output, const std::function<void(std::FILE*
         if (std::fclose(out) != 0)
             throw rad::SystemError(output + ": cannot write: " + std::strerror(errno));
     });
+}
+
+std::string error_suffix(double error) {
+    if (!std::isfinite(error)) return "";
+    char text[48];
+    std::snprintf(text, sizeof text, " ± %.2g", error);
+    return text;
 }
 
 void add_accuracy_options(CLI::App& app, GatherOptions& options) {

@@ -61,7 +61,8 @@ std::string verdict_text(bool required, bool passes, bool close = false) {
                   : "<td class=\"fail\">fails" + within + "</td>";
 }
 
-// "± 3.2" for a figure's standard error (empty when it is not known).
+// "± 3.2" for a figure's standard error (empty when it is not known): as lux, or to two
+// decimals (three under 0.005) for a ratio or a percentage.
 std::string error_text(double error, bool ratio = false) {
     if (!std::isfinite(error)) return "";
     return "± " + (ratio ? fixed(error, error >= 0.005 ? 2 : 3) : lux_text(error));
@@ -262,9 +263,7 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
                       "</h2><table class=\"figures daylight\" data-surface=\"" +
                       html_escape(s.surface.name) + "\"><tbody>" + grid_rows(s);
     out += figure_row("DF mean (%)", fixed(d.summary.mean, 2), "df-mean",
-                      std::isfinite(d.mean_error)
-                          ? "± " + fixed(d.mean_error, d.mean_error >= 0.005 ? 2 : 3)
-                          : "");
+                      error_text(d.mean_error, true));
     out += figure_row("DF median (%)", fixed(d.summary.median, 2), "df-median");
     out += figure_row("DF min (%)", fixed(d.summary.min, 2), "df-min");
     out += figure_row("DF max (%)", fixed(d.summary.max, 2), "df-max");
