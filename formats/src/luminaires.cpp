@@ -10,14 +10,21 @@
 namespace radfmt {
 namespace fs = std::filesystem;
 
+namespace {
+// The header's light_groups field: the names, comma-separated.
+std::string group_field(const std::vector<std::string>& groups) {
+    std::string names;
+    for (const auto& g : groups) names += (names.empty() ? "" : ",") + g;
+    return names;
+}
+} // namespace
+
 void write_luminaires(const fs::path& path, Header header, const LuminaireData& lum) {
     header.kind = Kind::Luminaires;
     if (lum.irradiance.size() != lum.patch_count * lum.groups.size())
         throw std::logic_error("luminaires written with an irradiance array of the wrong size");
     header.set("patches", std::to_string(lum.patch_count));
-    std::string names;
-    for (const auto& g : lum.groups) names += (names.empty() ? "" : ",") + g;
-    header.set("light_groups", names);
+    header.set("light_groups", group_field(lum.groups));
     BodyWriter w;
     w.string(lum.layout_name);
     w.string(lum.layout_text);
@@ -43,8 +50,7 @@ void check_against_header(const fs::path& path, const LuminaireData& lum, const 
                           ": the file contradicts itself (edited?); make it again with rad-ff "
                           "--luminaires");
     };
-    std::string names;
-    for (const auto& g : lum.groups) names += (names.empty() ? "" : ",") + g;
+    const auto names = group_field(lum.groups);
     if (const auto* recorded = header.find("light_groups"); recorded && *recorded != names)
         refuse("its light groups '" + names + "' are not the '" + *recorded +
                "' its header records");

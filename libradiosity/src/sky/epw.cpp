@@ -70,6 +70,12 @@ Location parse_location(const std::string& line, const FileLoc& at, std::string&
     return l;
 }
 
+// The days of `month` (1 to 12), of a leap year or not.
+int days_in(int month, bool leap) {
+    static constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    return kDays[month - 1] + (leap && month == 2 ? 1 : 0);
+}
+
 WeatherHour parse_hour(const std::string& line, const FileLoc& at, int& missing) {
     const auto f = fields_of(line);
     if (f.size() < 16)
@@ -82,8 +88,7 @@ WeatherHour parse_hour(const std::string& line, const FileLoc& at, int& missing)
     h.month = whole(f, 1, at, "month", 1, 12);
     h.day = whole(f, 2, at, "day", 1, 31);
     h.hour = whole(f, 3, at, "hour", 1, 24);
-    static constexpr int kDays[12] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-    if (h.day > kDays[h.month - 1])
+    if (h.day > days_in(h.month, true))
         throw InputError(at, "month " + std::to_string(h.month) + " has no day " +
                                  std::to_string(h.day));
     h.dew_point = number(f, 7, at, "dew point");
@@ -96,8 +101,7 @@ WeatherHour parse_hour(const std::string& line, const FileLoc& at, int& missing)
         // 9999 is EPW's "missing"; any other value over the solar constant (1361 W/m^2) is
         // no radiation on Earth, not a missing one (12345 or 1e300 were taken as missing).
         if (*v == kMissingRadiation) *v = 0, absent = true;
-        if (!(*v >= 0 && *v <= kMaxRadiation))
-        {
+        if (!(*v >= 0 && *v <= kMaxRadiation)) {
             char text[40];
             std::snprintf(text, sizeof text, "%g", *v);
             throw InputError(at, std::string("radiation of ") + text +
@@ -116,11 +120,10 @@ namespace {
 // months of several years). A file of 8760 records all at 1 January 12:00, or with 29 February
 // in place of 31 December, was taken as a year.
 void check_calendar(const Weather& w, const std::string& path) {
-    static constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
     const bool leap = w.hours.size() == 8784;
     std::size_t k = 0;
     for (int month = 1; month <= 12; ++month)
-        for (int day = 1; day <= kDays[month - 1] + (leap && month == 2 ? 1 : 0); ++day)
+        for (int day = 1; day <= days_in(month, leap); ++day)
             for (int hour = 1; hour <= 24; ++hour, ++k) {
                 const auto& h = w.hours[k];
                 if (h.month == month && h.day == day && h.hour == hour) continue;
