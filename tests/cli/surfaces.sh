@@ -54,6 +54,18 @@ python3 "$GEN" sheet sheet.obj
 "$BIN/rad-mesh" sheet.obj -o sheet.mesh --max-edge 0.25 2> sheet.err || fail "mesh sheet"
 grep -q "changed: coincident: kept 1 face(s) of area 2 drawn both ways, both sides facing the scene" sheet.err || fail "twins not reported: $(cat sheet.err)"
 [ "$(total_area sheet.err)" = 64 ] || fail "the sheet's two sides are not both kept: $(cat sheet.err)"
+# Copies judged per piece (#66 item 3): two rooms in one ungrouped material, each with its wall
+# in the plane z = 0 drawn twice, A's scene on the +z side of that plane and B's on the -z
+# side. Pooled per plane and material, the two sides' rays tied and both copies were kept
+# ("their rays do not tell"), speckling. Apart, each room's copies vote on their own; touching
+# (the walls share an edge), pair by pair. Lines 91 and 93 are the copies facing out.
+PIECES="$SRC/tests/cli/piece_scenes.py"
+for kind in apart touching; do
+  python3 "$PIECES" $kind rooms-$kind.obj
+  "$BIN/rad-mesh" rooms-$kind.obj -o rooms-$kind.mesh --max-edge 0.25 2> rooms-$kind.err || fail "mesh rooms-$kind"
+  grep -q "changed: coincident: dropped 2 face(s) of area 15 drawn again facing the other way whose side sees backs or nothing (the copy facing the scene is kept), line 91 (copy of 77), 93 (copy of 87)$" rooms-$kind.err || fail "rooms $kind: the copies facing out are not dropped: $(cat rooms-$kind.err)"
+  ! grep -q "do not tell" rooms-$kind.err || fail "rooms $kind: undecided: $(cat rooms-$kind.err)"
+done
 # Two coincident faces drawn both ways render as one sheet's two sides (#53 item 2): a room
 # 2 x 1 x 1 split at x = 1 by a partition drawn once red (facing the lamp's half) and once
 # blue (facing the dark half). Each side gets the same grid, reversed: the same centroids and

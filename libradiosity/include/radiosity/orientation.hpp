@@ -63,16 +63,19 @@ std::vector<FlipResult> flip_groups(Scene& scene, const std::vector<std::string>
 std::vector<std::pair<std::string, std::size_t>>
 fix_orientation(Scene& scene, const std::vector<OrientationFinding>& findings);
 
-// Emitters facing into their fixture: per emitting material, when more than kLampBackShare
-// of the light its faces send (64 cosine-weighted rays a triangle, area-weighted, of those
-// that meet a surface) meets the back of surfaces, and from their other side less than half
-// as much would, its faces are turned. `keep` names the groups and materials the user turned
-// by hand (rad-mesh --flip): those are left as they are. Deterministic.
+// Emitters facing into their fixture: per piece of an emitting material (its faces that touch,
+// welded by position), when more than kLampBackShare of the light its faces send (64
+// cosine-weighted rays a triangle, area-weighted, of those that meet a surface) meets the
+// back of surfaces, and from their other side less than half as much would, its faces are
+// turned. `keep` names the groups and materials the user turned by hand (rad-mesh --flip):
+// those are left as they are. Returns every piece, turned or not. Deterministic.
 inline constexpr double kLampBackShare = 0.5;
 struct LampTurn {
     std::string material;
     std::size_t faces = 0;
-    double backs_before = 0, backs_after = 0; // shares of its light meeting backs
+    double backs_before = 0, backs_after = 0; // shares of its light meeting backs, each side
+    int line = 0;                             // the piece's first face's
+    bool turned = false;
 };
 std::vector<LampTurn> turn_lamps_facing_backs(Scene& scene, const std::vector<std::string>& keep);
 

@@ -7,8 +7,10 @@
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 
+#include "../union_find.hpp"
 #include "polygon2d.hpp"
 #include "slab_points.hpp"
+#include "weld.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -99,52 +101,102 @@ double front_hits(const std::vector<FacePlane>& planes, const std::vector<std::s
 
 using SideKey = std::array<long long, 3>; // facing sign, group, material
 using Pairs = std::map<std::array<long long, 4>, std::set<std::pair<std::size_t, std::size_t>>>;
+using FacePairs = std::vector<std::pair<std::size_t, std::size_t>>;
+
+// What the rays of the two sides of these copied faces say, with `first` the faces of one
+// side and `second` the other's.
+CoincidentCase::Kind judge_sides(double first_fronts, double second_fronts) {
+    if (first_fronts > 0.5 && second_fronts > 0.5) return CoincidentCase::kTwins;
+    if (first_fronts >= 2 * second_fronts + 0.1 || second_fronts >= 2 * first_fronts + 0.1)
+        return CoincidentCase::kWrongCopy;
+    return CoincidentCase::kUndecided;
+}
+
+// The pairs split into pieces that touch (a face of one pair shares a corner with a face of
+// another, welded by position): the copies of one wall vote together, a copied wall of
+// another room in the same plane, whose scene is on its other side, on its own.
+std::vector<FacePairs> touching_pieces(const Scene& scene, const std::vector<std::uint32_t>& weld,
+                                       const FacePairs& pairs) {
+    UnionFind pieces(pairs.size());
+    std::map<std::uint32_t, std::size_t> pair_at; // a welded corner: the first pair using it
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+        for (const auto f : {pairs[k].first, pairs[k].second})
+            for (const auto v : scene.polygons[f].vertices) {
+                const auto [it, added] = pair_at.try_emplace(weld[v], k);
+                if (!added) pieces.unite(k, it->second);
+            }
+    std::map<std::size_t, std::size_t> index_of_root;
+    std::vector<FacePairs> split;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const auto [it, added] = index_of_root.try_emplace(pieces.find(k), split.size());
+        if (added) split.emplace_back();
+        split[it->second].push_back(pairs[k]);
+    }
+    return split;
+}
+
+// The two sides' shares of rays meeting fronts: (a) of every pair's first face, (b) second.
+std::pair<double, double> side_fronts(const std::vector<FacePlane>& planes, const FacePairs& pairs,
+                                      const RayScene& rays) {
+    std::vector<std::size_t> first, second;
+    for (const auto& [a, b] : pairs) first.push_back(a), second.push_back(b);
+    for (auto* list : {&first, &second}) {
+        std::sort(list->begin(), list->end());
+        list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
+    return {front_hits(planes, first, rays), front_hits(planes, second, rays)};
+}
+
+// Records the verdict on these pairs (dropping the copies facing away from the scene).
+void apply_verdict(const Scene& scene, const std::vector<FacePlane>& planes, const FacePairs& pairs,
+                   CoincidentCase::Kind kind, bool drop_second, std::vector<bool>& drop,
+                   CoincidentReport& report) {
+    for (const auto& [a, b] : pairs) {
+        const auto kept = drop_second ? a : b, gone = drop_second ? b : a;
+        const double area = std::min(planes[a].area, planes[b].area);
+        if (kind == CoincidentCase::kWrongCopy) {
+            if (drop[gone]) continue;
+            drop[gone] = true;
+        }
+        report.cases.push_back({kind, scene.polygons[kept].line, scene.polygons[gone].line, area});
+    }
+}
 
 // Per plane, the two sides of each copied surface vote by their rays: a side whose rays meet
 // fronts faces the rest of the scene; one that sees backs or nothing is a wrongly facing copy.
+// The copies vote by the pieces they touch in; a piece whose votes do not tell (two rooms'
+// walls touching in one plane, their scenes on opposite sides) then votes pair by pair.
 void decide_opposite_copies(const Scene& scene, const std::vector<FacePlane>& planes,
                             const Pairs& opposite, std::vector<bool>& drop,
                             CoincidentReport& report) {
     if (opposite.empty()) return;
     const RayScene rays(face_triangles(scene), RayBuild::Fast);
+    const auto weld = weld_by_position(scene.vertices);
     for (const auto& [plane, pairs] : opposite) {
         auto side_of = [&](std::size_t f) -> SideKey {
             const auto& p = planes[f];
             return {dot(p.normal, cross(p.u(), p.v())) > 0 ? 1 : -1, scene.polygons[f].group,
                     scene.polygons[f].material};
         };
-        std::map<std::pair<SideKey, SideKey>, std::vector<std::pair<std::size_t, std::size_t>>>
-            sets;
+        std::map<std::pair<SideKey, SideKey>, FacePairs> sets;
         for (auto [a, b] : pairs) {
             if (side_of(a) > side_of(b)) std::swap(a, b);
             sets[{side_of(a), side_of(b)}].push_back({a, b});
         }
-        for (const auto& [sides, members] : sets) {
-            std::vector<std::size_t> first, second;
-            for (const auto& [a, b] : members) first.push_back(a), second.push_back(b);
-            for (auto* list : {&first, &second}) {
-                std::sort(list->begin(), list->end());
-                list->erase(std::unique(list->begin(), list->end()), list->end());
-            }
-            const double f1 = front_hits(planes, first, rays);
-            const double f2 = front_hits(planes, second, rays);
-            CoincidentCase::Kind kind = CoincidentCase::kUndecided;
-            if (f1 > 0.5 && f2 > 0.5)
-                kind = CoincidentCase::kTwins;
-            else if (f1 >= 2 * f2 + 0.1 || f2 >= 2 * f1 + 0.1)
-                kind = CoincidentCase::kWrongCopy;
-            const bool drop_second = f1 > f2;
-            for (const auto& [a, b] : members) {
-                const auto kept = drop_second ? a : b, gone = drop_second ? b : a;
-                const double area = std::min(planes[a].area, planes[b].area);
-                if (kind == CoincidentCase::kWrongCopy) {
-                    if (drop[gone]) continue;
-                    drop[gone] = true;
+        for (const auto& [sides, members] : sets)
+            for (const auto& piece : touching_pieces(scene, weld, members)) {
+                const auto [f1, f2] = side_fronts(planes, piece, rays);
+                const auto kind = judge_sides(f1, f2);
+                if (kind != CoincidentCase::kUndecided || piece.size() == 1) {
+                    apply_verdict(scene, planes, piece, kind, f1 > f2, drop, report);
+                    continue;
                 }
-                report.cases.push_back(
-                    {kind, scene.polygons[kept].line, scene.polygons[gone].line, area});
+                for (const auto& pair : piece) {
+                    const FacePairs one{pair};
+                    const auto [g1, g2] = side_fronts(planes, one, rays);
+                    apply_verdict(scene, planes, one, judge_sides(g1, g2), g1 > g2, drop, report);
+                }
             }
-        }
     }
 }
 

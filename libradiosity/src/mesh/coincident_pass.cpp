@@ -44,7 +44,7 @@ constexpr KindText kKindTexts[] = {
      "drawn both ways, both sides facing the scene, as the two sides of a sheet"},
     {Case::kUndecided, MeshReport::Kind::Warning, "",
      "drawn both ways; their rays do not tell which side faces the scene, both are kept "
-     "(--flip GROUP, or delete one copy)"},
+     "(delete, of each pair, the copy facing away from the room, in the file or the modeller)"},
 };
 
 void report_kind(const Scene& scene, const CoincidentReport& found, const KindText& text,

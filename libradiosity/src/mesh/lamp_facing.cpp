@@ -1,11 +1,16 @@
 // turn_lamps_facing_backs: an emitter drawn facing into its fixture (the dining room's lamp
 // faced up into its shade: 82% of its light landed on the backs of the shade's faces) is
-// turned when its other side's light would meet the front of surfaces.
+// turned when its other side's light would meet the front of surfaces; piece by piece, as one
+// material's lamps need not all be drawn alike.
 #include "radiosity/orientation.hpp"
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 
+#include "../union_find.hpp"
+#include "weld.hpp"
+
 #include <algorithm>
+#include <map>
 
 namespace rad {
 
@@ -40,6 +45,38 @@ void tally_triangle(const radfmt::MeshData& mesh, std::size_t t, double area, co
         }
     }
 }
+// The emitting faces in pieces that touch (share a corner, welded by position), each of one
+// material: one lamp of a material can face into its shade while another faces the room.
+std::vector<std::vector<std::size_t>> lamp_pieces(const Scene& scene) {
+    const auto weld = weld_by_position(scene.vertices);
+    std::vector<std::size_t> lamps;
+    for (std::size_t f = 0; f < scene.polygons.size(); ++f)
+        if (scene.materials[scene.polygons[f].material].emits()) lamps.push_back(f);
+    UnionFind pieces(lamps.size());
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> lamp_at; // (material, corner)
+    for (std::size_t k = 0; k < lamps.size(); ++k) {
+        const auto& polygon = scene.polygons[lamps[k]];
+        for (const auto v : polygon.vertices) {
+            const auto [it, added] = lamp_at.try_emplace({polygon.material, weld[v]}, k);
+            if (!added) pieces.unite(k, it->second);
+        }
+    }
+    std::map<std::size_t, std::size_t> index_of_root;
+    std::vector<std::vector<std::size_t>> split;
+    for (std::size_t k = 0; k < lamps.size(); ++k) {
+        const auto [it, added] = index_of_root.try_emplace(pieces.find(k), split.size());
+        if (added) split.emplace_back();
+        split[it->second].push_back(lamps[k]);
+    }
+    return split;
+}
+
+// Whether these faces were turned by hand (rad-mesh --flip names their group or material).
+bool kept_by_user(const Scene& scene, std::size_t face, const std::vector<std::string>& keep) {
+    const auto& polygon = scene.polygons[face];
+    return std::count(keep.begin(), keep.end(), scene.materials[polygon.material].name) ||
+           std::count(keep.begin(), keep.end(), scene.groups[polygon.group]);
+}
 } // namespace
 
 std::vector<LampTurn> turn_lamps_facing_backs(Scene& scene, const std::vector<std::string>& keep) {
@@ -49,31 +86,29 @@ std::vector<LampTurn> turn_lamps_facing_backs(Scene& scene, const std::vector<st
     if (mesh.patches.empty()) return {};
     const RayScene rays(mesh, RayBuild::Fast);
     std::vector<bool> passes(mesh.patches.size());
+    std::vector<std::vector<std::size_t>> triangles_of(scene.polygons.size());
     for (std::size_t t = 0; t < mesh.patches.size(); ++t) {
         passes[t] = scene.materials[scene.polygons[face_of[t]].material].specular.transmits();
-    }
-    std::vector<SideTally> front(scene.materials.size()), back(scene.materials.size());
-    for (std::size_t t = 0; t < mesh.patches.size(); ++t) {
-        const auto& polygon = scene.polygons[face_of[t]];
-        if (!scene.materials[polygon.material].emits()) continue;
-        tally_triangle(mesh, t, area[t], rays, passes, front[polygon.material],
-                       back[polygon.material]);
+        triangles_of[face_of[t]].push_back(t);
     }
     std::vector<LampTurn> turned;
-    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
-        const auto& name = scene.materials[m].name;
+    for (const auto& piece : lamp_pieces(scene)) {
+        SideTally front, back;
+        for (const auto f : piece)
+            for (const auto t : triangles_of[f])
+                tally_triangle(mesh, t, area[t], rays, passes, front, back);
+        LampTurn turn{scene.materials[scene.polygons[piece.front()].material].name, piece.size(),
+                      front.back_share(), back.back_share(), scene.polygons[piece.front()].line};
         // Most of its light on backs, and turned, little: its fixture is in front of it.
-        if (!(front[m].back_share() > kLampBackShare) ||
-            !(back[m].back_share() < 0.5 * front[m].back_share()))
-            continue;
-        if (std::find(keep.begin(), keep.end(), name) != keep.end()) continue;
-        LampTurn turn{name, 0, front[m].back_share(), back[m].back_share()};
-        for (auto& p : scene.polygons)
-            if (p.material == m && !std::count(keep.begin(), keep.end(), scene.groups[p.group])) {
-                std::reverse(p.vertices.begin(), p.vertices.end());
-                ++turn.faces;
+        turn.turned = turn.backs_before > kLampBackShare &&
+                      turn.backs_after < 0.5 * turn.backs_before &&
+                      !kept_by_user(scene, piece.front(), keep);
+        if (turn.turned)
+            for (const auto f : piece) {
+                auto& vertices = scene.polygons[f].vertices;
+                std::reverse(vertices.begin(), vertices.end());
             }
-        if (turn.faces > 0) turned.push_back(turn);
+        turned.push_back(turn);
     }
     return turned;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <functional>
+#include <map>
 
 namespace rad {
 
@@ -81,18 +82,72 @@ void fix_doing_no_harm(Scene& scene, const std::vector<OrientationFinding>& find
     }
 }
 
-// Lamps drawn facing into their fixture are turned (not those turned by hand with --flip).
+// One emitting material's pieces, as turn_lamps_facing_backs judged them.
+struct LampMaterial {
+    std::vector<const LampTurn*> turned, doubtful; // doubtful: kept, though much of its
+    std::size_t pieces = 0;                        // light meets backs
+};
+constexpr double kDoubtfulLampShare = 0.25;
+
+// "turned the 2 face(s) of emitter lamp: 80% of the light ... from their other side 5% does"
+// (the shares face-weighted over the pieces turned), and which pieces when not all were.
+std::string turned_text(const Scene& scene, const std::string& material, const LampMaterial& m) {
+    std::size_t faces = 0;
+    double before = 0, after = 0;
+    for (const auto* t : m.turned)
+        faces += t->faces, before += t->backs_before * t->faces, after += t->backs_after * t->faces;
+    char text[600];
+    std::string which;
+    if (m.turned.size() < m.pieces)
+        which = " in " + std::to_string(m.turned.size()) + " of its " + std::to_string(m.pieces) +
+                " separate pieces (the first at " + face_location(scene, m.turned.front()->line) +
+                "; the others face the room)";
+    std::snprintf(text, sizeof text,
+                  "turned the %zu face(s) of emitter %s%s: %.0f%% of the light from their front "
+                  "met the back of surfaces (a lamp facing into its fixture), from their other "
+                  "side %.0f%% does (--keep-lamps keeps them as drawn)",
+                  faces, material.c_str(), which.c_str(), 100 * before / faces,
+                  100 * after / faces);
+    return text;
+}
+
+// "emitter lamp, 1 of its 2 pieces (the first at scene.obj:12): 40% of the light ..."
+std::string doubtful_text(const Scene& scene, const std::string& material, const LampMaterial& m) {
+    const auto& first = *m.doubtful.front();
+    char text[600];
+    std::snprintf(text, sizeof text,
+                  "emitter %s, %zu of its %zu piece(s) (the first at %s): %.0f%% of the light "
+                  "from their front meets the back of surfaces, from their other side %.0f%% "
+                  "would; kept as drawn, too little to tell a lamp facing into its fixture (if "
+                  "it does, turn those faces in the file, or --flip %s turns all of %s)",
+                  material.c_str(), m.doubtful.size(), m.pieces,
+                  face_location(scene, first.line).c_str(), 100 * first.backs_before,
+                  100 * first.backs_after, material.c_str(), material.c_str());
+    return text;
+}
+
+// Lamps drawn facing into their fixture are turned (not those turned by hand with --flip),
+// piece by piece; pieces that send much of their light onto backs but not enough to turn
+// are named.
 void turn_lamps(Scene& scene, const MeshOptions& options, MeshReport& report) {
     if (!options.turn_lamps) return;
-    for (const auto& lamp : turn_lamps_facing_backs(scene, options.flip)) {
-        char text[400];
-        std::snprintf(text, sizeof text,
-                      "turned the %zu face(s) of emitter %s: %.0f%% of the light from their "
-                      "front met the back of surfaces (a lamp facing into its fixture), from "
-                      "their other side %.0f%% does (--keep-lamps keeps them as drawn)",
-                      lamp.faces, lamp.material.c_str(), 100 * lamp.backs_before,
-                      100 * lamp.backs_after);
-        report.add(MeshReport::Kind::Change, text);
+    const auto pieces = turn_lamps_facing_backs(scene, options.flip);
+    std::map<std::string, LampMaterial> by_material;
+    for (const auto& piece : pieces) {
+        auto& m = by_material[piece.material];
+        ++m.pieces;
+        if (piece.turned)
+            m.turned.push_back(&piece);
+        else if (piece.backs_before > kDoubtfulLampShare &&
+                 piece.backs_after < 0.5 * piece.backs_before &&
+                 !std::count(options.flip.begin(), options.flip.end(), piece.material))
+            m.doubtful.push_back(&piece);
+    }
+    for (const auto& [material, m] : by_material) {
+        if (!m.turned.empty())
+            report.add(MeshReport::Kind::Change, turned_text(scene, material, m));
+        if (!m.doubtful.empty())
+            report.add(MeshReport::Kind::Warning, doubtful_text(scene, material, m));
     }
 }
 

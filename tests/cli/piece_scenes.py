@@ -1,0 +1,105 @@
+"""Scenes for #66 item 3: faults to be judged per connected piece, in one ungrouped material.
+
+python3 piece_scenes.py KIND OUT.obj   (writes pieces.mtl beside OUT.obj)
+  apart     two closed rooms 3 x 2.5 x 3, room A in z > 0 and room B in z < 0, 2 m apart in x;
+            each room's wall in the plane z = 0 is drawn twice, once each way: in that plane
+            A's scene is on the +z side and B's on the -z side
+  touching  the same with B's wall meeting A's at x = 3 (the two walls share an edge)
+  lamps     a closed room 6 x 3 x 4, a shade (a box open at the bottom, faces out) hung from
+            near its ceiling and two lamps of one material: one inside the shade facing up
+            into it, one free, facing the floor
+"""
+import sys
+
+
+def newell(points):
+    n = [0.0, 0.0, 0.0]
+    for i, a in enumerate(points):
+        b = points[(i + 1) % len(points)]
+        n[0] += (a[1] - b[1]) * (a[2] + b[2])
+        n[1] += (a[2] - b[2]) * (a[0] + b[0])
+        n[2] += (a[0] - b[0]) * (a[1] + b[1])
+    return n
+
+
+class Obj:
+    def __init__(self):
+        self.vertices, self.faces = [], []
+
+    def face(self, points, material, toward=None, away=None):
+        """A face whose front faces `toward` (or away from `away`) the given point."""
+        target = toward if toward is not None else away
+        centre = [sum(p[i] for p in points) / len(points) for i in range(3)]
+        n = newell(points)
+        facing = sum(n[i] * (target[i] - centre[i]) for i in range(3)) > 0
+        if facing != (toward is not None):
+            points = points[::-1]
+        self.faces.append((material, [len(self.vertices) + k + 1 for k in range(len(points))]))
+        self.vertices.extend(points)
+
+    def write(self, path):
+        with open(path, 'w') as f:
+            f.write('mtllib pieces.mtl\n')
+            f.write(''.join('v %g %g %g\n' % v for v in self.vertices))
+            for material, corners in self.faces:
+                f.write('usemtl %s\nf %s\n' % (material, ' '.join(map(str, corners))))
+
+
+def box(x0, x1, y0, y1, z0, z1):
+    """The six faces of a box (floor, ceiling, x0, x1, z1, z0 walls), unoriented."""
+    return [
+        [(x0, y0, z0), (x1, y0, z0), (x1, y0, z1), (x0, y0, z1)],
+        [(x0, y1, z0), (x0, y1, z1), (x1, y1, z1), (x1, y1, z0)],
+        [(x0, y0, z0), (x0, y0, z1), (x0, y1, z1), (x0, y1, z0)],
+        [(x1, y0, z0), (x1, y1, z0), (x1, y1, z1), (x1, y0, z1)],
+        [(x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)],
+        [(x0, y0, z0), (x0, y1, z0), (x1, y1, z0), (x1, y0, z0)],
+    ]
+
+
+def lamp(obj, x, y, z, facing_y):
+    q = [(x - 0.2, y, z - 0.2), (x + 0.2, y, z - 0.2), (x + 0.2, y, z + 0.2), (x - 0.2, y, z + 0.2)]
+    obj.face(q, 'light', toward=(x, y + facing_y, z))
+
+
+def rooms(obj, bx):
+    a, b = box(0, 3, 0, 2.5, 0, 3), box(bx, bx + 3, 0, 2.5, -3, 0)
+    ca, cb = (1.5, 1.25, 1.5), (bx + 1.5, 1.25, -1.5)
+    for q in a:
+        obj.face(q, 'white', toward=ca)
+    for q in b:
+        obj.face(q, 'white', toward=cb)
+    obj.face(a[5], 'white', away=ca)  # A's z = 0 wall again, facing out of A
+    obj.face(b[4], 'white', away=cb)  # B's z = 0 wall again, facing out of B
+    lamp(obj, 1.5, 2.49, 1.5, -1)
+    lamp(obj, bx + 1.5, 2.49, -1.5, -1)
+
+
+def lamps(obj):
+    centre = (3, 1.5, 2)
+    for q in box(0, 6, 0, 3, 0, 4):
+        obj.face(q, 'white', toward=centre)
+    shade = box(1.0, 1.8, 2.3, 2.8, 1.6, 2.4)
+    for q in shade[1:]:  # open at the bottom
+        obj.face(q, 'shade', away=(1.4, 2.55, 2.0))
+    lamp(obj, 1.4, 2.5, 2.0, +1)  # inside the shade, facing up into it
+    lamp(obj, 4.4, 2.9, 2.0, -1)  # free, facing the floor
+
+
+def main():
+    kind, path = sys.argv[1], sys.argv[2]
+    obj = Obj()
+    if kind in ('apart', 'touching'):
+        rooms(obj, 5 if kind == 'apart' else 3)
+    elif kind == 'lamps':
+        lamps(obj)
+    else:
+        sys.exit('unknown kind ' + kind)
+    obj.write(path)
+    mtl = path.rsplit('/', 1)[0] + '/pieces.mtl' if '/' in path else 'pieces.mtl'
+    with open(mtl, 'w') as f:
+        f.write('newmtl white\nKd 0.6 0.6 0.6\nnewmtl shade\nKd 0.5 0.5 0.5\n'
+                'newmtl light\nKd 0 0 0\nKe 10 10 10\n')
+
+
+main()
