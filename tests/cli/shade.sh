@@ -130,6 +130,12 @@ cmp -s "$TMP/auto.png" "$TMP/again.png" || fail "the printed view does not give 
 "$BIN/rad-mesh" "$SRC/scenes/lighting/room.obj" -o "$TMP/room.mesh" -q 2>/dev/null
 "$BIN/rad-shade" "$TMP/room.mesh" --albedo -o "$TMP/room.exr" -x 32 -y 24 2> "$TMP/room.txt" || fail "rad-shade without a camera in a closed room"
 grep -q "(inside, towards" "$TMP/room.txt" || fail "a closed room is not seen from inside: $(cat "$TMP/room.txt")"
+# A closed house drawn z-up (#66 item 5): the camera stands inside at eye height, upright (z
+# up); before, the roof was seen from above ("outside, from +z"), the house taken for y-up.
+python3 "$SRC/tests/cli/camera_scenes.py" house "$TMP/house.obj"
+"$BIN/rad-mesh" "$TMP/house.obj" -o "$TMP/house.mesh" -q 2>/dev/null || fail "mesh the house"
+"$BIN/rad-shade" "$TMP/house.mesh" --albedo -o "$TMP/house.exr" -x 32 -y 24 2> "$TMP/house.txt" || fail "rad-shade without a camera in the house"
+grep -q 'chose --view "-vp [0-9.]* [0-9.]* 1.[0-9]* -vd [-0-9.]* [-0-9.]* 0 -vu 0 0 1 .*(inside, towards [-+xy]*[,;]' "$TMP/house.txt" || fail "the house is not seen from inside, standing, z up: $(cat "$TMP/house.txt")"
 expect_error "--rows renders a band of one camera's image" "$TMP/x.part" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.part" --rows 0/2
 # A scene whose every patch emits: rad-shade and rad-bake expose it alike, from the solution
 # (over its emitters), not rad-shade from its image and rad-bake at 1.
