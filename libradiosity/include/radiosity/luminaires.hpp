@@ -33,10 +33,11 @@ LuminaireSources read_luminaire_sources(const std::filesystem::path& layout);
 
 struct Luminaire {
     std::string name, group;
-    int line = 0;               // its row in the layout
-    std::size_t photometry = 0; // index into LuminaireSet::photometries
-    Vec3 position{};            // the photometric centre, scene units
-    Vec3 nadir{0, -1, 0};       // gamma 0 (type C), the beam axis (A, B)
+    std::size_t group_index = 0; // into LuminaireSet::groups
+    int line = 0;                // its row in the layout
+    std::size_t photometry = 0;  // index into LuminaireSet::photometries
+    Vec3 position{};             // the photometric centre, scene units
+    Vec3 nadir{0, -1, 0};        // gamma 0 (type C), the beam axis (A, B)
     Vec3 c0{1, 0, 0}, c90{0, 0, -1};
     double maintenance = 1;
     double tilt_factor = 1; // the TILT table's multiplier at its actual tilt
