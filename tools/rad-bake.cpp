@@ -139,7 +139,8 @@ void add_options(CLI::App& app, Arguments& a) {
     rad::tool::add_threads_option(app, a.threads);
     app.add_option("--max-memory", a.max_memory,
                    "--lightmap: refuse, before baking, an atlas (times its light groups) "
-                   "estimated to need more than this (e.g. 4G; default: 80% of physical memory)");
+                   "estimated to need more than this (e.g. 4G; default: 80% of what the job may "
+                   "use: physical memory, its cgroup limit or ulimit -v, the least)");
     app.add_flag("-q,--quiet", a.quiet, "No summary");
 }
 
@@ -191,8 +192,8 @@ void check_lightmap_memory(const Arguments& a, std::size_t groups) {
     if (need <= limit) return;
     throw rad::InputError("--lightmap " + std::to_string(a.lightmap) + " with " +
                           std::to_string(groups) + " light group(s) needs about " +
-                          rad::human_bytes(double(need)) + ", more than --max-memory " +
-                          rad::human_bytes(double(limit)) +
+                          rad::human_bytes(double(need)) + ", more than " +
+                          rad::tool::memory_limit_text(a.max_memory) +
                           " (use a smaller --lightmap, or a larger --max-memory)");
 }
 

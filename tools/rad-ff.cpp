@@ -231,7 +231,8 @@ void add_run_options(CLI::App& app, FfArgs& a) {
     rad::tool::add_threads_option(app, a.threads);
     app.add_option("--max-memory", a.max_memory,
                    "Refuse to start when the estimated memory exceeds this (e.g. 4G; default: "
-                   "80% of physical memory)");
+                   "80% of what the job may use: physical memory, its cgroup limit or ulimit -v, "
+                   "the least)");
     app.add_flag("-q,--quiet", a.options.quiet, "No progress and no summary");
     app.add_flag("-v,--verbose", a.verbose,
                  "Every warning line (without it, at most 20 of a kind, the worst first, and a "
@@ -289,12 +290,13 @@ void choose_method(rad::FormFactorOptions& options, std::size_t patches, bool sp
 
 // Refuses a run whose estimated memory is past the limit, saying what to change.
 void check_memory(const std::string& input, const radfmt::MeshData& mesh,
-                  const rad::FormFactorOptions& options, std::uint64_t need, std::uint64_t limit) {
+                  const rad::FormFactorOptions& options, std::uint64_t need, std::uint64_t limit,
+                  const std::string& max_memory) {
     if (need <= limit) return;
     throw rad::InputError(
         input + ": " + options.method + " form factors for " + std::to_string(mesh.patches.size()) +
-        " patches need up to " + rad::human_bytes(double(need)) + ", more than --max-memory " +
-        rad::human_bytes(double(limit)) +
+        " patches need up to " + rad::human_bytes(double(need)) + ", more than " +
+        rad::tool::memory_limit_text(max_memory) +
         (options.method == "hemisphere" ? " (use fewer --rays or a coarser mesh)"
          : options.method == "hemicube" ? " (use a lower --resolution or a coarser mesh)"
                                         : " (use --method hemisphere or a coarser mesh)"));
@@ -429,8 +431,8 @@ int direct_light(FfArgs& a, int argc, char** argv) {
     if (const auto limit = rad::tool::memory_limit(a.max_memory); need > double(limit))
         throw rad::InputError(a.luminaires + ": " + std::to_string(set.groups.size()) +
                               " light group(s) over " + std::to_string(mesh.patches.size()) +
-                              " patches need about " + rad::human_bytes(need) +
-                              ", more than --max-memory " + rad::human_bytes(double(limit)) +
+                              " patches need about " + rad::human_bytes(need) + ", more than " +
+                              rad::tool::memory_limit_text(a.max_memory) +
                               " (join luminaires in fewer groups: the layout's group column; "
                               "or a larger --max-memory)");
     for (const auto& w : set.warnings) std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());
@@ -535,8 +537,8 @@ int sky_view(FfArgs& a, int argc, char** argv) {
     if (const auto limit = rad::tool::memory_limit(a.max_memory); need > double(limit))
         throw rad::InputError(input + ": " + options.patches.spec() + " over " +
                               std::to_string(mesh.patches.size()) + " patches needs about " +
-                              rad::human_bytes(need) + ", more than --max-memory " +
-                              rad::human_bytes(double(limit)) +
+                              rad::human_bytes(need) + ", more than " +
+                              rad::tool::memory_limit_text(a.max_memory) +
                               " (a coarser subdivision or mesh, or a larger --max-memory)");
     const auto range =
         a.rows.empty() ? rad::RowRange{} : rad::parse_rows(a.rows, mesh.patches.size());
@@ -584,7 +586,7 @@ int form_factors(FfArgs& a, int argc, char** argv) {
     }
     options = rad::resolve_form_factor_options(options);
     const auto need = rad::estimate_form_factor_memory(mesh, options);
-    check_memory(input, mesh, options, need, limit);
+    check_memory(input, mesh, options, need, limit, a.max_memory);
     const auto range =
         a.rows.empty() ? rad::RowRange{} : rad::parse_rows(a.rows, mesh.patches.size());
     if (a.estimate_only) {

@@ -206,7 +206,8 @@ void add_import_options(CLI::App& app, MeshArgs& a) {
         ->check(rad::tool::finite_range(0, 1e9));
     app.add_option("--import-memory", a.import_memory,
                    "... and on one for which it needs more address space than this (e.g. 4G; "
-                   "default: 80% of physical memory); a crash there is an error naming the "
+                   "default: 80% of what the job may use: physical memory, its cgroup limit or "
+                   "ulimit -v, the least); a crash there is an error naming the "
                    "file, never the tool's");
     app.add_option("--max-memory", a.max_memory,
                    "Refuse a scene whose faces (instances counted) would need more than this "

@@ -84,7 +84,8 @@ void add_image_options(CLI::App& app, ShadeArgs& a) {
         ->check(CLI::Range(1, 8));
     app.add_option("--max-memory", a.max_memory,
                    "Refuse to start when the images would need more memory than this (e.g. 4G; "
-                   "default: 80% of physical memory)");
+                   "default: 80% of what the job may use: physical memory, its cgroup limit or "
+                   "ulimit -v, the least)");
     rad::tool::add_threads_option(app, a.threads);
     app.add_flag("-q,--quiet", a.quiet, "No summary");
 }
@@ -251,8 +252,8 @@ void check_memory(const ShadeArgs& a, std::size_t group_count) {
     std::string message = "a " + std::to_string(a.width) + "x" + std::to_string(a.height) +
                           " image at --aa " + std::to_string(a.aa);
     if (images > 1) message += " with " + std::to_string(images - 1) + " layers";
-    message += " needs about " + rad::human_bytes(double(need)) + ", more than --max-memory " +
-               rad::human_bytes(double(limit)) + " (use a smaller -x/-y or --aa)";
+    message += " needs about " + rad::human_bytes(double(need)) + ", more than " +
+               rad::tool::memory_limit_text(a.max_memory) + " (use a smaller -x/-y or --aa)";
     throw rad::InputError(message);
 }
 

@@ -175,7 +175,8 @@ void add_material_options(CLI::App& app, SolveArgs& a) {
                    "--light-groups");
     app.add_option("--max-memory", a.max_memory,
                    "Refuse, before solving, light groups whose channels over the patches would "
-                   "need more than this (e.g. 4G; default: 80% of physical memory)");
+                   "need more than this (e.g. 4G; default: 80% of what the job may use: physical "
+                   "memory, its cgroup limit or ulimit -v, the least)");
     app.add_flag("--force", request.force,
                  "Solve even with a reflectance >= 1 (convergence not guaranteed)");
     app.add_flag("-q,--quiet", a.quiet, "No summary");
@@ -290,8 +291,8 @@ void check_channel_memory(const SolveArgs& a, const rad::Channels& emission) {
     if (bytes <= double(limit)) return;
     throw rad::InputError(std::to_string(emission.channels / 3) + " light group(s) over " +
                           std::to_string(emission.patches()) + " patches need about " +
-                          rad::human_bytes(bytes) + ", more than --max-memory " +
-                          rad::human_bytes(double(limit)) +
+                          rad::human_bytes(bytes) + ", more than " +
+                          rad::tool::memory_limit_text(a.max_memory) +
                           " (join groups: a layout's group column or --group; or a larger "
                           "--max-memory)");
 }

@@ -51,8 +51,12 @@ void check_outputs(const std::vector<std::string>& inputs,
 // --threads N (0: all cores), with the bound every tool uses.
 void add_threads_option(CLI::App& app, int& threads);
 
-// The limit --max-memory gives (parse_size), or 80% of physical memory when it is empty.
+// The limit --max-memory gives (parse_size), or 80% of what the job may use when it is empty
+// (rad::job_memory_bytes: physical memory, a cgroup's limit, ulimit -v).
 std::uint64_t memory_limit(const std::string& max_memory);
+// "--max-memory 100.0 MiB", or "--max-memory's default 1.2 GiB (80% of the address-space
+// limit (ulimit -v), 1.5 GiB)": for messages refusing work over the limit.
+std::string memory_limit_text(const std::string& max_memory);
 
 // "name1, name2 or name3" for help texts.
 std::string one_of(const std::vector<std::string>& names);

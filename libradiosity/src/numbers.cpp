@@ -5,7 +5,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <sys/resource.h>
 #include <unistd.h>
+#include <vector>
 
 namespace rad {
 
@@ -67,6 +72,69 @@ std::uint64_t physical_memory_bytes() {
     const long pages = ::sysconf(_SC_PHYS_PAGES);
     const long page_size = ::sysconf(_SC_PAGE_SIZE);
     return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
+}
+
+namespace {
+// A cgroup limit file's value in bytes ("max", a missing file, or nonsense: none).
+std::optional<std::uint64_t> cgroup_limit(const std::string& file) {
+    std::ifstream in(file);
+    std::string text;
+    if (!(in >> text) || text == "max") return std::nullopt;
+    std::uint64_t value = 0;
+    if (!parse_count(text, value)) return std::nullopt;
+    return value;
+}
+
+// The least memory limit of the cgroups this process is in, and of every cgroup above each
+// (a parent's limit binds its children): cgroup v2's memory.max and v1's
+// memory.limit_in_bytes, under the hierarchies' usual mount points. A container may mount its
+// own cgroup as the root, so the root's own file is read too.
+std::optional<std::uint64_t> cgroup_memory_limit() {
+    std::ifstream in("/proc/self/cgroup");
+    std::optional<std::uint64_t> least;
+    auto consider = [&](const std::string& file) {
+        if (const auto v = cgroup_limit(file); v && (!least || *v < *least)) least = v;
+    };
+    for (std::string line; std::getline(in, line);) {
+        // "0::/path" (v2) or "4:memory:/path" (v1)
+        const auto first = line.find(':'), second = line.find(':', first + 1);
+        if (first == std::string::npos || second == std::string::npos) continue;
+        const auto controllers = line.substr(first + 1, second - first - 1);
+        std::string path = line.substr(second + 1);
+        std::vector<std::string> roots;
+        std::string name;
+        if (controllers.empty())
+            roots = {"/sys/fs/cgroup", "/sys/fs/cgroup/unified"}, name = "memory.max";
+        else if (controllers.find("memory") != std::string::npos)
+            roots = {"/sys/fs/cgroup/memory"}, name = "memory.limit_in_bytes";
+        else
+            continue;
+        // "/a/b", then "/a", then "" (the root)
+        while (!path.empty() && path.back() == '/') path.pop_back();
+        for (const auto& root : roots)
+            for (std::string p = path;; p = p.substr(0, std::min(p.size(), p.rfind('/')))) {
+                consider(root + p + "/" + name);
+                if (p.empty() || p.find('/') == std::string::npos) break;
+            }
+    }
+    return least;
+}
+} // namespace
+
+std::uint64_t job_memory_bytes(std::string* source) {
+    std::uint64_t bytes = physical_memory_bytes();
+    if (source) *source = "physical memory";
+    if (const auto limit = cgroup_memory_limit(); limit && *limit < bytes) {
+        bytes = *limit;
+        if (source) *source = "the job's cgroup memory limit";
+    }
+    rlimit address{};
+    if (::getrlimit(RLIMIT_AS, &address) == 0 && address.rlim_cur != RLIM_INFINITY &&
+        address.rlim_cur < bytes) {
+        bytes = address.rlim_cur;
+        if (source) *source = "the address-space limit (ulimit -v)";
+    }
+    return bytes;
 }
 
 std::string human_bytes(double bytes) {

@@ -98,6 +98,11 @@ expect_error "do not fit a 64x64 lightmap at" "$TMP/x.glb" "$BIN/rad-bake" "$TMP
 # The work a lightmap implies is estimated and checked before baking (#55 item 3).
 expect_error "--lightmap 4096 with 0 light group(s) needs about 528.0 MiB, more than --max-memory 100.0 MiB" "$TMP/mem.glb" \
   "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/mem.glb" --lightmap 4096 --max-memory 100M
+# The default follows the job's limit, not the machine's RAM (#70 item 10): under ulimit -v
+# 800000 (781 MiB) a 2.1 GiB atlas is refused before baking; before, it was baked until the
+# allocation failed (exit 2, "out of memory", after the work).
+expect_error "needs about 2.1 GiB, more than --max-memory's default 625.0 MiB (80% of the address-space limit (ulimit -v), 781.2 MiB)" "$TMP/mem.glb" \
+  bash -c 'ulimit -v 800000 && exec "$@"' limited "$BIN/rad-bake" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/mem.glb" --lightmap 8192
 
 # A daylight solution's page (#51): it relights by date and time from a basis of the sky's
 # groups and the sun patches' own; at two instants and at night it shows what rad-shade --sky

@@ -17,6 +17,10 @@ bool parse_count(std::string_view text, std::uint64_t& value);
 bool spells_non_finite(std::string_view text);
 
 std::uint64_t physical_memory_bytes();
+// What this job may use: the least of physical memory, its cgroups' memory limits (v2
+// memory.max, v1 memory.limit_in_bytes, up the hierarchy: a Slurm --mem, a container) and the
+// address-space limit (ulimit -v, RLIMIT_AS); `source` says which it was.
+std::uint64_t job_memory_bytes(std::string* source = nullptr);
 std::string human_bytes(double bytes);
 
 } // namespace rad
