@@ -377,6 +377,15 @@ TEST_CASE("bad layouts are refused with LAYOUT:LINE") {
               .rfind("lay.csv:1: is UTF-16 or UTF-32 text", 0) == 0);
     CHECK(refusal("\xFF\xFEI\0E\0S\0", "wide.ies").rfind("wide.ies:1: is UTF-16", 0) == 0);
     CHECK(refusal("\xEF\xBB\xBF" + std::string(kIsotropic), "bom.ies").empty());
+    // A quoted cell holding a line break is one row over two lines, refused for what is
+    // wrong with it at its first line (it was two rows: "no file named"); a quote never
+    // closed is said as such, at the line it opened on.
+    CHECK(refused("name,photometry,x,y,z\n\"L\n1\",lamp.ies,0,1,0\n")
+              .rfind("lay.csv:2: 'L?1' is a name holding a control character", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z\nL,lamp.ies,0,1,0\nM,\"lamp.ies,1,1,0\n")
+              .rfind("lay.csv:3: a double quote opened on this line is never closed", 0) == 0);
+    CHECK(refused("name,photometry,x,y,z,group\nL,lamp.ies,0,1,0,\"a, b\"\nM,lamp.ies,1,1,0,c\n")
+              .empty());
 }
 
 #include "radiosity/luminaire_image.hpp"

@@ -260,6 +260,25 @@ TEST_CASE("the calculation-surfaces file is refused with its line and the fix") 
         calc_from(kHeader + rad::csv_field(name) + ",task,0,0,0,1,0,0,0,0,-1,,,,,,\n");
     CHECK(quoted.surfaces[0].name == name);
     CHECK(quoted.surfaces[0].kind == rad::CalcKind::Task);
+    // As spreadsheets write them (#70 item 11): a cell holding a line break is quoted over
+    // two lines, one record, refused for what is wrong with it at its first line (it was
+    // two rows: "x is empty"); a quote never closed is said as such; a name that is not UTF-8
+    // (bytes FF FE) is refused before it reaches a page declared UTF-8.
+    CHECK(refusal(kHeader + "\"bay\nA\",task,0,0,0,1,0,0,0,0,-1,,,,,,\n")
+              .find("calc.csv:2: 'bay?A' is a name holding a control character") !=
+          std::string::npos);
+    CHECK(refusal(kHeader +
+                  "a,\"task\n\",0,0,0,1,0,0,0,0,-1,,,,,,\nb,task,0,0,0,1,0,0,0,0,-1,,,,,,\n")
+              .find("calc.csv:2: kind is") != std::string::npos);
+    CHECK(refusal(kHeader + "a,task,0,0,0,1,0,0,0,0,-1,,,,,,\n\"b,task,0,0,0,1,0,0,0,0,-1,,,,,,\n")
+              .find("calc.csv:3: a double quote opened on this line is never closed") !=
+          std::string::npos);
+    CHECK(refusal(kHeader + "\xFF\xFEbay,task,0,0,0,1,0,0,0,0,-1,,,,,,\n").find("not UTF-8") !=
+          std::string::npos);
+    // A quoted name with a comma over one line, then the next row, still reads.
+    const auto two = calc_from(kHeader + "\"a, \"\"1\"\"\",task,0,0,0,1,0,0,0,0,-1,,,,,,\n" +
+                               "b,task,0,0,0,1,0,0,0,0,-1,,,,,,\n");
+    CHECK(two.surfaces.size() == 2);
 }
 
 TEST_CASE(

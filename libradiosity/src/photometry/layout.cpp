@@ -95,9 +95,15 @@ std::vector<Row> layout_rows(const std::string& text, const std::string& name) {
     bool header = true;
     for (std::size_t i = 0; i < lines.size(); ++i) {
         const FileLoc where{name, int(i + 1)};
-        const auto line = lines[i];
+        std::string line(lines[i]);
         if (line.find_first_not_of(" \t") == std::string_view::npos || line.starts_with('#'))
             continue;
+        // A quoted field may hold line breaks: the row goes on over the next lines.
+        while (photometry::csv_quote_open(line)) {
+            if (++i == lines.size()) photometry::unclosed_csv_quote(where);
+            line += '\n';
+            line += lines[i];
+        }
         const auto fields = photometry::csv_fields(line);
         if (header) {
             columns = column_indices(fields, where);
@@ -107,7 +113,7 @@ std::vector<Row> layout_rows(const std::string& text, const std::string& name) {
         if (fields.size() > columns.size())
             throw InputError(where, std::to_string(fields.size()) + " fields, but the header has " +
                                         std::to_string(columns.size()) + " columns");
-        Row row{int(i + 1), {}};
+        Row row{where.line, {}};
         for (const auto& [column, index] : columns)
             if (index < fields.size()) row.field[column] = fields[index];
         rows.push_back(std::move(row));

@@ -36,6 +36,16 @@ std::vector<std::string_view> split_lines(std::string_view text) {
     return lines;
 }
 
+bool csv_quote_open(std::string_view text) {
+    return std::count(text.begin(), text.end(), '"') % 2 == 1;
+}
+
+void unclosed_csv_quote(const FileLoc& opened) {
+    throw InputError(opened, "a double quote opened on this line is never closed (the quoted "
+                             "field runs to the end of the file): close it, or write a quote "
+                             "inside a field as two (\"\")");
+}
+
 std::vector<std::string> csv_fields(std::string_view line) {
     std::vector<std::string> out(1);
     bool quoted = false;

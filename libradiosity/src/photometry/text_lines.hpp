@@ -26,6 +26,12 @@ std::vector<std::string_view> split_lines(std::string_view text);
 // commas in it; "" inside them is one quote).
 std::vector<std::string> csv_fields(std::string_view line);
 
+// Whether a double quote is left open at the end of `text` (a quoted field going on past the
+// line end, as spreadsheets write a cell holding a line break): its quotes are odd.
+bool csv_quote_open(std::string_view text);
+// The message for a quote still open at the end of the file, at the line it opened on.
+[[noreturn]] void unclosed_csv_quote(const FileLoc& opened);
+
 // A finite number that is the whole of `token`, or false.
 bool parse_number(std::string_view token, double& value);
 

@@ -2,6 +2,8 @@
 // observer a line.
 #include "photometry/text_lines.hpp"
 #include "radiosity/calc_surfaces.hpp"
+
+#include "radfmt/names.hpp"
 #include "radiosity/text_input.hpp"
 
 #include <map>
@@ -195,6 +197,9 @@ CalcFile read_calc_file(const std::string& path) {
         if (in.line_number() == 1) line = std::string(photometry::plain_text(line, file.name));
         const auto first = line.find_first_not_of(" \t\r");
         if (first == std::string::npos || line[first] == '#') continue;
+        // A quoted field may hold line breaks: the row goes on over the next lines.
+        for (std::string more; photometry::csv_quote_open(line); line += '\n' + more)
+            if (!in.next(more)) photometry::unclosed_csv_quote(where);
         const auto fields = photometry::csv_fields(line);
         if (columns.empty()) {
             columns = header_columns(fields, where);
@@ -210,6 +215,11 @@ CalcFile read_calc_file(const std::string& path) {
             if (index < fields.size()) by_column[column] = fields[index];
         const CsvRow row(where, std::move(by_column));
         if (row.text("name").empty()) throw InputError(where, "the name is empty: name it");
+        // The name goes into pages declared UTF-8 and into CSV and text outputs.
+        if (const auto why = radfmt::name_problem(row.text("name")); !why.empty())
+            throw InputError(where, photometry::quoted(row.text("name")) + " is " + why +
+                                        ": names are UTF-8 text of at most 200 bytes without "
+                                        "control characters");
         if (!names.insert(row.text("name")).second)
             throw InputError(where, "'" + row.text("name") + "' is named twice: names are unique");
         const auto& kind_text = row.text("kind");
