@@ -206,7 +206,7 @@ done
 # One material's lamps judged piece by piece (#66 item 3): of two lamps, one facing up into its
 # shade and one facing the floor, only the first is turned (pooled, the material's share of
 # light on backs, 50%, turned both: the right one then lit the ceiling).
-python3 "$SRC/tests/cli/piece_scenes.py" lamps "$TMP/two-lamps.obj"
+python3 "$SRC/tests/cli/interior_scenes.py" lamps "$TMP/two-lamps.obj"
 "$BIN/rad-mesh" "$TMP/two-lamps.obj" -o "$TMP/two-lamps.mesh" --max-edge 0.25 -q 2> "$TMP/two-lamps.txt" || fail "mesh two lamps"
 grep -q "changed: turned the 1 face(s) of emitter light in 1 of its 2 separate pieces (the first at [^ ]*two-lamps.obj:77; the others face the room): 100% of the light from their front met the back of surfaces" "$TMP/two-lamps.txt" || fail "not only the lamp in its shade turned: $(cat "$TMP/two-lamps.txt")"
 # Many orientation findings: at most 20 lines, the largest first, and a count of the rest;

@@ -132,7 +132,7 @@ cmp -s "$TMP/auto.png" "$TMP/again.png" || fail "the printed view does not give 
 grep -q "(inside, towards" "$TMP/room.txt" || fail "a closed room is not seen from inside: $(cat "$TMP/room.txt")"
 # A closed house drawn z-up (#66 item 5): the camera stands inside at eye height, upright (z
 # up); before, the roof was seen from above ("outside, from +z"), the house taken for y-up.
-python3 "$SRC/tests/cli/camera_scenes.py" house "$TMP/house.obj"
+python3 "$SRC/tests/cli/interior_scenes.py" house "$TMP/house.obj"
 "$BIN/rad-mesh" "$TMP/house.obj" -o "$TMP/house.mesh" -q 2>/dev/null || fail "mesh the house"
 "$BIN/rad-shade" "$TMP/house.mesh" --albedo -o "$TMP/house.exr" -x 32 -y 24 2> "$TMP/house.txt" || fail "rad-shade without a camera in the house"
 grep -q 'chose --view "-vp [0-9.]* [0-9.]* 1.[0-9]* -vd [-0-9.]* [-0-9.]* 0 -vu 0 0 1 .*(inside, towards [-+xy]*[,;]' "$TMP/house.txt" || fail "the house is not seen from inside, standing, z up: $(cat "$TMP/house.txt")"

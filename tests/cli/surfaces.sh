@@ -59,7 +59,7 @@ grep -q "changed: coincident: kept 1 face(s) of area 2 drawn both ways, both sid
 # side. Pooled per plane and material, the two sides' rays tied and both copies were kept
 # ("their rays do not tell"), speckling. Apart, each room's copies vote on their own; touching
 # (the walls share an edge), pair by pair. Lines 91 and 93 are the copies facing out.
-PIECES="$SRC/tests/cli/piece_scenes.py"
+PIECES="$SRC/tests/cli/interior_scenes.py"
 for kind in apart touching; do
   python3 "$PIECES" $kind rooms-$kind.obj
   "$BIN/rad-mesh" rooms-$kind.obj -o rooms-$kind.mesh --max-edge 0.25 2> rooms-$kind.err || fail "mesh rooms-$kind"

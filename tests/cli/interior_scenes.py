@@ -1,6 +1,7 @@
-"""Scenes for #66 item 3: faults to be judged per connected piece, in one ungrouped material.
+"""Interiors for #66 items 3 and 5: faults to be judged per connected piece, in one ungrouped
+material, and a house for the automatic camera.
 
-python3 piece_scenes.py KIND OUT.obj   (writes pieces.mtl beside OUT.obj)
+python3 interior_scenes.py KIND OUT.obj   (writes interior.mtl beside OUT.obj)
   apart     two closed rooms 3 x 2.5 x 3, room A in z > 0 and room B in z < 0, 2 m apart in x;
             each room's wall in the plane z = 0 is drawn twice, once each way: in that plane
             A's scene is on the +z side and B's on the -z side
@@ -8,6 +9,10 @@ python3 piece_scenes.py KIND OUT.obj   (writes pieces.mtl beside OUT.obj)
   lamps     a closed room 6 x 3 x 4, a shade (a box open at the bottom, faces out) hung from
             near its ceiling and two lamps of one material: one inside the shade facing up
             into it, one free, facing the floor
+  house     a closed single-storey house drawn z-up as 3ds Max exports it: 12 x 9 m, 3 m high,
+            its rooms facing in, two partitions (boxes 0.1 m thick, a 1 m doorway each) making
+            three rooms, a low table in each, a roof slab over the ceiling and a 1 x 1 m lamp
+            on each room's ceiling
 """
 import sys
 
@@ -37,9 +42,27 @@ class Obj:
         self.faces.append((material, [len(self.vertices) + k + 1 for k in range(len(points))]))
         self.vertices.extend(points)
 
+    def box(self, lo, hi, material, inward=False, skip=()):
+        """A box's faces, facing out (or in); `skip` names faces left out (e.g. 'z0')."""
+        centre = [(lo[i] + hi[i]) / 2 for i in range(3)]
+        for axis in range(3):
+            for side, value in (('0', lo[axis]), ('1', hi[axis])):
+                if 'xyz'[axis] + side in skip:
+                    continue
+                a, b = [c for c in range(3) if c != axis]
+                quad = []
+                for u, v in ((lo[a], lo[b]), (hi[a], lo[b]), (hi[a], hi[b]), (lo[a], hi[b])):
+                    p = [0.0, 0.0, 0.0]
+                    p[axis], p[a], p[b] = value, u, v
+                    quad.append(tuple(p))
+                if inward:
+                    self.face(quad, material, toward=centre)
+                else:
+                    self.face(quad, material, away=centre)
+
     def write(self, path):
         with open(path, 'w') as f:
-            f.write('mtllib pieces.mtl\n')
+            f.write('mtllib interior.mtl\n')
             f.write(''.join('v %g %g %g\n' % v for v in self.vertices))
             for material, corners in self.faces:
                 f.write('usemtl %s\nf %s\n' % (material, ' '.join(map(str, corners))))
@@ -86,6 +109,19 @@ def lamps(obj):
     lamp(obj, 4.4, 2.9, 2.0, -1)  # free, facing the floor
 
 
+def house(obj):
+    obj.box((0, 0, 0), (12, 9, 3), 'wall', inward=True)
+    obj.box((-0.3, -0.3, 3.0), (12.3, 9.3, 3.3), 'roof', skip=('z0',))
+    for x in (4, 8):
+        obj.box((x - 0.05, 0, 0), (x + 0.05, 4, 3), 'wall', skip=('y0', 'z0', 'z1'))
+        obj.box((x - 0.05, 5, 0), (x + 0.05, 9, 3), 'wall', skip=('y1', 'z0', 'z1'))
+    for room in range(3):
+        x = 2 + 4 * room
+        obj.box((x - 0.6, 3.9, 0), (x + 0.6, 5.1, 0.7), 'table', skip=('z0',))
+        obj.face([(x - 0.5, 4, 2.99), (x + 0.5, 4, 2.99), (x + 0.5, 5, 2.99), (x - 0.5, 5, 2.99)],
+                 'light', toward=(x, 4.5, 0))
+
+
 def main():
     kind, path = sys.argv[1], sys.argv[2]
     obj = Obj()
@@ -93,13 +129,16 @@ def main():
         rooms(obj, 5 if kind == 'apart' else 3)
     elif kind == 'lamps':
         lamps(obj)
+    elif kind == 'house':
+        house(obj)
     else:
         sys.exit('unknown kind ' + kind)
     obj.write(path)
-    mtl = path.rsplit('/', 1)[0] + '/pieces.mtl' if '/' in path else 'pieces.mtl'
+    mtl = path.rsplit('/', 1)[0] + '/interior.mtl' if '/' in path else 'interior.mtl'
     with open(mtl, 'w') as f:
         f.write('newmtl white\nKd 0.6 0.6 0.6\nnewmtl shade\nKd 0.5 0.5 0.5\n'
-                'newmtl light\nKd 0 0 0\nKe 10 10 10\n')
+                'newmtl wall\nKd 0.7 0.7 0.7\nnewmtl roof\nKd 0.4 0.2 0.2\n'
+                'newmtl table\nKd 0.5 0.35 0.2\nnewmtl light\nKd 0 0 0\nKe 10 10 10\n')
 
 
 main()
