@@ -13,6 +13,10 @@ python3 interior_scenes.py KIND OUT.obj   (writes interior.mtl beside OUT.obj)
             its rooms facing in, two partitions (boxes 0.1 m thick, a 1 m doorway each) making
             three rooms, a low table in each, a roof slab over the ceiling and a 1 x 1 m lamp
             on each room's ceiling
+  tunnel    a tunnel 100 m long: a half-round vault of radius 3 m in 128 long thin facets (two
+            triangles each) drawn facing out, open at both ends, standing on a floor 7 m wide
+            (wider than the vault) facing up, all in one material with no groups (the subway of
+            #66 item 2)
 """
 import sys
 
@@ -122,6 +126,22 @@ def house(obj):
                  'light', toward=(x, 4.5, 0))
 
 
+def tunnel(obj):
+    import math
+    length, radius, segments = 100.0, 3.0, 128
+    ring = lambda z: [(radius * math.cos(math.pi * k / segments),
+                       radius * math.sin(math.pi * k / segments), z) for k in range(segments + 1)]
+    near, far = ring(0.0), ring(length)
+    for k in range(segments):
+        a0, a1, b1, b0 = near[k], near[k + 1], far[k + 1], far[k]
+        middle = ((a0[0] + a1[0]) / 2 * 2, (a0[1] + a1[1]) / 2 * 2, length / 2)  # outside
+        obj.face([a0, a1, b1], 'white', toward=middle)
+        obj.face([a0, b1, b0], 'white', toward=middle)
+    w = radius + 0.5
+    obj.face([(-w, 0, 0), (-w, 0, length), (w, 0, length), (w, 0, 0)], 'white',
+             toward=(0, 1, length / 2))
+
+
 def main():
     kind, path = sys.argv[1], sys.argv[2]
     obj = Obj()
@@ -131,6 +151,8 @@ def main():
         lamps(obj)
     elif kind == 'house':
         house(obj)
+    elif kind == 'tunnel':
+        tunnel(obj)
     else:
         sys.exit('unknown kind ' + kind)
     obj.write(path)

@@ -215,11 +215,17 @@ std::vector<char> mostly_outline(const CDT& cdt, int count) {
 //   the face or from nowhere else, do not count).
 // A closed object's backs seen from outside it say only that it was drawn inside out.
 bool behind_object(const SurfaceViews& surfaces, const std::vector<SurfaceViews::View>& views,
-                   std::size_t r) {
+                   std::size_t r, const Vec3& from, const Frame& plane, double gap) {
     const auto& view = views[r];
     const auto any = [&](auto&& test) { return std::any_of(views.begin(), views.end(), test); };
     const auto counts = [&](std::uint32_t s) {
-        if (view.inside(s)) return any([&](const auto& other) { return other.outside(s); });
+        // Around the region and not around the rest: an object over a footprint, unless
+        // the scene's open side reaches in through its openings (a tunnel's floor under a
+        // vault drawn facing out, open at its ends, is no footprint).
+        if (view.inside(s))
+            return any([&](const auto& other) { return other.outside(s); }) &&
+                   !surfaces.open_to_outside(s, from, plane.normal, dot(plane.normal, plane.origin),
+                                             gap);
         const bool enclosing = any([&](const auto& other) { return other.inside(s); });
         const bool closes = enclosing || surfaces.closed(s);
         if (surfaces.room(s) && view.outside(s) && closes) return true;
@@ -239,10 +245,10 @@ bool behind_object(const SurfaceViews& surfaces, const std::vector<SurfaceViews:
 
 class Imprinter {
   public:
-    Imprinter(Scene& scene, double tol, const std::vector<bool>& turned,
+    Imprinter(Scene& scene, double tol, double gap, const std::vector<bool>& turned,
               std::vector<std::uint32_t> welded, CutLines lines)
-        : scene_(scene), tol_(tol), turned_(turned), welded_(std::move(welded)),
-          lines_(std::move(lines)), views_(scene, turned, welded_),
+        : scene_(scene), tol_(tol), gap_(std::max(gap, 100 * tol)), turned_(turned),
+          welded_(std::move(welded)), lines_(std::move(lines)), views_(scene, turned, welded_),
           replaced_(scene.polygons.size(), 0) {}
     void cut_faces() {
         for (const auto& [f, cuts] : lines_.cuts) cut_face(f);
@@ -271,6 +277,7 @@ class Imprinter {
 
     Scene& scene_;
     double tol_;
+    double gap_; // how far from a face an object's open edges may stand and close on it
     const std::vector<bool>& turned_;
     std::vector<std::uint32_t> welded_;
     CutLines lines_;
@@ -348,7 +355,7 @@ std::vector<char> Imprinter::hidden_regions(std::size_t f, const Regions& region
         const auto own = views_.surface_of(f);
         for (int r = 0; r < regions.count; ++r)
             if (!(back && views[r].inside(own)))
-                hidden[r] |= behind_object(views_, views, std::size_t(r));
+                hidden[r] |= behind_object(views_, views, std::size_t(r), from[r], p.frame, gap_);
     }
     return hidden;
 }
@@ -545,7 +552,7 @@ ImprintReport imprint_contacts(Scene& scene, double tolerance, const std::vector
                                lines.contacts.end());
     // Rays over the scene as written decide which regions are hidden.
     if (lines.cuts.empty()) return {};
-    Imprinter imprinter(scene, tol, turned, std::move(welded), std::move(lines));
+    Imprinter imprinter(scene, tol, gap * size, turned, std::move(welded), std::move(lines));
     imprinter.cut_faces();
     if (imprinter.report.faces_imprinted) imprinter.finish();
     return imprinter.report;

@@ -34,22 +34,43 @@ bool holds_most_of(const Box& surface, const Box& scene) {
     return held >= 0.5 * whole;
 }
 
+struct EdgeUse {
+    std::size_t first = 0; // the first face using it
+    int uses = 0;
+    std::array<std::uint32_t, 2> ends{}; // scene vertices, from the first face
+};
+using EdgeUses = std::map<std::pair<std::uint32_t, std::uint32_t>, EdgeUse>;
+
+// The open edges (used an odd number of times), by surface, into out.open_start and
+// out.open_edges.
+void open_edges(const Scene& scene, const EdgeUses& edges, SurfaceViews::Surfaces& out) {
+    out.open_start.assign(scene.polygons.size() + 1, 0);
+    for (const auto& [edge, use] : edges)
+        if (use.uses % 2) ++out.open_start[out.of[use.first] + 1];
+    for (std::size_t s = 0; s < scene.polygons.size(); ++s)
+        out.open_start[s + 1] += out.open_start[s];
+    out.open_edges.resize(out.open_start.back());
+    auto next = out.open_start;
+    for (const auto& [edge, use] : edges)
+        if (use.uses % 2) out.open_edges[next[out.of[use.first]]++] = use.ends;
+}
+
 // Each face's surface: closed when every edge it has is shared by an even number of its
 // faces, a room when its box holds the scene's, or most of it.
 SurfaceViews::Surfaces connected_surfaces(const Scene& scene,
                                           const std::vector<std::uint32_t>& welded) {
     UnionFind sets(scene.polygons.size());
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::size_t, int>> edges;
+    EdgeUses edges;
     for (std::size_t f = 0; f < scene.polygons.size(); ++f) {
         const auto& vs = scene.polygons[f].vertices;
         for (std::size_t k = 0; k < vs.size(); ++k) {
             auto a = welded[vs[k]], b = welded[vs[(k + 1) % vs.size()]];
             if (a == b) continue;
-            auto& [first, uses] = edges[{std::min(a, b), std::max(a, b)}];
-            if (uses++ == 0)
-                first = f;
+            auto& use = edges[{std::min(a, b), std::max(a, b)}];
+            if (use.uses++ == 0)
+                use.first = f, use.ends = {vs[k], vs[(k + 1) % vs.size()]};
             else
-                sets.unite(f, first);
+                sets.unite(f, use.first);
         }
     }
     SurfaceViews::Surfaces out;
@@ -58,7 +79,8 @@ SurfaceViews::Surfaces connected_surfaces(const Scene& scene,
         out.of[f] = static_cast<std::uint32_t>(sets.find(f));
     out.closed.assign(scene.polygons.size(), 1);
     for (const auto& [edge, use] : edges)
-        if (use.second % 2) out.closed[out.of[use.first]] = 0;
+        if (use.uses % 2) out.closed[out.of[use.first]] = 0;
+    open_edges(scene, edges, out);
     out.box.resize(scene.polygons.size());
     for (std::size_t f = 0; f < out.of.size(); ++f)
         for (auto v : scene.polygons[f].vertices) out.box[out.of[f]].add(scene.vertices[v]);
@@ -72,8 +94,38 @@ SurfaceViews::Surfaces connected_surfaces(const Scene& scene,
 
 SurfaceViews::SurfaceViews(const Scene& scene, const std::vector<bool>& turned,
                            const std::vector<std::uint32_t>& welded)
-    : surfaces_(connected_surfaces(scene, welded)),
+    : surfaces_(connected_surfaces(scene, welded)), vertices_(scene.vertices), welded_(welded),
       rays_(face_triangles(scene, &face_of_, nullptr, &turned), RayBuild::Fast) {}
+
+bool SurfaceViews::open_to_outside(std::uint32_t surface, const Vec3& from, const Vec3& normal,
+                                   double offset, double gap) const {
+    const auto off_plane = [&](std::uint32_t v) {
+        return !(std::abs(dot(normal, vertices_[v]) - offset) <= gap);
+    };
+    std::vector<std::array<std::uint32_t, 2>> edges;
+    for (auto k = surfaces_.open_start[surface]; k < surfaces_.open_start[surface + 1]; ++k) {
+        const auto& e = surfaces_.open_edges[k];
+        if (off_plane(e[0]) || off_plane(e[1])) edges.push_back(e);
+    }
+    // The openings: those edges in chains joined at shared (welded) corners.
+    UnionFind chains(edges.size());
+    std::map<std::uint32_t, std::size_t> edge_at;
+    for (std::size_t k = 0; k < edges.size(); ++k)
+        for (const auto v : edges[k])
+            if (const auto [it, added] = edge_at.try_emplace(welded_[v], k); !added)
+                chains.unite(k, it->second);
+    std::map<std::size_t, std::pair<Vec3, double>> sums; // per chain: corners' sum, count
+    for (std::size_t k = 0; k < edges.size(); ++k)
+        for (const auto v : edges[k]) {
+            auto& [sum, count] = sums[chains.find(k)];
+            sum = sum + vertices_[v], count += 1;
+        }
+    for (const auto& [chain, total] : sums) {
+        const Vec3 towards = total.first * (1.0 / total.second) - from;
+        if (length(towards) > 0 && rays_.trace(from, normalized(towards)).patch < 0) return true;
+    }
+    return false;
+}
 
 double SurfaceViews::leaves_boxes(const Vec3& from, const Vec3& dir,
                                   const std::vector<std::uint32_t>& surfaces) const {

@@ -7,6 +7,7 @@
 #include "radiosity/vec.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -70,6 +71,14 @@ class SurfaceViews {
     bool closed(std::uint32_t surface) const { return surfaces_.closed[surface]; }
     // Whether a surface is a room: its box holds the rest of the scene, or most of it.
     bool room(std::uint32_t surface) const { return surfaces_.room[surface]; }
+    // Whether, from `from` (on a face in the plane normal . x = offset), a ray through the
+    // middle of one of the surface's openings (a chain of the edges it leaves open off the
+    // plane, joined at shared corners; edges within `gap` of it close on the face) leaves
+    // the scene: the scene's open side reaches in (a tunnel
+    // under a vault open at its ends). The openings of a block standing on a floor lie on the
+    // floor; a cabinet's open back against a wall leads to the wall.
+    bool open_to_outside(std::uint32_t surface, const Vec3& from, const Vec3& normal, double offset,
+                         double gap) const;
 
     // Each face's surface (faces connected across welded edges), and by surface id (its
     // first face's index) whether it is closed and a room, and its box.
@@ -77,6 +86,10 @@ class SurfaceViews {
         std::vector<std::uint32_t> of;
         std::vector<char> closed, room;
         std::vector<Box> box;
+        // The edges each surface leaves open (used by an odd number of its faces), as pairs
+        // of scene vertices, surface by surface (open_start[s] to open_start[s + 1]).
+        std::vector<std::size_t> open_start;
+        std::vector<std::array<std::uint32_t, 2>> open_edges;
     };
 
   private:
@@ -92,6 +105,8 @@ class SurfaceViews {
 
     std::vector<std::size_t> face_of_; // per traced triangle
     Surfaces surfaces_;
+    const std::vector<Vec3>& vertices_;
+    std::vector<std::uint32_t> welded_;
     RayScene rays_;
 };
 
