@@ -154,7 +154,8 @@ void add_stage_options(CLI::App& app, MeshArgs& a) {
         ->check(CLI::IsMember({"warn", "fix"}));
     app.add_option("--flip", a.flip,
                    "Reverse the faces of this group, or of this material where no group has "
-                   "the name (a file without groups; repeatable)");
+                   "the name (a file without groups), or, given as FILE:LINE of a face, its "
+                   "connected surface (a vault sharing its material with the floor; repeatable)");
     app.add_option("--thin", a.thin,
                    "Make this refracting material (MTL illum 6 or 7, glTF volume), or the "
                    "refracting materials of this group, a thin pane of glass: light passes "

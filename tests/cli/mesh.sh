@@ -209,6 +209,17 @@ done
 python3 "$SRC/tests/cli/interior_scenes.py" lamps "$TMP/two-lamps.obj"
 "$BIN/rad-mesh" "$TMP/two-lamps.obj" -o "$TMP/two-lamps.mesh" --max-edge 0.25 -q 2> "$TMP/two-lamps.txt" || fail "mesh two lamps"
 grep -q "changed: turned the 1 face(s) of emitter light in 1 of its 2 separate pieces (the first at [^ ]*two-lamps.obj:77; the others face the room): 100% of the light from their front met the back of surfaces" "$TMP/two-lamps.txt" || fail "not only the lamp in its shade turned: $(cat "$TMP/two-lamps.txt")"
+# A surface named by a face where names cannot separate it (#66 item 2): the tunnel's vault,
+# drawn facing out, shares its material with the floor in a file without groups. --flip with
+# the material turned the floor too; --flip FILE:LINE turns the vault (the connected surface
+# of the face on that line) alone, and rad-ff then sees no surface facing the wrong way.
+python3 "$SRC/tests/cli/interior_scenes.py" tunnel "$TMP/vault.obj"
+line=$(grep -n "^f " "$TMP/vault.obj" | head -1 | cut -d: -f1)
+"$BIN/rad-mesh" "$TMP/vault.obj" -o "$TMP/vault.mesh" --flip "vault.obj:$line" 2> "$TMP/vault.err" || fail "--flip FILE:LINE: $(cat "$TMP/vault.err")"
+grep -q "rad-mesh: --flip vault.obj:$line reversed 256 face(s) of the connected surface of that face" "$TMP/vault.err" || fail "the vault alone was not reversed: $(cat "$TMP/vault.err")"
+"$BIN/rad-ff" "$TMP/vault.mesh" -o "$TMP/vault.ff" 2> "$TMP/vault-ff.err" || fail "rad-ff on the turned vault"
+! grep -q "wrong way" "$TMP/vault-ff.err" || fail "a surface still faces the wrong way: $(cat "$TMP/vault-ff.err")"
+expect_error "--flip vault.obj:2: no face of" "$TMP/x.mesh" "$BIN/rad-mesh" "$TMP/vault.obj" -o "$TMP/x.mesh" --flip vault.obj:2
 # Many orientation findings: at most 20 lines, the largest first, and a count of the rest;
 # -v lists every one. 25 cubes, each inside out and a group of its own, one of 12 triangles.
 python3 - "$TMP/cubes.obj" <<'PY'

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <filesystem>
 #include <map>
 #include <numeric>
 #include <span>
@@ -546,9 +547,45 @@ std::string describe(const OrientationFinding& finding, const Scene& scene) {
            " (first at " + face_location(scene, first.line) + ")";
 }
 
+namespace {
+// The face a --flip name points at as a place: "LINE" or "FILE:LINE" (FILE as messages print
+// it, or its file name), the line of its 'f' statement; -1 when it is not such a name.
+long named_face(const Scene& scene, const std::string& name) {
+    const auto colon = name.rfind(':');
+    const std::string digits = colon == std::string::npos ? name : name.substr(colon + 1);
+    if (digits.empty() || digits.size() > 9 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        return -1;
+    if (colon != std::string::npos) {
+        const auto file = name.substr(0, colon);
+        if (file != scene.path && file != std::filesystem::path(scene.path).filename().string())
+            return -1;
+    }
+    const long line = std::stol(digits);
+    for (std::size_t f = 0; f < scene.polygons.size(); ++f)
+        if (scene.polygons[f].line == line) return static_cast<long>(f);
+    throw InputError("--flip " + name + ": no face of " + scene.path + " is on line " + digits +
+                     " (name a face's 'f' line, as rad-mesh's messages do)");
+}
+} // namespace
+
 std::vector<FlipResult> flip_groups(Scene& scene, const std::vector<std::string>& names) {
     std::vector<FlipResult> out;
     for (const auto& name : names) {
+        // A face's place: its connected surface, when names cannot separate it (a vault
+        // sharing its material with the floor, in a file without groups).
+        if (std::find(scene.groups.begin(), scene.groups.end(), name) == scene.groups.end())
+            if (const long face = named_face(scene, name); face >= 0) {
+                const auto surfaces = connect_surfaces(scene);
+                FlipResult result{name, "connected surface", 0};
+                for (const auto f : surfaces.members[surfaces.surface_of[std::size_t(face)]]) {
+                    std::reverse(scene.polygons[f].vertices.begin(),
+                                 scene.polygons[f].vertices.end());
+                    ++result.faces;
+                }
+                out.push_back(result);
+                continue;
+            }
         // A group (or object) by that name, else a material: a file without groups (one
         // 'default') still names its lamp's material.
         const auto group = std::find(scene.groups.begin(), scene.groups.end(), name);
@@ -563,7 +600,7 @@ std::vector<FlipResult> flip_groups(Scene& scene, const std::vector<std::string>
                 materials += (materials.empty() ? "" : ", ") + m.name;
             throw InputError("--flip: no group '" + name + "' and no material of that name in " +
                              scene.path + " (groups: " + groups + "; materials: " + materials +
-                             ")");
+                             "; or a face as FILE:LINE, for its connected surface)");
         }
         const auto index = static_cast<std::uint32_t>(
             by_group ? group - scene.groups.begin() : material - scene.materials.begin());

@@ -180,14 +180,20 @@ void report_findings(const std::vector<OrientationFinding>& findings, const Scen
 std::vector<bool> orientation_pass(Scene& scene, const MeshOptions& options, MeshReport& report) {
     using Kind = MeshReport::Kind;
     for (const auto& flipped : flip_groups(scene, options.flip))
-        report.add(Kind::Note, "--flip " + flipped.name + " reversed " +
-                                   std::to_string(flipped.faces) + " face(s) of the " +
-                                   flipped.what + " of that name");
+        report.add(Kind::Note,
+                   "--flip " + flipped.name + " reversed " + std::to_string(flipped.faces) +
+                       " face(s) of the " + flipped.what +
+                       (flipped.what == "connected surface" ? " of that face" : " of that name"));
     const auto findings = check_orientation(scene);
     report_findings(findings, scene, options, report, [&](const OrientationFinding& finding) {
-        return options.orient_fix || finding.to_flip.empty() ? ""
-               : finding.material                            ? "; --orient fix would flip them"
-                                  : "; --orient fix would flip them, or --flip the group";
+        if (options.orient_fix || finding.to_flip.empty()) return std::string();
+        if (!finding.material)
+            return std::string("; --orient fix would flip them, or --flip the group");
+        // In a file without groups, the surface is named by a face of it.
+        if (finding.kind == OrientationFinding::Kind::AgainstNeighbours)
+            return std::string("; --orient fix would flip them");
+        return "; --orient fix would flip them, or --flip " +
+               face_location(scene, finding.surface_line) + " that surface alone";
     });
     turn_lamps(scene, options, report);
     std::vector<bool> turned(scene.polygons.size(), false);
