@@ -94,4 +94,16 @@ rm l.ff && ln -sf /etc/passwd l.ff.parts/l.ff.part1
 grep -q "l.ff.part1 is a symbolic link, not a part a shard wrote: removed" link.txt || fail "the linked part is not named: $(cat link.txt)"
 cmp -s l.ff l-first.ff || fail "with a linked part, the merge is not the first run's bytes"
 [ ! -L l.ff.parts/l.ff.part1 ] || fail "the link is still there"
+
+step "parts from another mesh are not done shards (#70 item 9)"
+"$BIN/rad-mesh" "$WORK/office/office.obj" -o other.mesh --max-edge 0.2 -q 2>/dev/null || fail "mesh other"
+"$SHARDS" -n 2 o.ff -- "$BIN/rad-ff" other.mesh --rays 64 -q 2>/dev/null || fail "sharded o.ff"
+rm o.ff
+# The mesh made again, finer: the parts there are the old mesh's (the merge refused them on
+# every rerun, advising to run the same command again).
+"$BIN/rad-mesh" "$WORK/office/office.obj" -o other.mesh --max-edge 0.15 -q 2>/dev/null || fail "mesh other again"
+one_run o.ff "$BIN/rad-ff" other.mesh --rays 64 -q
+"$SHARDS" -n 2 o.ff -- "$BIN/rad-ff" other.mesh --rays 64 -q 2> other.txt || fail "parts of another mesh: $(cat other.txt)"
+grep -q "removed o.ff.parts/o.ff.part0 o.ff.parts/o.ff.part1: made by another command or from inputs that have changed since" other.txt || fail "the old mesh's parts are not named: $(cat other.txt)"
+same o.ff "parts of another mesh computed again"
 finish
