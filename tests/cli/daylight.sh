@@ -100,7 +100,13 @@ r = list(hours)
 for k in range(8760 - 24, 8760): r[k] = field(field(r[k], 1, "2"), 2, "29")
 write("feb29.epw", r)
 open(sys.argv[2] + "/nobody.txt", "w").write("0\n" * 8760)
+r = list(hours); r[1] = field(r[1], 14, "47"); write("night.epw", r)
 PY
+# A record giving light at night (Mannheim's file gives DNI 47 W/m^2 through 1,316 nights'
+# hours) is said, and counts as dark (#70 item 6; bench/perez-climates runs every hour of
+# six climates' files).
+"$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad" --grid "0 0 4 6 0.8 2 2" --epw "$TMP/night.epw" --annual -o "$TMP/night.ill" -q 2> "$TMP/night.txt" >/dev/null || fail "a night's light: $(cat "$TMP/night.txt")"
+grep -q "night.epw: 1 hour(s) give light while the sun is below the horizon all hour (first: line 10, 01-01 02:00, DNI 47, DHI 0 W/m^2): the file's fault, counted as dark" "$TMP/night.txt" || fail "the night's light is not said: $(cat "$TMP/night.txt")"
 for bad in "dni.epw:4009: radiation of 12345 W/m^2" "noon.epw:9: the record for 1/1 hour 12 stands where 1/1 hour 1 belongs" \
            "feb29.epw:8745: the record for 2/29 hour 1 stands where 12/31 hour 1 belongs"; do
   expect_error "$bad" "$TMP/x.ill" \

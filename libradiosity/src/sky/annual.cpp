@@ -16,6 +16,9 @@ namespace {
 // Directions per sky patch for the hourly patch means: 4 x 4 (3 degrees apart on Tregenza's
 // patches), where one sky's 16 x 16 would cost a year 16 times as much.
 constexpr int kHourlySide = 4;
+// The sun's zenith at an hour's middle past which the whole hour is night (8 degrees under the
+// horizon: it moves at most 15 degrees an hour): whatever light the record gives, it is dark.
+constexpr double kNightZenith = 98;
 
 struct HourlySkies {
     std::size_t count = 0;                // sky patches
@@ -39,6 +42,7 @@ HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, cons
     tbb::parallel_for(std::size_t(0), hours, [&](std::size_t t) {
         const auto& h = weather.hours[t];
         const auto sun = sun_of_hour(weather, h);
+        if (sun.zenith > kNightZenith) return;
         if (h.diffuse_horizontal <= 0 && (h.direct_normal <= 0 || sun.zenith >= 90)) return;
         const auto sky = Sky::perez(h.direct_normal, h.diffuse_horizontal, sun, h.day_of_year(),
                                     h.dew_point, frame, ground);
@@ -55,6 +59,30 @@ HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, cons
     });
     return out;
 }
+
+// A note on the hours whose record gives light (DNI or DHI above 0) while the sun is below
+// the horizon all hour (its middle 8 degrees under: a weather file's fault, Mannheim's gives
+// DNI 47 W/m^2 through 1,500 nights' hours), which count as dark; empty when there are none.
+// Dawn and dusk hours, whose middle is just under the horizon, are not faults.
+std::string night_light_note(const Weather& weather) {
+    long count = 0;
+    const WeatherHour* first = nullptr;
+    for (const auto& h : weather.hours) {
+        if (!(h.direct_normal > 0 || h.diffuse_horizontal > 0)) continue;
+        if (sun_of_hour(weather, h).zenith <= kNightZenith) continue;
+        if (!first) first = &h;
+        ++count;
+    }
+    if (!first) return "";
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "%s: %ld hour(s) give light while the sun is below the horizon all hour (first: "
+                  "line %d, %02d-%02d %02d:00, DNI %g, DHI %g W/m^2): the file's fault, counted "
+                  "as dark",
+                  weather.path.c_str(), count, first->line, first->month, first->day, first->hour,
+                  first->direct_normal, first->diffuse_horizontal);
+    return text;
+}
 } // namespace
 
 radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
@@ -63,6 +91,9 @@ radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
                                       const std::vector<std::uint8_t>& occupied, double ground,
                                       bool quiet, std::vector<std::string>* notes) {
     const auto skies = hourly_skies(weather, sensors.patches(), sensors.frame(), ground);
+    if (notes)
+        if (auto night = night_light_note(weather); !night.empty())
+            notes->push_back(std::move(night));
     if (notes) {
         const auto first = std::find(skies.adjusted.begin(), skies.adjusted.end(), 1);
         if (first != skies.adjusted.end()) {
