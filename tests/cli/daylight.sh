@@ -101,7 +101,12 @@ for k in range(8760 - 24, 8760): r[k] = field(field(r[k], 1, "2"), 2, "29")
 write("feb29.epw", r)
 open(sys.argv[2] + "/nobody.txt", "w").write("0\n" * 8760)
 r = list(hours); r[1] = field(r[1], 14, "47"); write("night.epw", r)
+quoted = field(head[0], 1, '"Gen\xfcgsam"')
+open(sys.argv[2] + "/quoted.epw", "w", encoding="latin-1").writelines([quoted] + head[1:] + hours)
 PY
+# The place as a page shows it: the quotes some writers put round it gone, Latin-1 made UTF-8.
+"$BIN/rad-gather" "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad" --grid "0 0 4 6 0.8 2 2" --epw "$TMP/quoted.epw" --annual -o "$TMP/quoted.ill" 2>/dev/null > "$TMP/quoted.txt" || fail "a quoted place"
+grep -q "^annual daylight at 4 sensor(s), Genügsam (" "$TMP/quoted.txt" || fail "the place is not shown as text: $(head -1 "$TMP/quoted.txt")"
 # A record giving light at night (Mannheim's file gives DNI 47 W/m^2 through 1,316 nights'
 # hours) is said, and counts as dark (#70 item 6; bench/perez-climates runs every hour of
 # six climates' files).

@@ -2,6 +2,7 @@
 // Dictionary", fields counted from 1: 1-5 date and time, 8 dew point, 10 pressure in Pa, 15
 // direct normal and 16 diffuse horizontal radiation in Wh/m^2 over the hour, 9999 when
 // missing).
+#include "radfmt/names.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/text_input.hpp"
 #include "radiosity/weather.hpp"
@@ -58,7 +59,12 @@ Location parse_location(const std::string& line, const FileLoc& at, std::string&
     if (f.empty() || f[0] != "LOCATION" || f.size() < 10)
         throw InputError(at, "an EPW file starts with LOCATION,city,state,country,source,WMO,"
                              "latitude,longitude,time zone,elevation (this is no EPW file)");
-    place = f[1];
+    // As pages and summaries show it: without the quotes some writers put round it
+    // ("VAN-NUYS-AP"), UTF-8 (a Latin-1 'ü' from older files made one).
+    std::string_view city = f[1];
+    if (city.size() >= 2 && city.front() == '"' && city.back() == '"')
+        city = city.substr(1, city.size() - 2);
+    place = radfmt::clean_name(city);
     Location l;
     l.latitude = number(f, 6, at, "latitude");
     l.longitude = number(f, 7, at, "longitude");
