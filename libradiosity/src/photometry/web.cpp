@@ -139,22 +139,53 @@ double Photometry::intensity(double h_deg, double v_deg) const {
 
 namespace {
 // The flux over v in [v_low, v_high] (degrees): every cell's bilinear intensity times the
-// solid angle's Jacobian, by a 4 x 4 Gauss-Legendre rule.
+// solid angle's Jacobian, by a 4 x 4 Gauss-Legendre rule. The intensity is the cell's own
+// bilinear (what Photometry::intensity finds by searching for the cell), and the Jacobian is
+// made once per vertical (or, type B, horizontal) node: a file of 10 million values took 11 s.
 double integrate(const Photometry& p, double v_low, double v_high) {
     static constexpr double kNode[4] = {-0.8611363115940526, -0.3399810435848563,
                                         0.3399810435848563, 0.8611363115940526};
     static constexpr double kWeight[4] = {0.3478548451374538, 0.6521451548625461,
                                           0.6521451548625461, 0.3478548451374538};
     constexpr double kRad = std::numbers::pi / 180;
-    double total = 0;
     // A cell wider than 5 degrees is split, so the rule stays exact enough for the Jacobian
     // over wide cells (an isotropic file's one cell of 180 degrees).
     const auto pieces = [](double span) { return std::max(1, int(std::ceil(span / 5))); };
+    // Per vertical cell: its clipped span and each piece's nodes' Jacobian (types C and A).
+    struct Column {
+        double lo = 0, hi = 0;
+        int pieces = 0;
+        std::vector<double> jacobian; // [piece * 4 + b]
+    };
+    std::vector<Column> columns(p.v.size() > 1 ? p.v.size() - 1 : 0);
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+        auto& c = columns[j];
+        c.lo = std::max(p.v[j], v_low), c.hi = std::min(p.v[j + 1], v_high);
+        if (!(c.hi > c.lo)) continue;
+        c.pieces = pieces(c.hi - c.lo);
+        for (int pv = 0; pv < c.pieces; ++pv) {
+            const double v0 = c.lo + (c.hi - c.lo) * pv / c.pieces;
+            const double v1 = c.lo + (c.hi - c.lo) * (pv + 1) / c.pieces;
+            const double vm = 0.5 * (v0 + v1), vr = 0.5 * (v1 - v0);
+            for (int b = 0; b < 4; ++b) {
+                const double vv = vm + vr * kNode[b];
+                c.jacobian.push_back(p.type == PhotometricType::C ? std::sin(vv * kRad)
+                                                                  : std::cos(vv * kRad));
+            }
+        }
+    }
+    const std::size_t nv_all = p.v.size();
+    double total = 0;
     for (std::size_t i = 0; i + 1 < p.h.size(); ++i)
-        for (std::size_t j = 0; j + 1 < p.v.size(); ++j) {
-            const double lo = std::max(p.v[j], v_low), hi = std::min(p.v[j + 1], v_high);
+        for (std::size_t j = 0; j < columns.size(); ++j) {
+            const auto& column = columns[j];
+            const double lo = column.lo, hi = column.hi;
             if (!(hi > lo)) continue;
-            const int nh = pieces(p.h[i + 1] - p.h[i]), nv = pieces(hi - lo);
+            const int nh = pieces(p.h[i + 1] - p.h[i]), nv = column.pieces;
+            const double a00 = p.candela[i * nv_all + j], a01 = p.candela[i * nv_all + j + 1];
+            const double a10 = p.candela[(i + 1) * nv_all + j];
+            const double a11 = p.candela[(i + 1) * nv_all + j + 1];
+            const double hspan = p.h[i + 1] - p.h[i], vspan = p.v[j + 1] - p.v[j];
             for (int ph = 0; ph < nh; ++ph)
                 for (int pv = 0; pv < nv; ++pv) {
                     const double h0 = p.h[i] + (p.h[i + 1] - p.h[i]) * ph / nh;
@@ -162,15 +193,18 @@ double integrate(const Photometry& p, double v_low, double v_high) {
                     const double v0 = lo + (hi - lo) * pv / nv, v1 = lo + (hi - lo) * (pv + 1) / nv;
                     const double hm = 0.5 * (h0 + h1), hr = 0.5 * (h1 - h0);
                     const double vm = 0.5 * (v0 + v1), vr = 0.5 * (v1 - v0);
+                    if (!(hspan > 0)) continue; // a plane given twice: no width, no flux
                     for (int a = 0; a < 4; ++a)
                         for (int b = 0; b < 4; ++b) {
                             const double hh = hm + hr * kNode[a], vv = vm + vr * kNode[b];
-                            const double jacobian =
-                                p.type == PhotometricType::C   ? std::sin(vv * kRad)
-                                : p.type == PhotometricType::A ? std::cos(vv * kRad)
-                                                               : std::cos(hh * kRad);
+                            const double jacobian = p.type == PhotometricType::B
+                                                        ? std::cos(hh * kRad)
+                                                        : column.jacobian[pv * 4 + b];
+                            const double s = (hh - p.h[i]) / hspan, t = (vv - p.v[j]) / vspan;
+                            const double intensity =
+                                (1 - s) * ((1 - t) * a00 + t * a01) + s * ((1 - t) * a10 + t * a11);
                             total += kWeight[a] * kWeight[b] * hr * vr * kRad * kRad * jacobian *
-                                     p.intensity(hh, vv);
+                                     intensity;
                         }
                 }
         }
