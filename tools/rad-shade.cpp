@@ -69,8 +69,8 @@ void add_image_options(CLI::App& app, ShadeArgs& a) {
     app.add_option("--view", a.view_text,
                    "Radiance view options, e.g. \"-vp 0 1 3 -vd 0 0 -1 -vu 0 1 0 -vh 40 -vv 40\" "
                    "(neither --view nor --view-file: rad-shade chooses a camera that sees the "
-                   "surfaces' fronts, from outside each side of the scene or inside it, and "
-                   "prints it)");
+                   "surfaces' fronts, standing inside an enclosed interior at eye height, else "
+                   "from outside each side of the scene or inside it, and prints it)");
     app.add_option("--view-file", a.view_file,
                    "File with Radiance view options (e.g. scenes/cornell/cornell.vf)");
     app.add_option("-x,--width", a.width, "Image width in pixels")
