@@ -361,3 +361,16 @@ TEST_CASE("a surface's figures leave out sensors without a value, and its verdic
     CHECK(rad::lux_text(std::nan("")) == "-");
     CHECK(rad::html_escape("<a & \"b\">") == "&lt;a &amp; &quot;b&quot;&gt;");
 }
+
+TEST_CASE("a figure printed beside its requirement agrees with the verdict") {
+    // #68: U0 0.5995 was printed "0.60" beside "fails 0.60".
+    CHECK(rad::ratio_text(0.5995, 0.6) == "0.5995");
+    CHECK(rad::ratio_text(0.59951, 0.6) == "0.5995");
+    CHECK(rad::ratio_text(0.6001, 0.6) == "0.60");
+    CHECK(rad::ratio_text(0.5912, 0.6) == "0.59");
+    CHECK(rad::ratio_text(0.5995, std::nan("")) == "0.60"); // nothing asked: two decimals
+    CHECK(rad::lux_text(499.6, 500) == "499.6");
+    CHECK(rad::lux_text(499.96, 500) == "499.96");
+    CHECK(rad::lux_text(500.4, 500) == "500");
+    CHECK(rad::lux_text(412.3, 500) == "412");
+}

@@ -78,6 +78,11 @@ struct ReportInput {
 std::string lux_text(double lux);
 // A ratio (U0, Emin/Emax) as the page shows it: two decimals.
 std::string ratio_text(double ratio);
+// The same beside a requirement (value >= required; NaN: none): with as many more decimals
+// (up to four) as make the printed figure agree with its verdict (U0 0.5995 against 0.60 is
+// "0.5995", never "0.60" beside "fails"; Em 499.6 against 500 is "499.6").
+std::string lux_text(double lux, double required);
+std::string ratio_text(double ratio, double required);
 
 // The page.
 std::string report_html(const ReportInput& input);

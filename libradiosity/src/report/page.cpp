@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 
 namespace rad {
@@ -149,12 +150,13 @@ std::string contents(const ReportInput& in) {
 
 std::string surface_row(const ReportSurface& s, std::size_t index) {
     const auto& st = s.stats;
+    const auto& r = s.surface.required;
     return "<tr data-surface=\"" + html_escape(s.surface.name) + "\"><td><a href=\"#surface-" +
            std::to_string(index + 1) + "\">" + html_escape(s.surface.name) + "</a></td><td>" +
-           calc_kind_name(s.surface.kind) + "</td>" + cell(lux_text(st.mean)) +
-           cell(lux_text(st.min)) + cell(lux_text(st.max)) + cell(ratio_text(st.u0())) +
-           cell(ratio_text(st.min_over_max())) + "<td>" + required_text(s.surface.required) +
-           "</td>" +
+           calc_kind_name(s.surface.kind) + "</td>" + cell(lux_text(st.mean, r.em)) +
+           cell(lux_text(st.min, r.emin)) + cell(lux_text(st.max)) +
+           cell(ratio_text(st.u0(), r.u0)) + cell(ratio_text(st.min_over_max())) + "<td>" +
+           required_text(s.surface.required) + "</td>" +
            verdict_text(s.surface.required.of_light(), s.verdict.passes(), s.verdict.close()) +
            "</tr>";
 }
@@ -306,10 +308,11 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
     out += "<table class=\"figures\" data-surface=\"" + html_escape(s.surface.name) + "\"><tbody>";
     out += grid_rows(s);
     const auto& e = s.errors;
-    out += figure_row("Em (lx)", lux_text(st.mean), "em", error_text(e.mean));
-    out += figure_row("Emin (lx)", lux_text(st.min), "emin", error_text(e.min));
+    const auto& r = s.surface.required;
+    out += figure_row("Em (lx)", lux_text(st.mean, r.em), "em", error_text(e.mean));
+    out += figure_row("Emin (lx)", lux_text(st.min, r.emin), "emin", error_text(e.min));
     out += figure_row("Emax (lx)", lux_text(st.max), "emax", error_text(e.max));
-    out += figure_row("U0 = Emin/Em", ratio_text(st.u0()), "u0", error_text(e.u0, true));
+    out += figure_row("U0 = Emin/Em", ratio_text(st.u0(), r.u0), "u0", error_text(e.u0, true));
     out += figure_row("Emin/Emax", ratio_text(st.min_over_max()), "ratio");
     if (st.without_value)
         out += "<tr><th>Points without a value</th><td>" + std::to_string(st.without_value) +
@@ -475,6 +478,31 @@ std::string lux_text(double lux) {
 
 std::string ratio_text(double ratio) {
     return std::isfinite(ratio) ? fixed(ratio, 2) : "-";
+}
+
+namespace {
+// `value` to `decimals`, or more until the printed number compares with `required` as the
+// value does.
+std::string agreeing(double value, double required, int decimals) {
+    std::string text = fixed(value, decimals);
+    if (!std::isfinite(value) || !std::isfinite(required)) return text;
+    const bool meets = value >= required;
+    for (int d = decimals; d <= decimals + 4; ++d) {
+        text = fixed(value, d);
+        if ((std::strtod(text.c_str(), nullptr) >= required) == meets) break;
+    }
+    return text;
+}
+} // namespace
+
+std::string lux_text(double lux, double required) {
+    if (!std::isfinite(lux)) return "-";
+    const double a = std::abs(lux);
+    return agreeing(lux, required, a >= 99.95 ? 0 : a >= 9.995 ? 1 : 2);
+}
+
+std::string ratio_text(double ratio, double required) {
+    return std::isfinite(ratio) ? agreeing(ratio, required, 2) : "-";
 }
 
 std::string html_escape(const std::string& text) {
