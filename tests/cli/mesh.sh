@@ -220,6 +220,13 @@ grep -q "rad-mesh: --flip vault.obj:$line reversed 256 face(s) of the connected 
 "$BIN/rad-ff" "$TMP/vault.mesh" -o "$TMP/vault.ff" 2> "$TMP/vault-ff.err" || fail "rad-ff on the turned vault"
 ! grep -q "wrong way" "$TMP/vault-ff.err" || fail "a surface still faces the wrong way: $(cat "$TMP/vault-ff.err")"
 expect_error "--flip vault.obj:2: no face of" "$TMP/x.mesh" "$BIN/rad-mesh" "$TMP/vault.obj" -o "$TMP/x.mesh" --flip vault.obj:2
+# A closed room that does not enclose the rest of the scene but holds its lamps is a room,
+# not an object inside out: the house whose roof overhangs its walls was warned "6 face(s)
+# face into their object (inside out); --orient fix would flip them", and the fix flipped the
+# rooms to face out.
+python3 "$SRC/tests/cli/interior_scenes.py" house "$TMP/overhang.obj"
+"$BIN/rad-mesh" "$TMP/overhang.obj" -o "$TMP/overhang.mesh" --orient fix 2> "$TMP/overhang.txt" || fail "mesh the house"
+! grep -q "inside out\|flipped" "$TMP/overhang.txt" || fail "the house's rooms taken for an object inside out: $(cat "$TMP/overhang.txt")"
 # Many orientation findings: at most 20 lines, the largest first, and a count of the rest;
 # -v lists every one. 25 cubes, each inside out and a group of its own, one of 12 triangles.
 python3 - "$TMP/cubes.obj" <<'PY'

@@ -234,12 +234,28 @@ struct SurfaceVerdict {
     bool room = false;
 };
 
+// Whether one of the emitting faces `lamps` of another surface has its centroid strictly
+// inside `box` (of `faces`, one connected surface, ascending).
+bool holds_lamp(const std::vector<std::size_t>& faces, const std::vector<std::size_t>& lamps,
+                const std::vector<FaceGeometry>& face, const Box& box) {
+    const auto inside = [&](const Vec3& p) {
+        for (int c = 0; c < 3; ++c)
+            if (!(p[c] > box.lo[c] && p[c] < box.hi[c])) return false;
+        return true;
+    };
+    for (const auto f : lamps)
+        if (inside(face[f].centroid) && !std::binary_search(faces.begin(), faces.end(), f))
+            return true;
+    return false;
+}
+
 // Which parity class of a connected surface faces the right way. Facing inward is right for a
 // room, a surface that encloses everything else; any other surface is an object, which must
 // face outward.
 SurfaceVerdict judge_surface(const std::vector<std::size_t>& faces, const Scene& scene,
                              const std::vector<FaceGeometry>& face, const std::vector<int>& parity,
-                             const SurfaceGraph& surfaces, const Box& scene_box) {
+                             const SurfaceGraph& surfaces, const Box& scene_box,
+                             const std::vector<std::size_t>& lamps) {
     double area[2] = {0, 0};
     Box box;
     Vec3 centre{0, 0, 0};
@@ -255,7 +271,12 @@ SurfaceVerdict judge_surface(const std::vector<std::size_t>& faces, const Scene&
     verdict.minority = area[1] <= area[0] ? 1 : 0;
     const bool closed =
         std::none_of(faces.begin(), faces.end(), [&](auto f) { return surfaces.open_edge_of[f]; });
-    verdict.room = encloses(box, scene_box);
+    // A room encloses everything else, or, drawn facing in, holds a lamp of another surface
+    // (two rooms side by side, a house whose roof overhangs its walls: lit inside, not objects
+    // inside out; a lamp's housing drawn facing out stays an object).
+    double drawn = 0; // < 0: the faces as drawn point towards the centre
+    for (auto f : faces) drawn += dot(face[f].normal2, face[f].centroid - centre);
+    verdict.room = encloses(box, scene_box) || (drawn < 0 && holds_lamp(faces, lamps, face, box));
     // For an open room or a surface alone in its scene (an empty room or a lone object?), the
     // majority; otherwise the one whose faces point away from the surface's centre (an object)
     // or towards it (a closed room around other things). For a closed surface the score below
@@ -289,12 +310,15 @@ std::vector<OrientationFinding> check_orientation(const Scene& scene) {
     // neighbours: two faces agree when they run along their shared edge in opposite
     // directions. The minority (by area) disagrees with the rest.
     const auto surfaces = connect_surfaces(scene);
+    std::vector<std::size_t> lamps; // the emitting faces, which tell a room (lit inside)
+    for (std::size_t f = 0; f < n; ++f)
+        if (scene.materials[scene.polygons[f].material].emits()) lamps.push_back(f);
     std::vector<std::size_t> against_neighbours, inside_out, room_outward;
     std::vector<bool> flip(n, false);
     std::vector<int> parity(n, -1);
     for (const auto& faces : surfaces.members) {
         if (faces.size() < 2 || !winding_parity(faces, surfaces, parity)) continue;
-        const auto verdict = judge_surface(faces, scene, face, parity, surfaces, scene_box);
+        const auto verdict = judge_surface(faces, scene, face, parity, surfaces, scene_box, lamps);
         for (auto f : faces) {
             if (parity[f] == verdict.right) continue;
             flip[f] = true;
