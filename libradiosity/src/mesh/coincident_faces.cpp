@@ -117,20 +117,13 @@ CoincidentCase::Kind judge_sides(double first_fronts, double second_fronts) {
 // another room in the same plane, whose scene is on its other side, on its own.
 std::vector<FacePairs> touching_pieces(const Scene& scene, const std::vector<std::uint32_t>& weld,
                                        const FacePairs& pairs) {
-    UnionFind pieces(pairs.size());
-    std::map<std::uint32_t, std::size_t> pair_at; // a welded corner: the first pair using it
-    for (std::size_t k = 0; k < pairs.size(); ++k)
-        for (const auto f : {pairs[k].first, pairs[k].second})
-            for (const auto v : scene.polygons[f].vertices) {
-                const auto [it, added] = pair_at.try_emplace(weld[v], k);
-                if (!added) pieces.unite(k, it->second);
-            }
-    std::map<std::size_t, std::size_t> index_of_root;
     std::vector<FacePairs> split;
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-        const auto [it, added] = index_of_root.try_emplace(pieces.find(k), split.size());
-        if (added) split.emplace_back();
-        split[it->second].push_back(pairs[k]);
+    for (const auto& group : groups_sharing_keys(pairs.size(), [&](std::size_t k, auto add) {
+             for (const auto f : {pairs[k].first, pairs[k].second})
+                 for (const auto v : scene.polygons[f].vertices) add(weld[v]);
+         })) {
+        auto& piece = split.emplace_back();
+        for (const auto k : group) piece.push_back(pairs[k]);
     }
     return split;
 }

@@ -108,20 +108,13 @@ bool SurfaceViews::open_to_outside(std::uint32_t surface, const Vec3& from, cons
         if (off_plane(e[0]) || off_plane(e[1])) edges.push_back(e);
     }
     // The openings: those edges in chains joined at shared (welded) corners.
-    UnionFind chains(edges.size());
-    std::map<std::uint32_t, std::size_t> edge_at;
-    for (std::size_t k = 0; k < edges.size(); ++k)
-        for (const auto v : edges[k])
-            if (const auto [it, added] = edge_at.try_emplace(welded_[v], k); !added)
-                chains.unite(k, it->second);
-    std::map<std::size_t, std::pair<Vec3, double>> sums; // per chain: corners' sum, count
-    for (std::size_t k = 0; k < edges.size(); ++k)
-        for (const auto v : edges[k]) {
-            auto& [sum, count] = sums[chains.find(k)];
-            sum = sum + vertices_[v], count += 1;
-        }
-    for (const auto& [chain, total] : sums) {
-        const Vec3 towards = total.first * (1.0 / total.second) - from;
+    const auto chains = groups_sharing_keys(edges.size(), [&](std::size_t k, auto add) {
+        for (const auto v : edges[k]) add(welded_[v]);
+    });
+    for (const auto& chain : chains) {
+        Vec3 sum{0, 0, 0};
+        for (const auto k : chain) sum = sum + vertices_[edges[k][0]] + vertices_[edges[k][1]];
+        const Vec3 towards = sum * (1.0 / double(2 * chain.size())) - from;
         if (length(towards) > 0 && rays_.trace(from, normalized(towards)).patch < 0) return true;
     }
     return false;

@@ -10,7 +10,6 @@
 #include "weld.hpp"
 
 #include <algorithm>
-#include <map>
 
 namespace rad {
 
@@ -52,22 +51,13 @@ std::vector<std::vector<std::size_t>> lamp_pieces(const Scene& scene) {
     std::vector<std::size_t> lamps;
     for (std::size_t f = 0; f < scene.polygons.size(); ++f)
         if (scene.materials[scene.polygons[f].material].emits()) lamps.push_back(f);
-    UnionFind pieces(lamps.size());
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> lamp_at; // (material, corner)
-    for (std::size_t k = 0; k < lamps.size(); ++k) {
+    // Keyed by material and corner: lamps of two materials that touch are two pieces.
+    auto split = groups_sharing_keys(lamps.size(), [&](std::size_t k, auto add) {
         const auto& polygon = scene.polygons[lamps[k]];
-        for (const auto v : polygon.vertices) {
-            const auto [it, added] = lamp_at.try_emplace({polygon.material, weld[v]}, k);
-            if (!added) pieces.unite(k, it->second);
-        }
-    }
-    std::map<std::size_t, std::size_t> index_of_root;
-    std::vector<std::vector<std::size_t>> split;
-    for (std::size_t k = 0; k < lamps.size(); ++k) {
-        const auto [it, added] = index_of_root.try_emplace(pieces.find(k), split.size());
-        if (added) split.emplace_back();
-        split[it->second].push_back(lamps[k]);
-    }
+        for (const auto v : polygon.vertices) add(std::uint64_t(polygon.material) << 32 | weld[v]);
+    });
+    for (auto& piece : split)
+        for (auto& k : piece) k = lamps[k];
     return split;
 }
 
