@@ -75,6 +75,7 @@ struct LampTurn {
     std::size_t faces = 0;
     double backs_before = 0, backs_after = 0; // shares of its light meeting backs, each side
     int line = 0;                             // the piece's first face's
+    bool kept = false; // turned by hand (its group or material named by --flip): left
     bool turned = false;
 };
 std::vector<LampTurn> turn_lamps_facing_backs(Scene& scene, const std::vector<std::string>& keep);

@@ -90,9 +90,9 @@ std::vector<LampTurn> turn_lamps_facing_backs(Scene& scene, const std::vector<st
         LampTurn turn{scene.materials[scene.polygons[piece.front()].material].name, piece.size(),
                       front.back_share(), back.back_share(), scene.polygons[piece.front()].line};
         // Most of its light on backs, and turned, little: its fixture is in front of it.
-        turn.turned = turn.backs_before > kLampBackShare &&
-                      turn.backs_after < 0.5 * turn.backs_before &&
-                      !kept_by_user(scene, piece.front(), keep);
+        turn.kept = kept_by_user(scene, piece.front(), keep);
+        turn.turned = !turn.kept && turn.backs_before > kLampBackShare &&
+                      turn.backs_after < 0.5 * turn.backs_before;
         if (turn.turned)
             for (const auto f : piece) {
                 auto& vertices = scene.polygons[f].vertices;

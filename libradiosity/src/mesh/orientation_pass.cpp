@@ -138,9 +138,8 @@ void turn_lamps(Scene& scene, const MeshOptions& options, MeshReport& report) {
         ++m.pieces;
         if (piece.turned)
             m.turned.push_back(&piece);
-        else if (piece.backs_before > kDoubtfulLampShare &&
-                 piece.backs_after < 0.5 * piece.backs_before &&
-                 !std::count(options.flip.begin(), options.flip.end(), piece.material))
+        else if (!piece.kept && piece.backs_before > kDoubtfulLampShare &&
+                 piece.backs_after < 0.5 * piece.backs_before)
             m.doubtful.push_back(&piece);
     }
     for (const auto& [material, m] : by_material) {
