@@ -106,7 +106,7 @@ class SurfaceViews {
     std::vector<std::size_t> face_of_; // per traced triangle
     Surfaces surfaces_;
     const std::vector<Vec3>& vertices_;
-    std::vector<std::uint32_t> welded_;
+    const std::vector<std::uint32_t>& welded_; // the owner's (the Imprinter's)
     RayScene rays_;
 };
 
