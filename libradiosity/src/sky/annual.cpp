@@ -26,6 +26,10 @@ struct HourlySkies {
     std::vector<Vec3> sun;                // per hour
     std::vector<double> sun_lux;          // the beam's normal illuminance, 0 when down
     std::vector<std::uint8_t> adjusted;   // per hour: its Perez sky was adjusted
+    // Per hour: the record gives light (DNI or DHI above 0) though the sun is below the
+    // horizon all hour (a weather file's fault: Mannheim's gives DNI 47 W/m^2 through 1,316
+    // nights' hours); dark all the same.
+    std::vector<std::uint8_t> night_light;
 };
 
 HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, const SkyFrame& frame,
@@ -38,11 +42,15 @@ HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, cons
     out.sun.assign(hours, Vec3{0, 1, 0});
     out.sun_lux.assign(hours, 0.0);
     out.adjusted.assign(hours, 0);
+    out.night_light.assign(hours, 0);
     const auto cells = patches.cells(frame, kHourlySide); // once for the year
     tbb::parallel_for(std::size_t(0), hours, [&](std::size_t t) {
         const auto& h = weather.hours[t];
         const auto sun = sun_of_hour(weather, h);
-        if (sun.zenith > kNightZenith) return;
+        if (sun.zenith > kNightZenith) {
+            out.night_light[t] = h.direct_normal > 0 || h.diffuse_horizontal > 0;
+            return;
+        }
         if (h.diffuse_horizontal <= 0 && (h.direct_normal <= 0 || sun.zenith >= 90)) return;
         const auto sky = Sky::perez(h.direct_normal, h.diffuse_horizontal, sun, h.day_of_year(),
                                     h.dew_point, frame, ground);
@@ -60,27 +68,18 @@ HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, cons
     return out;
 }
 
-// A note on the hours whose record gives light (DNI or DHI above 0) while the sun is below
-// the horizon all hour (its middle 8 degrees under: a weather file's fault, Mannheim's gives
-// DNI 47 W/m^2 through 1,500 nights' hours), which count as dark; empty when there are none.
-// Dawn and dusk hours, whose middle is just under the horizon, are not faults.
-std::string night_light_note(const Weather& weather) {
-    long count = 0;
-    const WeatherHour* first = nullptr;
-    for (const auto& h : weather.hours) {
-        if (!(h.direct_normal > 0 || h.diffuse_horizontal > 0)) continue;
-        if (sun_of_hour(weather, h).zenith <= kNightZenith) continue;
-        if (!first) first = &h;
-        ++count;
-    }
-    if (!first) return "";
+// A note on the hours `flags` marks: "FILE: N hour(s) <what> (first: line L, MM-DD HH:00, DNI
+// d, DHI h W/m^2)<then>"; empty when none is.
+std::string flagged_hours_note(const Weather& weather, const std::vector<std::uint8_t>& flags,
+                               const char* what, const char* then) {
+    const auto first = std::find(flags.begin(), flags.end(), 1);
+    if (first == flags.end()) return "";
+    const auto& h = weather.hours[std::size_t(first - flags.begin())];
     char text[400];
     std::snprintf(text, sizeof text,
-                  "%s: %ld hour(s) give light while the sun is below the horizon all hour (first: "
-                  "line %d, %02d-%02d %02d:00, DNI %g, DHI %g W/m^2): the file's fault, counted "
-                  "as dark",
-                  weather.path.c_str(), count, first->line, first->month, first->day, first->hour,
-                  first->direct_normal, first->diffuse_horizontal);
+                  "%s: %ld hour(s) %s (first: line %d, %02d-%02d %02d:00, DNI %g, DHI %g W/m^2)%s",
+                  weather.path.c_str(), long(std::count(flags.begin(), flags.end(), 1)), what,
+                  h.line, h.month, h.day, h.hour, h.direct_normal, h.diffuse_horizontal, then);
     return text;
 }
 } // namespace
@@ -92,23 +91,16 @@ radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
                                       bool quiet, std::vector<std::string>* notes) {
     const auto skies = hourly_skies(weather, sensors.patches(), sensors.frame(), ground);
     if (notes)
-        if (auto night = night_light_note(weather); !night.empty())
-            notes->push_back(std::move(night));
-    if (notes) {
-        const auto first = std::find(skies.adjusted.begin(), skies.adjusted.end(), 1);
-        if (first != skies.adjusted.end()) {
-            const auto& h = weather.hours[std::size_t(first - skies.adjusted.begin())];
-            char text[400];
-            std::snprintf(text, sizeof text,
-                          "%s: %ld hour(s) whose Perez distribution is negative over the whole "
-                          "sky at the hour's brightness were taken at the least brightness that "
-                          "gives a sky (first: line %d, %02d-%02d %02d:00, DNI %g, DHI %g W/m^2)",
-                          weather.path.c_str(),
-                          long(std::count(skies.adjusted.begin(), skies.adjusted.end(), 1)), h.line,
-                          h.month, h.day, h.hour, h.direct_normal, h.diffuse_horizontal);
-            notes->push_back(text);
-        }
-    }
+        for (auto note :
+             {flagged_hours_note(weather, skies.night_light,
+                                 "give light while the sun is below the horizon all hour",
+                                 ": the file's fault, counted as dark"),
+              flagged_hours_note(weather, skies.adjusted,
+                                 "whose Perez distribution is negative over the whole sky at the "
+                                 "hour's brightness were taken at the least brightness that gives "
+                                 "a sky",
+                                 "")})
+            if (!note.empty()) notes->push_back(std::move(note));
     const std::size_t n = positions.size(), hours = weather.hours.size(), count = skies.count;
     radfmt::AnnualData year;
     year.positions = positions;
