@@ -176,16 +176,18 @@ double integrate(const Photometry& p, double v_low, double v_high) {
     }
     const std::size_t nv_all = p.v.size();
     double total = 0;
-    for (std::size_t i = 0; i + 1 < p.h.size(); ++i)
+    for (std::size_t i = 0; i + 1 < p.h.size(); ++i) {
+        const double hspan = p.h[i + 1] - p.h[i];
+        if (!(hspan > 0)) continue; // a plane given twice: no width, no flux
         for (std::size_t j = 0; j < columns.size(); ++j) {
             const auto& column = columns[j];
             const double lo = column.lo, hi = column.hi;
             if (!(hi > lo)) continue;
-            const int nh = pieces(p.h[i + 1] - p.h[i]), nv = column.pieces;
+            const int nh = pieces(hspan), nv = column.pieces;
             const double a00 = p.candela[i * nv_all + j], a01 = p.candela[i * nv_all + j + 1];
             const double a10 = p.candela[(i + 1) * nv_all + j];
             const double a11 = p.candela[(i + 1) * nv_all + j + 1];
-            const double hspan = p.h[i + 1] - p.h[i], vspan = p.v[j + 1] - p.v[j];
+            const double vspan = p.v[j + 1] - p.v[j];
             for (int ph = 0; ph < nh; ++ph)
                 for (int pv = 0; pv < nv; ++pv) {
                     const double h0 = p.h[i] + (p.h[i + 1] - p.h[i]) * ph / nh;
@@ -193,7 +195,6 @@ double integrate(const Photometry& p, double v_low, double v_high) {
                     const double v0 = lo + (hi - lo) * pv / nv, v1 = lo + (hi - lo) * (pv + 1) / nv;
                     const double hm = 0.5 * (h0 + h1), hr = 0.5 * (h1 - h0);
                     const double vm = 0.5 * (v0 + v1), vr = 0.5 * (v1 - v0);
-                    if (!(hspan > 0)) continue; // a plane given twice: no width, no flux
                     for (int a = 0; a < 4; ++a)
                         for (int b = 0; b < 4; ++b) {
                             const double hh = hm + hr * kNode[a], vv = vm + vr * kNode[b];
@@ -208,6 +209,7 @@ double integrate(const Photometry& p, double v_low, double v_high) {
                         }
                 }
         }
+    }
     return total;
 }
 } // namespace
