@@ -185,16 +185,18 @@ void add_threads_option(CLI::App& app, int& threads) {
 }
 
 std::uint64_t memory_limit(const std::string& max_memory) {
-    return max_memory.empty() ? static_cast<std::uint64_t>(0.8 * job_memory_bytes())
-                              : parse_size(max_memory, "--max-memory");
+    return max_memory.empty()
+               ? static_cast<std::uint64_t>(kDefaultMemoryShare * double(job_memory_bytes()))
+               : parse_size(max_memory, "--max-memory");
 }
 
 std::string memory_limit_text(const std::string& max_memory) {
     if (!max_memory.empty()) return "--max-memory " + human_bytes(double(memory_limit(max_memory)));
     std::string source;
     const auto bytes = job_memory_bytes(&source);
-    return "--max-memory's default " + human_bytes(0.8 * double(bytes)) + " (80% of " + source +
-           ", " + human_bytes(double(bytes)) + ")";
+    return "--max-memory's default " + human_bytes(kDefaultMemoryShare * double(bytes)) + " (" +
+           std::to_string(std::lround(100 * kDefaultMemoryShare)) + "% of " + source + ", " +
+           human_bytes(double(bytes)) + ")";
 }
 
 void check_outputs(const std::vector<std::string>& inputs,

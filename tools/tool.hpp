@@ -69,14 +69,14 @@ std::uint64_t parse_size(const std::string& text, const std::string& option);
 // is all there (SystemError, with the system's reason, when it cannot be written).
 void write_output(const std::string& output, const std::function<void(std::FILE*)>& write);
 
-// How a final gather at sensors is made (rad-gather, rad-report, so that both give the same
-// numbers): --rays, --shadow-rays, --exact, --smooth, --crease-angle, --seed. `rays_help`
-// ends --rays' help. Returns the --rays option (whether it was given).
 // " ± 0.012": a printed figure's standard error to two digits; "" when it is not known.
 std::string error_suffix(double error);
 
 // --accuracy, --max-rays and --batches: the error bar and sampling to a stated accuracy.
 void add_accuracy_options(CLI::App& app, GatherOptions& options);
+// How a final gather at sensors is made (rad-gather, rad-report, so that both give the same
+// numbers): --rays, --shadow-rays, --exact, --smooth, --crease-angle, --seed. `rays_help`
+// ends --rays' help. Returns the --rays option (whether it was given).
 CLI::Option* add_sensor_gather_options(CLI::App& app, GatherOptions& options, std::string& smooth,
                                        const std::string& rays_help);
 

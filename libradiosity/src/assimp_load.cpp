@@ -416,7 +416,8 @@ Scene load_scene(const fs::path& path, const SceneOptions& options, SceneReport*
     if (!options.import.isolate) return load_with_assimp(path, options, report);
     ImportLimits limits = options.import;
     if (limits.memory_bytes == 0)
-        limits.memory_bytes = static_cast<std::uint64_t>(0.8 * double(job_memory_bytes()));
+        limits.memory_bytes =
+            static_cast<std::uint64_t>(kDefaultMemoryShare * double(job_memory_bytes()));
     SceneReport local;
     return import::run_isolated(
         path, limits,

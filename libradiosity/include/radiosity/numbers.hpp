@@ -21,6 +21,9 @@ std::uint64_t physical_memory_bytes();
 // memory.max, v1 memory.limit_in_bytes, up the hierarchy: a Slurm --mem, a container) and the
 // address-space limit (ulimit -v, RLIMIT_AS); `source` says which it was.
 std::uint64_t job_memory_bytes(std::string* source = nullptr);
+// The share of it a tool takes for its own when given no limit (--max-memory,
+// --import-memory): room for the rest of the job.
+inline constexpr double kDefaultMemoryShare = 0.8;
 std::string human_bytes(double bytes);
 
 } // namespace rad
