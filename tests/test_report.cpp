@@ -273,7 +273,7 @@ TEST_CASE("the calculation-surfaces file is refused with its line and the fix") 
     CHECK(refusal(kHeader + "a,task,0,0,0,1,0,0,0,0,-1,,,,,,\n\"b,task,0,0,0,1,0,0,0,0,-1,,,,,,\n")
               .find("calc.csv:3: a double quote opened on this line is never closed") !=
           std::string::npos);
-    CHECK(refusal(kHeader + "\xFF\xFEbay,task,0,0,0,1,0,0,0,0,-1,,,,,,\n").find("not UTF-8") !=
+    CHECK(refusal(kHeader + "\xFF\xFE" "bay,task,0,0,0,1,0,0,0,0,-1,,,,,,\n").find("not UTF-8") !=
           std::string::npos);
     // A quoted name with a comma over one line, then the next row, still reads.
     const auto two = calc_from(kHeader + "\"a, \"\"1\"\"\",task,0,0,0,1,0,0,0,0,-1,,,,,,\n" +
