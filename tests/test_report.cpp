@@ -273,8 +273,9 @@ TEST_CASE("the calculation-surfaces file is refused with its line and the fix") 
     CHECK(refusal(kHeader + "a,task,0,0,0,1,0,0,0,0,-1,,,,,,\n\"b,task,0,0,0,1,0,0,0,0,-1,,,,,,\n")
               .find("calc.csv:3: a double quote opened on this line is never closed") !=
           std::string::npos);
-    CHECK(refusal(kHeader + "\xFF\xFE" "bay,task,0,0,0,1,0,0,0,0,-1,,,,,,\n").find("not UTF-8") !=
-          std::string::npos);
+    CHECK(refusal(kHeader + "\xFF\xFE"
+                            "bay,task,0,0,0,1,0,0,0,0,-1,,,,,,\n")
+              .find("not UTF-8") != std::string::npos);
     // A quoted name with a comma over one line, then the next row, still reads.
     const auto two = calc_from(kHeader + "\"a, \"\"1\"\"\",task,0,0,0,1,0,0,0,0,-1,,,,,,\n" +
                                "b,task,0,0,0,1,0,0,0,0,-1,,,,,,\n");
@@ -373,4 +374,33 @@ TEST_CASE("a figure printed beside its requirement agrees with the verdict") {
     CHECK(rad::lux_text(499.96, 500) == "499.96");
     CHECK(rad::lux_text(500.4, 500) == "500");
     CHECK(rad::lux_text(412.3, 500) == "412");
+}
+
+TEST_CASE("LENI by EN 15193-1's quick method equals its formula worked by hand") {
+    // A school: 1800 h with daylight, 200 without; constant illuminance (0.9), automatic
+    // daylight control (0.7), 3 W of standby, 5 W charging 4000 h; 800 W over 100 m^2.
+    const auto in = rad::parse_lighting_energy("education,FC=0.9,FD=0.7,Ppc=3,Pem=5,te=4000");
+    CHECK(in.daylight_hours == 1800);
+    CHECK(in.night_hours == 200);
+    CHECK(in.given == std::vector<std::string>{"FC", "FD", "Ppc", "Pem", "te"});
+    const auto e = rad::lighting_energy(in, 800, 100);
+    // W_L = 800 x 0.9 x (1800 x 1 x 0.7 + 200 x 1) / 1000 = 1051.2 kWh
+    CHECK(e.lighting_kwh == Approx(1051.2).epsilon(1e-12));
+    // W_P = (3 x (8760 - 2000) + 5 x 4000) / 1000 = 40.28 kWh
+    CHECK(e.parasitic_kwh == Approx(40.28).epsilon(1e-12));
+    CHECK(e.leni() == Approx(10.9148).epsilon(1e-12));
+    // Hours given replace the building's; every type has its hours.
+    CHECK(rad::parse_lighting_energy("hotel,tD=1000,tN=500").night_hours == 500);
+    for (const auto& b : rad::lighting_energy_buildings()) {
+        const auto hours = rad::parse_lighting_energy(b);
+        CHECK(hours.daylight_hours + hours.night_hours > 0);
+        CHECK(hours.daylight_hours + hours.night_hours <= rad::kHoursInYear);
+    }
+    CHECK_THROWS_WITH(rad::parse_lighting_energy("office,tD=8000,tN=1000"),
+                      Catch::Contains("more than the year's 8760 hours"));
+    CHECK_THROWS_WITH(rad::parse_lighting_energy("office,FO=-1"),
+                      Catch::Contains("FO=-1 is not a number of 0 or more"));
+    CHECK_THROWS_WITH(rad::parse_lighting_energy("office,FO"), Catch::Contains("is not KEY=VALUE"));
+    CHECK_THROWS_WITH(rad::lighting_energy(in, 0, 100), Catch::Contains("input power is unknown"));
+    CHECK_THROWS_WITH(rad::lighting_energy(in, 800, 0), Catch::Contains("give --area"));
 }

@@ -31,7 +31,7 @@ namespace {
 struct ReportArgs {
     std::vector<std::string> inputs;
     std::string surfaces, output, pdf, project, date, direct, smooth = "crease";
-    std::string epw, occupancy;
+    std::string epw, occupancy, energy;
     double ground = 0.2;
     int sky_samples = 64;
     CLI::Option* rays_option = nullptr;
@@ -66,6 +66,13 @@ void add_options(CLI::App& app, ReportArgs& a) {
                    "The floor area (m^2) the installed power density is over (default: the "
                    "largest floor or work plane's whole rectangle)")
         ->check(rad::tool::finite_range(1e-9, 1e12));
+    app.add_option("--energy", a.energy,
+                   "Also the lighting energy (LENI) by EN 15193-1's quick method: a building "
+                   "type (office, education, hospital, hotel, restaurant, sports, retail, "
+                   "manufacturing) for its operating hours, then any of tD, tN (hours), FC, FO, FD "
+                   "(dependency factors, default 1), Ppc, Pem (standby and emergency charging W, "
+                   "default 0), te (charging hours, default 8760) as KEY=VALUE, e.g. "
+                   "office,FO=0.9,Pem=6");
     app.add_option("--epw", a.epw,
                    "A daylight solution: also the year's metrics (sDA300/50%, ASE1000,250h, "
                    "DA300, UDI) and DA300 plans from this weather file, as rad-gather --epw "
@@ -267,11 +274,13 @@ void print_summary(const ReportArgs& a, const rad::ReportInput& in) {
         failing += s.daylight ? !s.daylight->verdict.passes() : !s.verdict.passes();
         points += s.grid.size();
     }
+    char leni[64] = "";
+    if (in.energy) std::snprintf(leni, sizeof leni, ", LENI %.2f kWh/(m^2 a)", in.energy->leni());
     std::fprintf(stderr,
                  "rad-report: %zu surface(s) (%ld points, %ld failing their requirements), %zu "
-                 "observer(s)%s: %s%s%s\n",
+                 "observer(s)%s%s: %s%s%s\n",
                  in.surfaces.size(), points, failing, in.observers.size(),
-                 in.daylight ? ", daylight" : "", a.output.c_str(), a.pdf.empty() ? "" : ", ",
+                 in.daylight ? ", daylight" : "", leni, a.output.c_str(), a.pdf.empty() ? "" : ", ",
                  a.pdf.c_str());
 }
 
@@ -356,11 +365,25 @@ std::vector<rad::ReportView> views_of(const ReportArgs& a, const rad::CalcFile& 
     return views;
 }
 
+// P_n: every luminaire's input watts from its photometric file.
+double installed_watts(const rad::LuminaireSet& set) {
+    double watts = 0;
+    for (const auto& l : set.luminaires) {
+        const auto& p = set.photometries[l.photometry];
+        if (!(p.input_watts > 0))
+            throw rad::InputError("--energy: " + p.source + " gives no input watts (luminaire " +
+                                  l.name + "); LENI needs every luminaire's power");
+        watts += p.input_watts;
+    }
+    return watts;
+}
+
 // Illuminance: the surfaces' lux, the luminaires, the observers' glare.
 void lighting_figures(const ReportArgs& a, const rad::CalcFile& file, radfmt::MeshData& mesh,
                       const radfmt::RadiosityData& solution, const radfmt::Header& mesh_header,
                       const radfmt::Header& rad_header, rad::ReportInput& in,
-                      std::optional<rad::LuminaireSet>& luminaires) {
+                      std::optional<rad::LuminaireSet>& luminaires,
+                      const std::optional<rad::LightingEnergyInputs>& energy) {
     if (!a.epw.empty() || !a.occupancy.empty())
         throw rad::InputError("--epw and --occupancy are for a daylight solution (rad-solve "
                               "--direct FILE.sky); " +
@@ -369,6 +392,10 @@ void lighting_figures(const ReportArgs& a, const rad::CalcFile& file, radfmt::Me
     luminaires =
         rad::solution_luminaires(rad_header, a.inputs[1], a.direct, mesh, a.inputs[0], mesh_header);
     const auto* set = luminaires ? &*luminaires : nullptr;
+    if (energy && !set)
+        throw rad::InputError("--energy needs the luminaires' input power: " + a.inputs[1] +
+                              " was not solved with a luminaires file (rad-solve --direct "
+                              "FILE.lum)");
     const double metres = rad::metres_per_unit(mesh_header);
     const rad::Box box = rad::bounds(mesh.vertices);
     in.method = method_text(a, rad_header, set != nullptr);
@@ -380,6 +407,7 @@ void lighting_figures(const ReportArgs& a, const rad::CalcFile& file, radfmt::Me
     in.observers = observers_of(file, gatherer, set, box, sensors);
     in.views = views_of(a, file, gatherer, set, solution);
     power_area(a, file, metres, in);
+    if (energy) in.energy = rad::lighting_energy(*energy, installed_watts(*set), in.power_area_m2);
 }
 
 int report(ReportArgs& a) {
@@ -388,6 +416,8 @@ int report(ReportArgs& a) {
     rad::tool::check_outputs({mesh_path, rad_path, a.surfaces, a.direct, a.epw, a.occupancy},
                              {{"-o", a.output}, {"--pdf", a.pdf}});
     a.options.smoothing = rad::parse_smoothing(a.smooth);
+    std::optional<rad::LightingEnergyInputs> energy;
+    if (!a.energy.empty()) energy = rad::parse_lighting_energy(a.energy);
     rad::ThreadLimit thread_limit(a.threads);
     const auto file = rad::read_calc_file(a.surfaces);
     radfmt::Header mesh_header, rad_header;
@@ -398,10 +428,14 @@ int report(ReportArgs& a) {
     rad::apply_recorded_overrides(mesh, rad_header);
     auto in = title_of(a, mesh_header, rad_header);
     std::optional<rad::LuminaireSet> luminaires;
-    if (rad::is_daylight_solution(rad_header))
+    if (rad::is_daylight_solution(rad_header)) {
+        if (energy)
+            throw rad::InputError("--energy is for a solution lit by luminaires; " + rad_path +
+                                  " is a daylight solution");
         daylight_figures(a, file, mesh, solution, mesh_header, rad_header, in);
-    else
-        lighting_figures(a, file, mesh, solution, mesh_header, rad_header, in, luminaires);
+    } else {
+        lighting_figures(a, file, mesh, solution, mesh_header, rad_header, in, luminaires, energy);
+    }
 
     const auto html = rad::report_html(in);
     radfmt::OutputBatch outputs;

@@ -79,6 +79,24 @@ grep -v ',camera,' "$TMP/calc.csv" > "$TMP/nocamera.csv"
 "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" -o "$TMP/a.html" --area 12 -q --date x ||
   fail "rad-report --area"
 grep -q '<span class="density">13.00</span>' "$TMP/a.html" || fail "156 W over 12 m^2: $(grep -o 'class="density">[^<]*' "$TMP/a.html")"
+# --energy: EN 15193-1's LENI by hand for 156 W over 12 m^2 of office (2250 h with daylight, 250
+# without), FO 0.9, FD 0.8, 2 W of controls' standby, 4 W charging all year:
+# W_L = 156 (2250 x 0.9 x 0.8 + 250 x 0.9) / 1000 = 287.82 kWh; W_P = (2 x 6260 + 4 x 8760) / 1000
+# = 47.56 kWh; LENI = 335.38 / 12 = 27.95 kWh/(m^2 a).
+"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" -o "$TMP/e.html" --area 12 --date x \
+  --energy "office, FO=0.9,FD=0.8,Ppc=2,Pem=4" 2> "$TMP/e.err" || fail "rad-report --energy: $(cat "$TMP/e.err")"
+for want in '<span class="wl">287.8</span>' '<span class="wp">47.6</span>' '<span class="leni">27.95</span>'; do
+  grep -qF "$want" "$TMP/e.html" || fail "--energy: no $want in $(grep -o '<section[^>]*id="energy".*' "$TMP/e.html" | head -c 3000)"
+done
+grep -q '<tr data-key="FD">.*<td>given</td></tr><tr data-key="Ppc">' "$TMP/e.html" || fail "--energy: FD not marked given"
+grep -q '<tr data-key="te">.*<td>default</td></tr>' "$TMP/e.html" || fail "--energy: te not marked default"
+grep -qF "LENI 27.95 kWh/(m^2 a)" "$TMP/e.err" || fail "--energy summary: $(cat "$TMP/e.err")"
+expect_error "'offices' is not a building type; give one of office, education" "$TMP/x.html" \
+  "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" -o "$TMP/x.html" --energy offices
+expect_error "'fo=0.9' is not KEY=VALUE with a key of tD" "$TMP/x.html" \
+  "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" -o "$TMP/x.html" --energy office,fo=0.9
+expect_error "FD is a dependency factor, 0 to 1" "$TMP/x.html" \
+  "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" -o "$TMP/x.html" --energy office,FD=8
 
 # Daylight: the glazed room's daylight factor and a year in Denver, the same numbers as
 # rad-gather --surfaces (its df column; its --metrics' da300, sun_hours, udi_useful).
@@ -128,6 +146,8 @@ expect_error "views of a daylight solution" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/noobserver.csv" -o "$TMP/x.html"
 expect_error "--epw and --occupancy are for a daylight solution" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" --epw "$EPW" -o "$TMP/x.html"
+expect_error "--energy is for a solution lit by luminaires" "$TMP/x.html" \
+  "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/noobserver.csv" -o "$TMP/x.html" --energy office
 
 # Refusals: the file and line, the fix; no output left.
 printf 'name,kind,x,y,z,ux,uy,uz,vx,vy,vz\nwp,workplane,0,0.8,4,6,0,0,0,0,-4\nwp,wall,0,0,0,6,0,0,0,3,0\n' > "$TMP/twice.csv"

@@ -6,6 +6,7 @@
 #include "radiosity/calc_surfaces.hpp"
 #include "radiosity/daylight.hpp"
 #include "radiosity/glare.hpp"
+#include "radiosity/lighting_energy.hpp"
 #include "radiosity/luminaires.hpp"
 
 #include <limits>
@@ -65,8 +66,9 @@ struct ReportInput {
     std::vector<ReportView> views;
     const LuminaireSet* luminaires = nullptr; // none: no schedule, no glare
     double metres_per_unit = 1;
-    double power_area_m2 = 0;    // the area the power density is over (0: not given)
-    std::string power_area_what; // which area that is, for the page
+    double power_area_m2 = 0;             // the area the power density is over (0: not given)
+    std::string power_area_what;          // which area that is, for the page
+    std::optional<LightingEnergy> energy; // EN 15193-1's LENI, when asked for
     // A daylight solution: the sky the factors are under, and the year's weather file (its
     // place) and occupied hours, when there is one.
     bool daylight = false;

@@ -142,6 +142,7 @@ std::string contents(const ReportInput& in) {
         out += "<li><a href=\"#surface-" + std::to_string(k + 1) + "\">" +
                html_escape(in.surfaces[k].surface.name) + "</a></li>";
     if (in.luminaires) out += "<li><a href=\"#luminaires\">Luminaires</a></li>";
+    if (in.energy) out += "<li><a href=\"#energy\">Energy (LENI)</a></li>";
     if (!in.observers.empty()) out += "<li><a href=\"#glare\">Glare (UGR)</a></li>";
     if (!in.views.empty()) out += "<li><a href=\"#views\">Views</a></li>";
     out += "<li><a href=\"#method\">Method</a></li>";
@@ -392,6 +393,61 @@ std::string luminaires_section(const ReportInput& in) {
     return out + "</div></section>";
 }
 
+// One input of the energy calculation: its symbol, what it is, its value, and whether the
+// user gave it or it is the quick method's default.
+std::string energy_row(const LightingEnergyInputs& in, const char* key, const char* symbol,
+                       const std::string& what, const std::string& value) {
+    bool given = false;
+    for (const auto& k : in.given) given = given || k == key;
+    return "<tr data-key=\"" + std::string(key) + "\"><th>" + symbol + "</th><td>" + what +
+           "</td>" + cell(value) + "<td>" + (given ? "given" : "default") + "</td></tr>";
+}
+
+std::string energy_section(const LightingEnergy& e) {
+    const auto& in = e.inputs;
+    std::string out =
+        "<section class=\"part\" id=\"energy\"><h2>Energy (EN 15193-1, LENI)"
+        "</h2><p class=\"note\">The quick method: W<sub>L</sub> = P<sub>n</sub> "
+        "F<sub>C</sub> (t<sub>D</sub> F<sub>O</sub> F<sub>D</sub> + t<sub>N</sub> "
+        "F<sub>O</sub>) / 1000; W<sub>P</sub> = (P<sub>pc</sub> (t<sub>y</sub> &#8722; "
+        "t<sub>D</sub> &#8722; t<sub>N</sub>) + P<sub>em</sub> t<sub>e</sub>) / 1000; "
+        "LENI = (W<sub>L</sub> + W<sub>P</sub>) / A. Operating hours by building type "
+        "as the quick method tabulates them (" +
+        html_escape(in.building) + ").</p>";
+    out += "<table class=\"energy-inputs\"><thead><tr><th>Symbol</th><th>Input</th><th "
+           "class=\"num\">Value</th><th>Source</th></tr></thead><tbody>";
+    out += "<tr data-key=\"Pn\"><th>P<sub>n</sub></th><td>installed lighting power (W): the "
+           "photometric files' input watts</td>" +
+           cell(fixed(e.lighting_watts, 1)) + "<td>layout</td></tr>";
+    out += "<tr data-key=\"A\"><th>A</th><td>floor area (m&#178;)</td>" +
+           cell(fixed(e.area_m2, 2)) + "<td>as the power density</td></tr>";
+    out += energy_row(in, "tD", "t<sub>D</sub>", "operating hours with daylight (h/a)",
+                      fixed(in.daylight_hours, 0));
+    out += energy_row(in, "tN", "t<sub>N</sub>", "operating hours without daylight (h/a)",
+                      fixed(in.night_hours, 0));
+    out += energy_row(in, "FC", "F<sub>C</sub>", "constant illuminance factor",
+                      fixed(in.constant_illuminance, 2));
+    out += energy_row(in, "FO", "F<sub>O</sub>", "occupancy dependency factor",
+                      fixed(in.occupancy, 2));
+    out +=
+        energy_row(in, "FD", "F<sub>D</sub>", "daylight dependency factor", fixed(in.daylight, 2));
+    out += energy_row(in, "Ppc", "P<sub>pc</sub>", "controls' standby power (W)",
+                      fixed(in.controls_watts, 1));
+    out += energy_row(in, "Pem", "P<sub>em</sub>", "emergency charging power (W)",
+                      fixed(in.emergency_watts, 1));
+    out += energy_row(in, "te", "t<sub>e</sub>", "emergency charging hours (h/a)",
+                      fixed(in.charge_hours, 0));
+    out += "</tbody></table><table class=\"energy\"><tbody>";
+    out += "<tr><th>W<sub>L</sub>, lighting (kWh/a)</th>" +
+           cell("<span class=\"wl\">" + fixed(e.lighting_kwh, 1) + "</span>") + "</tr>";
+    out += "<tr><th>W<sub>P</sub>, parasitic (kWh/a)</th>" +
+           cell("<span class=\"wp\">" + fixed(e.parasitic_kwh, 1) + "</span>") + "</tr>";
+    out += "<tr><th>W, total (kWh/a)</th>" + cell(fixed(e.total_kwh(), 1)) + "</tr>";
+    out += "<tr><th>LENI (kWh/(m&#178;&#183;a))</th>" +
+           cell("<b><span class=\"leni\">" + fixed(e.leni(), 2) + "</span></b>") + "</tr>";
+    return out + "</tbody></table></section>";
+}
+
 std::string glare_section(const ReportInput& in) {
     std::string out = "<section class=\"part\" id=\"glare\"><h2>Glare (UGR)</h2>";
     out += "<p class=\"note\">CIE 117: UGR = 8 log<sub>10</sub>(0.25/L<sub>b</sub> &#183; "
@@ -535,6 +591,7 @@ std::string report_html(const ReportInput& in) {
     for (std::size_t k = 0; k < in.surfaces.size(); ++k)
         out += surface_section(in, in.surfaces[k], k) + "\n";
     if (in.luminaires) out += luminaires_section(in) + "\n";
+    if (in.energy) out += energy_section(*in.energy) + "\n";
     if (!in.observers.empty()) out += glare_section(in) + "\n";
     if (!in.views.empty()) out += views_section(in) + "\n";
     out += method_section(in) + "\n</body></html>\n";
