@@ -207,6 +207,7 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     const rad::DaylightSensors sensors(
         mesh, rad::daylight_solution(solution, rad_header, a.inputs[1]), options);
     const double metres = rad::metres_per_unit(mesh_header);
+    rad::refuse_emergency_surfaces(file);
     const auto grids = rad::surface_grids(file, metres);
     std::vector<rad::Vec3> positions, normals;
     rad::surface_sensors(file, grids, rad::bounds(mesh.vertices), positions, normals);

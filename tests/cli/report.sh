@@ -148,6 +148,11 @@ expect_error "--epw and --occupancy are for a daylight solution" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/calc.csv" --epw "$EPW" -o "$TMP/x.html"
 expect_error "--energy is for a solution lit by luminaires" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/noobserver.csv" -o "$TMP/x.html" --energy office
+printf 'name,kind,x,y,z,ux,uy,uz,vx,vy,vz\nexit,escape-route,0,0.02,4,4,0,0,0,0,-2\n' > "$TMP/route.csv"
+expect_error "route.csv:2: an escape-route is lit by emergency luminaires (EN 1838), and a daylight solution has none" \
+  "$TMP/x.html" "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/route.csv" -o "$TMP/x.html"
+expect_error "route.csv:2: an escape-route is lit by emergency luminaires" "$TMP/x.csv" \
+  "$BIN/rad-gather" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/route.csv" --sky cie-overcast --daylight-factor -o "$TMP/x.csv"
 
 # Refusals: the file and line, the fix; no output left.
 printf 'name,kind,x,y,z,ux,uy,uz,vx,vy,vz\nwp,workplane,0,0.8,4,6,0,0,0,0,-4\nwp,wall,0,0,0,6,0,0,0,3,0\n' > "$TMP/twice.csv"

@@ -14,20 +14,38 @@
 
 namespace rad {
 
-enum class CalcKind { WorkPlane, Task, Wall, Ceiling, Floor, Observer, Camera };
-// "workplane", "task", "wall", "ceiling", "floor", "observer", "camera".
+enum class CalcKind {
+    WorkPlane,
+    Task,
+    Wall,
+    Ceiling,
+    Floor,
+    Observer,
+    Camera,
+    EscapeRoute, // EN 1838: the centre line of a route along u, v its width
+    OpenArea     // EN 1838: an anti-panic area
+};
+// "workplane", "task", "wall", "ceiling", "floor", "observer", "camera", "escape-route",
+// "open-area".
 const char* calc_kind_name(CalcKind kind);
+// Escape routes and open areas: lit by the emergency luminaires' direct light alone (EN 1838).
+inline bool is_emergency(CalcKind kind) {
+    return kind == CalcKind::EscapeRoute || kind == CalcKind::OpenArea;
+}
 
 inline constexpr double kNoRequirement = std::numeric_limits<double>::quiet_NaN();
 
 // What the user requires of a surface (NaN: nothing): a maintained average, a uniformity
-// Emin/Em and a minimum (lux); of daylight, a mean daylight factor and an sDA300/50% at least,
-// an ASE1000,250h at most (%).
+// Emin/Em, a minimum (lux) and a largest Emax/Emin (EN 1838's 40); of daylight, a mean daylight
+// factor and an sDA300/50% at least, an ASE1000,250h at most (%).
 struct Requirements {
     double em = kNoRequirement, u0 = kNoRequirement, emin = kNoRequirement;
+    double max_over_min = kNoRequirement;
     double df = kNoRequirement, sda = kNoRequirement, ase = kNoRequirement;
     // Whether anything is required of the light (Em, U0, Emin), of daylight (DF, sDA, ASE).
-    bool of_light() const { return !std::isnan(em) || !std::isnan(u0) || !std::isnan(emin); }
+    bool of_light() const {
+        return !std::isnan(em) || !std::isnan(u0) || !std::isnan(emin) || !std::isnan(max_over_min);
+    }
     bool of_daylight() const { return !std::isnan(df) || !std::isnan(sda) || !std::isnan(ase); }
 };
 
@@ -90,6 +108,8 @@ struct SurfaceGrid {
     long columns = 0, rows = 0;
     double width_m = 0, depth_m = 0;    // the calculation area, along u and v
     double spacing_m = 0, border_m = 0; // the spacing asked for (or the rule's), the band
+    bool emergency = false;             // EN 1838: the emergency luminaires' direct light only
+    FileLoc where;                      // the surface's line
     long size() const { return columns * rows; }
     Vec3 position(long index) const {
         const long row = index / columns, column = index % columns;
@@ -97,9 +117,14 @@ struct SurfaceGrid {
     }
     double area_m2() const { return width_m * depth_m; }
 };
+// An escape route's sensors lie on its centre line (one row along u, in the middle of v); an
+// escape route's or open area's default spacing is at most kEmergencySpacing, an open area's
+// default border EN 1838's 0.5 m.
 // Throws InputError at the surface's line when the border leaves no area or the grid would
 // exceed a million sensors.
 SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit);
+
+inline constexpr double kEmergencySpacing = 0.25; // m
 
 // Every surface's grid, in the file's order.
 std::vector<SurfaceGrid> surface_grids(const CalcFile& file, double metres_per_unit);
@@ -115,6 +140,9 @@ void surface_sensors(const CalcFile& file, const std::vector<SurfaceGrid>& grids
 // rad-report give the same numbers). A sensor inside an object or behind a surface has NaN.
 // Beside each value its standard error (lux); and the sensors that stopped at the ray budget
 // before the accuracy asked for (GatherOptions::accuracy), by index in the grid.
+// An emergency grid (escape route, open area) gets EN 1838's figure instead: the direct light
+// of the luminaires with an emergency share, each times that share, no reflected light, no
+// error; InputError at the surface's line when `luminaires` has none.
 struct GatheredSurface {
     std::vector<double> lux, error;
     std::vector<long> at_budget;
@@ -123,12 +151,16 @@ std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
                                              const LuminaireSet* luminaires, const Box& scene_box,
                                              const std::vector<SurfaceGrid>& grids, bool quiet);
 
+// InputError at the first escape route or open area of `file`: a daylight solution has no
+// emergency luminaires to light them.
+void refuse_emergency_surfaces(const CalcFile& file);
+
 // Whether `stats` meet `required` (true where nothing is required), and which margins lie
 // within two standard errors (`errors`; none: not known), where the calculation cannot tell.
 struct Verdict {
-    bool em = true, u0 = true, emin = true;
+    bool em = true, u0 = true, emin = true, max_over_min = true;
     bool em_close = false, u0_close = false, emin_close = false;
-    bool passes() const { return em && u0 && emin; }
+    bool passes() const { return em && u0 && emin && max_over_min; }
     bool close() const { return em_close || u0_close || emin_close; }
 };
 Verdict judge(const IlluminanceStats& stats, const Requirements& required,

@@ -40,6 +40,7 @@ struct Luminaire {
     Vec3 nadir{0, -1, 0};        // gamma 0 (type C), the beam axis (A, B)
     Vec3 c0{1, 0, 0}, c90{0, 0, -1};
     double maintenance = 1;
+    double emergency = 0;   // the flux share on battery (EN 1838); 0: not an emergency luminaire
     double tilt_factor = 1; // the TILT table's multiplier at its actual tilt
     double cct = 0;         // K; 0: white (R = G = B)
     Rgb tint{{1, 1, 1}};    // RGB per W of white, luminance 1
@@ -65,7 +66,8 @@ struct LuminaireSet {
 // Builds the luminaires from their sources. The layout's header line names the columns
 // name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,maintenance,group (in any order; aim, spin,
 // maintenance, group may be empty: aim 0,-1,0, spin 0, maintenance 1, group = name; an
-// optional `cct` column tints the light, keeping its lumens; EULUMDAT's lamp CCT otherwise).
+// optional `cct` column tints the light, keeping its lumens; EULUMDAT's lamp CCT otherwise; an
+// optional `emergency` column marks emergency luminaires with their flux share on battery).
 // Orientation: spin turns the luminaire about the downward axis, counter-clockwise seen from
 // above (with aim down and spin 0, C0 is +X and C90 is -Z); then the shortest rotation takes
 // (0,-1,0) to the aim (straight up: 180 degrees about +X). Throws InputError "LAYOUT:LINE:".

@@ -72,10 +72,10 @@ std::map<std::string, std::size_t> column_indices(const std::vector<std::string>
     for (const auto& [name, index] : columns)
         if (name != "name" && name != "photometry" && name != "x" && name != "y" && name != "z" &&
             name != "aim_x" && name != "aim_y" && name != "aim_z" && name != "spin" &&
-            name != "maintenance" && name != "group" && name != "cct")
+            name != "maintenance" && name != "group" && name != "cct" && name != "emergency")
             throw InputError(where, "unknown column '" + name +
                                         "' (name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,"
-                                        "maintenance,group,cct)");
+                                        "maintenance,group,cct,emergency)");
     return columns;
 }
 
@@ -281,6 +281,11 @@ LuminaireSet build_luminaires(const LuminaireSources& sources, double metres_per
         l.maintenance = number("maintenance", 1);
         if (!(l.maintenance > 0 && l.maintenance <= 1))
             throw InputError(where, "maintenance must be in (0, 1]");
+        l.emergency = number("emergency", 0);
+        if (!(l.emergency >= 0 && l.emergency <= 1))
+            throw InputError(where, "emergency is the share of the flux the luminaire gives on "
+                                    "its battery (its emergency ballast lumen factor), 0 to 1 "
+                                    "(empty or 0: not an emergency luminaire)");
         l.group = row["group"].empty() ? l.name : row["group"];
         const auto& p = set.photometries[l.photometry];
         // Tilt: the angle between the aim and straight down.

@@ -20,7 +20,8 @@ const std::map<std::string, CalcKind>& kinds() {
         {"workplane", CalcKind::WorkPlane}, {"task", CalcKind::Task},
         {"wall", CalcKind::Wall},           {"ceiling", CalcKind::Ceiling},
         {"floor", CalcKind::Floor},         {"observer", CalcKind::Observer},
-        {"camera", CalcKind::Camera}};
+        {"camera", CalcKind::Camera},       {"escape-route", CalcKind::EscapeRoute},
+        {"open-area", CalcKind::OpenArea}};
     return table;
 }
 
@@ -108,7 +109,12 @@ CalcSurface surface_of(const CsvRow& row, CalcKind kind) {
     s.border_m = row.at_least_zero("border", kNoRequirement);
     s.required.em = row.at_least_zero("Em", kNoRequirement);
     s.required.u0 = row.at_least_zero("U0", kNoRequirement);
-    s.required.emin = row.at_least_zero("Emin", kNoRequirement);
+    // EN 1838: 1 lx on an escape route's centre line, 0.5 lx over an open area, Emax/Emin at
+    // most 40 on both.
+    const double emergency_minimum = kind == CalcKind::EscapeRoute ? 1.0 : 0.5;
+    s.required.emin =
+        row.at_least_zero("Emin", is_emergency(kind) ? emergency_minimum : kNoRequirement);
+    if (is_emergency(kind)) s.required.max_over_min = 40;
     s.required.df = row.at_least_zero("DF", kNoRequirement);
     s.required.sda = row.at_least_zero("sDA", kNoRequirement);
     s.required.ase = row.at_least_zero("ASE", kNoRequirement);

@@ -87,7 +87,8 @@ std::string asked_text(std::initializer_list<Asked> asked) {
 std::string required_text(const Requirements& r) {
     return asked_text({{"Em", "&#8805;", r.em, " lx"},
                        {"U0", "&#8805;", r.u0, ""},
-                       {"Emin", "&#8805;", r.emin, " lx"}});
+                       {"Emin", "&#8805;", r.emin, " lx"},
+                       {"Emax/Emin", "&#8804;", r.max_over_min, ""}});
 }
 
 std::string daylight_required_text(const Requirements& r) {
@@ -310,11 +311,27 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
     out += grid_rows(s);
     const auto& e = s.errors;
     const auto& r = s.surface.required;
-    out += figure_row("Em (lx)", lux_text(st.mean, r.em), "em", error_text(e.mean));
-    out += figure_row("Emin (lx)", lux_text(st.min, r.emin), "emin", error_text(e.min));
-    out += figure_row("Emax (lx)", lux_text(st.max), "emax", error_text(e.max));
-    out += figure_row("U0 = Emin/Em", ratio_text(st.u0(), r.u0), "u0", error_text(e.u0, true));
+    // EN 1838's direct light is computed exactly: no error column.
+    const auto bar = [&](double error, bool ratio = false) {
+        return s.grid.emergency ? std::string() : error_text(error, ratio);
+    };
+    out += figure_row("Em (lx)", lux_text(st.mean, r.em), "em", bar(e.mean));
+    out += figure_row("Emin (lx)", lux_text(st.min, r.emin), "emin", bar(e.min));
+    out += figure_row("Emax (lx)", lux_text(st.max), "emax", bar(e.max));
+    out += figure_row("U0 = Emin/Em", ratio_text(st.u0(), r.u0), "u0", bar(e.u0, true));
     out += figure_row("Emin/Emax", ratio_text(st.min_over_max()), "ratio");
+    if (s.grid.emergency) {
+        out +=
+            figure_row("Emax/Emin", st.min > 0 ? fixed(st.max / st.min, 1) : std::string("&#8734;"),
+                       "max-over-min");
+        out += "<tr><th>Light</th><td>EN 1838: the emergency luminaires' direct light only (each "
+               "times its flux share on battery and its maintenance factor), no reflected "
+               "light" +
+               std::string(s.surface.kind == CalcKind::EscapeRoute
+                               ? "; points on the route's centre line"
+                               : "") +
+               "</td></tr>";
+    }
     if (st.without_value)
         out += "<tr><th>Points without a value</th><td>" + std::to_string(st.without_value) +
                " (inside or under objects; grey in the plan)</td></tr>";

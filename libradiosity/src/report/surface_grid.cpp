@@ -14,19 +14,24 @@ SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit) {
     SurfaceGrid grid;
     const double length_u = length(surface.u) * metres_per_unit;
     const double length_v = length(surface.v) * metres_per_unit;
-    grid.border_m = std::isnan(surface.border_m) ? (surface.kind == CalcKind::WorkPlane ? 0.5 : 0.0)
-                                                 : surface.border_m;
+    const bool route = surface.kind == CalcKind::EscapeRoute;
+    const bool banded = surface.kind == CalcKind::WorkPlane || surface.kind == CalcKind::OpenArea;
+    grid.border_m = std::isnan(surface.border_m) ? (banded ? 0.5 : 0.0) : surface.border_m;
+    grid.emergency = is_emergency(surface.kind);
+    grid.where = surface.where;
     grid.width_m = length_u - 2 * grid.border_m;
-    grid.depth_m = length_v - 2 * grid.border_m;
+    grid.depth_m = route ? length_v : length_v - 2 * grid.border_m; // a route's width stays
     if (!(grid.width_m > 0) || !(grid.depth_m > 0))
         throw InputError(surface.where,
                          "the border band of " + std::to_string(grid.border_m) +
                              " m leaves no area of the surface (a work plane's default is "
                              "EN 12464-1's 0.5 m): give a smaller border, e.g. 0");
+    const double rule = en12464_spacing(std::max(grid.width_m, grid.depth_m));
     grid.spacing_m = surface.spacing_m > 0 ? surface.spacing_m
-                                           : en12464_spacing(std::max(grid.width_m, grid.depth_m));
+                     : grid.emergency      ? std::min(rule, kEmergencySpacing)
+                                           : rule;
     const double columns = std::ceil(grid.width_m / grid.spacing_m - 1e-9);
-    const double rows = std::ceil(grid.depth_m / grid.spacing_m - 1e-9);
+    const double rows = route ? 1.0 : std::ceil(grid.depth_m / grid.spacing_m - 1e-9);
     if (columns * rows > 1e6)
         throw InputError(surface.where, "a spacing of " + std::to_string(grid.spacing_m) +
                                             " m makes over a million sensors: give a larger one");
@@ -34,11 +39,20 @@ SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit) {
     grid.rows = std::max(1L, long(rows));
     const Vec3 unit_u = normalized(surface.u), unit_v = normalized(surface.v);
     const double border = grid.border_m / metres_per_unit;
-    grid.origin = surface.corner + unit_u * border + unit_v * border;
+    grid.origin = surface.corner + unit_u * border + unit_v * (route ? 0.0 : border);
     grid.column_step = unit_u * (grid.width_m / metres_per_unit / double(grid.columns));
     grid.row_step = unit_v * (grid.depth_m / metres_per_unit / double(grid.rows));
     grid.normal = normalized(cross(surface.u, surface.v));
     return grid;
+}
+
+void refuse_emergency_surfaces(const CalcFile& file) {
+    for (const auto& s : file.surfaces)
+        if (is_emergency(s.kind))
+            throw InputError(s.where, std::string("an ") + calc_kind_name(s.kind) +
+                                          " is lit by emergency luminaires (EN 1838), and a "
+                                          "daylight solution has none: report it on the "
+                                          "luminaires' solution, or remove the line");
 }
 
 std::vector<SurfaceGrid> surface_grids(const CalcFile& file, double metres_per_unit) {
@@ -66,6 +80,7 @@ Verdict judge(const IlluminanceStats& stats, const Requirements& required,
     if (stats.count == 0) {
         v.em = std::isnan(required.em), v.u0 = std::isnan(required.u0);
         v.emin = std::isnan(required.emin);
+        v.max_over_min = std::isnan(required.max_over_min);
         return v;
     }
     const auto em = judge_figure(stats.mean, errors.mean, required.em);
@@ -74,6 +89,9 @@ Verdict judge(const IlluminanceStats& stats, const Requirements& required,
     v.em = em.passes, v.em_close = em.close;
     v.u0 = u0.passes, v.u0_close = u0.close;
     v.emin = emin.passes, v.emin_close = emin.close;
+    // Emax/Emin at most the limit (a minimum of 0 never meets it).
+    if (!std::isnan(required.max_over_min))
+        v.max_over_min = stats.min > 0 && stats.max <= required.max_over_min * stats.min;
     return v;
 }
 

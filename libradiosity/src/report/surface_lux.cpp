@@ -1,5 +1,7 @@
 // Illuminance at every sensor of the calculation surfaces, in parallel, deterministic.
 #include "radiosity/calc_surfaces.hpp"
+#include "radiosity/gather.hpp"
+#include "radiosity/luminaires.hpp"
 #include "radiosity/progress.hpp"
 
 #include <tbb/parallel_for.h>
@@ -8,6 +10,31 @@
 #include <limits>
 
 namespace rad {
+namespace {
+
+// EN 1838's illuminance: the emergency luminaires' direct light (each times its share on
+// battery; maintenance included), no reflected light.
+double emergency_lux(const Gatherer& gatherer, const LuminaireSet& set, const Vec3& point,
+                     const Vec3& normal) {
+    double lux = 0;
+    for (const auto& l : set.luminaires)
+        if (l.emergency > 0)
+            lux += l.emergency * luminaire_illuminance(set, l, point, normal, &gatherer.scene(),
+                                                       {&gatherer.specular(), &gatherer.mirrors()});
+    return lux;
+}
+
+void check_emergency_luminaires(const SurfaceGrid& grid, const LuminaireSet* set) {
+    if (set)
+        for (const auto& l : set->luminaires)
+            if (l.emergency > 0) return;
+    throw InputError(grid.where, "an escape route or open area is lit by emergency luminaires "
+                                 "(EN 1838), and the solution's layout marks none: give the "
+                                 "layout an 'emergency' column (each emergency luminaire's flux "
+                                 "share on battery, e.g. 0.1)");
+}
+
+} // namespace
 
 std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
                                              const LuminaireSet* luminaires, const Box& scene_box,
@@ -23,7 +50,18 @@ std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
         surface.lux.assign(std::size_t(grid.size()), kNone);
         surface.error.assign(std::size_t(grid.size()), kNone);
         std::vector<std::uint8_t> stopped(std::size_t(grid.size()), 0);
+        if (grid.emergency) check_emergency_luminaires(grid, luminaires);
         tbb::parallel_for(long(0), grid.size(), [&](long k) {
+            if (grid.emergency) {
+                const auto i = std::size_t(k);
+                const auto position = grid.position(k);
+                if (out_of_reach(position, scene_box).empty()) {
+                    surface.lux[i] = emergency_lux(gatherer, *luminaires, position, grid.normal);
+                    surface.error[i] = 0;
+                }
+                progress.advance(1);
+                return;
+            }
             std::string problem;
             const auto result = gather_sensor(gatherer, luminaires, scene_box, grid.position(k),
                                               grid.normal, first + std::uint64_t(k), problem);
