@@ -318,7 +318,7 @@ std::string view_number(double v) {
 std::vector<rad::ReportView> views_of(const ReportArgs& a, const rad::CalcFile& file,
                                       const rad::Gatherer& gatherer, const rad::LuminaireSet* set,
                                       const radfmt::RadiosityData& solution) {
-    constexpr int kWidth = 640, kHeight = 400, kSupersampling = 2;
+    constexpr int kWidth = 640, kHeight = 400, kSupersampling = 2, kLuminanceDecades = 4;
     std::vector<rad::ReportView> views;
     if (file.cameras.empty()) return views;
     // A view is rad-shade --gather's image, whose pixels take the rays given, not rounds to an
@@ -348,11 +348,15 @@ std::vector<rad::ReportView> views_of(const ReportArgs& a, const rad::CalcFile& 
         const rad::IrradianceCacheOptions cache;
         auto image = rad::render_gathered(view_gatherer, view, kWidth, kHeight, kSupersampling,
                                           a.quiet, set, {}, &cache);
+        rad::ReportView out;
+        // Per surface before the luminaires are drawn over what they hide, as rad-shade.
+        out.surfaces = rad::surface_luminances(image, gatherer.mesh(), gatherer.scene(), view);
         if (set) rad::draw_luminaires(image, *set, gatherer.scene(), view, kSupersampling);
+        out.scale = rad::luminance_scale(image, 0, kLuminanceDecades);
+        out.falsecolor_png = rad::luminance_png(image, out.scale);
         std::vector<std::uint8_t> pixels(image.rgb.size());
         for (std::size_t i = 0; i < pixels.size(); ++i)
             pixels[i] = rad::to_srgb8(image.rgb[i] * exposure);
-        rad::ReportView out;
         out.name = c.name;
         out.width = kWidth, out.height = kHeight;
         out.png = rad::encode_png_rgb8(kWidth, kHeight, pixels);
@@ -360,7 +364,8 @@ std::vector<rad::ReportView> views_of(const ReportArgs& a, const rad::CalcFile& 
                       "\" -x " + std::to_string(kWidth) + " -y " + std::to_string(kHeight) +
                       " --gather " + std::to_string(a.options.rays) + " --shadow-rays " +
                       std::to_string(a.options.shadow_rays) + batches + " --smooth " + a.smooth +
-                      " --crease-angle " + view_number(a.options.crease_deg) + " --png FILE";
+                      " --crease-angle " + view_number(a.options.crease_deg) +
+                      " --png FILE --falsecolor FILE --luminance-table FILE";
         views.push_back(std::move(out));
     }
     return views;

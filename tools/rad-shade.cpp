@@ -4,6 +4,7 @@
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/auto_view.hpp"
+#include "radiosity/calc_surfaces.hpp"
 #include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
@@ -13,6 +14,7 @@
 #include "radiosity/irradiance_cache.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/luminaire_image.hpp"
+#include "radiosity/luminance_map.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/rays.hpp"
@@ -49,6 +51,9 @@ struct ShadeArgs {
         return o;
     }();
     rad::tool::SkyChoice sky; // a daylight solution under one sky
+    std::string falsecolor, luminance_table;
+    double falsecolor_top = 0;
+    int falsecolor_decades = 4;
 };
 
 // The inputs, the camera and the image's size.
@@ -115,6 +120,19 @@ void add_look_options(CLI::App& app, ShadeArgs& a) {
            "surfaces that do not emit stays below, or of the emitters when only they are lit; "
            "--albedo: from the image)")
         ->check(rad::tool::finite_range(0, 1e30));
+    app.add_option("--falsecolor", a.falsecolor,
+                   "Also write the luminance (cd/m^2) as a false-colour PNG on a logarithmic "
+                   "scale with a labelled legend, as designers read Radiance's falsecolor");
+    app.add_option("--falsecolor-top", a.falsecolor_top,
+                   "--falsecolor: the scale's top, cd/m^2 (default: the brightest pixel rounded "
+                   "up to 1, 2, 2.5 or 5 x 10^k)")
+        ->check(rad::tool::finite_range(0, 1e30));
+    app.add_option("--falsecolor-decades", a.falsecolor_decades,
+                   "--falsecolor: decades the scale spans below its top")
+        ->capture_default_str();
+    app.add_option("--luminance-table", a.luminance_table,
+                   "Also write a CSV of the luminance of each surface (material) the view sees: "
+                   "surface, pixels, share of the image, mean and largest cd/m^2");
     app.add_option("--backfaces", a.backfaces,
                    "Faces seen from behind (the side of a one-sided patch that gets no light): "
                    "show them as they are, or mark them in magenta (a face-orientation overlay)")
@@ -192,6 +210,16 @@ void check_combinations(const ShadeArgs& a) {
     if (a.albedo && (!a.mix.empty() || a.mix_only || a.layers))
         throw rad::InputError("--mix, --mix-only and --layers need a radiosity file, not "
                               "--albedo");
+    const bool luminance = !a.falsecolor.empty() || !a.luminance_table.empty();
+    if (luminance && a.albedo)
+        throw rad::InputError("--falsecolor and --luminance-table show luminance: not with "
+                              "--albedo");
+    if (a.falsecolor_decades < 1 || a.falsecolor_decades > 9)
+        throw rad::InputError("--falsecolor-decades " + std::to_string(a.falsecolor_decades) +
+                              ": give 1 to 9 decades below the top");
+    if (luminance && !a.rows.empty())
+        throw rad::InputError("--falsecolor and --luminance-table are written by a run of the "
+                              "whole image, not by a --rows band");
     if (!a.albedo && a.rad_path.empty())
         throw rad::InputError("give a radiosity file (or use --albedo)");
 }
@@ -405,6 +433,28 @@ void say_written(const ShadeArgs& a, double scale) {
                  a.png.empty() ? "" : ", png", scale);
 }
 
+// --falsecolor's picture and --luminance-table's rows.
+void write_luminance(const ShadeArgs& a, const rad::Image& image,
+                     const std::vector<rad::SurfaceLuminance>& surfaces) {
+    if (!a.falsecolor.empty()) {
+        const auto scale = rad::luminance_scale(image, a.falsecolor_top, a.falsecolor_decades);
+        const auto png = rad::luminance_png(image, scale);
+        rad::tool::write_output(
+            a.falsecolor, [&](std::FILE* out) { std::fwrite(png.data(), 1, png.size(), out); });
+        if (!a.quiet)
+            std::fprintf(stderr, "rad-shade: --falsecolor %s: %g to %g cd/m^2, logarithmic\n",
+                         a.falsecolor.c_str(), scale.bottom(), scale.top);
+    }
+    if (a.luminance_table.empty()) return;
+    const double pixels = double(image.width) * image.height;
+    rad::tool::write_output(a.luminance_table, [&](std::FILE* out) {
+        std::fprintf(out, "surface,pixels,share,mean_cd_m2,max_cd_m2\n");
+        for (const auto& s : surfaces)
+            std::fprintf(out, "%s,%ld,%.6g,%.6g,%.6g\n", rad::csv_field(s.name).c_str(), s.pixels,
+                         double(s.pixels) / pixels, s.mean, s.max);
+    });
+}
+
 // --merge: the bands into the image (and PNG) one run writes.
 int merge_parts(ShadeArgs& a) {
     if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
@@ -463,8 +513,11 @@ int shade(ShadeArgs& a, int argc, char** argv) {
                               " files given; several are for --merge)");
     a.mesh_path = a.inputs[0];
     if (a.inputs.size() > 1) a.rad_path = a.inputs[1];
-    rad::tool::check_outputs({a.mesh_path, a.rad_path},
-                             {{"-o", a.output}, {"--png", a.png}, {"--ply", a.ply}});
+    rad::tool::check_outputs({a.mesh_path, a.rad_path}, {{"-o", a.output},
+                                                         {"--png", a.png},
+                                                         {"--ply", a.ply},
+                                                         {"--falsecolor", a.falsecolor},
+                                                         {"--luminance-table", a.luminance_table}});
     // The image, its preview and the PLY land together or not at all.
     radfmt::OutputBatch outputs;
     rad::ThreadLimit thread_limit(a.threads);
@@ -496,6 +549,10 @@ int shade(ShadeArgs& a, int argc, char** argv) {
         band = {int(range.begin), int(range.end)};
     }
     rad::Image image = render_image(a, in, view, solved, mode, corners, band);
+    // Per surface before the luminaires' openings are drawn over what they hide.
+    std::vector<rad::SurfaceLuminance> surfaces;
+    if (!a.luminance_table.empty())
+        surfaces = rad::surface_luminances(image, in.mesh, rad::RayScene(in.mesh), view);
     if (in.luminaires) draw_openings(a, in, view, image);
     if (!a.rows.empty()) { // a band: the merge checks coverage, exposes and marks the whole
         write_part(a, image, band, exr_attributes(a, in, argc, argv),
@@ -531,6 +588,7 @@ int shade(ShadeArgs& a, int argc, char** argv) {
     rad::write_exr(a.output, image, exr_attributes(a, in, argc, argv), exr_layers);
     if (!a.png.empty()) rad::write_png(a.png, image, scale);
     if (!a.ply.empty()) rad::write_ply(a.ply, in.mesh, corners, scale);
+    write_luminance(a, image, surfaces);
     outputs.commit();
     say_written(a, scale);
     return 0;

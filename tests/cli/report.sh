@@ -44,18 +44,38 @@ out=$(node "$WEB/test-report.mjs" --page "$TMP/r.html" --values "$TMP/g.csv" 2>&
 echo "$out" | head -3
 # Title block, summary and method; one page per surface; luminaires; glare; the view and method.
 pages=$(pdfinfo "$TMP/r.pdf" | awk '/^Pages:/ {print $2}')
-[ "$pages" = 8 ] || fail "the PDF has $pages pages (wanted 8: summary, 4 surfaces, luminaires, glare, views)"
+[ "$pages" = 9 ] || fail "the PDF has $pages pages (wanted 9: summary, 4 surfaces, luminaires, glare, views with their luminance, method)"
 # The camera's view is rad-shade's image, byte for byte, by the command the page gives.
-python3 - "$TMP/r.html" "$TMP/view.png" "$TMP/shade.sh" <<'PY' || fail "no view in the page"
+# Its luminance (#68 item 7): the false-colour picture is rad-shade --falsecolor's, byte for
+# byte, and each surface's luminance its --luminance-table's, to the digits shown.
+python3 - "$TMP/r.html" "$TMP/view.png" "$TMP/shade.sh" "$TMP/view-fc.png" "$TMP/view-lum.txt" <<'PY' || fail "no view in the page"
 import base64, html, re, sys
 page = open(sys.argv[1]).read()
-png = re.search(r'src="data:image/png;base64,([^"]*)"', page).group(1)
-open(sys.argv[2], "wb").write(base64.b64decode(png.replace("\n", "")))
+pngs = re.findall(r'src="data:image/png;base64,([^"]*)"', page)
+open(sys.argv[2], "wb").write(base64.b64decode(pngs[0].replace("\n", "")))
+open(sys.argv[4], "wb").write(base64.b64decode(pngs[1].replace("\n", "")))
 command = html.unescape(re.search(r'<code class="command">([^<]*)</code>', page).group(1))
-open(sys.argv[3], "w").write(command.replace("--png FILE", "--png shade.png -o shade.exr -q") + "\n")
+open(sys.argv[3], "w").write(command.replace("--png FILE", "--png shade.png -o shade.exr -q")
+                             .replace("--falsecolor FILE", "--falsecolor shade-fc.png")
+                             .replace("--luminance-table FILE", "--luminance-table shade-lum.csv") + "\n")
+table = re.search(r'<table class="luminances"[^>]*>(.*?)</table>', page, re.S).group(1)
+rows = re.findall(r'<tr><td>([^<]*)</td><td class="num">([^<]*)</td><td class="num">([^<]*)</td><td class="num">([^<]*)</td></tr>', table)
+open(sys.argv[5], "w").write("".join("%s %s %s\n" % (html.unescape(n), mean, top) for n, share, mean, top in rows))
 PY
 (cd "$TMP" && PATH="$BIN:$PATH" bash shade.sh) || fail "the page's rad-shade command: $(cat "$TMP/shade.sh")"
 cmp -s "$TMP/view.png" "$TMP/shade.png" || fail "the page's view is not rad-shade's image ($(cat "$TMP/shade.sh"))"
+cmp -s "$TMP/view-fc.png" "$TMP/shade-fc.png" || fail "the page's luminance picture is not rad-shade --falsecolor's"
+python3 - "$TMP/shade-lum.csv" "$TMP/view-lum.txt" <<'PY' || fail "the page's surface luminances are not rad-shade --luminance-table's"
+import csv, sys
+shown = [line.split() for line in open(sys.argv[2])]
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(shown) == len(rows) >= 3, (shown, rows)
+for (name, mean, top), r in zip(shown, rows):
+    assert name == r["surface"], (name, r)
+    for text, value in ((mean, float(r["mean_cd_m2"])), (top, float(r["max_cd_m2"]))):
+        digits = len(text.replace(".", "").lstrip("0"))
+        assert abs(float(text) - value) <= 0.51 * abs(value) * 10 ** (1 - digits) + 1e-12, (text, value)
+PY
 pdftotext -layout "$TMP/r.pdf" "$TMP/r.txt" || fail "pdftotext"
 em=$(grep -o '<td class="num em">[^<]*' "$TMP/r.html" | head -1 | sed 's/.*>//')
 for text in "Lighting report: Lighting example" "2026-12-05" "Summary" "Em (lx)" "Emin/Emax" "work plane" \

@@ -168,4 +168,57 @@ shade_exposure=$("$BIN/rad-shade" "$TMP/glow.mesh" "$TMP/glow.rad" -o "$TMP/glow
 bake_exposure=$("$BIN/rad-bake" "$TMP/glow.mesh" "$TMP/glow.rad" -o "$TMP/glow.glb" 2>&1 | sed -n 's/.*exposure \([0-9.e+-]*\)$/\1/p')
 [ -n "$shade_exposure" ] && [ "$shade_exposure" = "$bake_exposure" ] || fail "rad-shade's exposure '$shade_exposure' is not rad-bake's '$bake_exposure' on an all-emitting scene"
 [ "$bake_exposure" != 1 ] || fail "rad-bake left an all-emitting scene at exposure 1"
+# Luminance (#68 item 7): a furnace (a closed cube, every face emitting 1 W/m^2 with
+# reflectance 0.5, so B = 1 / (1 - 0.5) = 2 W/m^2 everywhere) seen from inside: every surface
+# is 179 x 2 / pi = 113.95 cd/m^2 in --luminance-table, and --falsecolor paints it the colour of
+# log10(113.95 / 0.02) / 4 on the scale from 200 down 4 decades.
+python3 - "$TMP" <<'PY'
+import sys
+tmp = sys.argv[1]
+v = [(x, y, z) for z in (0, 1) for y in (0, 1) for x in (0, 1)]  # index = x + 2y + 4z
+quads = [(1, 3, 2, 0), (6, 7, 5, 4), (4, 5, 1, 0), (3, 7, 6, 2), (2, 6, 4, 0), (5, 7, 3, 1)]
+with open(f"{tmp}/furnace.obj", "w") as f:
+    f.write("mtllib furnace.mtl\n")
+    for p in v: f.write("v %d %d %d\n" % p)
+    for k, q in enumerate(quads):
+        f.write("usemtl %s\n" % ("hot" if k < 3 else "warm"))
+        f.write("f %d %d %d %d\n" % tuple(i + 1 for i in q))
+with open(f"{tmp}/furnace.mtl", "w") as f:
+    f.write("newmtl hot\nKd 0.5 0.5 0.5\nKe 1 1 1\nnewmtl warm\nKd 0.5 0.5 0.5\nKe 1 1 1\n")
+PY
+{ "$BIN/rad-mesh" "$TMP/furnace.obj" -o "$TMP/furnace.mesh" --max-edge 0.25 -q 2>/dev/null &&
+  "$BIN/rad-ff" "$TMP/furnace.mesh" -o "$TMP/furnace.ff" -q && "$BIN/rad-solve" "$TMP/furnace.mesh" "$TMP/furnace.ff" -o "$TMP/furnace.rad" -q; } ||
+  fail "solve the furnace"
+"$BIN/rad-shade" "$TMP/furnace.mesh" "$TMP/furnace.rad" -o "$TMP/furnace.exr" -x 64 -y 48 --view "-vp 0.5 0.5 0.5 -vd 1 0.3 0.2 -vu 0 0 1 -vh 100 -vv 80" \
+  --falsecolor "$TMP/furnace-fc.png" --luminance-table "$TMP/furnace.csv" 2> "$TMP/furnace.err" || fail "rad-shade --falsecolor: $(cat "$TMP/furnace.err")"
+grep -qF -- "--falsecolor $TMP/furnace-fc.png: 0.02 to 200 cd/m^2, logarithmic" "$TMP/furnace.err" || fail "the scale: $(cat "$TMP/furnace.err")"
+python3 - "$TMP/furnace.csv" "$TMP/furnace-fc.png" "$SRC/tests/cli" <<'PY' || fail "the furnace's luminance"
+import csv, math, sys
+sys.path.insert(0, sys.argv[3])
+from png_stats import read_png
+rows = list(csv.DictReader(open(sys.argv[1])))
+want = 179 * 2 / math.pi
+assert [r["surface"] for r in rows] == ["hot", "warm"], rows
+assert sum(int(r["pixels"]) for r in rows) == 64 * 48, rows
+assert abs(sum(float(r["share"]) for r in rows) - 1) < 1e-5, rows
+for r in rows:
+    for key in ("mean_cd_m2", "max_cd_m2"):
+        assert abs(float(r[key]) / want - 1) < 0.005, (r, want)
+# The picture: 64 x 48 of the image, then the legend; every image pixel the furnace's colour.
+width, height, pixels = read_png(sys.argv[2])
+t = math.log10(want / 0.02) / 4
+stops = [(0.0, 0.05, 0.05, 0.35), (0.2, 0.10, 0.30, 0.90), (0.4, 0.10, 0.75, 0.75),
+         (0.6, 0.40, 0.85, 0.20), (0.8, 0.95, 0.80, 0.10), (1.0, 0.85, 0.10, 0.10)]
+k = next(i for i in range(1, len(stops)) if t <= stops[i][0])
+w = (t - stops[k - 1][0]) / (stops[k][0] - stops[k - 1][0])
+colour = [round(255 * (stops[k - 1][c] + (stops[k][c] - stops[k - 1][c]) * w)) for c in (1, 2, 3)]
+for y in range(48):
+    for x in range(64):
+        got = pixels[y][3 * x:3 * x + 3]
+        assert all(abs(a - b) <= 2 for a, b in zip(got, colour)), (x, y, list(got), colour)
+PY
+expect_error "--falsecolor and --luminance-table show luminance: not with --albedo" "$TMP/x.exr" \
+  "$BIN/rad-shade" "$TMP/furnace.mesh" -o "$TMP/x.exr" --albedo --falsecolor "$TMP/x.png"
+expect_error "--falsecolor-decades 12: give 1 to 9 decades" "$TMP/x.exr" \
+  "$BIN/rad-shade" "$TMP/furnace.mesh" "$TMP/furnace.rad" -o "$TMP/x.exr" -x 8 -y 8 --falsecolor "$TMP/x.png" --falsecolor-decades 12
 finish

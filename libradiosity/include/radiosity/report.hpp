@@ -8,6 +8,7 @@
 #include "radiosity/glare.hpp"
 #include "radiosity/lighting_energy.hpp"
 #include "radiosity/luminaires.hpp"
+#include "radiosity/luminance_map.hpp"
 
 #include <limits>
 #include <optional>
@@ -54,6 +55,11 @@ struct ReportView {
     std::string name, command;
     std::vector<std::uint8_t> png;
     int width = 0, height = 0;
+    // Its luminance: the false-colour picture (rad-shade --falsecolor's bytes), its scale,
+    // and each surface's luminance (--luminance-table).
+    std::vector<std::uint8_t> falsecolor_png;
+    LuminanceScale scale;
+    std::vector<SurfaceLuminance> surfaces;
 };
 
 struct ReportInput {

@@ -520,6 +520,26 @@ std::string glare_section(const ReportInput& in) {
     return out + "</section>";
 }
 
+// A view's luminance: the false-colour picture and each surface's figures.
+std::string view_luminance(const ReportView& v) {
+    std::string out =
+        "<figure class=\"view luminance\" data-view=\"" + html_escape(v.name) +
+        "\"><img alt=\"luminance of " + html_escape(v.name) + "\" src=\"data:image/png;base64," +
+        base64(v.falsecolor_png) + "\"><figcaption>Luminance (cd/m&#178;) of " +
+        html_escape(v.name) + ", logarithmic from " + short_number(v.scale.bottom()) + " to " +
+        short_number(v.scale.top) + " cd/m&#178;; black: nothing seen.</figcaption></figure>";
+    out += "<table class=\"luminances\" data-view=\"" + html_escape(v.name) +
+           "\"><thead><tr><th>Surface seen</th><th class=\"num\">Share of the view</th><th "
+           "class=\"num\">Mean (cd/m&#178;)</th><th class=\"num\">Max (cd/m&#178;)</th></tr>"
+           "</thead><tbody>";
+    const double pixels = double(v.width) * v.height;
+    for (const auto& s : v.surfaces)
+        out += "<tr><td>" + html_escape(s.name) + "</td>" +
+               cell(fixed(100 * double(s.pixels) / pixels, 1) + "%") + cell(lux_text(s.mean)) +
+               cell(lux_text(s.max)) + "</tr>";
+    return out + "</tbody></table>";
+}
+
 std::string views_section(const ReportInput& in) {
     std::string out = "<section class=\"part\" id=\"views\"><h2>Views</h2>";
     for (const auto& v : in.views)
@@ -528,7 +548,8 @@ std::string views_section(const ReportInput& in) {
                std::to_string(v.height) + "\" src=\"data:image/png;base64," + base64(v.png) +
                "\"><figcaption>" + html_escape(v.name) +
                ": the final gather over the solution, as <code class=\"command\">" +
-               html_escape(v.command) + "</code> renders it.</figcaption></figure>";
+               html_escape(v.command) + "</code> renders it.</figcaption></figure>" +
+               view_luminance(v);
     return out + "</section>";
 }
 
