@@ -404,3 +404,41 @@ TEST_CASE("LENI by EN 15193-1's quick method equals its formula worked by hand")
     CHECK_THROWS_WITH(rad::lighting_energy(in, 0, 100), Catch::Contains("input power is unknown"));
     CHECK_THROWS_WITH(rad::lighting_energy(in, 800, 0), Catch::Contains("give --area"));
 }
+
+TEST_CASE("walls and ceilings get EN 12464-1's minimum, escape routes EN 1838's, unless given") {
+    const std::string header = "name,kind,x,y,z,ux,uy,uz,vx,vy,vz,Em,U0,Emin\n";
+    const auto file =
+        calc_from(header + "w,wall,0,0,0,6,0,0,0,3,0,,,\n" + "c,ceiling,0,3,0,6,0,0,0,0,4,,,\n" +
+                  "w2,wall,0,0,4,6,0,0,0,3,0,75,0.2,\n" + "f,floor,0,0,0,6,0,0,0,0,-4,,,\n" +
+                  "r,escape-route,0,0,2,6,0,0,0,0,-2,,,\n" + "a,open-area,0,0,2,6,0,0,0,0,-2,,,\n" +
+                  "z,cylindrical,0,1.2,4,6,0,0,0,0,-4,150,0.1,\n");
+    const auto& s = file.surfaces;
+    REQUIRE(s.size() == 7);
+    CHECK(s[0].required.em == 50);
+    CHECK(s[0].required.u0 == 0.1);
+    CHECK(s[1].required.em == 30);
+    CHECK(s[1].required.u0 == 0.1);
+    CHECK(s[2].required.em == 75);
+    CHECK(s[2].required.u0 == 0.2);
+    CHECK(!s[3].required.of_light());
+    CHECK(s[4].required.emin == 1);
+    CHECK(s[4].required.max_over_min == 40);
+    CHECK(s[5].required.emin == 0.5);
+    CHECK(s[6].required.em == 150);
+    // An escape route's sensors lie on its centre line, 0.25 m apart at most.
+    const auto route = rad::surface_grid(s[4], 1);
+    CHECK(route.rows == 1);
+    CHECK(route.columns == 24);
+    CHECK(route.position(0)[2] == Approx(1));
+    CHECK(route.emergency);
+    // An open area leaves its 0.5 m band out; a cylindrical area too.
+    CHECK(rad::surface_grid(s[5], 1).width_m == Approx(5));
+    CHECK(rad::surface_grid(s[6], 1).depth_m == Approx(3));
+    CHECK(rad::surface_grid(s[6], 1).cylindrical);
+    // Emax/Emin over 40 fails; a minimum of 0 never meets it.
+    rad::IlluminanceStats stats;
+    stats.count = 2, stats.min = 1, stats.max = 41, stats.mean = 21;
+    CHECK_FALSE(rad::judge(stats, s[4].required).passes());
+    stats.max = 39, stats.mean = 20;
+    CHECK(rad::judge(stats, s[4].required).passes());
+}

@@ -555,6 +555,16 @@ const char* verdict_text(const rad::Verdict& verdict) {
 }
 
 // A surface's figures and verdict, as rad-report shows them.
+// A cylindrical surface's modelling index, for its line; else nothing.
+std::string modelling_text(const rad::SurfaceGrid& grid, const rad::GatheredSurface& gathered) {
+    if (!grid.cylindrical) return "";
+    const auto m = rad::modelling_index(gathered.lux, gathered.horizontal);
+    if (m.count == 0) return ", modelling Ez/Eh -";
+    char text[96];
+    std::snprintf(text, sizeof text, ", modelling Ez/Eh %.2f (%.2f to %.2f)", m.mean, m.min, m.max);
+    return text;
+}
+
 void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid,
                    const rad::GatheredSurface& gathered) {
     const auto stats = rad::illuminance_stats(gathered.lux);
@@ -571,13 +581,13 @@ void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid
     const auto verdict = rad::judge(stats, surface.required, errors);
     std::fprintf(stderr,
                  "rad-gather: %s (%s, %ld x %ld sensors at %.3g m, %ld without a value): Em %s "
-                 "lx, Emin %s lx, Emax %s lx, U0 %.3f%s, Emin/Emax %.3f%s\n",
+                 "lx, Emin %s lx, Emax %s lx, U0 %.3f%s, Emin/Emax %.3f%s%s\n",
                  surface.name.c_str(), rad::calc_kind_name(surface.kind), grid.columns, grid.rows,
                  grid.spacing_m, stats.without_value, with_error(stats.mean, errors.mean).c_str(),
                  with_error(stats.min, errors.min).c_str(),
                  with_error(stats.max, errors.max).c_str(), stats.u0(),
                  rad::tool::error_suffix(errors.u0).c_str(), stats.min_over_max(),
-                 required ? verdict_text(verdict) : "");
+                 modelling_text(grid, gathered).c_str(), required ? verdict_text(verdict) : "");
 }
 
 // --surfaces: every calculation surface's sensors, one CSV line each, and their figures.

@@ -117,6 +117,7 @@ std::vector<rad::ReportSurface> surfaces_of(const rad::CalcFile& file,
         s.grid = grids[k];
         s.lux = std::move(gathered[k].lux);
         s.lux_error = std::move(gathered[k].error);
+        s.horizontal = std::move(gathered[k].horizontal);
         s.at_budget = std::move(gathered[k].at_budget);
         s.stats = rad::illuminance_stats(s.lux);
         s.errors = rad::illuminance_errors(s.lux, s.lux_error);

@@ -23,10 +23,11 @@ enum class CalcKind {
     Observer,
     Camera,
     EscapeRoute, // EN 1838: the centre line of a route along u, v its width
-    OpenArea     // EN 1838: an anti-panic area
+    OpenArea,    // EN 1838: an anti-panic area
+    Cylindrical  // EN 12464-1: cylindrical illuminance Ez over a horizontal area
 };
 // "workplane", "task", "wall", "ceiling", "floor", "observer", "camera", "escape-route",
-// "open-area".
+// "open-area", "cylindrical".
 const char* calc_kind_name(CalcKind kind);
 // Escape routes and open areas: lit by the emergency luminaires' direct light alone (EN 1838).
 inline bool is_emergency(CalcKind kind) {
@@ -109,6 +110,7 @@ struct SurfaceGrid {
     double width_m = 0, depth_m = 0;    // the calculation area, along u and v
     double spacing_m = 0, border_m = 0; // the spacing asked for (or the rule's), the band
     bool emergency = false;             // EN 1838: the emergency luminaires' direct light only
+    bool cylindrical = false;           // Ez about the normal (u x v, up), not E
     FileLoc where;                      // the surface's line
     long size() const { return columns * rows; }
     Vec3 position(long index) const {
@@ -140,16 +142,27 @@ void surface_sensors(const CalcFile& file, const std::vector<SurfaceGrid>& grids
 // rad-report give the same numbers). A sensor inside an object or behind a surface has NaN.
 // Beside each value its standard error (lux); and the sensors that stopped at the ray budget
 // before the accuracy asked for (GatherOptions::accuracy), by index in the grid.
+// A cylindrical grid gets Ez (cylindrical.hpp) as its lux, and Eh beside it.
 // An emergency grid (escape route, open area) gets EN 1838's figure instead: the direct light
 // of the luminaires with an emergency share, each times that share, no reflected light, no
 // error; InputError at the surface's line when `luminaires` has none.
 struct GatheredSurface {
     std::vector<double> lux, error;
+    std::vector<double> horizontal; // a cylindrical grid's Eh at each sensor (lux), else empty
     std::vector<long> at_budget;
 };
 std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
                                              const LuminaireSet* luminaires, const Box& scene_box,
                                              const std::vector<SurfaceGrid>& grids, bool quiet);
+
+// The modelling index Ez/Eh over a cylindrical surface's sensors (those with both values):
+// its mean and range; count 0 when none has both.
+struct ModellingIndex {
+    double mean = 0, min = 0, max = 0;
+    long count = 0;
+};
+ModellingIndex modelling_index(const std::vector<double>& cylindrical,
+                               const std::vector<double>& horizontal);
 
 // InputError at the first escape route or open area of `file`: a daylight solution has no
 // emergency luminaires to light them.

@@ -35,9 +35,10 @@ struct SurfaceDaylight {
 struct ReportSurface {
     CalcSurface surface;
     SurfaceGrid grid;
-    std::vector<double> lux;       // per sensor, NaN: none (empty for daylight)
-    std::vector<double> lux_error; // each sensor's standard error (lux)
-    std::vector<long> at_budget;   // sensors that stopped at the ray budget before the accuracy
+    std::vector<double> lux;        // per sensor, NaN: none (empty for daylight)
+    std::vector<double> lux_error;  // each sensor's standard error (lux)
+    std::vector<double> horizontal; // a cylindrical surface's Eh per sensor (lux), else empty
+    std::vector<long> at_budget;    // sensors that stopped at the ray budget before the accuracy
     IlluminanceStats stats;
     IlluminanceErrors errors;
     Verdict verdict;

@@ -21,7 +21,7 @@ const std::map<std::string, CalcKind>& kinds() {
         {"wall", CalcKind::Wall},           {"ceiling", CalcKind::Ceiling},
         {"floor", CalcKind::Floor},         {"observer", CalcKind::Observer},
         {"camera", CalcKind::Camera},       {"escape-route", CalcKind::EscapeRoute},
-        {"open-area", CalcKind::OpenArea}};
+        {"open-area", CalcKind::OpenArea},  {"cylindrical", CalcKind::Cylindrical}};
     return table;
 }
 
@@ -107,8 +107,11 @@ CalcSurface surface_of(const CsvRow& row, CalcKind kind) {
                                       "two sides of the rectangle from its corner");
     s.spacing_m = row.at_least_zero("spacing", 0);
     s.border_m = row.at_least_zero("border", kNoRequirement);
-    s.required.em = row.at_least_zero("Em", kNoRequirement);
-    s.required.u0 = row.at_least_zero("U0", kNoRequirement);
+    // EN 12464-1:2021 (5.2.2): in enclosed spaces walls get Em 50 lx and ceilings 30 lx at
+    // least, with U0 0.10, unless the file says otherwise.
+    const bool wall = kind == CalcKind::Wall, ceiling = kind == CalcKind::Ceiling;
+    s.required.em = row.at_least_zero("Em", wall ? 50.0 : ceiling ? 30.0 : kNoRequirement);
+    s.required.u0 = row.at_least_zero("U0", wall || ceiling ? 0.1 : kNoRequirement);
     // EN 1838: 1 lx on an escape route's centre line, 0.5 lx over an open area, Emax/Emin at
     // most 40 on both.
     const double emergency_minimum = kind == CalcKind::EscapeRoute ? 1.0 : 0.5;

@@ -301,6 +301,20 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
     return out + "</div></section>";
 }
 
+// A cylindrical surface's modelling index Ez/Eh: its mean over the sensors and its range.
+std::string modelling_rows(const ReportSurface& s) {
+    const auto m = modelling_index(s.lux, s.horizontal);
+    const std::string text =
+        m.count ? fixed(m.mean, 2) + " (" + fixed(m.min, 2) + " to " + fixed(m.max, 2) + ")"
+                : std::string("-");
+    return figure_row("Modelling Ez/Eh, mean (range)", text, "modelling") +
+           "<tr><th>Light</th><td>EN 12464-1's cylindrical illuminance Ez at the surface's "
+           "points about its normal (the luminaires exactly, the room's light by vertical "
+           "gathers in 8 directions); Eh the horizontal illuminance at the same points. "
+           "EN 12464-1 asks Ez of at least 50 lx (150 lx where faces must be seen well), U0 "
+           "0.10, and a modelling index of about 0.30 to 0.60</td></tr>";
+}
+
 std::string surface_section(const ReportInput& in, const ReportSurface& s, std::size_t index) {
     if (s.daylight) return daylight_section(s, index);
     const auto& g = s.grid;
@@ -315,11 +329,14 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
     const auto bar = [&](double error, bool ratio = false) {
         return s.grid.emergency ? std::string() : error_text(error, ratio);
     };
-    out += figure_row("Em (lx)", lux_text(st.mean, r.em), "em", bar(e.mean));
-    out += figure_row("Emin (lx)", lux_text(st.min, r.emin), "emin", bar(e.min));
-    out += figure_row("Emax (lx)", lux_text(st.max), "emax", bar(e.max));
+    const bool z = s.grid.cylindrical; // Ez, not E
+    out += figure_row(z ? "Ez, mean (lx)" : "Em (lx)", lux_text(st.mean, r.em), "em", bar(e.mean));
+    out +=
+        figure_row(z ? "Ez, min (lx)" : "Emin (lx)", lux_text(st.min, r.emin), "emin", bar(e.min));
+    out += figure_row(z ? "Ez, max (lx)" : "Emax (lx)", lux_text(st.max), "emax", bar(e.max));
     out += figure_row("U0 = Emin/Em", ratio_text(st.u0(), r.u0), "u0", bar(e.u0, true));
     out += figure_row("Emin/Emax", ratio_text(st.min_over_max()), "ratio");
+    if (z) out += modelling_rows(s);
     if (s.grid.emergency) {
         out +=
             figure_row("Emax/Emin", st.min > 0 ? fixed(st.max / st.min, 1) : std::string("&#8734;"),

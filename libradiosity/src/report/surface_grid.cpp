@@ -15,9 +15,11 @@ SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit) {
     const double length_u = length(surface.u) * metres_per_unit;
     const double length_v = length(surface.v) * metres_per_unit;
     const bool route = surface.kind == CalcKind::EscapeRoute;
-    const bool banded = surface.kind == CalcKind::WorkPlane || surface.kind == CalcKind::OpenArea;
+    const bool banded = surface.kind == CalcKind::WorkPlane || surface.kind == CalcKind::OpenArea ||
+                        surface.kind == CalcKind::Cylindrical;
     grid.border_m = std::isnan(surface.border_m) ? (banded ? 0.5 : 0.0) : surface.border_m;
     grid.emergency = is_emergency(surface.kind);
+    grid.cylindrical = surface.kind == CalcKind::Cylindrical;
     grid.where = surface.where;
     grid.width_m = length_u - 2 * grid.border_m;
     grid.depth_m = route ? length_v : length_v - 2 * grid.border_m; // a route's width stays
@@ -44,6 +46,22 @@ SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit) {
     grid.row_step = unit_v * (grid.depth_m / metres_per_unit / double(grid.rows));
     grid.normal = normalized(cross(surface.u, surface.v));
     return grid;
+}
+
+ModellingIndex modelling_index(const std::vector<double>& cylindrical,
+                               const std::vector<double>& horizontal) {
+    ModellingIndex m;
+    double sum = 0;
+    for (std::size_t k = 0; k < cylindrical.size() && k < horizontal.size(); ++k) {
+        if (!std::isfinite(cylindrical[k]) || !(horizontal[k] > 0)) continue;
+        const double ratio = cylindrical[k] / horizontal[k];
+        m.min = m.count ? std::min(m.min, ratio) : ratio;
+        m.max = m.count ? std::max(m.max, ratio) : ratio;
+        sum += ratio;
+        ++m.count;
+    }
+    if (m.count) m.mean = sum / double(m.count);
+    return m;
 }
 
 void refuse_emergency_surfaces(const CalcFile& file) {

@@ -1,5 +1,6 @@
 // Illuminance at every sensor of the calculation surfaces, in parallel, deterministic.
 #include "radiosity/calc_surfaces.hpp"
+#include "radiosity/cylindrical.hpp"
 #include "radiosity/gather.hpp"
 #include "radiosity/luminaires.hpp"
 #include "radiosity/progress.hpp"
@@ -34,6 +35,44 @@ void check_emergency_luminaires(const SurfaceGrid& grid, const LuminaireSet* set
                                  "share on battery, e.g. 0.1)");
 }
 
+struct SensorContext {
+    const Gatherer& gatherer;
+    const LuminaireSet* luminaires;
+    const Box& box;
+    const SurfaceGrid& grid;
+    std::uint64_t first; // the grid's first sensor's index over all surfaces
+};
+
+// Sensor k's value (and error; a cylindrical grid's Eh) by its grid's kind, left NaN where it
+// has none; whether it stopped at the ray budget.
+bool sensor_value(const SensorContext& c, long k, GatheredSurface& surface) {
+    const auto i = std::size_t(k);
+    const auto position = c.grid.position(k);
+    const auto index = c.first + std::uint64_t(k);
+    std::string problem;
+    if (c.grid.emergency) {
+        if (!out_of_reach(position, c.box).empty()) return false;
+        surface.lux[i] = emergency_lux(c.gatherer, *c.luminaires, position, c.grid.normal);
+        surface.error[i] = 0;
+        return false;
+    }
+    if (c.grid.cylindrical) {
+        const auto z = cylindrical_illuminance(c.gatherer, c.luminaires, c.box, position,
+                                               c.grid.normal, index, problem);
+        if (!problem.empty()) return false;
+        surface.lux[i] = z.cylindrical;
+        surface.error[i] = z.error;
+        surface.horizontal[i] = z.horizontal;
+        return z.at_budget;
+    }
+    const auto result =
+        gather_sensor(c.gatherer, c.luminaires, c.box, position, c.grid.normal, index, problem);
+    if (!problem.empty()) return false;
+    surface.lux[i] = rad::lux(result.total());
+    surface.error[i] = kRadianceEfficacy * result.luminous_error;
+    return result.at_budget;
+}
+
 } // namespace
 
 std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
@@ -49,28 +88,12 @@ std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
         auto& surface = out.emplace_back();
         surface.lux.assign(std::size_t(grid.size()), kNone);
         surface.error.assign(std::size_t(grid.size()), kNone);
+        if (grid.cylindrical) surface.horizontal.assign(std::size_t(grid.size()), kNone);
         std::vector<std::uint8_t> stopped(std::size_t(grid.size()), 0);
         if (grid.emergency) check_emergency_luminaires(grid, luminaires);
+        const SensorContext context{gatherer, luminaires, scene_box, grid, first};
         tbb::parallel_for(long(0), grid.size(), [&](long k) {
-            if (grid.emergency) {
-                const auto i = std::size_t(k);
-                const auto position = grid.position(k);
-                if (out_of_reach(position, scene_box).empty()) {
-                    surface.lux[i] = emergency_lux(gatherer, *luminaires, position, grid.normal);
-                    surface.error[i] = 0;
-                }
-                progress.advance(1);
-                return;
-            }
-            std::string problem;
-            const auto result = gather_sensor(gatherer, luminaires, scene_box, grid.position(k),
-                                              grid.normal, first + std::uint64_t(k), problem);
-            if (problem.empty()) {
-                const auto i = std::size_t(k);
-                surface.lux[i] = rad::lux(result.total());
-                surface.error[i] = kRadianceEfficacy * result.luminous_error;
-                stopped[i] = result.at_budget;
-            }
+            stopped[std::size_t(k)] = sensor_value(context, k, surface);
             progress.advance(1);
         });
         for (long k = 0; k < grid.size(); ++k)
