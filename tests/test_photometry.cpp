@@ -42,6 +42,18 @@ std::string refusal(const std::string& text, const std::string& name = "bad.ies"
 }
 } // namespace
 
+TEST_CASE("EULUMDAT's lamp colour temperature and colour rendering are read as stated") {
+    const auto uplight = read("eulumdat-rs_floor_uplight_Isym0.ldt"); // "nw/4200", "1B/86"
+    CHECK(uplight.cct == 4200);
+    CHECK(uplight.colour_rendering == "1B/86");
+    const auto projector = read("eulumdat-rs_projector_Isym2.ldt"); // "ww/3000", empty
+    CHECK(projector.cct == 3000);
+    CHECK(projector.colour_rendering.empty());
+    const auto sample = read("eulumdat-ugr_sample_01_Isym4.ldt"); // "0", "0": not stated
+    CHECK(sample.cct == 0);
+    CHECK(sample.colour_rendering.empty());
+}
+
 TEST_CASE("every public photometric fixture reads and integrates to its stated flux") {
     struct Expect {
         const char* file;

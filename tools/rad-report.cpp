@@ -208,6 +208,7 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     const rad::DaylightSensors sensors(
         mesh, rad::daylight_solution(solution, rad_header, a.inputs[1]), options);
     const double metres = rad::metres_per_unit(mesh_header);
+    in.room = rad::room_summary(mesh, metres);
     rad::refuse_emergency_surfaces(file);
     const auto grids = rad::surface_grids(file, metres);
     std::vector<rad::Vec3> positions, normals;
@@ -414,6 +415,7 @@ void lighting_figures(const ReportArgs& a, const rad::CalcFile& file, radfmt::Me
     in.observers = observers_of(file, gatherer, set, box, sensors);
     in.views = views_of(a, file, gatherer, set, solution);
     power_area(a, file, metres, in);
+    in.room = rad::room_summary(gatherer.mesh(), metres);
     if (energy) in.energy = rad::lighting_energy(*energy, installed_watts(*set), in.power_area_m2);
 }
 

@@ -44,7 +44,7 @@ out=$(node "$WEB/test-report.mjs" --page "$TMP/r.html" --values "$TMP/g.csv" 2>&
 echo "$out" | head -3
 # Title block, summary and method; one page per surface; luminaires; glare; the view and method.
 pages=$(pdfinfo "$TMP/r.pdf" | awk '/^Pages:/ {print $2}')
-[ "$pages" = 9 ] || fail "the PDF has $pages pages (wanted 9: summary, 4 surfaces, luminaires, glare, views with their luminance, method)"
+[ "$pages" = 10 ] || fail "the PDF has $pages pages (wanted 10: summary, the room, 4 surfaces, luminaires, glare, views with their luminance, method)"
 # The camera's view is rad-shade's image, byte for byte, by the command the page gives.
 # Its luminance (#68 item 7): the false-colour picture is rad-shade --falsecolor's, byte for
 # byte, and each surface's luminance its --luminance-table's, to the digits shown.
@@ -111,6 +111,32 @@ done
 grep -q '<tr data-key="FD">.*<td>given</td></tr><tr data-key="Ppc">' "$TMP/e.html" || fail "--energy: FD not marked given"
 grep -q '<tr data-key="te">.*<td>default</td></tr>' "$TMP/e.html" || fail "--energy: te not marked default"
 grep -qF "LENI 27.95 kWh/(m^2 a)" "$TMP/e.err" || fail "--energy summary: $(cat "$TMP/e.err")"
+# The room (#68 item 2): its extent and each material's area and luminous reflectance.
+python3 - "$TMP/e.html" <<'PY' || fail "the room's summary"
+import re, sys
+page = open(sys.argv[1]).read()
+room = re.search(r'<section id="room">(.*?)</section>', page, re.S).group(1)
+assert "Extent 6.00 &#215; 3.00 &#215; 4.00 m" in room, room[:300]
+rows = dict((n, (float(a), float(r))) for n, a, r in
+            re.findall(r'<tr><td>([^<]*)</td><td class="num">([^<]*)</td><td class="num">([^<]*)</td></tr>', room))
+# desk: 0.265 x 0.45 + 0.670 x 0.3 + 0.065 x 0.18 = 0.332
+assert rows["floor"][1] == 0.20 and rows["ceiling"][1] == 0.80 and rows["wall"][1] == 0.50, rows
+assert rows["desk"][1] == 0.33, rows
+assert rows["ceiling"][0] == 24.00, rows
+PY
+# The maintenance factor by its parts: the product is the factor, shown with its parts; a
+# maintenance column that disagrees with them is refused.
+mkdir -p "$TMP/parts" && cp "$SRC/scenes/lighting/erco_panarc.ies" "$TMP/parts/"
+sed '1s/$/,llmf,lsf,lmf,rsmf/; 2,$s/,0\.8,downlights$/,,downlights,0.9,1,0.95,0.94/' "$SRC/scenes/lighting/layout.csv" > "$TMP/parts/layout.csv"
+{ "$BIN/rad-ff" "$TMP/l.mesh" --luminaires "$TMP/parts/layout.csv" -o "$TMP/parts.lum" -q &&
+  "$BIN/rad-solve" "$TMP/l.mesh" "$TMP/l.ff" --direct "$TMP/parts.lum" -o "$TMP/parts.rad" -q &&
+  "$BIN/rad-report" "$TMP/l.mesh" "$TMP/parts.rad" --surfaces "$TMP/nocamera.csv" -o "$TMP/parts.html" --date x -q; } ||
+  fail "a layout with the maintenance factor's parts"
+grep -qF '<td class="num">0.80 = 0.90 &#215; 1.00 &#215; 0.95 &#215; 0.94</td>' "$TMP/parts.html" ||
+  fail "the parts: $(grep -o 'Maintenance factor.\{0,600\}' "$TMP/parts.html" | head -c 600)"
+sed '2s/,,downlights,0.9,/,0.8,downlights,0.9,/; 2s/,0.94$/,0.8/' "$TMP/parts/layout.csv" > "$TMP/parts/bad.csv"
+expect_error "bad.csv:2: maintenance 0.8 is not llmf x lsf x lmf x rsmf = 0.684" "$TMP/x.lum" \
+  "$BIN/rad-ff" "$TMP/l.mesh" --luminaires "$TMP/parts/bad.csv" -o "$TMP/x.lum"
 expect_error "'offices' is not a building type; give one of office, education" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" -o "$TMP/x.html" --energy offices
 expect_error "'fo=0.9' is not KEY=VALUE with a key of tD" "$TMP/x.html" \
@@ -138,7 +164,7 @@ for q in df:df da300:m; do
   out=$(node "$WEB/test-report.mjs" --page "$TMP/d.html" --values "$TMP/${q#*:}.csv" --quantity "${q%:*}" 2>&1) ||
     fail "the daylight page's ${q%:*} in Chromium: $out"
 done
-[ "$(pdfinfo "$TMP/d.pdf" | awk '/^Pages:/ {print $2}')" = 3 ] || fail "the daylight PDF is not 3 pages"
+[ "$(pdfinfo "$TMP/d.pdf" | awk '/^Pages:/ {print $2}')" = 4 ] || fail "the daylight PDF is not 4 pages (summary, the room, the work plane, the back wall)"
 # The work plane's requirements (DF 2%, sDA 55%, ASE 10%) judged from its figures: the verdict
 # is "fails" exactly when one of them is missed.
 python3 - "$TMP/m.csv" "$TMP/df.csv" "$TMP/d.html" <<'PY' || fail "the daylight verdict"
@@ -155,7 +181,7 @@ shown = "meets" if 'class="pass"' in row else "fails" if 'class="fail"' in row e
 print("work plane: DF %.2f%%, sDA %.1f%%, ASE %.1f%%: %s (page: %s)" % (mean_df, sda, ase, "meets" if meets else "fails", shown))
 sys.exit(0 if shown == ("meets" if meets else "fails") else 1)
 PY
-pdftotext "$TMP/d.pdf" - | grep -q "sDA300/50%" || fail "the daylight PDF's text lacks sDA300/50%"
+pdftotext "$TMP/d.pdf" "$TMP/d.txt"; grep -q "sDA300/50%" "$TMP/d.txt" || fail "the daylight PDF's text lacks sDA300/50%"
 "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$D/calc.csv" --epw "$EPW" -o "$TMP/d1.html" \
   --date 2026-12-05 -q --threads 1 || fail "rad-report daylight --threads 1"
 cmp -s "$TMP/d.html" "$TMP/d1.html" || fail "the daylight report differs at 1 and 2 threads"

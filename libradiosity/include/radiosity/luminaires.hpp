@@ -8,6 +8,7 @@
 #include "radiosity/rays.hpp"
 #include "radiosity/vec.hpp"
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -40,6 +41,10 @@ struct Luminaire {
     Vec3 nadir{0, -1, 0};        // gamma 0 (type C), the beam axis (A, B)
     Vec3 c0{1, 0, 0}, c90{0, 0, -1};
     double maintenance = 1;
+    // CIE 97's parts when the layout gives them (LLMF, LSF, LMF, RSMF; maintenance is their
+    // product).
+    std::array<double, 4> maintenance_parts{1, 1, 1, 1};
+    bool maintenance_parts_given = false;
     double emergency = 0;   // the flux share on battery (EN 1838); 0: not an emergency luminaire
     double tilt_factor = 1; // the TILT table's multiplier at its actual tilt
     double cct = 0;         // K; 0: white (R = G = B)

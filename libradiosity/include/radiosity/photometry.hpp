@@ -48,6 +48,9 @@ struct Photometry {
     double lamp_lumens = 0, stated_flux = 0, stated_downward_percent = -1;
     double input_watts = 0;
     double cct = 0; // colour temperature in K (EULUMDAT's lamp set), 0 unknown
+    // The colour rendering the file states (EULUMDAT's lamp set's group or CRI, an IES file's
+    // [_CRI] or [CRI] keyword), as written; empty: not stated.
+    std::string colour_rendering;
     // The luminous opening in metres: length along C0-C180, width along C90-C270, height;
     // `round`: a disc (or cylinder) of diameter `length`.
     double length = 0, width = 0, height = 0;

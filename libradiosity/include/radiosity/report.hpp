@@ -63,6 +63,19 @@ struct ReportView {
     std::vector<SurfaceLuminance> surfaces;
 };
 
+// The room as the mesh has it: its bounding size (x, y, z; m) and each material's area (m^2)
+// and luminous reflectance.
+struct RoomMaterial {
+    std::string name;
+    double area_m2 = 0, reflectance = 0;
+    bool emits = false;
+};
+struct RoomSummary {
+    Vec3 size_m{0, 0, 0};
+    std::vector<RoomMaterial> materials; // those some patch uses, in the mesh's order
+};
+RoomSummary room_summary(const radfmt::MeshData& mesh, double metres_per_unit);
+
 struct ReportInput {
     std::string project, date, producer;                     // producer: "rad-report 0.1.0"
     std::vector<std::pair<std::string, std::string>> inputs; // path, hash
@@ -76,6 +89,7 @@ struct ReportInput {
     double power_area_m2 = 0;             // the area the power density is over (0: not given)
     std::string power_area_what;          // which area that is, for the page
     std::optional<LightingEnergy> energy; // EN 15193-1's LENI, when asked for
+    std::optional<RoomSummary> room;      // the room's size and surfaces
     // A daylight solution: the sky the factors are under, and the year's weather file (its
     // place) and occupied hours, when there is one.
     bool daylight = false;

@@ -199,6 +199,9 @@ Photometry parse_ies(std::string_view text, const std::string& name,
     }
     p.lamp_lumens = head.lumens > 0 ? head.lamps * head.lumens : 0;
     p.input_watts = head.watts;
+    for (const auto& [key, value] : p.keywords)
+        if ((key == "_CRI" || key == "CRI") && p.colour_rendering.empty())
+            p.colour_rendering = value;
     const double unit = head.units == 1 ? kFoot : 1;
     p.round = head.width < 0 || head.length < 0;
     p.length = std::max(std::abs(head.length), p.round ? std::abs(head.width) : 0.0) * unit;

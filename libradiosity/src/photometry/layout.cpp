@@ -72,10 +72,11 @@ std::map<std::string, std::size_t> column_indices(const std::vector<std::string>
     for (const auto& [name, index] : columns)
         if (name != "name" && name != "photometry" && name != "x" && name != "y" && name != "z" &&
             name != "aim_x" && name != "aim_y" && name != "aim_z" && name != "spin" &&
-            name != "maintenance" && name != "group" && name != "cct" && name != "emergency")
+            name != "maintenance" && name != "group" && name != "cct" && name != "emergency" &&
+            name != "llmf" && name != "lsf" && name != "lmf" && name != "rsmf")
             throw InputError(where, "unknown column '" + name +
                                         "' (name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,"
-                                        "maintenance,group,cct,emergency)");
+                                        "maintenance,group,cct,emergency,llmf,lsf,lmf,rsmf)");
     return columns;
 }
 
@@ -239,6 +240,31 @@ class PhotometryIndex {
 };
 } // namespace
 
+// The maintenance factor's parts (CIE 97: lamp lumen maintenance, lamp survival, luminaire
+// and room surface maintenance), each 1 when empty: their product is the factor, and a
+// maintenance column beside them must agree with it.
+template <class Number>
+void read_maintenance_parts(const Row& row, const FileLoc& where, const Number& number,
+                            Luminaire& l) {
+    constexpr std::array<const char*, 4> kParts{"llmf", "lsf", "lmf", "rsmf"};
+    bool any = false;
+    for (const char* part : kParts) any = any || !row[part].empty();
+    if (!any) return;
+    double product = 1;
+    for (std::size_t k = 0; k < kParts.size(); ++k) {
+        l.maintenance_parts[k] = number(kParts[k], 1);
+        if (!(l.maintenance_parts[k] > 0 && l.maintenance_parts[k] <= 1))
+            throw InputError(where, std::string(kParts[k]) + " must be in (0, 1]");
+        product *= l.maintenance_parts[k];
+    }
+    if (!row["maintenance"].empty() && std::abs(l.maintenance - product) > 5e-4)
+        throw InputError(where, "maintenance " + row["maintenance"] +
+                                    " is not llmf x lsf x lmf x rsmf = " + std::to_string(product) +
+                                    ": give the parts or the factor, or make them agree");
+    l.maintenance = product;
+    l.maintenance_parts_given = true;
+}
+
 LuminaireSet build_luminaires(const LuminaireSources& sources, double metres_per_unit) {
     LuminaireSet set;
     set.metres_per_unit = metres_per_unit;
@@ -281,6 +307,7 @@ LuminaireSet build_luminaires(const LuminaireSources& sources, double metres_per
         l.maintenance = number("maintenance", 1);
         if (!(l.maintenance > 0 && l.maintenance <= 1))
             throw InputError(where, "maintenance must be in (0, 1]");
+        read_maintenance_parts(row, where, number, l);
         l.emergency = number("emergency", 0);
         if (!(l.emergency >= 0 && l.emergency <= 1))
             throw InputError(where, "emergency is the share of the flux the luminaire gives on "

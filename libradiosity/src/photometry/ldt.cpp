@@ -25,6 +25,9 @@ class LdtLines {
                                  ") should be (truncated?)");
         return lines_[line - 1];
     }
+    std::string trimmed_text(std::size_t line, const std::string& what) const {
+        return std::string(trimmed(text(line, what)));
+    }
     // A number, with a decimal comma taken as a point (some writers use one).
     double number(std::size_t line, const std::string& what) const {
         std::string token(trimmed(text(line, what)));
@@ -139,6 +142,8 @@ Photometry parse_ldt(std::string_view text, const std::string& name) {
     if (!(lamp_flux > 0))
         throw InputError(FileLoc{name, int(set_line(2))}, "the lamp flux must be positive");
     p.cct = ldt.colour_temperature(set_line(3));
+    p.colour_rendering = ldt.trimmed_text(set_line(4), "the colour rendering of set 1");
+    if (p.colour_rendering == "0" || p.colour_rendering == "-") p.colour_rendering.clear();
     p.input_watts = ldt.number(set_line(5), "the wattage of set 1 (W)");
     // A negative lamp count marks absolute photometry: the flux is then the luminaire's.
     p.lamp_lumens = lamps < 0 ? 0 : lamp_flux;

@@ -31,6 +31,7 @@ td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
 .provenance { font-family: "DejaVu Sans Mono", monospace; font-size: 7.5pt; word-break: break-all; }
 .pass { color: #0a6b1f; font-weight: bold; } .fail { color: #b00020; font-weight: bold; }
 section.part { break-before: page; }
+h2, h3 { break-after: avoid; } #room { break-inside: avoid; }
 figure { margin: 6pt 0; break-inside: avoid; }
 figure.view img { max-width: 100%; height: auto; }
 code.command { font-size: 8pt; word-break: break-all; } figcaption { font-size: 9pt; color: #333; }
@@ -139,6 +140,7 @@ std::string title_block(const ReportInput& in) {
 std::string contents(const ReportInput& in) {
     std::string out = "<nav id=\"contents\"><h2>Contents</h2><ol>";
     out += "<li><a href=\"#summary\">Summary</a></li>";
+    if (in.room) out += "<li><a href=\"#room\">The room</a></li>";
     for (std::size_t k = 0; k < in.surfaces.size(); ++k)
         out += "<li><a href=\"#surface-" + std::to_string(k + 1) + "\">" +
                html_escape(in.surfaces[k].surface.name) + "</a></li>";
@@ -148,6 +150,25 @@ std::string contents(const ReportInput& in) {
     if (!in.views.empty()) out += "<li><a href=\"#views\">Views</a></li>";
     out += "<li><a href=\"#method\">Method</a></li>";
     return out + "</ol></nav>";
+}
+
+// The room: its size, its floor area and each surface's reflectance (from the mesh).
+std::string room_section(const ReportInput& in) {
+    const auto& room = *in.room;
+    std::string out = "<section id=\"room\"><h2>The room</h2><p class=\"room-size\">Extent " +
+                      fixed(room.size_m[0], 2) + " &#215; " + fixed(room.size_m[1], 2) +
+                      " &#215; " + fixed(room.size_m[2], 2) + " m (x, y, z: the scene's bounds)";
+    if (in.power_area_m2 > 0)
+        out += "; floor area " + fixed(in.power_area_m2, 2) + " m&#178; (" +
+               html_escape(in.power_area_what) + ")";
+    out += ".</p><table class=\"room-surfaces\"><thead><tr><th>Surface (material)</th><th "
+           "class=\"num\">Area (m&#178;)</th><th class=\"num\">Reflectance</th></tr></thead>"
+           "<tbody>";
+    for (const auto& m : room.materials)
+        out += "<tr><td>" + html_escape(m.name) + (m.emits ? " (emits light)" : "") + "</td>" +
+               cell(fixed(m.area_m2, 2)) + cell(fixed(m.reflectance, 2)) + "</tr>";
+    return out + "</tbody></table><p class=\"note\">Reflectance: the material's diffuse "
+                 "reflectance, luminous (0.265 R + 0.670 G + 0.065 B), as solved.</p></section>";
 }
 
 std::string surface_row(const ReportSurface& s, std::size_t index) {
@@ -385,35 +406,52 @@ std::string type_name(const Photometry& p) {
     return p.source;
 }
 
+// A luminaire's maintenance factor, with its parts when the layout gives them.
+std::string maintenance_text(const Luminaire& l) {
+    std::string text = fixed(l.maintenance, 2);
+    if (!l.maintenance_parts_given) return text;
+    const auto& p = l.maintenance_parts;
+    return text + " = " + fixed(p[0], 2) + " &#215; " + fixed(p[1], 2) + " &#215; " +
+           fixed(p[2], 2) + " &#215; " + fixed(p[3], 2);
+}
+
 std::string luminaires_section(const ReportInput& in) {
     const auto& set = *in.luminaires;
     const auto types = types_of(set);
     std::string out = "<section class=\"part\" id=\"luminaires\"><h2>Luminaires</h2>";
     out += "<table class=\"schedule\"><thead><tr><th>Type</th><th>File</th><th class=\"num\">"
            "Count</th><th class=\"num\">Luminaire flux (lm, each)</th><th class=\"num\">Input "
-           "power (W, each)</th><th class=\"num\">Efficacy (lm/W)</th><th class=\"num\">"
-           "Maintenance factor</th><th>Luminaires</th></tr></thead><tbody>";
+           "power (W, each)</th><th class=\"num\">Efficacy (lm/W)</th><th class=\"num\">CCT "
+           "(K)</th><th>CRI</th><th class=\"num\">Maintenance factor</th><th>Luminaires</th>"
+           "</tr></thead><tbody>";
     double watts = 0;
     for (const auto& [index, members] : types) {
         const auto& p = set.photometries[index];
         const double flux = set.photometry_flux[index];
         std::string names, factors;
         std::map<std::string, int> distinct;
+        std::map<std::string, int> ccts;
         for (const auto* l : members) {
             names += (names.empty() ? "" : ", ") + html_escape(l->name);
-            distinct[fixed(l->maintenance, 2)]++;
+            distinct[maintenance_text(*l)]++;
+            ccts[l->cct > 0 ? fixed(l->cct, 0) : "-"]++;
         }
+        std::string cct;
+        for (const auto& [k, n] : ccts) cct += (cct.empty() ? "" : ", ") + k;
         for (const auto& [f, n] : distinct) factors += (factors.empty() ? "" : ", ") + f;
         watts += p.input_watts * double(members.size());
         out += "<tr><td>" + html_escape(type_name(p)) + "</td><td>" + html_escape(p.source) +
                "</td>" + cell(std::to_string(members.size())) + cell(fixed(flux, 0)) +
                cell(p.input_watts > 0 ? fixed(p.input_watts, 1) : "-") +
-               cell(p.input_watts > 0 ? fixed(flux / p.input_watts, 1) : "-") + cell(factors) +
-               "<td>" + names + "</td></tr>";
+               cell(p.input_watts > 0 ? fixed(flux / p.input_watts, 1) : "-") + cell(cct) + "<td>" +
+               html_escape(p.colour_rendering.empty() ? "-" : p.colour_rendering) + "</td>" +
+               cell(factors) + "<td>" + names + "</td></tr>";
     }
     out += "</tbody></table>";
     out += "<p class=\"note\">Luminaire flux: the photometric file's intensities integrated over "
-           "the sphere (before the maintenance factor). Input power: the file's input watts.</p>";
+           "the sphere (before the maintenance factor). Input power: the file's input watts. "
+           "CCT: the layout's or the file's; CRI: as the file states it. Maintenance factor: the "
+           "layout's, as LLMF &#215; LSF &#215; LMF &#215; RSMF where it gives the parts.</p>";
     if (watts > 0 && in.power_area_m2 > 0)
         out += "<p class=\"power\">Installed power " + fixed(watts, 1) + " W over " +
                html_escape(in.power_area_what) + " of " + fixed(in.power_area_m2, 2) +
@@ -643,6 +681,7 @@ std::string report_html(const ReportInput& in) {
                       report_kind(in) + ": " + html_escape(in.project) + "</title><style>" +
                       kStyle + "</style></head><body>\n";
     out += title_block(in) + "\n" + contents(in) + "\n" + summary(in) + "\n";
+    if (in.room) out += room_section(in) + "\n";
     for (std::size_t k = 0; k < in.surfaces.size(); ++k)
         out += surface_section(in, in.surfaces[k], k) + "\n";
     if (in.luminaires) out += luminaires_section(in) + "\n";
