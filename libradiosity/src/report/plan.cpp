@@ -95,10 +95,31 @@ struct LabelPlaces {
     }
 };
 
+// The segment whose middle lies farthest from every place taken.
+std::size_t freest_segment(const std::vector<IsoSegment>& pixels, const LabelPlaces& places) {
+    std::size_t best = 0;
+    double best_distance = -1;
+    for (std::size_t k = 0; k < pixels.size(); ++k) {
+        const double mx = (pixels[k].x0 + pixels[k].x1) / 2, my = (pixels[k].y0 + pixels[k].y1) / 2;
+        double nearest = 1e300;
+        for (const auto& t : places.taken)
+            nearest = std::min(nearest, std::hypot(t.x - mx, t.y - my));
+        if (nearest > best_distance) best = k, best_distance = nearest;
+    }
+    return best;
+}
+
 // Up to four labels on a level's segments (pixel coordinates), 70 px apart from other labels;
-// when none fits, one at 32 px, so every line drawn has its value on it.
+// when none fits, one at 32 px; when none fits either, one where it is most apart: every line
+// drawn has its value on it.
 std::string label_level(const std::vector<IsoSegment>& pixels, const std::string& text,
                         LabelPlaces& places) {
+    const auto label = [&](std::size_t k) {
+        const double mx = (pixels[k].x0 + pixels[k].x1) / 2, my = (pixels[k].y0 + pixels[k].y1) / 2;
+        places.taken.push_back({mx, my, 70});
+        return "<text class=\"isolabel\" data-level=\"" + text + "\" x=\"" + px(mx) + "\" y=\"" +
+               px(my + 4) + "\">" + text + "</text>";
+    };
     std::string out;
     const std::size_t n = pixels.size();
     std::size_t stride = std::max<std::size_t>(1, n / 5);
@@ -110,13 +131,12 @@ std::string label_level(const std::vector<IsoSegment>& pixels, const std::string
             const double mx = (pixels[k].x0 + pixels[k].x1) / 2,
                          my = (pixels[k].y0 + pixels[k].y1) / 2;
             if (!places.free(mx, my, spacing)) continue;
-            places.taken.push_back({mx, my, 70});
-            out += "<text class=\"isolabel\" data-level=\"" + text + "\" x=\"" + px(mx) +
-                   "\" y=\"" + px(my + 4) + "\">" + text + "</text>";
+            out += label(k);
             ++count;
         }
         if (count) break;
     }
+    if (!count && n > 0) out += label(freest_segment(pixels, places));
     return out;
 }
 
