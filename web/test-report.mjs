@@ -201,7 +201,7 @@ try {
           // The ends' pixels are written to 0.01 px, and rad-gather's values rounded (six
           // digits; the metrics' shares to 0.0001, 0.01 in %).
           const rounding = (opts.quantity === 'da300' ? 0.0051 : 0) + 2e-5 * Math.abs(level) + 1e-6;
-          const tolerance = at.spread * 0.006 / Math.min(s.dx, s.dy) + rounding;
+          const tolerance = at.spread * 0.006 / Math.min(Math.abs(s.dx), Math.abs(s.dy)) + rounding;
           if (!(Math.abs(at.value - level) <= tolerance)) fail(`${s.name}: an end of the ${line.level} line at (${x}, ${y}) lies at ${at.value.toPrecision(7)} (tolerance ${tolerance.toPrecision(2)})`);
           ++ends;
         }

@@ -41,6 +41,30 @@ grep -q '^ceiling,0,0,0,0.333333,3,0.333333,[0-9]' "$TMP/g.csv" || fail "the cei
   --date 2026-12-05 --project "Lighting example" 2> "$TMP/r.err" || fail "rad-report: $(cat "$TMP/r.err")"
 grep -q "4 surface(s) (272 points, 0 failing their requirements), 1 observer(s)" "$TMP/r.err" || fail "rad-report summary: $(cat "$TMP/r.err")"
 out=$(node "$WEB/test-report.mjs" --page "$TMP/r.html" --values "$TMP/g.csv" 2>&1) || fail "the page in Chromium: $out"
+# The drawings (#68 item 1): the ceiling as a reflected ceiling plan (L1 over the floor plan's
+# L1: the same side of both), each luminaire's 0.2 m square opening at its size, a scale bar.
+python3 - "$TMP/r.html" <<'PY' || fail "the plans' drawing"
+import re, sys
+page = open(sys.argv[1]).read()
+def plan(name):
+    return re.search(r'<section class="part surface" id="surface-\d+"><h2>%s</h2>(.*?)</section>' % name, page, re.S).group(1)
+def where(section, lum):
+    g = re.search(r'<g class="luminaire" data-name="%s">(.*?)</g>' % lum, section).group(1)
+    cx, cy = (float(v) for v in re.search(r'<circle cx="([-0-9.]+)" cy="([-0-9.]+)" r="7"', g).groups())
+    return cx, cy, g
+floor, ceiling = plan("work plane"), plan("ceiling")
+assert "a reflected ceiling plan" in ceiling and "a reflected ceiling plan" not in floor
+for section in (floor, ceiling):
+    l1, l3 = where(section, "L1"), where(section, "L3")
+    assert l1[1] < l3[1], "L1 (z = 1) is drawn below L3 (z = 3) in one plan: %s %s" % (l1[:2], l3[:2])
+    scale = float(re.search(r'data-metres="([0-9.]+)"', section).group(1))
+    assert scale in (0.5, 1, 2), scale
+    corners = [tuple(map(float, c)) for c in re.findall(r'([-0-9.]+) ([-0-9.]+)', re.search(r'<path class="opening" d="([^"]*)"', l1[2]).group(1))]
+    side = max(c[0] for c in corners) - min(c[0] for c in corners)
+    bar = re.search(r'<g class="scale-bar"[^>]*>(.*?)</g>', section).group(1)
+    quarter = float(re.search(r'width="([0-9.]+)"', bar).group(1))
+    assert abs(side / (4 * quarter / scale) - 0.2) < 0.002, (side, quarter, scale)
+PY
 echo "$out" | head -3
 # Title block, summary and method; one page per surface; luminaires; glare; the view and method.
 pages=$(pdfinfo "$TMP/r.pdf" | awk '/^Pages:/ {print $2}')

@@ -123,6 +123,11 @@ struct PlanScale {
 std::string surface_plan_svg(const ReportSurface& surface, std::span<const double> values,
                              const PlanScale& scale, const LuminaireSet* luminaires,
                              double metres_per_unit);
+// Whether a surface's plan is a reflected ceiling plan: it faces down (a ceiling), so the plan
+// shows it from above, the same way round as the floor, not from the side its points face.
+inline bool reflected_ceiling_plan(const SurfaceGrid& grid) {
+    return grid.normal[1] < -0.9;
+}
 // A photometric file's polar curve (C0-C180 and C90-C270, cd/klm) as SVG, from `luminaire`'s
 // frame.
 std::string polar_curve_svg(const LuminaireSet& set, const Luminaire& luminaire);

@@ -41,6 +41,7 @@ svg.plan .isoline { fill: none; stroke: #000; stroke-width: 1.3; }
 svg.plan .isolabel { font-weight: bold; paint-order: stroke; stroke: #fff; stroke-width: 3px;
   text-anchor: middle; }
 svg.plan .luminaire circle { fill: #fff; stroke: #000; stroke-width: 1.2; }
+svg.plan .luminaire .opening { fill: #fff; fill-opacity: 0.75; stroke: #000; stroke-width: 1; }
 svg.plan .luminaire path { stroke: #000; stroke-width: 1.2; }
 svg.plan .luminaire text { paint-order: stroke; stroke: #fff; stroke-width: 3px; }
 svg.polar .grid circle, svg.polar .grid path { fill: none; stroke: #bbb; stroke-width: 0.8; }
@@ -384,9 +385,14 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
     out += "<figure>" +
            surface_plan_svg(s, s.lux, {"lux", "lx", 0}, in.luminaires, in.metres_per_unit) +
            "<figcaption>Illuminance on " + html_escape(s.surface.name) +
-           ", seen from the side its points face; isolux lines labelled in lx";
+           (reflected_ceiling_plan(g) ? ", a reflected ceiling plan (seen from above, the same "
+                                        "way round as the floor)"
+                                      : ", seen from the side its points face") +
+           "; isolux lines labelled in lx";
     if (in.luminaires && std::abs(g.normal[1]) >= 0.9)
-        out += "; luminaires over it drawn as circles";
+        out += "; luminaires over it drawn at their luminous opening's size, their centre "
+               "marked";
+    out += "; the scale bar in metres";
     out += g.border_m > 0 ? ". The grey band is the border left out." : ".";
     out += " Grey cells: points without a value.</figcaption></figure>";
     return out + "</section>";

@@ -15,7 +15,7 @@ namespace {
 using report_text::px;
 using report_text::short_number;
 
-constexpr double kMargin = 12, kLegendWidth = 90;
+constexpr double kMargin = 12, kLegendWidth = 90, kScaleBarHeight = 26;
 
 std::string colour_hex(std::array<std::uint8_t, 3> c) {
     char text[8];
@@ -24,11 +24,14 @@ std::string colour_hex(std::array<std::uint8_t, 3> c) {
 }
 
 // Where the plan puts a point of the surface given in metres along u and v from the
-// calculation area's corner: u to the right, v up (the surface seen from its front).
+// calculation area's corner: u to the right, v up (the surface seen from its front); a
+// surface facing down (a ceiling) v down, as a reflected ceiling plan: seen from above, the
+// same way round as the floor under it.
 struct PlanFrame {
-    double scale = 1, left = 0, bottom = 0; // px per m; the area corner's pixel
+    double scale = 1, left = 0, corner = 0; // px per m; the area corner's pixel
+    bool reflected = false;
     double x(double u_m) const { return left + u_m * scale; }
-    double y(double v_m) const { return bottom - v_m * scale; }
+    double y(double v_m) const { return reflected ? corner + v_m * scale : corner - v_m * scale; }
 };
 
 PlanFrame frame_of(const SurfaceGrid& grid, const PlanScale& size) {
@@ -37,8 +40,28 @@ PlanFrame frame_of(const SurfaceGrid& grid, const PlanScale& size) {
     PlanFrame f;
     f.scale = std::min(size.width / whole_u, size.height / whole_v);
     f.left = kMargin + grid.border_m * f.scale;
-    f.bottom = kMargin + whole_v * f.scale - grid.border_m * f.scale;
+    f.reflected = reflected_ceiling_plan(grid);
+    f.corner = f.reflected ? kMargin + grid.border_m * f.scale
+                           : kMargin + whole_v * f.scale - grid.border_m * f.scale;
     return f;
+}
+
+// A scale bar under the plan: a round length about a quarter of its width, in metres.
+std::string scale_bar_svg(const PlanFrame& f, double left, double top, double plan_width) {
+    const double target = plan_width / 4 / f.scale; // m
+    double metres = std::pow(10.0, std::floor(std::log10(target)));
+    for (const double step : {2.0, 5.0})
+        if (metres * step <= target) metres = std::pow(10.0, std::floor(std::log10(target))) * step;
+    const double length = metres * f.scale;
+    std::string out = "<g class=\"scale-bar\" data-metres=\"" + short_number(metres) + "\">";
+    for (int k = 0; k < 4; ++k)
+        out += "<rect x=\"" + px(left + k * length / 4) + "\" y=\"" + px(top) + "\" width=\"" +
+               px(length / 4) + "\" height=\"5\" fill=\"" + (k % 2 ? "#fff" : "#111") +
+               "\" stroke=\"#111\" stroke-width=\"0.8\"/>";
+    out += "<text x=\"" + px(left) + "\" y=\"" + px(top + 17) + "\">0</text><text x=\"" +
+           px(left + length - 4) + "\" y=\"" + px(top + 17) + "\">" + short_number(metres) +
+           " m</text>";
+    return out + "</g>";
 }
 
 std::string cells_svg(const ReportSurface& s, std::span<const double> values, const PlanFrame& f,
@@ -52,7 +75,8 @@ std::string cells_svg(const ReportSurface& s, std::span<const double> values, co
         const auto fill =
             std::isnan(v) ? std::string("#bbbbbb") : colour_hex(false_colour(v / top));
         // Cells overlap a hair so that no seam of the background shows between them.
-        out += "<rect x=\"" + px(f.x(c * du)) + "\" y=\"" + px(f.y((r + 1) * dv)) + "\" width=\"" +
+        const double cell_top = std::min(f.y(r * dv), f.y((r + 1) * dv));
+        out += "<rect x=\"" + px(f.x(c * du)) + "\" y=\"" + px(cell_top) + "\" width=\"" +
                px(du * f.scale + 0.6) + "\" height=\"" + px(dv * f.scale + 0.6) + "\" fill=\"" +
                fill + "\"/>";
     }
@@ -62,7 +86,31 @@ std::string cells_svg(const ReportSurface& s, std::span<const double> values, co
 struct PlacedLuminaire {
     double x = 0, y = 0;
     std::string name;
+    std::string outline; // its luminous opening at its real size: an SVG shape, or empty
 };
+
+// A luminaire's opening in the plan (px): its rectangle (length along C0, width along C90) or
+// disc, from the photometric file, turned as the layout turns it; empty when it has no size.
+std::string opening_outline(const LuminaireSet& set, const Luminaire& l, const Vec3& unit_u,
+                            const Vec3& unit_v, const PlanFrame& f, double u, double v) {
+    const auto& p = set.photometries[l.photometry];
+    if (!(p.length > 0)) return "";
+    if (p.round)
+        return "<circle class=\"opening\" cx=\"" + px(f.x(u)) + "\" cy=\"" + px(f.y(v)) +
+               "\" r=\"" + px(0.5 * p.length * f.scale) + "\"/>";
+    const double a[2] = {dot(l.c0, unit_u), dot(l.c0, unit_v)};
+    const double b[2] = {dot(l.c90, unit_u), dot(l.c90, unit_v)};
+    std::string d;
+    for (const auto& [i, j] : {std::pair{1, 1}, {1, -1}, {-1, -1}, {-1, 1}}) {
+        const double cu = u + 0.5 * (i * p.length * a[0] + j * p.width * b[0]);
+        const double cv = v + 0.5 * (i * p.length * a[1] + j * p.width * b[1]);
+        d += d.empty() ? 'M' : 'L';
+        d += px(f.x(cu));
+        d += ' ';
+        d += px(f.y(cv));
+    }
+    return "<path class=\"opening\" d=\"" + d + "Z\"/>";
+}
 
 // The luminaires whose centre is over (or under) a horizontal surface, where the plan draws
 // them.
@@ -77,7 +125,7 @@ std::vector<PlacedLuminaire> luminaires_over(const SurfaceGrid& g, const PlanFra
         const double v = dot(offset, unit_v) * metres_per_unit;
         const double b = g.border_m;
         if (u < -b || v < -b || u > g.width_m + b || v > g.depth_m + b) continue;
-        out.push_back({f.x(u), f.y(v), l.name});
+        out.push_back({f.x(u), f.y(v), l.name, opening_outline(*set, l, unit_u, unit_v, f, u, v)});
     }
     return out;
 }
@@ -147,7 +195,8 @@ std::string isolines_svg(const ReportSurface& s, std::span<const double> values,
     const auto& g = s.grid;
     const double du = g.width_m / double(g.columns), dv = g.depth_m / double(g.rows);
     // Sensor (c, r) at pixel (x0 + c dx, y0 - r dy).
-    const double x0 = f.x(du / 2), y0 = f.y(dv / 2), dx = du * f.scale, dy = dv * f.scale;
+    const double x0 = f.x(du / 2), y0 = f.y(dv / 2), dx = du * f.scale;
+    const double dy = f.y(0) - f.y(dv); // negative on a reflected plan
     // The sensors' frame, to more digits than the drawing's (a test maps the lines' ends back).
     char frame[160];
     std::snprintf(frame, sizeof frame,
@@ -178,12 +227,12 @@ std::string isolines_svg(const ReportSurface& s, std::span<const double> values,
 
 std::string luminaires_svg(const std::vector<PlacedLuminaire>& luminaires) {
     std::string out = "<g class=\"luminaires\">";
-    for (const auto& [x, y, name] : luminaires)
-        out += "<g class=\"luminaire\" data-name=\"" + html_escape(name) + "\"><circle cx=\"" +
-               px(x) + "\" cy=\"" + px(y) + "\" r=\"7\"/><path d=\"M" + px(x - 5) + " " +
-               px(y - 5) + "L" + px(x + 5) + " " + px(y + 5) + "M" + px(x - 5) + " " + px(y + 5) +
-               "L" + px(x + 5) + " " + px(y - 5) + "\"/><text x=\"" + px(x + 10) + "\" y=\"" +
-               px(y - 8) + "\">" + html_escape(name) + "</text></g>";
+    for (const auto& [x, y, name, outline] : luminaires)
+        out += "<g class=\"luminaire\" data-name=\"" + html_escape(name) + "\">" + outline +
+               "<circle cx=\"" + px(x) + "\" cy=\"" + px(y) + "\" r=\"7\"/><path d=\"M" +
+               px(x - 5) + " " + px(y - 5) + "L" + px(x + 5) + " " + px(y + 5) + "M" + px(x - 5) +
+               " " + px(y + 5) + "L" + px(x + 5) + " " + px(y - 5) + "\"/><text x=\"" + px(x + 10) +
+               "\" y=\"" + px(y - 8) + "\">" + html_escape(name) + "</text></g>";
     return out + "</g>";
 }
 
@@ -216,7 +265,7 @@ std::string surface_plan_svg(const ReportSurface& s, std::span<const double> val
     const double whole_u = (g.width_m + 2 * g.border_m) * f.scale;
     const double whole_v = (g.depth_m + 2 * g.border_m) * f.scale;
     const double width = kMargin * 2 + whole_u + kLegendWidth;
-    const double height = std::max(kMargin * 2 + whole_v, 180.0);
+    const double height = std::max(kMargin * 2 + whole_v + kScaleBarHeight, 180.0);
     const auto range = illuminance_stats(values);
     const double top = scale.top > 0 ? scale.top : false_colour_top(range.count ? range.max : 1);
     std::string out = "<svg class=\"plan\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
@@ -230,6 +279,7 @@ std::string surface_plan_svg(const ReportSurface& s, std::span<const double> val
     const auto placed = luminaires_over(g, f, luminaires, metres_per_unit);
     out += isolines_svg(s, values, scale.quantity, f, placed);
     out += luminaires_svg(placed);
+    out += scale_bar_svg(f, kMargin, kMargin + whole_v + 8, whole_u);
     out += legend_svg(kMargin * 2 + whole_u + 10, kMargin + 16, std::min(whole_v, 300.0) - 16, top,
                       scale.unit);
     return out + "</svg>";
