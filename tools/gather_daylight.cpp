@@ -108,6 +108,27 @@ void print_surface_factors(const DaylightRun& run, const std::vector<double>& va
     }
 }
 
+// The sensors whose reflected light stopped at --max-rays before --accuracy: counted, the first
+// few named.
+void warn_at_budget(const DaylightRun& run, const std::vector<DaylightSensors::Illuminance>& lux,
+                    const std::vector<std::uint8_t>& inside) {
+    long count = 0;
+    std::string names;
+    for (std::size_t k = 0; k < lux.size(); ++k) {
+        if (!lux[k].at_budget || inside[k]) continue;
+        if (count++ < 3)
+            names += (names.empty() ? "" : ", ") +
+                     (run.labels.empty() ? "sensor " + std::to_string(k) : run.labels[k]);
+    }
+    if (count == 0) return;
+    std::fprintf(stderr,
+                 "rad-gather: warning: %ld sensor(s) stopped at --max-rays %d before a standard "
+                 "error of %g%%: %s%s (raise --max-rays, or accept the error written with "
+                 "--error)\n",
+                 count, std::max(run.max_rays, run.rays), 100 * run.accuracy, names.c_str(),
+                 count > 3 ? ", ..." : "");
+}
+
 int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
     const auto sky = sky_of(a.choice, a.epw, sensors.frame());
     if (a.daylight_factor && sky.horizontal_illuminance() <= 0)
@@ -123,6 +144,7 @@ int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors
         errors.push_back(inside[k] ? std::nan("") : scale * lux[k].reflected_error);
     }
     const auto without = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), 1));
+    warn_at_budget(run, lux, inside);
     write_output(run.output, [&](std::FILE* out) {
         if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
         if (run.labels.empty()) {
@@ -237,8 +259,11 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
 }
 } // namespace
 
-DaylightOptions daylight_options(int sky_samples, int rays, std::uint64_t seed) {
+DaylightOptions daylight_options(int sky_samples, int rays, std::uint64_t seed, double accuracy,
+                                 int max_rays) {
     DaylightOptions options;
+    options.accuracy = accuracy;
+    options.max_rays = max_rays;
     options.sky_side = std::max(1, int(std::lround(std::sqrt(double(sky_samples)))));
     options.rays = rays; // 0: no reflected light
     options.seed = seed;
@@ -256,9 +281,9 @@ std::string occupancy_text(const std::string& occupancy) {
 
 int gather_daylight(const DaylightArgs& a, const DaylightRun& run) {
     check_daylight_args(a, run);
-    const DaylightSensors sensors(*run.mesh,
-                                  daylight_solution(*run.solution, *run.rad_header, run.rad_path),
-                                  daylight_options(a.sky_samples, run.rays, run.seed));
+    const DaylightSensors sensors(
+        *run.mesh, daylight_solution(*run.solution, *run.rad_header, run.rad_path),
+        daylight_options(a.sky_samples, run.rays, run.seed, run.accuracy, run.max_rays));
     if (a.annual) return annual(a, run, sensors);
     return instant(a, run, sensors);
 }

@@ -42,6 +42,8 @@ struct DaylightRun {
     std::vector<std::string> labels;
     std::vector<std::pair<std::string, std::size_t>> surfaces;
     int rays = kDaylightRays;
+    double accuracy = 0; // rounds of the reflected light's rays to this relative error
+    int max_rays = 4096;
     std::uint64_t seed = 1;
     bool quiet = false;
     bool error = false; // --error: each value's standard error beside it
@@ -50,8 +52,10 @@ struct DaylightRun {
 int gather_daylight(const DaylightArgs& a, const DaylightRun& run);
 
 // What a command line makes of the sensors' daylight (rad-gather, rad-report): --sky-samples
-// rounded to a square, the room's reflected light's rays, the seed.
-DaylightOptions daylight_options(int sky_samples, int rays, std::uint64_t seed);
+// rounded to a square, the room's reflected light's rays, the seed, and --accuracy's rounds
+// (of at most --max-rays, or `rays` when more).
+DaylightOptions daylight_options(int sky_samples, int rays, std::uint64_t seed, double accuracy = 0,
+                                 int max_rays = 4096);
 // The occupied hours: --occupancy's file, or LM-83's default (empty `occupancy`); and how a
 // summary or a page names them.
 std::vector<std::uint8_t> occupied_hours(const std::string& occupancy, const Weather& weather);

@@ -525,6 +525,8 @@ int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
     run.output = a.output;
     run.png = a.png;
     run.rays = a.rays_option->count() ? a.options.rays : rad::tool::kDaylightRays;
+    run.accuracy = a.options.accuracy;
+    run.max_rays = a.options.max_rays;
     run.seed = a.options.seed;
     run.quiet = a.quiet;
     run.error = a.error;

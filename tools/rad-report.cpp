@@ -204,7 +204,7 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
                                           "lines");
     const auto options = rad::tool::daylight_options(
         a.sky_samples, a.rays_option->count() ? a.options.rays : rad::tool::kDaylightRays,
-        a.options.seed);
+        a.options.seed, a.options.accuracy, a.options.max_rays);
     const rad::DaylightSensors sensors(
         mesh, rad::daylight_solution(solution, rad_header, a.inputs[1]), options);
     const double metres = rad::metres_per_unit(mesh_header);
@@ -238,6 +238,7 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
         for (std::size_t k = first; k < first + n; ++k) {
             d.factor.push_back(inside[k] ? std::nan("") : percent * lux[k].total());
             d.factor_error.push_back(inside[k] ? std::nan("") : percent * lux[k].reflected_error);
+            if (lux[k].at_budget && !inside[k]) d.at_budget.push_back(long(k - first));
         }
         d.summary = rad::summarise_daylight_factors(d.factor);
         d.mean_error = rad::illuminance_errors(d.factor, d.factor_error).mean;

@@ -104,6 +104,28 @@ covered = sum(abs(v - r) <= 2 * e for r, v, e in pairs) / len(pairs)
 print("daylight factor: %d points, +-2 standard errors hold the reference at %.1f%%" % (len(pairs), 100 * covered))
 assert len(pairs) >= 250 and 0.90 <= covered <= 0.98, (len(pairs), covered)
 PY
+# --accuracy drives the daylight's reflected rays (#65 item 2): a loose target casts exactly the
+# first round (the bytes of --accuracy 0); a tight one adds batches until each sensor's error is
+# within it, or names the sensors that stopped at --max-rays; the same bytes at any thread count.
+day --accuracy 0 -o "$TMP/df0.txt" -q || fail "--accuracy 0"
+day --accuracy 1 -o "$TMP/df1.txt" -q || fail "--accuracy 1"
+cmp -s "$TMP/df0.txt" "$TMP/df1.txt" || fail "a loose --accuracy changed the daylight factors"
+day --accuracy 0.002 --max-rays 8192 -o "$TMP/dfa.txt" 2> "$TMP/dfa.err" || fail "--accuracy 0.002: $(cat "$TMP/dfa.err")"
+day --accuracy 0.002 --max-rays 8192 --threads 1 -o "$TMP/dfa1.txt" -q || fail "--accuracy 0.002 --threads 1"
+cmp -s "$TMP/dfa.txt" "$TMP/dfa1.txt" || fail "--accuracy's rounds differ at 1 and 2 threads"
+python3 - "$TMP/dfa.txt" "$TMP/df0.txt" "$TMP/dfa.err" <<'PY' || fail "--accuracy 0.002 on the daylight factor"
+import math, re, sys
+got = [[float(v) for v in l.split()] for l in open(sys.argv[1])]
+first = [[float(v) for v in l.split()] for l in open(sys.argv[2])]
+err = open(sys.argv[3]).read()
+m = re.search(r"warning: (\d+) sensor\(s\) stopped at --max-rays 8192 before a standard error of 0.2%", err)
+at_budget = int(m.group(1)) if m else 0
+short = sum(1 for v, e in got if not math.isnan(v) and e > 0.002 * v * 1.006)
+assert short == at_budget, (short, at_budget, err)
+tightened = sum(1 for (v, e), (v0, e0) in zip(got, first) if not math.isnan(v) and e < e0 * 0.9)
+assert tightened >= 30, tightened
+print("--accuracy 0.002: %d of %d sensors tightened, %d at the budget" % (tightened, len(got), at_budget))
+PY
 # rad-report of the daylight room: the DF mean with its ±, and a requirement at that mean is
 # judged within the uncertainty.
 printf 'name,kind,x,y,z,ux,uy,uz,vx,vy,vz,spacing,border,DF\nfloor,workplane,0,0.8,6,4,0,0,0,0,-6,0.5,0.5,\n' > "$TMP/dcalc.csv"

@@ -167,6 +167,11 @@ std::vector<Rgb> sky_radiosity(const DaylightSolution& solution, const Sky& sky)
 struct DaylightOptions {
     int sky_side = 8; // directions per sky patch at a sensor: side x side
     int rays = 1024;  // the room's reflected light: cosine-weighted rays per sensor
+    // Under one sky, more batches of the reflected light's rays until its standard error is
+    // at most `accuracy` of the sensor's lux, or `max_rays` are cast (0: exactly `rays`).
+    // The coefficients (a year's) take `rays`.
+    double accuracy = 0;
+    int max_rays = 4096;
     std::uint64_t seed = 1;
     int specular_depth = kDefaultSpecularDepth;
 };
@@ -192,6 +197,8 @@ class DaylightSensors {
     struct Illuminance {
         double sky = 0, reflected = 0, sun = 0;
         double reflected_error = 0;
+        int rays = 0;           // the reflected light's rays cast
+        bool at_budget = false; // stopped at max_rays before the accuracy
         double total() const { return sky + reflected + sun; }
     };
     Illuminance illuminance(const Sky& sky, const Vec3& point, const Vec3& normal,
@@ -215,9 +222,10 @@ class DaylightSensors {
     std::vector<double> reflected(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
     // The reflected light's coefficients batch by batch: `each(coefficients)` once a batch,
     // every batch of stratified rays from its own stream (their mean is reflected()).
+    // Batches [first, end) (end -1: the plan's count).
     template <class Each>
-    void reflected_batches(const Vec3& point, const Vec3& normal, std::uint64_t index,
-                           Each&& each) const;
+    void reflected_batches(const Vec3& point, const Vec3& normal, std::uint64_t index, Each&& each,
+                           int first = 0, int end = -1) const;
     const radfmt::MeshData& mesh_;
     DaylightSolution solution_;
     DaylightOptions options_;

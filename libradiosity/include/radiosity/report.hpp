@@ -26,6 +26,7 @@ struct SurfaceDaylight {
     std::vector<double> factor_error; // its standard error (the reflected light's), % per sensor
     DaylightFactorSummary summary;
     double mean_error = std::numeric_limits<double>::quiet_NaN(); // of summary.mean
+    std::vector<long> at_budget; // sensors that stopped at the ray budget before the accuracy
     bool annual = false;
     std::vector<double> da300; // % of occupied hours, per sensor
     AnnualMetrics metrics;     // this surface's

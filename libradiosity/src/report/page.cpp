@@ -306,6 +306,9 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
     }
     // The two plans side by side when they fit across the page, else one under the other.
     out += "<tr><th>Required</th><td>" + daylight_required_text(s.surface.required) + "</td></tr>";
+    if (!d.at_budget.empty())
+        out += "<tr><th>Points short of the accuracy</th><td>" +
+               std::to_string(d.at_budget.size()) + " (stopped at the ray budget)</td></tr>";
     out += "<tr><th>Verdict</th>" +
            verdict_text(s.surface.required.of_daylight(), d.verdict.passes(), d.verdict.df_close) +
            "</tr>";

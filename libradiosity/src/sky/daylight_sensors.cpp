@@ -154,7 +154,7 @@ ReflectedBatches reflected_plan(int rays) {
 // rays (jittered strata) land, through mirrors and glass; batch by batch.
 template <class Each>
 void DaylightSensors::reflected_batches(const Vec3& point, const Vec3& normal, std::uint64_t index,
-                                        Each&& each) const {
+                                        Each&& each, int first, int end) const {
     const std::size_t count = patches().count();
     const auto plan = reflected_plan(options_.rays);
     const int side = plan.side;
@@ -162,7 +162,7 @@ void DaylightSensors::reflected_batches(const Vec3& point, const Vec3& normal, s
     const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
     const auto& b = solution_.radiosity;
     thread_local std::vector<double> out;
-    for (int batch = 0; batch < plan.batches; ++batch) {
+    for (int batch = first; batch < (end < 0 ? plan.batches : end); ++batch) {
         out.assign(count, 0.0);
         Rng rng = batch_stream(options_.seed, index, batch);
         for (int k = 0; k < side * side; ++k) {
@@ -237,13 +237,36 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
     if (options_.rays > 0) {
         const auto luminance = patch_luminance_with_sun(patches(), sky);
         BatchError batches;
-        reflected_batches(point, normal, index, [&](const std::vector<double>& c) {
+        const auto add = [&](const std::vector<double>& c) {
             double lux = 0;
             for (std::size_t s = 0; s < luminance.size(); ++s) lux += c[s] * luminance[s];
             batches.add({lux, lux, lux});
-        });
+        };
+        reflected_batches(point, normal, index, add);
+        const auto plan = reflected_plan(options_.rays);
+        const int per_batch = plan.side * plan.side;
+        int cast = plan.batches * per_batch;
+        if (sky.sun_up())
+            out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
+        // Rounds to the accuracy asked for: a batch at a time, each from its own stream.
+        const auto short_of_accuracy = [&] {
+            const double total = out.sky + out.sun + batches.mean()[0];
+            const double error = batches.standard_error()[0];
+            return options_.accuracy > 0 && std::isfinite(error) &&
+                   error > options_.accuracy * total;
+        };
+        for (int batch = plan.batches; short_of_accuracy(); ++batch) {
+            if (cast + per_batch > std::max(options_.max_rays, options_.rays)) {
+                out.at_budget = true;
+                break;
+            }
+            reflected_batches(point, normal, index, add, batch, batch + 1);
+            cast += per_batch;
+        }
         out.reflected = batches.mean()[0];
         out.reflected_error = batches.standard_error()[0];
+        out.rays = cast;
+        return out;
     }
     if (sky.sun_up())
         out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
