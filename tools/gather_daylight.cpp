@@ -66,9 +66,9 @@ void check_daylight_args(const DaylightArgs& a, const DaylightRun& run) {
         throw InputError("--daylight-factor is for --sky cie-overcast, not --annual");
     if (!a.annual && (!a.occupancy.empty() || !a.metrics.empty()))
         throw InputError("--occupancy and --metrics go with --annual");
-    if (a.annual && run.error)
-        throw InputError("--error: the year's metrics carry no error bar yet "
-                         "(docs/uncertainty.md): leave --error out of --annual");
+    if (a.annual && run.error && a.metrics.empty())
+        throw InputError("--annual --error writes the metrics' errors beside them: give "
+                         "--metrics FILE");
 }
 
 // "; 3 sensor(s) inside or behind objects: no value" (nothing when none).
@@ -188,25 +188,40 @@ int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors
 }
 
 void write_metrics_csv(const std::string& path, const radfmt::AnnualData& year,
-                       const AnnualMetrics& m, const std::vector<std::string>& labels) {
+                       const AnnualMetrics& m, const std::vector<std::string>& labels,
+                       const AnnualErrors* errors) {
     radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
         std::ofstream out(temp);
         if (!labels.empty()) out << "surface,index,column,row,";
-        out << "x,y,z,dx,dy,dz,da300,udi_low,udi_useful,udi_high,sun_hours\n";
+        out << "x,y,z,dx,dy,dz,da300,udi_low,udi_useful,udi_high,sun_hours";
+        out << (errors ? ",da300_error,udi_useful_error\n" : "\n");
         char line[256];
         for (std::size_t k = 0; k < year.sensors(); ++k) {
             if (!labels.empty()) out << labels[k] << ',';
             const auto& p = year.positions[k];
             const auto& d = year.normals[k];
             const auto& s = m.sensors[k];
-            std::snprintf(line, sizeof line,
-                          "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.4f,%d\n", p[0], p[1],
-                          p[2], d[0], d[1], d[2], s.da300, s.udi_low, s.udi_useful, s.udi_high,
-                          s.sun_hours);
+            std::snprintf(line, sizeof line, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.4f,%d",
+                          p[0], p[1], p[2], d[0], d[1], d[2], s.da300, s.udi_low, s.udi_useful,
+                          s.udi_high, s.sun_hours);
             out << line;
+            if (errors) {
+                std::snprintf(line, sizeof line, ",%.2g,%.2g", errors->da300[k],
+                              errors->udi_useful[k]);
+                out << line;
+            }
+            out << '\n';
         }
         if (!out.flush()) throw SystemError(path + ": cannot write");
     });
+}
+
+// " ± 0.3" (a share's standard error in percentage points), or " ± ?" when not known.
+std::string percent_error(double error) {
+    if (!std::isfinite(error)) return " ± ?";
+    char text[32];
+    std::snprintf(text, sizeof text, " ± %.2g", 100 * error);
+    return text;
 }
 
 int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
@@ -216,8 +231,10 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
                      a.epw.c_str(), weather.missing);
     const auto occupied = occupied_hours(a.occupancy, weather);
     std::vector<std::string> notes;
-    const auto year = annual_illuminance(sensors, run.positions, run.normals, weather, occupied,
-                                         a.choice.ground, run.quiet, &notes);
+    AnnualReplicates replicates;
+    const auto year =
+        annual_illuminance(sensors, run.positions, run.normals, weather, occupied, a.choice.ground,
+                           run.quiet, &notes, run.error ? &replicates : nullptr);
     for (const auto& note : notes) std::fprintf(stderr, "rad-gather: %s\n", note.c_str());
     std::vector<radfmt::Parent> parents;
     for (const auto& i : run.inputs) parents.push_back({i, nullptr});
@@ -227,7 +244,9 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
     radfmt::write_annual(run.output, header, year);
     const auto inside = sensors.inside(run.positions, run.normals);
     const auto m = annual_metrics(year, inside);
-    if (!a.metrics.empty()) write_metrics_csv(a.metrics, year, m, run.labels);
+    const auto errors = annual_errors(replicates, m);
+    if (!a.metrics.empty())
+        write_metrics_csv(a.metrics, year, m, run.labels, run.error ? &errors : nullptr);
     if (!run.png.empty()) {
         std::vector<double> da;
         for (const auto& s : m.sensors) da.push_back(100 * s.da300);
@@ -239,20 +258,26 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
                 m.counted, weather.place.c_str(), weather.location.latitude,
                 weather.location.longitude, m.occupied_hours, occupancy_text(a.occupancy).c_str(),
                 inside_text(year.sensors() - m.counted).c_str());
-    std::printf("  sDA300/50%%     %6.1f %% of sensors (DA300 >= 50%%)\n", 100 * m.sda);
-    std::printf("  ASE1000,250h   %6.1f %% of sensors (direct sun >= 1000 lx for > 250 h)\n",
-                100 * m.ase);
-    std::printf("  DA300 mean     %6.1f %% of occupied hours\n", 100 * m.da300);
-    std::printf("  UDI 100-3000   %6.1f %% of occupied hours (mean)\n", 100 * m.udi_useful);
+    const auto pm = [&](double error) { return run.error ? percent_error(error) : std::string(); };
+    std::printf("  sDA300/50%%     %6.1f %%%s of sensors (DA300 >= 50%%)\n", 100 * m.sda,
+                pm(errors.sda).c_str());
+    std::printf("  ASE1000,250h   %6.1f %%%s of sensors (direct sun >= 1000 lx for > 250 h)\n",
+                100 * m.ase, run.error ? " ± 0 (the sun's beam, exact)" : "");
+    std::printf("  DA300 mean     %6.1f %%%s of occupied hours\n", 100 * m.da300,
+                pm(errors.da300_mean).c_str());
+    std::printf("  UDI 100-3000   %6.1f %%%s of occupied hours (mean)\n", 100 * m.udi_useful,
+                pm(errors.udi_useful_mean).c_str());
     std::size_t first = 0;
     for (const auto& [name, count] : run.surfaces) { // --surfaces: each surface's figures
         const auto part = summarise_sensor_metrics(
             {m.sensors.begin() + long(first), m.sensors.begin() + long(first + count)},
             m.occupied_hours);
-        std::printf("  %s: sDA300/50%% %.1f %%, ASE1000,250h %.1f %%, DA300 mean %.1f %%, UDI "
-                    "100-3000 %.1f %%\n",
-                    name.c_str(), 100 * part.sda, 100 * part.ase, 100 * part.da300,
-                    100 * part.udi_useful);
+        const auto e = annual_errors(replicates, part, first);
+        std::printf("  %s: sDA300/50%% %.1f %%%s, ASE1000,250h %.1f %%, DA300 mean %.1f %%%s, UDI "
+                    "100-3000 %.1f %%%s\n",
+                    name.c_str(), 100 * part.sda, pm(e.sda).c_str(), 100 * part.ase,
+                    100 * part.da300, pm(e.da300_mean).c_str(), 100 * part.udi_useful,
+                    pm(e.udi_useful_mean).c_str());
         first += count;
     }
     return 0;

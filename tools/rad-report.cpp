@@ -221,11 +221,13 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     // Sensors inside furniture: no value (greyed on the plans), in no figure.
     const auto inside = sensors.inside(positions, normals);
     std::optional<rad::AnnualMetrics> year;
+    rad::AnnualReplicates replicates; // the year's metrics' error bars
     if (!a.epw.empty()) {
         const auto weather = rad::read_epw(a.epw);
         const auto occupied = rad::tool::occupied_hours(a.occupancy, weather);
         year = rad::annual_metrics(rad::annual_illuminance(sensors, positions, normals, weather,
-                                                           occupied, a.ground, a.quiet),
+                                                           occupied, a.ground, a.quiet, nullptr,
+                                                           &replicates),
                                    inside);
         in.weather = weather.place + " (" + a.epw + ")";
         in.occupancy = rad::tool::occupancy_text(a.occupancy);
@@ -248,10 +250,12 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
                 {year->sensors.begin() + long(first), year->sensors.begin() + long(first + n)},
                 year->occupied_hours);
             for (const auto& m : d.metrics.sensors) d.da300.push_back(100 * m.da300);
+            d.metric_errors = rad::annual_errors(replicates, d.metrics, first);
         }
-        d.verdict = rad::judge_daylight(d.summary.mean, d.annual ? &d.metrics.sda : nullptr,
-                                        d.annual ? &d.metrics.ase : nullptr,
-                                        file.surfaces[s].required, d.mean_error);
+        d.verdict =
+            rad::judge_daylight(d.summary.mean, d.annual ? &d.metrics.sda : nullptr,
+                                d.annual ? &d.metrics.ase : nullptr, file.surfaces[s].required,
+                                d.mean_error, d.metric_errors.sda);
         rad::ReportSurface surface;
         surface.surface = file.surfaces[s];
         surface.grid = grids[s];

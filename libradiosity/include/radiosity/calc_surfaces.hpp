@@ -183,13 +183,17 @@ Verdict judge(const IlluminanceStats& stats, const Requirements& required,
 // required; sDA and ASE only when the year was computed). Shares in [0, 1], DF in %.
 // `df_close`: the mean DF's margin lies within two of its standard errors (`mean_df_error`;
 // NaN: not known).
+// `sda_error`: sDA's standard error (a share; NaN: not known); its margin within two of them is
+// `sda_close`.
 struct DaylightVerdict {
     bool df = true, sda = true, ase = true;
-    bool df_close = false;
+    bool df_close = false, sda_close = false;
     bool passes() const { return df && sda && ase; }
+    bool close() const { return df_close || sda_close; }
 };
 DaylightVerdict judge_daylight(double mean_df, const double* sda, const double* ase,
                                const Requirements& required,
-                               double mean_df_error = std::numeric_limits<double>::quiet_NaN());
+                               double mean_df_error = std::numeric_limits<double>::quiet_NaN(),
+                               double sda_error = std::numeric_limits<double>::quiet_NaN());
 
 } // namespace rad

@@ -10,6 +10,7 @@
 #include "radiosity/weather.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -188,6 +189,11 @@ class DaylightSensors {
         std::vector<double> direct, reflected;
     };
     Coefficients coefficients(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    // The reflected coefficients batch by batch ([batch * sky patches + s]; their mean is
+    // Coefficients::reflected), each batch's rays from its own stream; `batches` their count.
+    std::vector<double> reflected_batch_coefficients(const Vec3& point, const Vec3& normal,
+                                                     std::uint64_t index, int& batches) const;
+    int reflected_batch_count() const; // how many batches those are (0: no reflected light)
     // Under one sky: the sky seen directly, exactly (its luminance along each path), the
     // light the room reflects (the coefficients x the patches' mean luminance, the sun's
     // beam in the patch it is in) and the sun's beam; lux.
@@ -236,16 +242,43 @@ class DaylightSensors {
     PlanarMirrors mirrors_; // the sun's images in them
 };
 
+// The year's metrics' standard errors. The sky seen directly and the sun are exact; the room's
+// reflected light comes from B batches of rays. Replicate b of the year adds to every hour
+// batch b's deviation from the batches' mean, scaled to the size of the mean's error (1 /
+// sqrt(B - 1)): a draw of the error the estimate has, correlated over the hours as the
+// estimate's is (the same rays see the room for every sky). A figure's standard error is its
+// replicates' root mean square deviation from the figure itself; the plane's figures (sDA,
+// means) take every sensor's replicate b together (the sensors' rays are independent). (A
+// leave-one-batch-out jackknife moves the light by a quarter of that and flips too few hours
+// of a count over a threshold: it gave 0 at most sensors and held the truth at 88%.) ASE
+// counts the sun's beam alone, exact: 0.
+struct AnnualReplicates {
+    int batches = 0;                       // B; 0: not computed (no reflected light, 1 batch)
+    std::vector<double> da300, udi_useful; // [sensor * B + b], shares
+};
+struct AnnualErrors {
+    std::vector<double> da300, udi_useful; // per sensor of the part (NaN: not known)
+    double sda = std::numeric_limits<double>::quiet_NaN();
+    double da300_mean = std::numeric_limits<double>::quiet_NaN();
+    double udi_useful_mean = std::numeric_limits<double>::quiet_NaN();
+};
+struct AnnualMetrics;
+AnnualErrors annual_errors(const AnnualReplicates& replicates, const AnnualMetrics& metrics,
+                           std::size_t first = 0);
+
 // A year at sensors from a weather file: per hour Perez's sky from its radiation (the sun at
 // mid-hour), the sky's light through the coefficients, the sun's beam traced at each sensor.
 // `occupied`: one flag per hour. `ground`: the ground's reflectance. Parallel over the
-// sensors; deterministic. `notes` (may be null) receives one line for the hours whose Perez
-// sky was adjusted at the model's edges (Sky::adjusted), with their count and the first.
+// sensors; deterministic. `replicates` (may be null) receives each sensor's metrics' errors
+// (the reflected light's coefficients by batch: about twice its work). `notes` (may be null)
+// receives one line for the hours whose Perez sky was adjusted at the model's edges
+// (Sky::adjusted), with their count and the first.
 radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
                                       const std::vector<Vec3>& positions,
                                       const std::vector<Vec3>& normals, const Weather& weather,
                                       const std::vector<std::uint8_t>& occupied, double ground,
-                                      bool quiet = true, std::vector<std::string>* notes = nullptr);
+                                      bool quiet = true, std::vector<std::string>* notes = nullptr,
+                                      AnnualReplicates* replicates = nullptr);
 
 // The occupied hours: 08:00 to 18:00 local standard time every day (LM-83's default), or
 // read from `path`: one 0 or 1 a line for each hour of the year (# comments and blank lines

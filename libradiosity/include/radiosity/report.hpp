@@ -28,9 +28,10 @@ struct SurfaceDaylight {
     double mean_error = std::numeric_limits<double>::quiet_NaN(); // of summary.mean
     std::vector<long> at_budget; // sensors that stopped at the ray budget before the accuracy
     bool annual = false;
-    std::vector<double> da300; // % of occupied hours, per sensor
-    AnnualMetrics metrics;     // this surface's
-    DaylightVerdict verdict;   // against the surface's DF, sDA and ASE requirements
+    std::vector<double> da300;  // % of occupied hours, per sensor
+    AnnualMetrics metrics;      // this surface's
+    AnnualErrors metric_errors; // their standard errors (the jackknife's)
+    DaylightVerdict verdict;    // against the surface's DF, sDA and ASE requirements
 };
 
 struct ReportSurface {

@@ -238,7 +238,7 @@ std::string daylight_table(const ReportInput& in) {
             out += cell(percent(s.daylight->metrics.sda)) + cell(percent(s.daylight->metrics.ase));
         out += "<td>" + daylight_required_text(s.surface.required) + "</td>" +
                verdict_text(s.surface.required.of_daylight(), s.daylight->verdict.passes(),
-                            s.daylight->verdict.df_close) +
+                            s.daylight->verdict.close()) +
                "</tr>";
     }
     return out + "</tbody></table>";
@@ -298,11 +298,18 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
         out += "<tr><th>Points without a value</th><td>" + std::to_string(d.summary.without) +
                " (inside or under objects; grey in the plan; in no figure)</td></tr>";
     if (d.annual) {
-        out += figure_row("sDA300/50% (%)", percent(d.metrics.sda), "sda");
-        out += figure_row("ASE1000,250h (%)", percent(d.metrics.ase), "ase");
-        out += figure_row("DA300 mean (% of hours)", percent(d.metrics.da300), "da300");
-        out +=
-            figure_row("UDI 100-3000 lx mean (% of hours)", percent(d.metrics.udi_useful), "udi");
+        // Their errors in percentage points, by the jackknife over the reflected light's
+        // batches; ASE is the sun's beam alone, exact.
+        const auto& e = d.metric_errors;
+        const auto points = [](double error) {
+            return std::isfinite(error) ? "± " + fixed(100 * error, 2) : std::string();
+        };
+        out += figure_row("sDA300/50% (%)", percent(d.metrics.sda), "sda", points(e.sda));
+        out += figure_row("ASE1000,250h (%)", percent(d.metrics.ase), "ase", "± 0");
+        out += figure_row("DA300 mean (% of hours)", percent(d.metrics.da300), "da300",
+                          points(e.da300_mean));
+        out += figure_row("UDI 100-3000 lx mean (% of hours)", percent(d.metrics.udi_useful), "udi",
+                          points(e.udi_useful_mean));
     }
     // The two plans side by side when they fit across the page, else one under the other.
     out += "<tr><th>Required</th><td>" + daylight_required_text(s.surface.required) + "</td></tr>";
@@ -310,7 +317,7 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
         out += "<tr><th>Points short of the accuracy</th><td>" +
                std::to_string(d.at_budget.size()) + " (stopped at the ray budget)</td></tr>";
     out += "<tr><th>Verdict</th>" +
-           verdict_text(s.surface.required.of_daylight(), d.verdict.passes(), d.verdict.df_close) +
+           verdict_text(s.surface.required.of_daylight(), d.verdict.passes(), d.verdict.close()) +
            "</tr>";
     out += "</tbody></table><div class=\"plans\"><figure>" +
            surface_plan_svg(s, d.factor, {"df", "%", 0, kHalfWidth, kHalfHeight}, nullptr, 1) +

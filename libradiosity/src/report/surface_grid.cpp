@@ -114,11 +114,15 @@ Verdict judge(const IlluminanceStats& stats, const Requirements& required,
 }
 
 DaylightVerdict judge_daylight(double mean_df, const double* sda, const double* ase,
-                               const Requirements& required, double mean_df_error) {
+                               const Requirements& required, double mean_df_error,
+                               double sda_error) {
     DaylightVerdict v;
     const auto df = judge_figure(mean_df, mean_df_error, required.df);
     v.df = df.passes, v.df_close = df.close;
-    if (!std::isnan(required.sda) && sda) v.sda = 100 * *sda >= required.sda;
+    if (!std::isnan(required.sda) && sda) {
+        const auto judged = judge_figure(100 * *sda, 100 * sda_error, required.sda);
+        v.sda = judged.passes, v.sda_close = judged.close;
+    }
     if (!std::isnan(required.ase) && ase) v.ase = 100 * *ase <= required.ase;
     return v;
 }

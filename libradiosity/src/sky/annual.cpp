@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace rad {
@@ -84,11 +85,52 @@ std::string flagged_hours_note(const Weather& weather, const std::vector<std::ui
 }
 } // namespace
 
+namespace {
+// One sensor's replicates of the year: replicate b adds to each hour batch b's deviation from
+// the batches' mean, scaled to the size of the mean's own error (1 / sqrt(B - 1)): a draw of
+// the error the estimate has, the same rays for every hour (so its hours' errors are as
+// correlated as the estimate's). Per replicate, the shares of occupied hours at 300 lx or
+// more and within 100 to 3000 lx.
+void sensor_replicates(const DaylightSensors& sensors, const HourlySkies& skies,
+                       const std::vector<std::uint8_t>& occupied, const Vec3& position,
+                       const Vec3& normal, std::size_t k, const std::vector<float>& lux,
+                       std::size_t n, AnnualReplicates& out) {
+    int batches = 0;
+    const auto c = sensors.reflected_batch_coefficients(position, normal, k, batches);
+    if (batches < 2 || batches != out.batches) return;
+    const std::size_t count = skies.count, hours = occupied.size(), b_count = std::size_t(batches);
+    const double scale = 1 / std::sqrt(double(batches - 1));
+    std::vector<double> da(b_count, 0.0), udi(b_count, 0.0), r(b_count, 0.0);
+    int occupied_hours = 0;
+    for (std::size_t t = 0; t < hours; ++t) {
+        if (!occupied[t]) continue;
+        ++occupied_hours;
+        const float* lr = &skies.reflected[t * count];
+        double mean = 0;
+        for (std::size_t b = 0; b < b_count; ++b) {
+            double sum = 0;
+            for (std::size_t s = 0; s < count; ++s) sum += c[b * count + s] * lr[s];
+            mean += (r[b] = sum) / double(b_count);
+        }
+        for (std::size_t b = 0; b < b_count; ++b) {
+            const double value = lux[t * n + k] + (r[b] - mean) * scale;
+            da[b] += value >= 300;
+            udi[b] += value >= 100 && value <= 3000;
+        }
+    }
+    for (std::size_t b = 0; b < b_count; ++b) {
+        out.da300[k * b_count + b] = occupied_hours ? da[b] / occupied_hours : 0;
+        out.udi_useful[k * b_count + b] = occupied_hours ? udi[b] / occupied_hours : 0;
+    }
+}
+} // namespace
+
 radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
                                       const std::vector<Vec3>& positions,
                                       const std::vector<Vec3>& normals, const Weather& weather,
                                       const std::vector<std::uint8_t>& occupied, double ground,
-                                      bool quiet, std::vector<std::string>* notes) {
+                                      bool quiet, std::vector<std::string>* notes,
+                                      AnnualReplicates* replicates) {
     const auto skies = hourly_skies(weather, sensors.patches(), sensors.frame(), ground);
     if (notes)
         for (auto note :
@@ -110,6 +152,12 @@ radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
         year.hours.push_back(std::uint32_t(h.month * 10000 + h.day * 100 + h.hour));
     year.lux.assign(hours * n, 0.0f);
     year.sun_lux.assign(hours * n, 0.0f);
+    if (replicates) {
+        const int batches = sensors.reflected_batch_count();
+        replicates->batches = batches >= 2 ? batches : 0;
+        replicates->da300.assign(n * std::size_t(replicates->batches), 0.0);
+        replicates->udi_useful.assign(n * std::size_t(replicates->batches), 0.0);
+    }
     Progress progress("rad-gather year", n, quiet);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
         const auto c = sensors.coefficients(positions[k], normals[k], k);
@@ -126,6 +174,9 @@ radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
             year.lux[t * n + k] = lux + float(sun);
             year.sun_lux[t * n + k] = float(sun);
         }
+        if (replicates)
+            sensor_replicates(sensors, skies, occupied, positions[k], normals[k], k, year.lux, n,
+                              *replicates);
         progress.advance(1);
     });
     progress.finish();

@@ -184,6 +184,24 @@ void DaylightSensors::reflected_batches(const Vec3& point, const Vec3& normal, s
     }
 }
 
+int DaylightSensors::reflected_batch_count() const {
+    return options_.rays > 0 ? reflected_plan(options_.rays).batches : 0;
+}
+
+std::vector<double> DaylightSensors::reflected_batch_coefficients(const Vec3& point,
+                                                                  const Vec3& normal,
+                                                                  std::uint64_t index,
+                                                                  int& batches) const {
+    std::vector<double> out;
+    batches = 0;
+    if (options_.rays <= 0) return out;
+    reflected_batches(point, normal, index, [&](const std::vector<double>& c) {
+        out.insert(out.end(), c.begin(), c.end());
+        ++batches;
+    });
+    return out;
+}
+
 std::vector<double> DaylightSensors::reflected(const Vec3& point, const Vec3& normal,
                                                std::uint64_t index) const {
     std::vector<double> sum(patches().count(), 0.0);

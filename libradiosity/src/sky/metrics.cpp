@@ -84,4 +84,45 @@ DaylightFactorSummary summarise_daylight_factors(std::vector<double> factors) {
     return out;
 }
 
+namespace {
+// The root mean square deviation of replicates from the figure they replicate.
+double replicate_error(const std::vector<double>& replicates, double figure) {
+    if (replicates.empty()) return std::nan("");
+    double sum = 0;
+    for (const double r : replicates) sum += (r - figure) * (r - figure);
+    return std::sqrt(sum / double(replicates.size()));
+}
+} // namespace
+
+AnnualErrors annual_errors(const AnnualReplicates& replicates, const AnnualMetrics& metrics,
+                           std::size_t first) {
+    AnnualErrors out;
+    const std::size_t n = metrics.sensors.size(), batches = std::size_t(replicates.batches);
+    out.da300.assign(n, std::nan(""));
+    out.udi_useful.assign(n, std::nan(""));
+    if (batches < 2 || metrics.counted == 0) return out;
+    std::vector<double> sda(batches, 0), da_mean(batches, 0), udi_mean(batches, 0);
+    std::vector<double> da(batches), udi(batches);
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto& m = metrics.sensors[k];
+        if (!m.valid) continue;
+        for (std::size_t b = 0; b < batches; ++b) {
+            da[b] = replicates.da300[(first + k) * batches + b];
+            udi[b] = replicates.udi_useful[(first + k) * batches + b];
+            sda[b] += da[b] >= kDaylitShare;
+            da_mean[b] += da[b];
+            udi_mean[b] += udi[b];
+        }
+        out.da300[k] = replicate_error(da, m.da300);
+        out.udi_useful[k] = replicate_error(udi, m.udi_useful);
+    }
+    const double count = double(metrics.counted);
+    for (auto* v : {&sda, &da_mean, &udi_mean})
+        for (auto& x : *v) x /= count;
+    out.sda = replicate_error(sda, metrics.sda);
+    out.da300_mean = replicate_error(da_mean, metrics.da300);
+    out.udi_useful_mean = replicate_error(udi_mean, metrics.udi_useful);
+    return out;
+}
+
 } // namespace rad
