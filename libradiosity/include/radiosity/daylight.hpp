@@ -270,7 +270,7 @@ AnnualErrors annual_errors(const AnnualReplicates& replicates, const AnnualMetri
 // mid-hour), the sky's light through the coefficients, the sun's beam traced at each sensor.
 // `occupied`: one flag per hour. `ground`: the ground's reflectance. Parallel over the
 // sensors; deterministic. `replicates` (may be null) receives each sensor's metrics' errors
-// (the reflected light's coefficients by batch: about twice its work). `notes` (may be null)
+// (the reflected light by batch: 1.4 times the work at 1000 sensors). `notes` (may be null)
 // receives one line for the hours whose Perez sky was adjusted at the model's edges
 // (Sky::adjusted), with their count and the first.
 radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
