@@ -269,8 +269,8 @@ AnnualErrors annual_errors(const AnnualReplicates& replicates, const AnnualMetri
 // A year at sensors from a weather file: per hour Perez's sky from its radiation (the sun at
 // mid-hour), the sky's light through the coefficients, the sun's beam traced at each sensor.
 // `occupied`: one flag per hour. `ground`: the ground's reflectance. Parallel over the
-// sensors; deterministic. `replicates` (may be null) receives each sensor's metrics' errors
-// (the reflected light by batch: 1.4 times the work at 1000 sensors). `notes` (may be null)
+// sensors; deterministic. `replicates` (may be null) receives each sensor's replicates of the
+// year (1.4 times the work at 1000 sensors). `notes` (may be null)
 // receives one line for the hours whose Perez sky was adjusted at the model's edges
 // (Sky::adjusted), with their count and the first.
 radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
