@@ -1,7 +1,7 @@
 // The daylight kinds: the sky-view file (.sky, rad-ff --sky) and a year of illuminance at
 // sensors (.ill, rad-gather --annual).
 #include "body_checks.hpp"
-#include "links.hpp"
+#include "kind_table.hpp"
 #include "radfmt/kinds.hpp"
 
 #include <cmath>

@@ -3,7 +3,7 @@
 
 #include "body_checks.hpp"
 #include "compact_rows.hpp"
-#include "links.hpp"
+#include "kind_table.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // The links kind: a binary tree over the patches and the links between its nodes
 // (rad-ff --method hierarchical). Every index is checked on reading, so the solver can
 // trust the tree.
-#include "links.hpp"
+#include "kind_table.hpp"
 
 #include "body_checks.hpp"
 

@@ -1,7 +1,7 @@
 // The luminaires kind (.lum): the sources it was made from as text, the light groups and the
 // direct irradiance per patch and group.
 #include "body_checks.hpp"
-#include "links.hpp"
+#include "kind_table.hpp"
 #include "radfmt/kinds.hpp"
 
 #include <cmath>

@@ -1,5 +1,4 @@
-// The links and luminaires kinds' CSV and summary, for the kind table in kinds.cpp (internal
-// header).
+// Each kind's CSV and summary, for the kind table in kinds.cpp (internal header).
 #pragma once
 #include "radfmt/kinds.hpp"
 
