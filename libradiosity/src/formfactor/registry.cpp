@@ -1,6 +1,6 @@
 // The form-factor methods, by name. Adding a method: one file under src/formfactor/ that
 // defines `const FormFactorMethod& NAME_method()`, plus one X(NAME) line here.
-#include "../named_registry.hpp"
+#include "core/named_registry.hpp"
 #include "radiosity/formfactor_method.hpp"
 
 // clang-format off

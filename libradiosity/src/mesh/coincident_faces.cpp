@@ -7,7 +7,7 @@
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 
-#include "../union_find.hpp"
+#include "core/union_find.hpp"
 #include "polygon2d.hpp"
 #include "slab_points.hpp"
 #include "weld.hpp"

@@ -1,6 +1,6 @@
 #include "imprint_views.hpp"
 
-#include "../union_find.hpp"
+#include "core/union_find.hpp"
 #include "room_box.hpp"
 
 #include <algorithm>

@@ -6,7 +6,7 @@
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 
-#include "../union_find.hpp"
+#include "core/union_find.hpp"
 #include "weld.hpp"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include "radiosity/orientation.hpp"
 
-#include "../union_find.hpp"
+#include "core/union_find.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"

@@ -2,7 +2,7 @@
 #include "point_buckets.hpp"
 #include "regions.hpp"
 
-#include "../union_find.hpp"
+#include "core/union_find.hpp"
 
 #include <algorithm>
 #include <cmath>

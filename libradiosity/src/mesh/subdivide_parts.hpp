@@ -1,7 +1,7 @@
 // The steps of `subdivide` (internal header): faces cleaned into elements, edge segment
 // counts agreed between the elements sharing an edge, then each element's patches.
 #pragma once
-#include "../union_find.hpp"
+#include "core/union_find.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/scene.hpp"
 #include "radiosity/vec.hpp"

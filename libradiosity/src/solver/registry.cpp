@@ -1,6 +1,6 @@
 // The solvers, by name. Adding a solver: one file under src/solver/ that defines
 // `const Solver& NAME_solver()`, plus one X(NAME) line here.
-#include "../named_registry.hpp"
+#include "core/named_registry.hpp"
 #include "radiosity/solver.hpp"
 
 // clang-format off
