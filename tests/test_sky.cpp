@@ -4,6 +4,7 @@
 #include "helpers.hpp"
 #include "radiosity/build_mesh.hpp"
 #include "radiosity/daylight.hpp"
+#include "radiosity/en17037.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/sky.hpp"
 #include "radiosity/sky_patches.hpp"
@@ -419,4 +420,46 @@ TEST_CASE("Perez's sky holds over every hour a weather file can hold (#70 item 6
     CHECK(beam_only.horizontal_illuminance() == 0);
     // An ordinary hour is not adjusted.
     CHECK(rad::Sky::perez(700, 120, sun, 172, 10, frame, 0.2).adjusted().empty());
+}
+
+TEST_CASE("EN 17037's daylight factor method: the levels' daylight factors and shares") {
+    // E_v,d,med 15000 lx: minimum 2% over half, 0.667% over 95%; medium 3.33% / 2%; high 5% /
+    // 3.33%. 100 points: 60 at 4%, 38 at 2.5%, 2 at 0.5%.
+    std::vector<double> df(60, 4.0);
+    df.insert(df.end(), 38, 2.5);
+    df.insert(df.end(), 2, 0.5);
+    df.push_back(std::nan("")); // a point inside furniture: in no share
+    const auto p = rad::en17037_daylight_provision(df, 15000);
+    CHECK(p.levels[0].target_df == Approx(2));
+    CHECK(p.levels[0].minimum_df == Approx(100.0 * 100 / 15000));
+    CHECK(p.levels[0].target_share == Approx(0.98));
+    CHECK(p.levels[0].minimum_share == Approx(0.98));
+    CHECK(p.levels[0].met);
+    CHECK(p.levels[1].target_share == Approx(0.60));  // 4% >= 3.33%
+    CHECK(p.levels[1].minimum_share == Approx(0.98)); // 2.5% >= 2%
+    CHECK(p.levels[1].met);
+    CHECK(p.levels[2].target_share == Approx(0.0)); // none at 5%
+    CHECK_FALSE(p.levels[2].met);
+    CHECK(p.achieved() == "medium");
+    CHECK_THROWS_AS(rad::en17037_daylight_provision(df, 0), rad::InputError);
+}
+
+TEST_CASE("EN 17037's median external diffuse illuminance: the median of the brightest half") {
+    rad::Weather w;
+    w.path = "fake.epw";
+    for (int k = 0; k < 8760; ++k) {
+        rad::WeatherHour h;
+        h.diffuse_illuminance = double(k % 100) * 100; // 0..9900 lx
+        w.hours.push_back(h);
+    }
+    // The 4380 brightest of 8760; their median lies between the 2190th and 2191st brightest.
+    const auto m = rad::median_external_diffuse_illuminance(w);
+    CHECK(m.source == "the weather file's diffuse horizontal illuminance");
+    std::vector<double> all;
+    for (const auto& h : w.hours) all.push_back(h.diffuse_illuminance);
+    std::sort(all.begin(), all.end(), std::greater<>());
+    CHECK(m.lux == Approx(0.5 * (all[2189] + all[2190])));
+    // One hour without it: the file's radiation by Perez's efficacy instead (all dark here).
+    w.hours[5].diffuse_illuminance = -1;
+    CHECK(rad::median_external_diffuse_illuminance(w).source.find("Perez") != std::string::npos);
 }

@@ -221,7 +221,8 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     // Sensors inside furniture: no value (greyed on the plans), in no figure.
     const auto inside = sensors.inside(positions, normals);
     std::optional<rad::AnnualMetrics> year;
-    rad::AnnualReplicates replicates; // the year's metrics' error bars
+    rad::AnnualReplicates replicates;         // the year's metrics' error bars
+    std::optional<rad::MedianDiffuse> median; // EN 17037's E_v,d,med
     if (!a.epw.empty()) {
         const auto weather = rad::read_epw(a.epw);
         const auto occupied = rad::tool::occupied_hours(a.occupancy, weather);
@@ -230,6 +231,7 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
                                                            &replicates),
                                    inside);
         in.weather = weather.place + " (" + a.epw + ")";
+        median = rad::median_external_diffuse_illuminance(weather);
         in.occupancy = rad::tool::occupancy_text(a.occupancy);
     }
     std::size_t first = 0;
@@ -251,6 +253,10 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
                 year->occupied_hours);
             for (const auto& m : d.metrics.sensors) d.da300.push_back(100 * m.da300);
             d.metric_errors = rad::annual_errors(replicates, d.metrics, first);
+            if (file.surfaces[s].kind == rad::CalcKind::WorkPlane) {
+                d.en17037 = rad::en17037_daylight_provision(d.factor, median->lux);
+                d.median_source = median->source;
+            }
         }
         d.verdict =
             rad::judge_daylight(d.summary.mean, d.annual ? &d.metrics.sda : nullptr,

@@ -188,7 +188,7 @@ for q in df:df da300:m; do
   out=$(node "$WEB/test-report.mjs" --page "$TMP/d.html" --values "$TMP/${q#*:}.csv" --quantity "${q%:*}" 2>&1) ||
     fail "the daylight page's ${q%:*} in Chromium: $out"
 done
-[ "$(pdfinfo "$TMP/d.pdf" | awk '/^Pages:/ {print $2}')" = 4 ] || fail "the daylight PDF is not 4 pages (summary, the room, the work plane, the back wall)"
+[ "$(pdfinfo "$TMP/d.pdf" | awk '/^Pages:/ {print $2}')" = 5 ] || fail "the daylight PDF is not 5 pages (summary, the room, the work plane and its plans, the back wall)"
 # The work plane's requirements (DF 2%, sDA 55%, ASE 10%) judged from its figures: the verdict
 # is "fails" exactly when one of them is missed.
 python3 - "$TMP/m.csv" "$TMP/df.csv" "$TMP/d.html" <<'PY' || fail "the daylight verdict"
@@ -209,6 +209,33 @@ pdftotext "$TMP/d.pdf" "$TMP/d.txt"; grep -q "sDA300/50%" "$TMP/d.txt" || fail "
 "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$D/calc.csv" --epw "$EPW" -o "$TMP/d1.html" \
   --date 2026-12-05 -q --threads 1 || fail "rad-report daylight --threads 1"
 cmp -s "$TMP/d.html" "$TMP/d1.html" || fail "the daylight report differs at 1 and 2 threads"
+# EN 17037 (#69 item 3), the daylight factor method on the work plane: E_v,d,med the median of the
+# 4380 brightest hours of the EPW's diffuse horizontal illuminance (field 19), each level's
+# target and minimum as daylight factors, the shares of the plane's points (rad-gather's
+# df column) at them, met when 50% and 95% reach them; worked here.
+python3 - "$EPW" "$TMP/df.csv" "$TMP/d.html" <<'PY' || fail "EN 17037 on the work plane"
+import csv, re, sys
+lux = sorted((float(l.split(",")[18]) for l in list(open(sys.argv[1]))[8:]), reverse=True)
+half = lux[:len(lux) // 2]
+median = 0.5 * (half[len(half) // 2 - 1] + half[len(half) // 2])
+df = [float(r["df"]) for r in csv.DictReader(open(sys.argv[2])) if r["surface"] == "work plane"]
+page = open(sys.argv[3]).read()
+cell = re.search(r'<td class="en17037" data-achieved="([a-z]+)">(.*?)</table>', page, re.S)
+assert "E<sub>v,d,med</sub> %.0f lx" % median in cell.group(2), (median, cell.group(2)[:300])
+best = "none"
+for name, target, minimum in (("minimum", 300, 100), ("medium", 500, 300), ("high", 750, 500)):
+    dt, dtm = 100 * target / median, 100 * minimum / median
+    st = sum(v >= dt for v in df) / len(df)
+    stm = sum(v >= dtm for v in df) / len(df)
+    row = re.search(r'<tr data-level="%s">(.*?)</tr>' % name, cell.group(2)).group(1)
+    nums = re.findall(r'<td class="num">([^<]*)</td>', row)
+    assert nums == ["%.2f" % dt, "%.1f" % (100 * st), "%.2f" % dtm, "%.1f" % (100 * stm)], (name, nums, dt, st, dtm, stm)
+    met = st >= 0.5 and stm >= 0.95
+    assert ('class="pass">met' in row) == met, (name, row)
+    if met: best = name
+assert cell.group(1) == best, (cell.group(1), best)
+print("EN 17037: E_v,d,med %.0f lx, level %s" % (median, best))
+PY
 expect_error "observers' glare (UGR) is from luminaires" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/calc.csv" -o "$TMP/x.html"
 grep -v ',observer,' "$TMP/calc.csv" > "$TMP/noobserver.csv"

@@ -5,6 +5,7 @@
 #pragma once
 #include "radiosity/calc_surfaces.hpp"
 #include "radiosity/daylight.hpp"
+#include "radiosity/en17037.hpp"
 #include "radiosity/glare.hpp"
 #include "radiosity/lighting_energy.hpp"
 #include "radiosity/luminaires.hpp"
@@ -31,7 +32,10 @@ struct SurfaceDaylight {
     std::vector<double> da300;  // % of occupied hours, per sensor
     AnnualMetrics metrics;      // this surface's
     AnnualErrors metric_errors; // their standard errors (the jackknife's)
-    DaylightVerdict verdict;    // against the surface's DF, sDA and ASE requirements
+    // A work plane with a year: EN 17037's daylight provision by the daylight factor method.
+    std::optional<En17037Provision> en17037;
+    std::string median_source; // where the median external diffuse illuminance came from
+    DaylightVerdict verdict;   // against the surface's DF, sDA and ASE requirements
 };
 
 struct ReportSurface {

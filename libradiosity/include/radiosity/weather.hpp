@@ -14,6 +14,7 @@ struct WeatherHour {
     double pressure = 1010;                     // mbar
     double direct_normal = 0;                   // W/m^2
     double diffuse_horizontal = 0;              // W/m^2
+    double diffuse_illuminance = -1;            // lux (field 19); < 0: not given (999999)
     int line = 0;                               // in the file
     int day_of_year() const;
 };

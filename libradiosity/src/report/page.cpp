@@ -282,6 +282,30 @@ std::string figure_row(const char* name, const std::string& value, const char* c
 // Two plans side by side across the page, at their own size (labels stay readable in print).
 constexpr double kHalfWidth = 200, kHalfHeight = 330;
 
+// EN 17037's daylight provision (daylight factor method): each level's target and minimum as
+// daylight factors for the place, the shares of the plane at them, met or not.
+std::string en17037_rows(const SurfaceDaylight& d) {
+    const auto& e = *d.en17037;
+    std::string out =
+        "<tr><th>EN 17037 daylight provision</th><td class=\"en17037\" "
+        "data-achieved=\"" +
+        e.achieved() + "\">level achieved: <b>" + e.achieved() +
+        "</b> (daylight factor method; E<sub>v,d,med</sub> " + fixed(e.median_lux, 0) +
+        " lx, the median of the year's 4380 brightest hours of " + html_escape(d.median_source) +
+        ")<table class=\"levels\"><thead><tr><th>"
+        "Level</th><th class=\"num\">D<sub>T</sub> (%) over 50%</th><th "
+        "class=\"num\">share</th><th class=\"num\">D<sub>TM</sub> (%) over "
+        "95%</th><th class=\"num\">share</th><th>Verdict</th></tr></thead><tbody>";
+    for (const auto& l : e.levels)
+        out += "<tr data-level=\"" + std::string(l.name) + "\"><td>" + l.name + " (" +
+               fixed(l.target_lux, 0) + " / " + fixed(l.minimum_lux, 0) + " lx)</td>" +
+               cell(fixed(l.target_df, 2)) + cell(percent(l.target_share)) +
+               cell(fixed(l.minimum_df, 2)) + cell(percent(l.minimum_share)) +
+               (l.met ? "<td class=\"pass\">met</td>" : "<td class=\"fail\">not met</td>") +
+               "</tr>";
+    return out + "</tbody></table></td></tr>";
+}
+
 std::string daylight_section(const ReportSurface& s, std::size_t index) {
     const auto& d = *s.daylight;
     std::string out = "<section class=\"part surface\" id=\"surface-" + std::to_string(index + 1) +
@@ -311,6 +335,7 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
         out += figure_row("UDI 100-3000 lx mean (% of hours)", percent(d.metrics.udi_useful), "udi",
                           points(e.udi_useful_mean));
     }
+    if (d.en17037) out += en17037_rows(d);
     // The two plans side by side when they fit across the page, else one under the other.
     out += "<tr><th>Required</th><td>" + daylight_required_text(s.surface.required) + "</td></tr>";
     if (!d.at_budget.empty())

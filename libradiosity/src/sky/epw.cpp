@@ -10,6 +10,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace rad {
 namespace {
@@ -115,6 +116,14 @@ WeatherHour parse_hour(const std::string& line, const FileLoc& at, int& missing)
         }
     }
     if (absent) ++missing;
+    // Field 19, the diffuse horizontal illuminance (EN 17037's median): read when it is a
+    // plausible number, else not given (999999 is EPW's missing; an empty or odd field too).
+    if (f.size() > 18) {
+        char* end = nullptr;
+        const double lux = std::strtod(f[18].c_str(), &end);
+        if (end && *end == '\0' && end != f[18].c_str() && lux >= 0 && lux < 999999)
+            h.diffuse_illuminance = lux;
+    }
     if (h.dew_point > 70 || h.dew_point < -90) h.dew_point = 10; // 99.9: missing
     return h;
 }
