@@ -559,7 +559,7 @@ const char* verdict_text(const rad::Verdict& verdict) {
 // A surface's figures and verdict, as rad-report shows them.
 // A cylindrical surface's modelling index, for its line; else nothing.
 std::string modelling_text(const rad::SurfaceGrid& grid, const rad::GatheredSurface& gathered) {
-    if (!grid.cylindrical) return "";
+    if (!grid.cylindrical || grid.semi) return "";
     const auto m = rad::modelling_index(gathered.lux, gathered.horizontal);
     if (m.count == 0) return ", modelling Ez/Eh -";
     char text[96];

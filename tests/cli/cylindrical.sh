@@ -47,6 +47,25 @@ for r in rows:
     worst = max(worst, abs(float(r["lux"]) / ez - 1))
 assert worst < 1e-5, worst  # the CSV's six digits
 PY
+# Semi-cylindrical illuminance toward u (+x): I sin(theta) (1 + cos psi) / (pi d^2), psi the
+# horizontal angle between +x and the luminaire.
+printf 'name,kind,x,y,z,ux,uy,uz,vx,vy,vz,spacing\nfaces,semi-cylindrical,0,1.2,4,6,0,0,0,0,-4,0.5\n' > "$TMP/semi.csv"
+"$BIN/rad-gather" "$TMP/b.mesh" "$TMP/b.rad" --surfaces "$TMP/semi.csv" -o "$TMP/bs.csv" -q || fail "rad-gather semi-cylindrical"
+python3 - "$TMP/bs.csv" <<'PY' || fail "E_sc of one luminaire against I sin(theta) (1 + cos psi) / (pi d^2)"
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 60, len(rows)
+worst = 0
+for r in rows:
+    x, y, z = float(r["x"]), float(r["y"]), float(r["z"])
+    dx, dy, dz = 2 - x, 2.8 - y, 1.5 - z
+    d2 = dx * dx + dy * dy + dz * dz
+    h = math.hypot(dx, dz)
+    esc = 100 * h / math.sqrt(d2) * (1 + dx / h) / (math.pi * d2)
+    value = float(r["lux"])
+    worst = max(worst, abs(value - esc) / max(esc, 1e-3))
+assert worst < 1e-5, worst  # the CSV's six digits
+PY
 # The modelling index on the page: the mean of (sin(theta) / pi) / cos(theta) over the points.
 "$BIN/rad-report" "$TMP/b.mesh" "$TMP/b.rad" --surfaces "$TMP/calc.csv" -o "$TMP/b.html" --date x -q || fail "rad-report"
 python3 - "$TMP/b.html" "$TMP/b.csv" <<'PY' || fail "the report's modelling index"
@@ -76,4 +95,11 @@ for r in rows:
     assert abs(float(r["lux"]) / (179 * 2) - 1) < 0.002, r
 PY
 grep -q "modelling Ez/Eh 1.00 (1.00 to 1.00)" "$TMP/f.err" || fail "the furnace's modelling index: $(cat "$TMP/f.err")"
+sed 's/,cylindrical,/,semi-cylindrical,/' "$TMP/fcalc.csv" > "$TMP/fsemi.csv"
+"$BIN/rad-gather" "$TMP/f.mesh" "$TMP/f.rad" --surfaces "$TMP/fsemi.csv" -o "$TMP/fs.csv" -q || fail "semi-cylindrical in the furnace"
+python3 - "$TMP/fs.csv" <<'PY' || fail "E_sc in the furnace"
+import csv, sys
+for r in csv.DictReader(open(sys.argv[1])):
+    assert abs(float(r["lux"]) / (179 * 2) - 1) < 0.002, r
+PY
 finish

@@ -22,12 +22,13 @@ enum class CalcKind {
     Floor,
     Observer,
     Camera,
-    EscapeRoute, // EN 1838: the centre line of a route along u, v its width
-    OpenArea,    // EN 1838: an anti-panic area
-    Cylindrical  // EN 12464-1: cylindrical illuminance Ez over a horizontal area
+    EscapeRoute,    // EN 1838: the centre line of a route along u, v its width
+    OpenArea,       // EN 1838: an anti-panic area
+    Cylindrical,    // EN 12464-1: cylindrical illuminance Ez over a horizontal area
+    SemiCylindrical // the same, semi-cylindrical toward u
 };
 // "workplane", "task", "wall", "ceiling", "floor", "observer", "camera", "escape-route",
-// "open-area", "cylindrical".
+// "open-area", "cylindrical", "semi-cylindrical".
 const char* calc_kind_name(CalcKind kind);
 // Escape routes and open areas: lit by the emergency luminaires' direct light alone (EN 1838).
 inline bool is_emergency(CalcKind kind) {
@@ -111,7 +112,9 @@ struct SurfaceGrid {
     double spacing_m = 0, border_m = 0; // the spacing asked for (or the rule's), the band
     bool emergency = false;             // EN 1838: the emergency luminaires' direct light only
     bool cylindrical = false;           // Ez about the normal (u x v, up), not E
-    FileLoc where;                      // the surface's line
+    bool semi = false;                  // E_sc toward `facing` (u), not Ez
+    Vec3 facing{1, 0, 0};
+    FileLoc where; // the surface's line
     long size() const { return columns * rows; }
     Vec3 position(long index) const {
         const long row = index / columns, column = index % columns;

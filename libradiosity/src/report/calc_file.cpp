@@ -17,11 +17,17 @@ constexpr const char* kColumns =
 
 const std::map<std::string, CalcKind>& kinds() {
     static const std::map<std::string, CalcKind> table{
-        {"workplane", CalcKind::WorkPlane}, {"task", CalcKind::Task},
-        {"wall", CalcKind::Wall},           {"ceiling", CalcKind::Ceiling},
-        {"floor", CalcKind::Floor},         {"observer", CalcKind::Observer},
-        {"camera", CalcKind::Camera},       {"escape-route", CalcKind::EscapeRoute},
-        {"open-area", CalcKind::OpenArea},  {"cylindrical", CalcKind::Cylindrical}};
+        {"workplane", CalcKind::WorkPlane},
+        {"task", CalcKind::Task},
+        {"wall", CalcKind::Wall},
+        {"ceiling", CalcKind::Ceiling},
+        {"floor", CalcKind::Floor},
+        {"observer", CalcKind::Observer},
+        {"camera", CalcKind::Camera},
+        {"escape-route", CalcKind::EscapeRoute},
+        {"open-area", CalcKind::OpenArea},
+        {"cylindrical", CalcKind::Cylindrical},
+        {"semi-cylindrical", CalcKind::SemiCylindrical}};
     return table;
 }
 

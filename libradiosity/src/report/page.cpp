@@ -386,14 +386,23 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
     const auto bar = [&](double error, bool ratio = false) {
         return s.grid.emergency ? std::string() : error_text(error, ratio);
     };
-    const bool z = s.grid.cylindrical; // Ez, not E
-    out += figure_row(z ? "Ez, mean (lx)" : "Em (lx)", lux_text(st.mean, r.em), "em", bar(e.mean));
+    // Ez or Esc, not E.
+    const bool z = s.grid.cylindrical && !s.grid.semi;
+    const auto name = [&](const char* plain, const char* what) {
+        return !s.grid.cylindrical ? std::string(plain)
+                                   : std::string(s.grid.semi ? "Esc, " : "Ez, ") + what + " (lx)";
+    };
+    out += figure_row(name("Em (lx)", "mean").c_str(), lux_text(st.mean, r.em), "em", bar(e.mean));
     out +=
-        figure_row(z ? "Ez, min (lx)" : "Emin (lx)", lux_text(st.min, r.emin), "emin", bar(e.min));
-    out += figure_row(z ? "Ez, max (lx)" : "Emax (lx)", lux_text(st.max), "emax", bar(e.max));
+        figure_row(name("Emin (lx)", "min").c_str(), lux_text(st.min, r.emin), "emin", bar(e.min));
+    out += figure_row(name("Emax (lx)", "max").c_str(), lux_text(st.max), "emax", bar(e.max));
     out += figure_row("U0 = Emin/Em", ratio_text(st.u0(), r.u0), "u0", bar(e.u0, true));
     out += figure_row("Emin/Emax", ratio_text(st.min_over_max()), "ratio");
     if (z) out += modelling_rows(s);
+    if (s.grid.semi)
+        out += "<tr><th>Light</th><td>semi-cylindrical illuminance at the surface's points "
+               "toward its first side (u): a small vertical half-cylinder's curved face, the "
+               "luminaires exactly, the room's light by vertical gathers in 8 directions</td></tr>";
     if (s.grid.emergency) {
         out +=
             figure_row("Emax/Emin", st.min > 0 ? fixed(st.max / st.min, 1) : std::string("&#8734;"),

@@ -15,11 +15,13 @@ SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit) {
     const double length_u = length(surface.u) * metres_per_unit;
     const double length_v = length(surface.v) * metres_per_unit;
     const bool route = surface.kind == CalcKind::EscapeRoute;
+    const bool semi = surface.kind == CalcKind::SemiCylindrical;
     const bool banded = surface.kind == CalcKind::WorkPlane || surface.kind == CalcKind::OpenArea ||
-                        surface.kind == CalcKind::Cylindrical;
+                        surface.kind == CalcKind::Cylindrical || semi;
     grid.border_m = std::isnan(surface.border_m) ? (banded ? 0.5 : 0.0) : surface.border_m;
     grid.emergency = is_emergency(surface.kind);
-    grid.cylindrical = surface.kind == CalcKind::Cylindrical;
+    grid.cylindrical = surface.kind == CalcKind::Cylindrical || semi;
+    grid.semi = semi;
     grid.where = surface.where;
     grid.width_m = length_u - 2 * grid.border_m;
     grid.depth_m = route ? length_v : length_v - 2 * grid.border_m; // a route's width stays
@@ -45,6 +47,9 @@ SurfaceGrid surface_grid(const CalcSurface& surface, double metres_per_unit) {
     grid.column_step = unit_u * (grid.width_m / metres_per_unit / double(grid.columns));
     grid.row_step = unit_v * (grid.depth_m / metres_per_unit / double(grid.rows));
     grid.normal = normalized(cross(surface.u, surface.v));
+    // A semi-cylinder faces along u, level (u less its part along the normal).
+    const Vec3 level = surface.u - grid.normal * dot(surface.u, grid.normal);
+    if (length(level) > 0) grid.facing = normalized(level);
     return grid;
 }
 

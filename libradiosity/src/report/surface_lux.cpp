@@ -57,11 +57,12 @@ bool sensor_value(const SensorContext& c, long k, GatheredSurface& surface) {
         return false;
     }
     if (c.grid.cylindrical) {
-        const auto z = cylindrical_illuminance(c.gatherer, c.luminaires, c.box, position,
-                                               c.grid.normal, index, problem);
+        const auto z =
+            cylindrical_illuminance(c.gatherer, c.luminaires, c.box, position, c.grid.normal, index,
+                                    problem, c.grid.semi ? &c.grid.facing : nullptr);
         if (!problem.empty()) return false;
-        surface.lux[i] = z.cylindrical;
-        surface.error[i] = z.error;
+        surface.lux[i] = c.grid.semi ? z.semi_cylindrical : z.cylindrical;
+        surface.error[i] = c.grid.semi ? z.semi_error : z.error;
         surface.horizontal[i] = z.horizontal;
         return z.at_budget;
     }
