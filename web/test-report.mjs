@@ -85,23 +85,18 @@ function sameToDigits(shown, value) {
   return Math.abs(Number(shown) - value) <= half + 1e-5 * Math.abs(value) + 1e-9;
 }
 
-// The value at an isoline's end (sensor coordinates, on a square's edge), linear along it.
-// An end within 1e-3 of a node lies on two edges (a line through a node whose value is
-// within a hair of its level): the edge where the value comes out nearest the line's level
-// is the one it was drawn on.
-function valueAt(s, c, r, level) {
+// The value at an isoline's end (sensor coordinates): the plan's field, bilinear between the
+// four sensors around it (the plan draws its lines on a finer grid of that field; along any
+// grid line the field is linear). `spread`: the four's range, for the tolerance of the end's
+// rounding to 0.01 px.
+function valueAt(s, c, r) {
   const v = (cc, rr) => s.plan[rr * s.columns + cc];
-  const near = (x) => Math.abs(x - Math.round(x)) < 1e-3;
-  const edges = [];
-  if (near(c)) {
-    const cc = Math.round(c), r0 = Math.min(Math.floor(r), s.rows - 2);
-    edges.push({ value: v(cc, r0) + (r - r0) * (v(cc, r0 + 1) - v(cc, r0)), spread: Math.abs(v(cc, r0 + 1) - v(cc, r0)) });
-  }
-  if (near(r) || !near(c)) {
-    const rr = Math.round(r), c0 = Math.min(Math.floor(c), s.columns - 2);
-    edges.push({ value: v(c0, rr) + (c - c0) * (v(c0 + 1, rr) - v(c0, rr)), spread: Math.abs(v(c0 + 1, rr) - v(c0, rr)) });
-  }
-  return edges.reduce((best, e) => (Math.abs(e.value - level) < Math.abs(best.value - level) ? e : best));
+  const c0 = Math.max(0, Math.min(Math.floor(c), s.columns - 2)), r0 = Math.max(0, Math.min(Math.floor(r), s.rows - 2));
+  const c1 = Math.min(c0 + 1, s.columns - 1), r1 = Math.min(r0 + 1, s.rows - 1);
+  const fu = c - c0, fv = r - r0;
+  const a = v(c0, r0), b = v(c1, r0), cc = v(c0, r1), d = v(c1, r1);
+  const value = (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * cc + fu * d);
+  return { value, spread: Math.max(a, b, cc, d) - Math.min(a, b, cc, d) };
 }
 
 const opts = options();
@@ -197,7 +192,7 @@ try {
       const numbers = line.d.match(/-?[0-9.]+/g).map(Number);
       for (let k = 0; k + 3 < numbers.length; k += 4) {
         for (const [x, y] of [[numbers[k], numbers[k + 1]], [numbers[k + 2], numbers[k + 3]]]) {
-          const at = valueAt(v, (x - s.x0) / s.dx, (s.y0 - y) / s.dy, level);
+          const at = valueAt(v, (x - s.x0) / s.dx, (s.y0 - y) / s.dy);
           // The ends' pixels are written to 0.01 px, and rad-gather's values rounded (six
           // digits; the metrics' shares to 0.0001, 0.01 in %).
           const rounding = (opts.quantity === 'da300' ? 0.0051 : 0) + 2e-5 * Math.abs(level) + 1e-6;

@@ -438,7 +438,7 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
                "marked";
     out += "; the scale bar in metres";
     out += g.border_m > 0 ? ". The grey band is the border left out." : ".";
-    out += " Grey cells: points without a value.</figcaption></figure>";
+    out += " Grey: points without a value.</figcaption></figure>";
     return out + "</section>";
 }
 

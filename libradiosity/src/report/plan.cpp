@@ -1,7 +1,9 @@
 // A calculation surface's plan for the report: false-colour cells, isolux lines labelled in
 // lux, the luminaires over it, and a legend; SVG in pixels (the page prints it at A4 width).
+#include "radiosity/base64.hpp"
 #include "radiosity/contours.hpp"
 #include "radiosity/falsecolour.hpp"
+#include "radiosity/image_io.hpp"
 #include "radiosity/report.hpp"
 #include "report/number_text.hpp"
 
@@ -64,23 +66,50 @@ std::string scale_bar_svg(const PlanFrame& f, double left, double top, double pl
     return out + "</g>";
 }
 
+// The value at (u, v) in sensor units (sensor (c, r) at (c, r)): bilinear between the four
+// sensors around it, flat past the outer ones; where one of the four has no value, the
+// nearest sensor's (NaN when it has none: grey).
+double field_at(std::span<const double> values, long columns, long rows, double u, double v) {
+    u = std::clamp(u, 0.0, double(columns - 1));
+    v = std::clamp(v, 0.0, double(rows - 1));
+    const long c0 = std::min(long(u), columns - 1), r0 = std::min(long(v), rows - 1);
+    const long c1 = std::min(c0 + 1, columns - 1), r1 = std::min(r0 + 1, rows - 1);
+    const double fu = u - double(c0), fv = v - double(r0);
+    const auto at = [&](long c, long r) { return values[std::size_t(r * columns + c)]; };
+    const double a = at(c0, r0), b = at(c1, r0), c = at(c0, r1), d = at(c1, r1);
+    if (std::isnan(a) || std::isnan(b) || std::isnan(c) || std::isnan(d))
+        return at(std::lround(u), std::lround(v));
+    return (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d);
+}
+
+// The calculation area in smooth false colour: an image (two pixels a plan pixel) whose every
+// pixel takes the bilinear interpolation of the sensors around it; points without a value grey.
 std::string cells_svg(const ReportSurface& s, std::span<const double> values, const PlanFrame& f,
                       double top) {
     const auto& g = s.grid;
-    const double du = g.width_m / double(g.columns), dv = g.depth_m / double(g.rows);
-    std::string out = "<g class=\"cells\" shape-rendering=\"crispEdges\">";
-    for (long k = 0; k < g.size(); ++k) {
-        const long c = k % g.columns, r = k / g.columns;
-        const double v = values[std::size_t(k)];
-        const auto fill =
-            std::isnan(v) ? std::string("#bbbbbb") : colour_hex(false_colour(v / top));
-        // Cells overlap a hair so that no seam of the background shows between them.
-        const double cell_top = std::min(f.y(r * dv), f.y((r + 1) * dv));
-        out += "<rect x=\"" + px(f.x(c * du)) + "\" y=\"" + px(cell_top) + "\" width=\"" +
-               px(du * f.scale + 0.6) + "\" height=\"" + px(dv * f.scale + 0.6) + "\" fill=\"" +
-               fill + "\"/>";
-    }
-    return out + "</g>";
+    const double left = f.x(0), right = f.x(g.width_m);
+    const double upper = std::min(f.y(0), f.y(g.depth_m)), lower = std::max(f.y(0), f.y(g.depth_m));
+    const int width = std::max(1, int(std::lround(2 * (right - left))));
+    const int height = std::max(1, int(std::lround(2 * (lower - upper))));
+    std::vector<std::uint8_t> pixels(std::size_t(width) * std::size_t(height) * 3);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            // The pixel's centre in metres along u and v, then in sensor units.
+            const double u_m = (x + 0.5) / width * g.width_m;
+            const double py = upper + (y + 0.5) / height * (lower - upper);
+            const double v_m = f.reflected ? (py - f.corner) / f.scale : (f.corner - py) / f.scale;
+            const double value =
+                field_at(values, g.columns, g.rows, u_m / g.width_m * double(g.columns) - 0.5,
+                         v_m / g.depth_m * double(g.rows) - 0.5);
+            const auto colour = std::isnan(value) ? std::array<std::uint8_t, 3>{187, 187, 187}
+                                                  : false_colour(value / top);
+            std::copy(colour.begin(), colour.end(),
+                      pixels.begin() + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3);
+        }
+    return "<image class=\"cells\" x=\"" + px(left) + "\" y=\"" + px(upper) + "\" width=\"" +
+           px(right - left) + "\" height=\"" + px(lower - upper) +
+           "\" preserveAspectRatio=\"none\" href=\"data:image/png;base64," +
+           base64(encode_png_rgb8(width, height, pixels)) + "\"/>";
 }
 
 struct PlacedLuminaire {
@@ -188,6 +217,34 @@ std::string label_level(const std::vector<IsoSegment>& pixels, const std::string
     return out;
 }
 
+// The sensors' values on a grid kRefine times finer between their centres, bilinear in each
+// square of four sensors (NaN where one of them has no value): isolines drawn on it follow the
+// smooth colours, and along any grid line they are linear, as the bilinear field is.
+constexpr int kRefine = 4;
+struct FineGrid {
+    std::vector<double> values;
+    long columns = 0, rows = 0;
+};
+FineGrid refined(std::span<const double> values, long columns, long rows) {
+    FineGrid fine;
+    fine.columns = (columns - 1) * kRefine + 1;
+    fine.rows = (rows - 1) * kRefine + 1;
+    fine.values.resize(std::size_t(fine.columns * fine.rows));
+    const auto at = [&](long c, long r) { return values[std::size_t(r * columns + c)]; };
+    for (long j = 0; j < fine.rows; ++j)
+        for (long i = 0; i < fine.columns; ++i) {
+            const long c0 = std::min(i / kRefine, std::max(0L, columns - 2));
+            const long r0 = std::min(j / kRefine, std::max(0L, rows - 2));
+            const long c1 = std::min(c0 + 1, columns - 1), r1 = std::min(r0 + 1, rows - 1);
+            const double fu = double(i) / kRefine - double(c0),
+                         fv = double(j) / kRefine - double(r0);
+            const double a = at(c0, r0), b = at(c1, r0), c = at(c0, r1), d = at(c1, r1);
+            fine.values[std::size_t(j * fine.columns + i)] =
+                (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d);
+        }
+    return fine;
+}
+
 // The isolines, each level one path in pixels, with its labels.
 std::string isolines_svg(const ReportSurface& s, std::span<const double> values,
                          const std::string& quantity, const PlanFrame& f,
@@ -207,12 +264,15 @@ std::string isolines_svg(const ReportSurface& s, std::span<const double> values,
     LabelPlaces places;
     for (const auto& l : luminaires) places.taken.push_back({l.x, l.y, 22});
     const auto range = illuminance_stats(values); // the finite values' min and max
+    const auto fine = refined(values, g.columns, g.rows);
     for (const double level : contour_levels(range.min, range.max)) {
-        auto segments = isolines(values, g.columns, g.rows, level);
+        auto segments = isolines(fine.values, fine.columns, fine.rows, level);
         if (segments.empty()) continue;
         std::string d;
         for (auto& seg : segments) {
-            seg = {x0 + seg.x0 * dx, y0 - seg.y0 * dy, x0 + seg.x1 * dx, y0 - seg.y1 * dy};
+            const double k = 1.0 / kRefine; // fine units to the sensors'
+            seg = {x0 + k * seg.x0 * dx, y0 - k * seg.y0 * dy, x0 + k * seg.x1 * dx,
+                   y0 - k * seg.y1 * dy};
             d += 'M';
             d += px(seg.x0) + ' ' + px(seg.y0);
             d += 'L';
