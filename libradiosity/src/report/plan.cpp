@@ -217,16 +217,22 @@ std::string label_level(const std::vector<IsoSegment>& pixels, const std::string
     return out;
 }
 
-// The sensors' values on a grid kRefine times finer between their centres, bilinear in each
+// The sensors' values on a grid `refine` times finer between their centres, bilinear in each
 // square of four sensors (NaN where one of them has no value): isolines drawn on it follow the
 // smooth colours, and along any grid line they are linear, as the bilinear field is.
-constexpr int kRefine = 4;
+// Four times finer, less where the sensors are already about a pixel apart (a large grid's
+// lines would only grow the page).
+int refinement(long columns, long rows) {
+    return int(std::clamp(200 / std::max(columns, rows), 1L, 4L));
+}
 struct FineGrid {
     std::vector<double> values;
     long columns = 0, rows = 0;
+    int refine = 1;
 };
 FineGrid refined(std::span<const double> values, long columns, long rows) {
     FineGrid fine;
+    const long kRefine = fine.refine = refinement(columns, rows);
     fine.columns = (columns - 1) * kRefine + 1;
     fine.rows = (rows - 1) * kRefine + 1;
     fine.values.resize(std::size_t(fine.columns * fine.rows));
@@ -270,7 +276,7 @@ std::string isolines_svg(const ReportSurface& s, std::span<const double> values,
         if (segments.empty()) continue;
         std::string d;
         for (auto& seg : segments) {
-            const double k = 1.0 / kRefine; // fine units to the sensors'
+            const double k = 1.0 / fine.refine; // fine units to the sensors'
             seg = {x0 + k * seg.x0 * dx, y0 - k * seg.y0 * dy, x0 + k * seg.x1 * dx,
                    y0 - k * seg.y1 * dy};
             d += 'M';
