@@ -425,16 +425,17 @@ int direct_light(FfArgs& a, int argc, char** argv) {
     if (mesh.patches.empty()) throw rad::InputError(input + ": mesh has no patches");
     rad::check_ray_precision(mesh.vertices, input);
     const auto sources = rad::read_luminaire_sources(a.luminaires);
-    const auto set = rad::build_luminaires(sources, rad::metres_per_unit(mesh_header));
-    // Per patch and light group an RGB irradiance, held and written: checked before the rays.
-    const double need = double(mesh.patches.size()) * double(set.groups.size()) * 24 * 2;
+    // Per patch and light group an RGB irradiance, held and written: checked before the
+    // luminaires are built and the rays cast.
+    const double need = double(mesh.patches.size()) * double(sources.group_count) * 24 * 2;
     if (const auto limit = rad::tool::memory_limit(a.max_memory); need > double(limit))
-        throw rad::InputError(a.luminaires + ": " + std::to_string(set.groups.size()) +
+        throw rad::InputError(a.luminaires + ": " + std::to_string(sources.group_count) +
                               " light group(s) over " + std::to_string(mesh.patches.size()) +
                               " patches need about " + rad::human_bytes(need) + ", more than " +
                               rad::tool::memory_limit_text(a.max_memory) +
                               " (join luminaires in fewer groups: the layout's group column; "
                               "or a larger --max-memory)");
+    const auto set = rad::build_luminaires(sources, rad::metres_per_unit(mesh_header));
     for (const auto& w : set.warnings) std::fprintf(stderr, "rad-ff: warning: %s\n", w.c_str());
     for (const auto& w :
          rad::luminaire_position_warnings(set, rad::bounds(mesh.vertices), a.luminaires))

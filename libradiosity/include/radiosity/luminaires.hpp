@@ -25,6 +25,9 @@ struct LuminaireSources {
     std::string layout_name; // as given (for messages)
     std::string layout_text;
     std::vector<std::pair<std::string, std::string>> files; // relative path, text
+    // The light groups the rows name (a row's group, or its name when empty): known before
+    // the luminaires are built, so a run too big for its memory is refused early.
+    std::size_t group_count = 0;
 };
 
 // Reads `layout` and every file it names. Each path is relative to the layout's folder and

@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 #include <sys/stat.h>
+#include <unordered_set>
 
 namespace rad {
 namespace fs = std::filesystem;
@@ -176,8 +177,10 @@ LuminaireSources read_luminaire_sources(const fs::path& layout) {
     const auto root = layout.parent_path().empty() ? fs::path(".") : layout.parent_path();
     std::map<std::string, bool> seen;
     std::set<std::string> named; // the photometry column's texts already read
+    std::unordered_set<std::string> groups;
     for (const auto& row : layout_rows(sources.layout_text, sources.layout_name)) {
         const FileLoc where{sources.layout_name, row.line};
+        groups.insert(row["group"].empty() ? row["name"] : row["group"]);
         // Each text once: its path is resolved on the file system (a million rows naming
         // one file took 20 s of path lookups).
         if (!named.insert(row["photometry"]).second) continue;
@@ -197,6 +200,7 @@ LuminaireSources read_luminaire_sources(const fs::path& layout) {
         parse_photometry(text, relative, include); // refuses a bad file here, by its name
         sources.files.emplace_back(relative, std::move(text));
     }
+    sources.group_count = groups.size();
     return sources;
 }
 
