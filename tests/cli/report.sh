@@ -42,7 +42,8 @@ grep -q '^ceiling,0,0,0,0.333333,3,0.333333,[0-9]' "$TMP/g.csv" || fail "the cei
 grep -q "4 surface(s) (272 points, 0 failing their requirements), 1 observer(s)" "$TMP/r.err" || fail "rad-report summary: $(cat "$TMP/r.err")"
 out=$(node "$WEB/test-report.mjs" --page "$TMP/r.html" --values "$TMP/g.csv" 2>&1) || fail "the page in Chromium: $out"
 # The drawings (#68 item 1): the ceiling as a reflected ceiling plan (L1 over the floor plan's
-# L1: the same side of both), each luminaire's 0.2 m square opening at its size, a scale bar.
+# L1: the same side of both), each luminaire's 0.2 m square opening at its size, a scale bar,
+# the surface's dimensions.
 python3 - "$TMP/r.html" <<'PY' || fail "the plans' drawing"
 import re, sys
 page = open(sys.argv[1]).read()
@@ -54,6 +55,7 @@ def where(section, lum):
     return cx, cy, g
 floor, ceiling = plan("work plane"), plan("ceiling")
 assert "a reflected ceiling plan" in ceiling and "a reflected ceiling plan" not in floor
+assert '<text class="dimensions"' in floor and "6.00 m &#215; 4.00 m</text>" in floor, "the work plane's dimensions"
 for section in (floor, ceiling):
     l1, l3 = where(section, "L1"), where(section, "L3")
     assert l1[1] < l3[1], "L1 (z = 1) is drawn below L3 (z = 3) in one plan: %s %s" % (l1[:2], l3[:2])

@@ -346,6 +346,11 @@ std::string surface_plan_svg(const ReportSurface& s, std::span<const double> val
     out += isolines_svg(s, values, scale.quantity, f, placed);
     out += luminaires_svg(placed);
     out += scale_bar_svg(f, kMargin, kMargin + whole_v + 8, whole_u);
+    // The surface's overall dimensions, under its right-hand corner.
+    out += "<text class=\"dimensions\" x=\"" + px(kMargin + whole_u) + "\" y=\"" +
+           px(kMargin + whole_v + 20) + "\" text-anchor=\"end\">" +
+           report_text::fixed(g.width_m + 2 * g.border_m, 2) + " m &#215; " +
+           report_text::fixed(g.depth_m + 2 * g.border_m, 2) + " m</text>";
     out += legend_svg(kMargin * 2 + whole_u + 10, kMargin + 16, std::min(whole_v, 300.0) - 16, top,
                       scale.unit);
     return out + "</svg>";
