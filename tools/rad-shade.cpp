@@ -458,6 +458,9 @@ void write_luminance(const ShadeArgs& a, const rad::Image& image,
 // --merge: the bands into the image (and PNG) one run writes.
 int merge_parts(ShadeArgs& a) {
     if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
+    if (!a.falsecolor.empty() || !a.luminance_table.empty())
+        throw rad::InputError("--falsecolor and --luminance-table are written by a run of the "
+                              "whole image (they need what each pixel sees), not by --merge");
     auto merged = rad::merge_image_parts(a.inputs, a.output);
     // A merge writes only what its own command line names: the PNG path the parts recorded
     // (their run's --png) is a reminder, never a place to write.

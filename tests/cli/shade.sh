@@ -219,6 +219,8 @@ for y in range(48):
 PY
 expect_error "--falsecolor and --luminance-table show luminance: not with --albedo" "$TMP/x.exr" \
   "$BIN/rad-shade" "$TMP/furnace.mesh" -o "$TMP/x.exr" --albedo --falsecolor "$TMP/x.png"
+expect_error "--falsecolor and --luminance-table are written by a run of the whole image" "$TMP/x.exr" \
+  "$BIN/rad-shade" --merge "$TMP/furnace.exr" -o "$TMP/x.exr" --falsecolor "$TMP/x.png"
 expect_error "--falsecolor-decades 12: give 1 to 9 decades" "$TMP/x.exr" \
   "$BIN/rad-shade" "$TMP/furnace.mesh" "$TMP/furnace.rad" -o "$TMP/x.exr" -x 8 -y 8 --falsecolor "$TMP/x.png" --falsecolor-decades 12
 finish
