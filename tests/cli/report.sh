@@ -56,6 +56,15 @@ def where(section, lum):
 floor, ceiling = plan("work plane"), plan("ceiling")
 assert "a reflected ceiling plan" in ceiling and "a reflected ceiling plan" not in floor
 assert '<text class="dimensions"' in floor and "6.00 m &#215; 4.00 m</text>" in floor, "the work plane's dimensions"
+# The key plan: the desk's calculation area where the room has it (x 2.2 to 3.8 of 0 to 6 m,
+# z 1.6 to 2.4 of 0 to 4 m), the ceiling not drawn over the room.
+key = re.search(r'<svg class="key-plan".*?</svg>', page, re.S).group(0)
+room = [float(v) for v in re.search(r'<rect class="room" x="([0-9.]+)" y="([0-9.]+)" width="([0-9.]+)" height="([0-9.]+)"', key).groups()]
+desk = [float(v) for v in re.search(r'data-surface="desk"><rect x="([0-9.]+)" y="([0-9.]+)" width="([0-9.]+)" height="([0-9.]+)"', key).groups()]
+k = room[2] / 6
+for got, want in ((desk[0], room[0] + 2.2 * k), (desk[1], room[1] + 1.6 * k), (desk[2], 1.6 * k), (desk[3], 0.8 * k)):
+    assert abs(got - want) < 0.02, (desk, room)
+assert 'data-surface="ceiling"' not in key
 for section in (floor, ceiling):
     l1, l3 = where(section, "L1"), where(section, "L3")
     assert l1[1] < l3[1], "L1 (z = 1) is drawn below L3 (z = 3) in one plan: %s %s" % (l1[:2], l3[:2])

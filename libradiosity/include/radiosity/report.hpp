@@ -78,6 +78,7 @@ struct RoomMaterial {
 };
 struct RoomSummary {
     Vec3 size_m{0, 0, 0};
+    Box bounds; // scene units
     std::vector<RoomMaterial> materials; // those some patch uses, in the mesh's order
 };
 RoomSummary room_summary(const radfmt::MeshData& mesh, double metres_per_unit);
@@ -134,6 +135,10 @@ std::string surface_plan_svg(const ReportSurface& surface, std::span<const doubl
 inline bool reflected_ceiling_plan(const SurfaceGrid& grid) {
     return grid.normal[1] < -0.9;
 }
+// The key plan: the room's extent seen from above (x to the right, z down, as the floor's
+// plans) with the calculation area (less its border band) of every surface facing up, named,
+// and the luminaires as dots; SVG. Empty without the room.
+std::string key_plan_svg(const ReportInput& input);
 // A photometric file's polar curve (C0-C180 and C90-C270, cd/klm) as SVG, from `luminaire`'s
 // frame.
 std::string polar_curve_svg(const LuminaireSet& set, const Luminaire& luminaire);

@@ -41,6 +41,9 @@ svg.plan .isoline { fill: none; stroke: #000; stroke-width: 1.3; }
 svg.plan .isolabel { font-weight: bold; paint-order: stroke; stroke: #fff; stroke-width: 3px;
   text-anchor: middle; }
 svg.plan .luminaire circle { fill: #fff; stroke: #000; stroke-width: 1.2; }
+svg.key-plan .room { fill: #f4f4f4; stroke: #333; stroke-width: 1.5; }
+svg.key-plan .area rect { fill: rgba(40, 120, 200, 0.15); stroke: #1a5fa0; stroke-width: 1; }
+svg.key-plan .luminaire { fill: #111; } svg.key-plan text { font-size: 10px; }
 svg.plan .luminaire .opening { fill: #fff; fill-opacity: 0.75; stroke: #000; stroke-width: 1; }
 svg.plan .luminaire path { stroke: #000; stroke-width: 1.2; }
 svg.plan .luminaire text { paint-order: stroke; stroke: #fff; stroke-width: 3px; }
@@ -168,8 +171,14 @@ std::string room_section(const ReportInput& in) {
     for (const auto& m : room.materials)
         out += "<tr><td>" + html_escape(m.name) + (m.emits ? " (emits light)" : "") + "</td>" +
                cell(fixed(m.area_m2, 2)) + cell(fixed(m.reflectance, 2)) + "</tr>";
-    return out + "</tbody></table><p class=\"note\">Reflectance: the material's diffuse "
-                 "reflectance, luminous (0.265 R + 0.670 G + 0.065 B), as solved.</p></section>";
+    out += "</tbody></table><p class=\"note\">Reflectance: the material's diffuse "
+           "reflectance, luminous (0.265 R + 0.670 G + 0.065 B), as solved.</p>";
+    if (const auto key = key_plan_svg(in); !key.empty())
+        out += "<figure class=\"key\">" + key +
+               "<figcaption>Key plan: the room from above (x to the right, z down, as the "
+               "plans of the floor) with each horizontal calculation area and the luminaires "
+               "(dots).</figcaption></figure>";
+    return out + "</section>";
 }
 
 std::string surface_row(const ReportSurface& s, std::size_t index) {

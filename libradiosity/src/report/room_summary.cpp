@@ -8,6 +8,7 @@ namespace rad {
 RoomSummary room_summary(const radfmt::MeshData& mesh, double metres_per_unit) {
     RoomSummary room;
     const Box box = bounds(mesh.vertices);
+    room.bounds = box;
     for (int k = 0; k < 3; ++k) room.size_m[k] = (box.hi[k] - box.lo[k]) * metres_per_unit;
     std::vector<double> area(mesh.materials.size(), 0);
     for (const auto& p : mesh.patches) area[p.material] += p.area;

@@ -1,0 +1,63 @@
+// The report's key plan: where each horizontal calculation surface lies in the room.
+#include "radiosity/report.hpp"
+#include "report/number_text.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rad {
+namespace {
+using report_text::px;
+
+constexpr double kWidth = 420, kHeight = 300, kMargin = 14;
+
+// Scene (x, z) to the key plan's pixels: x to the right, z down.
+struct KeyFrame {
+    double scale = 1, x0 = 0, z0 = 0;
+    double x(double scene_x) const { return kMargin + (scene_x - x0) * scale; }
+    double y(double scene_z) const { return kMargin + (scene_z - z0) * scale; }
+};
+
+} // namespace
+
+std::string key_plan_svg(const ReportInput& in) {
+    if (!in.room) return "";
+    const Box& box = in.room->bounds;
+    const double w = box.hi[0] - box.lo[0], d = box.hi[2] - box.lo[2];
+    if (!(w > 0) || !(d > 0)) return "";
+    KeyFrame f;
+    f.scale = std::min((kWidth - 2 * kMargin) / w, (kHeight - 2 * kMargin) / d);
+    f.x0 = box.lo[0], f.z0 = box.lo[2];
+    const double width = 2 * kMargin + w * f.scale, height = 2 * kMargin + d * f.scale;
+    std::string out = "<svg class=\"key-plan\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
+                      px(width) + "\" height=\"" + px(height) + "\" viewBox=\"0 0 " + px(width) +
+                      " " + px(height) + "\" role=\"img\" aria-label=\"key plan\">";
+    out += "<rect class=\"room\" x=\"" + px(f.x(box.lo[0])) + "\" y=\"" + px(f.y(box.lo[2])) +
+           "\" width=\"" + px(w * f.scale) + "\" height=\"" + px(d * f.scale) + "\"/>";
+    for (const auto& s : in.surfaces) {
+        // Areas facing up: walls have no place in a plan, and a ceiling would cover it.
+        if (s.grid.normal[1] < 0.9) continue;
+        const auto& c = s.surface;
+        const auto& g = s.grid;
+        // The calculation area (less its border band).
+        const Vec3 across = g.column_step * double(g.columns), along = g.row_step * double(g.rows);
+        double lo_x = 1e300, hi_x = -1e300, lo_z = 1e300, hi_z = -1e300;
+        for (const Vec3& p :
+             {g.origin, g.origin + across, g.origin + along, g.origin + across + along}) {
+            lo_x = std::min(lo_x, p[0]), hi_x = std::max(hi_x, p[0]);
+            lo_z = std::min(lo_z, p[2]), hi_z = std::max(hi_z, p[2]);
+        }
+        out += "<g class=\"area\" data-surface=\"" + html_escape(c.name) + "\"><rect x=\"" +
+               px(f.x(lo_x)) + "\" y=\"" + px(f.y(lo_z)) + "\" width=\"" +
+               px((hi_x - lo_x) * f.scale) + "\" height=\"" + px((hi_z - lo_z) * f.scale) +
+               "\"/><text x=\"" + px(f.x(lo_x) + 3) + "\" y=\"" + px(f.y(lo_z) + 12) + "\">" +
+               html_escape(c.name) + "</text></g>";
+    }
+    if (in.luminaires)
+        for (const auto& l : in.luminaires->luminaires)
+            out += "<circle class=\"luminaire\" cx=\"" + px(f.x(l.position[0])) + "\" cy=\"" +
+                   px(f.y(l.position[2])) + "\" r=\"3\"/>";
+    return out + "</svg>";
+}
+
+} // namespace rad
