@@ -501,7 +501,7 @@ rad::CalcFile read_surfaces_file(const std::string& path) {
 void surface_daylight_sensors(const GatherArgs& a, double metres_per_unit, const rad::Box& box,
                               rad::tool::DaylightRun& run) {
     const auto file = read_surfaces_file(a.surfaces_path);
-    rad::refuse_emergency_surfaces(file);
+    rad::refuse_daylight_unsupported(file);
     const auto grids = rad::surface_grids(file, metres_per_unit);
     rad::surface_sensors(file, grids, box, run.positions, run.normals);
     for (std::size_t s = 0; s < grids.size(); ++s) {

@@ -209,7 +209,7 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
         mesh, rad::daylight_solution(solution, rad_header, a.inputs[1]), options);
     const double metres = rad::metres_per_unit(mesh_header);
     in.room = rad::room_summary(mesh, metres);
-    rad::refuse_emergency_surfaces(file);
+    rad::refuse_daylight_unsupported(file);
     const auto grids = rad::surface_grids(file, metres);
     std::vector<rad::Vec3> positions, normals;
     rad::surface_sensors(file, grids, rad::bounds(mesh.vertices), positions, normals);

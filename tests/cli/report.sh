@@ -259,6 +259,9 @@ expect_error "--energy is for a solution lit by luminaires" "$TMP/x.html" \
 printf 'name,kind,x,y,z,ux,uy,uz,vx,vy,vz\nexit,escape-route,0,0.02,4,4,0,0,0,0,-2\n' > "$TMP/route.csv"
 expect_error "route.csv:2: an escape-route is lit by emergency luminaires (EN 1838), and a daylight solution has none" \
   "$TMP/x.html" "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/route.csv" -o "$TMP/x.html"
+printf 'name,kind,x,y,z,ux,uy,uz,vx,vy,vz\nfaces,cylindrical,0,1.2,6,4,0,0,0,0,-6\n' > "$TMP/cyl.csv"
+expect_error "cyl.csv:2: a cylindrical surface's daylight is not computed yet" "$TMP/x.html" \
+  "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/cyl.csv" -o "$TMP/x.html"
 expect_error "route.csv:2: an escape-route is lit by emergency luminaires" "$TMP/x.csv" \
   "$BIN/rad-gather" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/route.csv" --sky cie-overcast --daylight-factor -o "$TMP/x.csv"
 

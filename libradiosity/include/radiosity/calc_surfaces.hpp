@@ -167,9 +167,10 @@ struct ModellingIndex {
 ModellingIndex modelling_index(const std::vector<double>& cylindrical,
                                const std::vector<double>& horizontal);
 
-// InputError at the first escape route or open area of `file`: a daylight solution has no
-// emergency luminaires to light them.
-void refuse_emergency_surfaces(const CalcFile& file);
+// InputError at the first surface of `file` a daylight solution cannot give: an escape route
+// or open area (it has no emergency luminaires), a cylindrical or semi-cylindrical one (not
+// computed for daylight yet).
+void refuse_daylight_unsupported(const CalcFile& file);
 
 // Whether `stats` meet `required` (true where nothing is required), and which margins lie
 // within two standard errors (`errors`; none: not known), where the calculation cannot tell.

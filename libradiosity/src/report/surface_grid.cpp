@@ -69,13 +69,19 @@ ModellingIndex modelling_index(const std::vector<double>& cylindrical,
     return m;
 }
 
-void refuse_emergency_surfaces(const CalcFile& file) {
+void refuse_daylight_unsupported(const CalcFile& file) {
     for (const auto& s : file.surfaces)
         if (is_emergency(s.kind))
             throw InputError(s.where, std::string("an ") + calc_kind_name(s.kind) +
                                           " is lit by emergency luminaires (EN 1838), and a "
                                           "daylight solution has none: report it on the "
                                           "luminaires' solution, or remove the line");
+        else if (s.kind == CalcKind::Cylindrical || s.kind == CalcKind::SemiCylindrical)
+            throw InputError(s.where, std::string("a ") + calc_kind_name(s.kind) +
+                                          " surface's daylight is not computed yet (its "
+                                          "sensors would give the horizontal daylight factor): "
+                                          "report it on a luminaires' solution, or remove the "
+                                          "line");
 }
 
 std::vector<SurfaceGrid> surface_grids(const CalcFile& file, double metres_per_unit) {
