@@ -252,6 +252,8 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
     sensor_sky_paths(
         *scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
         [&](const Vec3& d, const Rgb& w) { out.sky += luminous(w) * sky.luminance(d); }, &refine_);
+    if (sky.sun_up())
+        out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
     if (options_.rays > 0) {
         const auto luminance = patch_luminance_with_sun(patches(), sky);
         BatchError batches;
@@ -264,8 +266,6 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
         const auto plan = reflected_plan(options_.rays);
         const int per_batch = plan.side * plan.side;
         int cast = plan.batches * per_batch;
-        if (sky.sun_up())
-            out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
         // Rounds to the accuracy asked for: a batch at a time, each from its own stream.
         const auto short_of_accuracy = [&] {
             const double total = out.sky + out.sun + batches.mean()[0];
@@ -284,10 +284,7 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
         out.reflected = batches.mean()[0];
         out.reflected_error = batches.standard_error()[0];
         out.rays = cast;
-        return out;
     }
-    if (sky.sun_up())
-        out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
     return out;
 }
 
