@@ -110,8 +110,9 @@ void print_surface_factors(const DaylightRun& run, const std::vector<double>& va
 
 // The sensors whose reflected light stopped at --max-rays before --accuracy: counted, the first
 // few named.
-void warn_at_budget(const DaylightRun& run, const std::vector<DaylightSensors::Illuminance>& lux,
-                    const std::vector<std::uint8_t>& inside) {
+void warn_sensors_at_budget(const DaylightRun& run,
+                            const std::vector<DaylightSensors::Illuminance>& lux,
+                            const std::vector<std::uint8_t>& inside) {
     long count = 0;
     std::string names;
     for (std::size_t k = 0; k < lux.size(); ++k) {
@@ -120,13 +121,7 @@ void warn_at_budget(const DaylightRun& run, const std::vector<DaylightSensors::I
             names += (names.empty() ? "" : ", ") +
                      (run.labels.empty() ? "sensor " + std::to_string(k) : run.labels[k]);
     }
-    if (count == 0) return;
-    std::fprintf(stderr,
-                 "rad-gather: warning: %ld sensor(s) stopped at --max-rays %d before a standard "
-                 "error of %g%%: %s%s (raise --max-rays, or accept the error written with "
-                 "--error)\n",
-                 count, std::max(run.max_rays, run.rays), 100 * run.accuracy, names.c_str(),
-                 count > 3 ? ", ..." : "");
+    warn_at_budget("sensor(s)", count, std::max(run.max_rays, run.rays), run.accuracy, names);
 }
 
 int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
@@ -144,7 +139,7 @@ int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors
         errors.push_back(inside[k] ? std::nan("") : scale * lux[k].reflected_error);
     }
     const auto without = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), 1));
-    warn_at_budget(run, lux, inside);
+    warn_sensors_at_budget(run, lux, inside);
     write_output(run.output, [&](std::FILE* out) {
         if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
         if (run.labels.empty()) {

@@ -352,12 +352,7 @@ class GatherRun {
 
 // The points that stopped at --max-rays before --accuracy, counted and named (the first few).
 void print_at_budget(const rad::GatherOptions& o, long count, const std::string& names) {
-    if (count == 0) return;
-    std::fprintf(stderr,
-                 "rad-gather: warning: %ld point(s) stopped at --max-rays %d before a standard "
-                 "error of %g%%: %s%s (raise --max-rays, or accept the error written with "
-                 "--error)\n",
-                 count, o.max_rays, 100 * o.accuracy, names.c_str(), count > 3 ? ", ..." : "");
+    rad::tool::warn_at_budget("point(s)", count, o.max_rays, o.accuracy, names);
 }
 
 // The problems met (or the work plane's figures), then the summary.

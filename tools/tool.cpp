@@ -292,6 +292,15 @@ std::string error_suffix(double error) {
     return text;
 }
 
+void warn_at_budget(const char* what, long count, int max_rays, double accuracy,
+                    const std::string& names) {
+    if (count == 0) return;
+    std::fprintf(stderr,
+                 "rad-gather: warning: %ld %s stopped at --max-rays %d before a standard error "
+                 "of %g%%: %s%s (raise --max-rays, or accept the error written with --error)\n",
+                 count, what, max_rays, 100 * accuracy, names.c_str(), count > 3 ? ", ..." : "");
+}
+
 void add_accuracy_options(CLI::App& app, GatherOptions& options) {
     app.add_option("--accuracy", options.accuracy,
                    "Keep sampling each point until the standard error of its illuminance is at "

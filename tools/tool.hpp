@@ -72,6 +72,12 @@ void write_output(const std::string& output, const std::function<void(std::FILE*
 // " ± 0.012": a printed figure's standard error to two digits; "" when it is not known.
 std::string error_suffix(double error);
 
+// The warning that `count` points (`what`: "point(s)", "sensor(s)") stopped at `max_rays`
+// before the standard error `accuracy` asked for, the first few named in `names` (nothing when
+// none did).
+void warn_at_budget(const char* what, long count, int max_rays, double accuracy,
+                    const std::string& names);
+
 // --accuracy, --max-rays and --batches: the error bar and sampling to a stated accuracy.
 void add_accuracy_options(CLI::App& app, GatherOptions& options);
 // How a final gather at sensors is made (rad-gather, rad-report, so that both give the same
