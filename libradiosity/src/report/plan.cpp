@@ -66,6 +66,11 @@ std::string scale_bar_svg(const PlanFrame& f, double left, double top, double pl
     return out + "</g>";
 }
 
+// Bilinear between a square's corners a (0, 0), b (1, 0), c (0, 1), d (1, 1) at (fu, fv).
+double bilinear(double a, double b, double c, double d, double fu, double fv) {
+    return (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d);
+}
+
 // The value at (u, v) in sensor units (sensor (c, r) at (c, r)): bilinear between the four
 // sensors around it, flat past the outer ones; where one of the four has no value, the
 // nearest sensor's (NaN when it has none: grey).
@@ -79,7 +84,7 @@ double field_at(std::span<const double> values, long columns, long rows, double 
     const double a = at(c0, r0), b = at(c1, r0), c = at(c0, r1), d = at(c1, r1);
     if (std::isnan(a) || std::isnan(b) || std::isnan(c) || std::isnan(d))
         return at(std::lround(u), std::lround(v));
-    return (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d);
+    return bilinear(a, b, c, d, fu, fv);
 }
 
 // The calculation area in smooth false colour: an image (two pixels a plan pixel) whose every
@@ -245,8 +250,7 @@ FineGrid refined(std::span<const double> values, long columns, long rows) {
             const double fu = double(i) / kRefine - double(c0),
                          fv = double(j) / kRefine - double(r0);
             const double a = at(c0, r0), b = at(c1, r0), c = at(c0, r1), d = at(c1, r1);
-            fine.values[std::size_t(j * fine.columns + i)] =
-                (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d);
+            fine.values[std::size_t(j * fine.columns + i)] = bilinear(a, b, c, d, fu, fv);
         }
     return fine;
 }
