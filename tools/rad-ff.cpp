@@ -116,9 +116,9 @@ struct FfArgs {
     double north = 0;
     rad::FormFactorOptions options;
     rad::HierarchyOptions hierarchy;
-    int threads = 0;
+    int threads = 0, error_batches = 8;
     std::vector<std::string> inputs;
-    bool merge = false, estimate_only = false, verbose = false;
+    bool merge = false, estimate_only = false, verbose = false, error = false;
     CLI::Option *rows_option = nullptr, *output_option = nullptr, *rays_option = nullptr;
 };
 
@@ -193,6 +193,17 @@ void add_method_options(CLI::App& app, FfArgs& a) {
                                    "light the room reflects)")
                         ->capture_default_str()
                         ->check(CLI::Range(1, 100000000));
+    app.add_flag("--error", a.error,
+                 "hemisphere: cast each row's rays in --batches independent batches and write "
+                 "the row's standard error (the square root of its entries' summed variances, "
+                 "from the batches' spread) into the file: rad-info shows it. The batches are "
+                 "stratified each on their own, so the matrix is a little noisier than one "
+                 "stratified set of the same rays");
+    app.add_option("--batches", a.error_batches,
+                   "--error: independent batches per row (--rays must be a multiple, at least "
+                   "8 rays a batch)")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 1024));
     app.add_option("--specular-depth", options.specular_depth,
                    "hemisphere, hemicube: how many mirrors and panes of glass a path may go "
                    "through (each "
@@ -288,6 +299,26 @@ void choose_method(rad::FormFactorOptions& options, std::size_t patches, bool sp
                      options.method.c_str(), patches, why.c_str());
 }
 
+// --error: the hemisphere's rows in batches, or a message saying why not.
+void apply_error_option(FfArgs& a) {
+    if (!a.error) return;
+    auto& options = a.options;
+    if (options.method != "hemisphere")
+        throw rad::InputError(
+            "--error estimates the sampling error of the hemisphere method's rays; the " +
+            options.method +
+            " method has none to estimate that way (analytic, hemicube and pairwise are "
+            "quadratures): add --method hemisphere, or leave --error out");
+    const int per_batch = options.rays / a.error_batches;
+    if (options.rays % a.error_batches != 0 || per_batch < 8)
+        throw rad::InputError("--error: --rays " + std::to_string(options.rays) +
+                              " must be a multiple of --batches " +
+                              std::to_string(a.error_batches) +
+                              " with at least 8 rays a batch (e.g. --rays " +
+                              std::to_string(std::max(8, per_batch + 1) * a.error_batches) + ")");
+    options.error_batches = a.error_batches;
+}
+
 // Refuses a run whose estimated memory is past the limit, saying what to change.
 void check_memory(const std::string& input, const radfmt::MeshData& mesh,
                   const rad::FormFactorOptions& options, std::uint64_t need, std::uint64_t limit,
@@ -379,6 +410,14 @@ void print_summary(const FfArgs& a, const radfmt::FormFactorSpool& ff,
                  static_cast<unsigned long long>(stats.rays_cast), stats.seconds,
                  stats.trace_seconds > 0 ? stats.rays_cast / stats.trace_seconds : 0.0, threads,
                  stats.mean_row_sum, stats.max_row_sum);
+    const auto& errors = ff.row_error();
+    if (errors.empty()) return;
+    double sum = 0, max = 0;
+    for (const float e : errors) sum += e, max = std::max(max, double(e));
+    std::fprintf(stderr,
+                 "rad-ff: rows' standard errors (%d batches): mean %.3g, max %.3g (rad-info "
+                 "--csv lists each)\n",
+                 a.error_batches, errors.empty() ? 0.0 : sum / double(errors.size()), max);
 }
 
 // The arguments that need each other, checked before the mesh is read.
@@ -555,6 +594,10 @@ int sky_view(FfArgs& a, int argc, char** argv) {
 
 int form_factors(FfArgs& a, int argc, char** argv) {
     check_arguments(a);
+    if (a.error && (a.merge || !a.luminaires.empty() || !a.sky.empty()))
+        throw rad::InputError("--error estimates the form factors' rows as they are cast: not "
+                              "with --merge (parts keep their rows' errors), --luminaires or "
+                              "--sky");
     if (a.merge) return merge_parts(a);
     if (!a.luminaires.empty() && !a.sky.empty())
         throw rad::InputError("--luminaires or --sky: one light source file per run");
@@ -573,6 +616,7 @@ int form_factors(FfArgs& a, int argc, char** argv) {
     if (mesh.patches.empty()) throw rad::InputError(input + ": mesh has no patches");
     auto& options = a.options;
     choose_method(options, mesh.patches.size(), mesh.has_specular());
+    apply_error_option(a);
     rad::check_ray_precision(mesh.vertices, input);
     if (options.method == "hierarchical") {
         if (a.estimate_only)
@@ -602,8 +646,9 @@ int form_factors(FfArgs& a, int argc, char** argv) {
                                limit - need, compact_encoding(a));
     rad::compute_form_factor_rows(
         mesh, options,
-        [&](std::size_t, rad::FormFactorEntries row, float back_fraction) {
-            ff.add_row(row, back_fraction);
+        [&](std::size_t, rad::FormFactorEntries row, const rad::FormFactorRowFacts& facts) {
+            ff.add_row(row, facts.back_fraction);
+            if (facts.standard_error >= 0) ff.add_row_error(facts.standard_error);
         },
         &stats, range);
     write_rows(a, mesh, mesh_header, ff, range, stats, argc, argv);

@@ -18,6 +18,15 @@ namespace fs = std::filesystem;
 using detail::require_count;
 
 namespace {
+constexpr const char* kRowErrorsField = "row_errors";
+
+// The header says whether the body ends in the rows' standard errors (a header copied from a
+// file with them must not promise them for one without).
+void mark_row_errors(Header& header, bool present) {
+    std::erase_if(header.fields, [](const auto& f) { return f.first == kRowErrorsField; });
+    if (present) header.set(kRowErrorsField, "yes");
+}
+
 void write_form_factor_body(const fs::path& path, Header header, const FormFactorData& ff,
                             Kind kind) {
     header.kind = kind;
@@ -26,6 +35,9 @@ void write_form_factor_body(const fs::path& path, Header header, const FormFacto
     if (ff.back_fraction.size() != ff.patch_count)
         throw std::logic_error("form factors written without one back-face fraction per row");
     if (ff.is_compact()) throw std::logic_error("form factors written from their compact rows");
+    if (!ff.row_error.empty() && ff.row_error.size() != ff.patch_count)
+        throw std::logic_error("form factors written with some rows' errors missing");
+    mark_row_errors(header, !ff.row_error.empty());
     BodyWriter w;
     w.u64(ff.patch_count);
     w.u64(ff.nonzeros());
@@ -52,6 +64,7 @@ void write_form_factor_body(const fs::path& path, Header header, const FormFacto
         w.array(ff.values);
     }
     w.array(ff.back_fraction);
+    if (!ff.row_error.empty()) w.array(ff.row_error);
     write_file(path, std::move(header), w);
 }
 
@@ -154,6 +167,7 @@ void write_form_factor_body(const fs::path& path, Header header, FormFactorSpool
     header.kind = kind;
     header.set("patches", std::to_string(ff.patch_count()));
     header.set("nonzeros", std::to_string(ff.nonzeros()));
+    mark_row_errors(header, !ff.row_error().empty());
     BodyWriter w;
     if (kind == Kind::FormFactors)
         ff.fill_compact_body(w, compact::hit_denominator(header));
@@ -188,6 +202,12 @@ FormFactorData read_form_factor_body(const fs::path& path, Header* header_out, K
         for (std::uint64_t i = 0; i < ff.patch_count; ++i)
             if (!(ff.back_fraction[i] >= 0 && ff.back_fraction[i] <= 1))
                 r.fail("back-face fraction of row " + std::to_string(i) + " is not in [0, 1]");
+    }
+    if (r.header().find(kRowErrorsField)) {
+        ff.row_error = r.array<float>(ff.patch_count, "rows' standard errors");
+        for (std::uint64_t i = 0; i < ff.patch_count; ++i)
+            if (!(ff.row_error[i] >= 0 && ff.row_error[i] <= 1))
+                r.fail("standard error of row " + std::to_string(i) + " is not in [0, 1]");
     }
     r.expect_end();
     if (ff.row_start.front() != 0 || ff.row_start.back() != nnz)
@@ -284,11 +304,19 @@ std::string form_factor_part_summary(const fs::path& path, Header& header) {
 
 void form_factor_rows_csv(const FormFactorData& ff, std::ostream& out) {
     char line[128];
-    out << kind_info(Kind::FormFactors).csv_columns << '\n';
+    // A file with the rows' standard errors gets a column of them (the row's, on each entry).
+    const bool errors = !ff.row_error.empty();
+    out << kind_info(Kind::FormFactors).csv_columns << (errors ? ",row_error\n" : "\n");
     for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
         for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) {
-            std::snprintf(line, sizeof line, "%llu,%u,%.9g\n", static_cast<unsigned long long>(i),
-                          ff.columns[k], static_cast<double>(ff.values[k]));
+            if (errors)
+                std::snprintf(line, sizeof line, "%llu,%u,%.9g,%.9g\n",
+                              static_cast<unsigned long long>(i), ff.columns[k],
+                              static_cast<double>(ff.values[k]), double(ff.row_error[i]));
+            else
+                std::snprintf(line, sizeof line, "%llu,%u,%.9g\n",
+                              static_cast<unsigned long long>(i), ff.columns[k],
+                              static_cast<double>(ff.values[k]));
             out << line;
         }
         if (!out) return;
@@ -320,6 +348,17 @@ std::string form_factor_summary(const fs::path& path, Header& header) {
                       "above 50%%",
                       n > 0 ? 100.0 * sum / n : 0.0, 100.0 * max,
                       static_cast<unsigned long long>(mostly_back));
+        out += text;
+    }
+    if (!ff.row_error.empty()) {
+        double sum = 0, max = 0;
+        for (const float e : ff.row_error) {
+            sum += e;
+            max = std::max(max, double(e));
+        }
+        std::snprintf(text, sizeof text,
+                      "; rows' standard errors (rad-ff --error): mean %.3g, max %.3g",
+                      n > 0 ? sum / n : 0.0, max);
         out += text;
     }
     return out;

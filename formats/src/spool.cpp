@@ -170,6 +170,19 @@ void FormFactorSpool::add_row(std::span<const std::pair<std::uint32_t, float>> e
     back_fraction_.push_back(back_fraction);
 }
 
+void FormFactorSpool::add_row_error(float error) {
+    if (row_error_.size() + 1 != rows())
+        throw std::logic_error("FormFactorSpool: a row error for no row, or a row without one");
+    row_error_.push_back(error);
+}
+
+void FormFactorSpool::fill_row_errors(BodyWriter& body) const {
+    if (row_error_.empty()) return;
+    if (row_error_.size() != patch_count_)
+        throw std::logic_error("FormFactorSpool: written with some rows' errors missing");
+    body.array(row_error_);
+}
+
 fs::path FormFactorSpool::folder_for(const fs::path& output) {
     if (is_special_target(output)) return fs::temp_directory_path();
     return output.has_parent_path() ? output.parent_path() : fs::path(".");
@@ -192,6 +205,7 @@ void FormFactorSpool::fill_body(BodyWriter& body) {
         for (const auto& chunk : value_chunks_) body.array(chunk);
     }
     body.array(back_fraction_);
+    fill_row_errors(body);
 }
 
 namespace {
@@ -294,6 +308,7 @@ void FormFactorSpool::fill_compact_body(BodyWriter& body, std::uint64_t denomina
         for (const auto& block : code_blocks_) body.array(block);
     }
     body.array(back_fraction_);
+    fill_row_errors(body);
 }
 
 } // namespace radfmt

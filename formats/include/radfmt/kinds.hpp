@@ -168,6 +168,10 @@ struct FormFactorData {
     // surface (version 2 on; empty when read from a version 1 file): rows near 1 belong to
     // patches that probably face the wrong way.
     std::vector<float> back_fraction;
+    // Per row, the standard error of the row as a vector (sqrt of the sum of its entries'
+    // variances), estimated from independent batches of rays (rad-ff --error); empty when
+    // the file has none (header field row_errors).
+    std::vector<float> row_error;
     std::uint64_t nonzeros() const { return row_start.empty() ? 0 : row_start.back(); }
     bool is_compact() const { return !compact.far_start.empty(); }
     std::size_t row_size(std::uint64_t i) const { return row_start[i + 1] - row_start[i]; }
@@ -280,6 +284,10 @@ class FormFactorSpool {
     bool spilled() const { return columns_fd_ >= 0 || code_fd_ >= 0; }
     bool compact() const { return compact_.has_value(); }
     const std::vector<float>& back_fraction() const { return back_fraction_; }
+    // Each row's standard error (FormFactorData::row_error), added after its row: for every
+    // row or for none.
+    void add_row_error(float error);
+    const std::vector<float>& row_error() const { return row_error_; }
     // Lays out the body (rows must all be in; spilled entries are flushed first): the plain
     // arrays (a formfactor-part), or compact rows (formfactors version 3, hit counts over
     // `denominator` where they are exact; 0: floats). Compact, the entries are released as
@@ -289,6 +297,7 @@ class FormFactorSpool {
 
   private:
     void add_entry(std::uint32_t column, float value);
+    void fill_row_errors(BodyWriter& body) const;
     void add_compact_row(std::span<const std::uint32_t> columns, std::span<const float> values,
                          float back_fraction);
     void encode_code_row(std::span<const std::uint32_t> columns, std::span<const float> values);
@@ -300,7 +309,7 @@ class FormFactorSpool {
     std::filesystem::path folder_;
     std::uint64_t memory_budget_;
     std::vector<std::uint64_t> row_start_{0};
-    std::vector<float> back_fraction_;
+    std::vector<float> back_fraction_, row_error_;
     // In memory: every chunk; spilled: the one being filled.
     std::vector<std::vector<std::uint32_t>> column_chunks_;
     std::vector<std::vector<float>> value_chunks_;

@@ -33,7 +33,11 @@ struct FormFactorOptions {
     int samples = 0;                 // points per patch, rounded to a square (0: the method's)
     int visibility_rays = 1;         // analytic: rays per sample point towards the other patch
     int rays = 8192;                 // hemisphere: rays per patch
-    int resolution = 0;              // hemicube: pixels across its top face, even (0: the method's)
+    // hemisphere: the rays cast in this many independent batches (each its own rotation of
+    // rays / batches stratified points), and each row's standard error estimated from them
+    // (0: one stratified set of `rays`, no error).
+    int error_batches = 0;
+    int resolution = 0; // hemicube: pixels across its top face, even (0: the method's)
     std::string hemicube_origin = "spread"; // hemicube: rays from over the patch, or "centre"
     std::uint64_t seed = 1;
     bool quiet = false;
@@ -161,8 +165,14 @@ specular_header_fields(const radfmt::MeshData& mesh, const FormFactorOptions& op
 
 // Row i of the matrix as the sink receives it: (column, F_ij), columns ascending.
 using FormFactorEntries = std::span<const std::pair<std::uint32_t, float>>;
-using FormFactorRowSink =
-    std::function<void(std::size_t row, FormFactorEntries entries, float back_fraction)>;
+// What a row's rays said beside its entries: the share that arrived at back faces, and the
+// row's standard error (FormFactorData::row_error; negative when not estimated).
+struct FormFactorRowFacts {
+    float back_fraction = 0;
+    float standard_error = -1;
+};
+using FormFactorRowSink = std::function<void(std::size_t row, FormFactorEntries entries,
+                                             const FormFactorRowFacts& facts)>;
 
 // Computes the rows a block at a time and hands every row of the matrix to `sink`, in
 // order from 0 (those outside `rows` empty), without holding the matrix: rad-ff spools them

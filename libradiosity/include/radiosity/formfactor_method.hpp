@@ -69,6 +69,8 @@ struct RayLog {
     // under or inside other geometry (a contact not imprinted, surfaces crossing).
     double near = 0;
     std::uint32_t started_inside = 0;
+    // The row's standard error, when the method estimated one (FormFactorOptions::error_batches).
+    float standard_error = -1;
     void record(std::int64_t hit, bool front, double distance = 1e300) {
         ++rays;
         if (hit < 0) return;

@@ -171,7 +171,8 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
     std::atomic<std::size_t> patches_started_inside{0};
     double sum_rows = 0, max_row = 0, trace_seconds = 0;
     const FormFactorEntries empty_row;
-    for (std::size_t i = 0; i < first; ++i) sink(i, empty_row, 0.0f);
+    const FormFactorRowFacts empty_facts{0, options.error_batches > 0 ? 0.0f : -1.0f};
+    for (std::size_t i = 0; i < first; ++i) sink(i, empty_row, empty_facts);
 
     Progress progress("rad-ff " + options.method, last - first, options.quiet);
     const auto max_entries = method.max_row_entries(mesh, options);
@@ -179,10 +180,10 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
     // Two blocks: while one is handed to the sink (written to disk, in rad-ff), the next is
     // computed.
     std::vector<FormFactorRow> block_rows_of[2];
-    std::vector<float> block_back_of[2];
+    std::vector<FormFactorRowFacts> block_facts_of[2];
     for (int b = 0; b < 2; ++b) {
         block_rows_of[b].resize(std::min(block_size, last - first));
-        block_back_of[b].resize(block_rows_of[b].size());
+        block_facts_of[b].resize(block_rows_of[b].size());
     }
     auto hand_on = [&, max_entries](std::size_t block_begin, std::size_t block_end, int b) {
         auto& rows = block_rows_of[b];
@@ -192,7 +193,7 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
             for (const auto& entry : row) sum += entry.second;
             sum_rows += sum;
             max_row = std::max(max_row, sum);
-            sink(i, row, block_back_of[b][i - block_begin]);
+            sink(i, row, block_facts_of[b][i - block_begin]);
             // A long row of one block must not keep its memory through the rest.
             if (row.capacity() > 4 * max_entries / 3 + 64) FormFactorRow().swap(row);
         }
@@ -202,7 +203,7 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
     for (std::size_t block_begin = first; block_begin < last; block_begin += block_size, b ^= 1) {
         const std::size_t block_end = std::min(last, block_begin + block_size);
         auto& rows = block_rows_of[b];
-        auto& back_fraction = block_back_of[b];
+        auto& facts = block_facts_of[b];
         const auto trace_start = std::chrono::steady_clock::now();
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(block_begin, block_end, 1),
@@ -226,8 +227,9 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
                         started_inside += log.started_inside;
                         ++patches_started_inside;
                     }
-                    back_fraction[i - block_begin] =
-                        static_cast<float>(double(log.back_hits) / std::max(1u, log.rays));
+                    facts[i - block_begin] = {
+                        static_cast<float>(double(log.back_hits) / std::max(1u, log.rays)),
+                        log.standard_error};
                     progress.advance(1);
                 }
             });
@@ -239,7 +241,7 @@ void compute_form_factor_rows(const radfmt::MeshData& mesh, const FormFactorOpti
     }
     handing_on.wait();
     progress.finish();
-    for (std::size_t i = last; i < n; ++i) sink(i, empty_row, 0.0f);
+    for (std::size_t i = last; i < n; ++i) sink(i, empty_row, empty_facts);
 
     if (stats) {
         stats->rays_cast = rays_cast;
@@ -269,13 +271,14 @@ radfmt::FormFactorData compute_form_factors(const radfmt::MeshData& mesh,
     ff.back_fraction.reserve(ff.patch_count);
     compute_form_factor_rows(
         mesh, options,
-        [&](std::size_t, FormFactorEntries row, float back_fraction) {
+        [&](std::size_t, FormFactorEntries row, const FormFactorRowFacts& facts) {
             for (const auto& [column, value] : row) {
                 ff.columns.push_back(column);
                 ff.values.push_back(value);
             }
             ff.row_start.push_back(ff.columns.size());
-            ff.back_fraction.push_back(back_fraction);
+            ff.back_fraction.push_back(facts.back_fraction);
+            if (facts.standard_error >= 0) ff.row_error.push_back(facts.standard_error);
         },
         stats, range);
     return ff;

@@ -5,6 +5,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace rad::ff {
 namespace {
@@ -12,12 +13,15 @@ namespace {
 class HemisphereKernel final : public RowKernel {
   public:
     HemisphereKernel(const FormFactorContext& context, const FormFactorOptions& options)
-        : context_(context), rays_(std::max(1, options.rays)) {
+        : context_(context), rays_(std::max(1, options.rays)),
+          batches_(std::max(0, options.error_batches)) {
         // The low-discrepancy points are the same for every patch (only their rotation
-        // differs), so they are computed once rather than per ray.
-        qmc_.resize(rays_);
-        for (int r = 0; r < rays_; ++r)
-            qmc_[r] = {(r + 0.5) / rays_, radical_inverse(r, 2), radical_inverse(r + 1, 3),
+        // differs), so they are computed once rather than per ray. In batches, each batch is
+        // one such set of rays / batches points.
+        const int points = batches_ > 0 ? rays_ / batches_ : rays_;
+        qmc_.resize(points);
+        for (int r = 0; r < points; ++r)
+            qmc_[r] = {(r + 0.5) / points, radical_inverse(r, 2), radical_inverse(r + 1, 3),
                        radical_inverse(r + 1, 5)};
     }
 
@@ -29,6 +33,7 @@ class HemisphereKernel final : public RowKernel {
         const auto poly = context_.polygons[i].points();
         const auto cdf = fan_cdf(poly);
         const Vec3 tu = orthogonal(pi.normal), tv = cross(pi.normal, tu);
+        if (batches_ > 0) return batched_row(i, rng, poly, cdf, tu, tv, row, log);
         // Quasi-Monte Carlo: a 4D low-discrepancy set (Hammersley's (0,2)-net for the
         // origin, Halton bases 3 and 5 for the direction), rotated per patch by seeded
         // offsets (Cranley-Patterson), so the estimate is unbiased and stratified jointly.
@@ -88,23 +93,7 @@ class HemisphereKernel final : public RowKernel {
         sums.resize(context_.mesh.patches.size());
         for (int r = 0; r < rays_; ++r) {
             const auto [origin, dir] = ray_of(i, r, rot, poly, cdf, tu, tv);
-            bool met = false;
-            follow_specular(context_.scene, context_.specular, origin, dir, radfmt::Rgb{{1, 1, 1}},
-                            context_.specular_depth, [&](const PathHit& h) {
-                                const auto j = static_cast<std::size_t>(h.hit.patch);
-                                if (h.events == 0) {
-                                    met = true;
-                                    // Glass is met from behind as often as from the front.
-                                    const bool front =
-                                        h.hit.front || context_.specular.transmits(j);
-                                    log.record(j == i ? -1 : h.hit.patch, front, h.hit.distance);
-                                    if (j == i) return; // a warped quad: no evidence
-                                }
-                                if (!h.hit.front) return; // a diffuse part shines from its front
-                                const double w = (h.weight[0] + h.weight[1] + h.weight[2]) / 3;
-                                sums.add(j, w);
-                            });
-            if (!met) log.record(-1, false);
+            follow_paths(i, origin, dir, log, [&](std::size_t j, double w) { sums.add(j, w); });
         }
         sums.drain([&](std::size_t j, double sum) {
             row.emplace_back(static_cast<std::uint32_t>(j), static_cast<float>(sum / rays_));
@@ -112,9 +101,104 @@ class HemisphereKernel final : public RowKernel {
         return static_cast<std::uint64_t>(rays_);
     }
 
+    // One ray's path on through mirrors and glass: reach(j, weight) for each surface whose
+    // diffuse front it reaches on the way.
+    template <class Reach>
+    void follow_paths(std::size_t i, const Vec3& origin, const Vec3& dir, RayLog& log,
+                      Reach&& reach) const {
+        bool met = false;
+        follow_specular(context_.scene, context_.specular, origin, dir, radfmt::Rgb{{1, 1, 1}},
+                        context_.specular_depth, [&](const PathHit& h) {
+                            const auto j = static_cast<std::size_t>(h.hit.patch);
+                            if (h.events == 0) {
+                                met = true;
+                                // Glass is met from behind as often as from the front.
+                                const bool front = h.hit.front || context_.specular.transmits(j);
+                                log.record(j == i ? -1 : h.hit.patch, front, h.hit.distance);
+                                if (j == i) return; // a warped quad: no evidence
+                            }
+                            if (!h.hit.front) return; // a diffuse part shines from its front
+                            reach(j, (h.weight[0] + h.weight[1] + h.weight[2]) / 3);
+                        });
+        if (!met) log.record(-1, false);
+    }
+
+    // The row cast as independent batches (each its own rotation of the stratified set), and
+    // its standard error from them. With p_bj batch b's estimate of F_ij and p_j their mean,
+    // sum_j sum_b (p_bj - p_j)^2 / (B (B - 1)) is an unbiased estimate of the sum of the
+    // entries' variances (the batches are i.i.d. and unbiased); its square root is the row's
+    // error. The strata of one set are not independent, so rays one by one would not do.
+    std::uint64_t batched_row(std::size_t i, Rng& rng, std::span<const Vec3> poly,
+                              std::span<const double> cdf, const Vec3& tu, const Vec3& tv,
+                              FormFactorRow& row, RayLog& log) const {
+        const int per_batch = static_cast<int>(qmc_.size());
+        const bool specular = context_.specular.any();
+        auto& sums = weights_.local();
+        sums.resize(context_.mesh.patches.size());
+        auto& batch = batch_reached_.local();
+        double batch_squares = 0; // sum over b and j of p_bj^2
+        for (int b = 0; b < batches_; ++b) {
+            const double rot[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
+            batch.clear();
+            for (int r = 0; r < per_batch; ++r) {
+                const auto [origin, dir] = ray_of(i, r, rot, poly, cdf, tu, tv);
+                auto reach = [&](std::size_t j, double w) {
+                    batch.emplace_back(static_cast<std::uint32_t>(j), w);
+                };
+                if (specular)
+                    follow_paths(i, origin, dir, log, reach);
+                else
+                    trace_diffuse(i, origin, dir, log, reach);
+            }
+            batch_squares += sum_of_squared_shares(batch, per_batch);
+            for (const auto& [j, w] : batch) sums.add(j, w);
+        }
+        double squares = 0; // sum over j of p_j^2
+        sums.drain([&](std::size_t j, double sum) {
+            const double f = sum / rays_;
+            row.emplace_back(static_cast<std::uint32_t>(j), static_cast<float>(f));
+            squares += f * f;
+        });
+        const double count = batches_;
+        const double variance = (batch_squares - count * squares) / (count * (count - 1));
+        log.standard_error = static_cast<float>(std::sqrt(std::max(0.0, variance)));
+        return static_cast<std::uint64_t>(rays_);
+    }
+
+    // One ray of a mesh without mirrors or glass: reach(j, 1) when it meets another patch's
+    // front.
+    template <class Reach>
+    void trace_diffuse(std::size_t i, const Vec3& origin, const Vec3& dir, RayLog& log,
+                       Reach&& reach) const {
+        const auto traced = context_.scene.trace(origin, dir);
+        const bool self = static_cast<std::size_t>(traced.patch) == i;
+        log.record(self ? -1 : traced.patch, traced.front, traced.distance);
+        if (traced.patch >= 0 && traced.front && !self)
+            reach(static_cast<std::size_t>(traced.patch), 1.0);
+    }
+
+    // sum_j (w_j / rays)^2 over one batch's reached (patch, weight) pairs (sorted here).
+    static double sum_of_squared_shares(std::vector<std::pair<std::uint32_t, double>>& reached,
+                                        int rays) {
+        std::sort(reached.begin(), reached.end());
+        double out = 0;
+        for (std::size_t k = 0; k < reached.size();) {
+            double share = 0;
+            const auto j = reached[k].first;
+            for (; k < reached.size() && reached[k].first == j; ++k) share += reached[k].second;
+            share /= rays;
+            out += share * share;
+        }
+        return out;
+    }
+
     const FormFactorContext& context_;
     int rays_;
+    int batches_; // 0: one stratified set of rays_, no error
     std::vector<std::array<double, 4>> qmc_;
+    // One batch's reached (patch, weight) pairs, per thread.
+    mutable tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, double>>>
+        batch_reached_;
     mutable tbb::enumerable_thread_specific<RowTally<std::uint32_t>> hits_; // front hits
     mutable tbb::enumerable_thread_specific<RowTally<double>> weights_;     // paths' weights
 };
@@ -130,6 +214,9 @@ class Hemisphere final : public FormFactorMethod {
     bool follows_specular() const override { return true; }
     std::vector<std::pair<std::string, std::string>>
     header_fields(const FormFactorOptions& options) const override {
+        if (options.error_batches > 0)
+            return {{"rays", std::to_string(options.rays)},
+                    {"error_batches", std::to_string(options.error_batches)}};
         return {{"rays", std::to_string(options.rays)}};
     }
     std::uint64_t max_row_entries(const radfmt::MeshData& mesh,
@@ -146,9 +233,14 @@ class Hemisphere final : public FormFactorMethod {
         const std::uint64_t rays = static_cast<std::uint64_t>(std::max(1, options.rays));
         // (A mesh with mirrors or glass sums the paths' weights in doubles instead.)
         const std::uint64_t per_patch = mesh.has_specular() ? 8 : 4;
+        // In batches (--error), each thread also holds a batch's reached patches, and
+        // sums weights in doubles.
+        const bool batched = options.error_batches > 0;
+        const std::uint64_t per_batch = batched ? rays / options.error_batches : 0;
         return rays * sizeof(std::array<double, 4>) +
                std::uint64_t(threads) *
-                   (mesh.patches.size() * per_patch + mesh.patches.size() / 8 + 1);
+                   (mesh.patches.size() * (batched ? 8 : per_patch) + mesh.patches.size() / 8 + 1 +
+                    per_batch * sizeof(std::pair<std::uint32_t, double>));
     }
     std::unique_ptr<RowKernel> prepare(const FormFactorContext& context,
                                        const FormFactorOptions& options) const override {

@@ -217,6 +217,7 @@ MergedFormFactors merge_form_factor_parts(const std::vector<std::string>& paths,
             const auto from = ff.row_start[i], count = ff.row_start[i + 1] - from;
             spool.add_row(std::span(ff.columns).subspan(from, count),
                           std::span(ff.values).subspan(from, count), ff.back_fraction[i]);
+            if (!ff.row_error.empty()) spool.add_row_error(ff.row_error[i]);
         }
     }
     out.rows = spool.rows();
