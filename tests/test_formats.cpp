@@ -321,6 +321,43 @@ TEST_CASE("a spooled form-factor file is byte-identical to one written from memo
     CHECK(radfmt::FormFactorSpool::folder_for("x.ff") == fs::path("."));
 }
 
+TEST_CASE("rows' standard errors are written, read and spooled alike, and only when given") {
+    const auto dir = temp_dir("formats");
+    radfmt::FormFactorData ff;
+    ff.patch_count = 3;
+    ff.row_start = {0, 2, 2, 3};
+    ff.columns = {1, 2, 0};
+    ff.values = {0.25f, 0.5f, 0.125f};
+    ff.back_fraction = {0, 0.5f, 0};
+    ff.row_error = {0.0125f, 0, 0.03f};
+    radfmt::FormFactorSpool spool(ff.patch_count, dir);
+    for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
+        const auto b = ff.row_start[i], n = ff.row_start[i + 1] - b;
+        spool.add_row(std::span(ff.columns).subspan(b, n), std::span(ff.values).subspan(b, n),
+                      ff.back_fraction[i]);
+        spool.add_row_error(ff.row_error[i]);
+    }
+    radfmt::write_form_factors(dir / "memory.ff", header_for("rad-ff"), ff);
+    radfmt::write_form_factors(dir / "spool.ff", header_for("rad-ff"), spool);
+    CHECK(read_all(dir / "memory.ff") == read_all(dir / "spool.ff"));
+    radfmt::Header header;
+    const auto back = radfmt::read_form_factors(dir / "spool.ff", &header);
+    CHECK(back.row_error == ff.row_error);
+    REQUIRE(header.find("row_errors"));
+    // A header carried over from a file with errors does not promise them for one without.
+    auto plain = ff;
+    plain.row_error.clear();
+    radfmt::write_form_factors(dir / "plain.ff", header, plain);
+    radfmt::Header plain_header;
+    CHECK(radfmt::read_form_factors(dir / "plain.ff", &plain_header).row_error.empty());
+    CHECK_FALSE(plain_header.find("row_errors"));
+    // An error for no row, or one short, is the caller's bug.
+    radfmt::FormFactorSpool short_spool(2, dir);
+    CHECK_THROWS(short_spool.add_row_error(0.1f));
+    ff.row_error.pop_back();
+    CHECK_THROWS(radfmt::write_form_factors(dir / "short.ff", header_for("rad-ff"), ff));
+}
+
 TEST_CASE("damaged files are refused with a clear message") {
     const auto dir = temp_dir("formats");
     const auto good = dir / "good.mesh";
