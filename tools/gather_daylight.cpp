@@ -136,7 +136,7 @@ int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors
     const double scale = a.daylight_factor ? 100 / sky.horizontal_illuminance() : 1;
     for (std::size_t k = 0; k < n; ++k) {
         values.push_back(inside[k] ? std::nan("") : scale * lux[k].total());
-        errors.push_back(inside[k] ? std::nan("") : scale * lux[k].reflected_error);
+        errors.push_back(inside[k] ? std::nan("") : scale * lux[k].error());
     }
     const auto without = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), 1));
     warn_sensors_at_budget(run, lux, inside);

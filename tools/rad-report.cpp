@@ -241,7 +241,7 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
         const double percent = 100 / sky.horizontal_illuminance();
         for (std::size_t k = first; k < first + n; ++k) {
             d.factor.push_back(inside[k] ? std::nan("") : percent * lux[k].total());
-            d.factor_error.push_back(inside[k] ? std::nan("") : percent * lux[k].reflected_error);
+            d.factor_error.push_back(inside[k] ? std::nan("") : percent * lux[k].error());
             if (lux[k].at_budget && !inside[k]) d.at_budget.push_back(long(k - first));
         }
         d.summary = rad::summarise_daylight_factors(d.factor);

@@ -120,8 +120,10 @@ first = [[float(v) for v in l.split()] for l in open(sys.argv[2])]
 err = open(sys.argv[3]).read()
 m = re.search(r"warning: (\d+) sensor\(s\) stopped at --max-rays 8192 before a standard error of 0.2%", err)
 at_budget = int(m.group(1)) if m else 0
-short = sum(1 for v, e in got if not math.isnan(v) and e > 0.002 * v * 1.006)
-assert short == at_budget, (short, at_budget, err)
+# (errors are written to 3 digits: those within that rounding of 0.2% may be either)
+strict = sum(1 for v, e in got if not math.isnan(v) and e > 0.002 * v * 1.006)
+loose = sum(1 for v, e in got if not math.isnan(v) and e > 0.002 * v * 0.994)
+assert strict <= at_budget <= loose, (strict, loose, at_budget, err)
 tightened = sum(1 for (v, e), (v0, e0) in zip(got, first) if not math.isnan(v) and e < e0 * 0.9)
 assert tightened >= 30, tightened
 print("--accuracy 0.002: %d of %d sensors tightened, %d at the budget" % (tightened, len(got), at_budget))

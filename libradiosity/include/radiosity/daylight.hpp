@@ -4,11 +4,13 @@
 // --direct), then any sky or any hour of a year is a weighted sum (rad-gather).
 #pragma once
 #include "radfmt/kinds.hpp"
+#include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/sky_patches.hpp"
 #include "radiosity/specular.hpp"
 #include "radiosity/weather.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -50,6 +52,8 @@ std::uint64_t merge_sky_parts(const std::vector<std::string>& paths, const std::
 struct SkyRefinement {
     SkyPatches::Cells fine;
     std::vector<std::vector<std::uint32_t>> neighbours;
+    SkyFrame frame;    // the frame the cells were made in
+    int fine_side = 0; // the fine cells' side
     bool empty() const { return fine.empty(); }
 };
 // The refinement for `cells` at `side` (see sensor_sky_paths): 3 times the side, at most 32;
@@ -59,64 +63,65 @@ SkyRefinement sky_refinement(const SkyPatches& patches, const SkyFrame& frame,
 
 // What a sensor sees of the sky directly: every sky patch (and the ground) sampled by its
 // `cells` (SkyPatches::cells: directions of equal solid angle), each followed through mirrors
-// and glass; escape(direction, weight) for each path that leaves the scene, weight = the
-// path's RGB x its cell's solid angle x cos to `normal`. Directions behind the sensor are
-// skipped. Where an opening's edge may cross a patch (some of its directions leave the scene
-// and some do not, or a neighbour's do otherwise than its own), the patch is sampled again by
-// `refine`'s finer cells instead, when given: the sky's direct part is resolved where it
-// changes, not everywhere.
+// and glass; a SkyPath for each path that leaves the scene, weight = the path's RGB x its
+// cell's solid angle x cos to `normal`. Directions behind the sensor are skipped. Where an
+// opening's edge may cross a patch (some of its directions leave the scene and some do not,
+// or a neighbour's do otherwise than its own), the patch is sampled again by `refine`'s finer
+// cells instead, when given: the sky's direct part is resolved where it changes, not
+// everywhere.
+// With `jitter` too, a refined patch's fine cells where the edge runs (a cell whose centre
+// leaves the scene where a neighbour's does not, or the other way) are sampled unbiasedly
+// instead of at their centre: split 2 x 2, each part at two directions drawn uniformly in it
+// (each path at half the part's weight), slot 2 x part + pass (parts numbered from 0 in the
+// order they come); the rest keep their centres (slot -1). The caller estimates the
+// quadrature's variance from the two passes (SkyQuadratureVariance).
+struct SkyPath {
+    Vec3 direction;
+    radfmt::Rgb weight;
+    std::int64_t slot;
+};
+// The paths in order, patch by patch; valid until this thread's next call.
+const std::vector<SkyPath>&
+sensor_sky_path_list(const RayScene& scene, const SpecularSurfaces& specular,
+                     const SkyPatches& patches, const SkyPatches::Cells& cells, int depth,
+                     const Vec3& point, const Vec3& normal, const SkyRefinement* refine = nullptr,
+                     Rng* jitter = nullptr);
+// The same handed to escape(direction, weight, slot), in order.
 template <class Escape>
 void sensor_sky_paths(const RayScene& scene, const SpecularSurfaces& specular,
                       const SkyPatches& patches, const SkyPatches::Cells& cells, int depth,
                       const Vec3& point, const Vec3& normal, Escape&& escape,
-                      const SkyRefinement* refine = nullptr) {
-    struct Out {
-        Vec3 direction;
-        radfmt::Rgb weight;
-    };
-    thread_local std::vector<std::vector<Out>> found;
-    thread_local std::vector<std::uint8_t> state; // 0 none facing, 1 closed, 2 partial, 3 open
-    const std::size_t count = patches.count();
-    found.resize(count);
-    state.assign(count, 0);
-    const auto trace = [&](std::size_t p, const std::vector<Vec3>& directions) {
-        found[p].clear();
-        const double cell = patches.solid_angle(p) / double(directions.size());
-        int open = 0, facing = 0;
-        for (const auto& d : directions) {
-            const double cosine = dot(d, normal);
-            if (cosine <= 0) continue;
-            ++facing;
-            bool left = false;
-            follow_specular(
-                scene, specular, point, d, radfmt::Rgb{{1, 1, 1}}, depth, [](const PathHit&) {},
-                [&](const Vec3& out, const radfmt::Rgb& w) {
-                    left = true;
-                    found[p].push_back(
-                        {out, radfmt::Rgb{{w[0] * cell * cosine, w[1] * cell * cosine,
-                                           w[2] * cell * cosine}}});
-                });
-            open += left ? 1 : 0;
-        }
-        state[p] = facing == 0 ? 0 : open == 0 ? 1 : open < facing ? 2 : 3;
-    };
-    for (std::size_t p = 0; p < count; ++p) trace(p, cells[p]);
-    if (refine && !refine->empty()) {
-        thread_local std::vector<std::uint8_t> again;
-        again.assign(count, 0);
-        for (std::size_t p = 0; p < count; ++p) {
-            if (state[p] == 0) continue;
-            bool edge = state[p] == 2;
-            for (const auto q : refine->neighbours[p])
-                edge = edge || (state[q] != 0 && state[q] != state[p]);
-            again[p] = edge;
-        }
-        for (std::size_t p = 0; p < count; ++p)
-            if (again[p]) trace(p, refine->fine[p]);
-    }
-    for (std::size_t p = 0; p < count; ++p)
-        for (const auto& o : found[p]) escape(o.direction, o.weight);
+                      const SkyRefinement* refine = nullptr, Rng* jitter = nullptr) {
+    for (const auto& path : sensor_sky_path_list(scene, specular, patches, cells, depth, point,
+                                                 normal, refine, jitter))
+        escape(path.direction, path.weight, path.slot);
 }
+
+// The variance of a jittered sky quadrature (sensor_sky_paths with `jitter`) from what its
+// paths were worth, fed in the order they came: each jittered part's two passes are two
+// independent estimates of it, so (v_pass0 - v_pass1)^2 summed over parts is an unbiased
+// estimate of the variance of their mean, the value taken (v: each path's half-weighted
+// contribution). The centres (slot -1) are a fixed quadrature: not in it.
+class SkyQuadratureVariance {
+  public:
+    void add(std::int64_t slot, double value) {
+        if (slot < 0) return;
+        if (slot / 2 != cell_) flush(), cell_ = slot / 2;
+        difference_ += slot % 2 == 0 ? value : -value;
+    }
+    double variance() {
+        flush();
+        return sum_;
+    }
+
+  private:
+    void flush() {
+        sum_ += difference_ * difference_;
+        difference_ = 0;
+    }
+    std::int64_t cell_ = -1;
+    double difference_ = 0, sum_ = 0;
+};
 
 // The direct sun at a sensor (lux): the beam's normal illuminance x cos x what glass lets
 // through on the straight path to the sun (a path that leaves the scene within the sun's
@@ -203,6 +208,11 @@ class DaylightSensors {
     struct Illuminance {
         double sky = 0, reflected = 0, sun = 0;
         double reflected_error = 0;
+        // The sky seen directly: the standard error of its jittered quadrature where an
+        // opening's edge crosses the sky (sensor_sky_paths); the rest is by cell centres.
+        double sky_error = 0;
+        // The standard error of total(): the two parts' are independent.
+        double error() const { return std::hypot(reflected_error, sky_error); }
         int rays = 0;           // the reflected light's rays cast
         bool at_budget = false; // stopped at max_rays before the accuracy
         double total() const { return sky + reflected + sun; }

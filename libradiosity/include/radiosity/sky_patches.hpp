@@ -35,6 +35,11 @@ class SkyPatches {
     // The patch's directions as `side` x `side` cells of equal solid angle (their centres,
     // in sin(altitude) and azimuth), each standing for solid_angle / side^2.
     std::vector<Vec3> cell_directions(const SkyFrame& frame, std::size_t patch, int side) const;
+    // A direction in cell `cell` (row-major, as cell_directions orders them) at (u, v) in
+    // [0, 1)^2 across it: uniform (u, v) give directions uniform in the cell's solid angle;
+    // (0.5, 0.5) is its centre.
+    Vec3 cell_direction(const SkyFrame& frame, std::size_t patch, int side, int cell, double u,
+                        double v) const;
     // Every patch's (the ground's first), computed once for many skies or sensors.
     using Cells = std::vector<std::vector<Vec3>>;
     Cells cells(const SkyFrame& frame, int side) const;

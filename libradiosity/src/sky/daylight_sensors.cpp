@@ -21,13 +21,17 @@ namespace {
 // directions at the default 8 x 8; 4 times read 0.16% off under a roof opening for 3 times
 // the time, 2 times 2.4% for 1.5 times), at most 32.
 constexpr int kRefineFactor = 3, kFinestSkySide = 32;
+// The stream of the sky's jittered cells at a sensor (batch_stream's batches are >= 0).
+constexpr int kSkyJitterStream = -1;
 } // namespace
 
 SkyRefinement sky_refinement(const SkyPatches& patches, const SkyFrame& frame,
                              const SkyPatches::Cells& cells, int side) {
     SkyRefinement out;
     if (side >= kFinestSkySide) return out;
-    out.fine = patches.cells(frame, std::min(kRefineFactor * side, kFinestSkySide));
+    out.fine_side = std::min(kRefineFactor * side, kFinestSkySide);
+    out.fine = patches.cells(frame, out.fine_side);
+    out.frame = frame;
     // Each patch's centre and angular radius from its cells; neighbours overlap when grown by
     // half.
     const std::size_t count = cells.size();
@@ -129,7 +133,7 @@ DaylightSensors::Coefficients DaylightSensors::coefficients(const Vec3& point, c
     Coefficients out{std::vector<double>(patches().count(), 0.0), reflected(point, normal, index)};
     sensor_sky_paths(
         *scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
-        [&](const Vec3& d, const Rgb& w) {
+        [&](const Vec3& d, const Rgb& w, std::int64_t) {
             out.direct[patches().patch_of(frame(), d)] += luminous(w);
         },
         &refine_);
@@ -249,9 +253,19 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
                                                           const Vec3& normal,
                                                           std::uint64_t index) const {
     Illuminance out;
+    // Under one sky, the cells where an opening's edge crosses are jittered (their own
+    // stream), so the sky's direct part carries its error too.
+    Rng jitter = batch_stream(options_.seed, index, kSkyJitterStream);
+    SkyQuadratureVariance variance;
     sensor_sky_paths(
         *scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
-        [&](const Vec3& d, const Rgb& w) { out.sky += luminous(w) * sky.luminance(d); }, &refine_);
+        [&](const Vec3& d, const Rgb& w, std::int64_t slot) {
+            const double lux = luminous(w) * sky.luminance(d);
+            out.sky += lux;
+            variance.add(slot, lux);
+        },
+        &refine_, &jitter);
+    out.sky_error = std::sqrt(variance.variance());
     if (sky.sun_up())
         out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
     if (options_.rays > 0) {
@@ -267,11 +281,15 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
         const int per_batch = plan.side * plan.side;
         int cast = plan.batches * per_batch;
         // Rounds to the accuracy asked for: a batch at a time, each from its own stream.
+        // The sky's quadrature error is fixed by its cells: rays lower only the reflected
+        // light's, to what the target leaves beside it (none left: rays cannot help).
         const auto short_of_accuracy = [&] {
             const double total = out.sky + out.sun + batches.mean()[0];
             const double error = batches.standard_error()[0];
-            return options_.accuracy > 0 && std::isfinite(error) &&
-                   error > options_.accuracy * total;
+            const double target = options_.accuracy * total;
+            const double left = target * target - out.sky_error * out.sky_error;
+            return options_.accuracy > 0 && std::isfinite(error) && left > 0 &&
+                   error * error > left;
         };
         for (int batch = plan.batches; short_of_accuracy(); ++batch) {
             if (cast + per_batch > std::max(options_.max_rays, options_.rays)) {

@@ -93,6 +93,15 @@ std::vector<Vec3> SkyPatches::cell_directions(const SkyFrame& frame, std::size_t
     return out;
 }
 
+Vec3 SkyPatches::cell_direction(const SkyFrame& frame, std::size_t patch, int side, int cell,
+                                double u, double v) const {
+    const auto b = bounds(patch);
+    const double s0 = std::sin(b.altitude0 * kDeg), s1 = std::sin(b.altitude1 * kDeg);
+    const int a = cell / side, z = cell % side;
+    const double altitude = std::asin(s0 + (s1 - s0) * (a + u) / side) / kDeg;
+    return frame.direction(altitude, b.azimuth0 + (b.azimuth1 - b.azimuth0) * (z + v) / side);
+}
+
 SkyPatches::Cells SkyPatches::cells(const SkyFrame& frame, int side) const {
     Cells out(count());
     for (std::size_t p = 0; p < count(); ++p) out[p] = cell_directions(frame, p, side);
