@@ -217,6 +217,49 @@ TEST_CASE("a gathered image's error layer: +-2 errors hold each pixel's known va
     CHECK(covered <= 0.98 * white);
 }
 
+TEST_CASE("a gathered image's error layer through a mirror: +-2 errors hold the known value") {
+    // The furnace with one white wall a perfect mirror (reflectance 1, no diffuse part): a
+    // path through it meets another patch of B = 1 at full weight, so every point still
+    // gathers exactly 1 and a white pixel is 0.5 whether seen directly or in the mirror (808
+    // of 866 white pixels held, 93.3%).
+    const std::string obj =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "usemtl lamp\nf 1 2 3 4\nf 1 5 6 2\nf 1 4 8 5\n"
+        "usemtl white\nf 5 8 7 6\nf 4 3 7 8\nusemtl mirror\nf 2 6 7 3\n";
+    const auto mesh = mesh_of(obj,
+                              "newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl white\nKd 0.5 0.5 0.5\n"
+                              "newmtl mirror\nKd 0 0 0\nKs 1 1 1\nillum 3\n",
+                              0.25);
+    // The mirror has no diffuse part: its radiosity is 0, what it shows comes along the paths.
+    std::vector<rad::Rgb> b(mesh.patches.size(), rad::Rgb{1, 1, 1});
+    for (std::size_t i = 0; i < b.size(); ++i)
+        if (mesh.materials[mesh.patches[i].material].specular.any()) b[i] = rad::Rgb{0, 0, 0};
+    rad::GatherOptions options;
+    options.accuracy = 0;
+    const rad::Gatherer gatherer(mesh, b, options);
+    REQUIRE(gatherer.specular().any());
+    rad::View view;
+    view.position = {0.2, 0.3, 0.25};
+    view.direction = {1, 0.2, 0.4}; // the mirror ahead: the room seen in it
+    view.horizontal_deg = view.vertical_deg = 80;
+    const auto image = rad::render_gathered(gatherer, view, 40, 40, 1, true);
+    REQUIRE(image.error.size() == image.rgb.size());
+    int white = 0, covered = 0;
+    for (std::size_t i = 0; i < image.rgb.size(); i += 3) {
+        if (image.rgb[i] > 0.9) { // an emitter, or its image: exactly E, no error
+            CHECK(image.rgb[i] == Approx(1).epsilon(1e-6));
+            CHECK(image.error[i] == 0);
+            continue;
+        }
+        ++white;
+        covered += std::abs(image.rgb[i] - 0.5) <= 2 * image.error[i];
+    }
+    CAPTURE(white, covered);
+    REQUIRE(white > 400);
+    CHECK(covered >= 0.90 * white);
+    CHECK(covered <= 0.98 * white);
+}
+
 TEST_CASE("an irradiance cache's view agrees with every sample gathering its own rays") {
     // The furnace seen from inside (every white pixel is 0.5 exactly), cached at 160 x 160: its
     // mean within 0.5%, 98.5% of pixels within 2% and every one within 8% of the truth (99.0%

@@ -302,10 +302,6 @@ rad::Image render_image(const ShadeArgs& a, const ShadeInputs& in, const rad::Vi
     options.smoothing = mode;
     options.crease_deg = a.crease;
     const rad::Gatherer gatherer(solved, in.values, options);
-    if (a.error_layer && gatherer.specular().any())
-        throw rad::InputError("--error-layer: " + a.mesh_path +
-                              " has mirrors or glass, whose pixels' errors are not estimated "
-                              "yet: leave --error-layer out");
     // The cache shares rays among samples: a per-sample error bar or accuracy needs each
     // sample's own.
     const bool cached = !a.no_cache && !a.error_layer && !(options.accuracy > 0);

@@ -12,8 +12,9 @@
 
 namespace rad {
 
-// A surface's colour where a path reached its front (`sample`: the sample's index, a seed).
-using HitShader = std::function<Rgb(const PathHit& hit, std::uint64_t sample)>;
+// A surface's colour where a path reached its front (`sample`: the sample's index, a seed);
+// with `error`, the colour's standard error there too (0 for an exact one).
+using HitShader = std::function<Rgb(const PathHit& hit, std::uint64_t sample, Rgb* error)>;
 
 struct SpecularView {
     const radfmt::MeshData& mesh;
@@ -24,9 +25,13 @@ struct SpecularView {
 
 // The same camera, pixel convention, supersampling and row bands as render(); the pixels a
 // sample's first surface shows from behind are counted in back_coverage (glass excepted). Of
-// a two-sided pair the side facing the camera is shown.
+// a two-sided pair the side facing the camera is shown. With `errors`, Image::error holds each
+// pixel's standard error from the shader's: the surfaces a path reaches are shaded from
+// their own streams, so their errors add in quadrature, each times the path's weight, and the
+// samples' in quadrature over their count.
 Image render_specular(const SpecularView& scene, const View& view, int width, int height,
-                      int supersampling, const HitShader& shade, bool quiet, RowBand rows = {});
+                      int supersampling, const HitShader& shade, bool quiet, RowBand rows = {},
+                      bool errors = false);
 
 // render()'s colours for render_specular: the corner colours interpolated where a path met
 // a patch.

@@ -41,17 +41,17 @@ Rgb gathered_colour(const Gatherer& gatherer, const LuminaireSet* luminaires,
 }
 
 // A mesh with mirrors and glass: the camera's rays go on through them, and each surface they
-// reach is gathered.
+// reach is gathered (each with its error: the error layer).
 Image render_gathered_specular(const Gatherer& gatherer, const View& view, int width, int height,
                                int supersampling, bool quiet, const LuminaireSet* luminaires,
                                RowBand rows) {
     const SpecularView scene{gatherer.mesh(), gatherer.scene(), gatherer.specular(),
                              gatherer.specular_depth()};
-    const HitShader shade = [&](const PathHit& h, std::uint64_t index) {
+    const HitShader shade = [&](const PathHit& h, std::uint64_t index, Rgb* error) {
         return gathered_colour(gatherer, luminaires, h.hit, h.origin + h.direction * h.hit.distance,
-                               index);
+                               index, error);
     };
-    return render_specular(scene, view, width, height, supersampling, shade, quiet, rows);
+    return render_specular(scene, view, width, height, supersampling, shade, quiet, rows, true);
 }
 // The cache's records at every `spacing`-th pixel of the whole image (a band builds the same
 // ones, so its pixels are those of a whole run), each from its own stream. A record's radius
