@@ -13,6 +13,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <tuple>
 
 using namespace testing_helpers;
 
@@ -441,4 +442,79 @@ TEST_CASE("walls and ceilings get EN 12464-1's minimum, escape routes EN 1838's,
     CHECK_FALSE(rad::judge(stats, s[4].required).passes());
     stats.max = 39, stats.mean = 20;
     CHECK(rad::judge(stats, s[4].required).passes());
+}
+
+TEST_CASE("a plan cuts the room at its plane: walls, a cabinet and a glazed partition") {
+    // A 6 x 3 x 4 m room, a cabinet 1 x 1.6 x 0.5 m standing free, a glazed partition 2 m long
+    // from the floor to 2.5 m; a work plane at 0.8 m over the whole room (0.5 m border). Cut
+    // there: the walls 20 m, the cabinet's four sides 3 m, the glass 2 m (drawn as glazing).
+    auto quad = [](std::array<double, 3> a, std::array<double, 3> b, std::array<double, 3> c,
+                   std::array<double, 3> d) {
+        std::string out;
+        for (const auto& p : {a, b, c, d})
+            out += "v " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " +
+                   std::to_string(p[2]) + "\n";
+        return out + "f -4 -3 -2 -1\n";
+    };
+    std::string obj = "usemtl grey\n";
+    obj += quad({0, 0, 0}, {6, 0, 0}, {6, 3, 0}, {0, 3, 0});
+    obj += quad({0, 0, 4}, {0, 3, 4}, {6, 3, 4}, {6, 0, 4});
+    obj += quad({0, 0, 0}, {0, 3, 0}, {0, 3, 4}, {0, 0, 4});
+    obj += quad({6, 0, 0}, {6, 0, 4}, {6, 3, 4}, {6, 3, 0});
+    obj += quad({0, 0, 0}, {0, 0, 4}, {6, 0, 4}, {6, 0, 0});
+    obj += quad({1, 0, 1}, {2, 0, 1}, {2, 1.6, 1}, {1, 1.6, 1});
+    obj += quad({1, 0, 1.5}, {1, 1.6, 1.5}, {2, 1.6, 1.5}, {2, 0, 1.5});
+    obj += quad({1, 0, 1}, {1, 1.6, 1}, {1, 1.6, 1.5}, {1, 0, 1.5});
+    obj += quad({2, 0, 1}, {2, 0, 1.5}, {2, 1.6, 1.5}, {2, 1.6, 1});
+    obj += quad({1, 1.6, 1}, {2, 1.6, 1}, {2, 1.6, 1.5}, {1, 1.6, 1.5});
+    obj += "usemtl glass\n" + quad({4, 0, 1}, {4, 2.5, 1}, {4, 2.5, 3}, {4, 0, 3});
+    rad::SubdivisionOptions options;
+    options.max_edge = 0.5;
+    const auto mesh = rad::subdivide(
+        scene_from_obj(obj, "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl glass\nKd 0.05 0.05 0.05\nd 0.2\n",
+                       "plan_cut"),
+        options);
+    const auto file = calc_from(kHeader + "wp,workplane,0,0.8,4,6,0,0,0,0,-4,,0.5,500,,,\n");
+    rad::ReportSurface s;
+    s.surface = file.surfaces[0];
+    s.grid = rad::surface_grid(s.surface, 1);
+    s.cut = rad::plan_cut(mesh, s.grid, 1);
+    double solid = 0, glass = 0;
+    for (const auto& c : s.cut) {
+        const double length = std::hypot(c.u1 - c.u0, c.v1 - c.v0);
+        (c.glass ? glass : solid) += length;
+        // Within the surface and its border (u, v from the calculation area's corner).
+        for (const double u : {c.u0, c.u1}) CHECK((u >= -0.501 && u <= 5.501));
+        for (const double v : {c.v0, c.v1}) CHECK((v >= -0.501 && v <= 3.501));
+    }
+    CHECK(solid == Approx(23).epsilon(1e-6));
+    CHECK(glass == Approx(2).epsilon(1e-6));
+    // The glass runs along v at x = 4: u = 3.5 on the plan, v from z = 3 to z = 1 (0.5 to 2.5).
+    for (const auto& c : s.cut)
+        if (c.glass) {
+            CHECK(c.u0 == Approx(3.5));
+            CHECK(c.u1 == Approx(3.5));
+        }
+    // On the plan: the cut drawn, north where it lies (u is +x, v is -z, up the page).
+    s.lux.assign(std::size_t(s.grid.size()), 500.0);
+    const auto attribute = [](const std::string& svg, const std::string& name) {
+        const auto at = svg.find(name + "=\"");
+        REQUIRE(at != std::string::npos);
+        return std::stod(svg.substr(at + name.size() + 2));
+    };
+    for (const auto& [north, dx, dy] : {std::tuple{0.0, 0.0, -1.0}, std::tuple{90.0, 1.0, 0.0},
+                                        std::tuple{-45.0, -0.7071, -0.7071}}) {
+        CAPTURE(north);
+        const auto svg =
+            rad::surface_plan_svg(s, s.lux, {"lux", "lx", 0, 540, 400, north}, nullptr, 1);
+        CHECK(svg.find("class=\"cut\"") != std::string::npos);
+        CHECK(svg.find("class=\"cut-glass\"") != std::string::npos);
+        CHECK(attribute(svg, "data-dx") == Approx(dx).margin(1e-3));
+        CHECK(attribute(svg, "data-dy") == Approx(dy).margin(1e-3));
+    }
+    const auto unknown = rad::surface_plan_svg(s, s.lux, {"lux", "lx", 0}, nullptr, 1);
+    CHECK(unknown.find("class=\"north\"") == std::string::npos);
+    // A wall is not cut, nor given north.
+    const auto wall_file = calc_from(kHeader + "wall,wall,0,0,0,6,0,0,0,3,0,0.5,,,,,\n");
+    CHECK(rad::plan_cut(mesh, rad::surface_grid(wall_file.surfaces[0], 1), 1).empty());
 }

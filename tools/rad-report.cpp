@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 
 namespace {
@@ -37,8 +38,9 @@ struct ReportArgs {
     CLI::Option* rays_option = nullptr;
     rad::GatherOptions options;
     double area = 0;
+    double north = std::numeric_limits<double>::quiet_NaN();
     int threads = 0;
-    bool quiet = false;
+    bool quiet = false, point_tables = false;
 };
 
 void add_options(CLI::App& app, ReportArgs& a) {
@@ -83,6 +85,14 @@ void add_options(CLI::App& app, ReportArgs& a) {
     app.add_option("--ground", a.ground, "A daylight solution: the ground's reflectance")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 1));
+    app.add_option("--north", a.north,
+                   "Where north is, in degrees from the scene's -Z axis towards +X (clockwise "
+                   "seen from above, as rad-ff --north): a north arrow on the horizontal plans "
+                   "(default: a daylight solution's own north; none for luminaires alone)")
+        ->check(rad::tool::finite_range(-360, 360));
+    app.add_flag("--point-tables", a.point_tables,
+                 "Under each plan, its points' values as a table laid out as the plan (grids "
+                 "of up to 20 columns and 400 points; larger ones say they were left out)");
     app.add_option("--sky-samples", a.sky_samples,
                    "A daylight solution: directions per sky patch a sensor traces (as rad-gather)")
         ->capture_default_str()
@@ -457,6 +467,13 @@ int report(ReportArgs& a) {
         lighting_figures(a, file, mesh, solution, mesh_header, rad_header, in, luminaires, energy);
     }
 
+    // The room cut at each horizontal surface's plane, north and the point tables.
+    for (auto& s : in.surfaces) s.cut = rad::plan_cut(mesh, s.grid, in.metres_per_unit);
+    in.north_deg = std::isfinite(a.north) ? a.north
+                   : rad::is_daylight_solution(rad_header)
+                       ? rad::daylight_frame(rad_header, rad_path).north_deg
+                       : std::nan("");
+    in.point_tables = a.point_tables;
     const auto html = rad::report_html(in);
     radfmt::OutputBatch outputs;
     rad::tool::write_output(a.output, [&](std::FILE* out) { std::fputs(html.c_str(), out); });

@@ -134,6 +134,36 @@ grep -v ',camera,' "$TMP/calc.csv" > "$TMP/nocamera.csv"
 "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" -o "$TMP/a.html" --area 12 -q --date x ||
   fail "rad-report --area"
 grep -q '<span class="density">8.33</span>' "$TMP/a.html" || fail "100 W over 12 m^2: $(grep -o 'class="density">[^<]*' "$TMP/a.html")"
+# --point-tables and --north (#68 item 1): under each plan its values laid out as the plan (the
+# work plane's the very values rad-gather --surfaces wrote, as the page rounds them; rows with v
+# up the page), a north arrow where north lies (90: +x, the plans' u), the room cut at the plane.
+# shellcheck disable=SC2086
+"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" $RAYS -o "$TMP/t.html" -q --date x \
+  --point-tables --north 90 || fail "rad-report --point-tables --north"
+python3 - "$TMP/t.html" "$TMP/g.csv" <<'PY' || fail "the point tables or north"
+import csv, re, sys
+page = open(sys.argv[1]).read()
+tables = re.findall(r'<table class="point-table">(.*?)</table>', page, re.S)
+assert len(tables) == 4, len(tables)
+def matches(text, lux):  # the page's 3 figures of the CSV's 6 (a half unit either way)
+    a = abs(lux)
+    decimals = 0 if a >= 99.95 else 1 if a >= 9.995 else 2
+    return len(text.split(".")[-1] if "." in text else "") == decimals and \
+        abs(float(text) - lux) <= 0.5 * 10 ** -decimals + 1e-3
+plane = {(int(r["column"]), int(r["row"])): float(r["lux"]) for r in csv.DictReader(open(sys.argv[2]))
+         if r["surface"] == "work plane"}
+rows = [re.findall(r'<td class="num">([^<]*)</td>', row) for row in re.findall(r"<tr>(.*?)</tr>", tables[0])]
+assert len(rows) == 5 and all(len(r) == 9 for r in rows), [len(r) for r in rows]
+for k, row in enumerate(rows):
+    for column, text in enumerate(row):
+        assert matches(text, plane[(column, 4 - k)]), (k, column, text, plane[(column, 4 - k)])
+norths = re.findall(r'<g class="north" data-north-deg="90" data-dx="([^"]*)" data-dy="([^"]*)"', page)
+assert len(norths) == 3, norths  # the work plane, the desk and the ceiling: not the wall
+for dx, dy in norths:
+    assert abs(float(dx) - 1) < 1e-3 and abs(float(dy)) < 1e-3, (dx, dy)
+assert page.count('<path class="cut"') >= 2, page.count('<path class="cut"')
+print("point tables and north: ok")
+PY
 # --energy: EN 15193-1's LENI by hand for 100 W over 12 m^2 of office (2250 h with daylight, 250
 # without), FO 0.9, FD 0.8, 2 W of controls' standby, 4 W charging all year:
 # W_L = 100 (2250 x 0.9 x 0.8 + 250 x 0.9) / 1000 = 184.5 kWh; W_P = (2 x 6260 + 4 x 8760) / 1000

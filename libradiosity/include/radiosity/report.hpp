@@ -38,9 +38,22 @@ struct SurfaceDaylight {
     DaylightVerdict verdict;   // against the surface's DF, sDA and ASE requirements
 };
 
+// A piece of line on a surface's plan, in metres along u and v from its calculation area's
+// corner (the plan's own coordinates).
+struct PlanSegment {
+    double u0 = 0, v0 = 0, u1 = 0, v1 = 0;
+    bool glass = false; // a cut through a pane or other glass (a window): drawn as glazing
+};
+// Where the mesh's surfaces cross a horizontal calculation surface's plane (a centimetre in
+// front of it): walls, partitions, cabinets cut as a designer's plan cuts them, clipped to the
+// surface with its border. None for a surface that is not horizontal.
+std::vector<PlanSegment> plan_cut(const radfmt::MeshData& mesh, const SurfaceGrid& grid,
+                                  double metres_per_unit);
+
 struct ReportSurface {
     CalcSurface surface;
     SurfaceGrid grid;
+    std::vector<PlanSegment> cut;   // the room cut at its plane (plan_cut)
     std::vector<double> lux;        // per sensor, NaN: none (empty for daylight)
     std::vector<double> lux_error;  // each sensor's standard error (lux)
     std::vector<double> horizontal; // a cylindrical surface's Eh per sensor (lux), else empty
@@ -78,7 +91,7 @@ struct RoomMaterial {
 };
 struct RoomSummary {
     Vec3 size_m{0, 0, 0};
-    Box bounds; // scene units
+    Box bounds;                          // scene units
     std::vector<RoomMaterial> materials; // those some patch uses, in the mesh's order
 };
 RoomSummary room_summary(const radfmt::MeshData& mesh, double metres_per_unit);
@@ -101,6 +114,11 @@ struct ReportInput {
     // place) and occupied hours, when there is one.
     bool daylight = false;
     std::string daylight_sky, weather, occupancy;
+    // Where north is (degrees from the scene's -Z towards +X, as rad-ff --north): a north
+    // arrow on the horizontal plans; NaN: not known, no arrow.
+    double north_deg = std::numeric_limits<double>::quiet_NaN();
+    // Each small surface's values as a table under its plan (rad-report --point-tables).
+    bool point_tables = false;
 };
 
 // Lux as the page shows it: three significant figures without an exponent (412, 41.2, 4.12;
@@ -126,6 +144,7 @@ struct PlanScale {
     std::string quantity, unit;
     double top = 0;
     double width = 540, height = 400; // px the surface may take (the legend comes beside it)
+    double north_deg = std::numeric_limits<double>::quiet_NaN(); // a north arrow (NaN: none)
 };
 std::string surface_plan_svg(const ReportSurface& surface, std::span<const double> values,
                              const PlanScale& scale, const LuminaireSet* luminaires,

@@ -5,9 +5,11 @@
 #include "radiosity/base64.hpp"
 #include "report/number_text.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 
 namespace rad {
@@ -315,7 +317,43 @@ std::string en17037_rows(const SurfaceDaylight& d) {
     return out + "</tbody></table></td></tr>";
 }
 
-std::string daylight_section(const ReportSurface& s, std::size_t index) {
+// What the plan's caption says of the room cut at the plane (plan_cut), if anything is.
+std::string cut_caption(const ReportSurface& s) {
+    if (s.cut.empty()) return "";
+    const bool glass =
+        std::any_of(s.cut.begin(), s.cut.end(), [](const auto& c) { return c.glass; });
+    return std::string("; dark lines: the room cut at the plane") +
+           (glass ? ", blue double lines: glass cut there" : "");
+}
+
+// The values as a table laid out as the plan is (columns along u; rows with v up the page, or
+// down on a reflected ceiling plan), for a small grid when asked (rad-report --point-tables).
+constexpr long kPointTableColumns = 20, kPointTableSize = 400;
+std::string point_table(const ReportInput& in, const ReportSurface& s,
+                        std::span<const double> values, const std::string& unit,
+                        const std::function<std::string(double)>& text) {
+    if (!in.point_tables) return "";
+    const auto& g = s.grid;
+    if (g.columns > kPointTableColumns || g.size() > kPointTableSize)
+        return "<p class=\"point-table-left-out\">Point table left out: " +
+               std::to_string(g.columns) + " x " + std::to_string(g.rows) +
+               " points (tables are printed up to " + std::to_string(kPointTableColumns) +
+               " columns and " + std::to_string(kPointTableSize) + " points).</p>";
+    std::string out = "<table class=\"point-table\"><caption>Point values (" + unit + ") of " +
+                      html_escape(s.surface.name) + ", laid out as the plan above</caption><tbody>";
+    const bool reflected = reflected_ceiling_plan(g);
+    for (long k = 0; k < g.rows; ++k) {
+        const long row = reflected ? k : g.rows - 1 - k;
+        out += "<tr>";
+        for (long column = 0; column < g.columns; ++column)
+            out += "<td class=\"num\">" + text(values[std::size_t(row * g.columns + column)]) +
+                   "</td>";
+        out += "</tr>";
+    }
+    return out + "</tbody></table>";
+}
+
+std::string daylight_section(const ReportInput& in, const ReportSurface& s, std::size_t index) {
     const auto& d = *s.daylight;
     std::string out = "<section class=\"part surface\" id=\"surface-" + std::to_string(index + 1) +
                       "\"><h2>" + html_escape(s.surface.name) +
@@ -354,17 +392,23 @@ std::string daylight_section(const ReportSurface& s, std::size_t index) {
            verdict_text(s.surface.required.of_daylight(), d.verdict.passes(), d.verdict.close()) +
            "</tr>";
     out += "</tbody></table><div class=\"plans\"><figure>" +
-           surface_plan_svg(s, d.factor, {"df", "%", 0, kHalfWidth, kHalfHeight}, nullptr, 1) +
+           surface_plan_svg(s, d.factor, {"df", "%", 0, kHalfWidth, kHalfHeight, in.north_deg},
+                            nullptr, 1) +
            "<figcaption>Daylight factor on " + html_escape(s.surface.name) +
-           ", seen from the side its points face; lines labelled in %.</figcaption></figure>";
+           ", seen from the side its points face; lines labelled in %" + cut_caption(s) +
+           ".</figcaption></figure>";
     if (d.annual)
         out +=
             "<figure>" +
-            surface_plan_svg(s, d.da300, {"da300", "%", 100, kHalfWidth, kHalfHeight}, nullptr, 1) +
+            surface_plan_svg(s, d.da300, {"da300", "%", 100, kHalfWidth, kHalfHeight, in.north_deg},
+                             nullptr, 1) +
             "<figcaption>DA300 on " + html_escape(s.surface.name) +
             ": the share of occupied hours at 300 lx or more from daylight, lines labelled "
-            "in %.</figcaption></figure>";
-    return out + "</div></section>";
+            "in %" +
+            cut_caption(s) + ".</figcaption></figure>";
+    out += "</div>";
+    out += point_table(in, s, d.factor, "DF %", [](double v) { return fixed(v, 2); });
+    return out + "</section>";
 }
 
 // A cylindrical surface's modelling index Ez/Eh: its mean over the sensors and its range.
@@ -382,7 +426,7 @@ std::string modelling_rows(const ReportSurface& s) {
 }
 
 std::string surface_section(const ReportInput& in, const ReportSurface& s, std::size_t index) {
-    if (s.daylight) return daylight_section(s, index);
+    if (s.daylight) return daylight_section(in, s, index);
     const auto& g = s.grid;
     const auto& st = s.stats;
     std::string out = "<section class=\"part surface\" id=\"surface-" + std::to_string(index + 1) +
@@ -436,7 +480,8 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
            "</tr>";
     out += "</tbody></table>";
     out += "<figure>" +
-           surface_plan_svg(s, s.lux, {"lux", "lx", 0}, in.luminaires, in.metres_per_unit) +
+           surface_plan_svg(s, s.lux, {"lux", "lx", 0, 540, 400, in.north_deg}, in.luminaires,
+                            in.metres_per_unit) +
            "<figcaption>Illuminance on " + html_escape(s.surface.name) +
            (reflected_ceiling_plan(g) ? ", a reflected ceiling plan (seen from above, the same "
                                         "way round as the floor)"
@@ -446,8 +491,11 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
         out += "; luminaires over it drawn at their luminous opening's size, their centre "
                "marked";
     out += "; the scale bar in metres";
+    out += cut_caption(s);
+    if (std::isfinite(in.north_deg) && std::abs(g.normal[1]) >= 0.9) out += "; N: north";
     out += g.border_m > 0 ? ". The grey band is the border left out." : ".";
     out += " Grey: points without a value.</figcaption></figure>";
+    out += point_table(in, s, s.lux, "lx", [](double v) { return lux_text(v); });
     return out + "</section>";
 }
 

@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <numeric>
+#include <tuple>
 
 namespace rad {
 namespace {
@@ -325,6 +327,62 @@ std::string legend_svg(double left, double top_px, double height, double top_lux
     return out + "</g>";
 }
 
+// The room cut at the plane: dark lines over the colours, as walls are drawn on a plan; glass
+// (windows, glazed partitions) as a thin blue double line.
+std::string cut_svg(const std::vector<PlanSegment>& cut, const PlanFrame& f) {
+    std::string solid, glass;
+    for (const auto& c : cut) {
+        auto& d = c.glass ? glass : solid;
+        // (piece by piece: GCC 12 warns, wrongly, of overlap in "M" + std::string here)
+        for (const auto& [mark, u, v] :
+             {std::tuple{'M', c.u0, c.v0}, std::tuple{'L', c.u1, c.v1}}) {
+            d += mark;
+            d += px(f.x(u));
+            d += ' ';
+            d += px(f.y(v));
+        }
+    }
+    std::string out;
+    if (!solid.empty())
+        out += "<path class=\"cut\" d=\"" + solid +
+               "\" fill=\"none\" stroke=\"#1a1a1a\" stroke-width=\"1.6\" "
+               "stroke-linecap=\"round\"/>";
+    if (!glass.empty())
+        out += "<path class=\"cut-glass\" d=\"" + glass +
+               "\" fill=\"none\" stroke=\"#1f5fbf\" stroke-width=\"4\"/><path d=\"" + glass +
+               "\" fill=\"none\" stroke=\"#fff\" stroke-width=\"1.5\"/>";
+    return out;
+}
+
+// A north arrow in a circle centred at (cx, cy), pointing where north lies on this plan: north
+// (degrees from the scene's -Z towards +X) in the surface's u and v, v up the page (down on a
+// reflected ceiling plan). Empty when north is unknown or lies across the surface.
+std::string north_svg(const SurfaceGrid& g, const PlanFrame& f, double north_deg, double cx,
+                      double cy) {
+    if (!std::isfinite(north_deg)) return "";
+    const double n = north_deg * std::numbers::pi / 180;
+    const Vec3 north{std::sin(n), 0, -std::cos(n)};
+    const double du = dot(north, normalized(g.column_step));
+    const double dv = dot(north, normalized(g.row_step));
+    const double length = std::hypot(du, dv);
+    if (length < 0.5) return "";
+    const double x = du / length, y = (f.reflected ? dv : -dv) / length; // page direction
+    const double r = 15;
+    const auto at = [&](double along, double across) {
+        return px(cx + x * along - y * across) + "," + px(cy + y * along + x * across);
+    };
+    std::string out = "<g class=\"north\" data-north-deg=\"" + short_number(north_deg) +
+                      "\" data-dx=\"" + report_text::fixed(x, 3) + "\" data-dy=\"" +
+                      report_text::fixed(y, 3) + "\">";
+    out += "<circle cx=\"" + px(cx) + "\" cy=\"" + px(cy) + "\" r=\"" + px(r) +
+           "\" fill=\"#fff\" fill-opacity=\"0.85\" stroke=\"#111\" stroke-width=\"0.8\"/>";
+    out += "<polygon points=\"" + at(r - 3, 0) + " " + at(-r + 5, 5) + " " + at(-r + 9, 0) + " " +
+           at(-r + 5, -5) + "\" fill=\"#111\"/>";
+    out += "<text x=\"" + px(cx + x * (r + 8)) + "\" y=\"" + px(cy + y * (r + 8) + 4) +
+           "\" text-anchor=\"middle\" font-weight=\"bold\">N</text>";
+    return out + "</g>";
+}
+
 } // namespace
 
 std::string surface_plan_svg(const ReportSurface& s, std::span<const double> values,
@@ -335,7 +393,12 @@ std::string surface_plan_svg(const ReportSurface& s, std::span<const double> val
     const double whole_u = (g.width_m + 2 * g.border_m) * f.scale;
     const double whole_v = (g.depth_m + 2 * g.border_m) * f.scale;
     const double width = kMargin * 2 + whole_u + kLegendWidth;
-    const double height = std::max(kMargin * 2 + whole_v + kScaleBarHeight, 180.0);
+    // North goes under the legend: the plan is tall enough for it where north is known.
+    const bool north = std::abs(g.normal[1]) >= 0.9 && std::isfinite(scale.north_deg);
+    const double legend_height = std::min(whole_v, 300.0) - 16;
+    const double north_y = kMargin + 16 + legend_height + 44;
+    const double height =
+        std::max({kMargin * 2 + whole_v + kScaleBarHeight, 180.0, north ? north_y + 30 : 0.0});
     const auto range = illuminance_stats(values);
     const double top = scale.top > 0 ? scale.top : false_colour_top(range.count ? range.max : 1);
     std::string out = "<svg class=\"plan\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
@@ -346,6 +409,7 @@ std::string surface_plan_svg(const ReportSurface& s, std::span<const double> val
     out += "<rect class=\"surface\" x=\"" + px(kMargin) + "\" y=\"" + px(kMargin) + "\" width=\"" +
            px(whole_u) + "\" height=\"" + px(whole_v) + "\"/>";
     out += cells_svg(s, values, f, top);
+    out += cut_svg(s.cut, f);
     const auto placed = luminaires_over(g, f, luminaires, metres_per_unit);
     out += isolines_svg(s, values, scale.quantity, f, placed);
     out += luminaires_svg(placed);
@@ -355,8 +419,8 @@ std::string surface_plan_svg(const ReportSurface& s, std::span<const double> val
            px(kMargin + whole_v + 20) + "\" text-anchor=\"end\">" +
            report_text::fixed(g.width_m + 2 * g.border_m, 2) + " m &#215; " +
            report_text::fixed(g.depth_m + 2 * g.border_m, 2) + " m</text>";
-    out += legend_svg(kMargin * 2 + whole_u + 10, kMargin + 16, std::min(whole_v, 300.0) - 16, top,
-                      scale.unit);
+    out += legend_svg(kMargin * 2 + whole_u + 10, kMargin + 16, legend_height, top, scale.unit);
+    if (north) out += north_svg(g, f, scale.north_deg, kMargin * 2 + whole_u + 40, north_y);
     return out + "</svg>";
 }
 
