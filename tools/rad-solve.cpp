@@ -432,7 +432,14 @@ int solve(SolveArgs& a, int argc, char** argv) {
 
     std::vector<radfmt::Parent> parents{{a.mesh_path, &mesh_header},
                                         {a.ff_path, &transport.header}};
-    if (!a.direct_path.empty()) parents.push_back({a.direct_path, nullptr}); // hashed from disk
+    // The light sources' file: its own ancestors join the provenance (its rad-ff --luminaires
+    // or --sky beside the form factors' rad-ff); its hash from the whole file on disk.
+    radfmt::Header direct_header;
+    if (!a.direct_path.empty()) {
+        direct_header = radfmt::read_header(a.direct_path);
+        direct_header.file_hash = radfmt::hash_file(a.direct_path);
+        parents.push_back({a.direct_path, &direct_header});
+    }
     auto header = radfmt::derived_header(rad::tool_version("rad-solve"),
                                          radfmt::command_line(argc, argv), parents);
     for (const auto& [key, value] : overrides.fields) header.set(key, value);

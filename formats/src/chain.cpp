@@ -1,5 +1,7 @@
 #include "radfmt/chain.hpp"
 
+#include <algorithm>
+
 namespace radfmt {
 namespace fs = std::filesystem;
 
@@ -41,7 +43,16 @@ Header derived_header(std::string tool, std::string command, std::span<const Par
             h.inputs.push_back({parent.path.string(), hash_file(parent.path)});
         }
     }
-    if (longest) h.provenance = longest->chain();
+    if (!longest) return h;
+    // The longest line of ancestors, then what the other parents add that it lacks (a .lum's
+    // rad-ff --luminaires beside a .ff's rad-ff, both from the same mesh), in their order.
+    h.provenance = longest->chain();
+    for (const auto& parent : parents) {
+        if (!parent.header || parent.header == longest) continue;
+        for (auto& ancestor : parent.header->chain())
+            if (std::find(h.provenance.begin(), h.provenance.end(), ancestor) == h.provenance.end())
+                h.provenance.push_back(std::move(ancestor));
+    }
     return h;
 }
 
