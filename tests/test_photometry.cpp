@@ -54,6 +54,19 @@ TEST_CASE("EULUMDAT's lamp colour temperature and colour rendering are read as s
     CHECK(sample.colour_rendering.empty());
 }
 
+TEST_CASE("EULUMDAT's company, luminaire name and number are kept as the IES keywords") {
+    // The report names a luminaire by LUMINAIRE (before: the file's name for every LDT).
+    const auto sample = read("eulumdat-ugr_sample_01_Isym4.ldt"); // lines 1, 9, 10
+    const auto value = [&](const std::string& key) {
+        for (const auto& [k, v] : sample.keywords)
+            if (k == key) return v;
+        return std::string("(none)");
+    };
+    CHECK(value("MANUFAC") == "company");
+    CHECK(value("LUMINAIRE") == "sample_01");
+    CHECK(value("LUMCAT") == "sample_01");
+}
+
 TEST_CASE("every public photometric fixture reads and integrates to its stated flux") {
     struct Expect {
         const char* file;

@@ -145,6 +145,14 @@ Photometry parse_ldt(std::string_view text, const std::string& name) {
     p.colour_rendering = ldt.trimmed_text(set_line(4), "the colour rendering of set 1");
     if (p.colour_rendering == "0" || p.colour_rendering == "-") p.colour_rendering.clear();
     p.input_watts = ldt.number(set_line(5), "the wattage of set 1 (W)");
+    // The header's names, as IES keywords (what a report calls the luminaire): line 1 the
+    // company, 9 the luminaire's name, 10 its number.
+    for (const auto& [line, key] : {std::pair{std::size_t(1), "MANUFAC"},
+                                    {std::size_t(9), "LUMINAIRE"},
+                                    {std::size_t(10), "LUMCAT"}}) {
+        auto value = ldt.trimmed_text(line, key);
+        if (!value.empty()) p.keywords.emplace_back(key, std::move(value));
+    }
     // A negative lamp count marks absolute photometry: the flux is then the luminaire's.
     p.lamp_lumens = lamps < 0 ? 0 : lamp_flux;
     p.stated_flux = lamp_flux * (lamps < 0 ? 1 : lorl / 100);
