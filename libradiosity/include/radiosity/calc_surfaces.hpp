@@ -151,9 +151,22 @@ void surface_sensors(const CalcFile& file, const std::vector<SurfaceGrid>& grids
 // error; InputError at the surface's line when `luminaires` has none.
 struct GatheredSurface {
     std::vector<double> lux, error;
+    // When most of the surface's points face the front of another surface within
+    // kFacingTooClose (a wall's surface given facing into the wall, a hair in front of it):
+    // the typical distance (m). Its points then read that surface's own light, not the light
+    // falling on the place; NaN otherwise.
+    double facing_distance_m = std::numeric_limits<double>::quiet_NaN();
     std::vector<double> horizontal; // a cylindrical grid's Eh at each sensor (lux), else empty
     std::vector<long> at_budget;
 };
+class RayScene;
+inline constexpr double kFacingTooClose = 0.05; // m
+
+// facing_distance_m's rule: along the normal from up to 9 of the grid's points spread over it,
+// the distance to the first surface if it is a front met within kFacingTooClose; the median
+// of those when over half the points so meet one, else NaN.
+double facing_surface_distance(const RayScene& scene, const SurfaceGrid& grid);
+
 std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
                                              const LuminaireSet* luminaires, const Box& scene_box,
                                              const std::vector<SurfaceGrid>& grids, bool quiet);

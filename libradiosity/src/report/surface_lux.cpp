@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 
@@ -76,6 +77,25 @@ bool sensor_value(const SensorContext& c, long k, GatheredSurface& surface) {
 
 } // namespace
 
+double facing_surface_distance(const RayScene& scene, const SurfaceGrid& grid) {
+    if (grid.columns <= 0 || grid.rows <= 0) return std::numeric_limits<double>::quiet_NaN();
+    // Metres per scene unit, from a cell's size in both.
+    const double cell = length(grid.column_step);
+    const double metres = cell > 0 ? grid.width_m / double(grid.columns) / cell : 1;
+    std::vector<double> near;
+    int traced = 0;
+    for (const long row : {0L, grid.rows / 2, grid.rows - 1})
+        for (const long column : {0L, grid.columns / 2, grid.columns - 1}) {
+            ++traced;
+            const auto hit = scene.trace(grid.position(row * grid.columns + column), grid.normal);
+            const double d = hit.distance * metres;
+            if (hit.patch >= 0 && hit.front && d < kFacingTooClose) near.push_back(d);
+        }
+    if (2 * near.size() <= std::size_t(traced)) return std::numeric_limits<double>::quiet_NaN();
+    std::nth_element(near.begin(), near.begin() + std::ptrdiff_t(near.size() / 2), near.end());
+    return near[near.size() / 2];
+}
+
 std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
                                              const LuminaireSet* luminaires, const Box& scene_box,
                                              const std::vector<SurfaceGrid>& grids, bool quiet) {
@@ -99,6 +119,7 @@ std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
         });
         for (long k = 0; k < grid.size(); ++k)
             if (stopped[std::size_t(k)]) surface.at_budget.push_back(k);
+        surface.facing_distance_m = facing_surface_distance(gatherer.scene(), grid);
         first += std::uint64_t(grid.size());
     }
     progress.finish();
