@@ -32,7 +32,7 @@ namespace {
 struct ReportArgs {
     std::vector<std::string> inputs;
     std::string surfaces, output, pdf, project, date, direct, smooth = "crease";
-    std::string epw, occupancy, energy;
+    std::string epw, occupancy, energy, client, designer;
     double ground = 0.2;
     int sky_samples = 64;
     CLI::Option* rays_option = nullptr;
@@ -60,6 +60,9 @@ void add_options(CLI::App& app, ReportArgs& a) {
     app.add_option("--project", a.project,
                    "The project's name on the title block (default: "
                    "the mesh file's name)");
+    app.add_option("--client", a.client, "The client's name on the title block");
+    app.add_option("--designer", a.designer,
+                   "The designer's name (and firm) on the title block, who signs the report");
     app.add_option("--date", a.date, "The date on the title block (default: today, YYYY-MM-DD)");
     app.add_option("--direct", a.direct,
                    "The luminaires file (.lum) the solution was solved with, when it has moved "
@@ -129,6 +132,14 @@ std::vector<rad::ReportSurface> surfaces_of(const rad::CalcFile& file,
         s.lux_error = std::move(gathered[k].error);
         s.horizontal = std::move(gathered[k].horizontal);
         s.at_budget = std::move(gathered[k].at_budget);
+        s.facing_distance_m = gathered[k].facing_distance_m;
+        if (std::isfinite(s.facing_distance_m) && !quiet)
+            std::fprintf(stderr,
+                         "rad-report: warning: %s: surface '%s' faces a surface %.3g m in front "
+                         "of its points (the page says so): give u and v the other way round so "
+                         "it faces the room\n",
+                         s.surface.where.str().c_str(), s.surface.name.c_str(),
+                         s.facing_distance_m);
         s.stats = rad::illuminance_stats(s.lux);
         s.errors = rad::illuminance_errors(s.lux, s.lux_error);
         s.verdict = rad::judge(s.stats, s.surface.required, s.errors);
@@ -317,6 +328,8 @@ rad::ReportInput title_of(const ReportArgs& a, const radfmt::Header& mesh_header
     in.project = a.project.empty() ? std::filesystem::path(mesh_path).stem().string() : a.project;
     in.date = a.date.empty() ? today() : a.date;
     in.producer = rad::tool_version("rad-report");
+    in.client = a.client;
+    in.designer = a.designer;
     in.inputs = {{mesh_path, mesh_header.file_hash},
                  {a.inputs[1], rad_header.file_hash},
                  {a.surfaces, radfmt::hash_file(a.surfaces)}};

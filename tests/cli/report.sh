@@ -86,7 +86,11 @@ pages=$(pdfinfo "$TMP/r.pdf" | awk '/^Pages:/ {print $2}')
 python3 - "$TMP/r.html" "$TMP/view.png" "$TMP/shade.sh" "$TMP/view-fc.png" "$TMP/view-lum.txt" <<'PY' || fail "no view in the page"
 import base64, html, re, sys
 page = open(sys.argv[1]).read()
-pngs = re.findall(r'src="data:image/png;base64,([^"]*)"', page)
+# (the title block shows the first view too: the same image as the views' section)
+views = page[page.index('id="views"'):]
+pngs = re.findall(r'src="data:image/png;base64,([^"]*)"', views)
+cover = re.search(r'<figure class="title-view"><img alt="[^"]*" src="data:image/png;base64,([^"]*)"', page)
+assert cover and cover.group(1) == pngs[0], "the title block's view is not the first view"
 open(sys.argv[2], "wb").write(base64.b64decode(pngs[0].replace("\n", "")))
 open(sys.argv[4], "wb").write(base64.b64decode(pngs[1].replace("\n", "")))
 command = html.unescape(re.search(r'<code class="command">([^<]*)</code>', page).group(1))
@@ -139,7 +143,13 @@ grep -q '<span class="density">8.33</span>' "$TMP/a.html" || fail "100 W over 12
 # up the page), a north arrow where north lies (90: +x, the plans' u), the room cut at the plane.
 # shellcheck disable=SC2086
 "$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" $RAYS -o "$TMP/t.html" -q --date x \
-  --point-tables --north 90 || fail "rad-report --point-tables --north"
+  --point-tables --north 90 --client "Client & Co" --designer "D. <Signer>" || fail "rad-report --point-tables --north"
+grep -q '<tr><th>Client</th><td>Client &amp; Co</td></tr><tr><th>Designer</th><td>D. &lt;Signer&gt;</td></tr>' "$TMP/t.html" ||
+  fail "the title block has no client and designer"
+# The solution's provenance has the .lum's own command beside the form factors' (both lines
+# of ancestors), and the page lists it.
+grep -q "<li>rad-ff [^<]*--luminaires" "$TMP/t.html" || fail "the page's provenance lacks rad-ff --luminaires"
+
 python3 - "$TMP/t.html" "$TMP/g.csv" <<'PY' || fail "the point tables or north"
 import csv, re, sys
 page = open(sys.argv[1]).read()
@@ -164,6 +174,19 @@ for dx, dy in norths:
 assert page.count('<path class="cut"') >= 2, page.count('<path class="cut"')
 print("point tables and north: ok")
 PY
+# A wall's surface given facing into the wall a millimetre away reads the wall's own light:
+# rad-gather and rad-report say so (naming the line), the page marks it; facing the room, not.
+printf 'name,kind,x,y,z,ux,uy,uz,vx,vy,vz,spacing,border,Em\ninto,wall,0,0,3.999,6,0,0,0,3,0,0.5,,\nroom,wall,6,0,3.999,-6,0,0,0,3,0,0.5,,\n' > "$TMP/facing.csv"
+"$BIN/rad-gather" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/facing.csv" --rays 32 -o "$TMP/facing.out" 2> "$TMP/facing.err" ||
+  fail "rad-gather facing"
+grep -q "warning: $TMP/facing.csv:2: surface 'into' faces a surface 0.001 m in front of its points" "$TMP/facing.err" ||
+  fail "no warning for a surface facing into its wall: $(cat "$TMP/facing.err")"
+grep -q "surface 'room' faces" "$TMP/facing.err" && fail "a surface facing the room was warned of"
+"$BIN/rad-report" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/facing.csv" --rays 32 -o "$TMP/facing.html" --date x 2> "$TMP/facing-r.err" ||
+  fail "rad-report facing"
+grep -q "surface 'into' faces a surface 0.001 m" "$TMP/facing-r.err" || fail "rad-report does not warn: $(cat "$TMP/facing-r.err")"
+[ "$(grep -c '<tr class="warning"><th>Warning</th><td>its points face a surface 0.001 m' "$TMP/facing.html")" = 1 ] ||
+  fail "the page does not mark the one surface facing into its wall"
 # --energy: EN 15193-1's LENI by hand for 100 W over 12 m^2 of office (2250 h with daylight, 250
 # without), FO 0.9, FD 0.8, 2 W of controls' standby, 4 W charging all year:
 # W_L = 100 (2250 x 0.9 x 0.8 + 250 x 0.9) / 1000 = 184.5 kWh; W_P = (2 x 6260 + 4 x 8760) / 1000

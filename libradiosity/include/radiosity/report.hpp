@@ -58,6 +58,7 @@ struct ReportSurface {
     std::vector<double> lux_error;  // each sensor's standard error (lux)
     std::vector<double> horizontal; // a cylindrical surface's Eh per sensor (lux), else empty
     std::vector<long> at_budget;    // sensors that stopped at the ray budget before the accuracy
+    double facing_distance_m = std::numeric_limits<double>::quiet_NaN(); // GatheredSurface's
     IlluminanceStats stats;
     IlluminanceErrors errors;
     Verdict verdict;
@@ -98,6 +99,7 @@ RoomSummary room_summary(const radfmt::MeshData& mesh, double metres_per_unit);
 
 struct ReportInput {
     std::string project, date, producer;                     // producer: "rad-report 0.1.0"
+    std::string client, designer;                            // the title block's (may be empty)
     std::vector<std::pair<std::string, std::string>> inputs; // path, hash
     std::vector<std::string> provenance;                     // the solution's commands
     std::string method;                                      // how the lux were gathered

@@ -34,6 +34,9 @@ std::string key_plan_svg(const ReportInput& in) {
                       " " + px(height) + "\" role=\"img\" aria-label=\"key plan\">";
     out += "<rect class=\"room\" x=\"" + px(f.x(box.lo[0])) + "\" y=\"" + px(f.y(box.lo[2])) +
            "\" width=\"" + px(w * f.scale) + "\" height=\"" + px(d * f.scale) + "\"/>";
+    // Labels already placed: an area whose label would fall on one (two areas with one
+    // corner, a work plane and a cylindrical surface over the same floor) goes a line lower.
+    std::vector<std::pair<double, double>> labels;
     for (const auto& s : in.surfaces) {
         // Areas facing up: walls have no place in a plan, and a ceiling would cover it.
         if (s.grid.normal[1] < 0.9) continue;
@@ -47,10 +50,17 @@ std::string key_plan_svg(const ReportInput& in) {
             lo_x = std::min(lo_x, p[0]), hi_x = std::max(hi_x, p[0]);
             lo_z = std::min(lo_z, p[2]), hi_z = std::max(hi_z, p[2]);
         }
+        const double label_x = f.x(lo_x) + 3;
+        double label_y = f.y(lo_z) + 12;
+        while (std::any_of(labels.begin(), labels.end(), [&](const auto& l) {
+            return std::abs(l.first - label_x) < 40 && std::abs(l.second - label_y) < 11;
+        }))
+            label_y += 12;
+        labels.emplace_back(label_x, label_y);
         out += "<g class=\"area\" data-surface=\"" + html_escape(c.name) + "\"><rect x=\"" +
                px(f.x(lo_x)) + "\" y=\"" + px(f.y(lo_z)) + "\" width=\"" +
                px((hi_x - lo_x) * f.scale) + "\" height=\"" + px((hi_z - lo_z) * f.scale) +
-               "\"/><text x=\"" + px(f.x(lo_x) + 3) + "\" y=\"" + px(f.y(lo_z) + 12) + "\">" +
+               "\"/><text x=\"" + px(label_x) + "\" y=\"" + px(label_y) + "\">" +
                html_escape(c.name) + "</text></g>";
     }
     if (in.luminaires)

@@ -26,9 +26,12 @@ h1 { font-size: 18pt; margin: 0 0 4pt; } h2 { font-size: 13pt; margin: 14pt 0 6p
 table { border-collapse: collapse; margin: 4pt 0 8pt; break-inside: avoid; }
 th, td { border: 1px solid #999; padding: 2pt 5pt; text-align: left; vertical-align: top; }
 td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
+tr.warning td, tr.warning th { color: #a00; }
+table.schedule { font-size: 8pt; } table.schedule td { overflow-wrap: break-word; }
 .title-block { border: 2px solid #222; padding: 8pt 10pt; margin-top: 6pt; }
 .title-block table { margin: 0; } .title-block td, .title-block th { border: none; padding: 1pt 6pt 1pt 0; }
 .title-block th { white-space: nowrap; }
+.title-view { margin: 6pt 0; } .title-view img { width: 60%; }
 .hash { font-family: "DejaVu Sans Mono", monospace; font-size: 8pt; }
 .provenance { font-family: "DejaVu Sans Mono", monospace; font-size: 7.5pt; word-break: break-all; }
 .pass { color: #0a6b1f; font-weight: bold; } .fail { color: #b00020; font-weight: bold; }
@@ -39,6 +42,9 @@ figure.view img { max-width: 100%; height: auto; }
 code.command { font-size: 8pt; word-break: break-all; } figcaption { font-size: 9pt; color: #333; }
 svg text { font: 11px "DejaVu Sans", Helvetica, Arial, sans-serif; fill: #111; }
 svg.plan rect.surface { fill: #eee; stroke: #555; stroke-width: 1; }
+svg.plan rect.surface.cut-drawn { stroke: none; }
+table.point-table { font-size: 7pt; border-collapse: collapse; }
+table.point-table td { padding: 1px 3px; }
 svg.plan .isoline { fill: none; stroke: #000; stroke-width: 1.3; }
 svg.plan .isolabel { font-weight: bold; paint-order: stroke; stroke: #fff; stroke-width: 3px;
   text-anchor: middle; }
@@ -54,6 +60,7 @@ svg.polar path.c0 { fill: none; stroke: #b00020; stroke-width: 1.6; }
 svg.polar path.c90 { fill: none; stroke: #1040b0; stroke-width: 1.6; stroke-dasharray: 5 3; }
 svg.polar tspan.c0 { fill: #b00020; } svg.polar tspan.c90 { fill: #1040b0; }
 .polars, .plans { display: flex; flex-wrap: wrap; gap: 8pt; }
+.polars figure { width: 300px; }
 .plans figure { width: min-content; }
 
 .note { font-size: 9pt; color: #333; }
@@ -116,6 +123,10 @@ std::string title_block(const ReportInput& in) {
     std::string out = "<header class=\"title-block\"><h1>" + report_kind(in) + ": " +
                       html_escape(in.project) + "</h1><table>";
     out += "<tr><th>Project</th><td>" + html_escape(in.project) + "</td></tr>";
+    if (!in.client.empty())
+        out += "<tr><th>Client</th><td>" + html_escape(in.client) + "</td></tr>";
+    if (!in.designer.empty())
+        out += "<tr><th>Designer</th><td>" + html_escape(in.designer) + "</td></tr>";
     out += "<tr><th>Date</th><td>" + html_escape(in.date) + "</td></tr>";
     out += "<tr><th>Made by</th><td>" + html_escape(in.producer) + "</td></tr>";
     if (in.daylight) {
@@ -130,7 +141,15 @@ std::string title_block(const ReportInput& in) {
                "maintenance factor applied (see the schedule); luminance in cd/m&#178;; lengths "
                "in metres</td></tr>";
     }
-    out += "</table><h3>Inputs</h3><table>";
+    out += "</table>";
+    // The first view of the room on the title block, as a designer's cover shows it.
+    if (!in.views.empty()) {
+        const auto& v = in.views.front();
+        out += "<figure class=\"title-view\"><img alt=\"" + html_escape(v.name) +
+               "\" src=\"data:image/png;base64," + base64(v.png) + "\"><figcaption>" +
+               html_escape(v.name) + "</figcaption></figure>";
+    }
+    out += "<h3>Inputs</h3><table>";
     for (const auto& [path, hash] : in.inputs)
         out += "<tr><td>" + html_escape(path) + "</td><td class=\"hash\">" + html_escape(hash) +
                "</td></tr>";
@@ -471,6 +490,12 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
     if (st.without_value)
         out += "<tr><th>Points without a value</th><td>" + std::to_string(st.without_value) +
                " (inside or under objects; grey in the plan)</td></tr>";
+    if (std::isfinite(s.facing_distance_m))
+        out += "<tr class=\"warning\"><th>Warning</th><td>its points face a surface " +
+               fixed(s.facing_distance_m, 3) +
+               " m in front of them: they read the light leaving that surface, not the light "
+               "falling on the place (the surface was probably given facing into a wall or "
+               "ceiling: its u and v the other way round face the room)</td></tr>";
     out += "<tr><th>Required</th><td>" + required_text(s.surface.required) + "</td></tr>";
     if (!s.at_budget.empty())
         out += "<tr><th>Points short of the accuracy</th><td>" +
@@ -497,6 +522,21 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
     out += " Grey: points without a value.</figcaption></figure>";
     out += point_table(in, s, s.lux, "lx", [](double v) { return lux_text(v); });
     return out + "</section>";
+}
+
+// How the polar curve's cd/klm of the luminaire's flux convert to what data sheets also print:
+// absolute candelas, and cd/klm of the lamps' flux where the file gives the lamps.
+std::string polar_units_note(const LuminaireSet& set, std::size_t index) {
+    const double flux = set.photometry_flux[index];
+    if (!(flux > 0)) return "";
+    std::string out =
+        "<br><span class=\"polar-units\">cd/klm of the luminaire's flux; absolute cd: &#215; " +
+        fixed(flux / 1000, 3);
+    const double lamps = set.photometries[index].lamp_lumens;
+    if (lamps > 0)
+        out +=
+            "; of the lamps' flux (" + fixed(lamps, 0) + " lm): &#215; " + fixed(flux / lamps, 3);
+    return out + "</span>";
 }
 
 // The luminaire types: photometry index -> the luminaires of it.
@@ -568,7 +608,8 @@ std::string luminaires_section(const ReportInput& in) {
     for (const auto& [index, members] : types)
         out += "<figure>" + polar_curve_svg(set, *members.front()) + "<figcaption>" +
                html_escape(type_name(set.photometries[index])) + " (" +
-               html_escape(set.photometries[index].source) + ")</figcaption></figure>";
+               html_escape(set.photometries[index].source) + ")" + polar_units_note(set, index) +
+               "</figcaption></figure>";
     return out + "</div></section>";
 }
 

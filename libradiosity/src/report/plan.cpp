@@ -1,5 +1,6 @@
 // A calculation surface's plan for the report: false-colour cells, isolux lines labelled in
 // lux, the luminaires over it, and a legend; SVG in pixels (the page prints it at A4 width).
+#include "radfmt/container.hpp"
 #include "radiosity/base64.hpp"
 #include "radiosity/contours.hpp"
 #include "radiosity/falsecolour.hpp"
@@ -148,8 +149,8 @@ std::string opening_outline(const LuminaireSet& set, const Luminaire& l, const V
     return "<path class=\"opening\" d=\"" + d + "Z\"/>";
 }
 
-// The luminaires whose centre is over (or under) a horizontal surface, where the plan draws
-// them.
+// The luminaires over (or under) a horizontal surface, wholly or in part, where the plan draws
+// them (clipped to the surface).
 std::vector<PlacedLuminaire> luminaires_over(const SurfaceGrid& g, const PlanFrame& f,
                                              const LuminaireSet* set, double metres_per_unit) {
     std::vector<PlacedLuminaire> out;
@@ -159,7 +160,11 @@ std::vector<PlacedLuminaire> luminaires_over(const SurfaceGrid& g, const PlanFra
         const Vec3 offset = l.position - g.origin;
         const double u = dot(offset, unit_u) * metres_per_unit;
         const double v = dot(offset, unit_v) * metres_per_unit;
-        const double b = g.border_m;
+        // Partly over it counts: the opening's half-size past the surface and its border.
+        const auto& p = set->photometries[l.photometry];
+        const double reach =
+            0.5 * std::max({p.length > 0 ? p.length : 0.0, p.width > 0 ? p.width : 0.0});
+        const double b = g.border_m + reach;
         if (u < -b || v < -b || u > g.width_m + b || v > g.depth_m + b) continue;
         out.push_back({f.x(u), f.y(v), l.name, opening_outline(*set, l, unit_u, unit_v, f, u, v)});
     }
@@ -406,13 +411,22 @@ std::string surface_plan_svg(const ReportSurface& s, std::span<const double> val
                       " " + px(height) + "\" role=\"img\" aria-label=\"" + scale.quantity +
                       " plan of " + html_escape(s.surface.name) + "\">";
     // The whole surface (its border band shows as the background), then the area computed.
-    out += "<rect class=\"surface\" x=\"" + px(kMargin) + "\" y=\"" + px(kMargin) + "\" width=\"" +
-           px(whole_u) + "\" height=\"" + px(whole_v) + "\"/>";
+    // (its outline left to the cut where there is one: a doorway shows as a gap)
+    out += std::string("<rect class=\"surface") + (s.cut.empty() ? "" : " cut-drawn") + "\" x=\"" +
+           px(kMargin) + "\" y=\"" + px(kMargin) + "\" width=\"" + px(whole_u) + "\" height=\"" +
+           px(whole_v) + "\"/>";
+    // What is drawn over the surface stays on it: a luminaire partly over it is cut at its edge.
+    const std::string clip =
+        "clip-" +
+        radfmt::hash_hex(radfmt::hash_bytes((s.surface.name + "\n" + scale.quantity).data(),
+                                            s.surface.name.size() + 1 + scale.quantity.size()));
+    out += "<clipPath id=\"" + clip + "\"><rect x=\"" + px(kMargin) + "\" y=\"" + px(kMargin) +
+           "\" width=\"" + px(whole_u) + "\" height=\"" + px(whole_v) + "\"/></clipPath>";
     out += cells_svg(s, values, f, top);
     out += cut_svg(s.cut, f);
     const auto placed = luminaires_over(g, f, luminaires, metres_per_unit);
-    out += isolines_svg(s, values, scale.quantity, f, placed);
-    out += luminaires_svg(placed);
+    out += "<g clip-path=\"url(#" + clip + ")\">" +
+           isolines_svg(s, values, scale.quantity, f, placed) + luminaires_svg(placed) + "</g>";
     out += scale_bar_svg(f, kMargin, kMargin + whole_v + 8, whole_u);
     // The surface's overall dimensions, under its right-hand corner.
     out += "<text class=\"dimensions\" x=\"" + px(kMargin + whole_u) + "\" y=\"" +

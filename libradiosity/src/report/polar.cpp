@@ -78,6 +78,15 @@ std::string polar_curve_svg(const LuminaireSet& set, const Luminaire& l) {
                px(cy - kRadius * std::cos(t)) + "L" + px(cx + kRadius * std::sin(t)) + " " +
                px(cy + kRadius * std::cos(t)) + "\"/>";
     }
+    // Gamma from the nadir (0, down) to the zenith (180, up), outside the rim on the right.
+    for (int g = 0; g <= 180; g += 30) {
+        const double t = g * std::numbers::pi / 180, r = kRadius + 11;
+        // (180 beside the top, where the rings' values are written)
+        const double shift = g == 180 ? -16 : 0;
+        out += "<text class=\"gamma\" data-gamma=\"" + std::to_string(g) + "\" x=\"" +
+               px(cx + r * std::sin(t) + shift) + "\" y=\"" + px(cy + r * std::cos(t) + 3) +
+               "\" text-anchor=\"middle\" font-size=\"8\">" + std::to_string(g) + "&#176;</text>";
+    }
     out += "</g>";
     out += "<path class=\"c0\" d=\"" + curve_path(set, l, 0, 180, per_klm, scale) + "\"/>";
     out += "<path class=\"c90\" d=\"" + curve_path(set, l, 90, 270, per_klm, scale) + "\"/>";
