@@ -23,23 +23,10 @@
 namespace {
 // Warning lines of one kind shown without -v (the worst first).
 constexpr std::size_t kMaxWarningLines = 20;
-// Below this, a run is over before an estimate would matter.
-constexpr double kSayEstimateSeconds = 10;
 // Above this, an O(n^2) method also hears what hemisphere would cost.
 constexpr double kSuggestFasterSeconds = 60;
-
-std::string about(double seconds) {
-    char text[64];
-    if (seconds < 10)
-        std::snprintf(text, sizeof text, "about %.1f s", seconds);
-    else if (seconds < 300) // whole minutes would be a quarter off at 90 s
-        std::snprintf(text, sizeof text, "about %.0f s", seconds);
-    else if (seconds < 5400)
-        std::snprintf(text, sizeof text, "about %.0f min", seconds / 60);
-    else
-        std::snprintf(text, sizeof text, "about %.1f h", seconds / 3600);
-    return text;
-}
+using rad::tool::about;
+using rad::tool::kSayEstimateSeconds;
 
 // Measures the run before it starts and says what it will cost when that is long (or
 // `always`); for an O(n^2) method, also what hemisphere (rays, O(n)) would cost.

@@ -146,6 +146,7 @@ struct GatherArgs {
     bool merge = false;
     rad::GatherOptions options;
     bool lux = false, header = false, keep_going = false, quiet = false, error = false;
+    bool estimate = false;
     double lux_max = 0;
     int threads = 0;
     rad::tool::DaylightArgs daylight;
@@ -200,6 +201,10 @@ void add_output_options(CLI::App& app, GatherArgs& a) {
                    "rad-report shows; daylight: the last column is df (--daylight-factor) or "
                    "lux (--sky), and --annual's --metrics lines start with the surface's "
                    "columns");
+    app.add_flag("--estimate", a.estimate,
+                 "With --surfaces: gather the first " + std::to_string(rad::kEstimateSensors) +
+                     " sensors, say how long the whole run would take, and stop: no output. "
+                     "Without it, rad-gather says so before runs of over 10 s");
     app.add_option("--png", a.png,
                    "With --grid: also write a false-colour PNG of the illuminance (lux) with a "
                    "legend");
@@ -223,6 +228,8 @@ void check_combinations(const GatherArgs& a) {
             throw rad::InputError("--png draws the whole plane: give it to one run of the "
                                   "--grid, not to a --rows part");
     }
+    if (a.estimate && a.surfaces_path.empty())
+        throw rad::InputError("--estimate measures a --surfaces run: give --surfaces FILE");
     if (a.lux_max > 0 && a.png.empty())
         throw rad::InputError("--lux-max scales the --png of a --grid: give --png FILE");
     if (!a.png.empty() && a.grid_text.empty())
@@ -606,7 +613,14 @@ void gather_surfaces(const GatherArgs& a, const rad::Gatherer& gatherer,
                      const radfmt::Header& mesh_header, const radfmt::Header& rad_header) {
     const auto file = read_surfaces_file(a.surfaces_path);
     const auto grids = rad::surface_grids(file, metres_per_unit);
-    const auto gathered = rad::gather_surfaces(gatherer, luminaires, scene_box, grids, a.quiet);
+    // Long runs say what they will cost first; --estimate stops there.
+    const auto gathered = rad::gather_surfaces(
+        gatherer, luminaires, scene_box, grids, a.quiet, [&](const rad::SensorsEstimate& e) {
+            if (a.estimate || !a.quiet)
+                rad::tool::say_sensors_estimate("rad-gather", e, a.estimate);
+            return !a.estimate;
+        });
+    if (a.estimate) return;
     const auto header = header_line(a, radfmt::command_line(argc, argv), mesh_header, rad_header);
     rad::tool::write_output(a.output, [&](std::FILE* out) {
         if (!header.empty()) std::fprintf(out, "%s\n", header.c_str());
@@ -662,6 +676,9 @@ int gather(GatherArgs& a, int argc, char** argv) {
     // E and rho as solved (rad-solve --emission/--reflectance overrides included).
     rad::apply_recorded_overrides(mesh, rad_header);
     if (rad::tool::wants_daylight(a.daylight)) {
+        if (a.estimate)
+            throw rad::InputError("--estimate measures a --surfaces run lit by luminaires or "
+                                  "emitters, not a daylight one");
         const int rc = daylight(a, mesh, solution, rad_header, grid, mesh_header, argc, argv);
         outputs.commit();
         return rc;

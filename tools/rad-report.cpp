@@ -122,7 +122,11 @@ std::vector<rad::ReportSurface> surfaces_of(const rad::CalcFile& file,
                                             const rad::Box& box, double metres_per_unit,
                                             bool quiet) {
     const auto grids = rad::surface_grids(file, metres_per_unit);
-    auto gathered = rad::gather_surfaces(gatherer, luminaires, box, grids, quiet);
+    auto gathered = rad::gather_surfaces(
+        gatherer, luminaires, box, grids, quiet, [&](const rad::SensorsEstimate& e) {
+            if (!quiet) rad::tool::say_sensors_estimate("rad-report", e, false);
+            return true;
+        });
     std::vector<rad::ReportSurface> out;
     for (std::size_t k = 0; k < grids.size(); ++k) {
         rad::ReportSurface s;

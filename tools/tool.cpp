@@ -6,6 +6,8 @@
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 
+#include <tbb/global_control.h>
+
 #include <cerrno>
 #include <cmath>
 #include <csignal>
@@ -283,6 +285,31 @@ void write_output(const std::string& output, const std::function<void(std::FILE*
         if (std::fclose(out) != 0)
             throw rad::SystemError(output + ": cannot write: " + std::strerror(errno));
     });
+}
+
+std::string about(double seconds) {
+    char text[64];
+    if (seconds < 10)
+        std::snprintf(text, sizeof text, "about %.1f s", seconds);
+    else if (seconds < 300) // whole minutes would be a quarter off at 90 s
+        std::snprintf(text, sizeof text, "about %.0f s", seconds);
+    else if (seconds < 5400)
+        std::snprintf(text, sizeof text, "about %.0f min", seconds / 60);
+    else
+        std::snprintf(text, sizeof text, "about %.1f h", seconds / 3600);
+    return text;
+}
+
+void say_sensors_estimate(const char* tool, const SensorsEstimate& estimate, bool always) {
+    if (!always && estimate.seconds < kSayEstimateSeconds) return;
+    std::fprintf(stderr,
+                 "%s: %llu sensor(s) on %zu surface(s): %s on %u thread(s) (measured on the "
+                 "first %llu)\n",
+                 tool, static_cast<unsigned long long>(estimate.sensors), estimate.surfaces,
+                 about(estimate.seconds).c_str(),
+                 static_cast<unsigned>(tbb::global_control::active_value(
+                     tbb::global_control::max_allowed_parallelism)),
+                 static_cast<unsigned long long>(estimate.measured));
 }
 
 std::string error_suffix(double error) {

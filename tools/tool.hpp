@@ -1,6 +1,7 @@
 // What every tool's main shares (tools only: the library knows nothing of CLI11): argument
 // parsing with the house exit codes, and running a tool body with errors mapped to them.
 #pragma once
+#include "radiosity/calc_surfaces.hpp"
 #include "radiosity/gather.hpp"
 #include "radiosity/sky.hpp"
 
@@ -68,6 +69,16 @@ std::uint64_t parse_size(const std::string& text, const std::string& option);
 // Runs `write` on stdout (output empty), or on a temporary file that becomes `output` when it
 // is all there (SystemError, with the system's reason, when it cannot be written).
 void write_output(const std::string& output, const std::function<void(std::FILE*)>& write);
+
+// Below this, a run is over before an estimate of its time would matter.
+inline constexpr double kSayEstimateSeconds = 10;
+// A time as an estimate says it: "about 4.2 s", "about 75 s", "about 12 min", "about 1.5 h".
+std::string about(double seconds);
+
+// rad-gather's and rad-report's word on a calculation-surfaces run's time, on stderr, when it
+// is `always` asked for or over kSayEstimateSeconds: "TOOL: N sensor(s) on M surface(s): about
+// T on K thread(s) (measured on the first S)".
+void say_sensors_estimate(const char* tool, const SensorsEstimate& estimate, bool always);
 
 // " ± 0.012": a printed figure's standard error to two digits; "" when it is not known.
 std::string error_suffix(double error);

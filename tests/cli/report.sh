@@ -187,6 +187,15 @@ grep -q "surface 'room' faces" "$TMP/facing.err" && fail "a surface facing the r
 grep -q "surface 'into' faces a surface 0.001 m" "$TMP/facing-r.err" || fail "rad-report does not warn: $(cat "$TMP/facing-r.err")"
 [ "$(grep -c '<tr class="warning"><th>Warning</th><td>its points face a surface 0.001 m' "$TMP/facing.html")" = 1 ] ||
   fail "the page does not mark the one surface facing into its wall"
+# --estimate (#70 item 10): the first 256 sensors gathered and timed, the whole run's time
+# said, nothing written; only with --surfaces.
+est=$("$BIN/rad-gather" "$TMP/l.mesh" "$TMP/l.rad" --surfaces "$TMP/nocamera.csv" --estimate -o "$TMP/est.csv" 2>&1) ||
+  fail "rad-gather --estimate: $est"
+grep -Eq "^rad-gather: 272 sensor\(s\) on 4 surface\(s\): about [0-9.]+ (s|min|h) on [0-9]+ thread\(s\) \(measured on the first 256\)$" <<<"$est" ||
+  fail "rad-gather --estimate says: $est"
+[ ! -e "$TMP/est.csv" ] || fail "rad-gather --estimate wrote its output"
+expect_error "--estimate measures a --surfaces run" "" \
+  "$BIN/rad-gather" "$TMP/l.mesh" "$TMP/l.rad" --grid "0 0 1 1 0.8 2 2" --estimate
 # --energy: EN 15193-1's LENI by hand for 100 W over 12 m^2 of office (2250 h with daylight, 250
 # without), FO 0.9, FD 0.8, 2 W of controls' standby, 4 W charging all year:
 # W_L = 100 (2250 x 0.9 x 0.8 + 250 x 0.9) / 1000 = 184.5 kWh; W_P = (2 x 6260 + 4 x 8760) / 1000

@@ -8,6 +8,8 @@
 #include "radiosity/vec.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -167,9 +169,20 @@ inline constexpr double kFacingTooClose = 0.05; // m
 // of those when over half the points so meet one, else NaN.
 double facing_surface_distance(const RayScene& scene, const SurfaceGrid& grid);
 
+// How long gather_surfaces will take, projected from its first kEstimateSensors sensors (the
+// threads allowed): `seconds` for all `sensors` on `surfaces`. The callback returns whether to
+// go on (false: the surfaces come back as far as they were computed).
+inline constexpr std::uint64_t kEstimateSensors = 256;
+struct SensorsEstimate {
+    double seconds = 0;
+    std::uint64_t sensors = 0, measured = 0;
+    std::size_t surfaces = 0;
+};
+using SensorsEstimated = std::function<bool(const SensorsEstimate&)>;
 std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
                                              const LuminaireSet* luminaires, const Box& scene_box,
-                                             const std::vector<SurfaceGrid>& grids, bool quiet);
+                                             const std::vector<SurfaceGrid>& grids, bool quiet,
+                                             const SensorsEstimated& estimated = {});
 
 // The modelling index Ez/Eh over a cylindrical surface's sensors (those with both values):
 // its mean and range; count 0 when none has both.

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <limits>
 
@@ -98,13 +99,19 @@ double facing_surface_distance(const RayScene& scene, const SurfaceGrid& grid) {
 
 std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
                                              const LuminaireSet* luminaires, const Box& scene_box,
-                                             const std::vector<SurfaceGrid>& grids, bool quiet) {
+                                             const std::vector<SurfaceGrid>& grids, bool quiet,
+                                             const SensorsEstimated& estimated) {
     std::uint64_t total = 0;
     for (const auto& grid : grids) total += std::uint64_t(grid.size());
     Progress progress("sensors", total, quiet);
     std::vector<GatheredSurface> out;
     std::uint64_t first = 0; // the first sensor's index over all surfaces
     constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+    // The first kEstimateSensors sensors are timed on their own; the whole run's time is
+    // projected from them and handed to `estimated`, which may stop the run there.
+    const auto start = std::chrono::steady_clock::now();
+    std::uint64_t measured = 0;
+    bool told = !estimated;
     for (const auto& grid : grids) {
         auto& surface = out.emplace_back();
         surface.lux.assign(std::size_t(grid.size()), kNone);
@@ -113,10 +120,30 @@ std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
         std::vector<std::uint8_t> stopped(std::size_t(grid.size()), 0);
         if (grid.emergency) check_emergency_luminaires(grid, luminaires);
         const SensorContext context{gatherer, luminaires, scene_box, grid, first};
-        tbb::parallel_for(long(0), grid.size(), [&](long k) {
-            stopped[std::size_t(k)] = sensor_value(context, k, surface);
-            progress.advance(1);
-        });
+        const auto compute = [&](long from, long to) {
+            tbb::parallel_for(from, to, [&](long k) {
+                stopped[std::size_t(k)] = sensor_value(context, k, surface);
+                progress.advance(1);
+            });
+        };
+        long done = 0;
+        if (!told) {
+            done = long(
+                std::min<std::uint64_t>(std::uint64_t(grid.size()), kEstimateSensors - measured));
+            compute(0, done);
+            measured += std::uint64_t(done);
+            if (measured >= std::min<std::uint64_t>(kEstimateSensors, total)) {
+                told = true;
+                const double seconds =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                if (!estimated({seconds * double(total) / double(measured), total, measured,
+                                grids.size()})) {
+                    progress.finish();
+                    return out;
+                }
+            }
+        }
+        compute(done, grid.size());
         for (long k = 0; k < grid.size(); ++k)
             if (stopped[std::size_t(k)]) surface.at_budget.push_back(k);
         surface.facing_distance_m = facing_surface_distance(gatherer.scene(), grid);
