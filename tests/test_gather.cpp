@@ -58,6 +58,25 @@ radfmt::MeshData furnace_mesh() {
         "usemtl white\nf 5 8 7 6\nf 4 3 7 8\nf 2 6 7 3\n";
     return mesh_of(obj, "newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl white\nKd 0.5 0.5 0.5\n", 0.25);
 }
+// A furnace image's error layer: an emitter's pixel (or its image in a mirror) is exactly 1
+// with no error; +-2 errors hold a white pixel's 0.5 at 90-98% of them.
+void check_furnace_error_layer(const rad::Image& image) {
+    REQUIRE(image.error.size() == image.rgb.size());
+    int white = 0, covered = 0;
+    for (std::size_t i = 0; i < image.rgb.size(); i += 3) {
+        if (image.rgb[i] > 0.9) {
+            CHECK(image.rgb[i] == Approx(1).epsilon(1e-6));
+            CHECK(image.error[i] == 0);
+            continue;
+        }
+        ++white;
+        covered += std::abs(image.rgb[i] - 0.5) <= 2 * image.error[i];
+    }
+    CAPTURE(white, covered);
+    REQUIRE(white > 400);
+    CHECK(covered >= 0.90 * white);
+    CHECK(covered <= 0.98 * white);
+}
 } // namespace
 
 TEST_CASE("on the axis of a lone emitting square the gather is E x the closed form") {
@@ -199,22 +218,7 @@ TEST_CASE("a gathered image's error layer: +-2 errors hold each pixel's known va
     view.position = {0.2, 0.3, 0.25};
     view.direction = {1, 0.6, 1.2};
     view.horizontal_deg = view.vertical_deg = 80;
-    const auto image = rad::render_gathered(gatherer, view, 40, 40, 1, true);
-    REQUIRE(image.error.size() == image.rgb.size());
-    int white = 0, covered = 0;
-    for (std::size_t i = 0; i < image.rgb.size(); i += 3) {
-        if (image.rgb[i] > 0.9) { // an emitter: exactly E, no error
-            CHECK(image.rgb[i] == Approx(1).epsilon(1e-6));
-            CHECK(image.error[i] == 0);
-            continue;
-        }
-        ++white;
-        covered += std::abs(image.rgb[i] - 0.5) <= 2 * image.error[i];
-    }
-    CAPTURE(white, covered);
-    REQUIRE(white > 400);
-    CHECK(covered >= 0.90 * white);
-    CHECK(covered <= 0.98 * white);
+    check_furnace_error_layer(rad::render_gathered(gatherer, view, 40, 40, 1, true));
 }
 
 TEST_CASE("a gathered image's error layer through a mirror: +-2 errors hold the known value") {
@@ -242,22 +246,7 @@ TEST_CASE("a gathered image's error layer through a mirror: +-2 errors hold the 
     view.position = {0.2, 0.3, 0.25};
     view.direction = {1, 0.2, 0.4}; // the mirror ahead: the room seen in it
     view.horizontal_deg = view.vertical_deg = 80;
-    const auto image = rad::render_gathered(gatherer, view, 40, 40, 1, true);
-    REQUIRE(image.error.size() == image.rgb.size());
-    int white = 0, covered = 0;
-    for (std::size_t i = 0; i < image.rgb.size(); i += 3) {
-        if (image.rgb[i] > 0.9) { // an emitter, or its image: exactly E, no error
-            CHECK(image.rgb[i] == Approx(1).epsilon(1e-6));
-            CHECK(image.error[i] == 0);
-            continue;
-        }
-        ++white;
-        covered += std::abs(image.rgb[i] - 0.5) <= 2 * image.error[i];
-    }
-    CAPTURE(white, covered);
-    REQUIRE(white > 400);
-    CHECK(covered >= 0.90 * white);
-    CHECK(covered <= 0.98 * white);
+    check_furnace_error_layer(rad::render_gathered(gatherer, view, 40, 40, 1, true));
 }
 
 TEST_CASE("an irradiance cache's view agrees with every sample gathering its own rays") {
