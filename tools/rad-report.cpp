@@ -345,6 +345,24 @@ rad::ReportInput title_of(const ReportArgs& a, const radfmt::Header& mesh_header
     return in;
 }
 
+// The view at half size for the title block (each pixel the mean of four, in linear light):
+// a quarter of the bytes the full view would add to the page a second time.
+std::vector<std::uint8_t> thumbnail_png(const rad::Image& image, double exposure) {
+    const int w = image.width / 2, h = image.height / 2;
+    std::vector<std::uint8_t> pixels(std::size_t(w) * h * 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) {
+                double sum = 0;
+                for (int dy = 0; dy < 2; ++dy)
+                    for (int dx = 0; dx < 2; ++dx)
+                        sum +=
+                            image.rgb[(std::size_t(2 * y + dy) * image.width + 2 * x + dx) * 3 + c];
+                pixels[(std::size_t(y) * w + x) * 3 + c] = rad::to_srgb8(sum / 4 * exposure);
+            }
+    return rad::encode_png_rgb8(w, h, pixels);
+}
+
 // The number as a command line takes it back exactly enough (%.6g), and that value.
 std::string view_number(double v) {
     char text[32];
@@ -400,6 +418,7 @@ std::vector<rad::ReportView> views_of(const ReportArgs& a, const rad::CalcFile& 
         out.name = c.name;
         out.width = kWidth, out.height = kHeight;
         out.png = rad::encode_png_rgb8(kWidth, kHeight, pixels);
+        out.thumbnail_png = thumbnail_png(image, exposure);
         out.command = "rad-shade " + a.inputs[0] + " " + a.inputs[1] + " --view \"" + text +
                       "\" -x " + std::to_string(kWidth) + " -y " + std::to_string(kHeight) +
                       " --gather " + std::to_string(a.options.rays) + " --shadow-rays " +

@@ -90,7 +90,11 @@ page = open(sys.argv[1]).read()
 views = page[page.index('id="views"'):]
 pngs = re.findall(r'src="data:image/png;base64,([^"]*)"', views)
 cover = re.search(r'<figure class="title-view"><img alt="[^"]*" src="data:image/png;base64,([^"]*)"', page)
-assert cover and cover.group(1) == pngs[0], "the title block's view is not the first view"
+# (at half size: a PNG's width and height are bytes 16-24 of it)
+thumb = base64.b64decode(cover.group(1)) if cover else b""
+full = base64.b64decode(pngs[0])
+size = lambda png: (int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big"))
+assert cover and size(thumb) == tuple(v // 2 for v in size(full)), "the title block's view is not the first view at half size"
 open(sys.argv[2], "wb").write(base64.b64decode(pngs[0].replace("\n", "")))
 open(sys.argv[4], "wb").write(base64.b64decode(pngs[1].replace("\n", "")))
 command = html.unescape(re.search(r'<code class="command">([^<]*)</code>', page).group(1))

@@ -75,6 +75,7 @@ struct ReportObserver {
 struct ReportView {
     std::string name, command;
     std::vector<std::uint8_t> png;
+    std::vector<std::uint8_t> thumbnail_png; // at half size, for the title block (may be empty)
     int width = 0, height = 0;
     // Its luminance: the false-colour picture (rad-shade --falsecolor's bytes), its scale,
     // and each surface's luminance (--luminance-table).

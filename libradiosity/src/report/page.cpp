@@ -146,7 +146,8 @@ std::string title_block(const ReportInput& in) {
     if (!in.views.empty()) {
         const auto& v = in.views.front();
         out += "<figure class=\"title-view\"><img alt=\"" + html_escape(v.name) +
-               "\" src=\"data:image/png;base64," + base64(v.png) + "\"><figcaption>" +
+               "\" src=\"data:image/png;base64," +
+               base64(v.thumbnail_png.empty() ? v.png : v.thumbnail_png) + "\"><figcaption>" +
                html_escape(v.name) + "</figcaption></figure>";
     }
     out += "<h3>Inputs</h3><table>";
