@@ -65,6 +65,12 @@ k = room[2] / 6
 for got, want in ((desk[0], room[0] + 2.2 * k), (desk[1], room[1] + 1.6 * k), (desk[2], 1.6 * k), (desk[3], 0.8 * k)):
     assert abs(got - want) < 0.02, (desk, room)
 assert 'data-surface="ceiling"' not in key
+# The room cut at the work plane's height: the four walls, on the room's outline.
+cut = re.search(r'<path class="cut" data-surface="work plane" d="([^"]*)"', key)
+assert cut, "the key plan has no cut"
+ends = [tuple(map(float, e)) for e in re.findall(r'[ML]([-0-9.]+) ([-0-9.]+)', cut.group(1))]
+on_edge = lambda x, y: min(abs(x - room[0]), abs(x - room[0] - room[2]), abs(y - room[1]), abs(y - room[1] - room[3])) < 0.02
+assert ends and all(on_edge(x, y) for x, y in ends), ends[:6]
 for section in (floor, ceiling):
     l1, l3 = where(section, "L1"), where(section, "L3")
     assert l1[1] < l3[1], "L1 (z = 1) is drawn below L3 (z = 3) in one plan: %s %s" % (l1[:2], l3[:2])

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace rad {
 namespace {
@@ -17,6 +18,29 @@ struct KeyFrame {
     double x(double scene_x) const { return kMargin + (scene_x - x0) * scale; }
     double y(double scene_z) const { return kMargin + (scene_z - z0) * scale; }
 };
+
+// The room as the first horizontal surface facing up cuts it (its plan_cut: walls, doors,
+// furniture at that height), in the key plan's frame; nothing when no surface has a cut.
+std::string key_plan_cut(const ReportInput& in, const KeyFrame& f) {
+    for (const auto& s : in.surfaces) {
+        if (s.grid.normal[1] < 0.9 || s.cut.empty()) continue;
+        const Vec3 u = normalized(s.grid.column_step), v = normalized(s.grid.row_step);
+        const double units = 1 / in.metres_per_unit; // scene units a metre
+        std::string d;
+        for (const auto& c : s.cut)
+            for (const auto& [mark, cu, cv] :
+                 {std::tuple{'M', c.u0, c.v0}, std::tuple{'L', c.u1, c.v1}}) {
+                const Vec3 p = s.grid.origin + u * (cu * units) + v * (cv * units);
+                d += mark;
+                d += px(f.x(p[0]));
+                d += ' ';
+                d += px(f.y(p[2]));
+            }
+        return "<path class=\"cut\" data-surface=\"" + html_escape(s.surface.name) + "\" d=\"" + d +
+               "\" fill=\"none\" stroke=\"#222\" stroke-width=\"1.4\"/>";
+    }
+    return "";
+}
 
 } // namespace
 
@@ -63,6 +87,7 @@ std::string key_plan_svg(const ReportInput& in) {
                "\"/><text x=\"" + px(label_x) + "\" y=\"" + px(label_y) + "\">" +
                html_escape(c.name) + "</text></g>";
     }
+    out += key_plan_cut(in, f);
     if (in.luminaires)
         for (const auto& l : in.luminaires->luminaires)
             out += "<circle class=\"luminaire\" cx=\"" + px(f.x(l.position[0])) + "\" cy=\"" +

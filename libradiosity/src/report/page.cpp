@@ -199,7 +199,11 @@ std::string room_section(const ReportInput& in) {
         out += "<figure class=\"key\">" + key +
                "<figcaption>Key plan: the room from above (x to the right, z down, as the "
                "plans of the floor) with each horizontal calculation area and the luminaires "
-               "(dots).</figcaption></figure>";
+               "(dots)" +
+               std::string(key.find("class=\"cut\"") != std::string::npos
+                               ? "; dark lines: the room cut at the first work plane's height"
+                               : "") +
+               ".</figcaption></figure>";
     return out + "</section>";
 }
 
