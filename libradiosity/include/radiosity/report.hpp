@@ -11,6 +11,7 @@
 #include "radiosity/luminaires.hpp"
 #include "radiosity/luminance_map.hpp"
 
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <span>
@@ -156,6 +157,11 @@ std::string surface_plan_svg(const ReportSurface& surface, std::span<const doubl
 // shows it from above, the same way round as the floor, not from the side its points face.
 inline bool reflected_ceiling_plan(const SurfaceGrid& grid) {
     return grid.normal[1] < -0.9;
+}
+// Whether a surface is drawn as a plan (floor or ceiling: facing up or down), where its
+// luminaires, the room's cut and north are drawn; a wall's elevation has none of them.
+inline bool horizontal_plan(const SurfaceGrid& grid) {
+    return std::abs(grid.normal[1]) >= 0.9;
 }
 // The key plan: the room's extent seen from above (x to the right, z down, as the floor's
 // plans) with the calculation area (less its border band) of every surface facing up, named,

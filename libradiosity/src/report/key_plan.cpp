@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 
 namespace rad {
 namespace {
@@ -27,15 +26,14 @@ std::string key_plan_cut(const ReportInput& in, const KeyFrame& f) {
         const Vec3 u = normalized(s.grid.column_step), v = normalized(s.grid.row_step);
         const double units = 1 / in.metres_per_unit; // scene units a metre
         std::string d;
-        for (const auto& c : s.cut)
-            for (const auto& [mark, cu, cv] :
-                 {std::tuple{'M', c.u0, c.v0}, std::tuple{'L', c.u1, c.v1}}) {
-                const Vec3 p = s.grid.origin + u * (cu * units) + v * (cv * units);
-                d += mark;
-                d += px(f.x(p[0]));
-                d += ' ';
-                d += px(f.y(p[2]));
-            }
+        const auto to = [&](char mark, double cu, double cv) {
+            const Vec3 p = s.grid.origin + u * (cu * units) + v * (cv * units);
+            report_text::path_to(d, mark, f.x(p[0]), f.y(p[2]));
+        };
+        for (const auto& c : s.cut) {
+            to('M', c.u0, c.v0);
+            to('L', c.u1, c.v1);
+        }
         return "<path class=\"cut\" data-surface=\"" + html_escape(s.surface.name) + "\" d=\"" + d +
                "\" fill=\"none\" stroke=\"#222\" stroke-width=\"1.4\"/>";
     }

@@ -17,6 +17,15 @@ inline std::string px(double v) {
     return fixed(v, 2);
 }
 
+// Appends an SVG path command and its point to `d`: "M12.00 3.50" (`mark` 'M' or 'L'). Piece by
+// piece: GCC 12 warns, wrongly, of overlap in "M" + std::string.
+inline void path_to(std::string& d, char mark, double x, double y) {
+    d += mark;
+    d += px(x);
+    d += ' ';
+    d += px(y);
+}
+
 // A number the user wrote or a round one (a requirement, a contour level, a legend tick), as
 // short as it is.
 inline std::string short_number(double v) {

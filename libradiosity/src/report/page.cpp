@@ -517,12 +517,12 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
                                         "way round as the floor)"
                                       : ", seen from the side its points face") +
            "; isolux lines labelled in lx";
-    if (in.luminaires && std::abs(g.normal[1]) >= 0.9)
+    if (in.luminaires && horizontal_plan(g))
         out += "; luminaires over it drawn at their luminous opening's size, their centre "
                "marked";
     out += "; the scale bar in metres";
     out += cut_caption(s);
-    if (std::isfinite(in.north_deg) && std::abs(g.normal[1]) >= 0.9) out += "; N: north";
+    if (std::isfinite(in.north_deg) && horizontal_plan(g)) out += "; N: north";
     out += g.border_m > 0 ? ". The grey band is the border left out." : ".";
     out += " Grey: points without a value.</figcaption></figure>";
     out += point_table(in, s, s.lux, "lx", [](double v) { return lux_text(v); });

@@ -13,7 +13,6 @@
 #include <cstdio>
 #include <numbers>
 #include <numeric>
-#include <tuple>
 
 namespace rad {
 namespace {
@@ -141,10 +140,7 @@ std::string opening_outline(const LuminaireSet& set, const Luminaire& l, const V
     for (const auto& [i, j] : {std::pair{1, 1}, {1, -1}, {-1, -1}, {-1, 1}}) {
         const double cu = u + 0.5 * (i * p.length * a[0] + j * p.width * b[0]);
         const double cv = v + 0.5 * (i * p.length * a[1] + j * p.width * b[1]);
-        d += d.empty() ? 'M' : 'L';
-        d += px(f.x(cu));
-        d += ' ';
-        d += px(f.y(cv));
+        report_text::path_to(d, d.empty() ? 'M' : 'L', f.x(cu), f.y(cv));
     }
     return "<path class=\"opening\" d=\"" + d + "Z\"/>";
 }
@@ -154,7 +150,7 @@ std::string opening_outline(const LuminaireSet& set, const Luminaire& l, const V
 std::vector<PlacedLuminaire> luminaires_over(const SurfaceGrid& g, const PlanFrame& f,
                                              const LuminaireSet* set, double metres_per_unit) {
     std::vector<PlacedLuminaire> out;
-    if (!set || std::abs(g.normal[1]) < 0.9) return out;
+    if (!set || !horizontal_plan(g)) return out;
     const Vec3 unit_u = normalized(g.column_step), unit_v = normalized(g.row_step);
     for (const auto& l : set->luminaires) {
         const Vec3 offset = l.position - g.origin;
@@ -338,14 +334,8 @@ std::string cut_svg(const std::vector<PlanSegment>& cut, const PlanFrame& f) {
     std::string solid, glass;
     for (const auto& c : cut) {
         auto& d = c.glass ? glass : solid;
-        // (piece by piece: GCC 12 warns, wrongly, of overlap in "M" + std::string here)
-        for (const auto& [mark, u, v] :
-             {std::tuple{'M', c.u0, c.v0}, std::tuple{'L', c.u1, c.v1}}) {
-            d += mark;
-            d += px(f.x(u));
-            d += ' ';
-            d += px(f.y(v));
-        }
+        report_text::path_to(d, 'M', f.x(c.u0), f.y(c.v0));
+        report_text::path_to(d, 'L', f.x(c.u1), f.y(c.v1));
     }
     std::string out;
     if (!solid.empty())
@@ -399,7 +389,7 @@ std::string surface_plan_svg(const ReportSurface& s, std::span<const double> val
     const double whole_v = (g.depth_m + 2 * g.border_m) * f.scale;
     const double width = kMargin * 2 + whole_u + kLegendWidth;
     // North goes under the legend: the plan is tall enough for it where north is known.
-    const bool north = std::abs(g.normal[1]) >= 0.9 && std::isfinite(scale.north_deg);
+    const bool north = horizontal_plan(g) && std::isfinite(scale.north_deg);
     const double legend_height = std::min(whole_v, 300.0) - 16;
     const double north_y = kMargin + 16 + legend_height + 44;
     const double height =

@@ -35,7 +35,7 @@ bool clip_to_rectangle(PlanSegment& s, double u0, double u1, double v0, double v
 std::vector<PlanSegment> plan_cut(const radfmt::MeshData& mesh, const SurfaceGrid& grid,
                                   double metres_per_unit) {
     std::vector<PlanSegment> out;
-    if (std::abs(grid.normal[1]) < 0.9 || grid.columns <= 0 || grid.rows <= 0) return out;
+    if (!horizontal_plan(grid) || grid.columns <= 0 || grid.rows <= 0) return out;
     const Vec3 u = normalized(grid.column_step), v = normalized(grid.row_step);
     // A centimetre in front of the surface: a floor's own plane would cut the walls along
     // their lower edges, where the floor meets them.

@@ -35,10 +35,7 @@ std::string curve_path(const LuminaireSet& set, const Luminaire& l, double right
             const double r = file_intensity(set, l, c, gamma) * per_klm * scale;
             const double a = gamma * std::numbers::pi / 180;
             const double x = cx + (side == 0 ? 1 : -1) * r * std::sin(a), y = cy + r * std::cos(a);
-            d += d.empty() ? 'M' : 'L';
-            d += px(x);
-            d += ' ';
-            d += px(y);
+            report_text::path_to(d, d.empty() ? 'M' : 'L', x, y);
         }
     return d + "Z";
 }
