@@ -569,17 +569,6 @@ std::string modelling_text(const rad::SurfaceGrid& grid, const rad::GatheredSurf
     return text;
 }
 
-// A surface whose points face another surface a hair away reads that surface's light.
-void warn_facing_too_close(const rad::CalcSurface& surface, const rad::GatheredSurface& gathered) {
-    if (!std::isfinite(gathered.facing_distance_m)) return;
-    std::fprintf(stderr,
-                 "rad-gather: warning: %s: surface '%s' faces a surface %.3g m in front of its "
-                 "points: they read the light leaving that surface, not the light falling on the "
-                 "place (a wall's or ceiling's surface given facing into it?); give u and v the "
-                 "other way round so it faces the room, or move it\n",
-                 surface.where.str().c_str(), surface.name.c_str(), gathered.facing_distance_m);
-}
-
 void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid,
                    const rad::GatheredSurface& gathered) {
     const auto stats = rad::illuminance_stats(gathered.lux);
@@ -603,7 +592,7 @@ void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid
                  with_error(stats.max, errors.max).c_str(), stats.u0(),
                  rad::tool::error_suffix(errors.u0).c_str(), stats.min_over_max(),
                  modelling_text(grid, gathered).c_str(), required ? verdict_text(verdict) : "");
-    warn_facing_too_close(surface, gathered);
+    rad::tool::warn_facing_too_close("rad-gather", surface, gathered.facing_distance_m);
 }
 
 // --surfaces: every calculation surface's sensors, one CSV line each, and their figures.

@@ -137,13 +137,7 @@ std::vector<rad::ReportSurface> surfaces_of(const rad::CalcFile& file,
         s.horizontal = std::move(gathered[k].horizontal);
         s.at_budget = std::move(gathered[k].at_budget);
         s.facing_distance_m = gathered[k].facing_distance_m;
-        if (std::isfinite(s.facing_distance_m) && !quiet)
-            std::fprintf(stderr,
-                         "rad-report: warning: %s: surface '%s' faces a surface %.3g m in front "
-                         "of its points (the page says so): give u and v the other way round so "
-                         "it faces the room\n",
-                         s.surface.where.str().c_str(), s.surface.name.c_str(),
-                         s.facing_distance_m);
+        if (!quiet) rad::tool::warn_facing_too_close("rad-report", s.surface, s.facing_distance_m);
         s.stats = rad::illuminance_stats(s.lux);
         s.errors = rad::illuminance_errors(s.lux, s.lux_error);
         s.verdict = rad::judge(s.stats, s.surface.required, s.errors);

@@ -6,8 +6,6 @@
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 
-#include <tbb/global_control.h>
-
 #include <cerrno>
 #include <cmath>
 #include <csignal>
@@ -306,9 +304,7 @@ void say_sensors_estimate(const char* tool, const SensorsEstimate& estimate, boo
                  "%s: %llu sensor(s) on %zu surface(s): %s on %u thread(s) (measured on the "
                  "first %llu)\n",
                  tool, static_cast<unsigned long long>(estimate.sensors), estimate.surfaces,
-                 about(estimate.seconds).c_str(),
-                 static_cast<unsigned>(tbb::global_control::active_value(
-                     tbb::global_control::max_allowed_parallelism)),
+                 about(estimate.seconds).c_str(), estimate.threads,
                  static_cast<unsigned long long>(estimate.measured));
 }
 
@@ -317,6 +313,16 @@ std::string error_suffix(double error) {
     char text[48];
     std::snprintf(text, sizeof text, " ± %.2g", error);
     return text;
+}
+
+void warn_facing_too_close(const char* tool, const CalcSurface& surface, double distance_m) {
+    if (!std::isfinite(distance_m)) return;
+    std::fprintf(stderr,
+                 "%s: warning: %s: surface '%s' faces a surface %.3g m in front of its points: "
+                 "they read the light leaving that surface, not the light falling on the place (a "
+                 "wall's or ceiling's surface given facing into it?); give u and v the other way "
+                 "round so it faces the room, or move it\n",
+                 tool, surface.where.str().c_str(), surface.name.c_str(), distance_m);
 }
 
 void warn_at_budget(const char* what, long count, int max_rays, double accuracy,

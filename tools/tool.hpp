@@ -83,6 +83,10 @@ void say_sensors_estimate(const char* tool, const SensorsEstimate& estimate, boo
 // " ± 0.012": a printed figure's standard error to two digits; "" when it is not known.
 std::string error_suffix(double error);
 
+// `tool`'s warning (nothing when `distance_m` is NaN) that `surface`'s points face another
+// surface `distance_m` in front of them (GatheredSurface::facing_distance_m), at its line.
+void warn_facing_too_close(const char* tool, const CalcSurface& surface, double distance_m);
+
 // The warning that `count` points (`what`: "point(s)", "sensor(s)") stopped at `max_rays`
 // before the standard error `accuracy` asked for, the first few named in `names` (nothing when
 // none did).

@@ -177,6 +177,7 @@ struct SensorsEstimate {
     double seconds = 0;
     std::uint64_t sensors = 0, measured = 0;
     std::size_t surfaces = 0;
+    unsigned threads = 1; // the threads it was measured on (TBB's allowed parallelism)
 };
 using SensorsEstimated = std::function<bool(const SensorsEstimate&)>;
 std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,

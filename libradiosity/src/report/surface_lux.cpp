@@ -5,6 +5,7 @@
 #include "radiosity/luminaires.hpp"
 #include "radiosity/progress.hpp"
 
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -136,8 +137,10 @@ std::vector<GatheredSurface> gather_surfaces(const Gatherer& gatherer,
                 told = true;
                 const double seconds =
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                const auto threads = static_cast<unsigned>(tbb::global_control::active_value(
+                    tbb::global_control::max_allowed_parallelism));
                 if (!estimated({seconds * double(total) / double(measured), total, measured,
-                                grids.size()})) {
+                                grids.size(), threads})) {
                     progress.finish();
                     return out;
                 }
