@@ -404,7 +404,7 @@ void print_summary(const FfArgs& a, const radfmt::FormFactorSpool& ff,
     std::fprintf(stderr,
                  "rad-ff: rows' standard errors (%d batches): mean %.3g, max %.3g (rad-info "
                  "--csv lists each)\n",
-                 a.error_batches, errors.empty() ? 0.0 : sum / double(errors.size()), max);
+                 a.error_batches, sum / double(errors.size()), max);
 }
 
 // The arguments that need each other, checked before the mesh is read.

@@ -309,15 +309,14 @@ void form_factor_rows_csv(const FormFactorData& ff, std::ostream& out) {
     out << kind_info(Kind::FormFactors).csv_columns << (errors ? ",row_error\n" : "\n");
     for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
         for (auto k = ff.row_start[i]; k < ff.row_start[i + 1]; ++k) {
-            if (errors)
-                std::snprintf(line, sizeof line, "%llu,%u,%.9g,%.9g\n",
-                              static_cast<unsigned long long>(i), ff.columns[k],
-                              static_cast<double>(ff.values[k]), double(ff.row_error[i]));
-            else
-                std::snprintf(line, sizeof line, "%llu,%u,%.9g\n",
-                              static_cast<unsigned long long>(i), ff.columns[k],
-                              static_cast<double>(ff.values[k]));
+            std::snprintf(line, sizeof line, "%llu,%u,%.9g", static_cast<unsigned long long>(i),
+                          ff.columns[k], static_cast<double>(ff.values[k]));
             out << line;
+            if (errors) {
+                std::snprintf(line, sizeof line, ",%.9g", double(ff.row_error[i]));
+                out << line;
+            }
+            out << '\n';
         }
         if (!out) return;
     }

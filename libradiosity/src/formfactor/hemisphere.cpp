@@ -214,10 +214,11 @@ class Hemisphere final : public FormFactorMethod {
     bool follows_specular() const override { return true; }
     std::vector<std::pair<std::string, std::string>>
     header_fields(const FormFactorOptions& options) const override {
+        std::vector<std::pair<std::string, std::string>> fields{
+            {"rays", std::to_string(options.rays)}};
         if (options.error_batches > 0)
-            return {{"rays", std::to_string(options.rays)},
-                    {"error_batches", std::to_string(options.error_batches)}};
-        return {{"rays", std::to_string(options.rays)}};
+            fields.emplace_back("error_batches", std::to_string(options.error_batches));
+        return fields;
     }
     std::uint64_t max_row_entries(const radfmt::MeshData& mesh,
                                   const FormFactorOptions& options) const override {
