@@ -177,14 +177,22 @@ TEST_CASE("polygon patches that consumers could not split are refused") {
                Contains("patch 2 stores an area of") && Contains("its corners enclose 0"));
 }
 
-TEST_CASE("form-factor and radiosity files round-trip") {
-    const auto dir = temp_dir("formats");
+namespace {
+// A 3 x 3 form-factor matrix with an empty middle row.
+radfmt::FormFactorData three_rows() {
     radfmt::FormFactorData ff;
     ff.patch_count = 3;
     ff.row_start = {0, 2, 2, 3};
     ff.columns = {1, 2, 0};
     ff.values = {0.25f, 0.5f, 0.125f};
     ff.back_fraction = {0.0f, 0.75f, 0.5f};
+    return ff;
+}
+} // namespace
+
+TEST_CASE("form-factor and radiosity files round-trip") {
+    const auto dir = temp_dir("formats");
+    const auto ff = three_rows();
     radfmt::write_form_factors(dir / "a.ff", header_for("rad-ff"), ff);
     const auto ff2 = radfmt::read_form_factors(dir / "a.ff");
     CHECK(ff2.row_start == ff.row_start);
@@ -323,12 +331,7 @@ TEST_CASE("a spooled form-factor file is byte-identical to one written from memo
 
 TEST_CASE("rows' standard errors are written, read and spooled alike, and only when given") {
     const auto dir = temp_dir("formats");
-    radfmt::FormFactorData ff;
-    ff.patch_count = 3;
-    ff.row_start = {0, 2, 2, 3};
-    ff.columns = {1, 2, 0};
-    ff.values = {0.25f, 0.5f, 0.125f};
-    ff.back_fraction = {0, 0.5f, 0};
+    auto ff = three_rows();
     ff.row_error = {0.0125f, 0, 0.03f};
     radfmt::FormFactorSpool spool(ff.patch_count, dir);
     for (std::uint64_t i = 0; i < ff.patch_count; ++i) {
