@@ -449,9 +449,30 @@ std::string modelling_rows(const ReportSurface& s) {
            "0.10, and a modelling index of about 0.30 to 0.60</td></tr>";
 }
 
+// A surface's illuminance plan and its caption (what is drawn on it).
+std::string illuminance_figure(const ReportInput& in, const ReportSurface& s) {
+    const auto& g = s.grid;
+    std::string out =
+        "<figure>" +
+        surface_plan_svg(s, s.lux, {"lux", "lx", 0, 540, 400, in.north_deg}, in.luminaires,
+                         in.metres_per_unit) +
+        "<figcaption>Illuminance on " + html_escape(s.surface.name) +
+        (reflected_ceiling_plan(g) ? ", a reflected ceiling plan (seen from above, the same "
+                                     "way round as the floor)"
+                                   : ", seen from the side its points face") +
+        "; isolux lines labelled in lx";
+    if (in.luminaires && horizontal_plan(g))
+        out += "; luminaires over it drawn at their luminous opening's size, their centre "
+               "marked";
+    out += "; the scale bar in metres";
+    out += cut_caption(s);
+    if (std::isfinite(in.north_deg) && horizontal_plan(g)) out += "; N: north";
+    out += g.border_m > 0 ? ". The grey band is the border left out." : ".";
+    return out + " Grey: points without a value.</figcaption></figure>";
+}
+
 std::string surface_section(const ReportInput& in, const ReportSurface& s, std::size_t index) {
     if (s.daylight) return daylight_section(in, s, index);
-    const auto& g = s.grid;
     const auto& st = s.stats;
     std::string out = "<section class=\"part surface\" id=\"surface-" + std::to_string(index + 1) +
                       "\"><h2>" + html_escape(s.surface.name) + "</h2>";
@@ -508,23 +529,7 @@ std::string surface_section(const ReportInput& in, const ReportSurface& s, std::
     out += "<tr><th>Verdict</th>" +
            verdict_text(s.surface.required.of_light(), s.verdict.passes(), s.verdict.close()) +
            "</tr>";
-    out += "</tbody></table>";
-    out += "<figure>" +
-           surface_plan_svg(s, s.lux, {"lux", "lx", 0, 540, 400, in.north_deg}, in.luminaires,
-                            in.metres_per_unit) +
-           "<figcaption>Illuminance on " + html_escape(s.surface.name) +
-           (reflected_ceiling_plan(g) ? ", a reflected ceiling plan (seen from above, the same "
-                                        "way round as the floor)"
-                                      : ", seen from the side its points face") +
-           "; isolux lines labelled in lx";
-    if (in.luminaires && horizontal_plan(g))
-        out += "; luminaires over it drawn at their luminous opening's size, their centre "
-               "marked";
-    out += "; the scale bar in metres";
-    out += cut_caption(s);
-    if (std::isfinite(in.north_deg) && horizontal_plan(g)) out += "; N: north";
-    out += g.border_m > 0 ? ". The grey band is the border left out." : ".";
-    out += " Grey: points without a value.</figcaption></figure>";
+    out += "</tbody></table>" + illuminance_figure(in, s);
     out += point_table(in, s, s.lux, "lx", [](double v) { return lux_text(v); });
     return out + "</section>";
 }
