@@ -6,6 +6,7 @@
 #include "radiosity/daylight.hpp"
 #include "radiosity/en17037.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/shading.hpp"
 #include "radiosity/sky.hpp"
 #include "radiosity/sky_patches.hpp"
 #include "radiosity/weather.hpp"
@@ -462,4 +463,83 @@ TEST_CASE("EN 17037's median external diffuse illuminance: the median of the bri
     // One hour without it: the file's radiation by Perez's efficacy instead (all dark here).
     w.hours[5].diffuse_illuminance = -1;
     CHECK(rad::median_external_diffuse_illuminance(w).source.find("Perez") != std::string::npos);
+}
+
+TEST_CASE("LM-83's blinds, replayed by hand on a small year: down when more than 2% of the "
+          "sensors get 1000 lx or more of direct sun (#69 item 1)",
+          "[sky]") {
+    // 50 sensors, 7 hours; sensor 49 is inside an object (not judged), so one sunlit sensor
+    // of the 49 judged is 2.04%: more than 2%.
+    const std::size_t n = 50, hours = 7;
+    radfmt::AnnualData open;
+    open.positions.assign(n, radfmt::Vec3{0, 0, 0});
+    open.normals.assign(n, radfmt::Vec3{0, 1, 0});
+    for (std::uint32_t t = 0; t < hours; ++t) open.hours.push_back(10100 + t);
+    open.occupied.assign(hours, 1);
+    open.lux.assign(hours * n, 500.0f);
+    open.sun_lux.assign(hours * n, 0.0f);
+    const auto sun = [&](std::size_t t, std::size_t k, float lux) {
+        open.sun_lux[t * n + k] = lux;
+        open.lux[t * n + k] = 500 + lux;
+    };
+    // hour 0: no sun. hour 1: one sensor of 49 sunlit (2.04%: more than 2%). hour 2: one
+    // sensor at 999.9 lx. hour 3: the only sunlit sensor is the one not judged. hour 4: three
+    // sensors at exactly 1000 lx. hour 5: a sensor at 800 lx and one not judged at 9000 lx.
+    // hour 6: every judged sensor at 20000 lx.
+    sun(1, 3, 5000);
+    sun(2, 7, 999.9f);
+    sun(3, 49, 8000);
+    for (std::size_t k : {10, 11, 12}) sun(4, k, 1000);
+    sun(5, 20, 800);
+    sun(5, 49, 9000);
+    for (std::size_t k = 0; k < 49; ++k) sun(6, k, 20000);
+    std::vector<std::uint8_t> judged(n, 1);
+    judged[49] = 0;
+    const auto rule = rad::parse_shading_rule("lm83", hours);
+    const auto down = rad::shaded_hours(rule, open, judged);
+    CHECK(down == std::vector<std::uint8_t>{0, 1, 0, 0, 1, 0, 1});
+    // With all 50 judged, hour 1's one sensor is exactly 2%: not more, so the blinds stay up;
+    // hour 3's sensor now counts (2%: up as well).
+    const auto all = rad::shaded_hours(rule, open, std::vector<std::uint8_t>(n, 1));
+    CHECK(all == std::vector<std::uint8_t>{0, 0, 0, 0, 1, 0, 1});
+    // A rule of the user's: 900 lx on more than 1% (half a sensor): hour 5's 800 lx is not.
+    const auto user = rad::shaded_hours(rad::parse_shading_rule("sun:900:1", hours), open, judged);
+    CHECK(user == std::vector<std::uint8_t>{0, 1, 1, 0, 1, 0, 1});
+
+    // The year as operated: the closed state's light in the hours down, the open state's sun.
+    radfmt::AnnualData closed = open;
+    for (auto& v : closed.lux) v = v / 20;
+    for (auto& v : closed.sun_lux) v = v / 20;
+    const auto year = rad::operated_year(open, closed, down);
+    for (std::size_t t = 0; t < hours; ++t)
+        for (std::size_t k = 0; k < n; ++k) {
+            CHECK(year.lux[t * n + k] == (down[t] ? closed : open).lux[t * n + k]);
+            CHECK(year.sun_lux[t * n + k] == open.sun_lux[t * n + k]);
+        }
+    // ASE is the open state's. Sensor 30's DA300 loses hours 1 and 4 (500 / 20 lx behind the
+    // blinds), not hour 6 (its 20500 lx of sun and sky give 1025 lx through them).
+    const auto m = rad::annual_metrics(year);
+    const auto m_open = rad::annual_metrics(open);
+    CHECK(m.sensors[0].sun_hours == m_open.sensors[0].sun_hours);
+    CHECK(m.sensors[30].da300 == Approx(5.0 / 7));
+    CHECK(m_open.sensors[30].da300 == 1.0);
+}
+
+TEST_CASE("shading rules that cannot be read are refused, naming the fix", "[sky]") {
+    CHECK_THROWS_WITH(rad::parse_shading_rule("blinds", 24), Catch::Contains("give lm83"));
+    CHECK_THROWS_WITH(rad::parse_shading_rule("sun:1000", 24), Catch::Contains("sun:LUX:PERCENT"));
+    CHECK_THROWS_WITH(rad::parse_shading_rule("sun:x:2", 24), Catch::Contains("LUX 'x'"));
+    CHECK_THROWS_WITH(rad::parse_shading_rule("sun:1000:100", 24), Catch::Contains("under 100"));
+    CHECK_THROWS_WITH(rad::parse_shading_rule("sun:1000:-1", 24), Catch::Contains("PERCENT '-1'"));
+    const auto path = std::filesystem::temp_directory_path() / "rad-test-shading-schedule.txt";
+    std::ofstream(path) << "# down at noon\n0\n1\n2\n";
+    CHECK_THROWS_WITH(rad::parse_shading_rule("schedule:" + path.string(), 3),
+                      Catch::Contains(path.string() + ":4: a shading schedule line is 0 or 1"));
+    std::ofstream(path) << "0\n1\n";
+    CHECK_THROWS_WITH(rad::parse_shading_rule("schedule:" + path.string(), 3),
+                      Catch::Contains("2 hours of shading schedule; the weather file has 3"));
+    std::ofstream(path) << "0\n1\n1\n";
+    CHECK(rad::parse_shading_rule("schedule:" + path.string(), 3).schedule ==
+          std::vector<std::uint8_t>{0, 1, 1});
+    std::filesystem::remove(path);
 }

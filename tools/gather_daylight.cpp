@@ -7,6 +7,8 @@
 #include "radiosity/falsecolour.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/sensors.hpp"
+#include "radiosity/shading.hpp"
+#include "radiosity/solve_policy.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
@@ -42,6 +44,27 @@ void add_daylight_options(CLI::App& app, DaylightArgs& a) {
     app.add_option("--metrics", a.metrics,
                    "With --annual: write each sensor's metrics as CSV (x,y,z,dx,dy,dz,da300,"
                    "udi_low,udi_useful,udi_high,sun_hours)");
+    app.add_option("--shaded", a.shaded,
+                   "With --annual: the window's shaded state (blinds down, a second glazing) as "
+                   "MESH RADIOSITY: the same geometry with the window's material changed "
+                   "(rad-mesh --transmittance), solved with its own .sky. Each hour takes the "
+                   "state --shading-rule chooses; sDA is computed with the blinds as operated, "
+                   "ASE with them up (IES LM-83-12), and the hours down are counted")
+        ->expected(2);
+    app.add_option("--shading-rule", a.shading_rule,
+                   "With --shaded: lm83 (blinds down in any hour when more than 2% of the "
+                   "sensors get 1000 lx or more of direct sun with them up), sun:LUX:PERCENT, "
+                   "or schedule:FILE (one 0 or 1 a line for each hour of the weather file, 1: "
+                   "down)")
+        ->capture_default_str();
+    app.add_option("--shading-group", a.shading_group,
+                   "With --shaded and --surfaces: the sun rule watches this calculation "
+                   "surface's sensors only (default: every sensor with a value)");
+    app.add_option("--shading-log", a.shading_log,
+                   "With --shaded: write the state of every hour as CSV (month,day,hour,"
+                   "occupied,sunlit_share,shaded): the share of the watched sensors with the "
+                   "rule's direct sun (1000 lx unless sun:LUX:...) with the blinds up, and 1 "
+                   "where the shaded state was used");
     app.add_option("--sky-samples", a.sky_samples,
                    "Daylight: directions per sky patch a sensor traces (rounded to a square)")
         ->capture_default_str()
@@ -66,6 +89,15 @@ void check_daylight_args(const DaylightArgs& a, const DaylightRun& run) {
         throw InputError("--daylight-factor is for --sky cie-overcast, not --annual");
     if (!a.annual && (!a.occupancy.empty() || !a.metrics.empty()))
         throw InputError("--occupancy and --metrics go with --annual");
+    const bool shading_options =
+        a.shading_rule != "lm83" || !a.shading_group.empty() || !a.shading_log.empty();
+    if (!a.annual && (!a.shaded.empty() || shading_options))
+        throw InputError("--shaded and the --shading- options go with --annual");
+    if (a.shaded.empty() && shading_options)
+        throw InputError("--shading-rule, --shading-group and --shading-log are about when "
+                         "--shaded's state is used: give --shaded MESH RADIOSITY");
+    if (!a.shading_group.empty() && run.surfaces.empty())
+        throw InputError("--shading-group names a calculation surface: give --surfaces FILE");
     if (a.annual && run.error && a.metrics.empty())
         throw InputError("--annual --error writes the metrics' errors beside them: give "
                          "--metrics FILE");
@@ -219,25 +251,125 @@ std::string percent_error(double error) {
     return text;
 }
 
+// The window's shaded state (--shaded MESH RADIOSITY), read and checked against the open
+// state's geometry.
+struct ShadedState {
+    radfmt::MeshData mesh;
+    radfmt::RadiosityData solution;
+    radfmt::Header rad_header;
+};
+
+ShadedState read_shaded_state(const DaylightArgs& a, const DaylightRun& run) {
+    ShadedState s;
+    const auto& mesh_path = a.shaded[0];
+    const auto& rad_path = a.shaded[1];
+    s.mesh = radfmt::read_mesh(mesh_path);
+    s.solution = radfmt::read_radiosity(rad_path, &s.rad_header);
+    radfmt::require_same_geometry(rad_path, s.rad_header, s.solution.radiosity.size(), mesh_path,
+                                  s.mesh, "run rad-ff and rad-solve on " + mesh_path + " again");
+    apply_recorded_overrides(s.mesh, s.rad_header);
+    if (s.mesh.vertices != run.mesh->vertices || s.mesh.patches.size() != run.mesh->patches.size())
+        throw InputError(mesh_path + ": --shaded's mesh is not the geometry of " + run.inputs[0] +
+                         " (" + std::to_string(s.mesh.patches.size()) + " patches against " +
+                         std::to_string(run.mesh->patches.size()) +
+                         "): make both states with rad-mesh from the same scene and options, "
+                         "changing only the window's material (--transmittance)");
+    return s;
+}
+
+// The sensors the sun rule watches: those with a value, of --shading-group's surface if given.
+std::vector<std::uint8_t> judged_sensors(const DaylightArgs& a, const DaylightRun& run,
+                                         const std::vector<std::uint8_t>& inside) {
+    std::vector<std::uint8_t> judged(inside.size());
+    for (std::size_t k = 0; k < inside.size(); ++k) judged[k] = !inside[k];
+    if (a.shading_group.empty()) return judged;
+    std::size_t first = 0;
+    bool found = false;
+    std::string names;
+    for (const auto& [name, count] : run.surfaces) {
+        const bool group = name == a.shading_group;
+        found = found || group;
+        names += (names.empty() ? "" : ", ") + name;
+        for (std::size_t k = first; k < first + count; ++k) judged[k] = judged[k] && group;
+        first += count;
+    }
+    if (!found)
+        throw InputError("--shading-group '" + a.shading_group +
+                         "': no calculation surface of that name (the surfaces: " + names + ")");
+    return judged;
+}
+
+// The year with the window operated (--shaded), by --shading-rule.
+OperatedYear operated(const DaylightArgs& a, const DaylightRun& run,
+                      const DaylightSensors& open_sensors, const Weather& weather,
+                      const std::vector<std::uint8_t>& occupied,
+                      const std::vector<std::uint8_t>& inside, std::vector<std::string>& notes,
+                      AnnualReplicates* replicates) {
+    const auto rule = parse_shading_rule(a.shading_rule, weather.hours.size());
+    const auto judged = judged_sensors(a, run, inside);
+    const auto state = read_shaded_state(a, run);
+    const DaylightSensors closed_sensors(
+        state.mesh, daylight_solution(state.solution, state.rad_header, a.shaded[1]),
+        daylight_options(a.sky_samples, run.rays, run.seed, run.accuracy, run.max_rays));
+    return operated_annual(open_sensors, closed_sensors, run.positions, run.normals, weather,
+                           occupied, a.choice.ground, rule, judged, inside, run.quiet, &notes,
+                           replicates);
+}
+
+void write_shading_log(const std::string& path, const OperatedYear& s) {
+    const auto& year = s.year;
+    radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
+        std::ofstream out(temp);
+        out << "month,day,hour,occupied,sunlit_share,shaded\n";
+        char line[96];
+        for (std::size_t t = 0; t < year.hours.size(); ++t) {
+            const auto h = year.hours[t];
+            std::snprintf(line, sizeof line, "%u,%u,%u,%d,%.6g,%d\n", h / 10000, h / 100 % 100,
+                          h % 100, int(year.occupied[t]), s.sunlit[t], int(s.down[t]));
+            out << line;
+        }
+        if (!out.flush()) throw SystemError(path + ": cannot write");
+    });
+}
+
+void print_shading(const DaylightArgs& a, const OperatedYear& s, int occupied_hours) {
+    std::printf("  blinds down    %6.1f %% of occupied hours (%d of %d): %s, the shaded state %s\n",
+                occupied_hours ? 100.0 * s.occupied_down / occupied_hours : 0.0, s.occupied_down,
+                occupied_hours, s.rule.c_str(), a.shaded[1].c_str());
+}
+
 int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
     const auto weather = read_epw(a.epw);
     if (weather.missing > 0)
         std::fprintf(stderr, "rad-gather: %s: %d hour(s) with missing radiation, taken as 0\n",
                      a.epw.c_str(), weather.missing);
     const auto occupied = occupied_hours(a.occupancy, weather);
+    const auto inside = sensors.inside(run.positions, run.normals);
     std::vector<std::string> notes;
     AnnualReplicates replicates;
-    const auto year =
-        annual_illuminance(sensors, run.positions, run.normals, weather, occupied, a.choice.ground,
-                           run.quiet, &notes, run.error ? &replicates : nullptr);
+    std::optional<OperatedYear> shading;
+    radfmt::AnnualData plain;
+    if (a.shaded.empty())
+        plain = annual_illuminance(sensors, run.positions, run.normals, weather, occupied,
+                                   a.choice.ground, run.quiet, &notes,
+                                   run.error ? &replicates : nullptr);
+    else
+        shading = operated(a, run, sensors, weather, occupied, inside, notes,
+                           run.error ? &replicates : nullptr);
+    const auto& year = shading ? shading->year : plain;
     for (const auto& note : notes) std::fprintf(stderr, "rad-gather: %s\n", note.c_str());
     std::vector<radfmt::Parent> parents;
     for (const auto& i : run.inputs) parents.push_back({i, nullptr});
     auto header = radfmt::derived_header(tool_version("rad-gather"), run.command, parents);
     header.set("place", weather.place);
     header.set("occupancy", a.occupancy.empty() ? "08:00-18:00 every day" : a.occupancy);
+    if (shading) {
+        header.set("shading", shading->rule + "; shaded state " + a.shaded[1] +
+                                  "; direct sun (sun_lux) with the blinds up");
+        header.set("hours_shaded", std::to_string(shading->occupied_down));
+    }
     radfmt::write_annual(run.output, header, year);
-    const auto inside = sensors.inside(run.positions, run.normals);
+    if (shading && !a.shading_log.empty()) write_shading_log(a.shading_log, *shading);
     const auto m = annual_metrics(year, inside);
     const auto errors = annual_errors(replicates, m);
     if (!a.metrics.empty())
@@ -253,11 +385,16 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
                 m.counted, weather.place.c_str(), weather.location.latitude,
                 weather.location.longitude, m.occupied_hours, occupancy_text(a.occupancy).c_str(),
                 inside_text(year.sensors() - m.counted).c_str());
+    if (shading) print_shading(a, *shading, m.occupied_hours);
     const auto pm = [&](double error) { return run.error ? percent_error(error) : std::string(); };
-    std::printf("  sDA300/50%%     %6.1f %%%s of sensors (DA300 >= 50%%)\n", 100 * m.sda,
+    std::printf("  sDA300/50%%     %6.1f %%%s of sensors (DA300 >= 50%%)", 100 * m.sda,
                 pm(errors.sda).c_str());
-    std::printf("  ASE1000,250h   %6.1f %%%s of sensors (direct sun >= 1000 lx for > 250 h)\n",
-                100 * m.ase, run.error ? " ± 0 (the sun's beam, exact)" : "");
+    if (shading)
+        std::printf(", blinds as operated (%.1f %% with them up all year)",
+                    100 * shading->open.sda);
+    std::printf("\n  ASE1000,250h   %6.1f %%%s of sensors (direct sun >= 1000 lx for > 250 h)%s\n",
+                100 * m.ase, run.error ? " ± 0 (the sun's beam, exact)" : "",
+                shading ? ", blinds up (as LM-83 computes it)" : "");
     std::printf("  DA300 mean     %6.1f %%%s of occupied hours\n", 100 * m.da300,
                 pm(errors.da300_mean).c_str());
     std::printf("  UDI 100-3000   %6.1f %%%s of occupied hours (mean)\n", 100 * m.udi_useful,

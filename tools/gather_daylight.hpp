@@ -21,6 +21,9 @@ inline constexpr int kDaylightRays = 1024;
 struct DaylightArgs {
     SkyChoice choice;
     std::string epw, occupancy, metrics;
+    // --shaded MESH RADIOSITY: the window's shaded state; --shading-rule, -group and -log.
+    std::vector<std::string> shaded;
+    std::string shading_rule = "lm83", shading_group, shading_log;
     bool daylight_factor = false, annual = false;
     int sky_samples = 64;
 };

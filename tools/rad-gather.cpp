@@ -538,6 +538,7 @@ int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
     for (const auto* extra :
          {&a.points_path, &a.surfaces_path, &a.daylight.epw, &a.daylight.occupancy})
         if (!extra->empty()) run.inputs.push_back(*extra);
+    for (const auto& state : a.daylight.shaded) run.inputs.push_back(state);
     if (a.header) run.header_line = header_line(a, run.command, mesh_header, rad_header);
     const rad::Box box = rad::bounds(mesh.vertices);
     if (a.surfaces_path.empty())
@@ -647,8 +648,12 @@ int gather(GatherArgs& a, int argc, char** argv) {
                               " file(s) given; several are for --merge)");
     a.mesh_path = a.inputs[0];
     a.rad_path = a.inputs[1];
-    rad::tool::check_outputs({a.mesh_path, a.rad_path, a.points_path, a.surfaces_path},
-                             {{"-o", a.output}, {"--png", a.png}});
+    auto inputs = std::vector<std::string>{a.mesh_path, a.rad_path, a.points_path, a.surfaces_path};
+    inputs.insert(inputs.end(), a.daylight.shaded.begin(), a.daylight.shaded.end());
+    rad::tool::check_outputs(inputs, {{"-o", a.output},
+                                      {"--png", a.png},
+                                      {"--metrics", a.daylight.metrics},
+                                      {"--shading-log", a.daylight.shading_log}});
     check_combinations(a);
     const auto grid = a.grid_text.empty() ? Grid{} : rad::parse_work_plane_grid(a.grid_text);
     // A work plane runs through furniture: a sensor inside it has no value, not an error.

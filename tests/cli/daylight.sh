@@ -249,4 +249,74 @@ worst = max(abs(v - e) / e for (v, err), e in zip(got, expected))
 print("roof opening, 300 points: +-2 errors hold the quadrature at %.1f%%, worst %.2f%%" % (100 * held, 100 * worst))
 assert 0.90 <= held <= 0.98 and worst < 0.01, (held, worst)
 PY
+# Operable blinds (#69 item 1): the glazed room's shaded state (its glass at 5% of 0.7, a blind
+# as a neutral filter, as Honeybee's LEED post-processing takes one), operated hour by hour by
+# LM-83's rule. Checked against the two states' own years: each hour is one state's, the log's
+# states follow its sunlit shares, the shares add up to the open year's sun hours, sDA is the
+# operated year's and ASE the open one's.
+V=daylight-room-glazed
+"$BIN/rad-mesh" "$S/$V.obj" -o "$TMP/shut.mesh" --max-edge 0.5 --transmittance glass=0.035,0.035,0.035 -q 2>/dev/null || fail "rad-mesh shut"
+"$BIN/rad-ff" "$TMP/shut.mesh" --sky reinhart:1 -o "$TMP/shut.sky" -q || fail "rad-ff --sky shut"
+"$BIN/rad-ff" "$TMP/shut.mesh" -o "$TMP/shut.ff" --rays 2048 -q || fail "rad-ff shut"
+"$BIN/rad-solve" "$TMP/shut.mesh" "$TMP/shut.ff" --direct "$TMP/shut.sky" -o "$TMP/shut.rad" -q || fail "rad-solve shut"
+BLIND_GRID=(--grid "0 0 4 6 0.8 4 6" --epw "$EPW" --annual)
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" "${BLIND_GRID[@]}" -o "$TMP/up.ill" --metrics "$TMP/up.csv" > "$TMP/up.txt" 2>&1 || fail "the open year: $(cat "$TMP/up.txt")"
+"$BIN/rad-gather" "$TMP/shut.mesh" "$TMP/shut.rad" "${BLIND_GRID[@]}" -o "$TMP/down.ill" -q > /dev/null 2>&1 || fail "the shaded year"
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" "${BLIND_GRID[@]}" -o "$TMP/operated.ill" \
+  --shaded "$TMP/shut.mesh" "$TMP/shut.rad" --shading-log "$TMP/log.csv" > "$TMP/operated.txt" 2>&1 || fail "--shaded: $(cat "$TMP/operated.txt")"
+grep -q "blinds down .* LM-83's rule (blinds down when more than 2% of the sensors get 1000 lx or more of direct sun), the shaded state" "$TMP/operated.txt" \
+  || fail "the hours down are not said: $(cat "$TMP/operated.txt")"
+for f in up down operated; do "$BIN/rad-info" --csv "$TMP/$f.ill" > "$TMP/$f.ill.csv" || fail "rad-info --csv $f.ill"; done
+python3 - "$TMP" <<'PY' || fail "the operated year does not follow its states"
+import csv, re, sys
+tmp = sys.argv[1]
+rows = lambda f: [line.rstrip("\n").split(",") for line in open(f"{tmp}/{f}.ill.csv")][1:]
+up, down, op = rows("up"), rows("down"), rows("operated")
+log = list(csv.DictReader(open(f"{tmp}/log.csv")))
+assert len(up) == len(down) == len(op) == len(log) == 8760
+shaded = [int(h["shaded"]) for h in log]
+for t in range(8760):
+    assert op[t] == (down if shaded[t] else up)[t], t
+    assert shaded[t] == (float(log[t]["sunlit_share"]) > 0.02), t
+occupied = [t for t in range(8760) if log[t]["occupied"] == "1"]
+downs = sum(shaded[t] for t in occupied)
+assert 100 < downs < len(occupied) - 100, downs  # the rule chooses both states
+n = len(up[0]) - 4
+# Two aggregations of the same (sensor, hour) pairs in the sun: by hour in the log, by sensor
+# in the open year's metrics.
+by_hour = sum(float(log[t]["sunlit_share"]) * n for t in occupied)
+by_sensor = sum(int(r["sun_hours"]) for r in csv.DictReader(open(f"{tmp}/up.csv")))
+assert abs(by_hour - by_sensor) < 0.01, (by_hour, by_sensor)
+def sda(year):
+    da = [sum(float(year[t][4 + k]) >= 300 for t in occupied) / len(occupied) for k in range(n)]
+    return 100 * sum(d >= 0.5 for d in da) / n
+said = open(f"{tmp}/operated.txt").read()
+up_said = open(f"{tmp}/up.txt").read()
+got = float(re.search(r"sDA300/50%\s+([\d.]+) %", said).group(1))
+assert abs(got - sda(op)) < 0.06, (got, sda(op))
+up_all_year = float(re.search(r"\(([\d.]+) % with them up all year\)", said).group(1))
+assert abs(up_all_year - sda(up)) < 0.06, (up_all_year, sda(up))
+ase = lambda text: re.search(r"ASE1000,250h\s+([\d.]+) %", text).group(1)
+assert ase(said) == ase(up_said), (ase(said), ase(up_said))
+assert "blinds up (as LM-83 computes it)" in said
+print(f"blinds down {downs} of {len(occupied)} occupied hours; sDA {got} % operated, {sda(up):.1f} % up; ASE {ase(said)} %")
+PY
+# Rules of the user's: a schedule of every hour down is the shaded year; a sun rule no sensor
+# meets is the open year (the same bytes of light).
+yes 1 | head -8760 > "$TMP/always.txt"
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" "${BLIND_GRID[@]}" -o "$TMP/always.ill" -q \
+  --shaded "$TMP/shut.mesh" "$TMP/shut.rad" --shading-rule "schedule:$TMP/always.txt" > /dev/null 2>&1 || fail "a schedule"
+[ "$("$BIN/rad-info" --csv "$TMP/always.ill")" = "$(cat "$TMP/down.ill.csv")" ] || fail "every hour down is not the shaded year"
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" "${BLIND_GRID[@]}" -o "$TMP/never.ill" -q --threads 1 \
+  --shaded "$TMP/shut.mesh" "$TMP/shut.rad" --shading-rule sun:1e9:2 > /dev/null 2>&1 || fail "a sun rule"
+[ "$(body "$TMP/never.ill")" = "$(body "$TMP/up.ill")" ] || fail "blinds never down is not the open year"
+expect_error "--shaded and the --shading- options go with --annual" "" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --grid "0 0 4 6 0.8 2 2" --sky cie-overcast --shaded "$TMP/shut.mesh" "$TMP/shut.rad"
+expect_error "give --shaded MESH RADIOSITY" "$TMP/x.ill" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" "${BLIND_GRID[@]}" -o "$TMP/x.ill" --shading-rule sun:500:5
+expect_error "is not the geometry of" "$TMP/x.ill" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" "${BLIND_GRID[@]}" -o "$TMP/x.ill" --shaded "$TMP/daylight-room.mesh" "$TMP/daylight-room.rad"
+expect_error "shading rule 'sun:1000': give sun:LUX:PERCENT" "$TMP/x.ill" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" "${BLIND_GRID[@]}" -o "$TMP/x.ill" --shaded "$TMP/shut.mesh" "$TMP/shut.rad" --shading-rule sun:1000
+
 finish

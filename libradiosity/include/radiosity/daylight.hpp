@@ -290,11 +290,26 @@ radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
                                       bool quiet = true, std::vector<std::string>* notes = nullptr,
                                       AnnualReplicates* replicates = nullptr);
 
+// A year lit by several solutions (a window's states, shading.hpp): adds to `replicates` (its
+// batches 0 at the first call: sized and zeroed here) the replicates of the occupied hours
+// `counted` marks, which this state's `sensors` lit, against the year's `lux` as operated;
+// shares are of `occupied_hours`, all the year's. Called once per state, the replicates are
+// those annual_illuminance gives a year of one state.
+void add_annual_replicates(const DaylightSensors& sensors, const std::vector<Vec3>& positions,
+                           const std::vector<Vec3>& normals, const Weather& weather,
+                           const std::vector<std::uint8_t>& counted, int occupied_hours,
+                           double ground, const std::vector<float>& lux,
+                           AnnualReplicates& replicates);
+
 // The occupied hours: 08:00 to 18:00 local standard time every day (LM-83's default), or
 // read from `path`: one 0 or 1 a line for each hour of the year (# comments and blank lines
 // skipped; InputError "FILE:LINE" otherwise, or for a count other than `hours`).
 std::vector<std::uint8_t> default_occupancy(const Weather& weather);
 std::vector<std::uint8_t> read_occupancy(const std::string& path, std::size_t hours);
+// One 0 or 1 a line for each of `hours` hours (# comments and blank lines skipped), `what`
+// naming the file's kind in its errors ("occupancy": "an occupancy line is 0 or 1 ...").
+std::vector<std::uint8_t> read_hourly_flags(const std::string& path, std::size_t hours,
+                                            std::string_view what);
 
 // Climate-based metrics over the occupied hours (IES LM-83-12, and UDI after Nabil and
 // Mardaljevic): per sensor DA300 (share of hours at 300 lx or more), the hours the sun's

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace rad {
 namespace {
@@ -89,22 +90,21 @@ namespace {
 // One sensor's replicates of the year: replicate b adds to each hour batch b's deviation from
 // the batches' mean, scaled to the size of the mean's own error (1 / sqrt(B - 1)): a draw of
 // the error the estimate has, the same rays for every hour (so its hours' errors are as
-// correlated as the estimate's). Per replicate, the shares of occupied hours at 300 lx or
-// more and within 100 to 3000 lx.
+// correlated as the estimate's). Per replicate, adds the shares of occupied hours (of
+// `occupied_hours`) at 300 lx or more and within 100 to 3000 lx, over the hours `counted`
+// marks (the occupied hours this solution lit: all of them, or a window state's).
 void sensor_replicates(const DaylightSensors& sensors, const HourlySkies& skies,
-                       const std::vector<std::uint8_t>& occupied, const Vec3& position,
-                       const Vec3& normal, std::size_t k, const std::vector<float>& lux,
-                       std::size_t n, AnnualReplicates& out) {
+                       const std::vector<std::uint8_t>& counted, int occupied_hours,
+                       const Vec3& position, const Vec3& normal, std::size_t k,
+                       const std::vector<float>& lux, std::size_t n, AnnualReplicates& out) {
     int batches = 0;
     const auto c = sensors.reflected_batch_coefficients(position, normal, k, batches);
-    if (batches < 2 || batches != out.batches) return;
-    const std::size_t count = skies.count, hours = occupied.size(), b_count = std::size_t(batches);
+    if (batches < 2 || batches != out.batches || occupied_hours == 0) return;
+    const std::size_t count = skies.count, hours = counted.size(), b_count = std::size_t(batches);
     const double scale = 1 / std::sqrt(double(batches - 1));
     std::vector<double> da(b_count, 0.0), udi(b_count, 0.0), r(b_count, 0.0);
-    int occupied_hours = 0;
     for (std::size_t t = 0; t < hours; ++t) {
-        if (!occupied[t]) continue;
-        ++occupied_hours;
+        if (!counted[t]) continue;
         const float* lr = &skies.reflected[t * count];
         double mean = 0;
         for (std::size_t b = 0; b < b_count; ++b) {
@@ -119,11 +119,37 @@ void sensor_replicates(const DaylightSensors& sensors, const HourlySkies& skies,
         }
     }
     for (std::size_t b = 0; b < b_count; ++b) {
-        out.da300[k * b_count + b] = occupied_hours ? da[b] / occupied_hours : 0;
-        out.udi_useful[k * b_count + b] = occupied_hours ? udi[b] / occupied_hours : 0;
+        out.da300[k * b_count + b] += da[b] / occupied_hours;
+        out.udi_useful[k * b_count + b] += udi[b] / occupied_hours;
     }
 }
+
+int count_of(const std::vector<std::uint8_t>& flags) {
+    return int(std::count(flags.begin(), flags.end(), 1));
+}
+
+// The replicates' storage for n sensors, zero (nothing added yet).
+void start_replicates(const DaylightSensors& sensors, std::size_t n, AnnualReplicates& out) {
+    const int batches = sensors.reflected_batch_count();
+    out.batches = batches >= 2 ? batches : 0;
+    out.da300.assign(n * std::size_t(out.batches), 0.0);
+    out.udi_useful.assign(n * std::size_t(out.batches), 0.0);
+}
 } // namespace
+
+void add_annual_replicates(const DaylightSensors& sensors, const std::vector<Vec3>& positions,
+                           const std::vector<Vec3>& normals, const Weather& weather,
+                           const std::vector<std::uint8_t>& counted, int occupied_hours,
+                           double ground, const std::vector<float>& lux,
+                           AnnualReplicates& replicates) {
+    const std::size_t n = positions.size();
+    if (replicates.batches == 0) start_replicates(sensors, n, replicates);
+    const auto skies = hourly_skies(weather, sensors.patches(), sensors.frame(), ground);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
+        sensor_replicates(sensors, skies, counted, occupied_hours, positions[k], normals[k], k, lux,
+                          n, replicates);
+    });
+}
 
 radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
                                       const std::vector<Vec3>& positions,
@@ -152,12 +178,8 @@ radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
         year.hours.push_back(std::uint32_t(h.month * 10000 + h.day * 100 + h.hour));
     year.lux.assign(hours * n, 0.0f);
     year.sun_lux.assign(hours * n, 0.0f);
-    if (replicates) {
-        const int batches = sensors.reflected_batch_count();
-        replicates->batches = batches >= 2 ? batches : 0;
-        replicates->da300.assign(n * std::size_t(replicates->batches), 0.0);
-        replicates->udi_useful.assign(n * std::size_t(replicates->batches), 0.0);
-    }
+    if (replicates) start_replicates(sensors, n, *replicates);
+    const int occupied_hours = count_of(occupied);
     Progress progress("rad-gather year", n, quiet);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
         const auto c = sensors.coefficients(positions[k], normals[k], k);
@@ -175,8 +197,8 @@ radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
             year.sun_lux[t * n + k] = float(sun);
         }
         if (replicates)
-            sensor_replicates(sensors, skies, occupied, positions[k], normals[k], k, year.lux, n,
-                              *replicates);
+            sensor_replicates(sensors, skies, occupied, occupied_hours, positions[k], normals[k], k,
+                              year.lux, n, *replicates);
         progress.advance(1);
     });
     progress.finish();
@@ -189,7 +211,8 @@ std::vector<std::uint8_t> default_occupancy(const Weather& weather) {
     return out;
 }
 
-std::vector<std::uint8_t> read_occupancy(const std::string& path, std::size_t hours) {
+std::vector<std::uint8_t> read_hourly_flags(const std::string& path, std::size_t hours,
+                                            std::string_view what) {
     LineReader in(path);
     std::vector<std::uint8_t> out;
     std::string line;
@@ -200,14 +223,20 @@ std::vector<std::uint8_t> read_occupancy(const std::string& path, std::size_t ho
         const auto word = line.substr(first, last - first + 1);
         if (word != "0" && word != "1")
             throw InputError(FileLoc{path, in.line_number()},
-                             "an occupancy line is 0 or 1 (one a line for each hour of the "
-                             "year), not '" +
+                             std::string(std::strchr("aeiou", what.front()) ? "an " : "a ") +
+                                 std::string(what) +
+                                 " line is 0 or 1 (one a line for each hour of the year), not '" +
                                  quoted_prefix(word) + "'");
         out.push_back(word == "1");
     }
     if (out.size() != hours)
-        throw InputError(path + ": " + std::to_string(out.size()) +
-                         " hours of occupancy; the weather file has " + std::to_string(hours));
+        throw InputError(path + ": " + std::to_string(out.size()) + " hours of " +
+                         std::string(what) + "; the weather file has " + std::to_string(hours));
+    return out;
+}
+
+std::vector<std::uint8_t> read_occupancy(const std::string& path, std::size_t hours) {
+    const auto out = read_hourly_flags(path, hours, "occupancy");
     // sDA, ASE and DA are shares of occupied hours: with none they mean nothing (a 0% and a
     // "fails" would be a verdict over no hour at all).
     if (std::find(out.begin(), out.end(), 1) == out.end())
