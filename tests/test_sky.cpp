@@ -4,6 +4,7 @@
 #include "helpers.hpp"
 #include "radiosity/build_mesh.hpp"
 #include "radiosity/daylight.hpp"
+#include "radiosity/daylight_glare.hpp"
 #include "radiosity/en17037.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/shading.hpp"
@@ -542,4 +543,95 @@ TEST_CASE("shading rules that cannot be read are refused, naming the fix", "[sky
     CHECK(rad::parse_shading_rule("schedule:" + path.string(), 3).schedule ==
           std::vector<std::uint8_t>{0, 1, 1});
     std::filesystem::remove(path);
+}
+
+TEST_CASE("DGP: the formula with evalglare's constants, the low-light correction, the position "
+          "index above (Guth) and below (Iwata) the line of sight (#69 item 2)",
+          "[sky]") {
+    rad::GlareSource source;
+    source.luminance = 5000;
+    source.solid_angle = 0.05;
+    source.position_index = 1.5;
+    // 0.159 + 5.87e-5 x 2000 + 0.092 log10(1 + 5000^2 x 0.05 / 1.5^2 / 2000^1.87), by hand.
+    CHECK(rad::daylight_glare_probability(2000, {source}, true) == Approx(0.289068).epsilon(1e-5));
+    CHECK(rad::daylight_glare_probability(2000, {}, true) == Approx(0.159 + 5.87e-5 * 2000));
+    double factor = 0;
+    rad::daylight_glare_probability(500, {source}, true, &factor);
+    CHECK(factor == Approx(0.999665).epsilon(1e-5)); // exp(8) / (1 + exp(8))
+    rad::daylight_glare_probability(100, {source}, true, &factor);
+    CHECK(factor == Approx(0.167982).epsilon(1e-5));
+    rad::daylight_glare_probability(100, {source}, false, &factor);
+    CHECK(factor == 1);
+    CHECK(rad::daylight_glare_probability(1e6, {source}, true) == 1); // capped
+    const rad::Vec3 view{1, 0, 0}, up{0, 1, 0};
+    const auto toward = [](double elevation_deg) {
+        const double e = elevation_deg * kPi / 180;
+        return rad::Vec3{std::cos(e), std::sin(e), 0};
+    };
+    CHECK(rad::dgp_position_index(view, up, view) == Approx(1));
+    double sigma = 0, tau = 0;
+    // 30 degrees straight above: Guth's exp((35.2 - 1.22) 1e-3 x 30 + 21e-5 x 30^2).
+    CHECK(rad::dgp_position_index(view, up, toward(30), &sigma, &tau) ==
+          Approx(3.348123).epsilon(1e-5));
+    CHECK(sigma == Approx(30));
+    CHECK(tau == Approx(0).margin(1e-6));
+    // 30 degrees straight below: Iwata's, beta = atan(tan 30 sqrt(1 + 0.3225)) = 33.58 deg.
+    CHECK(rad::dgp_position_index(view, up, toward(-30), &sigma, &tau) ==
+          Approx(1.575828).epsilon(1e-5));
+    CHECK(tau == Approx(180));
+    // Far to the side and up: capped at 16.
+    CHECK(rad::dgp_position_index(view, up, rad::normalized(rad::Vec3{0.05, 1, 1})) == 16);
+}
+
+TEST_CASE("DGP under open skies: Ev of a uniform sky and its ground, one source over the "
+          "threshold, the sun's disc (#69 item 2)",
+          "[sky]") {
+    // A speck far behind the eye: the view's hemisphere sees only the sky and the ground.
+    std::string obj;
+    int n = 0;
+    quad_obj(obj, n, {{-100, 0, -0.1}, {-100, 0, 0.1}, {-100, 0.2, 0.1}, {-100, 0.2, -0.1}});
+    const auto mesh = black_mesh(obj);
+    radfmt::SkyData view;
+    view.sky_patches = rad::SkyPatches(1).count();
+    view.patch_count = mesh.patches.size();
+    view.coefficients.assign(mesh.patches.size() * view.sky_patches * 3, 0.0f);
+    const rad::DaylightLuminance luminance(mesh, dark_solution(mesh), view);
+    const rad::Vec3 eye{0, 1.5, 0}, look{1, 0, 0};
+    // The uniform sky of L over a ground of 0.2 L (0.2 x pi L / pi): Ev = pi/2 (L + 0.2 L).
+    const auto dim = luminance.glare(rad::Sky::uniform(2000, rad::SkyFrame{}, 0.2), eye, look);
+    CHECK(dim.ev == Approx(0.6 * kPi * 2000).epsilon(0.002));
+    CHECK(dim.mean_luminance == Approx(0.6 * 2000).epsilon(0.002));
+    CHECK(dim.sources.empty()); // 2000 cd/m^2 does not exceed the threshold of 2000
+    CHECK(dim.dgp == Approx(0.159 + 5.87e-5 * dim.ev));
+    const auto bright = luminance.glare(rad::Sky::uniform(5000, rad::SkyFrame{}, 0.2), eye, look);
+    REQUIRE(bright.sources.size() == 1); // the sky's quarter sphere, one source; the ground not
+    CHECK(bright.sources[0].luminance == Approx(5000).epsilon(1e-6));
+    CHECK(bright.sources[0].solid_angle == Approx(kPi).epsilon(0.002));
+    CHECK(bright.dgp == Approx(rad::daylight_glare_probability(bright.ev, bright.sources, true)));
+    // A tenth of the threshold makes it 5 x the mean luminance (evalglare's factor): 3000 cd/m^2
+    // at a mean of 3000, so no source.
+    rad::GlareOptions factor;
+    factor.threshold = 5;
+    CHECK(luminance.glare(rad::Sky::uniform(5000, rad::SkyFrame{}, 0.2), eye, look, factor)
+              .sources.empty());
+    // The clear sky's sun ahead at 20 degrees: its disc is a source of E / (2 pi (1 - cos
+    // 0.2665 deg)), and Ev holds its beam x cos 20.
+    rad::SunPosition sun;
+    sun.zenith = 70;
+    sun.azimuth = 90; // east: +X in the default compass
+    const auto clear = rad::Sky::clear(sun, rad::SkyFrame{}, 0.2);
+    const auto sunny = luminance.glare(clear, eye, look);
+    const auto disc = std::find_if(sunny.sources.begin(), sunny.sources.end(),
+                                   [](const rad::GlareSource& s) { return s.sun; });
+    REQUIRE(disc != sunny.sources.end());
+    const double omega = 2 * kPi * (1 - std::cos(0.2665 * kPi / 180));
+    CHECK(disc->solid_angle == Approx(omega));
+    CHECK(disc->luminance == Approx(clear.sun_normal_illuminance() / omega));
+    CHECK(disc->sigma_deg == Approx(20).margin(0.05));
+    CHECK(sunny.ev > clear.sun_normal_illuminance() * std::cos(20 * kPi / 180));
+    CHECK(sunny.dgp == 1); // the sun in the eye
+    // Looking away from it (west), no disc.
+    const auto away = luminance.glare(clear, eye, {-1, 0, 0});
+    CHECK(std::none_of(away.sources.begin(), away.sources.end(),
+                       [](const rad::GlareSource& s) { return s.sun; }));
 }

@@ -3,6 +3,7 @@
 
 #include "radfmt/chain.hpp"
 #include "radiosity/daylight.hpp"
+#include "radiosity/daylight_glare.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/falsecolour.hpp"
 #include "radiosity/progress.hpp"
@@ -19,6 +20,7 @@
 #include <cstdio>
 #include <fstream>
 #include <optional>
+#include <sstream>
 
 namespace rad::tool {
 
@@ -65,6 +67,26 @@ void add_daylight_options(CLI::App& app, DaylightArgs& a) {
                    "occupied,sunlit_share,shaded): the share of the watched sensors with the "
                    "rule's direct sun (1000 lx unless sun:LUX:...) with the blinds up, and 1 "
                    "where the shaded state was used");
+    app.add_option("--glare", a.glare,
+                   "Daylight glare at an eye at x y z looking along dx dy dz (+Y up), \"x y z "
+                   "dx dy dz\": the daylight glare probability (DGP, Wienold and "
+                   "Christoffersen 2006, as Radiance's evalglare computes it from a fisheye "
+                   "picture). With --sky: the vertical illuminance Ev and the glare sources, one "
+                   "CSV line a view (x,y,z,dx,dy,dz,ev,dgp,sources,mean_luminance,low_light) on "
+                   "-o. With --epw --annual: DGP at every occupied hour, the shares of them over "
+                   "0.35, 0.40 and 0.45 and EN 17037's glare level, one CSV line a view "
+                   "(x,y,z,dx,dy,dz,hours,over_035,over_040,over_045,mean_dgp,en17037) on -o "
+                   "(repeatable)");
+    app.add_option("--glare-hours", a.glare_hours,
+                   "With --annual --glare: write every hour's DGP as CSV (month,day,hour,"
+                   "occupied, then each view's dgp and ev; empty where not occupied)");
+    app.add_option("--glare-threshold", a.glare_threshold,
+                   "--glare: the luminance (cd/m^2) over which a direction belongs to a glare "
+                   "source; at most 100: that times the view's mean luminance (evalglare -b)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e12));
+    app.add_flag("--glare-no-low-light", a.glare_no_low_light,
+                 "--glare: leave out DGP's low-light correction below 1000 lx of Ev");
     app.add_option("--sky-samples", a.sky_samples,
                    "Daylight: directions per sky patch a sensor traces (rounded to a square)")
         ->capture_default_str()
@@ -72,7 +94,12 @@ void add_daylight_options(CLI::App& app, DaylightArgs& a) {
 }
 
 bool wants_daylight(const DaylightArgs& a) {
-    return !a.choice.sky.empty() || a.annual || a.daylight_factor || !a.epw.empty();
+    return !a.choice.sky.empty() || a.annual || a.daylight_factor || !a.epw.empty() ||
+           !a.glare.empty();
+}
+
+bool wants_glare(const DaylightArgs& a) {
+    return !a.glare.empty();
 }
 
 namespace {
@@ -83,7 +110,7 @@ void check_daylight_args(const DaylightArgs& a, const DaylightRun& run) {
         throw InputError("daylight needs --sky SPEC (an instant) or --epw FILE --annual (a year)");
     }
     if (a.annual && a.epw.empty()) throw InputError("--annual needs --epw FILE");
-    if (a.annual && run.output.empty())
+    if (a.annual && a.glare.empty() && run.output.empty())
         throw InputError("--annual writes a binary .ill file: give -o FILE");
     if (a.daylight_factor && a.annual)
         throw InputError("--daylight-factor is for --sky cie-overcast, not --annual");
@@ -98,6 +125,12 @@ void check_daylight_args(const DaylightArgs& a, const DaylightRun& run) {
                          "--shaded's state is used: give --shaded MESH RADIOSITY");
     if (!a.shading_group.empty() && run.surfaces.empty())
         throw InputError("--shading-group names a calculation surface: give --surfaces FILE");
+    if (!a.glare.empty() && a.daylight_factor)
+        throw InputError("--glare gives DGP, not daylight factors: leave out --daylight-factor");
+    if (!a.glare_hours.empty() && !(a.annual && !a.glare.empty()))
+        throw InputError("--glare-hours goes with --annual --glare");
+    if (!a.glare.empty() && a.annual && (!a.shaded.empty() || !a.metrics.empty()))
+        throw InputError("--annual --glare gives DGP at views: not with --shaded or --metrics");
     if (a.annual && run.error && a.metrics.empty())
         throw InputError("--annual --error writes the metrics' errors beside them: give "
                          "--metrics FILE");
@@ -416,6 +449,134 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
 }
 } // namespace
 
+namespace {
+// "x y z dx dy dz" of --glare.
+std::pair<Vec3, Vec3> glare_view(const std::string& text) {
+    std::istringstream in(text);
+    Vec3 eye{}, view{};
+    if (!(in >> eye[0] >> eye[1] >> eye[2] >> view[0] >> view[1] >> view[2]) ||
+        !(in >> std::ws).eof())
+        throw InputError("--glare '" + text +
+                         "': give the eye and the direction it looks, \"x y z dx dy dz\"");
+    for (const double v : {eye[0], eye[1], eye[2], view[0], view[1], view[2]})
+        if (!std::isfinite(v)) throw InputError("--glare '" + text + "': a number is not finite");
+    if (length(view) == 0) throw InputError("--glare '" + text + "': the direction is zero");
+    return {eye, normalized(view)};
+}
+
+void print_glare(const std::string& text, const DaylightGlare& g) {
+    std::fprintf(
+        stderr,
+        "rad-gather: glare at %s: DGP %.3f, Ev %.0f lx, %zu glare source(s) over %.0f "
+        "cd/m^2, mean luminance %.0f cd/m^2%s\n",
+        text.c_str(), g.dgp, g.ev, g.sources.size(), g.threshold, g.mean_luminance,
+        g.low_light < 1 ? (", low-light correction x" + std::to_string(g.low_light)).c_str() : "");
+    for (const auto& s : g.sources)
+        std::fprintf(stderr,
+                     "  %s: %.4g cd/m^2 over %.3g sr, %.1f deg from the line of sight (tau %.0f "
+                     "deg), position index %.2f\n",
+                     s.sun ? "the sun" : "source", s.luminance, s.solid_angle, s.sigma_deg,
+                     s.tau_deg, s.position_index);
+}
+
+void write_glare_hours(const std::string& path, const Weather& weather,
+                       const std::vector<std::uint8_t>& occupied,
+                       const std::vector<std::vector<DaylightGlare>>& views) {
+    radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
+        std::ofstream out(temp);
+        out << "month,day,hour,occupied";
+        for (std::size_t v = 0; v < views.size(); ++v) out << ",dgp" << v + 1 << ",ev" << v + 1;
+        out << '\n';
+        char text[64];
+        for (std::size_t t = 0; t < weather.hours.size(); ++t) {
+            const auto& h = weather.hours[t];
+            out << h.month << ',' << h.day << ',' << h.hour << ',' << int(occupied[t]);
+            for (const auto& view : views) {
+                if (std::isfinite(view[t].dgp))
+                    std::snprintf(text, sizeof text, ",%.4f,%.6g", view[t].dgp, view[t].ev);
+                else
+                    std::snprintf(text, sizeof text, ",,");
+                out << text;
+            }
+            out << '\n';
+        }
+        if (!out.flush()) throw SystemError(path + ": cannot write");
+    });
+}
+
+int annual_glare(const DaylightArgs& a, const DaylightRun& run, const DaylightLuminance& luminance,
+                 const std::vector<std::pair<Vec3, Vec3>>& views, GlareOptions options) {
+    const auto weather = read_epw(a.epw);
+    const auto occupied = occupied_hours(a.occupancy, weather);
+    const auto solution = daylight_solution(*run.solution, *run.rad_header, run.rad_path);
+    const auto skies = hourly_skies(weather, solution.patches, solution.frame, a.choice.ground);
+    options.rings = kAnnualGlareRings;
+    std::vector<std::vector<DaylightGlare>> hours;
+    for (const auto& [eye, view] : views)
+        hours.push_back(luminance.annual_glare(skies, occupied, eye, view, options));
+    if (!a.glare_hours.empty()) write_glare_hours(a.glare_hours, weather, occupied, hours);
+    std::vector<GlareYear> years;
+    for (const auto& h : hours) years.push_back(summarise_glare_year(h));
+    write_output(run.output, [&](std::FILE* out) {
+        if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
+        std::fprintf(out, "x,y,z,dx,dy,dz,hours,over_035,over_040,over_045,mean_dgp,en17037\n");
+        for (std::size_t k = 0; k < views.size(); ++k) {
+            const auto& [eye, view] = views[k];
+            const auto& y = years[k];
+            std::fprintf(out, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.4f,%.4f,%.4f,%.4f,%s\n", eye[0],
+                         eye[1], eye[2], view[0], view[1], view[2], y.hours, y.over_035, y.over_040,
+                         y.over_045, y.mean, y.en17037());
+        }
+    });
+    if (!run.quiet)
+        for (std::size_t k = 0; k < views.size(); ++k) {
+            const auto& y = years[k];
+            std::fprintf(stderr,
+                         "rad-gather: glare at %s over %d occupied hour(s), %s: DGP over 0.35 in "
+                         "%.1f%%, over 0.40 in %.1f%%, over 0.45 in %.1f%% of them (mean %.3f); "
+                         "EN 17037's protection from glare: %s\n",
+                         a.glare[k].c_str(), y.hours, weather.place.c_str(), 100 * y.over_035,
+                         100 * y.over_040, 100 * y.over_045, y.mean, y.en17037());
+        }
+    return 0;
+}
+
+int glare(const DaylightArgs& a, const DaylightRun& run) {
+    if (a.choice.sky.empty() && !a.annual)
+        throw InputError("--glare needs a sky: --sky SPEC (with --sun or --date for the sun), or "
+                         "a year: --epw FILE --annual");
+    GlareOptions options;
+    options.threshold = a.glare_threshold;
+    options.low_light = !a.glare_no_low_light;
+    std::vector<std::pair<Vec3, Vec3>> views;
+    for (const auto& text : a.glare) views.push_back(glare_view(text));
+    const auto view_file =
+        solution_sky_view(*run.rad_header, run.rad_path, run.direct_path, *run.mesh, run.inputs[0]);
+    const DaylightLuminance luminance(
+        *run.mesh, daylight_solution(*run.solution, *run.rad_header, run.rad_path), view_file);
+    if (a.annual) return annual_glare(a, run, luminance, views, options);
+    const auto sky = sky_of(a.choice, a.epw, daylight_frame(*run.rad_header, run.rad_path));
+    if (!run.quiet) std::fprintf(stderr, "rad-gather: %s\n", sky.describe().c_str());
+    std::vector<DaylightGlare> results;
+    for (const auto& [eye, view] : views)
+        results.push_back(luminance.glare(sky, eye, view, options));
+    write_output(run.output, [&](std::FILE* out) {
+        if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
+        std::fprintf(out, "x,y,z,dx,dy,dz,ev,dgp,sources,mean_luminance,low_light\n");
+        for (std::size_t k = 0; k < views.size(); ++k) {
+            const auto& [eye, view] = views[k];
+            const auto& g = results[k];
+            std::fprintf(out, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.4f,%zu,%.6g,%.4f\n", eye[0],
+                         eye[1], eye[2], view[0], view[1], view[2], g.ev, g.dgp, g.sources.size(),
+                         g.mean_luminance, g.low_light);
+        }
+    });
+    if (!run.quiet)
+        for (std::size_t k = 0; k < views.size(); ++k) print_glare(a.glare[k], results[k]);
+    return 0;
+}
+} // namespace
+
 DaylightOptions daylight_options(int sky_samples, int rays, std::uint64_t seed, double accuracy,
                                  int max_rays) {
     DaylightOptions options;
@@ -438,6 +599,7 @@ std::string occupancy_text(const std::string& occupancy) {
 
 int gather_daylight(const DaylightArgs& a, const DaylightRun& run) {
     check_daylight_args(a, run);
+    if (!a.glare.empty()) return glare(a, run);
     const DaylightSensors sensors(
         *run.mesh, daylight_solution(*run.solution, *run.rad_header, run.rad_path),
         daylight_options(a.sky_samples, run.rays, run.seed, run.accuracy, run.max_rays));

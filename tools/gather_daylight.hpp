@@ -24,6 +24,11 @@ struct DaylightArgs {
     // --shaded MESH RADIOSITY: the window's shaded state; --shading-rule, -group and -log.
     std::vector<std::string> shaded;
     std::string shading_rule = "lm83", shading_group, shading_log;
+    // --glare "x y z dx dy dz" (repeatable), --glare-threshold, --glare-no-low-light.
+    std::vector<std::string> glare;
+    std::string glare_hours; // --annual --glare: every hour's DGP as CSV
+    double glare_threshold = 2000;
+    bool glare_no_low_light = false;
     bool daylight_factor = false, annual = false;
     int sky_samples = 64;
 };
@@ -36,6 +41,7 @@ struct DaylightRun {
     const radfmt::RadiosityData* solution = nullptr;
     const radfmt::Header* rad_header = nullptr;
     std::string rad_path, output, png, header_line;
+    std::string direct_path;         // --direct: the .sky when it has moved
     std::vector<std::string> inputs; // for the .ill's provenance
     std::string command;
     std::vector<Vec3> positions, normals;
@@ -53,6 +59,8 @@ struct DaylightRun {
     double lux_max = 0;
 };
 int gather_daylight(const DaylightArgs& a, const DaylightRun& run);
+// --glare: DGP at each view under --sky; needs no sensors.
+bool wants_glare(const DaylightArgs& a);
 
 // What a command line makes of the sensors' daylight (rad-gather, rad-report): --sky-samples
 // rounded to a square, the room's reflected light's rays, the seed, and --accuracy's rounds

@@ -540,6 +540,8 @@ int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
         if (!extra->empty()) run.inputs.push_back(*extra);
     for (const auto& state : a.daylight.shaded) run.inputs.push_back(state);
     if (a.header) run.header_line = header_line(a, run.command, mesh_header, rad_header);
+    run.direct_path = a.direct_path;
+    if (rad::tool::wants_glare(a.daylight)) return rad::tool::gather_daylight(a.daylight, run);
     const rad::Box box = rad::bounds(mesh.vertices);
     if (a.surfaces_path.empty())
         read_daylight_sensors(a, grid, box, run);

@@ -319,4 +319,82 @@ expect_error "is not the geometry of" "$TMP/x.ill" \
 expect_error "shading rule 'sun:1000': give sun:LUX:PERCENT" "$TMP/x.ill" \
   "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" "${BLIND_GRID[@]}" -o "$TMP/x.ill" --shaded "$TMP/shut.mesh" "$TMP/shut.rad" --shading-rule sun:1000
 
+# Daylight glare (#69 item 2): under the overcast sky the glare's Ev (its own hemisphere of
+# directions) is the vertical illuminance rad-gather's sensors read (the sky traced, the
+# room's light by rays); the sun seen through the window is a source of its own and DGP 1;
+# the same bytes at 1 and 2 threads; refusals.
+GLARE_VIEWS=("2 1.2 2 0 0 1" "2 1.2 2 1 0 0" "3.5 1.2 4 -1 0 0")
+glare_args=(); for v in "${GLARE_VIEWS[@]}"; do glare_args+=(--glare "$v"); done
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky cie-overcast "${glare_args[@]}" -o "$TMP/glare.csv" -q || fail "--glare"
+printf '%s\n' "${GLARE_VIEWS[@]}" | "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky cie-overcast --error --rays 4096 -q > "$TMP/vertical.txt" || fail "vertical sensors"
+python3 - "$TMP/glare.csv" "$TMP/vertical.txt" <<'PY' || fail "the glare's Ev is not the sensors' vertical illuminance"
+import csv, sys
+glare = list(csv.DictReader(open(sys.argv[1])))
+sensors = [list(map(float, l.split())) for l in open(sys.argv[2])]
+for g, (lux, err) in zip(glare, sensors):
+    ev = float(g["ev"])
+    assert abs(ev - lux) <= max(0.02 * lux, 3 * err), (ev, lux, err)
+    assert float(g["dgp"]) < 0.35 and g["sources"] == "0", g
+print("overcast: Ev %s against %s" % ([round(float(g["ev"])) for g in glare], [round(s[0]) for s in sensors]))
+PY
+CLEAR=(--sky clear --date 2021-12-21 --time 12:00 --location 39.83,-104.65,-7)
+err=$("$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" "${CLEAR[@]}" --glare "1 1.2 4.2 0.3 0 1" --glare "2 1.2 2 1 0 0" -o "$TMP/sun.csv" 2>&1) || fail "--glare in the sun: $err"
+grep -q "^  the sun: .* cd/m^2 over 6.8e-05 sr" <<<"$err" || fail "the sun's disc is not a source: $err"
+python3 - "$TMP/sun.csv" <<'PY' || fail "DGP in the sun"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert float(rows[0]["dgp"]) == 1 and float(rows[0]["ev"]) > 30000, rows[0]
+assert 0.2 < float(rows[1]["dgp"]) < 0.6, rows[1]
+PY
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" "${CLEAR[@]}" --glare "1 1.2 4.2 0.3 0 1" --glare "2 1.2 2 1 0 0" -o "$TMP/sun1.csv" --threads 1 -q
+cmp -s "$TMP/sun.csv" "$TMP/sun1.csv" || fail "--glare differs at 1 and 2 threads"
+expect_error "--glare '1 2 3': give the eye and the direction it looks" "$TMP/x.csv" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky cie-overcast --glare "1 2 3" -o "$TMP/x.csv"
+expect_error "the direction is zero" "$TMP/x.csv" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky cie-overcast --glare "1 2 3 0 0 0" -o "$TMP/x.csv"
+expect_error "must not look straight up or down" "$TMP/x.csv" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky cie-overcast --glare "1 1 3 0 1 0" -o "$TMP/x.csv"
+expect_error "--glare gives DGP, not daylight factors" "$TMP/x.csv" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky cie-overcast --daylight-factor -o "$TMP/x.csv" --glare "1 1 3 0 0 1"
+mv "$TMP/$V.sky" "$TMP/moved.sky"
+expect_error "the sky-view file the solution was solved with is not there" "$TMP/x.csv" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky cie-overcast --glare "1 1 3 0 0 1" -o "$TMP/x.csv"
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky cie-overcast --glare "1 1 3 0 0 1" --direct "$TMP/moved.sky" -o "$TMP/moved.csv" -q || fail "--direct for a moved .sky"
+mv "$TMP/moved.sky" "$TMP/$V.sky"
+
+# A year of glare (#69 item 2) on the hours of 21 December (the occupancy file): each hour's
+# DGP and Ev by daylight coefficients agree with the instant's under that hour's Perez sky at
+# its middle; the shares over 0.35, 0.40 and 0.45 are those of the hours written.
+python3 - "$EPW" "$TMP/december.txt" <<'PY'
+import sys
+rows = [l.split(",") for l in open(sys.argv[1]).readlines()[8:]]
+with open(sys.argv[2], "w") as out:
+    for r in rows: out.write("1\n" if (r[1], r[2]) == ("12", "21") and 9 <= int(r[3]) <= 16 else "0\n")
+PY
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --epw "$EPW" --annual --occupancy "$TMP/december.txt" \
+  --glare "2 1.2 2 0 0 1" --glare "2 1.2 2 1 0 0" --glare-hours "$TMP/glare-hours.csv" -o "$TMP/glare-year.csv" 2> "$TMP/glare-year.txt" \
+  || fail "--annual --glare: $(cat "$TMP/glare-year.txt")"
+grep -q "glare at 2 1.2 2 0 0 1 over 8 occupied hour(s), .*EN 17037's protection from glare: " "$TMP/glare-year.txt" || fail "the year's glare is not said: $(cat "$TMP/glare-year.txt")"
+read -r dni dhi < <(awk -F, 'NR > 8 && $2 == 12 && $3 == 21 && $4 == 12 { print $15, $16 }' "$EPW")
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky "perez:$dni,$dhi" --epw "$EPW" --date 2021-12-21 --time 11:30 \
+  --glare "2 1.2 2 0 0 1" --glare "2 1.2 2 1 0 0" -o "$TMP/glare-noon.csv" -q || fail "--glare under the hour's Perez sky"
+python3 - "$TMP/glare-hours.csv" "$TMP/glare-noon.csv" "$TMP/glare-year.csv" <<'PY' || fail "a year's glare disagrees with its hours"
+import csv, sys
+hours = list(csv.DictReader(open(sys.argv[1])))
+assert len(hours) == 8760
+noon = next(h for h in hours if (h["month"], h["day"], h["hour"]) == ("12", "21", "12"))
+for k, g in enumerate(csv.DictReader(open(sys.argv[2])), 1):
+    ev, dgp = float(noon["ev%d" % k]), float(noon["dgp%d" % k])
+    assert abs(ev - float(g["ev"])) <= 0.03 * float(g["ev"]), (k, ev, g["ev"])
+    assert abs(dgp - float(g["dgp"])) <= 0.01, (k, dgp, g["dgp"])
+for k, y in enumerate(csv.DictReader(open(sys.argv[3])), 1):
+    dgps = [float(h["dgp%d" % k]) for h in hours if h["occupied"] == "1"]
+    assert int(y["hours"]) == len(dgps) == 8
+    assert all(h["dgp%d" % k] == "" for h in hours if h["occupied"] == "0")
+    for t in ("035", "040", "045"):
+        assert abs(float(y["over_" + t]) - sum(d > int(t) / 100 for d in dgps) / 8) < 1e-4, (k, t)
+print("noon of 21 December: the year's DGP %s, the instant's %s" % (
+    [noon["dgp1"], noon["dgp2"]], [g["dgp"] for g in csv.DictReader(open(sys.argv[2]))]))
+PY
+
 finish

@@ -276,6 +276,27 @@ struct AnnualMetrics;
 AnnualErrors annual_errors(const AnnualReplicates& replicates, const AnnualMetrics& metrics,
                            std::size_t first = 0);
 
+// A year's skies as the daylight coefficients take them: per hour Perez's sky from the weather
+// file's radiation (the sun at mid-hour), each sky patch's mean luminance (4 x 4 directions a
+// patch) for the sky seen directly, and for the light the room reflects the same with the
+// sun's beam added to the patch it is in (the luminance that patch would need to give the
+// beam's illuminance); the sun's direction and beam. Parallel over the hours.
+struct HourlySkies {
+    std::size_t count = 0;                // sky patches
+    std::vector<float> direct, reflected; // [hour * count + s], cd/m^2
+    std::vector<Vec3> sun;                // per hour
+    std::vector<double> sun_lux;          // the beam's normal illuminance, 0 when down
+    std::vector<std::int64_t> sun_patch;  // the patch the beam was added to (-1: none)
+    std::vector<double> beam_luminance;   // what was added to it, cd/m^2
+    std::vector<std::uint8_t> adjusted;   // per hour: its Perez sky was adjusted
+    // Per hour: the record gives light (DNI or DHI above 0) though the sun is below the
+    // horizon all hour (a weather file's fault: Mannheim's gives DNI 47 W/m^2 through 1,316
+    // nights' hours); dark all the same.
+    std::vector<std::uint8_t> night_light;
+};
+HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, const SkyFrame& frame,
+                         double ground);
+
 // A year at sensors from a weather file: per hour Perez's sky from its radiation (the sun at
 // mid-hour), the sky's light through the coefficients, the sun's beam traced at each sensor.
 // `occupied`: one flag per hour. `ground`: the ground's reflectance. Parallel over the

@@ -22,17 +22,7 @@ constexpr int kHourlySide = 4;
 // horizon: it moves at most 15 degrees an hour): whatever light the record gives, it is dark.
 constexpr double kNightZenith = 98;
 
-struct HourlySkies {
-    std::size_t count = 0;                // sky patches
-    std::vector<float> direct, reflected; // [hour * count + s], cd/m^2
-    std::vector<Vec3> sun;                // per hour
-    std::vector<double> sun_lux;          // the beam's normal illuminance, 0 when down
-    std::vector<std::uint8_t> adjusted;   // per hour: its Perez sky was adjusted
-    // Per hour: the record gives light (DNI or DHI above 0) though the sun is below the
-    // horizon all hour (a weather file's fault: Mannheim's gives DNI 47 W/m^2 through 1,316
-    // nights' hours); dark all the same.
-    std::vector<std::uint8_t> night_light;
-};
+} // namespace
 
 HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, const SkyFrame& frame,
                          double ground) {
@@ -45,6 +35,8 @@ HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, cons
     out.sun_lux.assign(hours, 0.0);
     out.adjusted.assign(hours, 0);
     out.night_light.assign(hours, 0);
+    out.sun_patch.assign(hours, -1);
+    out.beam_luminance.assign(hours, 0.0);
     const auto cells = patches.cells(frame, kHourlySide); // once for the year
     tbb::parallel_for(std::size_t(0), hours, [&](std::size_t t) {
         const auto& h = weather.hours[t];
@@ -65,10 +57,14 @@ HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, cons
             out.sun_lux[t] = sky.sun_normal_illuminance();
             // The beam's reflected light comes from the patch the sun is in.
             out.reflected[t * out.count + beam->patch] += float(beam->luminance);
+            out.sun_patch[t] = std::int64_t(beam->patch);
+            out.beam_luminance[t] = beam->luminance;
         }
     });
     return out;
 }
+
+namespace {
 
 // A note on the hours `flags` marks: "FILE: N hour(s) <what> (first: line L, MM-DD HH:00, DNI
 // d, DHI h W/m^2)<then>"; empty when none is.
