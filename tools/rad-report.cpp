@@ -209,14 +209,34 @@ std::string method_text(const ReportArgs& a, const radfmt::Header& rad_header, b
     return text;
 }
 
+// A daylight solution's observers: DGP at every occupied hour, as rad-gather --annual --glare.
+std::vector<rad::ReportDaylightGlare>
+observers_daylight_glare(const ReportArgs& a, const rad::CalcFile& file,
+                         const radfmt::MeshData& mesh, const radfmt::RadiosityData& solution,
+                         const radfmt::Header& rad_header, const rad::Weather& weather,
+                         const std::vector<std::uint8_t>& occupied) {
+    const auto view = rad::solution_sky_view(rad_header, a.inputs[1], "", mesh, a.inputs[0]);
+    const auto daylight = rad::daylight_solution(solution, rad_header, a.inputs[1]);
+    const auto skies = rad::hourly_skies(weather, daylight.patches, daylight.frame, a.ground);
+    const rad::DaylightLuminance luminance(mesh, daylight, view);
+    rad::GlareOptions options;
+    options.rings = rad::kAnnualGlareRings;
+    std::vector<rad::ReportDaylightGlare> out;
+    for (const auto& o : file.observers)
+        out.push_back({o, rad::summarise_glare_year(luminance.annual_glare(
+                              skies, occupied, o.position, o.view, options))});
+    return out;
+}
+
 // A daylight solution: each surface's daylight factor under the CIE overcast sky, and with
 // --epw the year's metrics, by the functions rad-gather --surfaces calls, in its order.
 void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radfmt::MeshData& mesh,
                       const radfmt::RadiosityData& solution, const radfmt::Header& mesh_header,
                       const radfmt::Header& rad_header, rad::ReportInput& in) {
-    if (!file.observers.empty())
-        throw rad::InputError(file.name + ": observers' glare (UGR) is from luminaires, and a "
-                                          "daylight solution has none: remove the observer lines");
+    if (!file.observers.empty() && a.epw.empty())
+        throw rad::InputError(file.name + ": a daylight solution's observers get their daylight "
+                                          "glare (DGP) over a year: give --epw FILE, or remove "
+                                          "the observer lines");
     if (!file.cameras.empty())
         throw rad::InputError(file.name + ": views of a daylight solution are not in the report "
                                           "yet (rad-shade --sky renders them): remove the camera "
@@ -252,6 +272,9 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
         in.weather = weather.place + " (" + a.epw + ")";
         median = rad::median_external_diffuse_illuminance(weather);
         in.occupancy = rad::tool::occupancy_text(a.occupancy);
+        if (!file.observers.empty())
+            in.daylight_glare =
+                observers_daylight_glare(a, file, mesh, solution, rad_header, weather, occupied);
     }
     std::size_t first = 0;
     for (std::size_t s = 0; s < grids.size(); ++s) {

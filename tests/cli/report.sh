@@ -319,8 +319,35 @@ for name, target, minimum in (("minimum", 300, 100), ("medium", 500, 300), ("hig
 assert cell.group(1) == best, (cell.group(1), best)
 print("EN 17037: E_v,d,med %.0f lx, level %s" % (median, best))
 PY
-expect_error "observers' glare (UGR) is from luminaires" "$TMP/x.html" \
+expect_error "a daylight solution's observers get their daylight glare (DGP) over a year: give --epw FILE" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/calc.csv" -o "$TMP/x.html"
+# A daylight solution's observers (#69 item 2): their DGP over the year in the report, the
+# numbers rad-gather --annual --glare gives for the same eye (the winter solstice's and the
+# summer solstice's working hours, to keep it short).
+python3 - "$EPW" "$TMP/solstices.txt" <<'PY'
+import sys
+rows = [l.split(",") for l in open(sys.argv[1]).readlines()[8:]]
+with open(sys.argv[2], "w") as out:
+    for r in rows:
+        out.write("1\n" if (r[1], r[2]) in (("12", "21"), ("6", "21")) and 9 <= int(r[3]) <= 17 else "0\n")
+PY
+{ cat "$D/calc.csv"; echo "at the desk,observer,2,1.2,2,0,0,1"; } > "$TMP/eye-calc.csv"
+"$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/eye-calc.csv" --epw "$EPW" --occupancy "$TMP/solstices.txt" \
+  -o "$TMP/dgp.html" --date 2026-12-05 -q || fail "rad-report with a daylight observer"
+"$BIN/rad-gather" "$TMP/d.mesh" "$TMP/d.rad" --epw "$EPW" --annual --occupancy "$TMP/solstices.txt" \
+  --glare "2 1.2 2 0 0 1" -o "$TMP/dgp.csv" -q || fail "rad-gather --annual --glare for the report's observer"
+python3 - "$TMP/dgp.csv" "$TMP/dgp.html" <<'PY' || fail "the report's daylight glare is not rad-gather's"
+import csv, re, sys
+y = next(csv.DictReader(open(sys.argv[1])))
+page = open(sys.argv[2]).read()
+assert '<a href="#daylight-glare">Daylight glare (DGP)</a>' in page
+row = re.search(r'<tr data-observer="at the desk">(.*?)</tr>', page).group(1)
+cells = re.findall(r'<td[^>]*>([^<]*)</td>', row)
+want = [y["hours"]] + ["%.1f%%" % (100 * float(y[k])) for k in ("over_035", "over_040", "over_045")] + ["%.3f" % float(y["mean_dgp"]), y["en17037"]]
+assert cells[2:] == want, (cells, want)
+assert int(y["hours"]) == 18, y
+print("the desk's daylight glare on the page:", cells[2:])
+PY
 grep -v ',observer,' "$TMP/calc.csv" > "$TMP/noobserver.csv"
 expect_error "views of a daylight solution" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/noobserver.csv" -o "$TMP/x.html"

@@ -5,6 +5,7 @@
 #pragma once
 #include "radiosity/calc_surfaces.hpp"
 #include "radiosity/daylight.hpp"
+#include "radiosity/daylight_glare.hpp"
 #include "radiosity/en17037.hpp"
 #include "radiosity/glare.hpp"
 #include "radiosity/lighting_energy.hpp"
@@ -72,6 +73,12 @@ struct ReportObserver {
     ObserverGlare glare;
 };
 
+// An observer's daylight glare over a year (a daylight solution with a weather file).
+struct ReportDaylightGlare {
+    CalcObserver observer;
+    GlareYear year;
+};
+
 // A view of the lit scene, rendered as rad-shade renders it with `command`'s options.
 struct ReportView {
     std::string name, command;
@@ -107,6 +114,7 @@ struct ReportInput {
     std::string method;                                      // how the lux were gathered
     std::vector<ReportSurface> surfaces;
     std::vector<ReportObserver> observers;
+    std::vector<ReportDaylightGlare> daylight_glare; // a daylight solution's observers
     std::vector<ReportView> views;
     const LuminaireSet* luminaires = nullptr; // none: no schedule, no glare
     double metres_per_unit = 1;

@@ -173,6 +173,8 @@ std::string contents(const ReportInput& in) {
     if (in.luminaires) out += "<li><a href=\"#luminaires\">Luminaires</a></li>";
     if (in.energy) out += "<li><a href=\"#energy\">Energy (LENI)</a></li>";
     if (!in.observers.empty()) out += "<li><a href=\"#glare\">Glare (UGR)</a></li>";
+    if (!in.daylight_glare.empty())
+        out += "<li><a href=\"#daylight-glare\">Daylight glare (DGP)</a></li>";
     if (!in.views.empty()) out += "<li><a href=\"#views\">Views</a></li>";
     out += "<li><a href=\"#method\">Method</a></li>";
     return out + "</ol></nav>";
@@ -833,6 +835,38 @@ std::string html_escape(const std::string& text) {
     return out;
 }
 
+std::string daylight_glare_section(const ReportInput& in) {
+    std::string out = "<section class=\"part\" id=\"daylight-glare\"><h2>Daylight glare "
+                      "(DGP)</h2>";
+    out += "<p class=\"note\">The daylight glare probability (Wienold and Christoffersen 2006) "
+           "at each observer's eye for every occupied hour of " +
+           html_escape(in.weather) +
+           ", as Radiance's evalglare computes it from a fisheye picture: the vertical "
+           "illuminance E<sub>v</sub> and the glare sources (over 2000 cd/m&#178;, joined "
+           "within 0.2 rad), DGP = 5.87&#183;10<sup>-5</sup> E<sub>v</sub> + 0.092 "
+           "log<sub>10</sub>(1 + &#931; L&#178;&#969;/(E<sub>v</sub><sup>1.87</sup> "
+           "p&#178;)) + 0.159, with the low-light correction below 1000 lx. EN 17037 (annex "
+           "A.5): protection from glare is high, medium or minimum where DGP exceeds 0.35, "
+           "0.40 or 0.45 in no more than 5% of the occupied hours.</p>";
+    out += "<table class=\"daylight-glare\"><thead><tr><th>Observer</th><th>Eye, looking</th>"
+           "<th class=\"num\">Hours</th><th class=\"num\">DGP &gt; 0.35</th>"
+           "<th class=\"num\">DGP &gt; 0.40</th><th class=\"num\">DGP &gt; 0.45</th>"
+           "<th class=\"num\">Mean DGP</th><th>EN 17037</th></tr></thead><tbody>";
+    const auto percent = [](double share) { return fixed(100 * share, 1) + "%"; };
+    for (const auto& g : in.daylight_glare) {
+        const auto& o = g.observer;
+        out += "<tr data-observer=\"" + html_escape(o.name) + "\"><td>" + html_escape(o.name) +
+               "</td><td>(" + fixed(o.position[0], 2) + ", " + fixed(o.position[1], 2) + ", " +
+               fixed(o.position[2], 2) + "), (" + fixed(o.view[0], 2) + ", " + fixed(o.view[1], 2) +
+               ", " + fixed(o.view[2], 2) + ")</td><td class=\"num\">" +
+               std::to_string(g.year.hours) + "</td><td class=\"num\">" + percent(g.year.over_035) +
+               "</td><td class=\"num\">" + percent(g.year.over_040) + "</td><td class=\"num\">" +
+               percent(g.year.over_045) + "</td><td class=\"num\">" + fixed(g.year.mean, 3) +
+               "</td><td class=\"en17037-glare\">" + g.year.en17037() + "</td></tr>";
+    }
+    return out + "</tbody></table></section>";
+}
+
 std::string report_html(const ReportInput& in) {
     std::string out = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                       "<meta name=\"viewport\" content=\"width=device-width\"><title>" +
@@ -845,6 +879,7 @@ std::string report_html(const ReportInput& in) {
     if (in.luminaires) out += luminaires_section(in) + "\n";
     if (in.energy) out += energy_section(*in.energy) + "\n";
     if (!in.observers.empty()) out += glare_section(in) + "\n";
+    if (!in.daylight_glare.empty()) out += daylight_glare_section(in) + "\n";
     if (!in.views.empty()) out += views_section(in) + "\n";
     out += method_section(in) + "\n</body></html>\n";
     return out;
