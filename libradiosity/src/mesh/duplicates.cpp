@@ -1,7 +1,7 @@
 // Faces written twice: exporters repeat faces (McGuire's CornellBox-Original has each box's
 // "bottom" face repeat one of its sides). Two patches on one spot would each take half the
 // light and hide each other, so the repeats are dropped and reported.
-#include "equal_keys.hpp"
+#include "core/equal_keys.hpp"
 #include "radiosity/scene.hpp"
 #include "weld.hpp"
 

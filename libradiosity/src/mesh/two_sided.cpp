@@ -1,6 +1,6 @@
 #include "radiosity/two_sided.hpp"
 
-#include "equal_keys.hpp"
+#include "core/equal_keys.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/vec.hpp"
 
