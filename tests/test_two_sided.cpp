@@ -4,6 +4,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/solver.hpp"
+#include "radiosity/twins.hpp"
 #include "radiosity/two_sided.hpp"
 #include "radiosity/vec.hpp"
 

@@ -29,8 +29,4 @@ TwoSidedReport make_two_sided(radfmt::MeshData& mesh, const std::vector<std::str
 // are added to `mesh`.
 radfmt::Patch back_of(radfmt::MeshData& mesh, const radfmt::Patch& front);
 
-// For every patch, the patch on the same spot facing the other way (same corner positions,
-// opposite normal), or -1.
-std::vector<std::int64_t> find_twins(const radfmt::MeshData& mesh);
-
 } // namespace rad

@@ -4,7 +4,7 @@
 #include "radiosity/error.hpp"
 #include "radiosity/patch_geometry.hpp"
 #include "radiosity/specular_materials.hpp"
-#include "radiosity/two_sided.hpp"
+#include "radiosity/twins.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -2,7 +2,7 @@
 
 #include "radiosity/error.hpp"
 #include "radiosity/patch_geometry.hpp"
-#include "radiosity/two_sided.hpp"
+#include "radiosity/twins.hpp"
 
 #include <embree3/rtcore.h>
 #include <tbb/task_arena.h>

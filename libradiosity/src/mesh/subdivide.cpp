@@ -1,6 +1,6 @@
 #include "radiosity/error.hpp"
 #include "radiosity/scene.hpp"
-#include "radiosity/two_sided.hpp"
+#include "radiosity/twins.hpp"
 #include "radiosity/vec.hpp"
 #include "subdivide_parts.hpp"
 

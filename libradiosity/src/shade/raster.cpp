@@ -4,7 +4,7 @@
 
 #include "radiosity/patch_geometry.hpp"
 #include "radiosity/specular_view.hpp"
-#include "radiosity/two_sided.hpp"
+#include "radiosity/twins.hpp"
 
 #include <tbb/parallel_for.h>
 

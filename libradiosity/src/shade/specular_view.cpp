@@ -2,7 +2,7 @@
 #include "radiosity/specular_view.hpp"
 
 #include "radiosity/progress.hpp"
-#include "radiosity/two_sided.hpp"
+#include "radiosity/twins.hpp"
 
 #include <tbb/parallel_for.h>
 
