@@ -3,32 +3,13 @@
 // what is recorded in the .rad header.
 #pragma once
 #include "radfmt/kinds.hpp"
+#include "radiosity/material_overrides.hpp"
 #include "radiosity/solver.hpp"
 
 #include <string>
 #include <vector>
 
 namespace rad {
-
-struct MaterialOverride {
-    std::string material;
-    radfmt::Rgb value;
-};
-// "MATERIAL=r,g,b" or "MATERIAL=v" (grey); values finite and >= 0. `option` names the
-// option in messages.
-MaterialOverride parse_material_override(const std::string& spec, const std::string& option);
-
-// "grey, lamp, white": the mesh's material names, for messages.
-std::string material_names(const radfmt::MeshData& mesh);
-
-// "0.5,0.25,1" as the header records colours.
-std::string rgb_text(const radfmt::Rgb& value);
-
-// A line about a material with the rad-solve option that would change it:
-// "material 'NAME' <what> (<lead> rad-solve --OPTION NAME=r,g,b)".
-std::string material_hint(const std::string& material, const std::string& what,
-                          const std::string& lead, const std::string& option,
-                          const radfmt::Rgb& value);
 
 struct SolveRequest {
     std::string method = "gs";
@@ -60,11 +41,6 @@ void apply_recorded_overrides(radfmt::MeshData& mesh, const radfmt::Header& solu
 // Throws InputError listing every material (used by a patch) with a reflectance channel >= 1
 // at once, with the override that would fix each, unless `force`.
 void check_reflectances(const radfmt::MeshData& mesh, bool force);
-bool any_emitter(const radfmt::MeshData& mesh);
-
-// One line per material used by a patch with a reflectance channel >= 1, with the
-// rad-solve override that fixes it.
-std::vector<std::string> reflectance_problems(const radfmt::MeshData& mesh);
 
 struct RowSumReport {
     std::size_t rows_above = 0; // rows summing above 1 + tolerance

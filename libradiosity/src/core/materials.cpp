@@ -1,7 +1,7 @@
 #include "radiosity/materials.hpp"
 
 #include "radiosity/error.hpp"
-#include "radiosity/solve_policy.hpp"
+#include "radiosity/material_overrides.hpp"
 
 #include <algorithm>
 #include <cstdio>

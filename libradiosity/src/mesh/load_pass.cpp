@@ -1,8 +1,8 @@
 // The load pass: the scene read (OBJ+MTL or assimp), what its reader repaired or missed.
 #include "radiosity/build_mesh.hpp"
+#include "radiosity/material_overrides.hpp"
 #include "radiosity/materials.hpp"
 #include "radiosity/rays.hpp"
-#include "radiosity/solve_policy.hpp"
 
 namespace rad {
 

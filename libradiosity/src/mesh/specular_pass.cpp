@@ -2,7 +2,7 @@
 // mirror and glass the mesh has, saying how the chain takes it.
 #include "radiosity/build_mesh.hpp"
 #include "radiosity/error.hpp"
-#include "radiosity/solve_policy.hpp"
+#include "radiosity/material_overrides.hpp"
 #include "radiosity/specular_materials.hpp"
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 #include "radiosity/specular_materials.hpp"
 
 #include "radiosity/error.hpp"
-#include "radiosity/solve_policy.hpp"
+#include "radiosity/material_overrides.hpp"
 #include "radiosity/specular.hpp"
 
 #include <algorithm>
