@@ -13,6 +13,7 @@
 #pragma once
 #include "radfmt/kinds.hpp"
 #include "radiosity/daylight.hpp"
+#include "radiosity/position_index.hpp"
 #include "radiosity/sky.hpp"
 #include "radiosity/vec.hpp"
 
@@ -56,11 +57,6 @@ struct DaylightGlare {
     double dgp = 0;       // with the low-light correction when asked
     double low_light = 1; // the correction's factor (1 at 1000 lx or more)
 };
-
-// Evalglare's position index: Guth's (the IES Lighting Handbook's fit) above the line of
-// sight, Iwata's (CIE 2010) below it, at most 16.
-double dgp_position_index(const Vec3& view, const Vec3& up, const Vec3& source,
-                          double* sigma_deg = nullptr, double* tau_deg = nullptr);
 
 // DGP of vertical illuminance `ev` (lux) and `sources`; the low-light correction applied
 // when `low_light` (`factor`, when not null, receives it).

@@ -5,6 +5,7 @@
 // over pi, from the solution).
 #pragma once
 #include "radiosity/luminaires.hpp"
+#include "radiosity/position_index.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/vec.hpp"
 
@@ -13,12 +14,6 @@
 #include <vector>
 
 namespace rad {
-
-// Guth's position index (the IES Lighting Handbook's fit, as Radiance's evalglare uses it):
-// `tau_deg`, the angle from the vertical of the plane holding the line of sight and the
-// source; `sigma_deg`, the angle between the line of sight and the source. Not capped: a
-// luminaire outside the table's extent is left out (inside_position_table), as CIE 117 does.
-double guth_position_index(double tau_deg, double sigma_deg);
 
 // The extent of CIE 117's position-index table (Luckiesh and Guth's, as the IES tabulates it):
 // H/R, the source's height above the line of sight over its distance along it, up to 1.9;

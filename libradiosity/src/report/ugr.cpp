@@ -10,13 +10,6 @@ namespace {
 constexpr double kDegrees = 180 / std::numbers::pi;
 }
 
-double guth_position_index(double tau_deg, double sigma_deg) {
-    const double t = tau_deg, s = sigma_deg;
-    const double p = std::exp((35.2 - 0.31889 * t - 1.22 * std::exp(-2 * t / 9)) * 1e-3 * s +
-                              (21 + 0.26667 * t - 0.002963 * t * t) * 1e-5 * s * s);
-    return p;
-}
-
 bool inside_position_table(double height_ratio, double lateral_ratio) {
     constexpr double kSlack = 1e-9; // a luminaire on the table's edge is in it
     return height_ratio <= kMaxHeightRatio + kSlack && lateral_ratio <= kMaxLateralRatio + kSlack;

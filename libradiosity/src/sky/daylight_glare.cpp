@@ -5,7 +5,6 @@
 #include "radfmt/chain.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/gather.hpp"
-#include "radiosity/glare.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -22,9 +21,8 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = 180 / kPi;
 // The sun's disc: 0.533 degrees across.
 constexpr double kSunHalfAngle = 0.5 * 0.533 / kDeg;
-// Evalglare's constants (evalglare.c: c1, c2, c3, a3) and its cap on the position index.
+// Evalglare's constants (evalglare.c: c1, c2, c3, a3).
 constexpr double kDgpEv = 5.87e-5, kDgpLog = 0.092, kDgpConstant = 0.159, kDgpEvPower = 1.87;
-constexpr double kMaxPositionIndex = 16;
 // Below this Ev (lux) the low-light correction applies (Wienold 2009).
 constexpr double kLowLightLux = 1000;
 
@@ -177,30 +175,6 @@ DaylightGlare glare_of_cells(const std::vector<Cell>& cells, double sun, const V
     return out;
 }
 } // namespace
-
-double dgp_position_index(const Vec3& view, const Vec3& up, const Vec3& source, double* sigma_deg,
-                          double* tau_deg) {
-    const double cos_sigma = std::clamp(dot(view, source), -1.0, 1.0);
-    const double sigma = std::acos(cos_sigma) * kDeg;
-    // tau: around the line of sight, from the vertical (evalglare's pict_get_tau).
-    const Vec3 across = source * (1 / std::max(cos_sigma, 1e-9)) - view;
-    const double tau = length(across) > 0
-                           ? std::acos(std::clamp(dot(up, normalized(across)), -1.0, 1.0)) * kDeg
-                           : 0.0;
-    if (sigma_deg) *sigma_deg = sigma;
-    if (tau_deg) *tau_deg = tau;
-    // Above or below the line of sight (evalglare's pict_get_vangle).
-    const Vec3 below = cross(view, cross(view, up));
-    const double elevation = std::acos(std::clamp(dot(below, source), -1.0, 1.0)) - 0.5 * kPi;
-    double p = guth_position_index(tau, sigma);
-    if (elevation < 0) {
-        const double c = std::cos(tau / kDeg);
-        const double beta =
-            std::atan(std::tan(sigma / kDeg) * std::sqrt(1 + 0.3225 * c * c)) * kDeg;
-        p = std::exp(6.49e-3 * beta + 21e-5 * beta * beta);
-    }
-    return std::min(p, kMaxPositionIndex);
-}
 
 double daylight_glare_probability(double ev, const std::vector<GlareSource>& sources,
                                   bool low_light, double* factor) {
