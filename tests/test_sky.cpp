@@ -635,3 +635,38 @@ TEST_CASE("DGP under open skies: Ev of a uniform sky and its ground, one source 
     CHECK(std::none_of(away.sources.begin(), away.sources.end(),
                        [](const rad::GlareSource& s) { return s.sun; }));
 }
+
+TEST_CASE("EN 17037 by illuminance on a small year worked by hand: per daylight hour, the target "
+          "over half of the plane and the minimum over 95% of it (#69 item 3)",
+          "[sky]") {
+    // 4 points, 5 hours (hour 4 not a daylight hour), one point not on the plane.
+    radfmt::AnnualData year;
+    year.positions.assign(5, radfmt::Vec3{0, 0, 0});
+    year.normals.assign(5, radfmt::Vec3{0, 1, 0});
+    year.hours = {10101, 10102, 10103, 10104, 10105};
+    year.occupied.assign(5, 1);
+    year.sun_lux.assign(25, 0.0f);
+    year.lux = {
+        300, 300, 100, 100, 9999, // two of four at 300: half; all at 100: minimum over 95%
+        299, 300, 500, 99,  9999, // two at 300 (300, 500); one at 99: minimum not over 95%
+        750, 750, 500, 500, 0,    // high's target on half, medium's minimum on all
+        0,   0,   0,   0,   9999, // dark
+        900, 900, 900, 900, 9999, // not a daylight hour
+    };
+    const std::vector<std::uint8_t> plane{1, 1, 1, 1, 0}, day_hours{1, 1, 1, 1, 0};
+    const auto e = rad::en17037_illuminance_method(year, plane, day_hours);
+    CHECK(e.daylight_hours == 4);
+    CHECK(e.points == 4);
+    // minimum (300 / 100 lx): target over half in hours 0, 1, 2 (3 of 4); minimum over 95% in
+    // hours 0 and 2 (2 of 4): both at least half, met.
+    CHECK(e.levels[0].target_hours == Approx(0.75));
+    CHECK(e.levels[0].minimum_hours == Approx(0.5));
+    CHECK(e.levels[0].met);
+    // medium (500 / 300 lx): target over half only in hour 2; not met.
+    CHECK(e.levels[1].target_hours == Approx(0.25));
+    CHECK(e.levels[1].minimum_hours == Approx(0.25));
+    CHECK_FALSE(e.levels[1].met);
+    CHECK(e.levels[2].target_hours == Approx(0.25));  // high: 750 on half in hour 2
+    CHECK(e.levels[2].minimum_hours == Approx(0.25)); // 500 on all four in hour 2
+    CHECK(e.achieved() == "minimum");
+}

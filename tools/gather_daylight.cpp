@@ -4,6 +4,7 @@
 #include "radfmt/chain.hpp"
 #include "radiosity/daylight.hpp"
 #include "radiosity/daylight_glare.hpp"
+#include "radiosity/en17037.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/falsecolour.hpp"
 #include "radiosity/progress.hpp"
@@ -371,6 +372,45 @@ void print_shading(const DaylightArgs& a, const OperatedYear& s, int occupied_ho
                 occupied_hours, s.rule.c_str(), a.shaded[1].c_str());
 }
 
+// EN 17037's illuminance method on the sensors `plane` marks: one line.
+void print_en17037(const std::string& what, const radfmt::AnnualData& year,
+                   const std::vector<std::uint8_t>& plane,
+                   const std::vector<std::uint8_t>& daylight_hours) {
+    const auto e = en17037_illuminance_method(year, plane, daylight_hours);
+    if (e.points == 0) return;
+    std::printf("  %sEN 17037 by illuminance, over %d daylight hours: ", what.c_str(),
+                e.daylight_hours);
+    for (const auto& l : e.levels)
+        std::printf("%s (%g lx over 50%% in %.1f%%, %g lx over 95%% in %.1f%% of them) %s; ",
+                    l.name, l.target_lux, 100 * l.target_hours, l.minimum_lux,
+                    100 * l.minimum_hours, l.met ? "met" : "not met");
+    std::printf("level %s\n", e.achieved().c_str());
+}
+
+// EN 17037 by illuminance: the whole set of sensors (a --grid, --points), or each work plane
+// of --surfaces.
+void print_en17037_planes(const DaylightRun& run, const radfmt::AnnualData& year,
+                          const std::vector<std::uint8_t>& inside, const Weather& weather) {
+    const auto hours = en17037_daylight_hours(weather);
+    const std::size_t n = year.sensors();
+    if (run.surfaces.empty()) {
+        std::vector<std::uint8_t> plane(n);
+        for (std::size_t k = 0; k < n; ++k) plane[k] = !inside[k];
+        print_en17037("", year, plane, hours);
+        return;
+    }
+    std::size_t first = 0;
+    for (std::size_t s = 0; s < run.surfaces.size(); ++s) {
+        const auto& [name, count] = run.surfaces[s];
+        if (run.reference_planes[s]) {
+            std::vector<std::uint8_t> plane(n, 0);
+            for (std::size_t k = first; k < first + count; ++k) plane[k] = !inside[k];
+            print_en17037(name + ": ", year, plane, hours);
+        }
+        first += count;
+    }
+}
+
 int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
     const auto weather = read_epw(a.epw);
     if (weather.missing > 0)
@@ -432,6 +472,7 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
                 pm(errors.da300_mean).c_str());
     std::printf("  UDI 100-3000   %6.1f %%%s of occupied hours (mean)\n", 100 * m.udi_useful,
                 pm(errors.udi_useful_mean).c_str());
+    print_en17037_planes(run, year, inside, weather);
     std::size_t first = 0;
     for (const auto& [name, count] : run.surfaces) { // --surfaces: each surface's figures
         const auto part = summarise_sensor_metrics(

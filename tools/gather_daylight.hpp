@@ -50,6 +50,7 @@ struct DaylightRun {
     // surface's name and sensor count, in order.
     std::vector<std::string> labels;
     std::vector<std::pair<std::string, std::size_t>> surfaces;
+    std::vector<bool> reference_planes; // per surface: a work plane (EN 17037's plane)
     int rays = kDaylightRays;
     double accuracy = 0; // rounds of the reflected light's rays to this relative error
     int max_rays = 4096;

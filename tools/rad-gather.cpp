@@ -508,6 +508,7 @@ void surface_daylight_sensors(const GatherArgs& a, double metres_per_unit, const
     rad::surface_sensors(file, grids, box, run.positions, run.normals);
     for (std::size_t s = 0; s < grids.size(); ++s) {
         run.surfaces.emplace_back(file.surfaces[s].name, std::size_t(grids[s].size()));
+        run.reference_planes.push_back(file.surfaces[s].kind == rad::CalcKind::WorkPlane);
         for (long k = 0; k < grids[s].size(); ++k)
             run.labels.push_back(sensor_label(file.surfaces[s], grids[s], k));
     }

@@ -262,13 +262,15 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     std::optional<rad::AnnualMetrics> year;
     rad::AnnualReplicates replicates;         // the year's metrics' error bars
     std::optional<rad::MedianDiffuse> median; // EN 17037's E_v,d,med
+    radfmt::AnnualData year_lux;              // the year's illuminance, for EN 17037's hours
+    std::vector<std::uint8_t> daylight_hours; // EN 17037's
     if (!a.epw.empty()) {
         const auto weather = rad::read_epw(a.epw);
         const auto occupied = rad::tool::occupied_hours(a.occupancy, weather);
-        year = rad::annual_metrics(rad::annual_illuminance(sensors, positions, normals, weather,
-                                                           occupied, a.ground, a.quiet, nullptr,
-                                                           &replicates),
-                                   inside);
+        year_lux = rad::annual_illuminance(sensors, positions, normals, weather, occupied, a.ground,
+                                           a.quiet, nullptr, &replicates);
+        year = rad::annual_metrics(year_lux, inside);
+        daylight_hours = rad::en17037_daylight_hours(weather);
         in.weather = weather.place + " (" + a.epw + ")";
         median = rad::median_external_diffuse_illuminance(weather);
         in.occupancy = rad::tool::occupancy_text(a.occupancy);
@@ -297,6 +299,9 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
             d.metric_errors = rad::annual_errors(replicates, d.metrics, first);
             if (file.surfaces[s].kind == rad::CalcKind::WorkPlane) {
                 d.en17037 = rad::en17037_daylight_provision(d.factor, median->lux);
+                std::vector<std::uint8_t> plane(positions.size(), 0);
+                for (std::size_t k = first; k < first + n; ++k) plane[k] = !inside[k];
+                d.en17037_hourly = rad::en17037_illuminance_method(year_lux, plane, daylight_hours);
                 d.median_source = median->source;
             }
         }

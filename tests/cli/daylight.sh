@@ -301,6 +301,34 @@ assert ase(said) == ase(up_said), (ase(said), ase(up_said))
 assert "blinds up (as LM-83 computes it)" in said
 print(f"blinds down {downs} of {len(occupied)} occupied hours; sDA {got} % operated, {sda(up):.1f} % up; ASE {ase(said)} %")
 PY
+# EN 17037 by illuminance (#69 item 3), replayed from the open year's own lux: the daylight
+# hours are the 4380 with the most diffuse horizontal illuminance (EPW field 19), and a level
+# is met when its target reaches half of the plane, and its minimum 95% of it, in at least half
+# of those hours.
+python3 - "$EPW" "$TMP/up.ill.csv" "$TMP/up.txt" <<'PY' || fail "EN 17037 by illuminance"
+import re, sys
+lux = [float(l.split(",")[18]) for l in open(sys.argv[1]).readlines()[8:]]
+order = sorted(range(len(lux)), key=lambda t: -lux[t])  # stable: ties by order
+daylight = set(order[:len(lux) // 2])
+rows = [l.rstrip("\n").split(",") for l in open(sys.argv[2])][1:]
+said = open(sys.argv[3]).read()
+line = re.search(r"EN 17037 by illuminance, over (\d+) daylight hours: (.*)", said)
+assert line and int(line.group(1)) == 4380, said
+best = "none"
+for name, target, minimum in (("minimum", 300, 100), ("medium", 500, 300), ("high", 750, 500)):
+    th = tm = 0
+    for t in daylight:
+        values = [float(v) for v in rows[t][4:]]
+        th += sum(v >= target for v in values) >= 0.5 * len(values)
+        tm += sum(v >= minimum for v in values) >= 0.95 * len(values)
+    met = th >= 0.5 * len(daylight) and tm >= 0.5 * len(daylight)
+    want = "%s (%d lx over 50%% in %.1f%%, %d lx over 95%% in %.1f%% of them) %s" % (
+        name, target, 100 * th / len(daylight), minimum, 100 * tm / len(daylight), "met" if met else "not met")
+    assert want in line.group(2), (want, line.group(2))
+    if met: best = name
+assert line.group(2).endswith("level " + best), (best, line.group(2))
+print("EN 17037 by illuminance: level", best)
+PY
 # Rules of the user's: a schedule of every hour down is the shaded year; a sun rule no sensor
 # meets is the open year (the same bytes of light).
 yes 1 | head -8760 > "$TMP/always.txt"

@@ -319,6 +319,20 @@ for name, target, minimum in (("minimum", 300, 100), ("medium", 500, 300), ("hig
 assert cell.group(1) == best, (cell.group(1), best)
 print("EN 17037: E_v,d,med %.0f lx, level %s" % (median, best))
 PY
+# EN 17037 by illuminance on the work plane: the page's shares of the daylight hours and its
+# level are rad-gather --surfaces --annual's.
+python3 - "$TMP/year.txt" "$TMP/d.html" <<'PY' || fail "EN 17037 by illuminance on the page"
+import re, sys
+said = re.search(r"work plane: EN 17037 by illuminance, over 4380 daylight hours: (.*)", open(sys.argv[1]).read()).group(1)
+page = open(sys.argv[2]).read()
+cell = re.search(r'<td class="en17037-hourly" data-achieved="([a-z]+)">(.*?)</table>', page, re.S)
+assert said.endswith("level " + cell.group(1)), (said, cell.group(1))
+for name, t, m in re.findall(r"(minimum|medium|high) \(\d+ lx over 50% in ([\d.]+)%, \d+ lx over 95% in ([\d.]+)%", said):
+    row = re.search(r'<tr data-level="%s">(.*?)</tr>' % name, cell.group(2)).group(1)
+    nums = re.findall(r'<td class="num">([^<]*)</td>', row)
+    assert nums == [t, m], (name, nums, t, m)
+print("EN 17037 by illuminance on the page: level", cell.group(1))
+PY
 expect_error "a daylight solution's observers get their daylight glare (DGP) over a year: give --epw FILE" "$TMP/x.html" \
   "$BIN/rad-report" "$TMP/d.mesh" "$TMP/d.rad" --surfaces "$TMP/calc.csv" -o "$TMP/x.html"
 # A daylight solution's observers (#69 item 2): their DGP over the year in the report, the

@@ -36,6 +36,8 @@ struct SurfaceDaylight {
     AnnualErrors metric_errors; // their standard errors (the jackknife's)
     // A work plane with a year: EN 17037's daylight provision by the daylight factor method.
     std::optional<En17037Provision> en17037;
+    // And by the year's illuminance over EN 17037's daylight hours.
+    std::optional<En17037Hourly> en17037_hourly;
     std::string median_source; // where the median external diffuse illuminance came from
     DaylightVerdict verdict;   // against the surface's DF, sDA and ASE requirements
 };

@@ -343,6 +343,28 @@ std::string en17037_rows(const SurfaceDaylight& d) {
     return out + "</tbody></table></td></tr>";
 }
 
+// EN 17037's daylight provision by the year's illuminance: each level's shares of the
+// daylight hours in which its target reaches half of the plane and its minimum 95%.
+std::string en17037_hourly_rows(const En17037Hourly& e) {
+    std::string out = "<tr><th>EN 17037 by illuminance</th><td class=\"en17037-hourly\" "
+                      "data-achieved=\"" +
+                      e.achieved() + "\">level achieved: <b>" + e.achieved() +
+                      "</b> (illuminance method: the year's hours, over its " +
+                      std::to_string(e.daylight_hours) +
+                      " daylight hours, the half with the most diffuse light; met when both "
+                      "shares reach 50%)<table class=\"levels\"><thead><tr><th>Level</th>"
+                      "<th class=\"num\">hours with E<sub>T</sub> over 50%</th>"
+                      "<th class=\"num\">hours with E<sub>TM</sub> over 95%</th>"
+                      "<th>Verdict</th></tr></thead><tbody>";
+    for (const auto& l : e.levels)
+        out += "<tr data-level=\"" + std::string(l.name) + "\"><td>" + l.name + " (" +
+               fixed(l.target_lux, 0) + " / " + fixed(l.minimum_lux, 0) + " lx)</td>" +
+               cell(percent(l.target_hours)) + cell(percent(l.minimum_hours)) +
+               (l.met ? "<td class=\"pass\">met</td>" : "<td class=\"fail\">not met</td>") +
+               "</tr>";
+    return out + "</tbody></table></td></tr>";
+}
+
 // What the plan's caption says of the room cut at the plane (plan_cut), if anything is.
 std::string cut_caption(const ReportSurface& s) {
     if (s.cut.empty()) return "";
@@ -409,6 +431,7 @@ std::string daylight_section(const ReportInput& in, const ReportSurface& s, std:
                           points(e.udi_useful_mean));
     }
     if (d.en17037) out += en17037_rows(d);
+    if (d.en17037_hourly) out += en17037_hourly_rows(*d.en17037_hourly);
     // The two plans side by side when they fit across the page, else one under the other.
     out += "<tr><th>Required</th><td>" + daylight_required_text(s.surface.required) + "</td></tr>";
     if (!d.at_budget.empty())

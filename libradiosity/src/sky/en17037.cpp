@@ -8,12 +8,15 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numeric>
 #include <vector>
 
 namespace rad {
 namespace {
 // The shares of the plane: a target over half of it, a minimum over 95%.
 constexpr double kTargetShare = 0.5, kMinimumShare = 0.95;
+// The illuminance method's share of the daylight hours (F_time).
+constexpr double kTimeShare = 0.5;
 
 std::vector<double> diffuse_illuminances(const Weather& weather, std::string& source) {
     std::vector<double> lux;
@@ -78,6 +81,62 @@ En17037Provision en17037_daylight_provision(std::span<const double> factors, dou
         level.target_share = share_at_least(factors, level.target_df);
         level.minimum_share = share_at_least(factors, level.minimum_df);
         level.met = level.target_share >= kTargetShare && level.minimum_share >= kMinimumShare;
+    }
+    return out;
+}
+
+std::vector<std::uint8_t> en17037_daylight_hours(const Weather& weather) {
+    std::string source;
+    const auto lux = diffuse_illuminances(weather, source);
+    std::vector<std::size_t> order(lux.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return lux[a] > lux[b]; });
+    std::vector<std::uint8_t> out(lux.size(), 0);
+    for (std::size_t k = 0; k < lux.size() / 2; ++k) out[order[k]] = 1;
+    return out;
+}
+
+std::string En17037Hourly::achieved() const {
+    std::string best = "none";
+    for (const auto& level : levels)
+        if (level.met) best = level.name;
+    return best;
+}
+
+En17037Hourly en17037_illuminance_method(const radfmt::AnnualData& year,
+                                         std::span<const std::uint8_t> plane,
+                                         const std::vector<std::uint8_t>& daylight_hours) {
+    const std::size_t n = year.sensors();
+    if (plane.size() != n || daylight_hours.size() != year.hours.size())
+        throw InternalError(
+            "en17037_illuminance_method: flags not of the year's sensors and hours");
+    En17037Hourly out;
+    out.levels = {{{"minimum", 300, 100}, {"medium", 500, 300}, {"high", 750, 500}}};
+    for (const auto p : plane) out.points += p != 0;
+    if (out.points == 0) return out;
+    std::array<int, 3> target_hours{}, minimum_hours{};
+    for (std::size_t t = 0; t < year.hours.size(); ++t) {
+        if (!daylight_hours[t]) continue;
+        ++out.daylight_hours;
+        for (std::size_t l = 0; l < out.levels.size(); ++l) {
+            std::size_t target = 0, minimum = 0;
+            for (std::size_t k = 0; k < n; ++k) {
+                if (!plane[k]) continue;
+                const double lux = year.lux[t * n + k];
+                target += lux >= out.levels[l].target_lux;
+                minimum += lux >= out.levels[l].minimum_lux;
+            }
+            target_hours[l] += double(target) >= kTargetShare * double(out.points);
+            minimum_hours[l] += double(minimum) >= kMinimumShare * double(out.points);
+        }
+    }
+    for (std::size_t l = 0; l < out.levels.size(); ++l) {
+        auto& level = out.levels[l];
+        level.target_hours = out.daylight_hours ? double(target_hours[l]) / out.daylight_hours : 0;
+        level.minimum_hours =
+            out.daylight_hours ? double(minimum_hours[l]) / out.daylight_hours : 0;
+        level.met = level.target_hours >= kTimeShare && level.minimum_hours >= kTimeShare;
     }
     return out;
 }
