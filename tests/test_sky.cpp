@@ -10,6 +10,7 @@
 #include "radiosity/shading.hpp"
 #include "radiosity/sky.hpp"
 #include "radiosity/sky_patches.hpp"
+#include "radiosity/sunlight_exposure.hpp"
 #include "radiosity/weather.hpp"
 
 #include <catch2/catch.hpp>
@@ -669,4 +670,30 @@ TEST_CASE("EN 17037 by illuminance on a small year worked by hand: per daylight 
     CHECK(e.levels[2].target_hours == Approx(0.25));  // high: 750 on half in hour 2
     CHECK(e.levels[2].minimum_hours == Approx(0.25)); // 500 on all four in hour 2
     CHECK(e.achieved() == "minimum");
+}
+
+TEST_CASE("EN 17037's sunlight exposure: the equinox's hours above 10 degrees at 50 N worked "
+          "by hand; a wall to the south hides them all (#69 item 3)",
+          "[sky]") {
+    // A wall along x (z = 0), 200 m long and 100 m high; north is -Z, so +Z is its south side.
+    std::string obj;
+    int n = 0;
+    quad_obj(obj, n, {{-100, 0, 0}, {100, 0, 0}, {100, 100, 0}, {-100, 100, 0}});
+    quad_obj(obj, n, {{-100, 0, 0}, {-100, 100, 0}, {100, 100, 0}, {100, 0, 0}});
+    const auto mesh = black_mesh(obj);
+    const rad::SunlightScene scene(mesh);
+    rad::Location where;
+    where.latitude = 50;
+    const std::vector<rad::LocalTime> equinox{{2025, 3, 20, 12}};
+    // The sun's hours above 10 degrees with declination 0: 2 acos(sin 10 / cos 50) / 15 = 9.91 h
+    // (refraction and the day's small declination add a few minutes).
+    const auto south = scene.exposure({0, 1, 0.5}, where, rad::SkyFrame{}, equinox, 10);
+    CHECK(south.best.hours() == Approx(9.91).margin(0.1));
+    CHECK(std::string(south.level()) == "high");
+    const auto north = scene.exposure({0, 1, -0.5}, where, rad::SkyFrame{}, equinox, 10);
+    CHECK(north.best.minutes == 0);
+    CHECK(std::string(north.level()) == "none");
+    // EN 17037's days: 1 February to 21 March (49 in 2025, 50 in a leap year).
+    CHECK(rad::en17037_sunlight_days(2025).size() == 49);
+    CHECK(rad::en17037_sunlight_days(2024).size() == 50);
 }

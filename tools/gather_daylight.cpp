@@ -11,6 +11,7 @@
 #include "radiosity/sensors.hpp"
 #include "radiosity/shading.hpp"
 #include "radiosity/solve_policy.hpp"
+#include "radiosity/sunlight_exposure.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
@@ -88,6 +89,17 @@ void add_daylight_options(CLI::App& app, DaylightArgs& a) {
         ->check(CLI::Range(0.0, 1e12));
     app.add_flag("--glare-no-low-light", a.glare_no_low_light,
                  "--glare: leave out DGP's low-light correction below 1000 lx of Ev");
+    app.add_option("--sunlight-exposure", a.sunlight,
+                   "EN 17037's sunlight exposure at a reference point inside a window, \"x y "
+                   "z\": the minutes the sun reaches it (a straight ray toward the sun leaves "
+                   "the scene, through glass) above --sun-min-altitude, each minute of --date's "
+                   "day or, without it, of every day from 1 February to 21 March 2025; the best "
+                   "day's hours and level (minimum 1.5 h, medium 3, high 4); one CSV line a point "
+                   "(x,y,z,date,hours,level) on -o. The place: --location or --epw (repeatable)");
+    app.add_option("--sun-min-altitude", a.sun_min_altitude,
+                   "--sunlight-exposure: the sun counts from this altitude (degrees), EN "
+                   "17037's minimum for the place's latitude (the standard's table)")
+        ->check(CLI::Range(0.0, 90.0));
     app.add_option("--sky-samples", a.sky_samples,
                    "Daylight: directions per sky patch a sensor traces (rounded to a square)")
         ->capture_default_str()
@@ -96,12 +108,10 @@ void add_daylight_options(CLI::App& app, DaylightArgs& a) {
 
 bool wants_daylight(const DaylightArgs& a) {
     return !a.choice.sky.empty() || a.annual || a.daylight_factor || !a.epw.empty() ||
-           !a.glare.empty();
+           !a.glare.empty() || !a.sunlight.empty();
 }
 
-bool wants_glare(const DaylightArgs& a) {
-    return !a.glare.empty();
-}
+bool wants_glare(const DaylightArgs& a) { return !a.glare.empty() || !a.sunlight.empty(); }
 
 namespace {
 
@@ -618,6 +628,73 @@ int glare(const DaylightArgs& a, const DaylightRun& run) {
 }
 } // namespace
 
+namespace {
+// "x y z" of --sunlight-exposure.
+Vec3 sunlight_point(const std::string& text) {
+    std::istringstream in(text);
+    Vec3 p{};
+    if (!(in >> p[0] >> p[1] >> p[2]) || !(in >> std::ws).eof() || !std::isfinite(p[0]) ||
+        !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        throw InputError("--sunlight-exposure '" + text +
+                         "': give the reference point, \"x y z\" (finite numbers)");
+    return p;
+}
+
+std::string date_text(const LocalTime& d) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%04d-%02d-%02d", d.year, d.month, d.day);
+    return text;
+}
+
+int sunlight_exposure(const DaylightArgs& a, const DaylightRun& run) {
+    if (!a.choice.sky.empty() || a.annual || !a.glare.empty() || a.daylight_factor)
+        throw InputError("--sunlight-exposure counts the sun's minutes itself: not with --sky, "
+                         "--annual, --glare or --daylight-factor");
+    if (!std::isfinite(a.sun_min_altitude))
+        throw InputError("--sunlight-exposure needs --sun-min-altitude DEG: EN 17037's minimum "
+                         "solar altitude for the place's latitude (the standard's table)");
+    if (!a.choice.time.empty() || !a.choice.sun.empty())
+        throw InputError("--sunlight-exposure takes a day (--date), not --time or --sun");
+    Location where;
+    if (!a.choice.location.empty())
+        where = parse_location(a.choice.location);
+    else if (!a.epw.empty())
+        where = read_epw(a.epw).location;
+    else
+        throw InputError("--sunlight-exposure needs the place: --location LAT,LON,TZ or --epw");
+    const auto days = a.choice.date.empty()
+                          ? en17037_sunlight_days(2025)
+                          : std::vector<LocalTime>{parse_local_time(a.choice.date, "12:00")};
+    const SkyFrame frame = is_daylight_solution(*run.rad_header)
+                               ? daylight_frame(*run.rad_header, run.rad_path)
+                               : SkyFrame{};
+    const SunlightScene scene(*run.mesh);
+    std::vector<SunlightExposure> results;
+    for (const auto& text : a.sunlight)
+        results.push_back(
+            scene.exposure(sunlight_point(text), where, frame, days, a.sun_min_altitude));
+    write_output(run.output, [&](std::FILE* out) {
+        if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
+        std::fprintf(out, "x,y,z,date,hours,level\n");
+        for (std::size_t k = 0; k < results.size(); ++k) {
+            const auto p = sunlight_point(a.sunlight[k]);
+            std::fprintf(out, "%.6g,%.6g,%.6g,%s,%.4f,%s\n", p[0], p[1], p[2],
+                         date_text(results[k].best.date).c_str(), results[k].best.hours(),
+                         results[k].level());
+        }
+    });
+    if (!run.quiet)
+        for (std::size_t k = 0; k < results.size(); ++k)
+            std::fprintf(stderr,
+                         "rad-gather: sunlight exposure at %s: %.2f h on %s (%zu day(s), the sun "
+                         "counted from %g deg): EN 17037 level %s\n",
+                         a.sunlight[k].c_str(), results[k].best.hours(),
+                         date_text(results[k].best.date).c_str(), results[k].days.size(),
+                         a.sun_min_altitude, results[k].level());
+    return 0;
+}
+} // namespace
+
 DaylightOptions daylight_options(int sky_samples, int rays, std::uint64_t seed, double accuracy,
                                  int max_rays) {
     DaylightOptions options;
@@ -639,6 +716,7 @@ std::string occupancy_text(const std::string& occupancy) {
 }
 
 int gather_daylight(const DaylightArgs& a, const DaylightRun& run) {
+    if (!a.sunlight.empty()) return sunlight_exposure(a, run);
     check_daylight_args(a, run);
     if (!a.glare.empty()) return glare(a, run);
     const DaylightSensors sensors(

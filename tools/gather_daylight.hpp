@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ struct DaylightArgs {
     // --glare "x y z dx dy dz" (repeatable), --glare-threshold, --glare-no-low-light.
     std::vector<std::string> glare;
     std::string glare_hours; // --annual --glare: every hour's DGP as CSV
+    // --sunlight-exposure "x y z" (repeatable) above --sun-min-altitude degrees.
+    std::vector<std::string> sunlight;
+    double sun_min_altitude = std::numeric_limits<double>::quiet_NaN();
     double glare_threshold = 2000;
     bool glare_no_low_light = false;
     bool daylight_factor = false, annual = false;
@@ -60,7 +64,7 @@ struct DaylightRun {
     double lux_max = 0;
 };
 int gather_daylight(const DaylightArgs& a, const DaylightRun& run);
-// --glare: DGP at each view under --sky; needs no sensors.
+// --glare (DGP at views) and --sunlight-exposure (at reference points): no sensors needed.
 bool wants_glare(const DaylightArgs& a);
 
 // What a command line makes of the sensors' daylight (rad-gather, rad-report): --sky-samples

@@ -425,4 +425,23 @@ print("noon of 21 December: the year's DGP %s, the instant's %s" % (
     [noon["dgp1"], noon["dgp2"]], [g["dgp"] for g in csv.DictReader(open(sys.argv[2]))]))
 PY
 
+# EN 17037's sunlight exposure (#69 item 3): just inside the glazed window's centre the sun is
+# seen all the hours it stands above 10 degrees (Denver, 21 March: 2 acos(sin 10 / cos 39.83)
+# / 15 hours, refraction adding minutes); by the window's side, while the opening frames it.
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sunlight-exposure "2 1.5 5.95" --sunlight-exposure "0.9 1.2 5.9" \
+  --sun-min-altitude 10 --location 39.83,-104.65,-7 --date 2025-03-21 -o "$TMP/sunlight.csv" -q || fail "--sunlight-exposure"
+python3 - "$TMP/sunlight.csv" <<'PY' || fail "the sunlight exposure's hours"
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+expected = 2 * math.degrees(math.acos(math.sin(math.radians(10)) / math.cos(math.radians(39.83)))) / 15
+window, side = float(rows[0]["hours"]), float(rows[1]["hours"])
+assert abs(window - expected) < 0.15 and rows[0]["level"] == "high", (window, expected)
+assert 0 < side < window, (side, window)
+print("sunlight exposure: %.2f h at the window (by hand %.2f), %.2f h by its side" % (window, expected, side))
+PY
+expect_error "needs --sun-min-altitude DEG" "$TMP/x.csv" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sunlight-exposure "2 1.5 5.95" --location 39.83,-104.65,-7 -o "$TMP/x.csv"
+expect_error "not with --sky" "$TMP/x.csv" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sunlight-exposure "2 1.5 5.95" --sun-min-altitude 10 --sky cie-overcast -o "$TMP/x.csv"
+
 finish
