@@ -70,4 +70,23 @@ std::string require_same_geometry(const fs::path& file, const Header& header,
                       " patches; " + std::string(remedy));
 }
 
+std::string solution_direct_path(const Header& solution_header,
+                                 const std::filesystem::path& solution_path,
+                                 const std::string& given) {
+    if (!given.empty()) return given;
+    const auto* recorded = solution_header.find("direct");
+    if (!recorded) return "";
+    const auto beside = solution_path.parent_path() / fs::path(*recorded).filename();
+    if (!fs::exists(*recorded) && fs::exists(beside)) return beside.string();
+    return *recorded;
+}
+
+bool solution_direct_changed(const Header& solution_header, const std::string& file_hash) {
+    const auto* recorded = solution_header.find("direct");
+    if (!recorded) return false;
+    for (const auto& input : solution_header.inputs)
+        if (input.path == *recorded && input.hash != file_hash) return true;
+    return false;
+}
+
 } // namespace radfmt

@@ -35,4 +35,16 @@ std::string require_same_geometry(const std::filesystem::path& file, const Heade
                                   const std::filesystem::path& mesh_path, const MeshData& mesh,
                                   std::string_view remedy);
 
+// The file a solution was solved with (rad-solve --direct: a .lum or a .sky): `given` when not
+// empty, else the path its header records (`direct`), or, when that file is gone and one of
+// its name lies beside the solution, that one (the pair moved together). Empty when neither
+// is given nor recorded.
+std::string solution_direct_path(const Header& solution_header,
+                                 const std::filesystem::path& solution_path,
+                                 const std::string& given);
+
+// Whether the file the solution records as its `direct` input has changed since: its recorded
+// content hash is not `file_hash` (false when the solution records none).
+bool solution_direct_changed(const Header& solution_header, const std::string& file_hash);
+
 } // namespace radfmt

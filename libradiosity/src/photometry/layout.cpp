@@ -396,13 +396,10 @@ std::optional<LuminaireSet>
 solution_luminaires(const radfmt::Header& solution_header, const std::string& solution_path,
                     const std::string& path, const radfmt::MeshData& mesh,
                     const std::string& mesh_path, const radfmt::Header& mesh_header) {
-    const auto* recorded = solution_header.find("direct");
-    if (!recorded && path.empty()) return std::nullopt;
     // A daylight solution's `direct` is its .sky: no luminaires.
     if (path.empty() && solution_header.find("sky_subdivision")) return std::nullopt;
-    std::string lum_path = path.empty() ? *recorded : path;
-    const auto beside = fs::path(solution_path).parent_path() / fs::path(lum_path).filename();
-    if (path.empty() && !fs::exists(lum_path) && fs::exists(beside)) lum_path = beside.string();
+    const auto lum_path = radfmt::solution_direct_path(solution_header, solution_path, path);
+    if (lum_path.empty()) return std::nullopt;
     if (!fs::exists(lum_path))
         throw InputError(lum_path + ": the luminaires file the solution was solved with is not "
                                     "there (give its new place with --direct FILE)");
@@ -410,10 +407,9 @@ solution_luminaires(const radfmt::Header& solution_header, const std::string& so
     const auto lum = radfmt::read_luminaires(lum_path, &header);
     radfmt::require_same_geometry(lum_path, header, lum.patch_count, mesh_path, mesh,
                                   "run rad-ff --luminaires and rad-solve again");
-    for (const auto& input : solution_header.inputs)
-        if (recorded && input.path == *recorded && input.hash != header.file_hash)
-            throw InputError(lum_path + " is not the luminaires file the solution was solved "
-                                        "with (it changed since): run rad-solve --direct again");
+    if (radfmt::solution_direct_changed(solution_header, header.file_hash))
+        throw InputError(lum_path + " is not the luminaires file the solution was solved "
+                                    "with (it changed since): run rad-solve --direct again");
     auto set = build_luminaires({lum.layout_name, lum.layout_text, lum.files},
                                 metres_per_unit(mesh_header));
     const auto* count = header.find("luminaires");

@@ -2,6 +2,8 @@
 // daylight solution, the glare sources as evalglare finds them in a fisheye picture, and DGP.
 #include "radiosity/daylight_glare.hpp"
 
+#include "core/union_find.hpp"
+
 #include "radfmt/chain.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/gather.hpp"
@@ -52,25 +54,12 @@ std::vector<Cell> hemisphere_cells(const Vec3& view, const Vec3& up, int rings) 
     return out;
 }
 
-// Union-find over the glare cells.
-struct Groups {
-    std::vector<std::size_t> parent;
-    explicit Groups(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    std::size_t find(std::size_t i) {
-        while (parent[i] != i) i = parent[i] = parent[parent[i]];
-        return i;
-    }
-    void join(std::size_t a, std::size_t b) {
-        a = find(a), b = find(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-};
-
-// Joins the cells `members` (indices into `cells`) lying within `radius` of each other, as
-// evalglare joins glare pixels; returns each member's group root (an index into members).
-std::vector<std::size_t> join_near(const std::vector<Cell>& cells,
-                                   const std::vector<std::size_t>& members, double radius) {
-    Groups groups(members.size());
+// The cells `members` (indices into `cells`) joined where they lie within `radius` of each
+// other, as evalglare joins glare pixels: each group's members (indices into `cells`), the
+// groups in the order of their first member.
+std::vector<std::vector<std::size_t>>
+join_near(const std::vector<Cell>& cells, const std::vector<std::size_t>& members, double radius) {
+    UnionFind sets(members.size());
     const double chord = 2 * std::sin(0.5 * radius);
     const auto key = [&](const Vec3& d, int dx, int dy, int dz) {
         const auto q = [&](double v, int o) { return std::int64_t(std::floor(v / chord)) + o; };
@@ -87,14 +76,33 @@ std::vector<std::size_t> join_near(const std::vector<Cell>& cells,
                     const auto it = buckets.find(key(d, dx, dy, dz));
                     if (it == buckets.end()) continue;
                     for (const std::size_t o : it->second)
-                        if (o > m && groups.find(o) != groups.find(m) &&
+                        if (o > m && sets.find(o) != sets.find(m) &&
                             length(cells[members[o]].direction - d) <= chord)
-                            groups.join(o, m);
+                            sets.unite(o, m);
                 }
     }
-    std::vector<std::size_t> out(members.size());
-    for (std::size_t m = 0; m < members.size(); ++m) out[m] = groups.find(m);
-    return out;
+    auto groups = sets.groups();
+    for (auto& group : groups)
+        for (auto& m : group) m = members[m];
+    return groups;
+}
+
+// One source of a group of cells: its mean luminance over its solid angle, its centre
+// weighted by luminance x solid angle, the position index there.
+GlareSource source_of(const std::vector<Cell>& cells, const std::vector<std::size_t>& group,
+                      const Vec3& view, const Vec3& up) {
+    GlareSource s;
+    Vec3 centre{0, 0, 0};
+    double flux = 0;
+    for (const auto c : group) {
+        s.solid_angle += cells[c].solid_angle;
+        flux += cells[c].luminance * cells[c].solid_angle;
+        centre = centre + cells[c].direction * (cells[c].luminance * cells[c].solid_angle);
+    }
+    s.luminance = flux / s.solid_angle;
+    s.direction = normalized(centre);
+    s.position_index = dgp_position_index(view, up, s.direction, &s.sigma_deg, &s.tau_deg);
+    return s;
 }
 
 // The sources of the cells over `threshold`: those over `peak` apart from the others.
@@ -107,32 +115,12 @@ std::vector<GlareSource> cell_sources(const std::vector<Cell>& cells, double thr
         for (std::size_t c = 0; c < cells.size(); ++c)
             if (cells[c].luminance > threshold && (cells[c].luminance > options.peak) == peaks)
                 members.push_back(c);
-        const auto root = join_near(cells, members, options.search_radius);
-        const std::size_t first = out.size();
-        std::unordered_map<std::size_t, std::size_t> source_of; // root -> index into out
-        std::vector<Vec3> centre;
-        for (std::size_t m = 0; m < members.size(); ++m) {
-            const auto [it, added] = source_of.try_emplace(root[m], out.size());
-            if (added) {
-                out.push_back({});
-                centre.push_back({0, 0, 0});
-            }
-            auto& s = out[it->second];
-            const auto& cell = cells[members[m]];
-            s.solid_angle += cell.solid_angle;
-            s.luminance += cell.luminance * cell.solid_angle; // a sum until divided below
-            auto& c = centre[it->second - first];
-            c = c + cell.direction * (cell.luminance * cell.solid_angle);
-        }
-        for (std::size_t k = 0; k < centre.size(); ++k) {
-            auto& s = out[first + k];
-            s.direction = normalized(centre[k]);
-            s.luminance /= s.solid_angle;
-            s.position_index = dgp_position_index(view, up, s.direction, &s.sigma_deg, &s.tau_deg);
-        }
+        for (const auto& group : join_near(cells, members, options.search_radius))
+            out.push_back(source_of(cells, group, view, up));
     }
     return out;
 }
+
 // The eye's vertical, +Y; a view along it has no horizon to turn about.
 Vec3 eye_vertical(const Vec3& view) {
     const Vec3 up{0, 1, 0};
@@ -304,25 +292,20 @@ GlareYear summarise_glare_year(const std::vector<DaylightGlare>& hours) {
 radfmt::SkyData solution_sky_view(const radfmt::Header& solution_header,
                                   const std::string& solution_path, const std::string& path,
                                   const radfmt::MeshData& mesh, const std::string& mesh_path) {
-    namespace fs = std::filesystem;
-    const auto* recorded = solution_header.find("direct");
-    if (path.empty() && !recorded)
+    const auto sky_path = radfmt::solution_direct_path(solution_header, solution_path, path);
+    if (sky_path.empty())
         throw InputError(solution_path + " records no .sky (rad-solve --direct SKY): give it "
                                          "with --direct FILE");
-    std::string sky_path = path.empty() ? *recorded : path;
-    const auto beside = fs::path(solution_path).parent_path() / fs::path(sky_path).filename();
-    if (path.empty() && !fs::exists(sky_path) && fs::exists(beside)) sky_path = beside.string();
-    if (!fs::exists(sky_path))
+    if (!std::filesystem::exists(sky_path))
         throw InputError(sky_path + ": the sky-view file the solution was solved with is not "
                                     "there (give its new place with --direct FILE)");
     radfmt::Header header;
     auto view = radfmt::read_sky(sky_path, &header);
     radfmt::require_same_geometry(sky_path, header, view.patch_count, mesh_path, mesh,
                                   "run rad-ff --sky and rad-solve again");
-    for (const auto& input : solution_header.inputs)
-        if (recorded && input.path == *recorded && input.hash != header.file_hash)
-            throw InputError(sky_path + " is not the sky-view file the solution was solved "
-                                        "with (it changed since): run rad-solve --direct again");
+    if (radfmt::solution_direct_changed(solution_header, header.file_hash))
+        throw InputError(sky_path + " is not the sky-view file the solution was solved "
+                                    "with (it changed since): run rad-solve --direct again");
     return view;
 }
 

@@ -40,6 +40,15 @@ std::vector<double> diffuse_illuminances(const Weather& weather, std::string& so
     return lux;
 }
 
+// The name of the highest level met, in the order minimum, medium, high ("none": not the
+// minimum).
+template <class Levels> std::string highest_met(const Levels& levels) {
+    std::string best = "none";
+    for (const auto& level : levels)
+        if (level.met) best = level.name;
+    return best;
+}
+
 double share_at_least(std::span<const double> values, double threshold) {
     std::size_t counted = 0, above = 0;
     for (const double v : values) {
@@ -63,10 +72,7 @@ MedianDiffuse median_external_diffuse_illuminance(const Weather& weather) {
 }
 
 std::string En17037Provision::achieved() const {
-    std::string best = "none";
-    for (const auto& level : levels)
-        if (level.met) best = level.name;
-    return best;
+    return highest_met(levels);
 }
 
 En17037Provision en17037_daylight_provision(std::span<const double> factors, double median_lux) {
@@ -98,10 +104,7 @@ std::vector<std::uint8_t> en17037_daylight_hours(const Weather& weather) {
 }
 
 std::string En17037Hourly::achieved() const {
-    std::string best = "none";
-    for (const auto& level : levels)
-        if (level.met) best = level.name;
-    return best;
+    return highest_met(levels);
 }
 
 En17037Hourly en17037_illuminance_method(const radfmt::AnnualData& year,
