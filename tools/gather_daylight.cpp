@@ -26,28 +26,9 @@
 
 namespace rad::tool {
 
-void add_daylight_options(CLI::App& app, DaylightArgs& a) {
-    add_sky_options(app, a.choice,
-                    "Daylight at an instant, from a solution solved with a .sky (rad-ff --sky, "
-                    "rad-solve --direct); writes lux, one a line");
-    app.add_flag("--daylight-factor", a.daylight_factor,
-                 "With --sky (cie-overcast, as the standards define it): write the daylight "
-                 "factor in % (the sensor's illuminance over the unobstructed sky's horizontal "
-                 "illuminance), one a line, and its mean, median and share at 2% or more");
-    app.add_option("--epw", a.epw,
-                   "An EnergyPlus weather file: with --annual, a year of hourly Perez skies "
-                   "and sun; with --date, the place");
-    app.add_flag("--annual", a.annual,
-                 "With --epw: every hour of the year at every sensor (the sky through daylight "
-                 "coefficients, the sun's beam traced at the sensor) into -o FILE (.ill, "
-                 "rad-info reads it), and LM-83's sDA300/50% and ASE1000,250h, DA300 and UDI "
-                 "100-3000 lx over the occupied hours");
-    app.add_option("--occupancy", a.occupancy,
-                   "With --annual: the occupied hours, one 0 or 1 a line for each hour of the "
-                   "weather file (default: 08:00 to 18:00 local standard time every day)");
-    app.add_option("--metrics", a.metrics,
-                   "With --annual: write each sensor's metrics as CSV (x,y,z,dx,dy,dz,da300,"
-                   "udi_low,udi_useful,udi_high,sun_hours)");
+namespace {
+// --shaded and its rule, group and log: a window operated over the year.
+void add_shading_options(CLI::App& app, DaylightArgs& a) {
     app.add_option("--shaded", a.shaded,
                    "With --annual: the window's shaded state (blinds down, a second glazing) as "
                    "MESH RADIOSITY: the same geometry with the window's material changed "
@@ -69,6 +50,10 @@ void add_daylight_options(CLI::App& app, DaylightArgs& a) {
                    "occupied,sunlit_share,shaded): the share of the watched sensors with the "
                    "rule's direct sun (1000 lx unless sun:LUX:...) with the blinds up, and 1 "
                    "where the shaded state was used");
+}
+
+// --glare and --sunlight-exposure: the eye's daylight and the sun's hours at points.
+void add_glare_options(CLI::App& app, DaylightArgs& a) {
     app.add_option("--glare", a.glare,
                    "Daylight glare at an eye at x y z looking along dx dy dz (+Y up), \"x y z "
                    "dx dy dz\": the daylight glare probability (DGP, Wienold and "
@@ -100,6 +85,33 @@ void add_daylight_options(CLI::App& app, DaylightArgs& a) {
                    "--sunlight-exposure: the sun counts from this altitude (degrees), EN "
                    "17037's minimum for the place's latitude (the standard's table)")
         ->check(CLI::Range(0.0, 90.0));
+}
+} // namespace
+
+void add_daylight_options(CLI::App& app, DaylightArgs& a) {
+    add_sky_options(app, a.choice,
+                    "Daylight at an instant, from a solution solved with a .sky (rad-ff --sky, "
+                    "rad-solve --direct); writes lux, one a line");
+    app.add_flag("--daylight-factor", a.daylight_factor,
+                 "With --sky (cie-overcast, as the standards define it): write the daylight "
+                 "factor in % (the sensor's illuminance over the unobstructed sky's horizontal "
+                 "illuminance), one a line, and its mean, median and share at 2% or more");
+    app.add_option("--epw", a.epw,
+                   "An EnergyPlus weather file: with --annual, a year of hourly Perez skies "
+                   "and sun; with --date, the place");
+    app.add_flag("--annual", a.annual,
+                 "With --epw: every hour of the year at every sensor (the sky through daylight "
+                 "coefficients, the sun's beam traced at the sensor) into -o FILE (.ill, "
+                 "rad-info reads it), and LM-83's sDA300/50% and ASE1000,250h, DA300 and UDI "
+                 "100-3000 lx over the occupied hours");
+    app.add_option("--occupancy", a.occupancy,
+                   "With --annual: the occupied hours, one 0 or 1 a line for each hour of the "
+                   "weather file (default: 08:00 to 18:00 local standard time every day)");
+    app.add_option("--metrics", a.metrics,
+                   "With --annual: write each sensor's metrics as CSV (x,y,z,dx,dy,dz,da300,"
+                   "udi_low,udi_useful,udi_high,sun_hours)");
+    add_shading_options(app, a);
+    add_glare_options(app, a);
     app.add_option("--sky-samples", a.sky_samples,
                    "Daylight: directions per sky patch a sensor traces (rounded to a square)")
         ->capture_default_str()
@@ -111,7 +123,9 @@ bool wants_daylight(const DaylightArgs& a) {
            !a.glare.empty() || !a.sunlight.empty();
 }
 
-bool wants_glare(const DaylightArgs& a) { return !a.glare.empty() || !a.sunlight.empty(); }
+bool wants_glare(const DaylightArgs& a) {
+    return !a.glare.empty() || !a.sunlight.empty();
+}
 
 namespace {
 
@@ -421,6 +435,48 @@ void print_en17037_planes(const DaylightRun& run, const radfmt::AnnualData& year
     }
 }
 
+// The .ill's header: provenance, the place, the occupancy, and the shading when operated.
+radfmt::Header annual_header(const DaylightArgs& a, const DaylightRun& run, const Weather& weather,
+                             const OperatedYear* shading) {
+    std::vector<radfmt::Parent> parents;
+    for (const auto& i : run.inputs) parents.push_back({i, nullptr});
+    auto header = radfmt::derived_header(tool_version("rad-gather"), run.command, parents);
+    header.set("place", weather.place);
+    header.set("occupancy", a.occupancy.empty() ? "08:00-18:00 every day" : a.occupancy);
+    if (shading) {
+        header.set("shading", shading->rule + "; shaded state " + a.shaded[1] +
+                                  "; direct sun (sun_lux) with the blinds up");
+        header.set("hours_shaded", std::to_string(shading->occupied_down));
+    }
+    return header;
+}
+
+// The year's figures on standard output: sDA, ASE, DA300, UDI (with their errors under
+// --error), and the blinds' hours when operated.
+void print_year_summary(const DaylightArgs& a, const DaylightRun& run, const Weather& weather,
+                        const AnnualMetrics& m, const AnnualErrors& errors,
+                        const OperatedYear* shading, std::size_t without) {
+    std::printf("annual daylight at %zu sensor(s), %s (%.2f N, %.2f E), %d occupied hour(s) "
+                "(%s)%s:\n",
+                m.counted, weather.place.c_str(), weather.location.latitude,
+                weather.location.longitude, m.occupied_hours, occupancy_text(a.occupancy).c_str(),
+                inside_text(without).c_str());
+    if (shading) print_shading(a, *shading, m.occupied_hours);
+    const auto pm = [&](double error) { return run.error ? percent_error(error) : std::string(); };
+    std::printf("  sDA300/50%%     %6.1f %%%s of sensors (DA300 >= 50%%)", 100 * m.sda,
+                pm(errors.sda).c_str());
+    if (shading)
+        std::printf(", blinds as operated (%.1f %% with them up all year)",
+                    100 * shading->open.sda);
+    std::printf("\n  ASE1000,250h   %6.1f %%%s of sensors (direct sun >= 1000 lx for > 250 h)%s\n",
+                100 * m.ase, run.error ? " ± 0 (the sun's beam, exact)" : "",
+                shading ? ", blinds up (as LM-83 computes it)" : "");
+    std::printf("  DA300 mean     %6.1f %%%s of occupied hours\n", 100 * m.da300,
+                pm(errors.da300_mean).c_str());
+    std::printf("  UDI 100-3000   %6.1f %%%s of occupied hours (mean)\n", 100 * m.udi_useful,
+                pm(errors.udi_useful_mean).c_str());
+}
+
 int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
     const auto weather = read_epw(a.epw);
     if (weather.missing > 0)
@@ -441,16 +497,7 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
                            run.error ? &replicates : nullptr);
     const auto& year = shading ? shading->year : plain;
     for (const auto& note : notes) std::fprintf(stderr, "rad-gather: %s\n", note.c_str());
-    std::vector<radfmt::Parent> parents;
-    for (const auto& i : run.inputs) parents.push_back({i, nullptr});
-    auto header = radfmt::derived_header(tool_version("rad-gather"), run.command, parents);
-    header.set("place", weather.place);
-    header.set("occupancy", a.occupancy.empty() ? "08:00-18:00 every day" : a.occupancy);
-    if (shading) {
-        header.set("shading", shading->rule + "; shaded state " + a.shaded[1] +
-                                  "; direct sun (sun_lux) with the blinds up");
-        header.set("hours_shaded", std::to_string(shading->occupied_down));
-    }
+    const auto header = annual_header(a, run, weather, shading ? &*shading : nullptr);
     radfmt::write_annual(run.output, header, year);
     if (shading && !a.shading_log.empty()) write_shading_log(a.shading_log, *shading);
     const auto m = annual_metrics(year, inside);
@@ -463,26 +510,10 @@ int annual(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors&
         write_false_colour_png(run.png, da, run.grid_columns, run.grid_rows, "%",
                                "DA300: % of hours at 300 lx or more", 100);
     }
-    std::printf("annual daylight at %zu sensor(s), %s (%.2f N, %.2f E), %d occupied hour(s) "
-                "(%s)%s:\n",
-                m.counted, weather.place.c_str(), weather.location.latitude,
-                weather.location.longitude, m.occupied_hours, occupancy_text(a.occupancy).c_str(),
-                inside_text(year.sensors() - m.counted).c_str());
-    if (shading) print_shading(a, *shading, m.occupied_hours);
-    const auto pm = [&](double error) { return run.error ? percent_error(error) : std::string(); };
-    std::printf("  sDA300/50%%     %6.1f %%%s of sensors (DA300 >= 50%%)", 100 * m.sda,
-                pm(errors.sda).c_str());
-    if (shading)
-        std::printf(", blinds as operated (%.1f %% with them up all year)",
-                    100 * shading->open.sda);
-    std::printf("\n  ASE1000,250h   %6.1f %%%s of sensors (direct sun >= 1000 lx for > 250 h)%s\n",
-                100 * m.ase, run.error ? " ± 0 (the sun's beam, exact)" : "",
-                shading ? ", blinds up (as LM-83 computes it)" : "");
-    std::printf("  DA300 mean     %6.1f %%%s of occupied hours\n", 100 * m.da300,
-                pm(errors.da300_mean).c_str());
-    std::printf("  UDI 100-3000   %6.1f %%%s of occupied hours (mean)\n", 100 * m.udi_useful,
-                pm(errors.udi_useful_mean).c_str());
+    print_year_summary(a, run, weather, m, errors, shading ? &*shading : nullptr,
+                       year.sensors() - m.counted);
     print_en17037_planes(run, year, inside, weather);
+    const auto pm = [&](double error) { return run.error ? percent_error(error) : std::string(); };
     std::size_t first = 0;
     for (const auto& [name, count] : run.surfaces) { // --surfaces: each surface's figures
         const auto part = summarise_sensor_metrics(

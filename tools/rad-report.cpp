@@ -228,6 +228,56 @@ observers_daylight_glare(const ReportArgs& a, const rad::CalcFile& file,
     return out;
 }
 
+// A daylight solution's year (--epw): the sensors' illuminance and metrics with their
+// replicates, EN 17037's median and daylight hours, and the observers' glare.
+struct DaylightYear {
+    radfmt::AnnualData lux;
+    rad::AnnualMetrics metrics;
+    rad::AnnualReplicates replicates;
+    rad::MedianDiffuse median;
+    std::vector<std::uint8_t> daylight_hours;
+};
+
+DaylightYear daylight_year(const ReportArgs& a, const rad::CalcFile& file,
+                           const radfmt::MeshData& mesh, const radfmt::RadiosityData& solution,
+                           const radfmt::Header& rad_header, const rad::DaylightSensors& sensors,
+                           const std::vector<rad::Vec3>& positions,
+                           const std::vector<rad::Vec3>& normals,
+                           const std::vector<std::uint8_t>& inside, rad::ReportInput& in) {
+    DaylightYear out;
+    const auto weather = rad::read_epw(a.epw);
+    const auto occupied = rad::tool::occupied_hours(a.occupancy, weather);
+    out.lux = rad::annual_illuminance(sensors, positions, normals, weather, occupied, a.ground,
+                                      a.quiet, nullptr, &out.replicates);
+    out.metrics = rad::annual_metrics(out.lux, inside);
+    out.daylight_hours = rad::en17037_daylight_hours(weather);
+    out.median = rad::median_external_diffuse_illuminance(weather);
+    in.weather = weather.place + " (" + a.epw + ")";
+    in.occupancy = rad::tool::occupancy_text(a.occupancy);
+    if (!file.observers.empty())
+        in.daylight_glare =
+            observers_daylight_glare(a, file, mesh, solution, rad_header, weather, occupied);
+    return out;
+}
+
+// A surface's share of the year (its sensors first .. first + n): its metrics and their errors,
+// and on a work plane EN 17037 by both methods.
+void year_figures(const DaylightYear& year, rad::CalcKind kind, std::size_t first, std::size_t n,
+                  const std::vector<std::uint8_t>& inside, rad::SurfaceDaylight& d) {
+    d.annual = true;
+    d.metrics = rad::summarise_sensor_metrics({year.metrics.sensors.begin() + long(first),
+                                               year.metrics.sensors.begin() + long(first + n)},
+                                              year.metrics.occupied_hours);
+    for (const auto& m : d.metrics.sensors) d.da300.push_back(100 * m.da300);
+    d.metric_errors = rad::annual_errors(year.replicates, d.metrics, first);
+    if (kind != rad::CalcKind::WorkPlane) return;
+    d.en17037 = rad::en17037_daylight_provision(d.factor, year.median.lux);
+    std::vector<std::uint8_t> plane(inside.size(), 0);
+    for (std::size_t k = first; k < first + n; ++k) plane[k] = !inside[k];
+    d.en17037_hourly = rad::en17037_illuminance_method(year.lux, plane, year.daylight_hours);
+    d.median_source = year.median.source;
+}
+
 // A daylight solution: each surface's daylight factor under the CIE overcast sky, and with
 // --epw the year's metrics, by the functions rad-gather --surfaces calls, in its order.
 void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radfmt::MeshData& mesh,
@@ -259,25 +309,10 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
     const auto lux = sensors.illuminance(sky, positions, normals, a.quiet);
     // Sensors inside furniture: no value (greyed on the plans), in no figure.
     const auto inside = sensors.inside(positions, normals);
-    std::optional<rad::AnnualMetrics> year;
-    rad::AnnualReplicates replicates;         // the year's metrics' error bars
-    std::optional<rad::MedianDiffuse> median; // EN 17037's E_v,d,med
-    radfmt::AnnualData year_lux;              // the year's illuminance, for EN 17037's hours
-    std::vector<std::uint8_t> daylight_hours; // EN 17037's
-    if (!a.epw.empty()) {
-        const auto weather = rad::read_epw(a.epw);
-        const auto occupied = rad::tool::occupied_hours(a.occupancy, weather);
-        year_lux = rad::annual_illuminance(sensors, positions, normals, weather, occupied, a.ground,
-                                           a.quiet, nullptr, &replicates);
-        year = rad::annual_metrics(year_lux, inside);
-        daylight_hours = rad::en17037_daylight_hours(weather);
-        in.weather = weather.place + " (" + a.epw + ")";
-        median = rad::median_external_diffuse_illuminance(weather);
-        in.occupancy = rad::tool::occupancy_text(a.occupancy);
-        if (!file.observers.empty())
-            in.daylight_glare =
-                observers_daylight_glare(a, file, mesh, solution, rad_header, weather, occupied);
-    }
+    const auto year = a.epw.empty()
+                          ? std::nullopt
+                          : std::optional(daylight_year(a, file, mesh, solution, rad_header,
+                                                        sensors, positions, normals, inside, in));
     std::size_t first = 0;
     for (std::size_t s = 0; s < grids.size(); ++s) {
         const auto n = std::size_t(grids[s].size());
@@ -290,21 +325,7 @@ void daylight_figures(const ReportArgs& a, const rad::CalcFile& file, const radf
         }
         d.summary = rad::summarise_daylight_factors(d.factor);
         d.mean_error = rad::illuminance_errors(d.factor, d.factor_error).mean;
-        if (year) {
-            d.annual = true;
-            d.metrics = rad::summarise_sensor_metrics(
-                {year->sensors.begin() + long(first), year->sensors.begin() + long(first + n)},
-                year->occupied_hours);
-            for (const auto& m : d.metrics.sensors) d.da300.push_back(100 * m.da300);
-            d.metric_errors = rad::annual_errors(replicates, d.metrics, first);
-            if (file.surfaces[s].kind == rad::CalcKind::WorkPlane) {
-                d.en17037 = rad::en17037_daylight_provision(d.factor, median->lux);
-                std::vector<std::uint8_t> plane(positions.size(), 0);
-                for (std::size_t k = first; k < first + n; ++k) plane[k] = !inside[k];
-                d.en17037_hourly = rad::en17037_illuminance_method(year_lux, plane, daylight_hours);
-                d.median_source = median->source;
-            }
-        }
+        if (year) year_figures(*year, file.surfaces[s].kind, first, n, inside, d);
         d.verdict =
             rad::judge_daylight(d.summary.mean, d.annual ? &d.metrics.sda : nullptr,
                                 d.annual ? &d.metrics.ase : nullptr, file.surfaces[s].required,
