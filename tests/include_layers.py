@@ -23,11 +23,17 @@ folders = sorted(d for d in os.listdir(src) if os.path.isdir(os.path.join(src, d
 for d in folders:
     if d not in rank:
         problems.append("libradiosity/src/%s/ is not in layers.txt: add it where it belongs" % d)
+def files_of(d):
+    """A folder's files, its sub-folders' too (mesh/ has its passes' families), by path."""
+    for here, _, names in os.walk(os.path.join(src, d)):
+        for name in sorted(names):
+            yield os.path.relpath(os.path.join(here, name), os.path.join(src, d))
+
 sources = {}
 for d in folders:
-    for f in os.listdir(os.path.join(src, d)):
+    for f in files_of(d):
         if f.endswith(".cpp"):
-            sources.setdefault(f[:-4], set()).add(d)
+            sources.setdefault(os.path.basename(f)[:-4], set()).add(d)
 owner = {}
 for h in sorted(os.listdir(public)):
     name = h.split(".")[0]
@@ -40,7 +46,7 @@ for h in sorted(os.listdir(public)):
 include = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 checked = 0
 for d in folders:
-    for f in sorted(os.listdir(os.path.join(src, d))):
+    for f in sorted(files_of(d)):
         if not f.endswith((".cpp", ".hpp")):
             continue
         for number, line in enumerate(open(os.path.join(src, d, f)), 1):

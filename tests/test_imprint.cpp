@@ -4,7 +4,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "mesh/box_pairs.hpp"
+#include "mesh/imprint/box_pairs.hpp"
 
 #include <map>
 #include <random>
