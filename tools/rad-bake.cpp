@@ -1,12 +1,12 @@
 // rad-bake: mesh + radiosity -> binary glTF with the light baked in (vertex colours or a
 // lightmap atlas), plus the atlas as linear EXR and sRGB PNG.
-#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/bake.hpp"
 #include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/huge_pages.hpp"
 #include "radiosity/image_io.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/numbers.hpp"
@@ -407,7 +407,7 @@ int main(int argc, char** argv) {
     Arguments arguments;
     add_options(app, arguments);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
-    rad::tool::restart_with_huge_pages(argv);
+    rad::restart_with_huge_pages(argv);
     return rad::tool::run_tool(
         "rad-bake", [&] { return bake_files(arguments, radfmt::command_line(argc, argv)); });
 }

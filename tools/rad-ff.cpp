@@ -1,5 +1,4 @@
 // rad-ff: patch mesh -> cached sparse form-factor matrix.
-#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/daylight.hpp"
@@ -8,6 +7,7 @@
 #include "radiosity/formfactor_method.hpp"
 #include "radiosity/gather.hpp"
 #include "radiosity/hierarchy.hpp"
+#include "radiosity/huge_pages.hpp"
 #include "radiosity/luminaires.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
@@ -654,6 +654,6 @@ int main(int argc, char** argv) {
     add_method_options(app, args);
     add_run_options(app, args);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
-    rad::tool::restart_with_huge_pages(argv);
+    rad::restart_with_huge_pages(argv);
     return rad::tool::run_tool("rad-ff", [&] { return form_factors(args, argc, argv); });
 }

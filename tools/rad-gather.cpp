@@ -1,6 +1,5 @@
 // rad-gather: mesh + solved radiosity + points -> irradiance (or illuminance) at each point.
 #include "gather_daylight.hpp"
-#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
@@ -9,6 +8,7 @@
 #include "radiosity/falsecolour.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
+#include "radiosity/huge_pages.hpp"
 #include "radiosity/luminaires.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
@@ -738,6 +738,6 @@ int main(int argc, char** argv) {
     add_output_options(app, args);
     rad::tool::add_daylight_options(app, args.daylight);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
-    rad::tool::restart_with_huge_pages(argv);
+    rad::restart_with_huge_pages(argv);
     return rad::tool::run_tool("rad-gather", [&] { return gather(args, argc, argv); });
 }

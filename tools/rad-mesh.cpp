@@ -1,9 +1,9 @@
 // rad-mesh: OBJ+MTL scene -> conforming patch mesh.
-#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/build_mesh.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/huge_pages.hpp"
 #include "radiosity/materials.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/scene.hpp"
@@ -303,7 +303,7 @@ int main(int argc, char** argv) {
     add_stage_options(app, a);
     add_import_options(app, a);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
-    rad::tool::restart_with_huge_pages(argv);
+    rad::restart_with_huge_pages(argv);
 
     return rad::tool::run_tool("rad-mesh", [&] {
         rad::tool::check_outputs({a.input}, {{"-o", a.output}});
@@ -324,8 +324,7 @@ int main(int argc, char** argv) {
         header.set("unit", a.unit);
         radfmt::write_mesh(a.output, header, mesh);
         stages.finish();
-        if (a.timings)
-            std::cerr << "rad-mesh: timing: pages: " << rad::tool::huge_pages_state() << '\n';
+        if (a.timings) std::cerr << "rad-mesh: timing: pages: " << rad::huge_pages_state() << '\n';
         if (!a.quiet) print_summary(mesh, report);
         for (const auto& line : report.lines)
             if (line.kind == rad::MeshReport::Kind::Change)

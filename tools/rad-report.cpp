@@ -12,11 +12,11 @@
 #include "radiosity/luminaire_image.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/report.hpp"
+#include "radiosity/report_pdf.hpp"
 #include "radiosity/solve_policy.hpp"
 #include "radiosity/version.hpp"
 #include "radiosity/view.hpp"
 #include "radiosity/weather.hpp"
-#include "report_pdf.hpp"
 #include "tool.hpp"
 
 #include <chrono>
@@ -558,7 +558,7 @@ int report(ReportArgs& a) {
     rad::tool::write_output(a.output, [&](std::FILE* out) { std::fputs(html.c_str(), out); });
     if (!a.pdf.empty())
         radfmt::write_atomically(
-            a.pdf, [&](const std::filesystem::path& temp) { rad::tool::print_pdf(html, temp); });
+            a.pdf, [&](const std::filesystem::path& temp) { rad::print_pdf(html, temp); });
     outputs.commit();
     if (!a.quiet) print_summary(a, in);
     return 0;

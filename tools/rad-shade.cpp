@@ -1,5 +1,4 @@
 // rad-shade: mesh + radiosity + view -> linear OpenEXR image (+ PNG preview, PLY mesh).
-#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
@@ -10,6 +9,7 @@
 #include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
 #include "radiosity/gathered.hpp"
+#include "radiosity/huge_pages.hpp"
 #include "radiosity/image_parts.hpp"
 #include "radiosity/irradiance_cache.hpp"
 #include "radiosity/light_groups.hpp"
@@ -603,6 +603,6 @@ int main(int argc, char** argv) {
     add_look_options(app, args);
     add_light_options(app, args);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
-    rad::tool::restart_with_huge_pages(argv);
+    rad::restart_with_huge_pages(argv);
     return rad::tool::run_tool("rad-shade", [&] { return shade(args, argc, argv); });
 }

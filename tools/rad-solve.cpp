@@ -1,9 +1,9 @@
 // rad-solve: mesh + cached form factors -> per-patch radiosity.
-#include "huge_pages.hpp"
 #include "radfmt/chain.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/gather.hpp"
+#include "radiosity/huge_pages.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/luminaires.hpp"
 #include "radiosity/numbers.hpp"
@@ -412,7 +412,7 @@ int solve(SolveArgs& a, int argc, char** argv) {
     auto& request = a.request;
     request.tolerance_given = a.tolerance_option->count() > 0;
     const auto& solver = rad::solver(request.method);
-    if (a.verbose) std::cerr << "rad-solve: pages: " << rad::tool::huge_pages_state() << '\n';
+    if (a.verbose) std::cerr << "rad-solve: pages: " << rad::huge_pages_state() << '\n';
     radfmt::Header mesh_header;
     auto mesh = radfmt::read_mesh(a.mesh_path, &mesh_header);
     // The materials first: a refusal comes before the (large) form factors are read. The
@@ -495,6 +495,6 @@ int main(int argc, char** argv) {
     add_record_options(app, args);
     add_material_options(app, args);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
-    rad::tool::restart_with_huge_pages(argv);
+    rad::restart_with_huge_pages(argv);
     return rad::tool::run_tool("rad-solve", [&] { return solve(args, argc, argv); });
 }

@@ -1,4 +1,4 @@
-#include "huge_pages.hpp"
+#include "radiosity/huge_pages.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -7,7 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-namespace rad::tool {
+namespace rad {
 
 namespace {
 
@@ -110,4 +110,4 @@ std::string huge_pages_state() {
     return state;
 }
 
-} // namespace rad::tool
+} // namespace rad

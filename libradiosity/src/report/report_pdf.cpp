@@ -1,5 +1,5 @@
 // Printing the report's page to PDF with headless Chromium.
-#include "report_pdf.hpp"
+#include "radiosity/report_pdf.hpp"
 
 #include "radiosity/error.hpp"
 
@@ -20,7 +20,7 @@
 
 extern char** environ;
 
-namespace rad::tool {
+namespace rad {
 namespace fs = std::filesystem;
 namespace {
 
@@ -206,4 +206,4 @@ void print_pdf(const std::string& html, const fs::path& pdf, int timeout_seconds
     }
 }
 
-} // namespace rad::tool
+} // namespace rad

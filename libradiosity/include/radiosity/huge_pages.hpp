@@ -8,7 +8,7 @@
 #pragma once
 #include <string>
 
-namespace rad::tool {
+namespace rad {
 
 // Restarts the running program (/proc/self/exe, the same arguments) with
 // glibc.malloc.hugetlb=1 added to GLIBC_TUNABLES, unless the kernel has transparent huge
@@ -23,4 +23,4 @@ void restart_with_huge_pages(char** argv);
 // them now (AnonHugePages of /proc/self/smaps_rollup).
 std::string huge_pages_state();
 
-} // namespace rad::tool
+} // namespace rad
