@@ -376,17 +376,13 @@ OperatedYear operated(const DaylightArgs& a, const DaylightRun& run,
 
 void write_shading_log(const std::string& path, const OperatedYear& s) {
     const auto& year = s.year;
-    radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
-        std::ofstream out(temp);
-        out << "month,day,hour,occupied,sunlit_share,shaded\n";
-        char line[96];
+    write_output(path, [&](std::FILE* out) {
+        std::fprintf(out, "month,day,hour,occupied,sunlit_share,shaded\n");
         for (std::size_t t = 0; t < year.hours.size(); ++t) {
             const auto h = year.hours[t];
-            std::snprintf(line, sizeof line, "%u,%u,%u,%d,%.6g,%d\n", h / 10000, h / 100 % 100,
-                          h % 100, int(year.occupied[t]), s.sunlit[t], int(s.down[t]));
-            out << line;
+            std::fprintf(out, "%u,%u,%u,%d,%.6g,%d\n", h / 10000, h / 100 % 100, h % 100,
+                         int(year.occupied[t]), s.sunlit[t], int(s.down[t]));
         }
-        if (!out.flush()) throw SystemError(path + ": cannot write");
     });
 }
 
@@ -564,25 +560,22 @@ void print_glare(const std::string& text, const DaylightGlare& g) {
 void write_glare_hours(const std::string& path, const Weather& weather,
                        const std::vector<std::uint8_t>& occupied,
                        const std::vector<std::vector<DaylightGlare>>& views) {
-    radfmt::write_atomically(path, [&](const std::filesystem::path& temp) {
-        std::ofstream out(temp);
-        out << "month,day,hour,occupied";
-        for (std::size_t v = 0; v < views.size(); ++v) out << ",dgp" << v + 1 << ",ev" << v + 1;
-        out << '\n';
-        char text[64];
+    write_output(path, [&](std::FILE* out) {
+        std::fprintf(out, "month,day,hour,occupied");
+        for (std::size_t v = 0; v < views.size(); ++v)
+            std::fprintf(out, ",dgp%zu,ev%zu", v + 1, v + 1);
+        std::fputc('\n', out);
         for (std::size_t t = 0; t < weather.hours.size(); ++t) {
             const auto& h = weather.hours[t];
-            out << h.month << ',' << h.day << ',' << h.hour << ',' << int(occupied[t]);
+            std::fprintf(out, "%d,%d,%d,%d", h.month, h.day, h.hour, int(occupied[t]));
             for (const auto& view : views) {
                 if (std::isfinite(view[t].dgp))
-                    std::snprintf(text, sizeof text, ",%.4f,%.6g", view[t].dgp, view[t].ev);
+                    std::fprintf(out, ",%.4f,%.6g", view[t].dgp, view[t].ev);
                 else
-                    std::snprintf(text, sizeof text, ",,");
-                out << text;
+                    std::fputs(",,", out);
             }
-            out << '\n';
+            std::fputc('\n', out);
         }
-        if (!out.flush()) throw SystemError(path + ": cannot write");
     });
 }
 
@@ -700,15 +693,16 @@ int sunlight_exposure(const DaylightArgs& a, const DaylightRun& run) {
                                ? daylight_frame(*run.rad_header, run.rad_path)
                                : SkyFrame{};
     const SunlightScene scene(*run.mesh);
+    std::vector<Vec3> points;
+    for (const auto& text : a.sunlight) points.push_back(sunlight_point(text));
     std::vector<SunlightExposure> results;
-    for (const auto& text : a.sunlight)
-        results.push_back(
-            scene.exposure(sunlight_point(text), where, frame, days, a.sun_min_altitude));
+    for (const auto& p : points)
+        results.push_back(scene.exposure(p, where, frame, days, a.sun_min_altitude));
     write_output(run.output, [&](std::FILE* out) {
         if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
         std::fprintf(out, "x,y,z,date,hours,level\n");
         for (std::size_t k = 0; k < results.size(); ++k) {
-            const auto p = sunlight_point(a.sunlight[k]);
+            const auto& p = points[k];
             std::fprintf(out, "%.6g,%.6g,%.6g,%s,%.4f,%s\n", p[0], p[1], p[2],
                          date_text(results[k].best.date).c_str(), results[k].best.hours(),
                          results[k].level());

@@ -213,11 +213,10 @@ std::string method_text(const ReportArgs& a, const radfmt::Header& rad_header, b
 std::vector<rad::ReportDaylightGlare>
 observers_daylight_glare(const ReportArgs& a, const rad::CalcFile& file,
                          const radfmt::MeshData& mesh, const radfmt::RadiosityData& solution,
-                         const radfmt::Header& rad_header, const rad::Weather& weather,
+                         const radfmt::Header& rad_header, const rad::HourlySkies& skies,
                          const std::vector<std::uint8_t>& occupied) {
     const auto view = rad::solution_sky_view(rad_header, a.inputs[1], "", mesh, a.inputs[0]);
     const auto daylight = rad::daylight_solution(solution, rad_header, a.inputs[1]);
-    const auto skies = rad::hourly_skies(weather, daylight.patches, daylight.frame, a.ground);
     const rad::DaylightLuminance luminance(mesh, daylight, view);
     rad::GlareOptions options;
     options.rings = rad::kAnnualGlareRings;
@@ -247,7 +246,9 @@ DaylightYear daylight_year(const ReportArgs& a, const rad::CalcFile& file,
     DaylightYear out;
     const auto weather = rad::read_epw(a.epw);
     const auto occupied = rad::tool::occupied_hours(a.occupancy, weather);
-    out.lux = rad::annual_illuminance(sensors, positions, normals, weather, occupied, a.ground,
+    // The year's skies once, for the sensors and the observers' glare.
+    const auto skies = rad::hourly_skies(weather, sensors.patches(), sensors.frame(), a.ground);
+    out.lux = rad::annual_illuminance(sensors, skies, positions, normals, weather, occupied,
                                       a.quiet, nullptr, &out.replicates);
     out.metrics = rad::annual_metrics(out.lux, inside);
     out.daylight_hours = rad::en17037_daylight_hours(weather);
@@ -256,7 +257,7 @@ DaylightYear daylight_year(const ReportArgs& a, const rad::CalcFile& file,
     in.occupancy = rad::tool::occupancy_text(a.occupancy);
     if (!file.observers.empty())
         in.daylight_glare =
-            observers_daylight_glare(a, file, mesh, solution, rad_header, weather, occupied);
+            observers_daylight_glare(a, file, mesh, solution, rad_header, skies, occupied);
     return out;
 }
 

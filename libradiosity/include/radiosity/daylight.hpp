@@ -310,17 +310,24 @@ radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
                                       const std::vector<std::uint8_t>& occupied, double ground,
                                       bool quiet = true, std::vector<std::string>* notes = nullptr,
                                       AnnualReplicates* replicates = nullptr);
+// The same under skies already made (hourly_skies of the weather, the sensors' sky patches
+// and compass, the ground): years of several solutions, or a year and its glare, share them.
+radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors, const HourlySkies& skies,
+                                      const std::vector<Vec3>& positions,
+                                      const std::vector<Vec3>& normals, const Weather& weather,
+                                      const std::vector<std::uint8_t>& occupied, bool quiet = true,
+                                      std::vector<std::string>* notes = nullptr,
+                                      AnnualReplicates* replicates = nullptr);
 
 // A year lit by several solutions (a window's states, shading.hpp): adds to `replicates` (its
 // batches 0 at the first call: sized and zeroed here) the replicates of the occupied hours
-// `counted` marks, which this state's `sensors` lit, against the year's `lux` as operated;
-// shares are of `occupied_hours`, all the year's. Called once per state, the replicates are
-// those annual_illuminance gives a year of one state.
-void add_annual_replicates(const DaylightSensors& sensors, const std::vector<Vec3>& positions,
-                           const std::vector<Vec3>& normals, const Weather& weather,
+// `counted` marks, which this state's `sensors` lit under `skies` (hourly_skies), against the
+// year's `lux` as operated; shares are of `occupied_hours`, all the year's. Called once per
+// state, the replicates are those annual_illuminance gives a year of one state.
+void add_annual_replicates(const DaylightSensors& sensors, const HourlySkies& skies,
+                           const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
                            const std::vector<std::uint8_t>& counted, int occupied_hours,
-                           double ground, const std::vector<float>& lux,
-                           AnnualReplicates& replicates);
+                           const std::vector<float>& lux, AnnualReplicates& replicates);
 
 // The occupied hours: 08:00 to 18:00 local standard time every day (LM-83's default), or
 // read from `path`: one 0 or 1 a line for each hour of the year (# comments and blank lines

@@ -45,6 +45,8 @@ std::vector<double> sunlit_shares(const radfmt::AnnualData& open,
 // open.
 std::vector<std::uint8_t> shaded_hours(const ShadingRule& rule, const radfmt::AnnualData& open,
                                        std::span<const std::uint8_t> judged);
+// The same from the hours' sunlit shares already taken (sunlit_shares at the rule's lux).
+std::vector<std::uint8_t> shaded_hours(const ShadingRule& rule, const std::vector<double>& shares);
 
 // The year as operated: each hour's illuminance from the state `shaded` marks for it, the
 // direct sun the open state's at every hour (LM-83 computes ASE with the blinds up), so

@@ -133,14 +133,12 @@ void start_replicates(const DaylightSensors& sensors, std::size_t n, AnnualRepli
 }
 } // namespace
 
-void add_annual_replicates(const DaylightSensors& sensors, const std::vector<Vec3>& positions,
-                           const std::vector<Vec3>& normals, const Weather& weather,
+void add_annual_replicates(const DaylightSensors& sensors, const HourlySkies& skies,
+                           const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
                            const std::vector<std::uint8_t>& counted, int occupied_hours,
-                           double ground, const std::vector<float>& lux,
-                           AnnualReplicates& replicates) {
+                           const std::vector<float>& lux, AnnualReplicates& replicates) {
     const std::size_t n = positions.size();
     if (replicates.batches == 0) start_replicates(sensors, n, replicates);
-    const auto skies = hourly_skies(weather, sensors.patches(), sensors.frame(), ground);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
         sensor_replicates(sensors, skies, counted, occupied_hours, positions[k], normals[k], k, lux,
                           n, replicates);
@@ -153,7 +151,20 @@ radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors,
                                       const std::vector<std::uint8_t>& occupied, double ground,
                                       bool quiet, std::vector<std::string>* notes,
                                       AnnualReplicates* replicates) {
-    const auto skies = hourly_skies(weather, sensors.patches(), sensors.frame(), ground);
+    return annual_illuminance(sensors,
+                              hourly_skies(weather, sensors.patches(), sensors.frame(), ground),
+                              positions, normals, weather, occupied, quiet, notes, replicates);
+}
+
+radfmt::AnnualData annual_illuminance(const DaylightSensors& sensors, const HourlySkies& skies,
+                                      const std::vector<Vec3>& positions,
+                                      const std::vector<Vec3>& normals, const Weather& weather,
+                                      const std::vector<std::uint8_t>& occupied, bool quiet,
+                                      std::vector<std::string>* notes,
+                                      AnnualReplicates* replicates) {
+    if (skies.count != sensors.patches().count() || skies.sun.size() != weather.hours.size())
+        throw InternalError("annual_illuminance: the skies are not of these sensors' sky patches "
+                            "and the weather's hours");
     if (notes)
         for (auto note :
              {flagged_hours_note(weather, skies.night_light,

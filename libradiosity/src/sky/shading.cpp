@@ -89,13 +89,17 @@ std::vector<double> sunlit_shares(const radfmt::AnnualData& open,
     return out;
 }
 
-std::vector<std::uint8_t> shaded_hours(const ShadingRule& rule, const radfmt::AnnualData& open,
-                                       std::span<const std::uint8_t> judged) {
+std::vector<std::uint8_t> shaded_hours(const ShadingRule& rule, const std::vector<double>& shares) {
     if (rule.kind == ShadingRule::Kind::schedule) return rule.schedule;
-    const auto shares = sunlit_shares(open, judged, rule.lux);
     std::vector<std::uint8_t> out(shares.size());
     for (std::size_t t = 0; t < shares.size(); ++t) out[t] = shares[t] > rule.share;
     return out;
+}
+
+std::vector<std::uint8_t> shaded_hours(const ShadingRule& rule, const radfmt::AnnualData& open,
+                                       std::span<const std::uint8_t> judged) {
+    if (rule.kind == ShadingRule::Kind::schedule) return rule.schedule;
+    return shaded_hours(rule, sunlit_shares(open, judged, rule.lux));
 }
 
 radfmt::AnnualData operated_year(const radfmt::AnnualData& open, const radfmt::AnnualData& closed,
@@ -128,23 +132,30 @@ OperatedYear operated_annual(const DaylightSensors& open, const DaylightSensors&
                              std::span<const std::uint8_t> judged,
                              std::span<const std::uint8_t> inside, bool quiet,
                              std::vector<std::string>* notes, AnnualReplicates* replicates) {
-    const auto year_of = [&](const DaylightSensors& sensors, std::vector<std::string>* said) {
-        return annual_illuminance(sensors, positions, normals, weather, occupied, ground, quiet,
-                                  said);
-    };
-    const auto open_year = year_of(open, notes);
-    const auto closed_year = year_of(closed, nullptr);
+    // The year's skies, made once: the closed state shares them when its solution has the
+    // open one's sky patches and compass (a window's states: the same .sky subdivision).
+    const auto open_skies = hourly_skies(weather, open.patches(), open.frame(), ground);
+    const bool shared = closed.patches().count() == open.patches().count() &&
+                        closed.frame().north_deg == open.frame().north_deg;
+    const auto own_skies =
+        shared ? HourlySkies{} : hourly_skies(weather, closed.patches(), closed.frame(), ground);
+    const auto& closed_skies = shared ? open_skies : own_skies;
+    const auto open_year =
+        annual_illuminance(open, open_skies, positions, normals, weather, occupied, quiet, notes);
+    const auto closed_year = annual_illuminance(closed, closed_skies, positions, normals, weather,
+                                                occupied, quiet, nullptr);
     OperatedYear out;
     out.rule = rule.describe();
-    out.down = shaded_hours(rule, open_year, judged);
     out.sunlit = sunlit_shares(open_year, judged, rule.lux);
+    out.down = shaded_hours(rule, out.sunlit);
     out.year = operated_year(open_year, closed_year, out.down);
     const int occupied_hours = int(std::count(occupied.begin(), occupied.end(), 1));
     if (replicates)
         for (const auto* sensors : {&open, &closed})
-            add_annual_replicates(*sensors, positions, normals, weather,
+            add_annual_replicates(*sensors, sensors == &closed ? closed_skies : open_skies,
+                                  positions, normals,
                                   hours_where(occupied, out.down, sensors == &closed),
-                                  occupied_hours, ground, out.year.lux, *replicates);
+                                  occupied_hours, out.year.lux, *replicates);
     const auto down_occupied = hours_where(occupied, out.down, true);
     out.occupied_down = int(std::count(down_occupied.begin(), down_occupied.end(), 1));
     out.open = annual_metrics(open_year, inside);
