@@ -136,12 +136,11 @@ void add_options(CLI::App& app, Arguments& a) {
         ->check(rad::tool::finite_range(0, 1));
     app.add_option("--view", a.view_text, "--html: the camera, as rad-shade's --view");
     app.add_option("--view-file", a.view_file, "--html: the camera, as rad-shade's --view-file");
-    rad::tool::add_threads_option(app, a.threads);
-    app.add_option("--max-memory", a.max_memory,
-                   "--lightmap: refuse, before baking, an atlas (times its light groups) "
-                   "estimated to need more than this (e.g. 4G; default: 80% of what the job may "
-                   "use: physical memory, its cgroup limit or ulimit -v, the least)");
-    app.add_flag("-q,--quiet", a.quiet, "No summary");
+    rad::tool::add_common_options(
+        app, {.threads = &a.threads,
+              .quiet = &a.quiet,
+              .max_memory = &a.max_memory,
+              .max_memory_refuses = "a --lightmap atlas (times its light groups)"});
 }
 
 // The page's camera; throws InputError for options that do not go together.

@@ -114,15 +114,6 @@ void add_file_options(CLI::App& app, FfArgs& a) {
     app.add_option("MESH", a.inputs,
                    "Patch mesh from rad-mesh (with --merge: the part files to join)")
         ->required();
-    a.rows_option =
-        app.add_option("--rows", a.rows,
-                       "Compute only these rows and write a part file: A:B (rows A to B, B "
-                       "excluded) or K/N (shard K of N, from 0, e.g. $SLURM_ARRAY_TASK_ID/16; "
-                       "--method hierarchical: K/N only, the refinement's tasks); "
-                       "rad-ff --merge joins the parts");
-    app.add_flag("--merge", a.merge,
-                 "Join part files (rad-ff --rows) of one mesh and options into the form-factor "
-                 "file one run would have written, byte for byte; every row exactly once");
     a.output_option = app.add_option("-o,--output", a.output, "Output form-factor file");
     app.add_option("--luminaires", a.luminaires,
                    "A luminaire layout (CSV: name,photometry,x,y,z,aim_x,aim_y,aim_z,spin,"
@@ -142,8 +133,7 @@ void add_file_options(CLI::App& app, FfArgs& a) {
     app.add_flag("--estimate", a.estimate_only,
                  "Measure a few rows, say how long the run would take (and, for an O(n^2) "
                  "method, what hemisphere would take), and stop: no output, no -o needed. "
-                 "Without it, rad-ff says so before runs of over 10 s")
-        ->excludes("--merge");
+                 "Without it, rad-ff says so before runs of over 10 s");
 }
 
 // --method and what each method takes.
@@ -223,23 +213,31 @@ void add_method_options(CLI::App& app, FfArgs& a) {
         ->delimiter(',');
 }
 
-// The seed, threads, memory and quiet.
+// The seed, threads, memory, quiet, and sharding.
 void add_run_options(CLI::App& app, FfArgs& a) {
-    app.add_option("--seed", a.options.seed, "Seed for every random choice")->capture_default_str();
-    rad::tool::add_threads_option(app, a.threads);
-    app.add_option("--max-memory", a.max_memory,
-                   "Refuse to start when the estimated memory exceeds this (e.g. 4G; default: "
-                   "80% of what the job may use: physical memory, its cgroup limit or ulimit -v, "
-                   "the least)");
-    app.add_flag("-q,--quiet", a.options.quiet, "No progress and no summary");
-    app.add_flag("-v,--verbose", a.verbose,
-                 "Every warning line (without it, at most 20 of a kind, the worst first, and a "
-                 "count of the rest)");
+    a.rows_option = rad::tool::add_common_options(
+        app, {.threads = &a.threads,
+              .seed = &a.options.seed,
+              .seed_help = "every random choice",
+              .quiet = &a.options.quiet,
+              .shows_progress = true,
+              .verbose = &a.verbose,
+              .verbose_help = "Every warning line (without it, at most 20 of a kind, the worst "
+                              "first, and a count of the rest)",
+              .max_memory = &a.max_memory,
+              .max_memory_refuses = "a run",
+              .rows = &a.rows,
+              .merge = &a.merge,
+              .tool = "rad-ff",
+              .rows_unit = "rows",
+              .rows_extra = "; --method hierarchical: K/N only, the refinement's tasks",
+              .merge_result = "the form-factor file one run of the same mesh and options "
+                              "would have written"});
+    app.get_option("--estimate")->excludes("--merge");
 }
 
 // --merge: the parts joined into the file one run would have written.
 int merge_parts(const FfArgs& a) {
-    if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
     const auto kind = radfmt::read_header(a.inputs.front()).kind;
     if (kind == radfmt::Kind::Links) {
         const auto links = rad::merge_link_parts(a.inputs, a.output);
@@ -592,9 +590,6 @@ int form_factors(FfArgs& a, int argc, char** argv) {
     if (!a.sky.empty()) return sky_view(a, argc, argv);
     if (a.inputs.size() != 1)
         throw rad::InputError("give one mesh (several inputs are for --merge)");
-    if (a.rows_option->count() > 0 && a.rows.empty())
-        throw rad::InputError("--rows is empty: give A:B or K/N (leave --rows out for "
-                              "every row)");
     const auto& input = a.inputs.front();
     const std::uint64_t limit = rad::tool::memory_limit(a.max_memory);
     rad::ThreadLimit thread_limit(a.threads);

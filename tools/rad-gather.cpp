@@ -165,14 +165,6 @@ void add_file_options(CLI::App& app, GatherArgs& a) {
                    "The luminaires file (.lum) the solution was solved with, when it has moved "
                    "(default: the one rad-solve --direct recorded); its luminaires' direct "
                    "light is computed exactly at each point (tables and visibility rays)");
-    app.add_option("--rows", a.rows,
-                   "Gather only these sensors (of --points FILE or --grid, in order, from 0) "
-                   "into a part file: A:B (sensors A to B, B excluded) or K/N (shard K of N, "
-                   "e.g. $SLURM_ARRAY_TASK_ID/16); rad-gather --merge joins the parts into "
-                   "what one run writes");
-    app.add_flag("--merge", a.merge,
-                 "Join part files (rad-gather --rows) into -o, in order: the bytes one run "
-                 "would have written");
 }
 
 // What is written, and the work plane.
@@ -213,8 +205,22 @@ void add_output_options(CLI::App& app, GatherArgs& a) {
                    "(default: a round number at or above the plane's largest value; values "
                    "above it get the top colour)")
         ->check(rad::tool::finite_range(0, 1e30));
-    rad::tool::add_threads_option(app, a.threads);
-    app.add_flag("-q,--quiet", a.quiet, "No progress and no summary");
+}
+
+// Threads, the seed, quiet, and sharding.
+void add_run_options(CLI::App& app, GatherArgs& a) {
+    rad::tool::add_common_options(
+        app, {.threads = &a.threads,
+              .seed = &a.options.seed,
+              .seed_help = "each point's own random stream (seed, point index)",
+              .quiet = &a.quiet,
+              .shows_progress = true,
+              .rows = &a.rows,
+              .merge = &a.merge,
+              .tool = "rad-gather",
+              .rows_unit = "sensors",
+              .rows_extra = "; the sensors of --points FILE, --grid or --surfaces, in order",
+              .merge_result = "-o, in order: the bytes one run would have written"});
 }
 
 // Combinations that cannot work.
@@ -402,7 +408,6 @@ std::uint64_t count_sensors(const std::string& path) {
 // --merge: the parts into the output one run would have written.
 int merge_parts(const GatherArgs& a) {
     if (a.output.empty()) throw rad::InputError("--merge writes -o FILE: give it");
-    if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
     rad::tool::check_outputs(a.inputs, {{"-o", a.output}});
     const auto sensors = rad::merge_sensor_parts(a.inputs, a.output);
     if (!a.quiet)
@@ -737,6 +742,7 @@ int main(int argc, char** argv) {
                                                             "; daylight: 1024 unless given");
     add_output_options(app, args);
     rad::tool::add_daylight_options(app, args.daylight);
+    add_run_options(app, args);
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
     rad::restart_with_huge_pages(argv);
     return rad::tool::run_tool("rad-gather", [&] { return gather(args, argc, argv); });

@@ -210,10 +210,6 @@ void add_import_options(CLI::App& app, MeshArgs& a) {
                    "default: 80% of what the job may use: physical memory, its cgroup limit or "
                    "ulimit -v, the least); a crash there is an error naming the "
                    "file, never the tool's");
-    app.add_option("--max-memory", a.max_memory,
-                   "Refuse a scene whose faces (instances counted) would need more than this "
-                   "to mesh, as soon as they are counted (e.g. 4G; default: 80% of physical "
-                   "memory)");
     app.add_flag("--allow-outside-refs", a.scene.allow_outside_refs,
                  "Let the scene refer to files outside its own folder (material libraries, "
                  "textures, glTF buffers and images given by absolute paths or '..'); FIFOs "
@@ -223,11 +219,14 @@ void add_import_options(CLI::App& app, MeshArgs& a) {
                    "its Kd); each texture file is decoded once per run")
         ->capture_default_str()
         ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40));
-    app.add_flag("-q,--quiet", a.quiet,
-                 "Print no summary (and no progress; progress shows only on a terminal)");
-    app.add_flag("-v,--verbose", a.verbose,
-                 "Every orientation warning line (without it, at most 20, those with the most "
-                 "faces first, and a count of the rest)");
+    rad::tool::add_common_options(
+        app, {.quiet = &a.quiet,
+              .shows_progress = true,
+              .verbose = &a.verbose,
+              .verbose_help = "Every orientation warning line (without it, at most 20, those "
+                              "with the most faces first, and a count of the rest)",
+              .max_memory = &a.max_memory,
+              .max_memory_refuses = "a scene whose faces (instances counted) are"});
     app.add_flag("--timings", a.timings,
                  "Print each stage's wall time and the peak memory so far (stderr), and "
                  "whether the heap is in transparent huge pages (rad-mesh restarts itself "

@@ -102,8 +102,12 @@ void add_options(CLI::App& app, ReportArgs& a) {
         ->check(CLI::Range(1, 10000));
     a.rays_option = rad::tool::add_sensor_gather_options(
         app, a.options, a.smooth, "; daylight: 1024 unless given; as rad-gather");
-    rad::tool::add_threads_option(app, a.threads);
-    app.add_flag("-q,--quiet", a.quiet, "No progress and no summary");
+    rad::tool::add_common_options(app, {.threads = &a.threads,
+                                        .seed = &a.options.seed,
+                                        .seed_help = "each sensor's own random stream (seed, "
+                                                     "sensor index; as rad-gather)",
+                                        .quiet = &a.quiet,
+                                        .shows_progress = true});
 }
 
 std::string today() {

@@ -63,14 +63,6 @@ void add_image_options(CLI::App& app, ShadeArgs& a) {
                    "--albedo); with --merge: the part files to join")
         ->required();
     app.add_option("-o,--output", a.output, "Output OpenEXR image")->required();
-    app.add_option("--rows", a.rows,
-                   "Render only these image rows into a part file (an EXR of the image's size): "
-                   "A:B (rows A to B, B excluded, from the top) or K/N (band K of N, e.g. "
-                   "$SLURM_ARRAY_TASK_ID/16); rad-shade --merge joins the parts into the EXR "
-                   "and --png one run writes");
-    app.add_flag("--merge", a.merge,
-                 "Join part files (rad-shade --rows) into -o and the --png the parts were "
-                 "given (or this run's --png): one run's bytes");
     app.add_option("--view", a.view_text,
                    "Radiance view options, e.g. \"-vp 0 1 3 -vd 0 0 -1 -vu 0 1 0 -vh 40 -vv 40\" "
                    "(neither --view nor --view-file: rad-shade chooses a camera that sees the "
@@ -87,12 +79,17 @@ void add_image_options(CLI::App& app, ShadeArgs& a) {
     app.add_option("--aa", a.aa, "Supersampling: N x N samples per pixel")
         ->capture_default_str()
         ->check(CLI::Range(1, 8));
-    app.add_option("--max-memory", a.max_memory,
-                   "Refuse to start when the images would need more memory than this (e.g. 4G; "
-                   "default: 80% of what the job may use: physical memory, its cgroup limit or "
-                   "ulimit -v, the least)");
-    rad::tool::add_threads_option(app, a.threads);
-    app.add_flag("-q,--quiet", a.quiet, "No summary");
+    rad::tool::add_common_options(
+        app, {.threads = &a.threads,
+              .quiet = &a.quiet,
+              .max_memory = &a.max_memory,
+              .max_memory_refuses = "a render whose images are",
+              .rows = &a.rows,
+              .merge = &a.merge,
+              .tool = "rad-shade",
+              .rows_unit = "image rows",
+              .rows_extra = ", from the top; each part an EXR of the image's size",
+              .merge_result = "-o and the --png the parts were given (or this run's --png)"});
 }
 
 // How patches become colours, and the extra outputs.

@@ -173,14 +173,14 @@ void add_material_options(CLI::App& app, SolveArgs& a) {
                    "from rad-ff --sky (.sky), one light group per sky patch and the ground "
                    "(daylight coefficients for rad-gather --sky and --epw). Implies "
                    "--light-groups");
-    app.add_option("--max-memory", a.max_memory,
-                   "Refuse, before solving, light groups whose channels over the patches would "
-                   "need more than this (e.g. 4G; default: 80% of what the job may use: physical "
-                   "memory, its cgroup limit or ulimit -v, the least)");
     app.add_flag("--force", request.force,
                  "Solve even with a reflectance >= 1 (convergence not guaranteed)");
-    app.add_flag("-q,--quiet", a.quiet, "No summary");
-    app.add_flag("-v,--verbose", a.verbose, "Log every iteration to stderr");
+    rad::tool::add_common_options(
+        app, {.quiet = &a.quiet,
+              .verbose = &a.verbose,
+              .verbose_help = "Log every iteration to stderr",
+              .max_memory = &a.max_memory,
+              .max_memory_refuses = "light groups whose channels over the patches are"});
 }
 
 // Which iterations are written as snapshots, and where.

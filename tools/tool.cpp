@@ -178,12 +178,6 @@ bool matches_pattern(const NumberedOutput& output, const std::string& path) {
 }
 } // namespace
 
-void add_threads_option(CLI::App& app, int& threads) {
-    app.add_option("--threads", threads, "Worker threads (0: all cores)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, ThreadLimit::max_threads()));
-}
-
 std::uint64_t memory_limit(const std::string& max_memory) {
     return max_memory.empty()
                ? static_cast<std::uint64_t>(kDefaultMemoryShare * double(job_memory_bytes()))
@@ -383,8 +377,6 @@ CLI::Option* add_sensor_gather_options(CLI::App& app, GatherOptions& options, st
     app.add_option("--crease-angle", options.crease_deg, "crease: largest angle smoothed over")
         ->capture_default_str()
         ->check(finite_range(0, 180));
-    app.add_option("--seed", options.seed, "Seed; each point has its own stream (seed, index)")
-        ->capture_default_str();
     return rays;
 }
 

@@ -1,6 +1,7 @@
 // What every tool's main shares (tools only: the library knows nothing of CLI11): argument
 // parsing with the house exit codes, and running a tool body with errors mapped to them.
 #pragma once
+#include "common_options.hpp"
 #include "radiosity/calc_surfaces.hpp"
 #include "radiosity/gather.hpp"
 #include "radiosity/sky.hpp"
@@ -49,9 +50,6 @@ void check_outputs(const std::vector<std::string>& inputs,
                    const std::vector<std::pair<std::string, std::string>>& outputs,
                    const std::vector<NumberedOutput>& patterns = {});
 
-// --threads N (0: all cores), with the bound every tool uses.
-void add_threads_option(CLI::App& app, int& threads);
-
 // The limit --max-memory gives (parse_size), or 80% of what the job may use when it is empty
 // (rad::job_memory_bytes: physical memory, a cgroup's limit, ulimit -v).
 std::uint64_t memory_limit(const std::string& max_memory);
@@ -96,8 +94,8 @@ void warn_at_budget(const char* what, long count, int max_rays, double accuracy,
 // --accuracy, --max-rays and --batches: the error bar and sampling to a stated accuracy.
 void add_accuracy_options(CLI::App& app, GatherOptions& options);
 // How a final gather at sensors is made (rad-gather, rad-report, so that both give the same
-// numbers): --rays, --shadow-rays, --exact, --smooth, --crease-angle, --seed. `rays_help`
-// ends --rays' help. Returns the --rays option (whether it was given).
+// numbers): --rays, --shadow-rays, --exact, --smooth, --crease-angle (--seed is common).
+// `rays_help` ends --rays' help. Returns the --rays option (whether it was given).
 CLI::Option* add_sensor_gather_options(CLI::App& app, GatherOptions& options, std::string& smooth,
                                        const std::string& rays_help);
 

@@ -29,7 +29,7 @@ grep -q "^rad-ff: hemisphere: about .* for $((rows / 4)) rows on" <<<"$err" || f
 grep -q "method hemisphere" <<<"$err" && fail "hemisphere suggested to itself: $err"
 [ "$(ls -A "$TMP")" = "$before" ] || fail "--estimate wrote: $(ls -A "$TMP")"
 expect_error "--output is required (or --estimate" "" "$BIN/rad-ff" "$TMP/c.mesh"
-expect_error "--rows is empty: give A:B or K/N" "$TMP/r.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/r.ff" --rows ''
+expect_error "--rows: empty: give A:B or K/N" "$TMP/r.ff" "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/r.ff" --rows ''
 # Under an address-space limit Embree's failure to start says "out of memory" (exit 2).
 err=$(ulimit -v 120000; "$BIN/rad-ff" "$TMP/c.mesh" -o "$TMP/u.ff" -q 2>&1); rc=$?
 [ $rc -eq 2 ] && grep -q "out of memory" <<<"$err" || fail "ulimit -v: exit $rc: $err"

@@ -10,12 +10,32 @@ for tool in rad-mesh rad-ff rad-solve rad-shade rad-gather rad-bake rad-report r
   [ -s "$page" ] || fail "no man page $page"
   grep -q "^\.SH OPTIONS" "$page" || fail "$page has no OPTIONS"
   # Every option of the tool is in its page and its man page.
-  for option in $("$BIN/$tool" --help | grep -oE '^  (-[a-z],)?--[a-z][a-z-]*' | sed 's/^ *//; s/^-[a-z],//'); do
+  for option in $("$BIN/$tool" --help | grep -oE '^  (  )?(-[a-z],)?--[a-z][a-z-]*' | sed 's/^ *//; s/^-[a-z],//'); do
     grep -qF -- "\`$option" "$SRC/docs/reference/$tool.md" || grep -qF -- ",$option" "$SRC/docs/reference/$tool.md" || fail "$tool $option is not in docs/reference/$tool.md"
     grep -qF -- "$(sed 's/-/\\-/g' <<<"$option")" "$page" || fail "$tool $option is not in its man page"
   done
   # Two links from the README: README -> docs/reference/<tool>.md.
   grep -q "docs/reference/$tool.md" "$SRC/README.md" || fail "README does not link docs/reference/$tool.md"
+done
+# The common options are declared once (#71): in every tool that takes one, it sits in the
+# "Common options" group with the same type, bound, default and default's sentence.
+for tool in rad-mesh rad-ff rad-solve rad-shade rad-gather rad-bake rad-report; do
+  help=$("$BIN/$tool" --help)
+  grep -q '^\[Option Group: Common options\]' <<<"$help" || fail "$tool has no Common options group"
+  common=$(sed -n '/^\[Option Group: Common options\]/,$p' <<<"$help")
+  for option in --threads --seed --max-memory --quiet --verbose --rows --merge; do
+    if grep -qE -- "^ +(-[a-z],)?$option\b" <<<"$help" && ! grep -qE -- "^    (-[a-z],)?$option\b" <<<"$common"; then
+      fail "$tool declares $option outside the common options"
+    fi
+  done
+  if grep -q -- '--threads' <<<"$help"; then
+    tr -s ' \n' ' ' <<<"$common" | grep -qE -- '--threads INT:INT in \[0 - [0-9]+\]=0 Worker threads \(0: all cores\) ' ||
+      fail "$tool's --threads differs: $(grep -A1 -- '--threads' <<<"$help")"
+  fi
+  if grep -q -- '--max-memory' <<<"$help"; then
+    tr -s ' \n' ' ' <<<"$common" | grep -qF "default: 80% of what the job may use: physical memory, its cgroup limit or ulimit -v, the least)" ||
+      fail "$tool's --max-memory default is described otherwise"
+  fi
 done
 # A man page reads as one (when man is there).
 if command -v man >/dev/null; then

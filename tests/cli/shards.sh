@@ -98,6 +98,12 @@ expect_error "rows 13 to 25 are in no part (compute them with --rows 13:26)" "$T
 expect_error "are parts of different images" "$TMP/s/x.exr" "$BIN/rad-shade" --merge "$TMP/s/i0.part" "$TMP/s/o1.part" "$TMP/s/i2.part" -o "$TMP/s/x.exr"
 expect_error "not a part from rad-shade --rows" "$TMP/s/x.exr" "$BIN/rad-shade" --merge "$TMP/s/one.exr" -o "$TMP/s/x.exr"
 expect_error "--ply and --layers are written by a run of the whole image" "$TMP/s/x.part" "$BIN/rad-shade" "$M" "$TMP/c.rad" -o "$TMP/s/x.part" --view-file "$VF" --rows 0/2 --ply "$TMP/s/x.ply"
+# --rows and --merge are declared once for the three sharding tools (#71): an empty --rows and
+# --rows with --merge are refused by each, before anything is read or written.
+for tool in rad-ff rad-gather rad-shade; do
+  expect_error "--rows: empty: give A:B or K/N" "$TMP/e.out" "$BIN/$tool" "$M" "$TMP/c.rad" -o "$TMP/e.out" --rows ''
+  expect_error "--rows excludes --merge" "$TMP/e.out" "$BIN/$tool" --merge "$TMP/p0.part" --rows 0/2 -o "$TMP/e.out"
+done
 # A FIFO among the parts is refused at once, as /dev/zero is (#70 item 9: the merge hung on it).
 mkfifo "$TMP/fifo.part"
 err=$(timeout 20 "$BIN/rad-ff" --merge "$TMP/p0.part" "$TMP/fifo.part" -o "$TMP/fifo.ff" 2>&1 >/dev/null); rc=$?
