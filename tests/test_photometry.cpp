@@ -2,6 +2,7 @@
 // FILE:LINE, interpolation and symmetry against values worked out by hand.
 #include "radiosity/gather.hpp"
 #include "radiosity/luminaires.hpp"
+#include "radiosity/melanopic.hpp"
 #include "radiosity/photometry.hpp"
 #include "radiosity/rays.hpp"
 
@@ -511,4 +512,83 @@ TEST_CASE("a .lum whose groups or count its layout does not make is refused (#70
                                                 "not those its layout makes (downlights)"));
     CHECK_THROWS_WITH(rad::check_luminaires_file(set, {"downlights"}, 7, "a.lum"),
                       Catch::Matchers::Contains("records 7 luminaires, its layout places 1"));
+}
+
+// Melanopic light (CIE S 026:2018, #69 item 4): the standard's own constants and published
+// ratios, a monochromatic line worked out by hand from the tabulated functions, and the bands
+// adding up to the whole.
+namespace {
+fs::path spectrum_file(const std::string& name, const std::string& text) {
+    const auto path = fs::temp_directory_path() / ("radiosity-test-" + name);
+    std::ofstream(path) << text;
+    return path;
+}
+} // namespace
+
+TEST_CASE("melanopic efficacy of D65 and illuminant A is CIE S 026's", "[melanopic]") {
+    // K_mel,v^D65 = 1.3262 mW/lm defines the D65 equivalent (from 1 nm tables; the 5 nm
+    // ones give 1.32635); D65's mel-DER is 1.
+    CHECK(rad::melanopic_elr(rad::cie_d65()) == Approx(1.3262).epsilon(2e-4));
+    CHECK(rad::melanopic_der(rad::cie_d65()) == Approx(1).epsilon(1e-12));
+    // Illuminant A: mel-DER 0.4958 (CIE S 026 Table 2; 100 lx of A is 49.58 lx melanopic EDI).
+    CHECK(rad::melanopic_der(rad::cie_illuminant_a()) == Approx(0.4958).epsilon(0.005));
+    // A blackbody at A's temperature (the other c2) is A within a hair.
+    CHECK(rad::melanopic_der(rad::blackbody(2856)) ==
+          Approx(rad::melanopic_der(rad::cie_illuminant_a())).epsilon(1e-3));
+    // Warmer is less melanopic, and the order holds across lamps.
+    CHECK(rad::melanopic_der(rad::blackbody(2700)) < rad::melanopic_der(rad::blackbody(4000)));
+    CHECK(rad::melanopic_der(rad::blackbody(4000)) < rad::melanopic_der(rad::blackbody(6500)));
+}
+
+TEST_CASE("a spectrum CSV: a line at 490 nm weighed by hand", "[melanopic]") {
+    // Only 490 nm: mel-DER = (s_mel(490) / V(490)) / (K_m x K_mel,v^D65) with s_mel(490) = 1
+    // and V(490) = 0.20802 (CIE tables): 1 / 0.20802 / (683.002 x 1.3262e-3) = 5.307.
+    const auto path = spectrum_file("line.csv", "wavelength_nm,power\n485,0\n490,1\n495,0\n");
+    const auto line = rad::read_spectrum_csv(path.string());
+    CHECK(rad::melanopic_der(line) == Approx(1 / 0.20802 / (683.002 * 1.3262e-3)).epsilon(2e-4));
+    // The bands add up to the whole, and a sample on a band's edge counts half to each side.
+    const auto bands = rad::melanopic_der_bands(line);
+    CHECK(bands[0] == 0);
+    CHECK(bands[1] == Approx(bands[2]));
+    CHECK(bands[0] + bands[1] + bands[2] == Approx(rad::melanopic_der(line)));
+    const auto d65 = rad::melanopic_der_bands(rad::cie_d65());
+    CHECK(d65[0] + d65[1] + d65[2] == Approx(1).epsilon(1e-12));
+    CHECK(d65[2] > d65[0]); // the melanopic stimulus is blue and green, hardly red
+    fs::remove(path);
+}
+
+TEST_CASE("melanopic EDI from the chain's RGB: grey rooms give E x mel-DER", "[melanopic]") {
+    const rad::Rgb grey{2, 2, 2}; // W/m^2 per channel: 358 lx
+    for (const auto& s : {rad::cie_d65(), rad::cie_illuminant_a(), rad::blackbody(4000)}) {
+        const auto w = rad::melanopic_weights(s, {1, 1, 1});
+        CHECK(rad::melanopic_edi(grey, w) == Approx(rad::lux(grey) * rad::melanopic_der(s)));
+    }
+    // A tinted lamp's own colour is divided out: its light on grey walls is still E x DER.
+    const rad::Rgb tint{1.4, 0.95, 0.6};
+    const auto a = rad::cie_illuminant_a();
+    const auto w = rad::melanopic_weights(a, tint);
+    const rad::Rgb lit{3 * tint[0], 3 * tint[1], 3 * tint[2]};
+    CHECK(rad::melanopic_edi(lit, w) == Approx(rad::lux(lit) * rad::melanopic_der(a)));
+    // A blue wall passes the blue band: more melanopic light per lux than the lamp itself.
+    const rad::Rgb blue{0.1 * tint[0], 0.3 * tint[1], 0.9 * tint[2]};
+    CHECK(rad::melanopic_edi(blue, w) / rad::lux(blue) > rad::melanopic_der(a));
+}
+
+TEST_CASE("spectra that cannot be read are refused at FILE:LINE", "[melanopic]") {
+    const auto down = spectrum_file("down.csv", "400,1\n500,1\n450,1\n");
+    CHECK_THROWS_WITH(rad::read_spectrum_csv(down.string()),
+                      Catch::Matchers::Contains("down.csv:3: wavelength 450 nm does not increase"));
+    const auto negative = spectrum_file("negative.csv", "400,1\n500,-1\n");
+    CHECK_THROWS_WITH(rad::read_spectrum_csv(negative.string()),
+                      Catch::Matchers::Contains("negative.csv:2: spectral power -1"));
+    const auto junk = spectrum_file("junk.csv", "nm,power\n400,1\nhello\n");
+    CHECK_THROWS_WITH(rad::read_spectrum_csv(junk.string()),
+                      Catch::Matchers::Contains("junk.csv:3: expected 'wavelength_nm,value'"));
+    const auto infrared = spectrum_file("ir.csv", "800,1\n900,1\n");
+    CHECK_THROWS_WITH(rad::read_spectrum_csv(infrared.string()),
+                      Catch::Matchers::Contains("no visible light"));
+    CHECK_THROWS_WITH(rad::parse_spectrum("cct:100"),
+                      Catch::Matchers::Contains("within 1000 to 25000 K"));
+    CHECK_THROWS_WITH(rad::parse_spectrum("cct:warm"), Catch::Matchers::Contains("cct:K takes"));
+    for (const auto& p : {down, negative, junk, infrared}) fs::remove(p);
 }

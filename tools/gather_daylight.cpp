@@ -1,6 +1,8 @@
 // rad-gather's daylight runs (see gather_daylight.hpp).
 #include "gather_daylight.hpp"
 
+#include "radiosity/melanopic.hpp"
+
 #include "radfmt/chain.hpp"
 #include "radiosity/daylight.hpp"
 #include "radiosity/daylight_glare.hpp"
@@ -214,41 +216,82 @@ void warn_sensors_at_budget(const DaylightRun& run,
     warn_at_budget("sensor(s)", count, std::max(run.max_rays, run.rays), run.accuracy, names);
 }
 
-int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors) {
+// The sky's light at every sensor (NaN inside objects), scaled, with its error.
+struct SensorValues {
+    std::vector<double> values, errors;
+};
+SensorValues sensor_values(const DaylightRun& run, const DaylightSensors& sensors, const Sky& sky,
+                           const std::vector<std::uint8_t>& inside, double scale,
+                           std::vector<DaylightSensors::Illuminance>* raw = nullptr) {
+    const auto lux = sensors.illuminance(sky, run.positions, run.normals, run.quiet);
+    SensorValues out;
+    for (std::size_t k = 0; k < lux.size(); ++k) {
+        out.values.push_back(inside[k] ? std::nan("") : scale * lux[k].total());
+        out.errors.push_back(inside[k] ? std::nan("") : scale * lux[k].error());
+    }
+    if (raw) *raw = lux;
+    return out;
+}
+
+// --melanopic: the mean melanopic EDI over lux of the sensors with a value.
+void print_melanopic_ratio(const SensorValues& lux, const SensorValues& melanopic,
+                           const std::string& spectrum) {
+    double e = 0, m = 0;
+    for (std::size_t k = 0; k < lux.values.size(); ++k)
+        if (std::isfinite(lux.values[k])) e += lux.values[k], m += melanopic.values[k];
+    std::fprintf(stderr,
+                 "rad-gather: melanopic: the sky's light as %s; melanopic EDI over lux at the "
+                 "sensors: %.3f (the room's colours and glass; grey ones keep mel-DER)\n",
+                 spectrum.c_str(), e > 0 ? m / e : 0.0);
+}
+
+// The sky's spectrum for --melanopic: D65, or the one --spectrum SPEC.
+Spectrum sky_spectrum(const std::vector<std::string>& specs) {
+    if (specs.empty()) return cie_d65();
+    if (specs.size() > 1 || specs[0].find('=') != std::string::npos)
+        throw InputError("--spectrum: a daylight solution's light is the sky's, one spectrum: "
+                         "give --spectrum SPEC once (no GROUP=; the default is CIE D65)");
+    return parse_spectrum(specs[0]);
+}
+
+int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors& sensors,
+            const DaylightSensors* melanopic, const std::string& melanopic_source) {
     const auto sky = sky_of(a.choice, a.epw, sensors.frame());
     if (a.daylight_factor && sky.horizontal_illuminance() <= 0)
         throw InputError("--daylight-factor: the sky has no horizontal illuminance");
     const std::size_t n = run.positions.size();
-    const auto lux = sensors.illuminance(sky, run.positions, run.normals, run.quiet);
     // A sensor inside furniture has no value (NaN), as in the lighting mode.
     const auto inside = sensors.inside(run.positions, run.normals);
-    std::vector<double> values, errors;
     const double scale = a.daylight_factor ? 100 / sky.horizontal_illuminance() : 1;
-    for (std::size_t k = 0; k < n; ++k) {
-        values.push_back(inside[k] ? std::nan("") : scale * lux[k].total());
-        errors.push_back(inside[k] ? std::nan("") : scale * lux[k].error());
-    }
+    std::vector<DaylightSensors::Illuminance> lux;
+    const auto [values, errors] = sensor_values(run, sensors, sky, inside, scale, &lux);
+    const auto mel = melanopic ? sensor_values(run, *melanopic, sky, inside, 1) : SensorValues{};
     const auto without = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), 1));
     warn_sensors_at_budget(run, lux, inside);
     write_output(run.output, [&](std::FILE* out) {
         if (!run.header_line.empty()) std::fprintf(out, "%s\n", run.header_line.c_str());
         if (run.labels.empty()) {
-            for (std::size_t k = 0; k < n; ++k)
-                if (run.error)
-                    std::fprintf(out, "%.6g %.3g\n", values[k], errors[k]);
-                else
-                    std::fprintf(out, "%.6g\n", values[k]);
+            for (std::size_t k = 0; k < n; ++k) {
+                std::fprintf(out, run.error ? "%.6g %.3g" : "%.6g", values[k], errors[k]);
+                if (melanopic)
+                    std::fprintf(out, run.error ? " %.6g %.3g" : " %.6g", mel.values[k],
+                                 mel.errors[k]);
+                std::fputc('\n', out);
+            }
             return;
         }
         const char* column = a.daylight_factor ? "df" : "lux";
         std::fprintf(out, "surface,index,column,row,x,y,z,%s", column);
         if (run.error) std::fprintf(out, ",%s_error", column);
+        if (melanopic) std::fputs(run.error ? ",melanopic,melanopic_error" : ",melanopic", out);
         std::fputc('\n', out);
         for (std::size_t k = 0; k < n; ++k) {
             const auto& p = run.positions[k];
             std::fprintf(out, "%s,%.6g,%.6g,%.6g,%.6g", run.labels[k].c_str(), p[0], p[1], p[2],
                          values[k]);
             if (run.error) std::fprintf(out, ",%.3g", errors[k]);
+            if (melanopic) std::fprintf(out, ",%.6g", mel.values[k]);
+            if (melanopic && run.error) std::fprintf(out, ",%.3g", mel.errors[k]);
             std::fputc('\n', out);
         }
     });
@@ -264,6 +307,8 @@ int instant(const DaylightArgs& a, const DaylightRun& run, const DaylightSensors
                      mean_error_text(values, errors).c_str(), s.median, s.min, s.max,
                      100 * s.above2, inside_text(without).c_str());
     } else {
+        if (melanopic && !run.quiet)
+            print_melanopic_ratio(SensorValues{values, errors}, mel, melanopic_source);
         write_png(run, values, "lux", "illuminance (lux) under the " + sky.describe());
         if (!run.quiet || without > 0)
             std::fprintf(stderr, "rad-gather: %s%s\n", sky.describe().c_str(),
@@ -748,7 +793,20 @@ int gather_daylight(const DaylightArgs& a, const DaylightRun& run) {
         *run.mesh, daylight_solution(*run.solution, *run.rad_header, run.rad_path),
         daylight_options(a.sky_samples, run.rays, run.seed, run.accuracy, run.max_rays));
     if (a.annual) return annual(a, run, sensors);
-    return instant(a, run, sensors);
+    if (!run.melanopic) return instant(a, run, sensors, nullptr, "");
+    if (a.daylight_factor)
+        throw InputError("--melanopic gives melanopic EDI (lx) under a sky (--sky), not a "
+                         "daylight factor");
+    const auto spectrum = sky_spectrum(run.spectra);
+    const DaylightSensors melanopic(
+        *run.mesh, daylight_solution(*run.solution, *run.rad_header, run.rad_path),
+        melanopic_daylight_options(
+            daylight_options(a.sky_samples, run.rays, run.seed, run.accuracy, run.max_rays),
+            spectrum));
+    char text[160];
+    std::snprintf(text, sizeof text, "%s (mel-DER %.4f)", spectrum.name.c_str(),
+                  melanopic_der(spectrum));
+    return instant(a, run, sensors, &melanopic, text);
 }
 
 } // namespace rad::tool

@@ -61,6 +61,10 @@ struct DaylightRun {
     std::uint64_t seed = 1;
     bool quiet = false;
     bool error = false; // --error: each value's standard error beside it
+    // --melanopic (under one sky): melanopic EDI beside lux, the sky of spectrum `spectra`
+    // (one SPEC; D65 when empty).
+    bool melanopic = false;
+    std::vector<std::string> spectra;
     double lux_max = 0;
 };
 int gather_daylight(const DaylightArgs& a, const DaylightRun& run);

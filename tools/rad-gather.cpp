@@ -10,6 +10,7 @@
 #include "radiosity/gather.hpp"
 #include "radiosity/huge_pages.hpp"
 #include "radiosity/luminaires.hpp"
+#include "radiosity/melanopic.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/sensor_parts.hpp"
@@ -41,6 +42,7 @@ struct Sensor {
     rad::Vec3 position{0, 0, 0}, direction{0, 0, 0};
     std::string problem; // why it cannot be gathered
     rad::Irradiance result;
+    rad::MelanopicSources::Result melanopic; // with --melanopic
 };
 
 // Where sensors come from: lines of a stream, or a generated grid.
@@ -59,7 +61,8 @@ class LineSource final : public SensorSource {
         while (out.size() < count && in_.next(text)) {
             if (!rad::is_sensor_line(text)) continue;
             auto pose = rad::parse_sensor_line(text);
-            Sensor s{in_.line_number(), pose.position, pose.direction, std::move(pose.problem), {}};
+            Sensor s{
+                in_.line_number(), pose.position, pose.direction, std::move(pose.problem), {}, {}};
             out.push_back(std::move(s));
         }
         return !out.empty();
@@ -146,7 +149,8 @@ struct GatherArgs {
     bool merge = false;
     rad::GatherOptions options;
     bool lux = false, header = false, keep_going = false, quiet = false, error = false;
-    bool estimate = false;
+    bool estimate = false, melanopic = false;
+    std::vector<std::string> spectra; // --spectrum
     double lux_max = 0;
     int threads = 0;
     rad::tool::DaylightArgs daylight;
@@ -177,6 +181,18 @@ void add_output_options(CLI::App& app, GatherArgs& a) {
                  "batches of rays: --batches): 'lux error' with --lux, 'r g b er eg eb' "
                  "without, a lux_error column with --surfaces");
     app.add_flag("--header", a.header, "Start the output with a '#' provenance line");
+    app.add_flag("--melanopic", a.melanopic,
+                 "Also the melanopic EDI (lx; CIE S 026: melanopic equivalent daylight (D65) "
+                 "illuminance): with --lux a second column ('lux melanopic' or 'lux error "
+                 "melanopic error'); with --surfaces each observer's eye (facing its view, "
+                 "level), its M/P ratio, on stderr. Each light group's light is weighed by its "
+                 "spectrum (--spectrum) in the three bands the chain's RGB stands for");
+    app.add_option("--spectrum", a.spectra,
+                   "--melanopic: a light group's spectrum, GROUP=SPEC, or SPEC for every group "
+                   "not named (and for a solution without groups); repeatable. SPEC: d65, a "
+                   "(CIE illuminant A), cct:K (a blackbody) or a CSV file of wavelength_nm,value "
+                   "rows. Default: the group's luminaires' lamp colour temperature (the layout's "
+                   "cct column, EULUMDAT's lamps) as a blackbody");
     app.add_flag("--keep-going", a.keep_going,
                  "Write 'nan nan nan' for a point that cannot be gathered (bad line, zero "
                  "direction, inside an object) and go on, instead of stopping there");
@@ -234,6 +250,17 @@ void check_combinations(const GatherArgs& a) {
             throw rad::InputError("--png draws the whole plane: give it to one run of the "
                                   "--grid, not to a --rows part");
     }
+    if (!a.spectra.empty() && !a.melanopic)
+        throw rad::InputError("--spectrum weighs light for --melanopic: add it");
+    const bool daylight = rad::tool::wants_daylight(a.daylight);
+    if (a.melanopic && !a.lux && a.surfaces_path.empty() && !daylight)
+        throw rad::InputError("--melanopic writes melanopic EDI beside lux: add --lux (or give "
+                              "--surfaces with observers)");
+    if (a.melanopic &&
+        (a.daylight.annual || !a.daylight.glare.empty() || !a.daylight.sunlight.empty()))
+        throw rad::InputError("--melanopic gives melanopic EDI under one sky (--sky) or from "
+                              "luminaires and emitters: not with --annual, --glare or "
+                              "--sunlight-exposure");
     if (a.estimate && a.surfaces_path.empty())
         throw rad::InputError("--estimate measures a --surfaces run: give --surfaces FILE");
     if (a.lux_max > 0 && a.png.empty())
@@ -254,9 +281,10 @@ class GatherRun {
   public:
     GatherRun(const GatherArgs& args, const rad::Gatherer& gatherer, const rad::Box& scene_box,
               SensorSource& source, std::string source_name, rad::RowRange range,
-              const rad::LuminaireSet* luminaires)
-        : args_(args), gatherer_(gatherer), luminaires_(luminaires), scene_box_(scene_box),
-          source_(source), source_name_(std::move(source_name)), range_(range),
+              const rad::LuminaireSet* luminaires, const rad::MelanopicSources* melanopic)
+        : args_(args), gatherer_(gatherer), luminaires_(luminaires), melanopic_(melanopic),
+          scene_box_(scene_box), source_(source), source_name_(std::move(source_name)),
+          range_(range),
           progress_("rad-gather", range.end == rad::RowRange{}.end ? 0 : range.end - range.begin,
                     args.quiet) {}
 
@@ -298,10 +326,12 @@ class GatherRun {
     void gather(std::vector<Sensor>& block) {
         tbb::parallel_for(std::size_t(0), block.size(), [&](std::size_t k) {
             auto& s = block[k];
+            const auto index = range_.begin + std::uint64_t(written_) + k;
             if (s.problem.empty())
-                s.result =
-                    rad::gather_sensor(gatherer_, luminaires_, scene_box_, s.position, s.direction,
-                                       range_.begin + std::uint64_t(written_) + k, s.problem);
+                s.result = rad::gather_sensor(gatherer_, luminaires_, scene_box_, s.position,
+                                              s.direction, index, s.problem);
+            if (s.problem.empty() && melanopic_)
+                s.melanopic = melanopic_->at(s.result, s.position, s.direction, index, scene_box_);
             progress_.advance(1);
         });
     }
@@ -314,10 +344,12 @@ class GatherRun {
                     throw rad::InputError(where + ": " + s.problem +
                                           " (--keep-going writes nan and goes on)");
                 if (problems_++ == 0) first_problem_ = where + ": " + s.problem;
-                std::fputs(args_.lux
-                               ? (args_.error ? "nan nan\n" : "nan\n")
-                               : (args_.error ? "nan nan nan nan nan nan\n" : "nan nan nan\n"),
-                           out);
+                const char* lux = args_.melanopic
+                                      ? (args_.error ? "nan nan nan nan\n" : "nan nan\n")
+                                      : (args_.error ? "nan nan\n" : "nan\n");
+                std::fputs(
+                    args_.lux ? lux : (args_.error ? "nan nan nan nan nan nan\n" : "nan nan nan\n"),
+                    out);
                 if (grid) grid_lux_.push_back(std::nan("")), grid_error_.push_back(std::nan(""));
                 continue;
             }
@@ -326,7 +358,12 @@ class GatherRun {
             const double error = rad::kRadianceEfficacy * s.result.luminous_error;
             tally(s);
             if (grid) grid_lux_.push_back(value), grid_error_.push_back(error);
-            if (args_.lux && args_.error)
+            const auto& mel = s.melanopic;
+            if (args_.lux && args_.melanopic && args_.error)
+                std::fprintf(out, "%.6g %.3g %.6g %.3g\n", value, error, mel.edi, mel.error);
+            else if (args_.lux && args_.melanopic)
+                std::fprintf(out, "%.6g %.6g\n", value, mel.edi);
+            else if (args_.lux && args_.error)
                 std::fprintf(out, "%.6g %.3g\n", value, error);
             else if (args_.lux)
                 std::fprintf(out, "%.6g\n", value);
@@ -350,6 +387,7 @@ class GatherRun {
     const GatherArgs& args_;
     const rad::Gatherer& gatherer_;
     const rad::LuminaireSet* luminaires_;
+    const rad::MelanopicSources* melanopic_;
     const rad::Box& scene_box_;
     SensorSource& source_;
     std::string source_name_;
@@ -495,9 +533,10 @@ std::string sensor_label(const rad::CalcSurface& surface, const rad::SurfaceGrid
            std::to_string(k % grid.columns) + "," + std::to_string(k / grid.columns);
 }
 
-// --surfaces' file, which must name a surface.
-rad::CalcFile read_surfaces_file(const std::string& path) {
+// --surfaces' file, which must name a surface (or, for --melanopic, an observer).
+rad::CalcFile read_surfaces_file(const std::string& path, bool observers_suffice = false) {
     auto file = rad::read_calc_file(path);
+    if (observers_suffice && !file.observers.empty()) return file;
     if (file.surfaces.empty())
         throw rad::InputError(path + ": it names no surface (observers and cameras are for "
                                      "rad-report): add one");
@@ -538,6 +577,8 @@ int daylight(const GatherArgs& a, const radfmt::MeshData& mesh,
     run.seed = a.options.seed;
     run.quiet = a.quiet;
     run.error = a.error;
+    run.melanopic = a.melanopic;
+    run.spectra = a.spectra;
     run.lux_max = a.lux_max;
     run.command = radfmt::command_line(argc, argv);
     run.inputs = {a.mesh_path, a.rad_path};
@@ -604,12 +645,50 @@ void print_surface(const rad::CalcSurface& surface, const rad::SurfaceGrid& grid
     rad::tool::warn_facing_too_close("rad-gather", surface, gathered.facing_distance_m);
 }
 
+// --melanopic at each observer's eye: the illuminance on a level sensor facing its view
+// (the eye's vertical illuminance), the melanopic EDI and their ratio (M/P), on stderr.
+void print_observers_melanopic(const rad::CalcFile& file, const rad::Gatherer& gatherer,
+                               const rad::LuminaireSet* luminaires, const rad::Box& box,
+                               const rad::MelanopicSources& melanopic) {
+    if (file.observers.empty())
+        throw rad::InputError(file.name + ": --melanopic gives the light at observers' eyes, "
+                                          "and the file has no observer line (formats/README.md)");
+    // Streams of their own, apart from every sensor's (seeded by its index from 0).
+    constexpr std::uint64_t kObserverStreams = std::uint64_t(1) << 40;
+    for (std::size_t k = 0; k < file.observers.size(); ++k) {
+        const auto& o = file.observers[k];
+        const double level = std::hypot(o.view[0], o.view[2]);
+        if (level < 1e-6)
+            throw rad::InputError(o.where, "the observer looks straight up or down: the eye's "
+                                           "vertical illuminance needs a view with a level part");
+        const rad::Vec3 facing{o.view[0] / level, 0, o.view[2] / level};
+        std::string problem;
+        const auto index = kObserverStreams + k;
+        const auto e =
+            rad::gather_sensor(gatherer, luminaires, box, o.position, facing, index, problem);
+        if (!problem.empty()) throw rad::InputError(o.where, "the observer's eye: " + problem);
+        const auto m = melanopic.at(e, o.position, facing, index, box);
+        const double ev = rad::lux(e.total());
+        const double ratio = ev > 0 ? m.edi / ev : 0.0;
+        std::fprintf(stderr,
+                     "rad-gather: observer %s: Ev %s lx (at the eye, level, facing its view), "
+                     "melanopic EDI %s lx, mel-DER %.3f at the eye (WELL: %.0f EML, M/P %.3f)\n",
+                     o.name.c_str(),
+                     with_error(ev, rad::kRadianceEfficacy * e.luminous_error).c_str(),
+                     with_error(m.edi, m.error).c_str(), ratio, m.edi / rad::kMelanopicEdiPerEml,
+                     ratio / rad::kMelanopicEdiPerEml);
+    }
+}
+
 // --surfaces: every calculation surface's sensors, one CSV line each, and their figures.
 void gather_surfaces(const GatherArgs& a, const rad::Gatherer& gatherer,
                      const rad::LuminaireSet* luminaires, const rad::Box& scene_box,
                      double metres_per_unit, int argc, char** argv,
-                     const radfmt::Header& mesh_header, const radfmt::Header& rad_header) {
-    const auto file = read_surfaces_file(a.surfaces_path);
+                     const radfmt::Header& mesh_header, const radfmt::Header& rad_header,
+                     const rad::MelanopicSources* melanopic) {
+    const auto file = read_surfaces_file(a.surfaces_path, melanopic != nullptr);
+    if (melanopic) print_observers_melanopic(file, gatherer, luminaires, scene_box, *melanopic);
+    if (file.surfaces.empty()) return;
     const auto grids = rad::surface_grids(file, metres_per_unit);
     // Long runs say what they will cost first; --estimate stops there.
     const auto gathered = rad::gather_surfaces(
@@ -647,6 +726,21 @@ void gather_surfaces(const GatherArgs& a, const rad::Gatherer& gatherer,
     if (a.quiet) return;
     for (std::size_t s = 0; s < grids.size(); ++s)
         print_surface(file.surfaces[s], grids[s], gathered[s]);
+}
+
+// --melanopic: the solution's light sources by spectrum, said on stderr.
+std::unique_ptr<rad::MelanopicSources> melanopic_sources(const GatherArgs& a,
+                                                         const radfmt::MeshData& mesh,
+                                                         const radfmt::RadiosityData& solution,
+                                                         const radfmt::Header& rad_header,
+                                                         const rad::LuminaireSet* luminaires) {
+    if (!a.melanopic) return nullptr;
+    auto sources = std::make_unique<rad::MelanopicSources>(mesh, solution, rad_header, luminaires,
+                                                           a.spectra, a.options);
+    if (!a.quiet)
+        for (const auto& line : sources->describe())
+            std::fprintf(stderr, "rad-gather: melanopic: %s\n", line.c_str());
+    return sources;
 }
 
 int gather(GatherArgs& a, int argc, char** argv) {
@@ -689,9 +783,12 @@ int gather(GatherArgs& a, int argc, char** argv) {
     const auto luminaires = rad::solution_luminaires(rad_header, a.rad_path, a.direct_path, mesh,
                                                      a.mesh_path, mesh_header);
     const rad::Box scene_box = rad::bounds(mesh.vertices);
+    const auto melanopic =
+        melanopic_sources(a, mesh, solution, rad_header, luminaires ? &*luminaires : nullptr);
     if (!a.surfaces_path.empty()) {
         gather_surfaces(a, gatherer, luminaires ? &*luminaires : nullptr, scene_box,
-                        rad::metres_per_unit(mesh_header), argc, argv, mesh_header, rad_header);
+                        rad::metres_per_unit(mesh_header), argc, argv, mesh_header, rad_header,
+                        melanopic.get());
         outputs.commit();
         return 0;
     }
@@ -713,7 +810,7 @@ int gather(GatherArgs& a, int argc, char** argv) {
     const auto preamble = sensors_and_preamble(a, grid, mesh_header, rad_header, argc, argv, range);
     const auto start = std::chrono::steady_clock::now();
     GatherRun run(a, gatherer, scene_box, *source, source_name, range,
-                  luminaires ? &*luminaires : nullptr);
+                  luminaires ? &*luminaires : nullptr, melanopic.get());
     rad::tool::write_output(a.output, [&](std::FILE* out) { run.stream(out, preamble); });
     run.finish();
     if (!a.png.empty())

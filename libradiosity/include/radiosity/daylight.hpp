@@ -7,6 +7,7 @@
 #include "radiosity/random.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/sky_patches.hpp"
+#include "radiosity/spectrum.hpp"
 #include "radiosity/specular.hpp"
 #include "radiosity/weather.hpp"
 
@@ -180,7 +181,18 @@ struct DaylightOptions {
     int max_rays = 4096;
     std::uint64_t seed = 1;
     int specular_depth = kDefaultSpecularDepth;
+    // What each channel of the chain's RGB is worth at a sensor per unit of white light:
+    // luminous (Radiance's weights, which add up to 1: lux), or another response's band
+    // weights (melanopic: melanopic EDI); `beam_weight` is what light through grey glass is
+    // worth (their sum), for the sun's beam, which is followed as luminous.
+    Rgb channel_weights{0.265, 0.670, 0.065};
+    double beam_weight = 1;
 };
+
+// The options for melanopic EDI (lx) instead of lux, for a sky of `spectrum`'s light: each
+// band of the chain's RGB weighed by its melanopic share (CIE S 026), so that what the room's
+// colours do to each band, they do to the melanopic light.
+DaylightOptions melanopic_daylight_options(DaylightOptions options, const Spectrum& spectrum);
 
 // Daylight at sensors of one solved mesh.
 class DaylightSensors {
@@ -235,6 +247,11 @@ class DaylightSensors {
     const SkyFrame& frame() const { return solution_.frame; }
 
   private:
+    // What a path's RGB weight is worth (options_.channel_weights; luminous by default).
+    double weighted(const Rgb& w) const {
+        const auto& c = options_.channel_weights;
+        return c[0] * w[0] + c[1] * w[1] + c[2] * w[2];
+    }
     std::vector<double> reflected(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
     // The reflected light's coefficients batch by batch: `each(coefficients)` once a batch,
     // every batch of stratified rays from its own stream (their mean is reflected()).

@@ -134,7 +134,7 @@ DaylightSensors::Coefficients DaylightSensors::coefficients(const Vec3& point, c
     sensor_sky_paths(
         *scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
         [&](const Vec3& d, const Rgb& w, std::int64_t) {
-            out.direct[patches().patch_of(frame(), d)] += luminous(w);
+            out.direct[patches().patch_of(frame(), d)] += weighted(w);
         },
         &refine_);
     return out;
@@ -176,9 +176,10 @@ void DaylightSensors::reflected_batches(const Vec3& point, const Vec3& normal, s
                             Rgb{{1, 1, 1}}, options_.specular_depth, [&](const PathHit& h) {
                                 if (!h.hit.front) return;
                                 const float* row = &b[std::size_t(h.hit.patch) * count * 3];
-                                const double w0 = 0.265 * h.weight[0] * share,
-                                             w1 = 0.670 * h.weight[1] * share,
-                                             w2 = 0.065 * h.weight[2] * share;
+                                const auto& c = options_.channel_weights;
+                                const double w0 = c[0] * h.weight[0] * share,
+                                             w1 = c[1] * h.weight[1] * share,
+                                             w2 = c[2] * h.weight[2] * share;
                                 for (std::size_t s = 0; s < count; ++s)
                                     out[s] +=
                                         w0 * row[3 * s] + w1 * row[3 * s + 1] + w2 * row[3 * s + 2];
@@ -260,14 +261,15 @@ DaylightSensors::Illuminance DaylightSensors::illuminance(const Sky& sky, const 
     sensor_sky_paths(
         *scene_, *specular_, patches(), cells_, options_.specular_depth, point, normal,
         [&](const Vec3& d, const Rgb& w, std::int64_t slot) {
-            const double lux = luminous(w) * sky.luminance(d);
+            const double lux = weighted(w) * sky.luminance(d);
             out.sky += lux;
             variance.add(slot, lux);
         },
         &refine_, &jitter);
     out.sky_error = std::sqrt(variance.variance());
     if (sky.sun_up())
-        out.sun = sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
+        out.sun = options_.beam_weight *
+                  sun(point, normal, sky.sun_direction(), sky.sun_normal_illuminance());
     if (options_.rays > 0) {
         const auto luminance = patch_luminance_with_sun(patches(), sky);
         BatchError batches;
