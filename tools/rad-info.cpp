@@ -1,10 +1,50 @@
 // rad-info: prints the header, provenance and summary of any file of the chain, or its
 // data as CSV.
+#include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
+#include "radiosity/error.hpp"
 #include "tool.hpp"
 
 #include <filesystem>
 #include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+// --check-inputs: each recorded input against the file at its path now.
+int report_inputs(const std::string& path, const radfmt::Header& h,
+                  const std::vector<std::string>& made_from) {
+    std::vector<std::string> changed;
+    for (const auto& file : made_from) {
+        bool recorded = false;
+        for (const auto& in : h.inputs) {
+            std::error_code ec;
+            recorded = recorded || in.path == file || std::filesystem::equivalent(in.path, file, ec);
+        }
+        if (!recorded)
+            changed.push_back(file + " is not among its inputs (it was made from another file)");
+    }
+    for (const auto& in : h.inputs) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(in.path, ec))
+            changed.push_back(in.path + " is gone (recorded " + in.hash + ")");
+        else if (const auto now = radfmt::hash_file(in.path); now != in.hash)
+            changed.push_back(in.path + " has changed since (" + in.hash + " recorded, " + now +
+                              " now)");
+    }
+    if (changed.empty()) {
+        std::cout << path << ": its " << h.inputs.size() << " input(s) are the files it was made "
+                  << "from\n";
+        return 0;
+    }
+    std::string text;
+    for (const auto& c : changed) text += (text.empty() ? "" : "; ") + c;
+    throw rad::InputError(path + " was made from other inputs than those there now: " + text +
+                          " (make it again)");
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Inspect any file of the radiosity chain (mesh, form factors, radiosity).\n"
@@ -17,6 +57,19 @@ int main(int argc, char** argv) {
     for (const auto& kind : radfmt::kind_table())
         csv_help += " " + std::string(kind.name) + ": " + std::string(kind.csv_columns) + ";";
     app.add_flag("--csv", csv, csv_help);
+    bool check_inputs = false;
+    app.add_flag("--check-inputs", check_inputs,
+                 "Check that every input the file records is still the file it was made from "
+                 "(its recorded path, from the current folder, with the same checksum), after "
+                 "reading the whole file: exit 0 saying so, or 1 naming each input that changed "
+                 "or is gone (the shard scripts use it: a part made from other inputs is not a "
+                 "done shard)")
+        ->excludes("--csv");
+    std::vector<std::string> made_from;
+    app.add_option("--made-from", made_from,
+                   "With --check-inputs: this file must be among the inputs the file records (the "
+                   "same file, unchanged): a part from another mesh's run is not this one's")
+        ->needs("--check-inputs");
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-info", [&] {
@@ -30,6 +83,7 @@ int main(int argc, char** argv) {
         radfmt::Header h;
         const auto& kind = radfmt::kind_info(radfmt::read_header(path).kind);
         const auto summary = kind.summary(path, h);
+        if (check_inputs) return report_inputs(path, h, made_from);
         std::cout << "file:      " << path << '\n'
                   << "kind:      " << radfmt::kind_name(h.kind) << " ("
                   << radfmt::kind_description(h.kind) << "), version " << h.version << '\n'

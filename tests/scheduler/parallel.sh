@@ -104,6 +104,36 @@ rm o.ff
 "$BIN/rad-mesh" "$WORK/office/office.obj" -o other.mesh --max-edge 0.15 -q 2>/dev/null || fail "mesh other again"
 one_run o.ff "$BIN/rad-ff" other.mesh --rays 64 -q
 "$SHARDS" -n 2 o.ff -- "$BIN/rad-ff" other.mesh --rays 64 -q 2> other.txt || fail "parts of another mesh: $(cat other.txt)"
-grep -q "removed o.ff.parts/o.ff.part0 o.ff.parts/o.ff.part1: made by another command or from inputs that have changed since" other.txt || fail "the old mesh's parts are not named: $(cat other.txt)"
+# Each part is read and named with the input that changed (before, the stamp named them
+# together: "made by another command or from inputs that have changed since").
+for k in 0 1; do
+  grep -q "o.ff.part$k is not a done shard: .*other.mesh has changed since (xxh64:[0-9a-f]* recorded, xxh64:[0-9a-f]* now) -- removed" other.txt ||
+    fail "the old mesh's part $k is not named: $(cat other.txt)"
+done
 same o.ff "parts of another mesh computed again"
+
+step "parts of another command on the same mesh are not done shards"
+# Their inputs are this command's (rad-info --check-inputs passes them); the stamp is not.
+"$SHARDS" -n 2 r.ff -- "$BIN/rad-ff" office.mesh --rays 64 -q 2>/dev/null || fail "sharded r.ff"
+rm r.ff
+one_run r.ff "$BIN/rad-ff" office.mesh --rays 32 -q
+"$SHARDS" -n 2 r.ff -- "$BIN/rad-ff" office.mesh --rays 32 -q 2> rays.txt || fail "another command: $(cat rays.txt)"
+grep -q "removed r.ff.parts/r.ff.part0 r.ff.parts/r.ff.part1: made by another command or from inputs that have changed since" rays.txt ||
+  fail "the other command's parts are not named: $(cat rays.txt)"
+same r.ff "parts of another command computed again"
+
+step "a part copied in from another mesh's run is not a done shard (#70 item 9)"
+# The stamp is this command's; the part is a plain file that reads, but other.mesh's.
+"$SHARDS" -n 2 c.ff -- "$BIN/rad-ff" office.mesh --rays 64 -q 2>/dev/null || fail "sharded c.ff"
+cp c.ff c-first.ff && rm c.ff
+cp o.ff.parts/o.ff.part1 c.ff.parts/c.ff.part1
+"$SHARDS" -n 2 c.ff -- "$BIN/rad-ff" office.mesh --rays 64 -q 2> copied.txt || fail "a copied part: $(cat copied.txt)"
+grep -q "c.ff.part1 is not a done shard: .*office.mesh is not among its inputs (it was made from another file) -- removed" copied.txt ||
+  fail "the copied part is not named: $(cat copied.txt)"
+cmp -s c.ff c-first.ff || fail "with a copied part, the merge is not the first run's bytes"
+# A part that does not read (cut short) is not done either.
+rm c.ff && head -c 4000 c.ff.parts/c.ff.part0 > cut.part && mv cut.part c.ff.parts/c.ff.part0
+"$SHARDS" -n 2 c.ff -- "$BIN/rad-ff" office.mesh --rays 64 -q 2> cut.txt || fail "a cut part: $(cat cut.txt)"
+grep -q "c.ff.part0 is not a done shard: " cut.txt || fail "the cut part is not named: $(cat cut.txt)"
+cmp -s c.ff c-first.ff || fail "with a cut part, the merge is not the first run's bytes"
 finish
