@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 
@@ -76,7 +77,7 @@ struct Arguments {
                                              view_file, engine;
     double crease = 30, exposure = 0, density = 0, chart_angle = 20;
     int lightmap = 0, padding = 2, threads = 0;
-    std::string max_memory, location;
+    std::string max_memory, location, epw;
     bool quiet = false, mix_only = false;
     std::vector<std::string> mix;
     double ground = 0.2;
@@ -131,6 +132,10 @@ void add_options(CLI::App& app, Arguments& a) {
                    "page's date and time sliders put the sun; the page relights by clear sky "
                    "(CIE 12 with the IES daylight availability) from a basis of the solution "
                    "(needs --lightmap)");
+    app.add_option("--epw", a.epw,
+                   "--html of a daylight solution: also the hours of this weather file on the "
+                   "page (each hour's Perez sky from its radiation, the sun at mid-hour, as "
+                   "rad-gather --annual takes them); its place unless --location gives one");
     app.add_option("--ground", a.ground, "--location: the ground's reflectance below the horizon")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 1));
@@ -258,7 +263,37 @@ struct DaylightPage {
     rad::DaylightBasis basis;             // the sky and the ground, without the sun
     std::vector<std::size_t> sun_patches; // the sky patches the sun passes through
     std::vector<radfmt::Rgb> noon;        // the patches' radiosity at the glb's default sky
+    std::optional<rad::Weather> weather;  // --epw
+    rad::HourlySkies hours;               // its hours' skies
 };
+
+// The days the page offers besides a weather file's hours, in its menu's order.
+constexpr rad::Sky::Day kPageDays[] = {rad::Sky::Day::clear, rad::Sky::Day::partly_cloudy,
+                                       rad::Sky::Day::overcast};
+
+// The skies the basis is made to reproduce: a year of each day (every fifth day), and the
+// weather file's lit hours; the sky patches the sun is in over them, each once, ascending.
+rad::YearOfSkies page_skies(const DaylightPage& page, double ground) {
+    rad::YearOfSkies all;
+    std::vector<bool> sun_in(page.solution.patches.count(), false);
+    for (const auto day : kPageDays) {
+        auto year =
+            rad::day_year(page.solution.patches, page.solution.frame, page.where, ground, day);
+        for (auto& sky : year.skies) all.skies.push_back(std::move(sky));
+        for (const auto p : year.sun_patches) sun_in[p] = true;
+    }
+    const auto& h = page.hours;
+    for (std::size_t t = 0; page.weather && t < page.weather->hours.size(); ++t) {
+        const auto first = h.direct.begin() + std::ptrdiff_t(t * h.count);
+        if (std::all_of(first, first + std::ptrdiff_t(h.count), [](float v) { return v == 0; }))
+            continue;
+        all.skies.emplace_back(first, first + std::ptrdiff_t(h.count));
+        if (h.sun_patch[t] >= 0) sun_in[std::size_t(h.sun_patch[t])] = true;
+    }
+    for (std::size_t p = 0; p < sun_in.size(); ++p)
+        if (sun_in[p]) all.sun_patches.push_back(p);
+    return all;
+}
 
 std::optional<DaylightPage> daylight_page(const Arguments& a, const radfmt::MeshData& mesh,
                                           const radfmt::RadiosityData& radiosity,
@@ -270,29 +305,62 @@ std::optional<DaylightPage> daylight_page(const Arguments& a, const radfmt::Mesh
                                   a.rad_path + " is none");
         return std::nullopt;
     }
-    if (a.html.empty() || a.lightmap == 0 || a.location.empty())
-        throw rad::InputError(a.rad_path + " is a daylight solution (" +
-                              std::to_string(radiosity.group_count()) +
-                              " light groups, one per sky patch): bake its page with --html, "
-                              "--lightmap SIZE and --location LAT,LON,TZ (it relights by date and "
-                              "time), or one sky with rad-shade --sky");
+    if (a.html.empty() || a.lightmap == 0 || (a.location.empty() && a.epw.empty()))
+        throw rad::InputError(
+            a.rad_path + " is a daylight solution (" + std::to_string(radiosity.group_count()) +
+            " light groups, one per sky patch): bake its page with --html, "
+            "--lightmap SIZE and --location LAT,LON,TZ or --epw FILE (it relights by date and "
+            "time), or one sky with rad-shade --sky");
     if (!a.mix.empty() || a.mix_only) throw rad::InputError("--mix is not for a daylight page");
-    DaylightPage page{rad::daylight_solution(radiosity, rad_header, a.rad_path),
-                      rad::parse_location(a.location),
-                      {},
-                      {},
-                      {}};
+    DaylightPage page{
+        rad::daylight_solution(radiosity, rad_header, a.rad_path), {}, {}, {}, {}, {}, {}};
+    if (!a.epw.empty()) {
+        page.weather = rad::read_epw(a.epw);
+        page.hours =
+            rad::hourly_skies(*page.weather, page.solution.patches, page.solution.frame, a.ground);
+    }
+    page.where = a.location.empty() ? page.weather->location : rad::parse_location(a.location);
     std::vector<double> areas;
     for (const auto& p : mesh.patches) areas.push_back(p.area);
-    const auto year =
-        rad::clear_year(page.solution.patches, page.solution.frame, page.where, a.ground);
+    const auto skies = page_skies(page, a.ground);
     page.basis =
-        rad::daylight_basis(page.solution, areas, year.skies, kDaylightComponents, kDaylightError);
-    page.sun_patches = year.sun_patches;
+        rad::daylight_basis(page.solution, areas, skies.skies, kDaylightComponents, kDaylightError);
+    page.sun_patches = skies.sun_patches;
     const auto sun = rad::solar_position(page.where, {2025, 3, 21, 12});
     page.noon =
         rad::sky_radiosity(page.solution, rad::Sky::clear(sun, page.solution.frame, a.ground));
     return page;
+}
+
+// A weather file's lit hours for the page, each as the page weighs them: the components'
+// weights of its sky (the patches' luminances without the beam), the sun's patch and the
+// beam's luminance in it, and the sky's mean luminance (for what the windows show).
+nlohmann::json weather_extras(const DaylightPage& page) {
+    const auto& h = page.hours;
+    const std::size_t count = h.count;
+    nlohmann::json hours = nlohmann::json::array(), weights = nlohmann::json::array(),
+                   sun_patch = nlohmann::json::array(), beam = nlohmann::json::array(),
+                   sky = nlohmann::json::array();
+    const auto& patches = page.solution.patches;
+    for (std::size_t t = 0; t < page.weather->hours.size(); ++t) {
+        const float* l = &h.direct[t * count];
+        if (std::all_of(l, l + count, [](float v) { return v == 0; })) continue;
+        hours.push_back(t);
+        for (const auto& w : page.basis.weights) {
+            double sum = 0;
+            for (std::size_t s = 0; s < count; ++s) sum += w[s] * double(l[s]);
+            weights.push_back(float(sum));
+        }
+        sun_patch.push_back(h.sun_patch[t]);
+        beam.push_back(float(h.beam_luminance[t]));
+        double seen = 0, omega = 0;
+        for (std::size_t s = 1; s < count; ++s)
+            seen += double(l[s]) * patches.solid_angle(s), omega += patches.solid_angle(s);
+        sky.push_back({float(seen / omega), l[0]});
+    }
+    return {{"path", page.weather->path}, {"place", page.weather->place}, {"hours", hours},
+            {"weights", weights},         {"sun_patch", sun_patch},       {"beam_luminance", beam},
+            {"sky_ground_luminance", sky}};
 }
 
 // What the page needs to relight: the place, the sky patches, each component's weights and
@@ -307,18 +375,30 @@ nlohmann::json daylight_extras(const Arguments& a, const DaylightPage& page,
     for (std::size_t k = 0; k < page.sun_patches.size(); ++k)
         suns.push_back({{"patch", page.sun_patches[k]},
                         {"scale", result.group_scales[page.basis.values.size() + k]}});
-    return {{"latitude", page.where.latitude},
-            {"longitude", page.where.longitude},
-            {"time_zone", page.where.time_zone},
-            {"north", page.solution.frame.north_deg},
-            {"subdivisions", page.solution.patches.subdivisions()},
-            {"ground", a.ground},
-            {"sky", "clear: CIE 12, diffuse 800 + 15500 sqrt(sin a) lux, beam 127500 "
-                    "exp(-0.21 / sin a) lux, the beam in the sky patch it is in"},
-            {"components", components},
-            {"sun_patches", suns},
-            {"mean_error", page.basis.mean_error},
-            {"worst_error", page.basis.worst_error}};
+    nlohmann::json days = nlohmann::json::array();
+    for (const auto day : kPageDays) {
+        const auto d = rad::Sky::availability(day);
+        days.push_back({{"name", d.name},
+                        {"parameters", rad::Sky::cie_parameters(d.cie_type)},
+                        {"diffuse", d.diffuse},
+                        {"extinction", d.extinction}});
+    }
+    nlohmann::json out = {{"latitude", page.where.latitude},
+                          {"longitude", page.where.longitude},
+                          {"time_zone", page.where.time_zone},
+                          {"north", page.solution.frame.north_deg},
+                          {"subdivisions", page.solution.patches.subdivisions()},
+                          {"ground", a.ground},
+                          {"sky", "each day: its CIE type with the IES daylight availability "
+                                  "(diffuse A + B sin(a)^p lux, beam 127500 exp(-c / sin a) "
+                                  "lux), the beam in the sky patch it is in"},
+                          {"days", days},
+                          {"components", components},
+                          {"sun_patches", suns},
+                          {"mean_error", page.basis.mean_error},
+                          {"worst_error", page.basis.worst_error}};
+    if (page.weather) out["weather"] = weather_extras(page);
+    return out;
 }
 
 int bake_files(const Arguments& a, const std::string& command) {
@@ -387,11 +467,13 @@ int bake_files(const Arguments& a, const std::string& command) {
     if (daylight && !a.quiet)
         std::fprintf(stderr,
                      "rad-bake: the page relights by date and time from %zu components of the "
-                     "solution's %zu sky groups (over a year of clear skies at %s the sky's "
-                     "light through them is %.2g%% rms from the full solution's on average, "
-                     "%.2g%% at worst) and the groups of the %zu sky patches the sun passes "
-                     "through, exactly\n",
-                     daylight->basis.values.size(), radiosity.group_count(), a.location.c_str(),
+                     "solution's %zu sky groups (over a year of clear, partly cloudy and overcast "
+                     "days%s at %s the sky's light through them is %.2g%% rms from the full "
+                     "solution's on average, %.2g%% at worst) and the groups of the %zu sky "
+                     "patches the sun passes through, exactly\n",
+                     daylight->basis.values.size(), radiosity.group_count(),
+                     daylight->weather ? " and the weather file's hours" : "",
+                     a.location.empty() ? daylight->weather->place.c_str() : a.location.c_str(),
                      100 * daylight->basis.mean_error, 100 * daylight->basis.worst_error,
                      daylight->sun_patches.size());
     return 0;

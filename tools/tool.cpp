@@ -2,6 +2,7 @@
 
 #include "radfmt/chain.hpp"
 #include "radfmt/container.hpp"
+#include "radiosity/daylight.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
@@ -242,10 +243,14 @@ void add_sky_options(CLI::App& app, SkyChoice& choice, const std::string& what) 
     app.add_option("--sky", choice.sky,
                    what + ": uniform[:L] (cd/m^2), cie-overcast[:LUX], cie:TYPE[:LUX] (the 15 CIE "
                           "standard general skies), perez:DNI,DHI (W/m^2), clear (CIE 12 with the "
-                          "IES clear-sky daylight availability and the sun's beam); LUX is the "
-                          "sky's horizontal illuminance (default 10000)");
+                          "IES clear-sky daylight availability and the sun's beam), "
+                          "partly-cloudy (CIE 7, the IES partly cloudy availability), overcast "
+                          "(CIE 1, the IES overcast availability), epw:FILE (the weather file's "
+                          "record of the hour --date and --time fall in: Perez's sky as a year "
+                          "takes it); LUX is the sky's horizontal illuminance (default 10000)");
     app.add_option("--sun", choice.sun,
-                   "The sun for --sky cie:TYPE, perez or clear: ALT,AZ in degrees (azimuth "
+                   "The sun for --sky cie:TYPE, perez, clear, partly-cloudy or overcast: ALT,AZ "
+                   "in degrees (azimuth "
                    "from north towards east)");
     app.add_option("--date", choice.date, "The sun by date and time: YYYY-MM-DD (with --time)");
     app.add_option("--time", choice.time, "HH:MM, local standard time (with --date)");
@@ -381,6 +386,13 @@ CLI::Option* add_sensor_gather_options(CLI::App& app, GatherOptions& options, st
 }
 
 Sky sky_of(const SkyChoice& choice, const std::string& epw, const SkyFrame& frame) {
+    if (choice.sky.rfind("epw:", 0) == 0) {
+        if (!choice.sun.empty() || !choice.location.empty())
+            throw InputError("--sky epw:FILE takes the place and the sun from the weather file: "
+                             "not with --sun or --location");
+        return weather_file_sky(choice.sky.substr(4), choice.date, choice.time, frame,
+                                choice.ground);
+    }
     int day = 172;
     const auto sun = sun_from({choice.sun, choice.date, choice.time, choice.location, epw}, day);
     return parse_sky(choice.sky, sun ? &*sun : nullptr, day, frame, choice.ground);

@@ -5,6 +5,7 @@
 //
 //   node test-viewer.mjs --page P.html --reference R.png [--set '{"weights":{"g":0}}']
 //        [--screenshot S.png] [--width 512] [--height 512] [--max-difference 0.03]
+//        [--probe X,Y]  (print the pixel at X,Y and what the page shows outside; no reference needed)
 //        [--glb G.glb: show this glb in the page instead of its own]
 //        [--slide name=value,...: move the page's sliders, as a user would]
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
@@ -20,7 +21,7 @@ function options() {
     if (!args[i].startsWith('--') || i + 1 >= args.length) throw new Error(`bad argument ${args[i]}`);
     out[args[i].slice(2)] = args[i + 1];
   }
-  if (!out.page || !out.reference) throw new Error('give --page and --reference');
+  if (!out.page || (!out.reference && !out.probe)) throw new Error('give --page and --reference (or --probe X,Y)');
   return out;
 }
 
@@ -108,10 +109,19 @@ try {
   }
   const shown = await page.evaluate(() => window.radiosity.pixels());
   if (opts.screenshot) await page.screenshot({ path: opts.screenshot });
-  const result = compare(shown, await decodePng(page, opts.reference));
-  const limit = Number(opts['max-difference']);
-  console.log(`${opts.page}: mean absolute difference ${(100 * result.difference).toFixed(2)}% of full scale over ${result.counted} pixels (${result.edges} edge pixels left out), limit ${(100 * limit).toFixed(2)}%`);
-  if (!(result.difference < limit)) status = 1;
+  if (opts.probe) {
+    // The canvas pixel at X,Y (from the top left), with what the page says is outside.
+    const [x, y] = opts.probe.split(',').map(Number);
+    const at = 4 * ((shown.height - 1 - y) * shown.width + x);
+    const outside = await page.evaluate(() => ({ outside: window.radiosity.outside(), panes: window.radiosity.panes() }));
+    console.log(`probe: ${JSON.stringify({ pixel: shown.rgba.slice(at, at + 3), ...outside })}`);
+  }
+  if (opts.reference) {
+    const result = compare(shown, await decodePng(page, opts.reference));
+    const limit = Number(opts['max-difference']);
+    console.log(`${opts.page}: mean absolute difference ${(100 * result.difference).toFixed(2)}% of full scale over ${result.counted} pixels (${result.edges} edge pixels left out), limit ${(100 * limit).toFixed(2)}%`);
+    if (!(result.difference < limit)) status = 1;
+  }
 } catch (error) {
   console.error(`test-viewer: ${error.message}`);
   status = 2;

@@ -424,6 +424,23 @@ for k, y in enumerate(csv.DictReader(open(sys.argv[3])), 1):
 print("noon of 21 December: the year's DGP %s, the instant's %s" % (
     [noon["dgp1"], noon["dgp2"]], [g["dgp"] for g in csv.DictReader(open(sys.argv[2]))]))
 PY
+# --sky epw:FILE is the weather file's hour as the year takes it (#69 item 5: the page's
+# reference): its record's radiation and dew point, the sun at mid-hour; the glare at noon is
+# the year's noon hour's within 1% (Ev) and 0.005 (DGP).
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky "epw:$EPW" --date 2021-12-21 --time 12:00 \
+  --glare "2 1.2 2 0 0 1" --glare "2 1.2 2 1 0 0" -o "$TMP/glare-epw.csv" -q || fail "--glare under --sky epw:FILE"
+python3 - "$TMP/glare-hours.csv" "$TMP/glare-epw.csv" <<'PY' || fail "--sky epw:FILE is not the year's hour"
+import csv, sys
+noon = next(h for h in csv.DictReader(open(sys.argv[1])) if (h["month"], h["day"], h["hour"]) == ("12", "21", "12"))
+for k, g in enumerate(csv.DictReader(open(sys.argv[2])), 1):
+    ev, dgp = float(noon["ev%d" % k]), float(noon["dgp%d" % k])
+    assert abs(ev - float(g["ev"])) <= 0.01 * float(g["ev"]), (k, ev, g["ev"])
+    assert abs(dgp - float(g["dgp"])) <= 0.005, (k, dgp, g["dgp"])
+PY
+expect_error "is the sky of one of its hours: give --date and --time" "" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky "epw:$EPW" --points "$TMP/axis.txt"
+expect_error "takes the place and the sun from the weather file" "" \
+  "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky "epw:$EPW" --date 2021-12-21 --time 12:00 --location 1,2,3 --points "$TMP/axis.txt"
 
 # EN 17037's sunlight exposure (#69 item 3): just inside the glazed window's centre the sun is
 # seen all the hours it stands above 10 degrees (Denver, 21 March: 2 acos(sin 10 / cos 39.83)

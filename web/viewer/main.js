@@ -48,7 +48,8 @@ function mixingMaterial(textures, doubleSided) {
 }
 
 // ---- Daylight (a page of a daylight solution): the sky of a date and time, as the chain's
-// Sky::clear makes it, weighting the components of the solution's basis (one texture array).
+// Sky::of_day makes it (a clear, partly cloudy or overcast day), or a weather file's hour as
+// rad-bake computed it, weighting the components of the solution's basis (one texture array).
 const DEG = Math.PI / 180;
 
 // The sun at day of year `day` and `hour` (local standard time) by NOAA's general solar
@@ -99,15 +100,16 @@ function patchOf(sky, alt, az) {
   return first + (Math.floor((a * n) / (2 * Math.PI) + 0.5) % n);
 }
 
-// Each sky patch's mean luminance (cd/m^2) under the clear sky of the sun `sun`: CIE 12 scaled
-// to 800 + 15500 sqrt(sin a) lux on the horizontal, the ground uniform; and the sun's beam,
-// 127500 exp(-0.21 / sin a) lux, as the luminance of the patch it is in (sunPatch, sunLuminance).
-function clearSkyLuminance(sky, sun, ground) {
+// Each sky patch's mean luminance (cd/m^2) under a day's sky with the sun `sun`: its CIE type
+// scaled to A + B sin(a)^p lux on the horizontal (day.diffuse), the ground uniform; and the
+// sun's beam, 127500 exp(-c / sin a) lux (c: day.extinction, 0 for none), as the luminance of
+// the patch it is in (sunPatch, sunLuminance).
+function daySkyLuminance(sky, sun, ground, day) {
   const out = new Array(sky.patches.length).fill(0);
   out.sunPatch = -1;
   out.sunLuminance = 0;
   if (sun.altitude <= 0) return out;
-  const [a, b, c, d, e] = [-1, -0.32, 10, -3, 0.45];
+  const [a, b, c, d, e] = day.parameters;
   const gradation = (cosZ) => 1 + a * Math.exp(b / Math.max(cosZ, 1e-9));
   const indicatrix = (g) => 1 + c * (Math.exp(d * g) - Math.exp((d * Math.PI) / 2)) + e * Math.cos(g) ** 2;
   const zs = Math.PI / 2 - sun.altitude;
@@ -128,12 +130,50 @@ function clearSkyLuminance(sky, sun, ground) {
     out[p] = sum / patch.cells.length;
   }
   const s = Math.sin(sun.altitude);
-  const diffuse = 800 + 15500 * Math.sqrt(s), beam = 127500 * Math.exp(-0.21 / s);
+  const [A, B, power] = day.diffuse;
+  const diffuse = A + B * (power === 0.5 ? Math.sqrt(s) : s ** power);
+  const beam = day.extinction > 0 ? 127500 * Math.exp(-day.extinction / s) : 0;
   for (let p = 1; p < out.length; ++p) out[p] *= diffuse / integral;
-  out.sunPatch = patchOf(sky, sun.altitude, sun.azimuth);
-  out.sunLuminance = beam / sky.patches[out.sunPatch].omega;
+  if (beam > 0) {
+    out.sunPatch = patchOf(sky, sun.altitude, sun.azimuth);
+    out.sunLuminance = beam / sky.patches[out.sunPatch].omega;
+  }
   out[0] = (ground * (diffuse + beam * s)) / Math.PI;
   return out;
+}
+
+// The mean luminance of the sky above the horizon and of the ground below (cd/m^2), for
+// what windows and openings show.
+function skyAndGround(sky, luminance) {
+  let seen = 0, omega = 0;
+  for (let p = 1; p < sky.patches.length; ++p) {
+    seen += luminance[p] * sky.patches[p].omega;
+    omega += sky.patches[p].omega;
+  }
+  return [seen / omega, luminance[0]];
+}
+
+// A weather file's hour (rad-bake --epw) at day `day` and `hour`: the record of the hour ending
+// at or after it (EPW's hour 1 is 00:00 to 01:00), as rad-shade --sky epw:FILE takes it; null
+// when that hour is dark.
+function weatherHour(weather, components, day, hour) {
+  const ending = Math.min(24, Math.max(1, Math.ceil(hour - 1e-9)));
+  const t = (Math.round(day) - 1) * 24 + ending - 1;
+  let lo = 0, hi = weather.hours.length - 1;
+  while (lo <= hi) {
+    const mid = (lo + hi) >> 1;
+    if (weather.hours[mid] === t) {
+      return {
+        weights: weather.weights.slice(mid * components, (mid + 1) * components),
+        sunPatch: weather.sun_patch[mid],
+        sunLuminance: weather.beam_luminance[mid],
+        skyGround: weather.sky_ground_luminance[mid],
+      };
+    }
+    if (weather.hours[mid] < t) lo = mid + 1;
+    else hi = mid - 1;
+  }
+  return null;
 }
 
 // Mixes the basis layers: sum of weight x (linear) texel plus a bias (the layers are signed,
@@ -167,6 +207,63 @@ function daylightMaterial(basis, count, doubleSided) {
         #include <colorspace_fragment>
       }`,
   });
+}
+
+// A pane of glass: what is outside along the line of sight (the dome's sky or ground),
+// times what the pane lets through; drawn as its own colour, not blended, so that the
+// product is taken on linear values before the sRGB encoding. The little it reflects is left
+// out.
+function glassMaterial(through, outside) {
+  return new THREE.ShaderMaterial({
+    uniforms: { sky: outside.sky, ground: outside.ground, through: { value: through } },
+    side: THREE.DoubleSide,
+    vertexShader: `
+      varying vec3 vWorld;
+      void main() {
+        vec4 world = modelMatrix * vec4(position, 1.0);
+        vWorld = world.xyz;
+        gl_Position = projectionMatrix * viewMatrix * world;
+      }`,
+    fragmentShader: `
+      uniform vec3 sky;
+      uniform vec3 ground;
+      uniform float through;
+      varying vec3 vWorld;
+      void main() {
+        vec3 outside = (vWorld - cameraPosition).y >= 0.0 ? sky : ground;
+        gl_FragColor = vec4(clamp(through * outside, 0.0, 1.0), 1.0);
+        #include <colorspace_fragment>
+      }`,
+  });
+}
+
+// Outside the room: the sky's mean luminance above the horizon and the ground's below, as
+// display values (pi L / 179 x exposure: the radiosity of a surface of that luminance).
+function skyDome(box) {
+  const radius = Math.max(1, box.getSize(new THREE.Vector3()).length()) * 20;
+  const material = new THREE.ShaderMaterial({
+    uniforms: { sky: { value: new THREE.Color(0, 0, 0) }, ground: { value: new THREE.Color(0, 0, 0) } },
+    side: THREE.BackSide,
+    depthWrite: false,
+    vertexShader: `
+      varying vec3 vDirection;
+      void main() {
+        vDirection = position;
+        gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
+      }`,
+    fragmentShader: `
+      uniform vec3 sky;
+      uniform vec3 ground;
+      varying vec3 vDirection;
+      void main() {
+        gl_FragColor = vec4(clamp(vDirection.y >= 0.0 ? sky : ground, 0.0, 1.0), 1.0);
+        #include <colorspace_fragment>
+      }`,
+  });
+  const dome = new THREE.Mesh(new THREE.SphereGeometry(radius, 32, 16), material);
+  dome.position.copy(box.getCenter(new THREE.Vector3()));
+  dome.renderOrder = -1;
+  return dome;
 }
 
 // The basis layers (PNG textures of the glb) as one texture array, linear.
@@ -254,18 +351,31 @@ async function main() {
   const extras = gltf.parser.json.asset.extras.radiosity;
   const daylight = extras.daylight;
   const groups = daylight ? [] : extras.light_group_lightmaps ?? [];
-  const state = { exposure: config.exposure, weights: Object.fromEntries(groups.map((g) => [g.name, 1])), day: 80, hour: 12 };
+  const state = { exposure: config.exposure, weights: Object.fromEntries(groups.map((g) => [g.name, 1])), day: 80, hour: 12, sky: 0 };
   const materials = [];
-  let sky = null;
+  let sky = null, dome = null;
+  const panes = [];
   if (daylight) {
     const basis = await basisTexture(gltf.parser, extras.light_group_lightmaps);
     sky = skyPatches(daylight.subdivisions);
-    gltf.scene.traverse((node) => {
-      if (!node.isMesh) return;
+    const meshes = [];
+    gltf.scene.traverse((node) => node.isMesh && meshes.push(node));
+    dome = skyDome(new THREE.Box3().setFromObject(gltf.scene));
+    for (const node of meshes) {
+      // Glass shows what is behind it, the sky through the window, dimmed by what it lets
+      // through (its lightmap is the little it reflects: drawn over it).
+      const t = node.material.userData?.transmittance;
+      const through = t ? (t[0] + t[1] + t[2]) / 3 : 0;
+      if (through > 0) {
+        node.material = glassMaterial(through, dome.material.uniforms);
+        panes.push(node);
+        continue;
+      }
       node.material = daylightMaterial(basis, 2 * (daylight.components.length + daylight.sun_patches.length),
         node.material.side === THREE.DoubleSide);
       materials.push(node.material);
-    });
+    }
+    scene.add(dome);
   } else if (groups.length > 0) {
     const textures = await Promise.all(groups.map((g) => gltf.parser.getDependency('texture', g.texture)));
     for (const t of textures) {
@@ -300,25 +410,45 @@ async function main() {
   controls.target.copy(target);
   controls.update();
 
+  // The sky at the state's day and hour: the components' weights, the sun's patch and beam
+  // luminance, and the sky's and the ground's mean luminance.
+  const skyOfNow = () => {
+    const count = daylight.components.length;
+    if (state.sky === 'weather') {
+      return weatherHour(daylight.weather, count, state.day, state.hour) ??
+        { weights: new Array(count).fill(0), sunPatch: -1, sunLuminance: 0, skyGround: [0, 0] };
+    }
+    const day = daylight.days[state.sky];
+    const luminance = daySkyLuminance(sky, sunPosition(daylight, state.day, state.hour), daylight.ground, day);
+    const weights = daylight.components.map((c) => {
+      let w = 0;
+      for (let k = 0; k < luminance.length; ++k) w += c.weights[k] * luminance[k];
+      return w;
+    });
+    return { weights, sunPatch: luminance.sunPatch, sunLuminance: luminance.sunLuminance, skyGround: skyAndGround(sky, luminance) };
+  };
+
   const render = () => {
     const scale = state.exposure / extras.exposure;
     let daylightWeights = null, bias = 0;
     if (daylight) {
-      const luminance = clearSkyLuminance(sky, sunPosition(daylight, state.day, state.hour), daylight.ground);
+      const hour = skyOfNow();
       // The sky through the basis, the sun through its own patch's group (a layer each).
       // Each component (and each sun patch's group) in two layers, the high and the low
       // byte of 16 bits.
-      daylightWeights = daylight.components.flatMap((c) => {
-        let w = 0;
-        for (let k = 0; k < luminance.length; ++k) w += c.weights[k] * luminance[k];
+      daylightWeights = daylight.components.flatMap((c, k) => {
+        const w = hour.weights[k];
         bias -= w * c.scale;
         return [(2 * w * c.scale * 65280) / 65535, (2 * w * c.scale * 255) / 65535];
       });
       for (const sunLayer of daylight.sun_patches) {
-        const w = sunLayer.patch === luminance.sunPatch ? luminance.sunLuminance / 179 : 0;
+        const w = sunLayer.patch === hour.sunPatch ? hour.sunLuminance / 179 : 0;
         bias -= w * sunLayer.scale;
         daylightWeights.push((2 * w * sunLayer.scale * 65280) / 65535, (2 * w * sunLayer.scale * 255) / 65535);
       }
+      const display = (l) => (Math.PI * l * state.exposure) / 179;
+      dome.material.uniforms.sky.value.setScalar(display(hour.skyGround[0]));
+      dome.material.uniforms.ground.value.setScalar(display(hour.skyGround[1]));
     }
     for (const m of materials) {
       if (daylightWeights) {
@@ -346,21 +476,44 @@ async function main() {
   addSlider(panel, 'exposure', state.exposure, state.exposure * 4, (v) => { state.exposure = v; render(); });
   for (const g of groups) addSlider(panel, g.name, 1, 4, (v) => { state.weights[g.name] = v; render(); });
   const when = document.createElement('div');
-  const showWhen = () => { when.textContent = daylight ? `${dateText(state.day, state.hour)} (clear sky)` : ''; };
+  const skyName = () => (state.sky === 'weather' ? `weather file ${daylight.weather.place}` : daylight.days[state.sky].name);
+  const showWhen = () => { when.textContent = daylight ? `${dateText(state.day, state.hour)}, ${skyName()}` : ''; };
+  let skyMenu = null;
   if (daylight) {
     addSlider(panel, 'day', state.day, 365, (v) => { state.day = v; showWhen(); render(); }, 1, 1);
     addSlider(panel, 'hour', state.hour, 24, (v) => { state.hour = v; showWhen(); render(); }, 0, 0.25);
-    panel.append(when);
+    skyMenu = document.createElement('select');
+    daylight.days.forEach((d, k) => skyMenu.append(new Option(d.name, String(k))));
+    if (daylight.weather) skyMenu.append(new Option(`weather file: ${daylight.weather.place} (Perez, hourly)`, 'weather'));
+    skyMenu.addEventListener('change', () => {
+      state.sky = skyMenu.value === 'weather' ? 'weather' : Number(skyMenu.value);
+      showWhen();
+      render();
+    });
+    const row = document.createElement('label');
+    const text = document.createElement('span');
+    text.textContent = 'sky';
+    row.append(text, skyMenu);
+    panel.append(row, when);
     showWhen();
   }
 
   // For scripts (the browser test): set weights and exposure, read the pixels of a fresh frame.
   window.radiosity = {
     groups: groups.map((g) => g.name),
+    // The window panes and what the dome outside shows (display values, linear).
+    panes: () => panes.map((p) => p.material.uniforms.through.value),
+    outside: () => (dome ? [dome.material.uniforms.sky.value.r, dome.material.uniforms.ground.value.r] : null),
     set(settings) {
       if (settings.exposure !== undefined) state.exposure = settings.exposure;
       if (settings.day !== undefined) state.day = settings.day;
       if (settings.hour !== undefined) state.hour = settings.hour;
+      if (settings.sky !== undefined) {
+        if (settings.sky === 'weather' && !daylight?.weather) throw new Error('the page has no weather file');
+        state.sky = settings.sky === 'weather' ? 'weather' : daylight.days.findIndex((d) => d.name.startsWith(settings.sky.replace('-', ' ')));
+        if (state.sky === -1) throw new Error(`no sky named ${settings.sky}`);
+        skyMenu.value = String(state.sky);
+      }
       showWhen();
       Object.assign(state.weights, settings.weights ?? {});
       for (const input of panel.querySelectorAll('input')) {

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -313,6 +314,15 @@ struct HourlySkies {
 };
 HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, const SkyFrame& frame,
                          double ground);
+// An hour's sky as a year takes it: Perez's from the record's radiation with the sun at the
+// hour's middle; none when the hour is dark (the sun far below the horizon, `night_light`
+// set when the record gives light all the same, or no light at all).
+std::optional<Sky> hour_sky(const Weather& weather, const WeatherHour& hour, const SkyFrame& frame,
+                            double ground, bool* night_light);
+// `--sky epw:FILE --date D --time T`: the sky of the record of the hour ending at or after T
+// on D (hour_sky; dark when it is). InputError without a date and time, or with no record.
+Sky weather_file_sky(const std::string& path, const std::string& date, const std::string& time,
+                     const SkyFrame& frame, double ground);
 
 // A year at sensors from a weather file: per hour Perez's sky from its radiation (the sun at
 // mid-hour), the sky's light through the coefficients, the sun's beam traced at each sensor.
@@ -405,14 +415,18 @@ struct DaylightBasis {
 DaylightBasis daylight_basis(const DaylightSolution& solution, const std::vector<double>& areas,
                              const std::vector<std::vector<double>>& skies, int max_components,
                              double target_error);
-// Clear skies (Sky::clear) over a year at `where` (every fifth day, each daylight hour at
+// A day's skies (Sky::of_day) over a year at `where` (every fifth day, each daylight hour at
 // half past): the patch luminances of the sky and the ground without the sun's beam, and
 // the sky patches the sun is in (ascending, each once). What the viewer page shows.
-struct ClearYear {
+struct YearOfSkies {
     std::vector<std::vector<double>> skies;
     std::vector<std::size_t> sun_patches;
 };
-ClearYear clear_year(const SkyPatches& patches, const SkyFrame& frame, const Location& where,
-                     double ground);
+YearOfSkies day_year(const SkyPatches& patches, const SkyFrame& frame, const Location& where,
+                     double ground, Sky::Day day);
+inline YearOfSkies clear_year(const SkyPatches& patches, const SkyFrame& frame,
+                              const Location& where, double ground) {
+    return day_year(patches, frame, where, ground, Sky::Day::clear);
+}
 
 } // namespace rad

@@ -104,6 +104,22 @@ class Sky {
     // 127500 exp(-0.21 / sin a) lux at solar altitude a (dark with the sun down). The viewer
     // page relights with the same sky.
     static Sky clear(const SunPosition& sun, const SkyFrame& frame, double ground_reflectance);
+    // The same for the IES Lighting Handbook's other two daylight-availability conditions: a
+    // partly cloudy day (CIE type 7, the sky 300 + 45000 sin a lux, the beam 127500 exp(-0.80
+    // / sin a) lux) and an overcast one (CIE type 1, 300 + 21000 sin a lux, no beam).
+    enum class Day { clear, partly_cloudy, overcast };
+    static Sky of_day(Day day, const SunPosition& sun, const SkyFrame& frame,
+                      double ground_reflectance);
+    // A day's CIE type, its sky's horizontal illuminance A + B sin(a)^p as {A, B, p}, and its
+    // beam's extinction c in 127500 exp(-c / sin a) (0: no beam): what the viewer page
+    // evaluates as the chain does.
+    struct DayAvailability {
+        int cie_type;
+        std::array<double, 3> diffuse;
+        double extinction;
+        const char* name;
+    };
+    static DayAvailability availability(Day day);
 
     // The 15 CIE types' gradation and indicatrix parameters a, b, c, d, e.
     static std::array<double, 5> cie_parameters(int type);

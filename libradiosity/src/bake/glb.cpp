@@ -173,15 +173,18 @@ json material_json(const radfmt::Material& m, bool two_sided_sheet, int texture)
                 {"metallicFactor", 0.0},
                 {"roughnessFactor", 1.0}};
     if (texture >= 0) pbr["baseColorTexture"] = {{"index", texture}, {"texCoord", 1}};
+    json extras = m.specular.any() ? json{{"reflectance", m.reflectance.c},
+                                          {"emission_W_per_m2", m.emission.c},
+                                          {"specular", specular_summary(m.specular)}}
+                                   : json{{"reflectance", m.reflectance.c},
+                                          {"emission_W_per_m2", m.emission.c}};
+    // What a pane lets through at normal incidence: the viewer page draws the sky behind it.
+    if (m.specular.transmits()) extras["transmittance"] = m.specular.transmittance.c;
     return {{"name", m.name + (two_sided_sheet ? " (one side of a two-sided sheet)" : "")},
             {"pbrMetallicRoughness", pbr},
             {"doubleSided", !two_sided_sheet},
             {"extensions", {{"KHR_materials_unlit", json::object()}}},
-            {"extras", m.specular.any() ? json{{"reflectance", m.reflectance.c},
-                                               {"emission_W_per_m2", m.emission.c},
-                                               {"specular", specular_summary(m.specular)}}
-                                        : json{{"reflectance", m.reflectance.c},
-                                               {"emission_W_per_m2", m.emission.c}}}};
+            {"extras", extras}};
 }
 
 // The primitives, by material and by whether the patch is one side of a two-sided sheet (those

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 
 namespace rad {
 namespace {
@@ -23,6 +24,43 @@ constexpr int kHourlySide = 4;
 constexpr double kNightZenith = 98;
 
 } // namespace
+
+std::optional<Sky> hour_sky(const Weather& weather, const WeatherHour& h, const SkyFrame& frame,
+                            double ground, bool* night_light) {
+    const auto sun = sun_of_hour(weather, h);
+    if (night_light) *night_light = false;
+    if (sun.zenith > kNightZenith) {
+        if (night_light) *night_light = h.direct_normal > 0 || h.diffuse_horizontal > 0;
+        return std::nullopt;
+    }
+    if (h.diffuse_horizontal <= 0 && (h.direct_normal <= 0 || sun.zenith >= 90))
+        return std::nullopt;
+    return Sky::perez(h.direct_normal, h.diffuse_horizontal, sun, h.day_of_year(), h.dew_point,
+                      frame, ground);
+}
+
+Sky weather_file_sky(const std::string& path, const std::string& date, const std::string& time,
+                     const SkyFrame& frame, double ground) {
+    if (date.empty() || time.empty())
+        throw InputError("--sky epw:" + path +
+                         " is the sky of one of its hours: give --date and "
+                         "--time");
+    const auto weather = read_epw(path);
+    const auto when = parse_local_time(date, time);
+    // The record of the hour ending at or after the time (EPW's hour 1 is 00:00 to 01:00).
+    const int ending = std::clamp(int(std::ceil(when.hour)), 1, 24);
+    for (const auto& h : weather.hours)
+        if (h.month == when.month && h.day == when.day && h.hour == ending) {
+            if (auto sky = hour_sky(weather, h, frame, ground, nullptr)) return *sky;
+            auto dark = Sky::perez(0, 0, sun_of_hour(weather, h), h.day_of_year(), h.dew_point,
+                                   frame, ground);
+            return dark;
+        }
+    char text[64];
+    std::snprintf(text, sizeof text, "%02d-%02d, the hour ending %02d:00", when.month, when.day,
+                  ending);
+    throw InputError(path + ": no record for " + text + " (a weather file holds one year)");
+}
 
 HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, const SkyFrame& frame,
                          double ground) {
@@ -39,15 +77,11 @@ HourlySkies hourly_skies(const Weather& weather, const SkyPatches& patches, cons
     out.beam_luminance.assign(hours, 0.0);
     const auto cells = patches.cells(frame, kHourlySide); // once for the year
     tbb::parallel_for(std::size_t(0), hours, [&](std::size_t t) {
-        const auto& h = weather.hours[t];
-        const auto sun = sun_of_hour(weather, h);
-        if (sun.zenith > kNightZenith) {
-            out.night_light[t] = h.direct_normal > 0 || h.diffuse_horizontal > 0;
-            return;
-        }
-        if (h.diffuse_horizontal <= 0 && (h.direct_normal <= 0 || sun.zenith >= 90)) return;
-        const auto sky = Sky::perez(h.direct_normal, h.diffuse_horizontal, sun, h.day_of_year(),
-                                    h.dew_point, frame, ground);
+        bool night_light = false;
+        const auto lit = hour_sky(weather, weather.hours[t], frame, ground, &night_light);
+        out.night_light[t] = night_light;
+        if (!lit) return;
+        const auto& sky = *lit;
         out.adjusted[t] = !sky.adjusted().empty();
         const auto mean = patches.mean_luminance(sky, cells);
         for (std::size_t s = 0; s < out.count; ++s)

@@ -201,9 +201,9 @@ DaylightBasis daylight_basis(const DaylightSolution& solution, const std::vector
     return basis;
 }
 
-ClearYear clear_year(const SkyPatches& patches, const SkyFrame& frame, const Location& where,
-                     double ground) {
-    ClearYear out;
+YearOfSkies day_year(const SkyPatches& patches, const SkyFrame& frame, const Location& where,
+                     double ground, Sky::Day kind) {
+    YearOfSkies out;
     static constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
     std::vector<bool> sun_in(patches.count(), false);
     const auto cells = patches.cells(frame, 4); // once for the year
@@ -213,7 +213,7 @@ ClearYear clear_year(const SkyPatches& patches, const SkyFrame& frame, const Loc
         for (int hour = 0; hour < 24; ++hour) {
             const auto sun = solar_position(where, {2025, month + 1, rest, hour + 0.5});
             if (sun.zenith >= 90) continue;
-            const auto sky = Sky::clear(sun, frame, ground);
+            const auto sky = Sky::of_day(kind, sun, frame, ground);
             out.skies.push_back(patches.mean_luminance(sky, cells));
             if (const auto sun_in_patch = sun_patch(patches, sky))
                 sun_in[sun_in_patch->patch] = true;

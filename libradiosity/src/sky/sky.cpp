@@ -166,19 +166,40 @@ Sky Sky::cie_overcast(double lux, const SkyFrame& frame, double ground_reflectan
     return s;
 }
 
-Sky Sky::clear(const SunPosition& sun, const SkyFrame& frame, double ground_reflectance) {
+Sky::DayAvailability Sky::availability(Day day) {
+    switch (day) {
+    case Day::partly_cloudy:
+        return {7, {300, 45000, 1}, 0.80, "partly cloudy sky (CIE 7, IES daylight availability)"};
+    case Day::overcast:
+        return {1, {300, 21000, 1}, 0, "overcast sky (CIE 1, IES daylight availability)"};
+    case Day::clear:
+        break;
+    }
+    return {12, {800, 15500, 0.5}, 0.21, "clear sky (CIE 12, IES daylight availability)"};
+}
+
+Sky Sky::of_day(Day day, const SunPosition& sun, const SkyFrame& frame, double ground_reflectance) {
+    const auto a = availability(day);
     const double altitude = sun.altitude() * kDeg;
     if (altitude <= 0) {
-        auto dark = cie_standard(12, sun, 0, frame, ground_reflectance);
-        dark.name_ = "clear sky (the sun is down)";
+        auto dark = cie_standard(a.cie_type, sun, 0, frame, ground_reflectance);
+        dark.name_ =
+            std::string(a.name).substr(0, std::string(a.name).find(" (")) + " (the sun is down)";
         return dark;
     }
     const double s = std::sin(altitude);
-    auto sky = cie_standard(12, sun, 800 + 15500 * std::sqrt(s), frame, 0);
-    sky.sun_normal_lux_ = 127500 * std::exp(-0.21 / s);
-    sky.name_ = "clear sky (CIE 12, IES daylight availability)";
+    const double diffuse =
+        a.diffuse[0] +
+        a.diffuse[1] * (a.diffuse[2] == 0.5 ? std::sqrt(s) : std::pow(s, a.diffuse[2]));
+    auto sky = cie_standard(a.cie_type, sun, diffuse, frame, 0);
+    sky.sun_normal_lux_ = a.extinction > 0 ? 127500 * std::exp(-a.extinction / s) : 0.0;
+    sky.name_ = a.name;
     sky.set_ground(ground_reflectance);
     return sky;
+}
+
+Sky Sky::clear(const SunPosition& sun, const SkyFrame& frame, double ground_reflectance) {
+    return of_day(Day::clear, sun, frame, ground_reflectance);
 }
 
 Sky Sky::cie_standard(int type, const SunPosition& sun, double lux, const SkyFrame& frame,

@@ -47,7 +47,7 @@ int days_in_month(int year, int month) {
 }
 
 const char* kSkyForms = "uniform[:L], cie-overcast[:LUX], cie:TYPE[:LUX] (TYPE 1..15), "
-                        "perez:DNI,DHI (W/m^2) or clear";
+                        "perez:DNI,DHI (W/m^2), clear, partly-cloudy or overcast";
 } // namespace
 
 Sky parse_sky(const std::string& spec, const SunPosition* sun, int day_of_year,
@@ -94,9 +94,12 @@ Sky parse_sky(const std::string& spec, const SunPosition* sun, int day_of_year,
                           in_range(v[1], kMaxIrradiance, "--sky perez: DHI (W/m^2)"), need_sun(),
                           day_of_year, 10, frame, ground);
     }
-    if (name == "clear") {
-        if (!rest.empty()) throw InputError("--sky clear takes nothing after it");
-        return Sky::clear(need_sun(), frame, ground);
+    if (name == "clear" || name == "partly-cloudy" || name == "overcast") {
+        if (!rest.empty()) throw InputError("--sky " + name + " takes nothing after it");
+        const auto day = name == "clear"           ? Sky::Day::clear
+                         : name == "partly-cloudy" ? Sky::Day::partly_cloudy
+                                                   : Sky::Day::overcast;
+        return Sky::of_day(day, need_sun(), frame, ground);
     }
     throw InputError("--sky '" + spec + "' is not known: give " + kSkyForms);
 }
