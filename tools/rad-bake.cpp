@@ -5,6 +5,7 @@
 #include "radfmt/kinds.hpp"
 #include "radiosity/bake.hpp"
 #include "radiosity/daylight.hpp"
+#include "radiosity/daylight_glare.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/huge_pages.hpp"
 #include "radiosity/image_io.hpp"
@@ -12,6 +13,7 @@
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 #include "radiosity/solve_policy.hpp"
+#include "radiosity/specular.hpp"
 #include "radiosity/version.hpp"
 #include "radiosity/view.hpp"
 #include "tool.hpp"
@@ -265,6 +267,7 @@ struct DaylightPage {
     std::vector<radfmt::Rgb> noon;        // the patches' radiosity at the glb's default sky
     std::optional<rad::Weather> weather;  // --epw
     rad::HourlySkies hours;               // its hours' skies
+    radfmt::SkyData view;                 // the solve's .sky: the beam the sun layers spread
 };
 
 // The days the page offers besides a weather file's hours, in its menu's order.
@@ -313,7 +316,8 @@ std::optional<DaylightPage> daylight_page(const Arguments& a, const radfmt::Mesh
             "time), or one sky with rad-shade --sky");
     if (!a.mix.empty() || a.mix_only) throw rad::InputError("--mix is not for a daylight page");
     DaylightPage page{
-        rad::daylight_solution(radiosity, rad_header, a.rad_path), {}, {}, {}, {}, {}, {}};
+        rad::daylight_solution(radiosity, rad_header, a.rad_path), {}, {}, {}, {}, {}, {}, {}};
+    page.view = rad::solution_sky_view(rad_header, a.rad_path, "", mesh, a.mesh_path);
     if (!a.epw.empty()) {
         page.weather = rad::read_epw(a.epw);
         page.hours =
@@ -340,7 +344,7 @@ nlohmann::json weather_extras(const DaylightPage& page) {
     const std::size_t count = h.count;
     nlohmann::json hours = nlohmann::json::array(), weights = nlohmann::json::array(),
                    sun_patch = nlohmann::json::array(), beam = nlohmann::json::array(),
-                   sky = nlohmann::json::array();
+                   sky = nlohmann::json::array(), sun = nlohmann::json::array();
     const auto& patches = page.solution.patches;
     for (std::size_t t = 0; t < page.weather->hours.size(); ++t) {
         const float* l = &h.direct[t * count];
@@ -353,20 +357,50 @@ nlohmann::json weather_extras(const DaylightPage& page) {
         }
         sun_patch.push_back(h.sun_patch[t]);
         beam.push_back(float(h.beam_luminance[t]));
+        sun.push_back({h.sun[t][0], h.sun[t][1], h.sun[t][2], h.sun_lux[t]});
         double seen = 0, omega = 0;
         for (std::size_t s = 1; s < count; ++s)
             seen += double(l[s]) * patches.solid_angle(s), omega += patches.solid_angle(s);
         sky.push_back({float(seen / omega), l[0]});
     }
-    return {{"path", page.weather->path}, {"place", page.weather->place}, {"hours", hours},
-            {"weights", weights},         {"sun_patch", sun_patch},       {"beam_luminance", beam},
+    return {{"path", page.weather->path},
+            {"place", page.weather->place},
+            {"hours", hours},
+            {"weights", weights},
+            {"sun_patch", sun_patch},
+            {"beam_luminance", beam},
+            {"sun", sun},
             {"sky_ground_luminance", sky}};
+}
+
+// What each pane of glass lets through of the sun's beam by the angle it meets it at: the
+// luminous share at cos = 0, 1/32, ..., 1 (as the chain's rays take it: every reflection
+// inside summed, both polarisations); other glass at its normal transmittance.
+nlohmann::json pane_tables(const radfmt::MeshData& mesh) {
+    nlohmann::json panes = nlohmann::json::object();
+    for (const auto& m : mesh.materials) {
+        if (!m.specular.transmits()) continue;
+        nlohmann::json table = nlohmann::json::array();
+        for (int k = 0; k <= 32; ++k) {
+            rad::Rgb t{0, 0, 0};
+            for (std::size_t c = 0; c < 3; ++c)
+                t[c] = m.specular.kind == radfmt::SpecularKind::pane
+                           ? rad::pane_shares(rad::pane_transmissivity(m.specular.transmittance[c],
+                                                                       m.specular.ior),
+                                              m.specular.ior, k / 32.0)
+                                 .transmitted
+                           : m.specular.transmittance[c];
+            table.push_back(rad::luminous(t));
+        }
+        panes[m.name] = table;
+    }
+    return panes;
 }
 
 // What the page needs to relight: the place, the sky patches, each component's weights and
 // lightmap scale, and how well the basis reproduces a year of clear skies.
 nlohmann::json daylight_extras(const Arguments& a, const DaylightPage& page,
-                               const rad::BakeResult& result) {
+                               const rad::BakeResult& result, const radfmt::MeshData& mesh) {
     nlohmann::json components = nlohmann::json::array();
     for (std::size_t k = 0; k < page.basis.values.size(); ++k)
         components.push_back(
@@ -398,6 +432,7 @@ nlohmann::json daylight_extras(const Arguments& a, const DaylightPage& page,
                           {"mean_error", page.basis.mean_error},
                           {"worst_error", page.basis.worst_error}};
     if (page.weather) out["weather"] = weather_extras(page);
+    out["panes"] = pane_tables(mesh);
     return out;
 }
 
@@ -430,11 +465,17 @@ int bake_files(const Arguments& a, const std::string& command) {
         options.signed_groups = true;
         for (std::size_t k = 0; k < daylight->basis.values.size(); ++k)
             groups.emplace_back("daylight" + std::to_string(k), daylight->basis.values[k]);
-        for (const auto p : daylight->sun_patches) { // each sun patch's own group
+        // Each sun patch's own group without the beam's direct light, which the page traces
+        // sharp (its shadows from the sun); what the beam's light reflects further stays.
+        for (const auto p : daylight->sun_patches) {
             std::vector<double> only(daylight->solution.patches.count(), 0.0);
             only[p] = 1;
-            groups.emplace_back("sun" + std::to_string(p),
-                                rad::mix_sky_groups(daylight->solution, only));
+            auto sun = rad::mix_sky_groups(daylight->solution, only);
+            const auto spread = rad::spread_beam(daylight->view, solved, p, 1.0);
+            for (std::size_t i = 0; i < sun.size(); ++i)
+                for (std::size_t c = 0; c < 3; ++c)
+                    sun[i][c] = std::max(0.0, sun[i][c] - spread[i][c]);
+            groups.emplace_back("sun" + std::to_string(p), std::move(sun));
         }
     }
     if (a.lightmap == 0 && radiosity.group_count() > 0 && !a.quiet)
@@ -448,7 +489,7 @@ int bake_files(const Arguments& a, const std::string& command) {
     result.scene.generator = rad::tool_version("rad-bake");
     auto extras =
         provenance_json(mesh_header, a.mesh_path, rad_header, a.rad_path, command, options, result);
-    if (daylight) extras["daylight"] = daylight_extras(a, *daylight, result);
+    if (daylight) extras["daylight"] = daylight_extras(a, *daylight, result, solved);
     result.scene.extras_json =
         extras.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     const auto glb = rad::baked_glb(result.scene);

@@ -20,7 +20,8 @@ int report_inputs(const std::string& path, const radfmt::Header& h,
         bool recorded = false;
         for (const auto& in : h.inputs) {
             std::error_code ec;
-            recorded = recorded || in.path == file || std::filesystem::equivalent(in.path, file, ec);
+            recorded =
+                recorded || in.path == file || std::filesystem::equivalent(in.path, file, ec);
         }
         if (!recorded)
             changed.push_back(file + " is not among its inputs (it was made from another file)");

@@ -5,6 +5,7 @@
 #include "radiosity/auto_view.hpp"
 #include "radiosity/calc_surfaces.hpp"
 #include "radiosity/daylight.hpp"
+#include "radiosity/daylight_glare.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/gather.hpp"
@@ -20,6 +21,7 @@
 #include "radiosity/rays.hpp"
 #include "radiosity/shade.hpp"
 #include "radiosity/solve_policy.hpp"
+#include "radiosity/specular_view.hpp"
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
@@ -149,7 +151,9 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
     app.add_option("--direct", a.direct_path,
                    "The luminaires file (.lum) the solution was solved with, when it has moved "
                    "(default: the one rad-solve --direct recorded): their openings are drawn at "
-                   "their luminance, and --gather adds their direct light exactly");
+                   "their luminance, and --gather adds their direct light exactly; with --sky, "
+                   "the sky-view file (.sky) it was solved with, whose view of the sun's sky "
+                   "patch is taken out so that the beam is drawn sharp");
     app.add_flag("--layers", a.layers,
                  "Also write one EXR layer per light group (<group>.R/G/B, each at weight 1, "
                  "for relighting in a compositor) next to the mixed image");
@@ -230,18 +234,29 @@ struct ShadeInputs {
     std::vector<radfmt::Rgb> values;
     std::vector<std::string> chain;
     std::optional<rad::LuminaireSet> luminaires; // the solve's rad-solve --direct
+    std::optional<rad::SharpBeam> beam;          // --sky with the sun up: its beam, sharp
+    std::vector<radfmt::Rgb> exposed;            // with a sharp beam: the values it spreads
 };
 
-// --sky: the daylight solution's sky groups mixed by the sky's patch luminances.
-std::vector<radfmt::Rgb> sky_values(const ShadeArgs& a, const radfmt::RadiosityData& radiosity,
-                                    const radfmt::Header& header) {
+// --sky: the daylight solution's sky groups mixed by the sky's patch luminances; with the
+// sun up, its beam sharp (the spread beam taken out by the solve's .sky, the beam traced
+// where the camera sees a surface).
+std::vector<radfmt::Rgb> sky_values(const ShadeArgs& a, ShadeInputs& in) {
     if (!a.mix.empty() || a.mix_only || a.layers || a.gather > 0)
         throw rad::InputError("--sky mixes the sky's groups itself: not with --mix, --mix-only, "
                               "--layers or --gather");
-    const auto solution = rad::daylight_solution(radiosity, header, a.rad_path);
+    const auto solution = rad::daylight_solution(in.radiosity, in.rad_header, a.rad_path);
     const auto sky = rad::tool::sky_of(a.sky, "", solution.frame);
     if (!a.quiet) std::fprintf(stderr, "rad-shade: %s\n", sky.describe().c_str());
-    return rad::sky_radiosity(solution, sky);
+    if (!rad::sun_patch(solution.patches, sky)) return rad::sky_radiosity(solution, sky);
+    const auto view =
+        rad::solution_sky_view(in.rad_header, a.rad_path, a.direct_path, in.mesh, a.mesh_path);
+    radfmt::MeshData solved = in.mesh;
+    rad::apply_recorded_overrides(solved, in.rad_header);
+    in.beam = rad::sharp_beam(solution, view, solved, sky);
+    // The exposure is the one of the solution's own light, the beam in it as it spread it.
+    in.exposed = rad::sky_radiosity(solution, sky);
+    return in.beam->radiosity;
 }
 
 ShadeInputs read_inputs(const ShadeArgs& a) {
@@ -256,7 +271,7 @@ ShadeInputs read_inputs(const ShadeArgs& a) {
     in.radiosity = radfmt::read_radiosity(a.rad_path, &in.rad_header);
     in.values = a.sky.sky.empty()
                     ? rad::mix_light_groups(in.radiosity, a.mix, a.mix_only, a.rad_path)
-                    : sky_values(a, in.radiosity, in.rad_header);
+                    : sky_values(a, in);
     if (a.layers && in.radiosity.group_count() == 0)
         throw rad::InputError(a.rad_path + " has no light groups for --layers (solve with "
                                            "rad-solve --light-groups)");
@@ -286,6 +301,9 @@ void check_memory(const ShadeArgs& a, std::size_t group_count) {
 rad::Image render_image(const ShadeArgs& a, const ShadeInputs& in, const rad::View& view,
                         const radfmt::MeshData& solved, rad::Smoothing mode,
                         const rad::CornerColours& corners, rad::RowBand band) {
+    if (in.beam)
+        return rad::render_with_beam(solved, corners, *in.beam, view, a.width, a.height, a.aa,
+                                     a.quiet, band);
     if (a.gather <= 0) return rad::render(in.mesh, corners, view, a.width, a.height, a.aa);
     if (a.albedo || !a.mix.empty() || a.mix_only || a.layers)
         throw rad::InputError("--gather shades a solution as solved: not with --albedo, "
@@ -411,7 +429,8 @@ rad::View chosen_view(const ShadeArgs& a, const radfmt::MeshData& mesh) {
 double run_exposure(const ShadeArgs& a, const ShadeInputs& in, const radfmt::MeshData& solved,
                     const rad::Image& image) {
     double scale = a.exposure;
-    if (!(scale > 0) && !a.albedo) scale = rad::solution_exposure(solved, in.values);
+    if (!(scale > 0) && !a.albedo)
+        scale = rad::solution_exposure(solved, in.exposed.empty() ? in.values : in.exposed);
     if (!(scale > 0) && a.rows.empty()) scale = rad::auto_exposure(image);
     return scale;
 }

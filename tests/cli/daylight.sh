@@ -437,6 +437,22 @@ for k, g in enumerate(csv.DictReader(open(sys.argv[2])), 1):
     assert abs(ev - float(g["ev"])) <= 0.01 * float(g["ev"]), (k, ev, g["ev"])
     assert abs(dgp - float(g["dgp"])) <= 0.005, (k, dgp, g["dgp"])
 PY
+# rad-shade --sky draws the sun's beam sharp (#69 item 5): looking straight down at the floor,
+# the pixels the beam lights are rho x the gathered lux there (which traces the beam) within
+# 3% (with the beam spread over its sky patch, the patch's middle was about 40% dark).
+python3 - > "$TMP/floor.txt" <<'PY'
+for i in range(1, 20):
+    for j in range(1, 30):
+        print(0.2 * i, 0.001, 0.2 * j, 0, 1, 0)
+PY
+CLEAR=(--sky clear --location 39.83,-104.65,-7 --date 2025-03-21 --time 12:00)
+"$BIN/rad-shade" "$TMP/$V.mesh" "$TMP/$V.rad" -o "$TMP/top.exr" --png "$TMP/top.png" "${CLEAR[@]}" \
+  --view "-vp 2 2.9 3 -vd 0 -1 0 -vu 0 0 1 -vh 90 -vv 90" --exposure 0.01 -q || fail "rad-shade from above"
+"$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --points "$TMP/floor.txt" "${CLEAR[@]}" -q > "$TMP/floor-lux.txt" || fail "floor lux"
+out=$(python3 "$SRC/tests/cli/sharp_beam.py" "$SRC/tests/cli" "$TMP/top.png" "$TMP/floor.txt" "$TMP/floor-lux.txt" 2>&1) ||
+  fail "the beam in rad-shade is not the gather's: $out"
+expect_error "the sky-view file the solution was solved with is not there" "$TMP/x.exr" \
+  "$BIN/rad-shade" "$TMP/$V.mesh" "$TMP/$V.rad" -o "$TMP/x.exr" "${CLEAR[@]}" --direct "$TMP/gone.sky" -q
 expect_error "is the sky of one of its hours: give --date and --time" "" \
   "$BIN/rad-gather" "$TMP/$V.mesh" "$TMP/$V.rad" --sky "epw:$EPW" --points "$TMP/axis.txt"
 expect_error "takes the place and the sun from the weather file" "" \

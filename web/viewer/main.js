@@ -137,6 +137,7 @@ function daySkyLuminance(sky, sun, ground, day) {
   if (beam > 0) {
     out.sunPatch = patchOf(sky, sun.altitude, sun.azimuth);
     out.sunLuminance = beam / sky.patches[out.sunPatch].omega;
+    out.beam = beam;
   }
   out[0] = (ground * (diffuse + beam * s)) / Math.PI;
   return out;
@@ -168,6 +169,7 @@ function weatherHour(weather, components, day, hour) {
         sunPatch: weather.sun_patch[mid],
         sunLuminance: weather.beam_luminance[mid],
         skyGround: weather.sky_ground_luminance[mid],
+        sun: weather.sun[mid], // towards the sun (scene frame) and the beam's lux
       };
     }
     if (weather.hours[mid] < t) lo = mid + 1;
@@ -178,18 +180,32 @@ function weatherHour(weather, components, day, hour) {
 
 // Mixes the basis layers: sum of weight x (linear) texel plus a bias (the layers are signed,
 // stored as 0.5 + 0.5 x value / scale), times the exposure; encoded to sRGB for display.
-function daylightMaterial(basis, count, doubleSided) {
+// The sun's beam is added sharp, as rad-shade --sky and rad-gather trace it: rho x the beam's
+// irradiance x cos x what the panes on its way let through, where the sun's shadow map says
+// the point sees the sun (`sun`: the maps and the beam, shared by every material).
+function daylightMaterial(basis, count, doubleSided, rho, sun) {
   return new THREE.ShaderMaterial({
     glslVersion: THREE.GLSL3,
     defines: { COMPONENTS: count },
-    uniforms: { basis: { value: basis }, weights: { value: new Array(count).fill(0) }, bias: { value: 0 }, scale: { value: 1 } },
+    uniforms: { basis: { value: basis }, weights: { value: new Array(count).fill(0) }, bias: { value: 0 }, scale: { value: 1 },
+      rho: { value: new THREE.Vector3(...rho) }, ...sun.uniforms },
     side: doubleSided ? THREE.DoubleSide : THREE.FrontSide,
     vertexShader: `
       in vec2 uv1;
       out vec2 vLightmapUv;
+      in vec3 corner0, corner1, corner2, barycentric;
+      out vec3 vWorld, vBarycentric;
+      flat out vec3 vNormal, vCorner0, vCorner1, vCorner2; // the triangle's (prepareTriangles)
       void main() {
         vLightmapUv = uv1;
-        gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
+        vec4 world = modelMatrix * vec4(position, 1.0);
+        vWorld = world.xyz;
+        vNormal = normalize(mat3(modelMatrix) * normal);
+        vCorner0 = (modelMatrix * vec4(corner0, 1.0)).xyz;
+        vCorner1 = (modelMatrix * vec4(corner1, 1.0)).xyz;
+        vCorner2 = (modelMatrix * vec4(corner2, 1.0)).xyz;
+        vBarycentric = barycentric;
+        gl_Position = projectionMatrix * viewMatrix * world;
       }`,
     fragmentShader: `
       layout(location = 0) out highp vec4 pc_fragColor;
@@ -199,17 +215,202 @@ function daylightMaterial(basis, count, doubleSided) {
       uniform float weights[COMPONENTS];
       uniform float bias;
       uniform float scale;
+      uniform vec3 rho;
+      uniform vec3 sunDirection;
+      uniform float sunIrradiance;
+      uniform mat4 sunMatrix;
+      uniform float sunTexel;
+      uniform sampler2D sunDepth;
+      uniform sampler2D sunGlass;
       in vec2 vLightmapUv;
+      in vec3 vWorld, vBarycentric;
+      flat in vec3 vNormal, vCorner0, vCorner1, vCorner2;
+      // The beam's irradiance (W/m^2) at this point: 0 in the shadow of an opaque surface,
+      // times the transmittance of a pane nearer the sun.
+      vec3 toMap(vec3 point) {
+        vec4 p = sunMatrix * vec4(point, 1.0);
+        return p.xyz / p.w * 0.5 + 0.5;
+      }
+      float beam() {
+        if (!(sunIrradiance > 0.0)) return 0.0;
+        vec3 n = vNormal;
+        if (dot(n, cameraPosition - vWorld) < 0.0) n = -n;
+        float c = dot(n, sunDirection);
+        if (c <= 0.0) return 0.0;
+        // The point tested: on the triangle (see prepareTriangles), a texel off its surface and
+        // a texel away from the sun (so that a wall the beam grazes still shadows its foot).
+        vec3 b = max(vBarycentric, vec3(0.0));
+        b /= max(b.x + b.y + b.z, 1e-6);
+        vec3 point = b.x * vCorner0 + b.y * vCorner1 + b.z * vCorner2 + (n - sunDirection) * sunTexel;
+        vec3 q = toMap(point);
+        if (any(lessThan(q, vec3(0.0))) || any(greaterThan(q, vec3(1.0)))) return 0.0;
+        // The surface's own depth beside the point, in the map: its plane seen from the sun
+        // (two steps along it), so that a texel of the map is compared with the surface where
+        // that texel is, not where the point is (a surface the beam grazes changes depth fast).
+        vec3 t1 = normalize(abs(n.y) < 0.9 ? cross(n, vec3(0.0, 1.0, 0.0)) : cross(n, vec3(1.0, 0.0, 0.0)));
+        vec3 t2 = cross(n, t1);
+        vec3 q1 = toMap(point + t1 * sunTexel) - q, q2 = toMap(point + t2 * sunTexel) - q;
+        float det = q1.x * q2.y - q1.y * q2.x;
+        if (abs(det) < 1e-12) return 0.0;
+        float texel = 1.0 / float(textureSize(sunDepth, 0).x);
+        // What the comparison forgives: the surface's depth change over a texel, and two
+        // texels' worth of depth (the map's and the plane's rounding).
+        float slack = abs(q1.z) + abs(q2.z) + 2.0 * abs(toMap(point + sunDirection * sunTexel).z - q.z);
+        // Four taps a texel and a half apart (a shadow's edge a few millimetres wide, partly
+        // lit across it); each takes the nearest occluder of the texels around it: a wall the
+        // beam grazes is a sliver in the map, and a point at its foot would otherwise fall just
+        // beside it, where nothing is drawn.
+        float seen = 0.0;
+        for (int k = 0; k < 4; ++k) {
+          vec2 at = q.xy + vec2(k % 2 == 0 ? -0.75 : 0.75, k < 2 ? -0.75 : 0.75) * texel;
+          bool lit = true;
+          for (int j = 0; j < 9 && lit; ++j) {
+            vec2 d = at + vec2(j % 3 - 1, j / 3 - 1) * texel - q.xy;
+            // Where the surface's plane is at that texel: d = a q1.xy + e q2.xy.
+            float a = (d.x * q2.y - d.y * q2.x) / det, e = (q1.x * d.y - q1.y * d.x) / det;
+            float own = q.z + a * q1.z + e * q2.z;
+            lit = textureLod(sunDepth, q.xy + d, 0.0).r >= own - slack;
+          }
+          if (!lit) continue;
+          vec4 glass = textureLod(sunGlass, at, 0.0);
+          seen += glass.y < q.z ? glass.x : 1.0;
+        }
+        return sunIrradiance * c * seen * 0.25;
+      }
       void main() {
         vec3 light = vec3(bias);
-        for (int k = 0; k < COMPONENTS; ++k) light += weights[k] * texture(basis, vec3(vLightmapUv, float(k))).rgb;
+        for (int k = 0; k < COMPONENTS; ++k) light += weights[k] * textureLod(basis, vec3(vLightmapUv, float(k)), 0.0).rgb;
+        light += rho * beam();
         gl_FragColor = vec4(clamp(light * scale, 0.0, 1.0), 1.0);
         #include <colorspace_fragment>
       }`,
   });
 }
 
-// A pane of glass: what is outside along the line of sight (the dome's sky or ground),
+// Each triangle its own vertices, its plane's normal (the beam's cosine and the shadow test's
+// offset need the surface's true normal, not one averaged over a corner), and at each vertex
+// the triangle's three corners and the vertex's barycentric coordinates: with multisampling a
+// pixel on a triangle's edge is shaded at its centre, which may lie beyond the edge (a
+// floor's point past the wall, outside in the sun); the shader takes the nearest point of the
+// triangle instead.
+function prepareTriangles(node) {
+  if (node.geometry.index) node.geometry = node.geometry.toNonIndexed();
+  const g = node.geometry;
+  g.deleteAttribute('normal');
+  g.computeVertexNormals();
+  const position = g.getAttribute('position');
+  const count = position.count;
+  const corners = [0, 1, 2].map(() => new Float32Array(3 * count));
+  const barycentric = new Float32Array(3 * count);
+  for (let v = 0; v < count; ++v) {
+    const first = v - (v % 3);
+    for (let k = 0; k < 3; ++k)
+      corners[k].set([position.getX(first + k), position.getY(first + k), position.getZ(first + k)], 3 * v);
+    barycentric[3 * v + (v % 3)] = 1;
+  }
+  corners.forEach((c, k) => g.setAttribute(`corner${k}`, new THREE.BufferAttribute(c, 3)));
+  g.setAttribute('barycentric', new THREE.BufferAttribute(barycentric, 3));
+}
+
+// ---- The sun's maps: what the sun sees of the scene, drawn from its direction (an
+// orthographic camera over the scene's bounds): the depth of the nearest opaque surface, and
+// of the nearest pane with what it lets through at the angle the beam meets it.
+const SUN_MAP = 2048;
+function sunMaps(box) {
+  const size = Math.max(1e-6, box.getSize(new THREE.Vector3()).length());
+  const camera = new THREE.OrthographicCamera(-size / 2, size / 2, size / 2, -size / 2, size * 0.01, size * 3);
+  const options = { minFilter: THREE.NearestFilter, magFilter: THREE.NearestFilter, generateMipmaps: false };
+  const depth = new THREE.WebGLRenderTarget(SUN_MAP, SUN_MAP, { ...options, depthTexture: new THREE.DepthTexture(SUN_MAP, SUN_MAP) });
+  const glass = new THREE.WebGLRenderTarget(SUN_MAP, SUN_MAP, { ...options, type: THREE.FloatType });
+  return {
+    camera, depth, glass, centre: box.getCenter(new THREE.Vector3()), size,
+    opaque: null, // opaqueMapMaterial, made once the uniforms are
+    uniforms: {
+      sunDirection: { value: new THREE.Vector3(0, 1, 0) },
+      sunIrradiance: { value: 0 },
+      sunMatrix: { value: new THREE.Matrix4() },
+      sunTexel: { value: size / SUN_MAP },
+      sunDepth: { value: depth.depthTexture },
+      sunGlass: { value: glass.texture },
+    },
+  };
+}
+
+// The opaque surfaces' depth from the sun, both sides (the walls face in, the sun sees their
+// backs), each texel the nearest its surface comes within it (a polygon offset by the
+// surface's slope towards the sun): a wall the beam grazes is seen edge on, its depth changes
+// by many centimetres across a texel, and the texel's centre alone would leave the foot of it
+// in the sun at random.
+function opaqueMapMaterial() {
+  return new THREE.MeshBasicMaterial({ side: THREE.DoubleSide, colorWrite: false, polygonOffset: true,
+    polygonOffsetFactor: -1.5, polygonOffsetUnits: -1 });
+}
+
+// What a pane lets through of the beam (its luminous share by cos, 33 steps; rad-bake's
+// table) and its depth from the sun, into the glass map.
+function paneMapMaterial(table, sun) {
+  return new THREE.ShaderMaterial({
+    uniforms: { table: { value: table }, sunDirection: sun.uniforms.sunDirection },
+    side: THREE.DoubleSide,
+    vertexShader: `
+      varying vec3 vNormal;
+      void main() {
+        vNormal = normalize(mat3(modelMatrix) * normal);
+        gl_Position = projectionMatrix * viewMatrix * modelMatrix * vec4(position, 1.0);
+      }`,
+    fragmentShader: `
+      uniform float table[33];
+      uniform vec3 sunDirection;
+      varying vec3 vNormal;
+      void main() {
+        vec3 n = normalize(vNormal);
+        float x = clamp(abs(dot(n, sunDirection)), 0.0, 1.0) * 32.0;
+        int k = int(min(floor(x), 31.0));
+        float t = mix(table[k], table[k + 1], x - float(k));
+        gl_FragColor = vec4(t, gl_FragCoord.z, 0.0, 1.0);
+      }`,
+  });
+}
+
+// Draws the sun's maps for the beam towards `direction` (scene frame, unit) of `irradiance`
+// W/m^2 (0: no beam, nothing drawn).
+function drawSunMaps(renderer, scene, sun, meshes, panes, direction, irradiance) {
+  sun.uniforms.sunIrradiance.value = irradiance;
+  if (!(irradiance > 0)) return;
+  sun.uniforms.sunDirection.value.copy(direction);
+  const camera = sun.camera;
+  camera.position.copy(sun.centre).addScaledVector(direction, sun.size * 1.5);
+  camera.up.set(0, 1, 0);
+  if (Math.abs(direction.y) > 0.99) camera.up.set(0, 0, 1);
+  camera.lookAt(sun.centre);
+  camera.updateMatrixWorld();
+  camera.updateProjectionMatrix();
+  sun.uniforms.sunMatrix.value.multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
+  const shown = new Map(meshes.map((m) => [m, m.visible]));
+  const colour = renderer.getClearColor(new THREE.Color()), alpha = renderer.getClearAlpha();
+  // The opaque surfaces' depth (opaqueMapMaterial).
+  for (const m of meshes) m.visible = !panes.includes(m);
+  scene.overrideMaterial = sun.opaque;
+  renderer.setRenderTarget(sun.depth);
+  renderer.clear();
+  renderer.render(scene, camera);
+  scene.overrideMaterial = null;
+  // The panes: what they let through, and their depth (none: 1 and the far plane).
+  for (const m of meshes) m.visible = panes.includes(m);
+  const materials = panes.map((p) => p.material);
+  panes.forEach((p) => { p.material = p.userData.sunMap; });
+  renderer.setRenderTarget(sun.glass);
+  renderer.setClearColor(new THREE.Color(1, 1, 0), 1);
+  renderer.clear();
+  renderer.render(scene, camera);
+  panes.forEach((p, k) => { p.material = materials[k]; });
+  renderer.setRenderTarget(null);
+  renderer.setClearColor(colour, alpha);
+  for (const [m, visible] of shown) m.visible = visible;
+}
+
+// A pane of glass: what is outside along the line of sight (the sky above the horizon, the
+// ground below: their mean luminances as display values, pi L / 179 x exposure),
 // times what the pane lets through; drawn as its own colour, not blended, so that the
 // product is taken on linear values before the sRGB encoding. The little it reflects is left
 // out.
@@ -235,35 +436,6 @@ function glassMaterial(through, outside) {
         #include <colorspace_fragment>
       }`,
   });
-}
-
-// Outside the room: the sky's mean luminance above the horizon and the ground's below, as
-// display values (pi L / 179 x exposure: the radiosity of a surface of that luminance).
-function skyDome(box) {
-  const radius = Math.max(1, box.getSize(new THREE.Vector3()).length()) * 20;
-  const material = new THREE.ShaderMaterial({
-    uniforms: { sky: { value: new THREE.Color(0, 0, 0) }, ground: { value: new THREE.Color(0, 0, 0) } },
-    side: THREE.BackSide,
-    depthWrite: false,
-    vertexShader: `
-      varying vec3 vDirection;
-      void main() {
-        vDirection = position;
-        gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
-      }`,
-    fragmentShader: `
-      uniform vec3 sky;
-      uniform vec3 ground;
-      varying vec3 vDirection;
-      void main() {
-        gl_FragColor = vec4(clamp(vDirection.y >= 0.0 ? sky : ground, 0.0, 1.0), 1.0);
-        #include <colorspace_fragment>
-      }`,
-  });
-  const dome = new THREE.Mesh(new THREE.SphereGeometry(radius, 32, 16), material);
-  dome.position.copy(box.getCenter(new THREE.Vector3()));
-  dome.renderOrder = -1;
-  return dome;
 }
 
 // The basis layers (PNG textures of the glb) as one texture array, linear.
@@ -353,29 +525,35 @@ async function main() {
   const groups = daylight ? [] : extras.light_group_lightmaps ?? [];
   const state = { exposure: config.exposure, weights: Object.fromEntries(groups.map((g) => [g.name, 1])), day: 80, hour: 12, sky: 0 };
   const materials = [];
-  let sky = null, dome = null;
-  const panes = [];
+  let sky = null, sun = null;
+  // What the windows show outside (not drawn around the room: cracks between its surfaces
+  // would show it).
+  const outside = { sky: { value: new THREE.Color(0, 0, 0) }, ground: { value: new THREE.Color(0, 0, 0) } };
+  const panes = [], meshes = [];
   if (daylight) {
     const basis = await basisTexture(gltf.parser, extras.light_group_lightmaps);
     sky = skyPatches(daylight.subdivisions);
-    const meshes = [];
     gltf.scene.traverse((node) => node.isMesh && meshes.push(node));
-    dome = skyDome(new THREE.Box3().setFromObject(gltf.scene));
+    const bounds = new THREE.Box3().setFromObject(gltf.scene);
+    sun = sunMaps(bounds);
+    sun.opaque = opaqueMapMaterial();
     for (const node of meshes) {
+      prepareTriangles(node);
       // Glass shows what is behind it, the sky through the window, dimmed by what it lets
       // through (its lightmap is the little it reflects: drawn over it).
       const t = node.material.userData?.transmittance;
       const through = t ? (t[0] + t[1] + t[2]) / 3 : 0;
       if (through > 0) {
-        node.material = glassMaterial(through, dome.material.uniforms);
+        const table = daylight.panes?.[node.material.name] ?? new Array(33).fill(through);
+        node.userData.sunMap = paneMapMaterial(table, sun);
+        node.material = glassMaterial(through, outside);
         panes.push(node);
         continue;
       }
       node.material = daylightMaterial(basis, 2 * (daylight.components.length + daylight.sun_patches.length),
-        node.material.side === THREE.DoubleSide);
+        node.material.side === THREE.DoubleSide, node.material.userData?.reflectance ?? [0, 0, 0], sun);
       materials.push(node.material);
     }
-    scene.add(dome);
   } else if (groups.length > 0) {
     const textures = await Promise.all(groups.map((g) => gltf.parser.getDependency('texture', g.texture)));
     for (const t of textures) {
@@ -416,17 +594,25 @@ async function main() {
     const count = daylight.components.length;
     if (state.sky === 'weather') {
       return weatherHour(daylight.weather, count, state.day, state.hour) ??
-        { weights: new Array(count).fill(0), sunPatch: -1, sunLuminance: 0, skyGround: [0, 0] };
+        { weights: new Array(count).fill(0), sunPatch: -1, sunLuminance: 0, skyGround: [0, 0], sun: [0, 1, 0, 0] };
     }
     const day = daylight.days[state.sky];
-    const luminance = daySkyLuminance(sky, sunPosition(daylight, state.day, state.hour), daylight.ground, day);
+    const position = sunPosition(daylight, state.day, state.hour);
+    const luminance = daySkyLuminance(sky, position, daylight.ground, day);
     const weights = daylight.components.map((c) => {
       let w = 0;
       for (let k = 0; k < luminance.length; ++k) w += c.weights[k] * luminance[k];
       return w;
     });
-    return { weights, sunPatch: luminance.sunPatch, sunLuminance: luminance.sunLuminance, skyGround: skyAndGround(sky, luminance) };
+    // Towards the sun in the scene: north is -Z turned `north` degrees towards +X.
+    const n = daylight.north * DEG, ca = Math.cos(position.altitude);
+    const north = [Math.sin(n), 0, -Math.cos(n)], east = [Math.cos(n), 0, Math.sin(n)];
+    const d = [0, 1, 2].map((i) => north[i] * ca * Math.cos(position.azimuth) + east[i] * ca * Math.sin(position.azimuth));
+    d[1] += Math.sin(position.altitude);
+    return { weights, sunPatch: luminance.sunPatch, sunLuminance: luminance.sunLuminance, skyGround: skyAndGround(sky, luminance),
+      sun: [...d, luminance.beam ?? 0] };
   };
+  let sunDrawn = null;
 
   const render = () => {
     const scale = state.exposure / extras.exposure;
@@ -446,9 +632,15 @@ async function main() {
         bias -= w * sunLayer.scale;
         daylightWeights.push((2 * w * sunLayer.scale * 65280) / 65535, (2 * w * sunLayer.scale * 255) / 65535);
       }
+      // The beam's maps, drawn again when the sun moves.
+      const key = hour.sun.join(',');
+      if (key !== sunDrawn) {
+        drawSunMaps(renderer, scene, sun, meshes, panes, new THREE.Vector3(...hour.sun.slice(0, 3)).normalize(), hour.sun[3] / 179);
+        sunDrawn = key;
+      }
       const display = (l) => (Math.PI * l * state.exposure) / 179;
-      dome.material.uniforms.sky.value.setScalar(display(hour.skyGround[0]));
-      dome.material.uniforms.ground.value.setScalar(display(hour.skyGround[1]));
+      outside.sky.value.setScalar(display(hour.skyGround[0]));
+      outside.ground.value.setScalar(display(hour.skyGround[1]));
     }
     for (const m of materials) {
       if (daylightWeights) {
@@ -501,9 +693,9 @@ async function main() {
   // For scripts (the browser test): set weights and exposure, read the pixels of a fresh frame.
   window.radiosity = {
     groups: groups.map((g) => g.name),
-    // The window panes and what the dome outside shows (display values, linear).
+    // The window panes and what they show outside (display values, linear).
     panes: () => panes.map((p) => p.material.uniforms.through.value),
-    outside: () => (dome ? [dome.material.uniforms.sky.value.r, dome.material.uniforms.ground.value.r] : null),
+    outside: () => (daylight ? [outside.sky.value.r, outside.ground.value.r] : null),
     set(settings) {
       if (settings.exposure !== undefined) state.exposure = settings.exposure;
       if (settings.day !== undefined) state.day = settings.day;

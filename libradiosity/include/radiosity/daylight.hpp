@@ -399,6 +399,29 @@ struct DaylightFactorSummary {
 };
 DaylightFactorSummary summarise_daylight_factors(std::vector<double> factors);
 
+// The sun's beam made sharp in a solution under one sky (#69 item 5), as rad-gather traces it
+// at sensors: the solve spread the beam's direct light over every patch that sees the sky
+// patch the sun is in (its light group at the beam's radiance), so the patch on the floor is as
+// blurred as that sky patch is wide. What that spread put on each patch, rho x D x the beam's
+// radiance (D: the .sky's irradiance from the patch at unit radiance), is taken out of the
+// radiosity, and each surface point seen gets the beam's own light (beam_radiosity); what the
+// beam's light reflects further stays as the solve spread it.
+struct SharpBeam {
+    std::vector<Rgb> radiosity;    // under the sky, the spread beam taken out
+    Vec3 direction{0, 1, 0};       // towards the sun
+    double normal_illuminance = 0; // lux; 0: no beam (nothing was taken out)
+};
+SharpBeam sharp_beam(const DaylightSolution& solution, const radfmt::SkyData& view,
+                     const radfmt::MeshData& mesh, const Sky& sky);
+// The spread direct light of sky patch `sky_patch` at `radiance` (W/m^2/sr) on every patch:
+// rho x D (the page's sun layers take it out of their group).
+std::vector<Rgb> spread_beam(const radfmt::SkyData& view, const radfmt::MeshData& mesh,
+                             std::size_t sky_patch, double radiance);
+// The exitance (W/m^2) the beam gives a surface point facing `normal` of reflectance `rho`:
+// rho x its irradiance there (sensor_sun: through glass, unless shadowed) / 179.
+Rgb beam_radiosity(const SharpBeam& beam, const RayScene& scene, const SpecularSurfaces& specular,
+                   int depth, const Rgb& rho, const Vec3& point, const Vec3& normal);
+
 // A small basis for relighting a daylight solution by sky (the viewer page): K components,
 // each a radiosity per patch, whose weights are linear in the sky patches' luminance; chosen
 // (principal components of the solutions under `skies`, area-weighted) to reproduce those

@@ -37,4 +37,13 @@ Image render_specular(const SpecularView& scene, const View& view, int width, in
 // a patch.
 HitShader smoothed_shader(const radfmt::MeshData& mesh, const CornerColours& corners);
 
+struct SharpBeam;
+// render() of a daylight solution under a sky with the sun's beam sharp (radiosity/daylight.hpp:
+// `corners` smoothed from beam.radiosity): every surface a path meets shows its corner colours
+// plus the beam's light at the point it was met (traced to the sun, through glass). `mesh`
+// gives the reflectances (as solved).
+Image render_with_beam(const radfmt::MeshData& mesh, const CornerColours& corners,
+                       const SharpBeam& beam, const View& view, int width, int height,
+                       int supersampling, bool quiet, RowBand rows = {});
+
 } // namespace rad

@@ -173,11 +173,11 @@ json material_json(const radfmt::Material& m, bool two_sided_sheet, int texture)
                 {"metallicFactor", 0.0},
                 {"roughnessFactor", 1.0}};
     if (texture >= 0) pbr["baseColorTexture"] = {{"index", texture}, {"texCoord", 1}};
-    json extras = m.specular.any() ? json{{"reflectance", m.reflectance.c},
-                                          {"emission_W_per_m2", m.emission.c},
-                                          {"specular", specular_summary(m.specular)}}
-                                   : json{{"reflectance", m.reflectance.c},
-                                          {"emission_W_per_m2", m.emission.c}};
+    json extras = m.specular.any()
+                      ? json{{"reflectance", m.reflectance.c},
+                             {"emission_W_per_m2", m.emission.c},
+                             {"specular", specular_summary(m.specular)}}
+                      : json{{"reflectance", m.reflectance.c}, {"emission_W_per_m2", m.emission.c}};
     // What a pane lets through at normal incidence: the viewer page draws the sky behind it.
     if (m.specular.transmits()) extras["transmittance"] = m.specular.transmittance.c;
     return {{"name", m.name + (two_sided_sheet ? " (one side of a two-sided sheet)" : "")},
