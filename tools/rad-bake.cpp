@@ -373,27 +373,13 @@ nlohmann::json weather_extras(const DaylightPage& page) {
             {"sky_ground_luminance", sky}};
 }
 
-// What each pane of glass lets through of the sun's beam by the angle it meets it at: the
-// luminous share at cos = 0, 1/32, ..., 1 (as the chain's rays take it: every reflection
-// inside summed, both polarisations); other glass at its normal transmittance.
+// What each pane of glass lets through of the sun's beam by the angle it meets it at (33
+// steps of cos, as the page's shader reads them).
 nlohmann::json pane_tables(const radfmt::MeshData& mesh) {
     nlohmann::json panes = nlohmann::json::object();
-    for (const auto& m : mesh.materials) {
-        if (!m.specular.transmits()) continue;
-        nlohmann::json table = nlohmann::json::array();
-        for (int k = 0; k <= 32; ++k) {
-            rad::Rgb t{0, 0, 0};
-            for (std::size_t c = 0; c < 3; ++c)
-                t[c] = m.specular.kind == radfmt::SpecularKind::pane
-                           ? rad::pane_shares(rad::pane_transmissivity(m.specular.transmittance[c],
-                                                                       m.specular.ior),
-                                              m.specular.ior, k / 32.0)
-                                 .transmitted
-                           : m.specular.transmittance[c];
-            table.push_back(rad::luminous(t));
-        }
-        panes[m.name] = table;
-    }
+    for (const auto& m : mesh.materials)
+        if (m.specular.transmits())
+            panes[m.name] = rad::luminous_transmittance_by_angle(m.specular, 32);
     return panes;
 }
 

@@ -29,6 +29,10 @@ struct PaneShares {
     double transmitted = 0, reflected = 0;
 };
 PaneShares pane_shares(double transmissivity, double ior, double cos_incident);
+// What glass of `specular` lets through of white light by the angle it meets it at: the
+// luminous share at cos = 0, 1/steps, ..., 1 (a pane as its rays take it, every reflection
+// inside summed; other glass at its normal transmittance). For drawing a beam through it.
+std::vector<double> luminous_transmittance_by_angle(const radfmt::Specular& specular, int steps);
 
 // The default number of specular events a path may go through (rad-ff --specular-depth).
 inline constexpr int kDefaultSpecularDepth = 12;

@@ -30,6 +30,21 @@ double pane_transmissivity(double tn, double ior) {
     return std::min(1.0, t);
 }
 
+std::vector<double> luminous_transmittance_by_angle(const radfmt::Specular& s, int steps) {
+    std::vector<double> table;
+    for (int k = 0; k <= steps; ++k) {
+        radfmt::Rgb t{0, 0, 0};
+        for (std::size_t c = 0; c < 3; ++c)
+            t[c] = s.kind == radfmt::SpecularKind::pane
+                       ? pane_shares(pane_transmissivity(s.transmittance[c], s.ior), s.ior,
+                                     double(k) / steps)
+                             .transmitted
+                       : s.transmittance[c];
+        table.push_back(luminous(t));
+    }
+    return table;
+}
+
 PaneShares pane_shares(double t, double ior, double cos_incident) {
     const double ci = std::clamp(cos_incident, 1e-9, 1.0);
     const double sin2_t = (1 - ci * ci) / (ior * ior);
