@@ -422,6 +422,26 @@ nlohmann::json daylight_extras(const Arguments& a, const DaylightPage& page,
     return out;
 }
 
+// A daylight page's layers: the basis's components, then each sun patch's own group without
+// the beam's direct light, which the page traces sharp (its shadows from the sun); what the
+// beam's light reflects further stays.
+std::vector<std::pair<std::string, std::vector<radfmt::Rgb>>>
+daylight_layers(const DaylightPage& page, const radfmt::MeshData& solved) {
+    std::vector<std::pair<std::string, std::vector<radfmt::Rgb>>> layers;
+    for (std::size_t k = 0; k < page.basis.values.size(); ++k)
+        layers.emplace_back("daylight" + std::to_string(k), page.basis.values[k]);
+    for (const auto p : page.sun_patches) {
+        std::vector<double> only(page.solution.patches.count(), 0.0);
+        only[p] = 1;
+        auto sun = rad::mix_sky_groups(page.solution, only);
+        const auto spread = rad::spread_beam(page.view, solved, p, 1.0);
+        for (std::size_t i = 0; i < sun.size(); ++i)
+            for (std::size_t c = 0; c < 3; ++c) sun[i][c] = std::max(0.0, sun[i][c] - spread[i][c]);
+        layers.emplace_back("sun" + std::to_string(p), std::move(sun));
+    }
+    return layers;
+}
+
 int bake_files(const Arguments& a, const std::string& command) {
     rad::tool::check_outputs({a.mesh_path, a.rad_path}, {{"-o", a.output},
                                                          {"--exr", a.exr},
@@ -449,20 +469,7 @@ int bake_files(const Arguments& a, const std::string& command) {
                       : std::vector<std::pair<std::string, std::vector<radfmt::Rgb>>>{};
     if (daylight) {
         options.signed_groups = true;
-        for (std::size_t k = 0; k < daylight->basis.values.size(); ++k)
-            groups.emplace_back("daylight" + std::to_string(k), daylight->basis.values[k]);
-        // Each sun patch's own group without the beam's direct light, which the page traces
-        // sharp (its shadows from the sun); what the beam's light reflects further stays.
-        for (const auto p : daylight->sun_patches) {
-            std::vector<double> only(daylight->solution.patches.count(), 0.0);
-            only[p] = 1;
-            auto sun = rad::mix_sky_groups(daylight->solution, only);
-            const auto spread = rad::spread_beam(daylight->view, solved, p, 1.0);
-            for (std::size_t i = 0; i < sun.size(); ++i)
-                for (std::size_t c = 0; c < 3; ++c)
-                    sun[i][c] = std::max(0.0, sun[i][c] - spread[i][c]);
-            groups.emplace_back("sun" + std::to_string(p), std::move(sun));
-        }
+        groups = daylight_layers(*daylight, solved);
     }
     if (a.lightmap == 0 && radiosity.group_count() > 0 && !a.quiet)
         std::fprintf(stderr,
