@@ -23,6 +23,7 @@
 #include "radiosity/hierarchy.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/luminaires.hpp"
+#include "radiosity/melanopic.hpp"
 #include "radiosity/rays.hpp"
 #include "radiosity/report.hpp"
 #include "radiosity/scene.hpp"
@@ -331,7 +332,8 @@ int main(int argc, char** argv) {
     if (argc < 2) {
         std::cerr << "usage: fuzz_readers DATA_DIR [--iterations N] [--seconds S] [--seed K] "
                      "[--kind NAME[,NAME...]] [--min-cases N]\n  kinds: mesh formfactors "
-                     "links radiosity luminaires ies ldt sky annual epw calc obj mtl gltf glb ply "
+                     "links radiosity luminaires ies ldt sky annual epw calc spectrum obj mtl gltf "
+                     "glb ply "
                      "plyb dae stl fbx\n";
         return 1;
     }
@@ -502,6 +504,18 @@ int main(int argc, char** argv) {
         "south wall,wall,0,0,0,6,0,0,0,3,0,,0.2,50,0.1,20,,\n"
         "desk chair,observer,3,1.2,3.6,0,0,-1,,,,,,,,,19,\n"
         "door,camera,0.3,1.6,0.3,1,-0.1,0.7,,,,,,,,,,85\n";
+    // A spectrum (rad-gather --spectrum FILE): a lamp's relative power every few nanometres,
+    // weighed as melanopic EDI is.
+    const std::string spectrum_seed = "wavelength_nm,power\n# a warm LED\n380,0.01\n420,0.05\n"
+                                      "450,0.62\n480,0.18\n520,0.42\n580,0.95\n620,1\n"
+                                      "680,0.55\n730,0.2\n780,0.05\n";
+    const auto use_spectrum = [](const fs::path& p) {
+        const auto s = rad::read_spectrum_csv(p.string());
+        const double der = rad::melanopic_der(s);
+        if (!std::isfinite(der) || der < 0)
+            throw std::logic_error("a spectrum read gives mel-DER " + std::to_string(der));
+        (void)rad::melanopic_weights(s, {1, 1, 1});
+    };
     const auto use_calc = [](const fs::path& p) {
         const auto file = rad::read_calc_file(p.string());
         rad::ReportInput in;
@@ -604,6 +618,7 @@ int main(int argc, char** argv) {
          [&](const fs::path& p) { (void)rad::annual_metrics(radfmt::read_annual(p)); }},
         {"epw", {read_bytes(epw)}, true, [&](const fs::path& p) { use_weather(p); }},
         {"calc", {Bytes(calc_seed.begin(), calc_seed.end())}, true, use_calc},
+        {"spectrum", {Bytes(spectrum_seed.begin(), spectrum_seed.end())}, true, use_spectrum},
         {"ies", {read_bytes(ies)}, true, [&](const fs::path& p) { use_photometry(p, "f.ies"); }},
         {"ldt", {read_bytes(ldt)}, true, [&](const fs::path& p) { use_photometry(p, "f.ldt"); }},
         {"obj",
