@@ -234,8 +234,11 @@ struct ShadeInputs {
     std::vector<radfmt::Rgb> values;
     std::vector<std::string> chain;
     std::optional<rad::LuminaireSet> luminaires; // the solve's rad-solve --direct
-    std::optional<rad::SharpBeam> beam;          // --sky with the sun up: its beam, sharp
-    std::vector<radfmt::Rgb> exposed;            // with a sharp beam: the values it spreads
+    // E and rho as solved (rad-solve's overrides are in the file's header): for the gather,
+    // the beam and the exposure; empty with --albedo.
+    radfmt::MeshData solved;
+    std::optional<rad::SharpBeam> beam; // --sky with the sun up: its beam, sharp
+    std::vector<radfmt::Rgb> exposed;   // with a sharp beam: the values it spreads
 };
 
 // --sky: the daylight solution's sky groups mixed by the sky's patch luminances; with the
@@ -248,14 +251,13 @@ std::vector<radfmt::Rgb> sky_values(const ShadeArgs& a, ShadeInputs& in) {
     const auto solution = rad::daylight_solution(in.radiosity, in.rad_header, a.rad_path);
     const auto sky = rad::tool::sky_of(a.sky, "", solution.frame);
     if (!a.quiet) std::fprintf(stderr, "rad-shade: %s\n", sky.describe().c_str());
-    if (!rad::sun_patch(solution.patches, sky)) return rad::sky_radiosity(solution, sky);
+    auto values = rad::sky_radiosity(solution, sky);
+    if (!rad::sun_patch(solution.patches, sky)) return values;
     const auto view =
         rad::solution_sky_view(in.rad_header, a.rad_path, a.direct_path, in.mesh, a.mesh_path);
-    radfmt::MeshData solved = in.mesh;
-    rad::apply_recorded_overrides(solved, in.rad_header);
-    in.beam = rad::sharp_beam(solution, view, solved, sky);
+    in.beam = rad::sharp_beam(solution, view, in.solved, sky, values);
     // The exposure is the one of the solution's own light, the beam in it as it spread it.
-    in.exposed = rad::sky_radiosity(solution, sky);
+    in.exposed = std::move(values);
     return in.beam->radiosity;
 }
 
@@ -269,6 +271,8 @@ ShadeInputs read_inputs(const ShadeArgs& a) {
         return in;
     }
     in.radiosity = radfmt::read_radiosity(a.rad_path, &in.rad_header);
+    in.solved = in.mesh;
+    rad::apply_recorded_overrides(in.solved, in.rad_header);
     in.values = a.sky.sky.empty()
                     ? rad::mix_light_groups(in.radiosity, a.mix, a.mix_only, a.rad_path)
                     : sky_values(a, in);
@@ -550,13 +554,7 @@ int shade(ShadeArgs& a, int argc, char** argv) {
     check_memory(a, in.radiosity.group_count());
     const auto mode = a.flat ? rad::Smoothing::Flat : rad::parse_smoothing(a.smooth);
     const auto corners = rad::corner_colours(in.mesh, in.values, mode, a.crease);
-    // E and rho as solved (rad-solve's overrides are in the file's header): for the gather
-    // and the exposure.
-    radfmt::MeshData solved;
-    if (!a.albedo) {
-        solved = in.mesh;
-        rad::apply_recorded_overrides(solved, in.rad_header);
-    }
+    const auto& solved = in.solved;
     warn_black(a, in);
     rad::RowBand band;
     if (!a.rows.empty()) {

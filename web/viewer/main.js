@@ -324,7 +324,7 @@ function sunMaps(box) {
   const glass = new THREE.WebGLRenderTarget(SUN_MAP, SUN_MAP, { ...options, type: THREE.FloatType });
   return {
     camera, depth, glass, centre: box.getCenter(new THREE.Vector3()), size,
-    opaque: null, // opaqueMapMaterial, made once the uniforms are
+    opaque: opaqueMapMaterial(),
     uniforms: {
       sunDirection: { value: new THREE.Vector3(0, 1, 0) },
       sunIrradiance: { value: 0 },
@@ -536,7 +536,6 @@ async function main() {
     gltf.scene.traverse((node) => node.isMesh && meshes.push(node));
     const bounds = new THREE.Box3().setFromObject(gltf.scene);
     sun = sunMaps(bounds);
-    sun.opaque = opaqueMapMaterial();
     for (const node of meshes) {
       prepareTriangles(node);
       // Glass shows what is behind it, the sky through the window, dimmed by what it lets

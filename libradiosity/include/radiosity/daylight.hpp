@@ -411,8 +411,10 @@ struct SharpBeam {
     Vec3 direction{0, 1, 0};       // towards the sun
     double normal_illuminance = 0; // lux; 0: no beam (nothing was taken out)
 };
+// `under_sky`: sky_radiosity(solution, sky), the beam spread in it.
 SharpBeam sharp_beam(const DaylightSolution& solution, const radfmt::SkyData& view,
-                     const radfmt::MeshData& mesh, const Sky& sky);
+                     const radfmt::MeshData& mesh, const Sky& sky,
+                     const std::vector<Rgb>& under_sky);
 // The spread direct light of sky patch `sky_patch` at `radiance` (W/m^2/sr) on every patch:
 // rho x D (the page's sun layers take it out of their group).
 std::vector<Rgb> spread_beam(const radfmt::SkyData& view, const radfmt::MeshData& mesh,

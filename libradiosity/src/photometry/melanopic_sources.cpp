@@ -17,7 +17,6 @@ struct MelanopicSources::Source {
     std::vector<std::size_t> groups; // into the solution's groups (empty: all the light)
     std::string names;               // theirs, for messages
     Spectrum spectrum;
-    Rgb tint{1, 1, 1};
     Rgb weights{0, 0, 0};
     radfmt::MeshData mesh;      // emission of this source's materials only
     std::vector<Rgb> radiosity; // its groups' radiosity summed
@@ -140,11 +139,11 @@ MelanopicSources::MelanopicSources(const radfmt::MeshData& mesh,
                              "wavelength_nm,value rows)");
         auto s = std::make_unique<Source>();
         s->spectrum = parse_spectrum(specs[0]);
-        s->tint = {0, 0, 0};
+        Rgb tint{0, 0, 0};
         for (const auto& m : mesh.materials)
-            for (std::size_t c = 0; c < 3; ++c) s->tint[c] += m.emission[c];
-        if (!(luminous(s->tint) > 0)) s->tint = {1, 1, 1};
-        s->weights = melanopic_weights(s->spectrum, s->tint);
+            for (std::size_t c = 0; c < 3; ++c) tint[c] += m.emission[c];
+        if (!(luminous(tint) > 0)) tint = {1, 1, 1};
+        s->weights = melanopic_weights(s->spectrum, tint);
         sources_.push_back(std::move(s));
         return;
     }
@@ -157,7 +156,7 @@ MelanopicSources::MelanopicSources(const radfmt::MeshData& mesh,
         if (!same) {
             sources_.push_back(std::make_unique<Source>());
             same = sources_.back().get();
-            same->spectrum = spectra[g], same->tint = lights[g].tint, same->weights = weights;
+            same->spectrum = spectra[g], same->weights = weights;
         }
         same->groups.push_back(g);
         same->names += (same->names.empty() ? "" : ", ") + lights[g].name;

@@ -17,8 +17,9 @@ std::vector<Rgb> spread_beam(const radfmt::SkyData& view, const radfmt::MeshData
 }
 
 SharpBeam sharp_beam(const DaylightSolution& solution, const radfmt::SkyData& view,
-                     const radfmt::MeshData& mesh, const Sky& sky) {
-    SharpBeam out{sky_radiosity(solution, sky), sky.sun_direction(), 0};
+                     const radfmt::MeshData& mesh, const Sky& sky,
+                     const std::vector<Rgb>& under_sky) {
+    SharpBeam out{under_sky, sky.sun_direction(), 0};
     const auto sun = sun_patch(solution.patches, sky);
     if (!sun) return out;
     out.normal_illuminance = sky.sun_normal_illuminance();
