@@ -7,6 +7,7 @@
 #include "radiosity/contours.hpp"
 #include "radiosity/glare.hpp"
 #include "radiosity/report.hpp"
+#include "radiosity/ugr_table.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -517,4 +518,90 @@ TEST_CASE("a plan cuts the room at its plane: walls, a cabinet and a glazed part
     // A wall is not cut, nor given north.
     const auto wall_file = calc_from(kHeader + "wall,wall,0,0,0,6,0,0,0,3,0,0.5,,,,,\n");
     CHECK(rad::plan_cut(mesh, rad::surface_grid(wall_file.surfaces[0], 1), 1).empty());
+}
+
+// CIE 190's tabular UGR (#68 item 4): the room's transfer of first flux to indirect wall light
+// against CIE 190's Table 5 (as eulumdat-ugr's background.py transcribes it, at its commit
+// 9f601474), and where the luminaires' light first lands against the definition summed here
+// over the standard room's own 0.25 H grid, luminaire by luminaire, over the floor.
+TEST_CASE("CIE 190's wall transfer factors are the three-surface room's exchange") {
+    struct Row {
+        int across, along;
+        rad::RoomReflectances rho;
+        double fw, ww, cw; // Table 5: F_T,FW, F_T,WW - 1, F_T,CW
+    };
+    const Row rows[] = {{2, 2, {0.7, 0.5, 0.2}, 0.220, 0.422, 0.646},
+                        {4, 8, {0.7, 0.5, 0.2}, 0.115, 0.211, 0.307},
+                        {4, 8, {0.3, 0.3, 0.2}, 0.081, 0.092, 0.114},
+                        {8, 8, {0.7, 0.5, 0.2}, 0.083, 0.155, 0.215},
+                        {12, 8, {0.3, 0.3, 0.2}, 0.049, 0.059, 0.069},
+                        {2, 12, {0.7, 0.3, 0.2}, 0.143, 0.156, 0.397}};
+    for (const auto& r : rows) {
+        const auto t = rad::wall_transfer(r.across, r.along, r.rho);
+        INFO(r.across << "H x " << r.along << "H");
+        CHECK(t.from_floor == Approx(r.fw).margin(6e-4));
+        CHECK(t.from_walls == Approx(r.ww).margin(6e-4));
+        CHECK(t.from_ceiling == Approx(r.cw).margin(6e-4));
+    }
+    // Black surfaces pass nothing on; and the room is symmetric in its two sides.
+    const auto black = rad::wall_transfer(4, 8, {0, 0, 0});
+    CHECK(black.from_floor == 0);
+    CHECK(black.from_ceiling == 0);
+    const auto turned = rad::wall_transfer(8, 4, {0.7, 0.5, 0.2});
+    CHECK(turned.from_floor == Approx(rows[1].fw).margin(6e-4));
+}
+
+TEST_CASE("the light first landing on the reference plane is the grid's own, luminaire by "
+          "luminaire") {
+    const auto path =
+        fs::path(RADIOSITY_SOURCE_DIR) / "tests/data/photometry/eulumdat-ugr_sample_01_Isym4.ldt";
+    const auto p = rad::read_photometry_file(path);
+    rad::LuminaireSet set;
+    set.photometries = {p};
+    set.photometry_flux = {p.flux()};
+    for (const auto room : {rad::UgrRoom{2, 2}, rad::UgrRoom{4, 8}, rad::UgrRoom{8, 4}}) {
+        // By definition: every luminaire of the 0.25 H grid (H = 2 m), its illuminance
+        // I cos(gamma) / d^2 summed over the floor in 5 cm cells, over the lamps' flux.
+        const double along = room.along * 2.0, across = room.across * 2.0, s = 0.5, cell = 0.05;
+        double on_floor = 0;
+        rad::Luminaire l; // crosswise: C0 along the line of sight (+X)
+        for (double lx = s / 2; lx < along; lx += s)
+            for (double lz = s / 2; lz < across; lz += s)
+                for (double x = cell / 2; x < along; x += cell)
+                    for (double z = cell / 2; z < across; z += cell) {
+                        const rad::Vec3 d{x - lx, -2.0, z - lz};
+                        const double r2 = rad::dot(d, d), r = std::sqrt(r2);
+                        on_floor +=
+                            set.intensity(l, rad::normalized(d)) * (2.0 / r) / r2 * cell * cell;
+                    }
+        const double luminaires = (along / s) * (across / s);
+        const double expected = on_floor / (luminaires * p.lamp_lumens);
+        const auto first = rad::standard_room_first_flux(p, room, rad::UgrView::crosswise);
+        INFO(room.across << "H x " << room.along << "H: the grid gives " << expected);
+        CHECK(first.floor == Approx(expected).margin(0.006));
+        CHECK(first.floor + first.walls == Approx(p.downward_flux() / p.lamp_lumens).margin(2e-3));
+        CHECK(first.ceiling == Approx((p.flux() - p.downward_flux()) / p.lamp_lumens).margin(2e-3));
+    }
+}
+
+TEST_CASE("a UGR table needs a luminous opening and scales with the flux as CIE 190's eq. 2") {
+    const auto dir = temp_dir("ugr-table");
+    write_text(dir / "point.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 2 1 1 2 0 0 0\n1 1 "
+                                  "0\n0 90\n0\n300 0\n");
+    CHECK_THROWS_WITH(rad::ugr_table(rad::read_photometry_file(dir / "point.ies")),
+                      Catch::Contains("point.ies") && Catch::Contains("luminous opening"));
+    // The same panel with twice the lamp flux (and so twice the candela): every value
+    // 8 log10(2) higher.
+    auto panel = [&](const char* name, const char* lumens_and_multiplier) {
+        write_text(dir / name, std::string("IESNA:LM-63-2002\nTILT=NONE\n1 ") +
+                                   lumens_and_multiplier +
+                                   " 3 1 1 2 0.6 0.6 0\n1 1 0\n0 45 90\n0\n300 212 0\n");
+        return rad::ugr_table(rad::read_photometry_file(dir / name));
+    };
+    const auto one = panel("one.ies", "1000 1");
+    const auto two = panel("two.ies", "2000 2");
+    CHECK(two.lamp_flux == 2000);
+    for (std::size_t r = 0; r < rad::kUgrTableRooms.size(); ++r)
+        for (int c = 0; c < 10; ++c)
+            CHECK(two.ugr[r][c] - one.ugr[r][c] == Approx(8 * std::log10(2.0)).margin(1e-9));
 }

@@ -3,7 +3,13 @@
 #include "radfmt/container.hpp"
 #include "radfmt/kinds.hpp"
 #include "radiosity/error.hpp"
+#include "radiosity/photometry.hpp"
+#include "radiosity/ugr_table.hpp"
 #include "tool.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
 
 #include <filesystem>
 #include <iostream>
@@ -45,12 +51,55 @@ int report_inputs(const std::string& path, const radfmt::Header& h,
                           " (make it again)");
 }
 
+bool is_photometric_file(const std::string& path) {
+    auto extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension == ".ies" || extension == ".ldt";
+}
+
+std::string number(double value, int decimals) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*f", decimals, value);
+    return text;
+}
+
+// A photometric file: what it says of its light and opening, and its UGR table (CIE 190).
+int report_photometry(const std::string& path, bool csv) {
+    const auto p = rad::read_photometry_file(path);
+    const auto table = rad::ugr_table(p);
+    if (csv) {
+        std::cout << rad::ugr_table_csv(table);
+        return 0;
+    }
+    const double flux = p.flux();
+    std::cout << "file:      " << path << '\n'
+              << "kind:      photometry (" << p.edition << ", type "
+              << "?CBA"[static_cast<int>(p.type)] << ")\n"
+              << "flux:      " << number(flux, 0) << " lm from the intensities; lamps "
+              << (p.lamp_lumens > 0 ? number(p.lamp_lumens, 0) + " lm"
+                                    : std::string("not stated (absolute photometry)"))
+              << "\n"
+              << "opening:   " << number(p.length * 1000, 0)
+              << (p.round ? " mm across (round)" : " x " + number(p.width * 1000, 0) + " mm")
+              << ", " << number(p.height * 1000, 0) << " mm high\n";
+    if (p.cct > 0) std::cout << "cct:       " << number(p.cct, 0) << " K\n";
+    if (!p.colour_rendering.empty()) std::cout << "cri:       " << p.colour_rendering << '\n';
+    for (const auto& w : rad::flux_warnings(p)) std::cout << "warning:   " << w << '\n';
+    std::cout << '\n' << rad::ugr_table_text(table);
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Inspect any file of the radiosity chain (mesh, form factors, radiosity).\n"
                  "Prints the header (kind, version, provenance, input hashes, counts, sizes);\n"
-                 "with --csv prints the data as CSV instead."};
+                 "with --csv prints the data as CSV instead. A photometric file (.ies, .ldt):\n"
+                 "its flux and luminous opening, and its UGR table by CIE 190's tabular method\n"
+                 "(19 rooms, 5 reflectance combinations, viewed crosswise and endwise, S = 0.25H)\n"
+                 "as data sheets print it; with --csv the table as rows\n"
+                 "(x_h,y_h,view,ceiling,walls,floor,ugr,lb)."};
     std::string path;
     bool csv = false;
     app.add_option("FILE", path, "File to inspect")->required();
@@ -74,6 +123,12 @@ int main(int argc, char** argv) {
     if (int rc = rad::tool::parse_arguments(app, argc, argv); rc >= 0) return rc;
 
     return rad::tool::run_tool("rad-info", [&] {
+        if (is_photometric_file(path)) {
+            if (check_inputs)
+                throw rad::InputError(path + ": a photometric file records no inputs; "
+                                             "--check-inputs is for the chain's files");
+            return report_photometry(path, csv);
+        }
         if (csv) {
             std::ios::sync_with_stdio(false);
             radfmt::write_csv(path, std::cout);

@@ -7,6 +7,7 @@
 #include "radiosity/error.hpp"
 
 #include <array>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -82,6 +83,10 @@ Photometry parse_ldt(std::string_view text, const std::string& name);
 // By extension (.ldt: EULUMDAT; else IES, whose first line says so).
 Photometry parse_photometry(std::string_view text, const std::string& name,
                             const IncludeReader& read_include);
+
+// A photometric file read from disk (a TILT file it names: beside it, inside its folder).
+// Throws InputError naming the file (and line), SystemError when it cannot be read.
+Photometry read_photometry_file(const std::filesystem::path& path);
 
 // What the file says of its flux against the integral (each line names the file): a
 // mismatch over `tolerance` (relative) with what the file states (EULUMDAT's lamps x LORL and

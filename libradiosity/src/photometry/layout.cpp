@@ -170,6 +170,15 @@ void orient(Luminaire& l, Vec3 aim, double spin_deg) {
 }
 } // namespace
 
+Photometry read_photometry_file(const fs::path& path) {
+    const auto text = read_text(path, FileLoc{path.string(), 0});
+    const auto root = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    const IncludeReader include = [&](const std::string& name, const FileLoc& asked) {
+        return read_text(root / inside(root, "", name, asked), asked);
+    };
+    return parse_photometry(text, path.string(), include);
+}
+
 LuminaireSources read_luminaire_sources(const fs::path& layout) {
     LuminaireSources sources;
     sources.layout_name = layout.string();

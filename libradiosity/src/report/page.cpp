@@ -1,6 +1,7 @@
 // The report's page: title block, contents, summary, a page per calculation surface, the
 // luminaires and the observers' glare; self-contained HTML with print rules for A4.
 #include "radiosity/report.hpp"
+#include "radiosity/ugr_table.hpp"
 
 #include "radiosity/base64.hpp"
 #include "report/number_text.hpp"
@@ -67,6 +68,7 @@ svg.polar tspan.c0 { fill: #b00020; } svg.polar tspan.c90 { fill: #1040b0; }
 nav ol { margin: 2pt 0; }
 table.surfaces td:first-child { white-space: nowrap; }
 table.daylight { font-size: 9pt; }
+.keep { break-inside: avoid; } table.ugr-table { font-size: 8pt; } table.ugr-table caption { text-align: left; font-size: 9pt; }
 )";
 
 std::string verdict_text(bool required, bool passes, bool close = false) {
@@ -597,6 +599,34 @@ std::string maintenance_text(const Luminaire& l) {
            fixed(p[2], 2) + " &#215; " + fixed(p[3], 2);
 }
 
+// Each type's UGR table (CIE 190) as its data sheet prints it; a type whose file gives no
+// luminous opening has none, and says so.
+std::string ugr_tables(const LuminaireSet& set,
+                       const std::map<std::size_t, std::vector<const Luminaire*>>& types) {
+    // The heading and its note kept on the page of the first table.
+    std::string out = "<div class=\"keep\"><h3>UGR tables (CIE 190)</h3><p class=\"note\">Each "
+                      "type's Unified Glare "
+                      "Rating in CIE 190's standard rooms (X across and Y along the line of sight, "
+                      "in units of H, the luminaires' height above the eye), from its photometry "
+                      "alone, for the lamp flux of its file; the rooms' reflectances ceiling / "
+                      "walls / reference plane. CIE 117's sum over the 0.25H grid, CIE 190's "
+                      "background luminance. The observers' UGR above is the room's own.</p>";
+    bool first = true;
+    for (const auto& [index, members] : types) {
+        const auto& p = set.photometries[index];
+        const std::string title = type_name(p) + " (" + p.source + ")";
+        if (!(p.length > 0)) {
+            out += "<p class=\"note\">" + html_escape(title) +
+                   ": its file gives no luminous opening, so its luminance (and its UGR) is "
+                   "undefined: no table.</p>";
+            continue;
+        }
+        out += ugr_table_html(ugr_table(p), title) + (first ? "</div>" : "");
+        first = false;
+    }
+    return first ? out + "</div>" : out;
+}
+
 std::string luminaires_section(const ReportInput& in) {
     const auto& set = *in.luminaires;
     const auto types = types_of(set);
@@ -645,7 +675,7 @@ std::string luminaires_section(const ReportInput& in) {
                html_escape(type_name(set.photometries[index])) + " (" +
                html_escape(set.photometries[index].source) + ")" + polar_units_note(set, index) +
                "</figcaption></figure>";
-    return out + "</div></section>";
+    return out + "</div>" + ugr_tables(set, types) + "</section>";
 }
 
 // One input of the energy calculation: its symbol, what it is, its value, and whether the
