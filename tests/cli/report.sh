@@ -85,7 +85,7 @@ PY
 echo "$out" | head -3
 # Title block, summary and method; one page per surface; luminaires; glare; the view and method.
 pages=$(pdfinfo "$TMP/r.pdf" | awk '/^Pages:/ {print $2}')
-[ "$pages" = 10 ] || fail "the PDF has $pages pages (wanted 10: summary, the room, 4 surfaces, luminaires, glare, views with their luminance, method)"
+[ "$pages" = 11 ] || fail "the PDF has $pages pages (wanted 11: summary, the room, 4 surfaces, luminaires, their UGR table, glare, views with their luminance, method)"
 # The camera's view is rad-shade's image, byte for byte, by the command the page gives.
 # Its luminance (#68 item 7): the false-colour picture is rad-shade --falsecolor's, byte for
 # byte, and each surface's luminance its --luminance-table's, to the digits shown.
