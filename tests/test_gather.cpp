@@ -826,3 +826,28 @@ TEST_CASE("beside a block near a wall, smoothed rays read what a finer mesh read
     CHECK(coarse_exact > 1.01 * finer); // the coarse patches' own error, which rays now lessen
     CHECK(coarse_rays == Approx(finer).epsilon(0.015));
 }
+
+TEST_CASE("light tree: a lantern's six faces are split by the side they face, so from afar its "
+          "cut is a few nodes") {
+    // A 2 m box whose faces all emit outward, each cut into 16 x 16 patches (1536 lights): a
+    // tree split by position alone mixes sides in every node, and a node whose lights face
+    // several ways must be opened down to its patches wherever some face away.
+    const std::string box = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                            "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nusemtl lamp\n"
+                            "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
+    const auto mesh = mesh_of(box, kLampMtl, 2.0 / 16);
+    REQUIRE(mesh.patches.size() == 1536);
+    const auto b = emission_only(mesh);
+    const rad::Gatherer every(mesh, b, direct_only(0)), tree(mesh, b, direct_only(0.1));
+    const rad::gather::LightTree lights(mesh, emitters_of(mesh));
+    rad::gather::LightTree::Cut cut;
+    for (const rad::Vec3 point : {rad::Vec3{12, 3, 5}, rad::Vec3{-9, -7, 4}, rad::Vec3{0, 0, -30}}) {
+        const rad::Vec3 facing = rad::normalized(rad::Vec3{-point[0], -point[1], -point[2]});
+        const double want = every.gather(point, facing, 1).direct[0];
+        CHECK(tree.gather(point, facing, 1).direct[0] == Approx(want).epsilon(0.01));
+        lights.cut(point, facing, 0.1, cut);
+        INFO(cut.lights.size() << " lights and " << cut.clusters.size() << " clusters");
+        // At most three faces are seen, each a node or a few.
+        CHECK(cut.lights.size() + cut.clusters.size() <= 12);
+    }
+}

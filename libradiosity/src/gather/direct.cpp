@@ -205,7 +205,12 @@ std::span<Gatherer::Seen> Gatherer::seen_lights(const Vec3& point, const Vec3& n
     thread_local gather::LightTree::Cut cut;
     thread_local std::vector<Seen> seen; // kept between points for their buffers
     // Exact: every light on its own too, no cluster's approximation.
-    lights_->cut(point, normal, options_.exact ? 0 : options_.cluster_ratio, cut);
+    // (cluster_ratio 0: every light on its own, none taken as one.)
+    const double tolerance =
+        options_.exact || options_.cluster_tolerance <= 0 || options_.cluster_ratio <= 0
+            ? 0
+            : options_.cluster_tolerance * lights_->rough_irradiance(point, normal);
+    lights_->cut(point, normal, options_.exact ? 0 : options_.cluster_ratio, cut, tolerance);
     std::size_t count = 0;
     for (const auto i : cut.lights) {
         const auto& light = lights_->lights()[i];

@@ -18,28 +18,58 @@ LightTree::LightTree(const radfmt::MeshData& mesh, std::vector<Light> lights)
     build(mesh, 0, static_cast<std::uint32_t>(lights_.size()));
 }
 
-// Reserves the node, then splits its lights at the median centroid along the axis where the
-// centroids spread most (ties by patch, so the tree is the same on every run).
+namespace {
+// The side a patch faces most: 2 x its normal's largest axis, + 1 when negative. Lights of one
+// side share a narrow normal cone, so a node of them faces a point wholly or not at all.
+int facing_side(const Vec3& n) {
+    const int axis = std::abs(n[0]) >= std::abs(n[1]) && std::abs(n[0]) >= std::abs(n[2]) ? 0
+                     : std::abs(n[1]) >= std::abs(n[2])                                   ? 1
+                                                                                          : 2;
+    return 2 * axis + (n[axis] < 0 ? 1 : 0);
+}
+} // namespace
+
+// Reserves the node, then splits its lights: by the side they face while they face several
+// (at the boundary between sides nearest the middle), then at the median centroid along the
+// axis where the centroids spread most (ties by patch, so the tree is the same on every run).
 std::uint32_t LightTree::build(const radfmt::MeshData& mesh, std::uint32_t first,
                                std::uint32_t count) {
     const auto index = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back(summarise(mesh, first, count));
     if (count == 1) return index;
-    Box centroids;
-    for (std::uint32_t i = first; i < first + count; ++i)
-        centroids.add(mesh.patches[lights_[i].patch].centroid);
-    const Vec3 extent = centroids.hi - centroids.lo;
-    const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0
-                     : extent[1] >= extent[2]                         ? 1
-                                                                      : 2;
     const auto begin = lights_.begin() + first;
-    std::nth_element(begin, begin + count / 2, begin + count, [&](const Light& a, const Light& b) {
-        const double ca = mesh.patches[a.patch].centroid[axis];
-        const double cb = mesh.patches[b.patch].centroid[axis];
-        return ca != cb ? ca < cb : a.patch < b.patch;
-    });
-    const std::uint32_t left = build(mesh, first, count / 2);
-    const std::uint32_t right = build(mesh, first + count / 2, count - count / 2);
+    auto side = [&](const Light& l) { return facing_side(mesh.patches[l.patch].normal); };
+    std::uint32_t half = count / 2;
+    if (std::any_of(begin, begin + count,
+                    [&](const Light& l) { return side(l) != side(*begin); })) {
+        std::sort(begin, begin + count, [&](const Light& a, const Light& b) {
+            const int sa = side(a), sb = side(b);
+            return sa != sb ? sa < sb : a.patch < b.patch;
+        });
+        // The boundary between two sides nearest the middle.
+        std::uint32_t best = 0;
+        for (std::uint32_t k = 1; k < count; ++k)
+            if (side(begin[k]) != side(begin[k - 1]) &&
+                (best == 0 ||
+                 std::abs(int(k) - int(count / 2)) < std::abs(int(best) - int(count / 2))))
+                best = k;
+        half = best;
+    } else {
+        Box centroids;
+        for (std::uint32_t i = first; i < first + count; ++i)
+            centroids.add(mesh.patches[lights_[i].patch].centroid);
+        const Vec3 extent = centroids.hi - centroids.lo;
+        const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0
+                         : extent[1] >= extent[2]                         ? 1
+                                                                          : 2;
+        std::nth_element(begin, begin + half, begin + count, [&](const Light& a, const Light& b) {
+            const double ca = mesh.patches[a.patch].centroid[axis];
+            const double cb = mesh.patches[b.patch].centroid[axis];
+            return ca != cb ? ca < cb : a.patch < b.patch;
+        });
+    }
+    const std::uint32_t left = build(mesh, first, half);
+    const std::uint32_t right = build(mesh, first + half, count - half);
     nodes_[index].left = left;
     nodes_[index].right = right;
     return index;
@@ -109,9 +139,10 @@ LightTree::Facing LightTree::facing_point(const Node& node, const Vec3& w, doubl
     return Facing::Some;
 }
 
-void LightTree::cut(const Vec3& point, const Vec3& normal, double max_ratio, Cut& out) const {
-    out.lights.clear();
-    out.clusters.clear();
+// Visits the nodes the point might see, front to back of the tree, calling `take(node,
+// all_facing, in_front, distance)`, which says whether to stop at the node (true) or open it.
+template <class Take>
+void LightTree::visit(const Vec3& point, const Vec3& normal, Take take) const {
     if (nodes_.empty()) return;
     std::uint32_t stack[128];
     int top = 0;
@@ -128,17 +159,54 @@ void LightTree::cut(const Vec3& point, const Vec3& normal, double max_ratio, Cut
         const double distance = length(w);
         const Facing facing = facing_point(node, w, distance);
         if (facing == Facing::None) continue;
-        const bool all_facing = facing == Facing::All;
-        if (node.count == 1) {
-            out.lights.push_back(node.first);
-        } else if (all_facing && offset - support > 0 && node.radius < max_ratio * distance) {
-            out.clusters.push_back({static_cast<std::uint32_t>(&node - nodes_.data()),
-                                    cluster_irradiance(node, point, normal)});
-        } else {
+        if (!take(node, facing == Facing::All, offset - support > 0, distance)) {
             stack[top++] = node.right;
             stack[top++] = node.left;
         }
     }
+}
+
+void LightTree::cut(const Vec3& point, const Vec3& normal, double max_ratio, Cut& out,
+                    double tolerance) const {
+    out.lights.clear();
+    out.clusters.clear();
+    visit(point, normal, [&](const Node& node, bool all_facing, bool in_front, double distance) {
+        const auto index = static_cast<std::uint32_t>(&node - nodes_.data());
+        if (all_facing && in_front && node.radius < max_ratio * distance) {
+            out.clusters.push_back({index, cluster_irradiance(node, point, normal)});
+            return true;
+        }
+        if (tolerance > 0 && node.radius < kLooseRatio * distance) {
+            const Rgb e = cluster_irradiance(node, point, normal);
+            const double ratio = node.radius / distance;
+            // Wholly in front and facing: the estimate's error is about e x ratio^2. Else
+            // (some lights face away, or lie behind the point's plane) it can be all of what
+            // the node could give, at most its power over pi (distance - radius)^2.
+            const double gap = distance - node.radius;
+            const double error = all_facing && in_front ? brightness(e) * ratio * ratio
+                                                        : node.power / (kPi * gap * gap);
+            if (error <= tolerance) {
+                out.clusters.push_back({index, e});
+                return true;
+            }
+        }
+        if (node.count > 1) return false;
+        out.lights.push_back(node.first);
+        return true;
+    });
+}
+
+double LightTree::rough_irradiance(const Vec3& point, const Vec3& normal) const {
+    double total = 0;
+    visit(point, normal, [&](const Node& node, bool all_facing, bool in_front, double distance) {
+        (void)all_facing, (void)in_front; // a rough sum: facing or not, as the estimate says
+        if (!(node.radius < kLooseRatio * distance) && node.count > 1) return false;
+        double e = brightness(cluster_irradiance(node, point, normal));
+        if (node.count == 1) e = std::min(e, brightness(lights_[node.first].radiosity));
+        total += e;
+        return true;
+    });
+    return total;
 }
 
 const Light& LightTree::pick(std::uint32_t index, double u, double* remainder) const {

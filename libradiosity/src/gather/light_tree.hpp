@@ -42,8 +42,15 @@ class LightTree {
     LightTree(const radfmt::MeshData& mesh, std::vector<Light> lights);
 
     // The cut at `point` facing `normal` (unit): nodes whose bounding-sphere radius is under
-    // `max_ratio` times their distance are clusters when wholly in front and facing the point.
-    void cut(const Vec3& point, const Vec3& normal, double max_ratio, Cut& out) const;
+    // `max_ratio` times their distance are clusters when wholly in front and facing the point;
+    // so is a node up to kLooseRatio across whose irradiance x (radius / distance)^2 is at most
+    // `tolerance` (brightness, absolute; 0: none).
+    void cut(const Vec3& point, const Vec3& normal, double max_ratio, Cut& out,
+             double tolerance = 0) const;
+    // The lights' whole irradiance (brightness) at the point, roughly: the cut at kLooseRatio,
+    // single lights as points (at most their radiosity). To set a cut's tolerance.
+    double rough_irradiance(const Vec3& point, const Vec3& normal) const;
+    static constexpr double kLooseRatio = 0.5;
     // A light of `node` chosen in proportion to power for u in [0, 1); `remainder`, when
     // asked for, is u rescaled to [0, 1) within that light's share (to place a point on it).
     const Light& pick(std::uint32_t node, double u, double* remainder = nullptr) const;
@@ -70,6 +77,7 @@ class LightTree {
     };
     enum class Facing { All, None, Some }; // the node's lights towards a point
     static Facing facing_point(const Node& node, const Vec3& w, double distance);
+    template <class Take> void visit(const Vec3& point, const Vec3& normal, Take take) const;
     std::uint32_t build(const radfmt::MeshData& mesh, std::uint32_t first, std::uint32_t count);
     Node summarise(const radfmt::MeshData& mesh, std::uint32_t first, std::uint32_t count) const;
     Rgb cluster_irradiance(const Node& node, const Vec3& point, const Vec3& normal) const;
