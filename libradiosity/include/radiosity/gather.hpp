@@ -42,7 +42,7 @@ struct GatherOptions {
     // error it can bring, its irradiance x (radius / distance)^2, is under this share of the
     // point's whole direct light (roughly estimated first): a room's far lamps cost a few
     // clusters, not hundreds. 0 (or a cluster_ratio of 0): only cluster_ratio decides.
-    double cluster_tolerance = 1e-4;
+    double cluster_tolerance = 2e-5;
     // Patches whose reflected radiosity (r + g + b) exceeds this many times the area-weighted
     // mean over the scene are lights, not left to the indirect rays (a ray that lands on a
     // small very bright patch is a firefly); 0: none. Not with `exact`, which has no rays.
