@@ -21,10 +21,13 @@ LightTree::LightTree(const radfmt::MeshData& mesh, std::vector<Light> lights)
 namespace {
 // The side a patch faces most: 2 x its normal's largest axis, + 1 when negative. Lights of one
 // side share a narrow normal cone, so a node of them faces a point wholly or not at all.
+// The axis of v's largest component (the first of equals).
+int largest_axis(const Vec3& v) {
+    return v[0] >= v[1] && v[0] >= v[2] ? 0 : v[1] >= v[2] ? 1 : 2;
+}
+
 int facing_side(const Vec3& n) {
-    const int axis = std::abs(n[0]) >= std::abs(n[1]) && std::abs(n[0]) >= std::abs(n[2]) ? 0
-                     : std::abs(n[1]) >= std::abs(n[2])                                   ? 1
-                                                                                          : 2;
+    const int axis = largest_axis({std::abs(n[0]), std::abs(n[1]), std::abs(n[2])});
     return 2 * axis + (n[axis] < 0 ? 1 : 0);
 }
 } // namespace
@@ -58,10 +61,7 @@ std::uint32_t LightTree::build(const radfmt::MeshData& mesh, std::uint32_t first
         Box centroids;
         for (std::uint32_t i = first; i < first + count; ++i)
             centroids.add(mesh.patches[lights_[i].patch].centroid);
-        const Vec3 extent = centroids.hi - centroids.lo;
-        const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0
-                         : extent[1] >= extent[2]                         ? 1
-                                                                          : 2;
+        const int axis = largest_axis(centroids.hi - centroids.lo);
         std::nth_element(begin, begin + half, begin + count, [&](const Light& a, const Light& b) {
             const double ca = mesh.patches[a.patch].centroid[axis];
             const double cb = mesh.patches[b.patch].centroid[axis];
