@@ -73,7 +73,7 @@ struct MeshArgs {
     std::vector<std::string> max_edge, max_area;
     double patches = rad::kDefaultPatchBudget;
     CLI::Option* patches_option = nullptr;
-    double planarity = 1e-3, max_patches = 2e7;
+    double planarity = 1e-3, max_patches = 2e7, max_sag = 0.02;
     bool quiet = false, timings = false, strict = false;
     std::string patch_order = "morton", default_reflectance, orient = "warn";
     std::string surfaces = "regions", import_memory, unit = "m", max_memory;
@@ -120,6 +120,14 @@ void add_scene_options(CLI::App& app, MeshArgs& a) {
                    "face's size")
         ->capture_default_str()
         ->check(rad::tool::finite_range(0, 1));
+    app.add_option("--max-sag", a.max_sag,
+                   "A curved surface drawn as long thin facets (a vault, a column: under a tenth "
+                   "of a cell wide, patches would be slivers) is taken as planar faces across "
+                   "runs of them, each no wider than a cell and within this fraction of a cell "
+                   "of every facet edge it spans, nor farther than a chord of an arc turning 30 "
+                   "degrees (--surfaces regions; 0 keeps the facets)")
+        ->capture_default_str()
+        ->check(rad::tool::finite_range(0, 0.25));
     app.add_option("--patch-order", a.patch_order,
                    "How patches are numbered: morton (along a Z-order curve of their centroids, "
                    "so that neighbours in space are neighbours in memory: faster solves) or "
@@ -251,6 +259,7 @@ rad::MeshOptions mesh_options_of(MeshArgs& a) {
     options.planarity_tolerance = a.planarity;
     options.strict = a.strict;
     options.max_patches = a.max_patches;
+    options.max_sag = a.max_sag;
     a.scene.strict = a.strict;
     for (const auto& dir : a.mtl_paths) a.scene.mtl_paths.emplace_back(dir);
     if (!a.default_reflectance.empty()) {

@@ -17,6 +17,11 @@ python3 interior_scenes.py KIND OUT.obj   (writes interior.mtl beside OUT.obj)
             triangles each) drawn facing out, open at both ends, standing on a floor 7 m wide
             (wider than the vault) facing up, all in one material with no groups (the subway of
             #66 item 2)
+  fin       the tunnel with a fin 0.5 m high (material 'fin') standing on the vault's crown,
+            along the facets' long side at its top: the vault is two surfaces there
+  column    a closed room 6 x 3 x 6 facing in, and two pillars of radius 0.3 m, each a ring of
+            96 long thin facets (quads) facing out: one capped at both ends, hanging clear of
+            floor and ceiling (0.5 to 2.5 m), one from floor to ceiling
 """
 import sys
 
@@ -126,7 +131,7 @@ def house(obj):
                  'light', toward=(x, 4.5, 0))
 
 
-def tunnel(obj):
+def tunnel(obj, fin=False):
     import math
     length, radius, segments = 100.0, 3.0, 128
     ring = lambda z: [(radius * math.cos(math.pi * k / segments),
@@ -140,6 +145,33 @@ def tunnel(obj):
     w = radius + 0.5
     obj.face([(-w, 0, 0), (-w, 0, length), (w, 0, length), (w, 0, 0)], 'white',
              toward=(0, 1, length / 2))
+    if fin:
+        top = near[segments // 2], far[segments // 2]
+        up = [(p[0], p[1] + 0.5, p[2]) for p in top]
+        obj.face([top[0], top[1], up[1], up[0]], 'fin', toward=(1, 3, length / 2))
+
+
+def column(obj):
+    import math
+    obj.box((0, 0, 0), (6, 3, 6), 'wall', inward=True)
+    segments, radius = 96, 0.3
+
+    def pillar(cx, cz, y0, y1, caps):
+        ring = [(cx + radius * math.cos(2 * math.pi * k / segments), 0.0,
+                 cz + radius * math.sin(2 * math.pi * k / segments)) for k in range(segments)]
+        for k in range(segments):
+            a, b = ring[k], ring[(k + 1) % segments]
+            outside = (2 * (a[0] + b[0]) / 2 - cx, 1.5, 2 * (a[2] + b[2]) / 2 - cz)
+            obj.face([(a[0], y0, a[2]), (b[0], y0, b[2]), (b[0], y1, b[2]), (a[0], y1, a[2])],
+                     'white', toward=outside)
+        if caps:
+            obj.face([(p[0], y0, p[2]) for p in ring], 'white', toward=(cx, y0 - 1, cz))
+            obj.face([(p[0], y1, p[2]) for p in ring], 'white', toward=(cx, y1 + 1, cz))
+
+    pillar(2, 2, 0.5, 2.5, True)   # free, capped
+    pillar(4, 4, 0.0, 3.0, False)  # from floor to ceiling
+    obj.face([(2.5, 2.99, 2.5), (3.5, 2.99, 2.5), (3.5, 2.99, 3.5), (2.5, 2.99, 3.5)], 'light',
+             toward=(2.5, 0, 2.5))
 
 
 def main():
@@ -151,8 +183,10 @@ def main():
         lamps(obj)
     elif kind == 'house':
         house(obj)
-    elif kind == 'tunnel':
-        tunnel(obj)
+    elif kind in ('tunnel', 'fin'):
+        tunnel(obj, kind == 'fin')
+    elif kind == 'column':
+        column(obj)
     else:
         sys.exit('unknown kind ' + kind)
     obj.write(path)
@@ -160,7 +194,8 @@ def main():
     with open(mtl, 'w') as f:
         f.write('newmtl white\nKd 0.6 0.6 0.6\nnewmtl shade\nKd 0.5 0.5 0.5\n'
                 'newmtl wall\nKd 0.7 0.7 0.7\nnewmtl roof\nKd 0.4 0.2 0.2\n'
-                'newmtl table\nKd 0.5 0.35 0.2\nnewmtl light\nKd 0 0 0\nKe 10 10 10\n')
+                'newmtl table\nKd 0.5 0.35 0.2\nnewmtl light\nKd 0 0 0\nKe 10 10 10\n'
+                'newmtl fin\nKd 0.3 0.3 0.3\n')
 
 
 main()

@@ -168,6 +168,9 @@ struct SubdivisionOptions {
     // Refuse before subdividing when the limits would make more patches than this (a typo
     // such as --max-edge 1e-4 would otherwise take all memory).
     double max_patches = 2e7;
+    // Curved surfaces drawn as thin facets taken as planar faces across them, each within this
+    // fraction of a cell of the facets (SurfaceOptions::max_sag; 0: the facets as drawn).
+    double max_sag = 0.02;
 };
 
 // A group's limit (--max-edge GROUP=L, --max-area GROUP=A), or the scene's when it has none.

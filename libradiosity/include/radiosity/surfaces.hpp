@@ -17,6 +17,8 @@ namespace rad {
 
 class StageLog;
 
+constexpr double kDefaultMaxSag = 0.02; // rad-mesh --max-sag
+
 struct SurfaceOptions {
     double max_edge = 0; // a full cell's side; 0: each region as few patches as its shape allows
     double max_area = 0; // a full cell's area at most (0: no limit)
@@ -29,7 +31,12 @@ struct SurfaceOptions {
     // Lines planar regions are not joined across (Scene::contact_lines): where a wall meets a
     // ceiling, the ceiling's patches on each side see their own room.
     std::vector<std::array<radfmt::Vec3, 2>> creases;
-    double max_patches = 2e7;   // refused before gridding when the cells would be more
+    double max_patches = 2e7; // refused before gridding when the cells would be more
+    // A curved surface drawn as long thin facets (under a tenth of a cell wide) is taken as
+    // planar faces across runs of them, each no farther from the facets' edges than this
+    // fraction of a cell (nor than a chord of an arc turning 30 degrees), and no wider than a
+    // cell (0: the facets as drawn). Refined, the faces converge to the facets.
+    double max_sag = kDefaultMaxSag;
     std::string source;         // the scene file, for messages
     StageLog* stages = nullptr; // shows how far the stage is (optional)
 };
@@ -77,6 +84,14 @@ ShapeStats shape_stats(const radfmt::MeshData& mesh, const std::vector<WidthClas
                        const std::vector<double>& cells = {},
                        const std::vector<bool>& at_detail = {});
 
+// What pass 0 (merge_curved_strips) did: thin facets of curved surfaces taken as planar faces
+// across them.
+struct StripMerge {
+    std::size_t facets = 0, faces = 0, chains = 0; // input faces, the faces made, the surfaces
+    double area_before = 0, area_after = 0;        // of the facets, of the faces made
+    double worst_offset = 0; // the farthest a facet's edge lies from the face made in its place
+};
+
 struct SurfaceReport {
     std::size_t faces = 0, regions = 0;
     std::size_t cells = 0;          // full grid cells: quads
@@ -94,6 +109,7 @@ struct SurfaceReport {
     // which is this much less than the faces' sum.
     std::size_t overlapped_regions = 0;
     double overlap_area = 0;
+    StripMerge strips;
     ShapeStats shape;
 };
 

@@ -20,6 +20,7 @@ SurfaceOptions surface_options(const SubdivisionOptions& limits, const std::stri
     options.max_edge_by_group = limits.max_edge_by_group;
     options.max_area_by_group = limits.max_area_by_group;
     options.max_patches = limits.max_patches;
+    options.max_sag = limits.max_sag;
     options.source = source;
     options.stages = stages;
     return options;
@@ -67,6 +68,20 @@ void report_growth(const SurfaceReport& surfaces, MeshReport& report) {
                   "through it, a pillar's foot): area %.6g gained under or inside them, saving "
                   "patches the size of the steps (--surfaces faces keeps every face)",
                   surfaces.holes_filled, surfaces.bends_cut, surfaces.area_covered);
+    report.add(MeshReport::Kind::Change, text);
+}
+
+// Thin facets of curved surfaces taken as planar faces across them.
+void report_strips(const StripMerge& strips, double max_sag, MeshReport& report) {
+    if (!strips.faces) return;
+    char text[500];
+    std::snprintf(text, sizeof text,
+                  "merged: %zu thin facet(s) of %zu curved surface(s) (long, under a tenth of a "
+                  "cell wide: slivers as drawn) taken as %zu planar face(s) across them, each "
+                  "within %.3g%% of a cell of the facets' edges (at most %.3g off); their "
+                  "area %.6g for the facets' %.6g (--max-sag 0 keeps the facets)",
+                  strips.facets, strips.chains, strips.faces, 100 * max_sag, strips.worst_offset,
+                  strips.area_after, strips.area_before);
     report.add(MeshReport::Kind::Change, text);
 }
 
@@ -131,6 +146,7 @@ radfmt::MeshData patch_pass(Scene& scene, const MeshOptions& options, MeshReport
         mesh = subdivide(scene, limits, &faces);
     }
     report_faces(scene, faces, report);
+    report_strips(report.surfaces.strips, limits.max_sag, report);
     report_overlaps(report.surfaces, report);
     report_growth(report.surfaces, report);
     return mesh;

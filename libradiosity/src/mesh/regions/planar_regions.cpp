@@ -9,17 +9,6 @@
 
 namespace rad::surfaces {
 
-namespace {
-
-// Each face's welded edges split where another point lies on them (a neighbour's corner partway
-// along the edge: a T-junction), as sub-edges keyed by their ends, in CSR form: faces that
-// share a sub-edge touch along it, whether or not their corners meet there.
-struct FaceSubEdges {
-    // faces + 1 entries: face f's sub-edges are keys[start[f] .. start[f + 1]).
-    std::vector<std::size_t> start;
-    std::vector<EdgeKey> keys;
-};
-
 FaceSubEdges split_face_edges(const radfmt::MeshData& faces, const std::vector<std::uint32_t>& weld,
                               const PointBuckets& buckets, double tolerance) {
     // Each welded edge once (sorted keys, not a map of vectors: a hall of 5e6 triangles has
@@ -73,41 +62,7 @@ FaceSubEdges split_face_edges(const radfmt::MeshData& faces, const std::vector<s
     return out;
 }
 
-// Faces along each sub-edge: (sub-edge, face) sorted, so a sub-edge's faces are a run in
-// ascending order. (A map of a vector a sub-edge made 15 million small vectors on a hall of
-// 5e6 triangles.)
-class FacesByEdge {
-  public:
-    explicit FacesByEdge(const FaceSubEdges& edges) {
-        entries_.reserve(edges.keys.size());
-        for (std::uint32_t f = 0; f + 1 < edges.start.size(); ++f)
-            for (auto k = edges.start[f]; k < edges.start[f + 1]; ++k)
-                entries_.emplace_back(edges.keys[k], f);
-        std::sort(entries_.begin(), entries_.end());
-        entries_.erase(std::unique(entries_.begin(), entries_.end()), entries_.end());
-    }
-    template <class Visit> void for_each_face(EdgeKey key, Visit&& visit) const {
-        auto it = std::lower_bound(entries_.begin(), entries_.end(), std::pair{key, 0u});
-        for (; it != entries_.end() && it->first == key; ++it) visit(it->second);
-    }
-
-  private:
-    std::vector<std::pair<EdgeKey, std::uint32_t>> entries_;
-};
-
-// The sub-edges lying along the creases (between points that lie on one), sorted.
-std::vector<EdgeKey> crease_edges(const std::vector<std::array<Vec3, 2>>& creases,
-                                  const PointBuckets& buckets, double tolerance) {
-    std::vector<EdgeKey> out;
-    for (const auto& [a, b] : creases) {
-        const auto on = buckets.along(a, b, tolerance);
-        for (std::size_t k = 1; k < on.size(); ++k)
-            if (on[k - 1] != on[k]) out.push_back(edge_key(on[k - 1], on[k]));
-    }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-}
+namespace {
 
 // Where a region stops though a coplanar face continues it: along a crease (a contact line),
 // or where another surface leaves the plane (a wall welded to the floor between two rooms):
@@ -245,6 +200,20 @@ class RegionGrower {
 };
 
 } // namespace
+
+// The sub-edges lying along the creases (between points that lie on one), sorted.
+std::vector<EdgeKey> crease_edges(const std::vector<std::array<Vec3, 2>>& creases,
+                                  const PointBuckets& buckets, double tolerance) {
+    std::vector<EdgeKey> out;
+    for (const auto& [a, b] : creases) {
+        const auto on = buckets.along(a, b, tolerance);
+        for (std::size_t k = 1; k < on.size(); ++k)
+            if (on[k - 1] != on[k]) out.push_back(edge_key(on[k - 1], on[k]));
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
 
 std::vector<Region> find_planar_regions(const radfmt::MeshData& faces,
                                         const std::vector<std::uint32_t>& weld,

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -121,6 +122,60 @@ struct Region {
     std::vector<std::vector<std::uint32_t>> quad_sides;
     bool contains(const Point2& p) const;
 };
+
+class PointBuckets;
+// Each face's welded edges (`weld`) split where another point lies on them, within `tolerance`
+// (a neighbour's corner partway along the edge: a T-junction), as sub-edges keyed by their ends, in
+// CSR form: faces that share a sub-edge touch along it, whether or not their corners meet there.
+struct FaceSubEdges {
+    // faces + 1 entries: face f's sub-edges are keys[start[f] .. start[f + 1]).
+    std::vector<std::size_t> start;
+    std::vector<EdgeKey> keys;
+};
+
+FaceSubEdges split_face_edges(const radfmt::MeshData& faces, const std::vector<std::uint32_t>& weld,
+                              const PointBuckets& buckets, double tolerance);
+
+// Faces along each sub-edge: (sub-edge, face) sorted, so a sub-edge's faces are a run in
+// ascending order. (A map of a vector a sub-edge made 15 million small vectors on a hall of
+// 5e6 triangles.)
+class FacesByEdge {
+  public:
+    explicit FacesByEdge(const FaceSubEdges& edges) {
+        entries_.reserve(edges.keys.size());
+        for (std::uint32_t f = 0; f + 1 < edges.start.size(); ++f)
+            for (auto k = edges.start[f]; k < edges.start[f + 1]; ++k)
+                entries_.emplace_back(edges.keys[k], f);
+        std::sort(entries_.begin(), entries_.end());
+        entries_.erase(std::unique(entries_.begin(), entries_.end()), entries_.end());
+    }
+    template <class Visit> void for_each_face(EdgeKey key, Visit&& visit) const {
+        auto it = std::lower_bound(entries_.begin(), entries_.end(), std::pair{key, 0u});
+        for (; it != entries_.end() && it->first == key; ++it) visit(it->second);
+    }
+
+  private:
+    std::vector<std::pair<EdgeKey, std::uint32_t>> entries_;
+};
+
+// The sub-edges lying along the creases (between points that lie on one), sorted.
+std::vector<EdgeKey> crease_edges(const std::vector<std::array<Vec3, 2>>& creases,
+                                  const PointBuckets& buckets, double tolerance);
+
+// Pass 0 (SurfaceOptions::max_sag): a curved surface drawn as long thin planar facets (each a
+// quad, or two triangles across its diagonal, at least three times as long as wide and under a
+// tenth of its group's cell wide: its patches would be slivers), neighbours sharing a long side
+// that no other face has, in one group and material and wound alike (not across a crease, nor
+// a side another surface's corner lies on), is taken as planar quads across runs of the facets:
+// each quad's corners are the run's outer long sides' ends, every long side between lies within
+// `max_sag` of the cell of it (and within what a chord of an arc turning 30 degrees would), and
+// the quad is no wider than the cell; runs as few as that allows, as even as they pass. A run's
+// first face becomes its quad, the rest are dropped. A ring of facets (a column) is cut at its
+// first facet. Nothing (no copy) when no facets were merged.
+std::optional<radfmt::MeshData> merge_curved_strips(const radfmt::MeshData& faces,
+                                                    const std::vector<double>& cell_of_group,
+                                                    const SurfaceOptions& options,
+                                                    double scene_size, StripMerge& merged);
 
 // Pass 1: faces connected across welded edges, or along an edge that a neighbour's corner
 // splits (a T-junction, a point within `tolerance` of the edge), with the same group and

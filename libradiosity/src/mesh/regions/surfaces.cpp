@@ -254,11 +254,17 @@ radfmt::MeshData grid_regions(const std::vector<surfaces::Region>& regions,
 
 } // namespace
 
-radfmt::MeshData mesh_surfaces(const radfmt::MeshData& faces, const SurfaceOptions& options,
+radfmt::MeshData mesh_surfaces(const radfmt::MeshData& input, const SurfaceOptions& options,
                                SurfaceReport* report) {
     SurfaceReport local;
     SurfaceReport& rep = report ? *report : local;
-    rep.faces = faces.patches.size();
+    rep.faces = input.patches.size();
+    std::vector<double> cell_of_group(std::max<std::size_t>(input.groups.size(), 1));
+    for (std::uint32_t g = 0; g < cell_of_group.size(); ++g)
+        cell_of_group[g] = cell_side(input, g, options);
+    const auto merged = surfaces::merge_curved_strips(
+        input, cell_of_group, options, bounds(input.vertices).diagonal(), rep.strips);
+    const auto& faces = merged ? *merged : input;
     const auto weld = weld_by_position(faces.vertices);
     surfaces::Points points;
     const std::uint32_t count = weld.empty() ? 0 : *std::max_element(weld.begin(), weld.end()) + 1;
