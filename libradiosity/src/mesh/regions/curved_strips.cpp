@@ -129,7 +129,9 @@ bool make_strip(Strip& s, const radfmt::MeshData& faces, const std::vector<Vec3>
     if (s.faces[1] != kNone) {
         const auto& second = faces.patches[s.faces[1]];
         if (second.group != s.group || second.material != s.material) return false;
-        if (dot(first.normal, second.normal) < std::cos(0.5 * std::numbers::pi / 180)) return false;
+        if (dot(normalized(first.normal), normalized(second.normal)) <
+            std::cos(0.5 * std::numbers::pi / 180))
+            return false;
     }
     std::array<Vec3, 4> p;
     for (int k = 0; k < 4; ++k) p[k] = points[s.q[k]];
