@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <unordered_map>
 
 namespace rad::surfaces {
 
@@ -56,11 +57,10 @@ class StripFinder {
         return out;
     }
 
-    // Thin quad faces, and thin triangles paired across their longest edge where it is also the
-    // other's longest edge and only the two have it: candidate strips (make_strip checks them).
+    // Thin quad faces, and thin triangles paired: candidate strips (make_strip checks them).
     std::vector<Strip> candidates() const {
         std::vector<Strip> out;
-        std::vector<std::pair<EdgeKey, std::uint32_t>> diagonals;
+        std::vector<std::pair<EdgeKey, std::uint32_t>> long_edges; // of thin triangles
         for (std::uint32_t f = 0; f < faces_.patches.size(); ++f) {
             const auto w = welded(f);
             if (w.size() != 3 && w.size() != 4) continue;
@@ -72,18 +72,14 @@ class StripFinder {
                 std::copy(w.begin(), w.end(), s.q.begin());
                 s.faces[0] = f;
                 out.push_back(s);
-            } else {
-                diagonals.emplace_back(edge_key(w[k], w[(k + 1) % 3]), f);
-            }
-        }
-        std::sort(diagonals.begin(), diagonals.end());
-        for (std::size_t i = 0; i + 1 < diagonals.size(); ++i) {
-            const auto key = diagonals[i].first;
-            if (diagonals[i + 1].first != key || (i > 0 && diagonals[i - 1].first == key) ||
-                (i + 2 < diagonals.size() && diagonals[i + 2].first == key))
                 continue;
-            if (auto s = pair_of(diagonals[i].second, diagonals[i + 1].second)) out.push_back(*s);
+            }
+            for (int e = 0; e < 3; ++e)
+                if (e != shortest_side(w))
+                    long_edges.emplace_back(edge_key(w[e], w[(e + 1) % 3]), f);
         }
+        for (const auto& [f, g] : triangle_pairs(long_edges))
+            if (auto s = pair_of(f, g)) out.push_back(*s);
         return out;
     }
 
@@ -98,18 +94,58 @@ class StripFinder {
         return best;
     }
 
-    // Triangles a, b, c and b, a, d (one winding) as the quad a, d, b, c.
+    int shortest_side(const std::vector<std::uint32_t>& w) const {
+        int best = 0;
+        double shortest = 1e300;
+        for (int k = 0; k < int(w.size()); ++k) {
+            const double l = length(points_[w[(k + 1) % w.size()]] - points_[w[k]]);
+            if (l < shortest) shortest = l, best = k;
+        }
+        return best;
+    }
+
+    // A strip's two triangles share its diagonal, which is hardly longer than its long sides
+    // (rounding may make it shorter): each thin triangle is paired across one of its two long
+    // edges with the triangle there that lies most nearly in its plane (a strip's other half:
+    // in it; the next strip's: turned by the bend), where each is the other's choice.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>
+    triangle_pairs(std::vector<std::pair<EdgeKey, std::uint32_t>> long_edges) const {
+        std::sort(long_edges.begin(), long_edges.end());
+        std::unordered_map<std::uint32_t, std::pair<double, std::uint32_t>> best; // by cosine
+        for (std::size_t i = 0; i + 1 < long_edges.size(); ++i) {
+            const auto key = long_edges[i].first;
+            if (long_edges[i + 1].first != key || (i > 0 && long_edges[i - 1].first == key) ||
+                (i + 2 < long_edges.size() && long_edges[i + 2].first == key))
+                continue;
+            const auto f = long_edges[i].second, g = long_edges[i + 1].second;
+            const double c =
+                dot(normalized(faces_.patches[f].normal), normalized(faces_.patches[g].normal));
+            for (const auto& [a, b] : {std::pair{f, g}, std::pair{g, f}}) {
+                const auto it = best.find(a);
+                if (it == best.end() || c > it->second.first) best[a] = {c, b};
+            }
+        }
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+        for (const auto& [f, choice] : best)
+            if (f < choice.second && best.at(choice.second).second == f)
+                pairs.emplace_back(f, choice.second);
+        std::sort(pairs.begin(), pairs.end()); // the map's order is not the input's
+        return pairs;
+    }
+
+    // Triangles a, b, c and b, a, d (one winding) sharing a, b as the quad a, d, b, c.
     std::optional<Strip> pair_of(std::uint32_t f, std::uint32_t g) const {
         const auto t = welded(f), u = welded(g);
-        const int k = longest_side(t);
-        const auto a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
-        for (int m = 0; m < 3; ++m)
-            if (u[m] == b && u[(m + 1) % 3] == a) {
-                Strip s;
-                s.q = {a, u[(m + 2) % 3], b, c};
-                s.faces = {f, g};
-                return s;
-            }
+        for (int k = 0; k < 3; ++k) {
+            const auto a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+            for (int m = 0; m < 3; ++m)
+                if (u[m] == b && u[(m + 1) % 3] == a) {
+                    Strip s;
+                    s.q = {a, u[(m + 2) % 3], b, c};
+                    s.faces = {f, g};
+                    return s;
+                }
+        }
         return std::nullopt;
     }
 
