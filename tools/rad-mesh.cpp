@@ -73,7 +73,7 @@ struct MeshArgs {
     std::vector<std::string> max_edge, max_area;
     double patches = rad::kDefaultPatchBudget;
     CLI::Option* patches_option = nullptr;
-    double planarity = 1e-3, max_patches = 2e7, max_sag = 0.02;
+    double planarity = 1e-3, max_patches = 2e7, max_sag = rad::kDefaultMaxSag;
     bool quiet = false, timings = false, strict = false;
     std::string patch_order = "morton", default_reflectance, orient = "warn";
     std::string surfaces = "regions", import_memory, unit = "m", max_memory;

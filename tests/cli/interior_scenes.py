@@ -161,7 +161,7 @@ def column(obj):
                  cz + radius * math.sin(2 * math.pi * k / segments)) for k in range(segments)]
         for k in range(segments):
             a, b = ring[k], ring[(k + 1) % segments]
-            outside = (2 * (a[0] + b[0]) / 2 - cx, 1.5, 2 * (a[2] + b[2]) / 2 - cz)
+            outside = (a[0] + b[0] - cx, 1.5, a[2] + b[2] - cz)  # the axis mirrored in (a + b) / 2
             obj.face([(a[0], y0, a[2]), (b[0], y0, b[2]), (b[0], y1, b[2]), (a[0], y1, a[2])],
                      'white', toward=outside)
         if caps:

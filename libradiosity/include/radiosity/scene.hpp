@@ -2,6 +2,7 @@
 #pragma once
 #include "radfmt/kinds.hpp"
 #include "radiosity/materials.hpp"
+#include "radiosity/surfaces.hpp"
 #include "radiosity/texture.hpp"
 #include "radiosity/vec.hpp"
 
@@ -170,7 +171,7 @@ struct SubdivisionOptions {
     double max_patches = 2e7;
     // Curved surfaces drawn as thin facets taken as planar faces across them, each within this
     // fraction of a cell of the facets (SurfaceOptions::max_sag; 0: the facets as drawn).
-    double max_sag = 0.02;
+    double max_sag = kDefaultMaxSag;
 };
 
 // A group's limit (--max-edge GROUP=L, --max-area GROUP=A), or the scene's when it has none.

@@ -19,13 +19,13 @@ LightTree::LightTree(const radfmt::MeshData& mesh, std::vector<Light> lights)
 }
 
 namespace {
-// The side a patch faces most: 2 x its normal's largest axis, + 1 when negative. Lights of one
-// side share a narrow normal cone, so a node of them faces a point wholly or not at all.
 // The axis of v's largest component (the first of equals).
 int largest_axis(const Vec3& v) {
     return v[0] >= v[1] && v[0] >= v[2] ? 0 : v[1] >= v[2] ? 1 : 2;
 }
 
+// The side a patch faces most: 2 x its normal's largest axis, + 1 when negative. Lights of one
+// side share a narrow normal cone, so a node of them faces a point wholly or not at all.
 int facing_side(const Vec3& n) {
     const int axis = largest_axis({std::abs(n[0]), std::abs(n[1]), std::abs(n[2])});
     return 2 * axis + (n[axis] < 0 ? 1 : 0);

@@ -1,7 +1,6 @@
 // Pass 0 of mesh_surfaces: a curved surface drawn as long thin facets (a tunnel's vault, a
 // column's shaft) taken as wider planar faces across them, so that its patches are not slivers.
 #include "mesh/geometry/point_buckets.hpp"
-#include "mesh/load/weld.hpp"
 #include "mesh/regions/regions.hpp"
 
 #include <algorithm>
@@ -62,11 +61,10 @@ class StripFinder {
         std::vector<Strip> out;
         std::vector<std::pair<EdgeKey, std::uint32_t>> long_edges; // of thin triangles
         for (std::uint32_t f = 0; f < faces_.patches.size(); ++f) {
+            const auto& face = faces_.patches[f];
+            if (face.is_polygon() || !thin_face(face, longest_edge(faces_, face), cell_of_group_))
+                continue;
             const auto w = welded(f);
-            if (w.size() != 3 && w.size() != 4) continue;
-            const int k = longest_side(w);
-            const double longest = length(points_[w[(k + 1) % w.size()]] - points_[w[k]]);
-            if (!thin_face(faces_.patches[f], longest, cell_of_group_)) continue;
             if (w.size() == 4) {
                 Strip s;
                 std::copy(w.begin(), w.end(), s.q.begin());
@@ -84,16 +82,6 @@ class StripFinder {
     }
 
   private:
-    int longest_side(const std::vector<std::uint32_t>& w) const {
-        int best = 0;
-        double longest = -1;
-        for (int k = 0; k < int(w.size()); ++k) {
-            const double l = length(points_[w[(k + 1) % w.size()]] - points_[w[k]]);
-            if (l > longest) longest = l, best = k;
-        }
-        return best;
-    }
-
     int shortest_side(const std::vector<std::uint32_t>& w) const {
         int best = 0;
         double shortest = 1e300;
@@ -455,21 +443,17 @@ struct RunReplacer {
 
 } // namespace
 
-std::optional<radfmt::MeshData> merge_curved_strips(const radfmt::MeshData& faces,
-                                                    const std::vector<double>& cell_of_group,
-                                                    const SurfaceOptions& options,
-                                                    double scene_size, StripMerge& merged) {
+std::optional<radfmt::MeshData>
+merge_curved_strips(const radfmt::MeshData& faces, const std::vector<std::uint32_t>& weld,
+                    const Points& welded, const std::vector<double>& cell_of_group,
+                    const SurfaceOptions& options, double scene_size, StripMerge& merged) {
     const double max_sag = options.max_sag, tolerance = options.plane_tolerance * scene_size;
     if (!(max_sag > 0)) return std::nullopt;
-    const auto weld = weld_by_position(faces.vertices);
-    const std::uint32_t count = weld.empty() ? 0 : *std::max_element(weld.begin(), weld.end()) + 1;
-    Points welded;
-    welded.position.resize(count);
-    auto& points = welded.position;
-    std::vector<std::uint32_t> vertex_of(count, kNone);
+    const auto& points = welded.position;
+    const auto count = static_cast<std::uint32_t>(points.size());
+    std::vector<std::uint32_t> vertex_of(count, kNone); // a vertex of each welded point
     for (std::uint32_t v = 0; v < faces.vertices.size(); ++v)
-        if (vertex_of[weld[v]] == kNone)
-            vertex_of[weld[v]] = v, points[weld[v]] = faces.vertices[v];
+        if (vertex_of[weld[v]] == kNone) vertex_of[weld[v]] = v;
     const StripFinder finder(faces, weld, points, cell_of_group);
     std::vector<Strip> strips;
     for (auto s : finder.candidates())

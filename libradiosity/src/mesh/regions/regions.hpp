@@ -171,11 +171,12 @@ std::vector<EdgeKey> crease_edges(const std::vector<std::array<Vec3, 2>>& crease
 // `max_sag` of the cell of it (and within what a chord of an arc turning 30 degrees would), and
 // the quad is no wider than the cell; runs as few as that allows, as even as they pass. A run's
 // first face becomes its quad, the rest are dropped. A ring of facets (a column) is cut at its
-// first facet. Nothing (no copy) when no facets were merged.
-std::optional<radfmt::MeshData> merge_curved_strips(const radfmt::MeshData& faces,
-                                                    const std::vector<double>& cell_of_group,
-                                                    const SurfaceOptions& options,
-                                                    double scene_size, StripMerge& merged);
+// first facet. Nothing (no copy) when no facets were merged; the faces made use the input's
+// vertices, so `weld` and `points` (the input's welded points) hold for them too.
+std::optional<radfmt::MeshData>
+merge_curved_strips(const radfmt::MeshData& faces, const std::vector<std::uint32_t>& weld,
+                    const Points& points, const std::vector<double>& cell_of_group,
+                    const SurfaceOptions& options, double scene_size, StripMerge& merged);
 
 // Pass 1: faces connected across welded edges, or along an edge that a neighbour's corner
 // splits (a T-junction, a point within `tolerance` of the edge), with the same group and

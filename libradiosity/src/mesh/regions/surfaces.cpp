@@ -259,20 +259,21 @@ radfmt::MeshData mesh_surfaces(const radfmt::MeshData& input, const SurfaceOptio
     SurfaceReport local;
     SurfaceReport& rep = report ? *report : local;
     rep.faces = input.patches.size();
-    std::vector<double> cell_of_group(std::max<std::size_t>(input.groups.size(), 1));
-    for (std::uint32_t g = 0; g < cell_of_group.size(); ++g)
-        cell_of_group[g] = cell_side(input, g, options);
-    const auto merged = surfaces::merge_curved_strips(
-        input, cell_of_group, options, bounds(input.vertices).diagonal(), rep.strips);
-    const auto& faces = merged ? *merged : input;
-    const auto weld = weld_by_position(faces.vertices);
+    // Pass 0 keeps the input's vertices: one weld serves both it and the regions.
+    const auto weld = weld_by_position(input.vertices);
     surfaces::Points points;
     const std::uint32_t count = weld.empty() ? 0 : *std::max_element(weld.begin(), weld.end()) + 1;
     points.position.assign(count, Vec3{});
     std::vector<bool> placed(count, false);
-    for (std::size_t v = 0; v < faces.vertices.size(); ++v)
-        if (!placed[weld[v]]) placed[weld[v]] = true, points.position[weld[v]] = faces.vertices[v];
-    const double size = bounds(faces.vertices).diagonal();
+    for (std::size_t v = 0; v < input.vertices.size(); ++v)
+        if (!placed[weld[v]]) placed[weld[v]] = true, points.position[weld[v]] = input.vertices[v];
+    const double size = bounds(input.vertices).diagonal();
+    std::vector<double> cell_of_group(std::max<std::size_t>(input.groups.size(), 1));
+    for (std::uint32_t g = 0; g < cell_of_group.size(); ++g)
+        cell_of_group[g] = cell_side(input, g, options);
+    const auto merged = surfaces::merge_curved_strips(input, weld, points, cell_of_group, options,
+                                                      size, rep.strips);
+    const auto& faces = merged ? *merged : input;
     const double tolerance = 1e-7 * size;
 
     begin_stage(options.stages, "planar regions");
