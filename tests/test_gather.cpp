@@ -324,6 +324,56 @@ TEST_CASE("a blocker casts a full shadow, and half a blocker half of one") {
     }
 }
 
+// Form factor from a point facing up at (x, 0.5 - h, z) to the 1 x 1 lamp over the origin
+// (the point under it): the four corner rectangles it splits the lamp into.
+double under_lamp(double x, double z, double h) {
+    const auto corner = [h](double a, double b) {
+        const double sa = std::sqrt(a * a + h * h), sb = std::sqrt(b * b + h * h);
+        return (a / sa * std::atan(b / sa) + b / sb * std::atan(a / sb)) / (2 * kPi);
+    };
+    return corner(0.5 + x, 0.5 + z) + corner(0.5 - x, 0.5 + z) + corner(0.5 + x, 0.5 - z) +
+           corner(0.5 - x, 0.5 - z);
+}
+
+TEST_CASE("a pixel's samples share the lights they see, each shadowed from its own point") {
+    // A black square 1 mm over B hides the whole lamp from B; from A, 6 mm away, none of it.
+    // Both take the lights seen from their mid-point: A has the closed form there, B nothing.
+    const double y = 0.05, bx = 0.2, bz = -0.1, ax = bx + 0.006;
+    std::ostringstream obj;
+    obj << kLamp << "v " << bx - 0.003 << ' ' << y + 0.001 << ' ' << bz - 0.003 << "\nv "
+        << bx + 0.003 << ' ' << y + 0.001 << ' ' << bz - 0.003 << "\nv " << bx + 0.003 << ' '
+        << y + 0.001 << ' ' << bz + 0.003 << "\nv " << bx - 0.003 << ' ' << y + 0.001 << ' '
+        << bz + 0.003 << "\nusemtl black\nf 5 6 7 8\n";
+    const auto mesh = mesh_of(obj.str(), kLampMtl, 0.25);
+    const rad::Gatherer gatherer(mesh, emission_only(mesh), {});
+    const rad::Vec3 up{0, 1, 0};
+    const double mid = (ax + bx) / 2;
+    {
+        const std::vector<rad::Gatherer::DirectSample> pair{{{ax, y, bz}, up, 1},
+                                                            {{bx, y, bz}, up, 2}};
+        std::vector<rad::Rgb> out(2);
+        gatherer.direct_light({mid, y, bz}, up, pair, out);
+        CHECK(out[0][0] == Approx(10 * under_lamp(mid, bz, 0.5 - y)).epsilon(1e-6));
+        CHECK(out[0][2] == Approx(40 * under_lamp(mid, bz, 0.5 - y)).epsilon(1e-6));
+        CHECK(out[1][0] == 0);
+        CHECK(out[1][2] == 0);
+    }
+    // A pixel 3 mm across, 10 cm under the lamp's edge, where its light changes 1.6% across the
+    // pixel: the four samples' mean is their closed forms' mean to 0.01%.
+    std::vector<rad::Gatherer::DirectSample> four;
+    double exact_mean = 0;
+    for (int k = 0; k < 4; ++k) {
+        const double x = 0.45 + 0.003 * (k % 2), z = -0.3 + 0.003 * (k / 2);
+        four.push_back({{x, 0.4, z}, up, std::uint64_t(k)});
+        exact_mean += 10 * under_lamp(x, z, 0.1) / 4;
+    }
+    std::vector<rad::Rgb> out(4);
+    gatherer.direct_light({0.4515, 0.4, -0.2985}, up, four, out);
+    double mean = 0;
+    for (const auto& e : out) mean += e[0] / 4;
+    CHECK(mean == Approx(exact_mean).epsilon(1e-4));
+}
+
 TEST_CASE("furnace: inside a closed box of uniform radiosity every point gathers B") {
     // A closed cube (faces inward) of radiosity 1 everywhere: three faces emit it (E = 1,
     // sampled directly), three reflect it (B - E = 1, found by rays). The total is 1 at any
@@ -841,7 +891,8 @@ TEST_CASE("light tree: a lantern's six faces are split by the side they face, so
     const rad::Gatherer every(mesh, b, direct_only(0)), tree(mesh, b, direct_only(0.1));
     const rad::gather::LightTree lights(mesh, emitters_of(mesh));
     rad::gather::LightTree::Cut cut;
-    for (const rad::Vec3 point : {rad::Vec3{12, 3, 5}, rad::Vec3{-9, -7, 4}, rad::Vec3{0, 0, -30}}) {
+    for (const rad::Vec3 point :
+         {rad::Vec3{12, 3, 5}, rad::Vec3{-9, -7, 4}, rad::Vec3{0, 0, -30}}) {
         const rad::Vec3 facing = rad::normalized(rad::Vec3{-point[0], -point[1], -point[2]});
         const double want = every.gather(point, facing, 1).direct[0];
         CHECK(tree.gather(point, facing, 1).direct[0] == Approx(want).epsilon(0.01));

@@ -107,9 +107,18 @@ class Gatherer {
     // (`surface`, its geometric normal) go into it, and count as nothing.
     Irradiance gather(const Vec3& point, const Vec3& normal, const Vec3& surface,
                       std::uint64_t index, const Rgb& known = {0, 0, 0}) const;
-    // The direct light alone, its shadow rays in one set (no error bar): for a view whose
-    // indirect light comes from an irradiance cache.
-    Rgb direct_light(const Vec3& point, const Vec3& normal, std::uint64_t index) const;
+    // The direct light alone, its shadow rays in one set (no error bar), for a view whose
+    // indirect light comes from an irradiance cache, at points close together on one surface
+    // (a pixel's samples on one patch): the lights they see, and what each gives unshadowed,
+    // found once from `centre` facing `facing` (unit; the points' mean: most of a point's cost
+    // where lights are many); each point then shadowed from itself with its own stream
+    // (`index`). out[k] is samples[k]'s.
+    struct DirectSample {
+        Vec3 point, normal;
+        std::uint64_t index = 0;
+    };
+    void direct_light(const Vec3& centre, const Vec3& facing, std::span<const DirectSample> samples,
+                      std::span<Rgb> out) const;
     // An irradiance cache's record: the indirect light from `rays` stratified cosine-weighted
     // rays in one set (`surface` as in gather()), and the harmonic mean distance of what they
     // met (Ward, Rubinstein and Clear 1988: how far the indirect light may be reused). Not for
@@ -183,6 +192,7 @@ class Gatherer {
     std::unique_ptr<gather::LightTree> lights_;       // emitters and bright patches
     std::unique_ptr<gather::VirtualSources> virtual_; // emitters seen in planar mirrors
     CornerColours corner_normals_;                    // smoothed normals at the corners
+    std::vector<double> quad_first_share_; // a quad's first fan triangle's share of its area
 };
 
 // Luminous efficacy of Radiance's white (lm/W) and its RGB luminance weights: illuminance

@@ -88,14 +88,27 @@ Vec3 uniform_point(std::span<const Vec3> poly, std::span<const double> cdf, doub
 }
 
 std::vector<double> fan_cdf(std::span<const Vec3> poly) {
-    std::vector<double> cdf;
-    double total = 0;
-    for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
-        total += length(cross(poly[k] - poly[0], poly[k + 1] - poly[0]));
-        cdf.push_back(total);
+    std::array<double, 2> few;
+    std::vector<double> many;
+    const auto cdf = fan_cdf(poly, few, many);
+    return {cdf.begin(), cdf.end()};
+}
+
+std::span<const double> fan_cdf(std::span<const Vec3> poly, std::array<double, 2>& few,
+                                std::vector<double>& many) {
+    const std::size_t n = poly.size() < 3 ? 0 : poly.size() - 2;
+    double* cdf = few.data();
+    if (n > few.size()) {
+        many.resize(n);
+        cdf = many.data();
     }
-    for (auto& c : cdf) c = total > 0 ? c / total : 1;
-    return cdf;
+    double total = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        total += length(cross(poly[k + 1] - poly[0], poly[k + 2] - poly[0]));
+        cdf[k] = total;
+    }
+    for (std::size_t k = 0; k < n; ++k) cdf[k] = total > 0 ? cdf[k] / total : 1;
+    return {cdf, n};
 }
 
 std::vector<Vec3> clip_to_front(std::span<const Vec3> poly, const Vec3& point, const Vec3& normal) {

@@ -3,6 +3,7 @@
 #include "radiosity/formfactor_method.hpp"
 #include "radiosity/vec.hpp"
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -46,6 +47,9 @@ Vec3 fan_triangle_point(std::span<const Vec3> poly, std::size_t tri, double u, d
 Vec3 uniform_point(std::span<const Vec3> poly, std::span<const double> fan_cdf, double u0,
                    double u1, double u2);
 std::vector<double> fan_cdf(std::span<const Vec3> poly);
+// The same into `few` for a triangle or a quad (no allocation: a shadow ray's), else `many`.
+std::span<const double> fan_cdf(std::span<const Vec3> poly, std::array<double, 2>& few,
+                                std::vector<double>& many);
 
 // F_ij by the analytic method's rule: at the quadrature `samples` of patch i (the
 // `samples_close` when the patches are within twice their size), the exact form factor of j

@@ -8,6 +8,7 @@
 #include "radiosity/patch_geometry.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace rad {
@@ -114,7 +115,11 @@ Vec3 Gatherer::point_on_light(std::size_t patch, double u, Rng& rng) const {
     std::array<Vec3, 4> few;
     std::vector<Vec3> many;
     const auto polygon = patch_points(mesh_, patch, few, many);
-    const auto cdf = ff::fan_cdf(polygon);
+    std::array<double, 2> few_cdf{quad_first_share_[patch], 1}; // a quad's or a triangle's
+    std::vector<double> many_cdf;
+    const auto cdf = polygon.size() <= 4
+                         ? std::span<const double>(few_cdf.data(), polygon.size() - 2)
+                         : ff::fan_cdf(polygon, few_cdf, many_cdf);
     return ff::uniform_point(polygon, cdf, u, rng.uniform(), rng.uniform());
 }
 
@@ -155,7 +160,9 @@ Rgb Gatherer::pooled_visible_fraction(const Vec3& point, std::span<const Seen* c
             const auto& light = lights_->pick(seen.id, rng.uniform(), &along);
             q = point_on_light(light.patch, along, rng);
         } else {
-            const auto cdf = ff::fan_cdf(seen.clipped);
+            std::array<double, 2> few_cdf;
+            std::vector<double> many_cdf;
+            const auto cdf = ff::fan_cdf(seen.clipped, few_cdf, many_cdf);
             q = ff::uniform_point(seen.clipped, cdf, rng.uniform(), rng.uniform(), rng.uniform());
         }
         const Rgb arrives = seen_through(point, q);

@@ -8,6 +8,7 @@
 #include "radiosity/batch_error.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
+#include "radiosity/patch_geometry.hpp"
 #include "radiosity/random.hpp"
 
 #include <algorithm>
@@ -54,6 +55,11 @@ Gatherer::Gatherer(const radfmt::MeshData& mesh, std::span<const Rgb> radiosity,
     }
     find_bright_patches();
     build_light_tree();
+    // Shadow rays pick points on lights by their fan's areas: a quad's split once here.
+    quad_first_share_.assign(n, 1);
+    for (std::size_t i = 0; i < n; ++i)
+        if (mesh.corners(i).size() == 4)
+            quad_first_share_[i] = ff::fan_cdf(patch_points(mesh, i))[0];
     virtual_ = std::make_unique<gather::VirtualSources>(mesh, *specular_, emission_);
     total_corners_ = corner_colours(mesh, total, options.smoothing, options.crease_deg);
     // Each patch keeps its solved mean under the smoothing (keep_patch_means): a point beside
@@ -252,12 +258,17 @@ Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, const Vec3& s
 }
 
 // No error bar is asked of it: one set of all the shadow rays (better stratified, and the
-// per-batch work once).
-Rgb Gatherer::direct_light(const Vec3& point, const Vec3& normal, std::uint64_t index) const {
+// per-batch work once). What a light gives unshadowed changes across a pixel's footprint by
+// far less than the shadow rays' noise: its value at their centre stands for each.
+void Gatherer::direct_light(const Vec3& centre, const Vec3& facing,
+                            std::span<const DirectSample> samples, std::span<Rgb> out) const {
     double total = 0;
-    const auto seen = seen_lights(point, normal, total);
-    Rng rng = batch_stream(options_.seed ^ 0xD1EC7ull, index, 0);
-    return direct_batch(point, normal, seen, total, options_.shadow_rays, rng);
+    const auto seen = seen_lights(centre, facing, total);
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        Rng rng = batch_stream(options_.seed ^ 0xD1EC7ull, samples[k].index, 0);
+        out[k] = direct_batch(samples[k].point, samples[k].normal, seen, total,
+                              options_.shadow_rays, rng);
+    }
 }
 
 Gatherer::IndirectSample Gatherer::indirect_sample(const Vec3& point, const Vec3& normal,

@@ -100,29 +100,85 @@ IrradianceCache build_cache(const Gatherer& gatherer, const View& view, int widt
     return IrradianceCache(std::move(records), o.accuracy);
 }
 
-// E + rho x (the direct light, the cache's indirect light or, where no record is valid, the
-// point's own, and the luminaires'); `own` counts the points that gathered their own.
-Rgb cached_colour(const Gatherer& gatherer, const IrradianceCache& cache,
-                  const LuminaireSet* luminaires, const RayScene::Hit& hit, const Vec3& point,
-                  std::uint64_t index, std::atomic<long>& own) {
-    const auto& mesh = gatherer.mesh();
+// E + rho x (the direct, indirect and luminaires' light at a sample on `hit`'s patch).
+Rgb lit_colour(const radfmt::MeshData& mesh, const RayScene::Hit& hit, const Rgb& direct,
+               const Rgb& indirect, const Rgb& luminaires) {
     const auto& patch = mesh.patches[static_cast<std::size_t>(hit.patch)];
     const auto& material = mesh.materials[patch.material];
-    const auto normal = gatherer.shading_normal(hit);
-    Rgb h = gatherer.direct_light(point, normal, index);
-    Rgb indirect;
-    if (!cache.lookup(point, normal, indirect)) {
-        ++own;
-        indirect = gatherer
-                       .indirect_sample(point, normal, patch.normal,
-                                        std::max(1, gatherer.options().rays), index)
-                       .indirect;
-    }
-    const Rgb lum = luminaire_light(gatherer, luminaires, point, normal);
     Rgb out;
     for (int c = 0; c < 3; ++c)
-        out[c] = material.emission[c] + material.reflectance[c] * (h[c] + indirect[c] + lum[c]);
+        out[c] = material.emission[c] +
+                 material.reflectance[c] * (direct[c] + indirect[c] + luminaires[c]);
     return out;
+}
+
+// A pixel's front-facing samples on one patch, by the cache. What changes little across a
+// pixel is found once at the samples' mean: the lights they see and what each gives
+// unshadowed (Gatherer::direct_light over several points), and the cache's indirect light;
+// each sample is shadowed from its own point, and where no record covers the mean, gathers
+// its own indirect light. Their colours' sum goes to `sum`; `own` counts those own gathers.
+void add_cached_patch(const Gatherer& gatherer, const IrradianceCache& cache,
+                      const LuminaireSet* luminaires,
+                      std::span<const Gatherer::DirectSample> samples,
+                      std::span<const RayScene::Hit* const> hits, std::atomic<long>& own,
+                      double sum[3]) {
+    Vec3 centre{0, 0, 0}, facing{0, 0, 0};
+    for (const auto& s : samples) {
+        centre = centre + s.point;
+        facing = facing + s.normal;
+    }
+    centre = centre * (1.0 / double(samples.size()));
+    const double n = length(facing);
+    facing = n > 0 ? facing * (1 / n) : samples[0].normal;
+    thread_local std::vector<Rgb> direct;
+    direct.resize(samples.size());
+    gatherer.direct_light(centre, facing, samples, direct);
+    Rgb shared_indirect;
+    const bool cached = cache.lookup(centre, facing, shared_indirect);
+    const auto& mesh = gatherer.mesh();
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        const auto& s = samples[k];
+        Rgb indirect = shared_indirect;
+        if (!cached) {
+            ++own;
+            const Vec3 surface = mesh.patches[static_cast<std::size_t>(hits[k]->patch)].normal;
+            indirect = gatherer
+                           .indirect_sample(s.point, s.normal, surface,
+                                            std::max(1, gatherer.options().rays), s.index)
+                           .indirect;
+        }
+        const Rgb lum = luminaire_light(gatherer, luminaires, s.point, s.normal);
+        const Rgb colour = lit_colour(mesh, *hits[k], direct[k], indirect, lum);
+        for (int c = 0; c < 3; ++c) sum[c] += colour[c];
+    }
+}
+
+// A pixel's front-facing samples by the cache, patch by patch (add_cached_patch).
+struct PixelSample {
+    RayScene::Hit hit;
+    Vec3 point;
+    std::uint64_t index;
+};
+void add_cached_samples(const Gatherer& gatherer, const IrradianceCache& cache,
+                        const LuminaireSet* luminaires, std::span<const PixelSample> samples,
+                        std::atomic<long>& own, double sum[3]) {
+    thread_local std::vector<Gatherer::DirectSample> on_patch;
+    thread_local std::vector<const RayScene::Hit*> hits;
+    thread_local std::vector<char> done;
+    done.assign(samples.size(), 0);
+    for (std::size_t first = 0; first < samples.size(); ++first) {
+        if (done[first]) continue;
+        on_patch.clear();
+        hits.clear();
+        for (std::size_t k = first; k < samples.size(); ++k) {
+            if (done[k] || samples[k].hit.patch != samples[first].hit.patch) continue;
+            done[k] = 1;
+            hits.push_back(&samples[k].hit);
+            on_patch.push_back(
+                {samples[k].point, gatherer.shading_normal(samples[k].hit), samples[k].index});
+        }
+        add_cached_patch(gatherer, cache, luminaires, on_patch, hits, own, sum);
+    }
 }
 } // namespace
 
@@ -153,9 +209,11 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
     }
     Progress progress("rad-shade gather", std::uint64_t(end_row - first_row), quiet);
     tbb::parallel_for(first_row, end_row, [&](int y) {
+        thread_local std::vector<PixelSample> samples;
         for (int x = 0; x < width; ++x) {
             double sum[3] = {0, 0, 0}, squared_error[3] = {0, 0, 0};
             int backs = 0;
+            samples.clear();
             for (int sy = 0; sy < ss; ++sy)
                 for (int sx = 0; sx < ss; ++sx) {
                     // The sample's centre, in the rasteriser's screen convention.
@@ -169,16 +227,20 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
                         continue;
                     }
                     const std::uint64_t index = std::uint64_t(y * ss + sy) * W + (x * ss + sx);
-                    Rgb error{0, 0, 0};
                     const Vec3 point = view.position + ray * hit.distance;
+                    if (cache) {
+                        samples.push_back({hit, point, index});
+                        continue;
+                    }
+                    Rgb error{0, 0, 0};
                     const auto colour =
-                        cache ? cached_colour(gatherer, *cache, luminaires, hit, point, index, own)
-                              : gathered_colour(gatherer, luminaires, hit, point, index, &error);
+                        gathered_colour(gatherer, luminaires, hit, point, index, &error);
                     for (int c = 0; c < 3; ++c) {
                         sum[c] += colour[c];
                         squared_error[c] += error[c] * error[c];
                     }
                 }
+            if (cache) add_cached_samples(gatherer, *cache, luminaires, samples, own, sum);
             // The pixel is the mean of its samples, each gathered from its own streams: its
             // error, theirs added in quadrature over the count.
             const std::size_t at = std::size_t(y) * width + x;
