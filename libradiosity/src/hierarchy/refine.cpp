@@ -96,7 +96,7 @@ constexpr double kLightShare = 1.0 / 50;
 // took the worst surface from 1.99% to 0.90% for 1.3% more links (pandora-cut: 2.4% more);
 // a tenth gave 0.94% and a better rms on hanging lamps (2.07% against 2.37%) for 8% more
 // (pandora-cut: 18% more, and a third more time). Where it was found (a lamp up a recess,
-// 1.99%), a global epsilon of 0.01 with 14% more links left it at 2.15%.
+// 1.99%), a global epsilon of 0.01 with 76% more links left it at 2.15%.
 constexpr double kShadowShare = 0.5;
 // Points on the receiving side of a contour-integral link value.
 constexpr int kOutlinePoints = 16;
