@@ -13,6 +13,7 @@
 #include "radiosity/huge_pages.hpp"
 #include "radiosity/image_parts.hpp"
 #include "radiosity/irradiance_cache.hpp"
+#include "radiosity/irradiance_gradients.hpp"
 #include "radiosity/light_groups.hpp"
 #include "radiosity/luminaire_image.hpp"
 #include "radiosity/luminance_map.hpp"
@@ -177,7 +178,8 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
                  "--gather: every sample casts all its indirect rays, instead of taking the "
                  "indirect light from an irradiance cache of records spread over the view "
                  "(docs/images.md); --error-layer and --accuracy imply it");
-    app.add_option("--cache-rays", a.cache.rays, "--gather: indirect rays of a cache record")
+    app.add_option("--cache-rays", a.cache.rays,
+                   "--gather: indirect rays of a cache record (about: a theta x phi grid)")
         ->capture_default_str()
         ->check(CLI::Range(16, 1000000));
     app.add_option("--cache-spacing", a.cache.spacing,
@@ -586,7 +588,8 @@ int shade(ShadeArgs& a, int argc, char** argv) {
         std::fprintf(stderr,
                      "rad-shade: irradiance cache: %zu records of %d rays; %ld of the samples "
                      "no record covered gathered their own\n",
-                     image.cache_records, a.cache.rays, image.uncached_samples);
+                     image.cache_records, rad::hemisphere_grid(a.cache.rays).cells(),
+                     image.uncached_samples);
 
     const auto group_images = render_layers(a, in, view, mode);
     std::vector<rad::ImageLayer> exr_layers;

@@ -119,13 +119,16 @@ class Gatherer {
     };
     void direct_light(const Vec3& centre, const Vec3& facing, std::span<const DirectSample> samples,
                       std::span<Rgb> out) const;
-    // An irradiance cache's record: the indirect light from `rays` stratified cosine-weighted
-    // rays in one set (`surface` as in gather()), and the harmonic mean distance of what they
-    // met (Ward, Rubinstein and Clear 1988: how far the indirect light may be reused). Not for
+    // An irradiance cache's record: the indirect light from about `rays` cosine-weighted rays,
+    // one in each cell of a theta x phi grid (`surface` as in gather()), the harmonic mean and
+    // the least distance of what they met (Ward, Rubinstein and Clear 1988: how far the
+    // indirect light may be reused), and its gradients (Ward and Heckbert 1992). Not for
     // meshes with mirrors or glass.
     struct IndirectSample {
         Rgb indirect{0, 0, 0};
-        double harmonic_distance = 0; // 0: nothing was met
+        double harmonic_distance = 0;                      // 0: nothing was met
+        double nearest = 0;                                // 0: nothing was met
+        std::array<Vec3, 3> translational{}, rotational{}; // see IrradianceGradients
     };
     IndirectSample indirect_sample(const Vec3& point, const Vec3& normal, const Vec3& surface,
                                    int rays, std::uint64_t index) const;

@@ -8,6 +8,7 @@
 #include "radiosity/batch_error.hpp"
 #include "radiosity/error.hpp"
 #include "radiosity/formfactor.hpp"
+#include "radiosity/irradiance_gradients.hpp"
 #include "radiosity/patch_geometry.hpp"
 #include "radiosity/random.hpp"
 
@@ -271,16 +272,43 @@ void Gatherer::direct_light(const Vec3& centre, const Vec3& facing,
     }
 }
 
+// One ray a cell of hemisphere_grid(rays), each jittered from the record's own stream; what
+// each met feeds the gradients.
 Gatherer::IndirectSample Gatherer::indirect_sample(const Vec3& point, const Vec3& normal,
                                                    const Vec3& surface, int rays,
                                                    std::uint64_t index) const {
     if (specular_->any())
         throw InternalError("an irradiance cache's record on a mesh with mirrors or glass");
+    const auto [m, n] = hemisphere_grid(rays);
     Rng rng = batch_stream(options_.seed ^ 0xCAC4Eull, index, 0);
-    Evidence evidence;
+    const Vec3 tu = orthogonal(normal), tv = cross(normal, tu);
+    thread_local std::vector<HemisphereCell> cells;
+    cells.assign(std::size_t(m) * n, HemisphereCell{});
+    double inverse_distance = 0, nearest = 0;
+    long hits = 0;
+    for (int j = 0; j < m; ++j)
+        for (int k = 0; k < n; ++k) {
+            const double u = rng.uniform(), v = rng.uniform();
+            const Vec3 d = hemisphere_cell_direction(j, k, m, n, u, v, normal, tu, tv);
+            if (dot(d, surface) <= 0) continue; // into the surface under a shading normal
+            const auto hit = scene_->trace(point, d);
+            if (hit.patch < 0) continue;
+            auto& cell = cells[std::size_t(j) * n + k];
+            cell.distance = std::max(hit.distance, 1e-9);
+            ++hits;
+            inverse_distance += 1 / cell.distance;
+            nearest = nearest > 0 ? std::min(nearest, cell.distance) : cell.distance;
+            // Backs and lights (the direct light's) give nothing here, yet bound the cell.
+            if (hit.front && !bright_[static_cast<std::size_t>(hit.patch)])
+                cell.radiance = reflected_at(hit);
+        }
+    const auto g = irradiance_gradients(cells, m, n, tu, tv);
     IndirectSample out;
-    out.indirect = cast_indirect(point, normal, surface, std::max(rays, 1), rng, evidence);
-    out.harmonic_distance = evidence.hits > 0 ? evidence.hits / evidence.inverse_distance : 0;
+    out.indirect = g.mean;
+    out.translational = g.translational;
+    out.rotational = g.rotational;
+    out.harmonic_distance = hits > 0 ? double(hits) / inverse_distance : 0;
+    out.nearest = nearest;
     return out;
 }
 

@@ -51,7 +51,12 @@ bool IrradianceCache::lookup(const Vec3& x, const Vec3& n, Rgb& out) const {
         if (!(e < accuracy_)) continue;
         const double w = 1 / std::max(e, 1e-9) - 1 / accuracy_;
         weight_sum += w;
-        for (int c = 0; c < 3; ++c) sum[c] += w * r.indirect[c];
+        const Vec3 turn = cross(r.normal, n);
+        for (int c = 0; c < 3; ++c) {
+            const double moved =
+                r.indirect[c] + dot(turn, r.rotational[c]) + dot(d, r.translational[c]);
+            sum[c] += w * std::max(0.0, moved);
+        }
     }
     if (!(weight_sum > 0)) return false;
     for (int c = 0; c < 3; ++c) out[c] = sum[c] / weight_sum;
