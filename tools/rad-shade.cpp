@@ -587,7 +587,7 @@ int shade(ShadeArgs& a, int argc, char** argv) {
     if (image.cache_records > 0 && !a.quiet)
         std::fprintf(stderr,
                      "rad-shade: irradiance cache: %zu records of %d rays; %ld of the samples "
-                     "no record covered gathered their own\n",
+                     "no record covered shared a gather of their own, a pixel's on a patch\n",
                      image.cache_records, rad::hemisphere_grid(a.cache.rays).cells(),
                      image.uncached_samples);
 

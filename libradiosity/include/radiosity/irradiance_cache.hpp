@@ -12,7 +12,7 @@
 //
 // Deterministic: the records sit at fixed pixels (every `spacing`-th, the image's own grid,
 // the same for a whole image and for each --rows band) and each is computed from its own
-// stream; a sample no record covers gathers its own indirect light.
+// stream; a pixel's samples no record covers share a gather of their own.
 #pragma once
 #include "radiosity/vec.hpp"
 
@@ -29,7 +29,7 @@ struct IrradianceCacheOptions {
     double accuracy = 0.2; // Ward's a: how far a record is reused
     // A record reaches at least this many pixels (its radius is at least that footprint over
     // the accuracy); nearer edges and corners (small harmonic distance) samples between records
-    // no record reaches gather their own.
+    // no record reaches share a gather of their own, a pixel's.
     double min_reach_pixels = 0.5;
     // ... and at most this many (a record reaching far only slows every lookup it is in, and
     // its light is averaged over what it no longer sees).

@@ -22,8 +22,8 @@ struct Image {
     // A final gather's per-pixel standard error (RGB, the image's units; empty when none):
     // what the gather's sampling leaves uncertain in each pixel (rad-shade --error-layer).
     std::vector<float> error;
-    // An irradiance cache's records, and the samples no record covered (they gathered their
-    // own indirect light).
+    // An irradiance cache's records, and the samples no record covered (a pixel's on one
+    // patch shared a gather of their own, as a record's).
     std::size_t cache_records = 0;
     long uncached_samples = 0;
 };

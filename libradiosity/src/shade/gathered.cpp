@@ -138,11 +138,16 @@ Rgb lit_colour(const radfmt::MeshData& mesh, const RayScene::Hit& hit, const Rgb
     return out;
 }
 
+// The streams of gathers made where no record reaches: apart from the records' (numbered by
+// their slots, fewer than the image's samples).
+constexpr std::uint64_t kUncoveredStreams = std::uint64_t(1) << 48;
+
 // A pixel's front-facing samples on one patch, by the cache. What changes little across a
 // pixel is found once at the samples' mean: the lights they see and what each gives
-// unshadowed (Gatherer::direct_light over several points), and the cache's indirect light;
-// each sample is shadowed from its own point, and where no record covers the mean, gathers
-// its own indirect light. Their colours' sum goes to `sum`; `own` counts those own gathers.
+// unshadowed (Gatherer::direct_light over several points), and the indirect light: the
+// cache's, or where no record covers the mean, one gather there (a gather's rays, --gather N)
+// for these samples only. Each sample is shadowed from its own point. Their
+// colours' sum goes to `sum`; `own` counts the samples no record covered.
 void add_cached_patch(const Gatherer& gatherer, const IrradianceCache& cache,
                       const LuminaireSet* luminaires,
                       std::span<const Gatherer::DirectSample> samples,
@@ -159,20 +164,19 @@ void add_cached_patch(const Gatherer& gatherer, const IrradianceCache& cache,
     thread_local std::vector<Rgb> direct;
     direct.resize(samples.size());
     gatherer.direct_light(centre, facing, samples, direct);
-    Rgb shared_indirect;
-    const bool cached = cache.lookup(centre, facing, shared_indirect);
     const auto& mesh = gatherer.mesh();
+    Rgb indirect;
+    if (!cache.lookup(centre, facing, indirect)) {
+        own += long(samples.size());
+        const Vec3 surface = mesh.patches[static_cast<std::size_t>(hits[0]->patch)].normal;
+        indirect =
+            gatherer
+                .indirect_sample(centre, facing, surface, std::max(1, gatherer.options().rays),
+                                 kUncoveredStreams + samples[0].index)
+                .indirect;
+    }
     for (std::size_t k = 0; k < samples.size(); ++k) {
         const auto& s = samples[k];
-        Rgb indirect = shared_indirect;
-        if (!cached) {
-            ++own;
-            const Vec3 surface = mesh.patches[static_cast<std::size_t>(hits[k]->patch)].normal;
-            indirect = gatherer
-                           .indirect_sample(s.point, s.normal, surface,
-                                            std::max(1, gatherer.options().rays), s.index)
-                           .indirect;
-        }
         const Rgb lum = luminaire_light(gatherer, luminaires, s.point, s.normal);
         const Rgb colour = lit_colour(mesh, *hits[k], direct[k], indirect, lum);
         for (int c = 0; c < 3; ++c) sum[c] += colour[c];
