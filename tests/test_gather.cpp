@@ -649,6 +649,34 @@ TEST_CASE("light tree: 4096 emitting patches seen from afar are a few nodes, and
     CHECK(cut.lights.size() + cut.clusters.size() == 0);
 }
 
+TEST_CASE("light tree: a cut kept at one point and taken at its neighbour lights the neighbour") {
+    // The 2 x 2 lamp of 4096 patches, 2 below it: the cut at a point holds clusters. Taken at a
+    // point a pixel away (1 mm), the direct light is that point's own to 1e-4; taken 0.6 away,
+    // its clusters and lights are still valued there: the closed form within 1%.
+    const std::string lamp = "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nusemtl lamp\nf 1 2 3 4\n";
+    const auto mesh = mesh_of(lamp, kLampMtl, 2.0 / 64);
+    const auto b = emission_only(mesh);
+    const rad::Gatherer tree(mesh, b, direct_only(0.1));
+    const rad::Vec3 up{0, 1, 0};
+    const auto direct = [&](const rad::Vec3& p, rad::Gatherer::KeptCut* kept) {
+        const rad::Gatherer::DirectSample sample{p, up, 1};
+        rad::Rgb out;
+        tree.direct_light(p, up, {&sample, 1}, {&out, 1}, kept);
+        return out[0];
+    };
+    rad::Gatherer::KeptCut kept;
+    const double at_a = direct({0.3, -2, 0.1}, &kept);
+    REQUIRE(kept.held);
+    CHECK(!kept.clusters.empty());
+    CHECK(at_a == Approx(direct({0.3, -2, 0.1}, nullptr)).epsilon(1e-12));
+    const rad::Vec3 b_point{0.301, -2, 0.1};
+    CHECK(direct(b_point, &kept) == Approx(direct(b_point, nullptr)).epsilon(1e-4));
+    // From 0.6 across the axis: the lamp's closed form on its axis.
+    const double far = direct({0, -2, 0}, &kept);
+    CHECK(far == Approx(10 * axis_square(1, 2)).epsilon(0.01));
+    CHECK(std::abs(far / at_a - 1) > 0.02); // the light differs there: not the kept values
+}
+
 TEST_CASE("light tree: on an all-emitting torus the clusters agree with every patch on its own") {
     // The Pixar torus with every face emitting (tests/data/torus-creases/torus-lit.*): curved,
     // so lights face every way, and points on the inner ring see many of them.

@@ -117,8 +117,16 @@ class Gatherer {
         Vec3 point, normal;
         std::uint64_t index = 0;
     };
+    // With `kept`: which lights the points see is taken from it when it holds a cut (each
+    // light's and group's light still found at `centre`), and put in it when not. For
+    // neighbouring pixels on one surface, whose cuts would differ by nothing or by a group
+    // opened one level more or less.
+    struct KeptCut {
+        std::vector<std::uint32_t> lights, clusters; // the light tree's lights and nodes
+        bool held = false;
+    };
     void direct_light(const Vec3& centre, const Vec3& facing, std::span<const DirectSample> samples,
-                      std::span<Rgb> out) const;
+                      std::span<Rgb> out, KeptCut* kept = nullptr) const;
     // An irradiance cache's record: the indirect light from about `rays` cosine-weighted rays,
     // one in each cell of a theta x phi grid (`surface` as in gather()), the harmonic mean and
     // the least distance of what they met (Ward, Rubinstein and Clear 1988: how far the
@@ -157,7 +165,8 @@ class Gatherer {
     void build_light_tree();
     // The lights the point sees (its cut of the light tree, unshadowed), into a per-thread
     // buffer; `total` is their weight.
-    std::span<Seen> seen_lights(const Vec3& point, const Vec3& normal, double& total) const;
+    std::span<Seen> seen_lights(const Vec3& point, const Vec3& normal, double& total,
+                                KeptCut* kept = nullptr) const;
     // One batch: the direct light of `seen` with `shadow_rays` shadow rays, and the indirect
     // light of `rays` rays (`evidence` counts what they hit).
     Rgb direct_batch(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,

@@ -203,21 +203,41 @@ Rgb Gatherer::shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> se
     return sum;
 }
 
-// The point's cut of the light tree: single lights by their exact form factors, groups as
-// one, unshadowed.
+namespace {
+// The point's cut of the light tree.
+void find_cut(const gather::LightTree& lights, const GatherOptions& o, const Vec3& point,
+              const Vec3& normal, gather::LightTree::Cut& cut) {
+    // Exact: every light on its own too, no cluster's approximation.
+    // (cluster_ratio 0: every light on its own, none taken as one.)
+    const double tolerance = o.exact || o.cluster_tolerance <= 0 || o.cluster_ratio <= 0
+                                 ? 0
+                                 : o.cluster_tolerance * lights.rough_irradiance(point, normal);
+    lights.cut(point, normal, o.exact ? 0 : o.cluster_ratio, cut, tolerance);
+}
+} // namespace
+
+// The point's cut of the light tree (or the one `kept`): single lights by their exact form
+// factors, groups as one, unshadowed.
 std::span<Gatherer::Seen> Gatherer::seen_lights(const Vec3& point, const Vec3& normal,
-                                                double& total) const {
+                                                double& total, KeptCut* kept) const {
     total = 0;
     if (lights_->empty()) return {};
     thread_local gather::LightTree::Cut cut;
     thread_local std::vector<Seen> seen; // kept between points for their buffers
-    // Exact: every light on its own too, no cluster's approximation.
-    // (cluster_ratio 0: every light on its own, none taken as one.)
-    const double tolerance =
-        options_.exact || options_.cluster_tolerance <= 0 || options_.cluster_ratio <= 0
-            ? 0
-            : options_.cluster_tolerance * lights_->rough_irradiance(point, normal);
-    lights_->cut(point, normal, options_.exact ? 0 : options_.cluster_ratio, cut, tolerance);
+    if (kept && kept->held) {
+        cut.lights = kept->lights;
+        cut.clusters.clear();
+        for (const auto node : kept->clusters)
+            cut.clusters.push_back({node, lights_->cluster_irradiance(node, point, normal)});
+    } else {
+        find_cut(*lights_, options_, point, normal, cut);
+        if (kept) {
+            kept->lights = cut.lights;
+            kept->clusters.clear();
+            for (const auto& c : cut.clusters) kept->clusters.push_back(c.node);
+            kept->held = true;
+        }
+    }
     std::size_t count = 0;
     for (const auto i : cut.lights) {
         const auto& light = lights_->lights()[i];

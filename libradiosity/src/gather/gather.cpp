@@ -262,9 +262,10 @@ Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, const Vec3& s
 // per-batch work once). What a light gives unshadowed changes across a pixel's footprint by
 // far less than the shadow rays' noise: its value at their centre stands for each.
 void Gatherer::direct_light(const Vec3& centre, const Vec3& facing,
-                            std::span<const DirectSample> samples, std::span<Rgb> out) const {
+                            std::span<const DirectSample> samples, std::span<Rgb> out,
+                            KeptCut* kept) const {
     double total = 0;
-    const auto seen = seen_lights(centre, facing, total);
+    const auto seen = seen_lights(centre, facing, total, kept);
     for (std::size_t k = 0; k < samples.size(); ++k) {
         Rng rng = batch_stream(options_.seed ^ 0xD1EC7ull, samples[k].index, 0);
         out[k] = direct_batch(samples[k].point, samples[k].normal, seen, total,

@@ -47,6 +47,10 @@ class LightTree {
     // `tolerance` (brightness, absolute; 0: none).
     void cut(const Vec3& point, const Vec3& normal, double max_ratio, Cut& out,
              double tolerance = 0) const;
+    // A cluster's irradiance at another point (a cut kept for points close by).
+    Rgb cluster_irradiance(std::uint32_t node, const Vec3& point, const Vec3& normal) const {
+        return cluster_irradiance(nodes_[node], point, normal);
+    }
     // The lights' whole irradiance (brightness) at the point, roughly: the cut at kLooseRatio,
     // single lights as points (at most their radiosity). To set a cut's tolerance.
     double rough_irradiance(const Vec3& point, const Vec3& normal) const;

@@ -151,8 +151,8 @@ constexpr std::uint64_t kUncoveredStreams = std::uint64_t(1) << 48;
 void add_cached_patch(const Gatherer& gatherer, const IrradianceCache& cache,
                       const LuminaireSet* luminaires,
                       std::span<const Gatherer::DirectSample> samples,
-                      std::span<const RayScene::Hit* const> hits, std::atomic<long>& own,
-                      double sum[3]) {
+                      std::span<const RayScene::Hit* const> hits, Gatherer::KeptCut* kept,
+                      std::atomic<long>& own, double sum[3]) {
     Vec3 centre{0, 0, 0}, facing{0, 0, 0};
     for (const auto& s : samples) {
         centre = centre + s.point;
@@ -163,7 +163,7 @@ void add_cached_patch(const Gatherer& gatherer, const IrradianceCache& cache,
     facing = n > 0 ? facing * (1 / n) : samples[0].normal;
     thread_local std::vector<Rgb> direct;
     direct.resize(samples.size());
-    gatherer.direct_light(centre, facing, samples, direct);
+    gatherer.direct_light(centre, facing, samples, direct, kept);
     const auto& mesh = gatherer.mesh();
     Rgb indirect;
     if (!cache.lookup(centre, facing, indirect)) {
@@ -183,7 +183,30 @@ void add_cached_patch(const Gatherer& gatherer, const IrradianceCache& cache,
     }
 }
 
-// A pixel's front-facing samples by the cache, patch by patch (add_cached_patch).
+// Neighbouring pixels share which lights they see (the light tree's cut; each light's value
+// is still found per pixel): a pixel at an even column wholly on one patch keeps its cut, and
+// the next pixel, wholly on that patch, takes it. Per row, in column order: the same at any
+// thread count and in any --rows band.
+struct CutShare {
+    Gatherer::KeptCut kept;
+    std::int64_t patch = -1;
+};
+
+// The cut a pixel's samples keep or take (nullptr: neither, they span patches).
+Gatherer::KeptCut* shared_cut(std::int64_t patch, bool one_patch, bool second, CutShare& share) {
+    Gatherer::KeptCut* kept = nullptr;
+    if (second) {
+        if (one_patch && share.patch == patch) kept = &share.kept;
+    } else if (one_patch) {
+        share.kept.held = false;
+        kept = &share.kept;
+    }
+    share.patch = !second && one_patch ? patch : -1;
+    return kept;
+}
+
+// A pixel's front-facing samples by the cache, patch by patch (add_cached_patch); `second`:
+// the pixel is at an odd column (it may take its left neighbour's cut).
 struct PixelSample {
     RayScene::Hit hit;
     Vec3 point;
@@ -191,11 +214,17 @@ struct PixelSample {
 };
 void add_cached_samples(const Gatherer& gatherer, const IrradianceCache& cache,
                         const LuminaireSet* luminaires, std::span<const PixelSample> samples,
-                        std::atomic<long>& own, double sum[3]) {
+                        bool second, CutShare& share, std::atomic<long>& own, double sum[3]) {
     thread_local std::vector<Gatherer::DirectSample> on_patch;
     thread_local std::vector<const RayScene::Hit*> hits;
     thread_local std::vector<char> done;
     done.assign(samples.size(), 0);
+    const bool one_patch =
+        !samples.empty() && std::all_of(samples.begin(), samples.end(), [&](const auto& s) {
+            return s.hit.patch == samples[0].hit.patch;
+        });
+    Gatherer::KeptCut* kept =
+        shared_cut(samples.empty() ? -1 : samples[0].hit.patch, one_patch, second, share);
     for (std::size_t first = 0; first < samples.size(); ++first) {
         if (done[first]) continue;
         on_patch.clear();
@@ -207,7 +236,7 @@ void add_cached_samples(const Gatherer& gatherer, const IrradianceCache& cache,
             on_patch.push_back(
                 {samples[k].point, gatherer.shading_normal(samples[k].hit), samples[k].index});
         }
-        add_cached_patch(gatherer, cache, luminaires, on_patch, hits, own, sum);
+        add_cached_patch(gatherer, cache, luminaires, on_patch, hits, kept, own, sum);
     }
 }
 } // namespace
@@ -240,6 +269,7 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
     Progress progress("rad-shade gather", std::uint64_t(end_row - first_row), quiet);
     tbb::parallel_for(first_row, end_row, [&](int y) {
         thread_local std::vector<PixelSample> samples;
+        CutShare share;
         for (int x = 0; x < width; ++x) {
             double sum[3] = {0, 0, 0}, squared_error[3] = {0, 0, 0};
             int backs = 0;
@@ -270,7 +300,9 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
                         squared_error[c] += error[c] * error[c];
                     }
                 }
-            if (cache) add_cached_samples(gatherer, *cache, luminaires, samples, own, sum);
+            if (cache)
+                add_cached_samples(gatherer, *cache, luminaires, samples, x % 2 == 1, share, own,
+                                   sum);
             // The pixel is the mean of its samples, each gathered from its own streams: its
             // error, theirs added in quadrature over the count.
             const std::size_t at = std::size_t(y) * width + x;
