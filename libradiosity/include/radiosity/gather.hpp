@@ -187,6 +187,15 @@ class Gatherer {
     // What an indirect ray from a point brings through mirrors and glass (its first surface
     // as reflected light; what it reaches beyond, emission included); counts its hits.
     Rgb specular_ray(const Vec3& point, const Vec3& d, int& hits, int& backs) const;
+    // What a ray meeting no mirror or glass brings back: the light reflected where it lands
+    // (none from a back, nor from a light: the direct light's), and how far it went (0: it
+    // met nothing).
+    struct RayReturn {
+        Rgb radiance{0, 0, 0};
+        double distance = 0;
+        bool back = false;
+    };
+    RayReturn diffuse_ray(const Vec3& point, const Vec3& d) const;
     double form_factor_to(const Vec3& point, const Vec3& normal, std::size_t patch,
                           std::vector<Vec3>& clipped) const;
     Rgb visible_fraction(const Vec3& point, const Vec3& normal, std::size_t patch,

@@ -292,16 +292,13 @@ Gatherer::IndirectSample Gatherer::indirect_sample(const Vec3& point, const Vec3
             const double u = rng.uniform(), v = rng.uniform();
             const Vec3 d = hemisphere_cell_direction(j, k, m, n, u, v, normal, tu, tv);
             if (dot(d, surface) <= 0) continue; // into the surface under a shading normal
-            const auto hit = scene_->trace(point, d);
-            if (hit.patch < 0) continue;
-            auto& cell = cells[std::size_t(j) * n + k];
-            cell.distance = std::max(hit.distance, 1e-9);
+            const auto ray = diffuse_ray(point, d);
+            if (!(ray.distance > 0)) continue;
+            // Backs and lights give nothing here, yet bound the cell.
+            cells[std::size_t(j) * n + k] = {ray.radiance, ray.distance};
             ++hits;
-            inverse_distance += 1 / cell.distance;
-            nearest = nearest > 0 ? std::min(nearest, cell.distance) : cell.distance;
-            // Backs and lights (the direct light's) give nothing here, yet bound the cell.
-            if (hit.front && !bright_[static_cast<std::size_t>(hit.patch)])
-                cell.radiance = reflected_at(hit);
+            inverse_distance += 1 / ray.distance;
+            nearest = nearest > 0 ? std::min(nearest, ray.distance) : ray.distance;
         }
     const auto g = irradiance_gradients(cells, m, n, tu, tv);
     IndirectSample out;
@@ -338,23 +335,29 @@ Rgb Gatherer::cast_indirect(const Vec3& point, const Vec3& normal, const Vec3& s
             for (int k = 0; k < 3; ++k) sum[k] += b[k];
             continue;
         }
-        const auto hit = scene_->trace(point, d);
-        if (hit.patch < 0) continue;
+        const auto ray = diffuse_ray(point, d);
+        if (!(ray.distance > 0)) continue;
         ++hits;
-        evidence.inverse_distance += 1 / std::max(hit.distance, 1e-9);
-        if (!hit.front) {
-            ++backs;
-            continue;
-        }
-        if (bright_[static_cast<std::size_t>(hit.patch)]) continue; // a light: direct()
-        const auto b = reflected_at(hit);
-        for (int k = 0; k < 3; ++k) sum[k] += b[k];
+        evidence.inverse_distance += 1 / ray.distance;
+        backs += ray.back;
+        for (int k = 0; k < 3; ++k) sum[k] += ray.radiance[k];
     }
     evidence.rays += rays;
     evidence.hits += hits;
     evidence.backs += backs;
     for (int k = 0; k < 3; ++k) sum[k] /= rays;
     return sum;
+}
+
+Gatherer::RayReturn Gatherer::diffuse_ray(const Vec3& point, const Vec3& d) const {
+    const auto hit = scene_->trace(point, d);
+    RayReturn out;
+    if (hit.patch < 0) return out;
+    out.distance = std::max(hit.distance, 1e-9);
+    out.back = !hit.front;
+    if (hit.front && !bright_[static_cast<std::size_t>(hit.patch)])
+        out.radiance = reflected_at(hit);
+    return out;
 }
 
 Rgb Gatherer::specular_ray(const Vec3& point, const Vec3& d, int& hits, int& backs) const {
