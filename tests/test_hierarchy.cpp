@@ -403,6 +403,57 @@ TEST_CASE("hierarchical: a link lights one surface, never two apart on one plane
           Approx(group_form_factor(mesh, links, "right")).epsilon(0.1));
 }
 
+TEST_CASE("hierarchical: two groups of small surfaces light each other as groups") {
+    // 8 x 8 tiles on the floor and 8 x 8 on the ceiling 1.5 above, each tile a surface of one
+    // patch. Refined together, every floor tile came to receive from every ceiling tile one by
+    // one (4096 links each way); each direction splitting only its own receivers, a tile
+    // receives from a few groups of the other side's tiles.
+    std::string obj;
+    int count = 0;
+    constexpr int kTiles = 8;
+    constexpr double kPitch = 0.15, kSide = 0.1, kHeight = 1.5;
+    for (int i = 0; i < kTiles; ++i)
+        for (int j = 0; j < kTiles; ++j) {
+            const double x = i * kPitch, y = j * kPitch;
+            append_obj_face(
+                obj, count,
+                {{x, y, 0}, {x + kSide, y, 0}, {x + kSide, y + kSide, 0}, {x, y + kSide, 0}},
+                "grey", "floor");
+            append_obj_face(obj, count,
+                            {{x, y, kHeight},
+                             {x, y + kSide, kHeight},
+                             {x + kSide, y + kSide, kHeight},
+                             {x + kSide, y, kHeight}},
+                            "grey", "ceiling");
+        }
+    const auto mesh = mesh_from_obj(obj, 0.2);
+    REQUIRE(mesh.patches.size() == 2 * kTiles * kTiles);
+    const auto links = rad::compute_links(mesh, {});
+    std::size_t tile_to_tile = 0;
+    for (std::size_t r = 0; r < links.nodes.size(); ++r)
+        for (auto l = links.link_start[r]; l < links.link_start[r + 1]; ++l)
+            tile_to_tile += links.nodes[r].count == 1 && links.nodes[links.source[l]].count == 1;
+    INFO(links.links() << " links, " << tile_to_tile << " from one tile to another");
+    CHECK(links.links() < 1500);
+
+    // The ceiling glowing: each floor tile's radiosity against the analytic solution's.
+    rad::Channels emission(mesh.patches.size(), 3);
+    for (std::size_t p = 0; p < mesh.patches.size(); ++p)
+        if (mesh.groups[mesh.patches[p].group] == "ceiling")
+            for (int c = 0; c < 3; ++c) emission.at(p, c) = 1;
+    rad::FormFactorOptions analytic;
+    analytic.method = "analytic";
+    const auto ff = rad::compute_form_factors(mesh, rad::resolve_form_factor_options(analytic));
+    const auto reference = solve(mesh, rad::make_operator(mesh, ff), emission);
+    const auto b = solve(mesh, rad::make_operator(mesh, links), emission);
+    double worst = 0;
+    for (std::size_t p = 0; p < mesh.patches.size(); ++p)
+        if (mesh.groups[mesh.patches[p].group] == "floor")
+            worst = std::max(worst, std::abs(b.at(p, 0) / reference.at(p, 0) - 1));
+    INFO("worst floor tile off analytic by " << worst);
+    CHECK(worst < 0.02);
+}
+
 TEST_CASE("hierarchical: light groups superpose, and any thread count gives the same links") {
     const auto mesh = cornell_mesh(0.1);
     radfmt::LinkData one, two;
