@@ -1,10 +1,16 @@
 // rad-ff: form factors against closed forms, closure, reciprocity, occlusion, determinism.
+#include "formfactor/angle.hpp"
 #include "helpers.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/formfactor_method.hpp"
 #include "radiosity/progress.hpp"
 
 #include <catch2/catch.hpp>
+
+#include <cfloat>
+#include <cmath>
+#include <numbers>
+#include <random>
 
 using namespace testing_helpers;
 
@@ -67,6 +73,28 @@ TEST_CASE("closed forms reproduce the published values") {
     // Reciprocity of the closed form itself: A1 F12 = A2 F21.
     CHECK(0.5 * rad::perpendicular_rectangles_form_factor(2, 1, 0.5) ==
           Approx(2 * rad::perpendicular_rectangles_form_factor(0.5, 1, 2)).epsilon(1e-12));
+}
+
+TEST_CASE("the contour integral's angle is atan2's to within 2 ulp, at every scale and side") {
+    using rad::ff::angle_from_sides;
+    constexpr double pi = std::numbers::pi;
+    CHECK(angle_from_sides(0, 0) == 0);
+    CHECK(angle_from_sides(0, 1) == 0);
+    CHECK(angle_from_sides(0, -1) == pi);
+    CHECK(angle_from_sides(1, 0) == pi / 2);
+    CHECK(angle_from_sides(2, 2) == pi / 4);
+    CHECK(angle_from_sides(1, -1) == Approx(3 * pi / 4).epsilon(2 * DBL_EPSILON));
+    std::mt19937_64 random(67);
+    std::uniform_real_distribution<double> unit(-1, 1), exponent(-12, 3);
+    double worst = 0;
+    for (int k = 0; k < 200000; ++k) {
+        // Sides of any sign and scale: tiny angles, right angles and near pi included.
+        const double s = std::abs(unit(random)) * std::pow(10, exponent(random));
+        const double c = unit(random) * std::pow(10, exponent(random));
+        const double exact = std::atan2(s, c);
+        worst = std::max(worst, std::abs(angle_from_sides(s, c) - exact) / exact);
+    }
+    CHECK(worst <= 2 * DBL_EPSILON);
 }
 
 TEST_CASE("every method matches the closed forms for parallel and perpendicular rectangles") {

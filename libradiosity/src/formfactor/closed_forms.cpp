@@ -2,6 +2,8 @@
 // rectangle configurations, the independent references the tests check the methods against.
 #include "radiosity/formfactor.hpp"
 
+#include "formfactor/angle.hpp"
+
 #include <cmath>
 #include <numbers>
 
@@ -15,17 +17,23 @@ double contour_edge_term(const Vec3& a, const Vec3& b, const Vec3& normal) {
     const Vec3 c = cross(a, b);
     const double s = length(c);
     if (s < 1e-15) return 0;
-    const double angle = std::atan2(s, dot(a, b));
+    const double angle = ff::angle_from_sides(s, dot(a, b));
     return angle * dot(normal, c) / s;
 }
 
 double point_to_polygon_form_factor(const Vec3& point, const Vec3& normal,
                                     std::span<const Vec3> polygon) {
-    double sum = 0;
     const std::size_t n = polygon.size();
-    for (std::size_t k = 0; k < n; ++k)
-        sum += contour_edge_term(normalized(polygon[k] - point),
-                                 normalized(polygon[(k + 1) % n] - point), normal);
+    if (n == 0) return 0;
+    // Each corner's direction once, each edge taking its two ends.
+    const Vec3 first = normalized(polygon[0] - point);
+    Vec3 from = first;
+    double sum = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec3 to = k + 1 < n ? normalized(polygon[k + 1] - point) : first;
+        sum += contour_edge_term(from, to, normal);
+        from = to;
+    }
     return std::abs(sum) / (2 * kPi);
 }
 
