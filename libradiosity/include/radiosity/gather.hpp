@@ -22,6 +22,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rad {
@@ -125,6 +126,37 @@ class Gatherer {
         std::vector<std::uint32_t> lights, clusters; // the light tree's lights and nodes
         bool held = false;
     };
+    // A light or group of lights a point sees, with the irradiance it gives there unshadowed.
+    struct Seen {
+        bool cluster = false;
+        std::uint32_t id = 0;    // the patch of a single light, the tree node of a cluster
+        std::uint32_t order = 0; // its (first) light's place in the light tree: a cut's order
+        Rgb irradiance{0, 0, 0};
+        double weight = 0;         // brightness(irradiance): its share of the shadow rays
+        std::vector<Vec3> clipped; // a single light: its part in front of the point
+    };
+    // What the lights give at one point, unshadowed: `lights[0, count)`, their weights'
+    // `total` (the buffers kept between points).
+    struct SeenLights {
+        std::vector<Seen> lights;
+        std::size_t count = 0;
+        double total = 0;
+        std::span<Seen> seen() { return {lights.data(), count}; }
+    };
+    // The lights seen from `centre` facing `facing` (unit), into `out`; `kept` as in
+    // direct_light below.
+    void seen_lights(const Vec3& centre, const Vec3& facing, SeenLights& out,
+                     KeptCut* kept = nullptr) const;
+    // The same at `point` between two points of one surface where `a` and `b` were found,
+    // `share` of the way from a's to b's, in a's cut: each light or group that b holds too
+    // blended linearly between their values (a's clipped polygon), the others found there.
+    // What a light gives unshadowed is smooth along a surface: between neighbouring pixels
+    // this saves most exact form factors.
+    void seen_between(const SeenLights& a, const SeenLights& b, double share, const Vec3& point,
+                      const Vec3& normal, SeenLights& out) const;
+    // Each sample shadowed from its own point with its own stream, from what `seen` gives.
+    void direct_light(SeenLights& seen, std::span<const DirectSample> samples,
+                      std::span<Rgb> out) const;
     void direct_light(const Vec3& centre, const Vec3& facing, std::span<const DirectSample> samples,
                       std::span<Rgb> out, KeptCut* kept = nullptr) const;
     // An irradiance cache's record: the indirect light from about `rays` cosine-weighted rays,
@@ -159,7 +191,6 @@ class Gatherer {
     Rgb reflected_at(const RayScene::Hit& hit) const;
 
   private:
-    struct Seen;
     struct Evidence;
     void find_bright_patches();
     void build_light_tree();
@@ -167,6 +198,8 @@ class Gatherer {
     // buffer; `total` is their weight.
     std::span<Seen> seen_lights(const Vec3& point, const Vec3& normal, double& total,
                                 KeptCut* kept = nullptr) const;
+    void find_seen(const Vec3& point, const Vec3& normal, KeptCut* kept, std::vector<Seen>& seen,
+                   std::size_t& count, double& total) const;
     // One batch: the direct light of `seen` with `shadow_rays` shadow rays, and the indirect
     // light of `rays` rays (`evidence` counts what they hit).
     Rgb direct_batch(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
@@ -175,8 +208,19 @@ class Gatherer {
                        Rng& rng, Evidence& evidence) const;
     Rgb cast_indirect(const Vec3& point, const Vec3& normal, const Vec3& surface, int rays,
                       Rng& rng, Evidence& evidence) const;
-    Rgb shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
-                 int budget, Rng& rng) const;
+    // How `budget` shadow rays are shared among what a point sees (by what each gives): the
+    // lights and groups with rays of their own, and the pool of the rest.
+    struct ShadowShares {
+        std::vector<std::pair<const Seen*, int>> own; // each with its rays
+        std::vector<const Seen*> pooled;
+        double pooled_weight = 0;
+        Rgb pooled_sum{0, 0, 0};
+        int pooled_rays = 0;
+    };
+    void share_shadow_rays(std::span<Seen> seen, double total, int budget, ShadowShares& out) const;
+    Rgb direct_batch(const Vec3& point, const Vec3& normal, const ShadowShares& shares,
+                     int shadow_rays, Rng& rng) const;
+    Rgb shadowed(const Vec3& point, const Vec3& normal, const ShadowShares& shares, Rng& rng) const;
     Rgb cluster_visible_fraction(const Vec3& point, const Vec3& normal, std::uint32_t node,
                                  int rays, Rng& rng) const;
     Rgb pooled_visible_fraction(const Vec3& point, std::span<const Seen* const> pooled,

@@ -53,15 +53,6 @@ double stratum(int s, int count, double offset) {
 }
 } // namespace
 
-// A light or group of lights a point sees, with the irradiance it gives there unshadowed.
-struct Gatherer::Seen {
-    bool cluster = false;
-    std::uint32_t id = 0; // the patch of a single light, the tree node of a cluster
-    Rgb irradiance{0, 0, 0};
-    double weight = 0;         // brightness(irradiance): its share of the shadow rays
-    std::vector<Vec3> clipped; // a single light: its part in front of the point
-};
-
 // The exact form factor from the point to the part of `patch` above the point's plane (0
 // when the point is behind the patch); `clipped` receives that part.
 double Gatherer::form_factor_to(const Vec3& point, const Vec3& normal, std::size_t patch,
@@ -174,31 +165,43 @@ Rgb Gatherer::pooled_visible_fraction(const Vec3& point, std::span<const Seen* c
 
 // Shadow rays shared by what each seen light gives: one with a share of at least half a ray
 // gets its own (rounded), the rest share theirs as one pool.
-Rgb Gatherer::shadowed(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
-                       int budget, Rng& rng) const {
-    Rgb sum{0, 0, 0}, pooled_sum{0, 0, 0};
-    thread_local std::vector<const Seen*> pooled;
-    pooled.clear();
-    double pooled_weight = 0;
+void Gatherer::share_shadow_rays(std::span<Seen> seen, double total, int budget,
+                                 ShadowShares& out) const {
+    out.own.clear();
+    out.pooled.clear();
+    out.pooled_weight = 0;
+    out.pooled_sum = {0, 0, 0};
+    out.pooled_rays = 0;
+    if (!(total > 0)) return;
     for (const auto& s : seen) {
         const double share = budget * s.weight / total;
         if (budget > 0 && share < 0.5) {
-            pooled.push_back(&s);
-            pooled_weight += s.weight;
-            for (int k = 0; k < 3; ++k) pooled_sum[k] += s.irradiance[k];
+            out.pooled.push_back(&s);
+            out.pooled_weight += s.weight;
+            for (int k = 0; k < 3; ++k) out.pooled_sum[k] += s.irradiance[k];
             continue;
         }
-        const int rays = budget <= 0 ? 0 : static_cast<int>(std::lround(share));
-        const Rgb visible = rays == 0 ? Rgb{1, 1, 1}
-                            : s.cluster
-                                ? cluster_visible_fraction(point, normal, s.id, rays, rng)
-                                : visible_fraction(point, normal, s.id, s.clipped, rays, rng);
-        for (int k = 0; k < 3; ++k) sum[k] += s.irradiance[k] * visible[k];
+        out.own.push_back({&s, budget <= 0 ? 0 : static_cast<int>(std::lround(share))});
     }
-    if (!pooled.empty()) {
-        const int rays = std::max(1, static_cast<int>(std::lround(budget * pooled_weight / total)));
-        const Rgb visible = pooled_visible_fraction(point, pooled, pooled_weight, rays, rng);
-        for (int k = 0; k < 3; ++k) sum[k] += pooled_sum[k] * visible[k];
+    if (!out.pooled.empty())
+        out.pooled_rays =
+            std::max(1, static_cast<int>(std::lround(budget * out.pooled_weight / total)));
+}
+
+Rgb Gatherer::shadowed(const Vec3& point, const Vec3& normal, const ShadowShares& shares,
+                       Rng& rng) const {
+    Rgb sum{0, 0, 0};
+    for (const auto& [s, rays] : shares.own) {
+        const Rgb visible = rays == 0 ? Rgb{1, 1, 1}
+                            : s->cluster
+                                ? cluster_visible_fraction(point, normal, s->id, rays, rng)
+                                : visible_fraction(point, normal, s->id, s->clipped, rays, rng);
+        for (int k = 0; k < 3; ++k) sum[k] += s->irradiance[k] * visible[k];
+    }
+    if (!shares.pooled.empty()) {
+        const Rgb visible = pooled_visible_fraction(point, shares.pooled, shares.pooled_weight,
+                                                    shares.pooled_rays, rng);
+        for (int k = 0; k < 3; ++k) sum[k] += shares.pooled_sum[k] * visible[k];
     }
     return sum;
 }
@@ -220,10 +223,24 @@ void find_cut(const gather::LightTree& lights, const GatherOptions& o, const Vec
 // factors, groups as one, unshadowed.
 std::span<Gatherer::Seen> Gatherer::seen_lights(const Vec3& point, const Vec3& normal,
                                                 double& total, KeptCut* kept) const {
-    total = 0;
-    if (lights_->empty()) return {};
-    thread_local gather::LightTree::Cut cut;
     thread_local std::vector<Seen> seen; // kept between points for their buffers
+    std::size_t count = 0;
+    find_seen(point, normal, kept, seen, count, total);
+    return {seen.data(), count};
+}
+
+void Gatherer::seen_lights(const Vec3& centre, const Vec3& facing, SeenLights& out,
+                           KeptCut* kept) const {
+    find_seen(centre, facing, kept, out.lights, out.count, out.total);
+}
+
+// The point's cut into `seen[0, count)` (the buffers reused), `total` their weight.
+void Gatherer::find_seen(const Vec3& point, const Vec3& normal, KeptCut* kept,
+                         std::vector<Seen>& seen, std::size_t& count, double& total) const {
+    total = 0;
+    count = 0;
+    if (lights_->empty()) return;
+    thread_local gather::LightTree::Cut cut;
     if (kept && kept->held) {
         cut.lights = kept->lights;
         cut.clusters.clear();
@@ -238,7 +255,6 @@ std::span<Gatherer::Seen> Gatherer::seen_lights(const Vec3& point, const Vec3& n
             kept->held = true;
         }
     }
-    std::size_t count = 0;
     for (const auto i : cut.lights) {
         const auto& light = lights_->lights()[i];
         if (count == seen.size()) seen.emplace_back();
@@ -247,6 +263,7 @@ std::span<Gatherer::Seen> Gatherer::seen_lights(const Vec3& point, const Vec3& n
         if (f <= 0) continue;
         s.cluster = false;
         s.id = light.patch;
+        s.order = i;
         for (int k = 0; k < 3; ++k) s.irradiance[k] = light.radiosity[k] * f;
         s.weight = brightness(s.irradiance);
         total += s.weight;
@@ -258,18 +275,76 @@ std::span<Gatherer::Seen> Gatherer::seen_lights(const Vec3& point, const Vec3& n
         Seen& s = seen[count++];
         s.cluster = true;
         s.id = c.node;
+        s.order = lights_->first_of(c.node);
         s.irradiance = c.irradiance;
         s.weight = brightness(c.irradiance);
         total += s.weight;
     }
-    return {seen.data(), count};
+}
+
+namespace {
+// Where `s` falls in a cut's order: its single lights, then its groups, each in the tree's.
+bool comes_before(const Gatherer::Seen& s, const Gatherer::Seen& t) {
+    return s.cluster != t.cluster ? !s.cluster : s.order < t.order;
+}
+
+// Whether a light giving `from` and `to` (its weights) at two points may be blended between
+// them: the error of a straight line through a light that falls as a power of distance is
+// about (to - from)^2 / 4 x its light, kept under 1e-5 of the whole (`total`) for each.
+bool blends(double from, double to, double total) {
+    const double change = to - from;
+    return change * change <= 4e-5 * total * std::max(from, to);
+}
+} // namespace
+
+void Gatherer::seen_between(const SeenLights& a, const SeenLights& b, double share,
+                            const Vec3& point, const Vec3& normal, SeenLights& out) const {
+    if (out.lights.size() < a.count) out.lights.resize(a.count);
+    out.count = 0;
+    out.total = 0;
+    std::size_t j = 0; // b's entries, walked beside a's in the cut's order
+    for (std::size_t k = 0; k < a.count; ++k) {
+        const Seen& from = a.lights[k];
+        while (j < b.count && comes_before(b.lights[j], from)) ++j;
+        const bool in_b = j < b.count && b.lights[j].cluster == from.cluster &&
+                          b.lights[j].id == from.id &&
+                          blends(from.weight, b.lights[j].weight, a.total);
+        Seen& s = out.lights[out.count];
+        s.cluster = from.cluster;
+        s.id = from.id;
+        s.order = from.order;
+        if (in_b) {
+            const Seen& to = b.lights[j];
+            for (int c = 0; c < 3; ++c)
+                s.irradiance[c] =
+                    from.irradiance[c] + share * (to.irradiance[c] - from.irradiance[c]);
+            s.clipped = from.clipped;
+        } else if (from.cluster) {
+            s.irradiance = lights_->cluster_irradiance(from.id, point, normal);
+        } else {
+            const double f = form_factor_to(point, normal, from.id, s.clipped);
+            const auto& radiosity = lights_->lights()[from.order].radiosity;
+            for (int c = 0; c < 3; ++c) s.irradiance[c] = radiosity[c] * std::max(f, 0.0);
+        }
+        s.weight = brightness(s.irradiance);
+        if (!(s.weight > 0)) continue;
+        out.total += s.weight;
+        ++out.count;
+    }
 }
 
 // One batch's direct light: the seen lights with shadow rays shared among them by what each
 // gives, and the emitters seen in planar mirrors.
 Rgb Gatherer::direct_batch(const Vec3& point, const Vec3& normal, std::span<Seen> seen,
                            double total, int shadow_rays, Rng& rng) const {
-    Rgb out = total > 0 ? shadowed(point, normal, seen, total, shadow_rays, rng) : Rgb{0, 0, 0};
+    thread_local ShadowShares shares;
+    share_shadow_rays(seen, total, shadow_rays, shares);
+    return direct_batch(point, normal, shares, shadow_rays, rng);
+}
+
+Rgb Gatherer::direct_batch(const Vec3& point, const Vec3& normal, const ShadowShares& shares,
+                           int shadow_rays, Rng& rng) const {
+    Rgb out = shadowed(point, normal, shares, rng);
     // (Nothing, and no random number drawn, without mirrors.)
     const Rgb imaged = virtual_->irradiance(point, normal, *scene_, shadow_rays, rng);
     for (int k = 0; k < 3; ++k) out[k] += imaged[k];

@@ -264,12 +264,19 @@ Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, const Vec3& s
 void Gatherer::direct_light(const Vec3& centre, const Vec3& facing,
                             std::span<const DirectSample> samples, std::span<Rgb> out,
                             KeptCut* kept) const {
-    double total = 0;
-    const auto seen = seen_lights(centre, facing, total, kept);
+    thread_local SeenLights seen;
+    seen_lights(centre, facing, seen, kept);
+    direct_light(seen, samples, out);
+}
+
+void Gatherer::direct_light(SeenLights& seen, std::span<const DirectSample> samples,
+                            std::span<Rgb> out) const {
+    thread_local ShadowShares shares; // the same for every sample: shared once
+    share_shadow_rays(seen.seen(), seen.total, options_.shadow_rays, shares);
     for (std::size_t k = 0; k < samples.size(); ++k) {
         Rng rng = batch_stream(options_.seed ^ 0xD1EC7ull, samples[k].index, 0);
-        out[k] = direct_batch(samples[k].point, samples[k].normal, seen, total,
-                              options_.shadow_rays, rng);
+        out[k] =
+            direct_batch(samples[k].point, samples[k].normal, shares, options_.shadow_rays, rng);
     }
 }
 

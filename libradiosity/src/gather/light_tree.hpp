@@ -64,6 +64,8 @@ class LightTree {
     std::span<const Light> lights_of(std::uint32_t node) const {
         return std::span<const Light>(lights_).subspan(nodes_[node].first, nodes_[node].count);
     }
+    // The first of `node`'s lights (where it falls in a cut's order, which is the tree's).
+    std::uint32_t first_of(std::uint32_t node) const { return nodes_[node].first; }
     bool empty() const { return lights_.empty(); }
 
   private:

@@ -142,102 +142,203 @@ Rgb lit_colour(const radfmt::MeshData& mesh, const RayScene::Hit& hit, const Rgb
 // their slots, fewer than the image's samples).
 constexpr std::uint64_t kUncoveredStreams = std::uint64_t(1) << 48;
 
-// A pixel's front-facing samples on one patch, by the cache. What changes little across a
-// pixel is found once at the samples' mean: the lights they see and what each gives
-// unshadowed (Gatherer::direct_light over several points), and the indirect light: the
-// cache's, or where no record covers the mean, one gather there (a gather's rays, --gather N)
-// for these samples only. Each sample is shadowed from its own point. Their
-// colours' sum goes to `sum`; `own` counts the samples no record covered.
-void add_cached_patch(const Gatherer& gatherer, const IrradianceCache& cache,
-                      const LuminaireSet* luminaires,
-                      std::span<const Gatherer::DirectSample> samples,
-                      std::span<const RayScene::Hit* const> hits, Gatherer::KeptCut* kept,
-                      std::atomic<long>& own, double sum[3]) {
-    Vec3 centre{0, 0, 0}, facing{0, 0, 0};
-    for (const auto& s : samples) {
-        centre = centre + s.point;
-        facing = facing + s.normal;
-    }
-    centre = centre * (1.0 / double(samples.size()));
-    const double n = length(facing);
-    facing = n > 0 ? facing * (1 / n) : samples[0].normal;
-    thread_local std::vector<Rgb> direct;
-    direct.resize(samples.size());
-    gatherer.direct_light(centre, facing, samples, direct, kept);
-    const auto& mesh = gatherer.mesh();
-    Rgb indirect;
-    if (!cache.lookup(centre, facing, indirect)) {
-        own += long(samples.size());
-        const Vec3 surface = mesh.patches[static_cast<std::size_t>(hits[0]->patch)].normal;
-        indirect =
-            gatherer
-                .indirect_sample(centre, facing, surface, std::max(1, gatherer.options().rays),
-                                 kUncoveredStreams + samples[0].index)
-                .indirect;
-    }
-    for (std::size_t k = 0; k < samples.size(); ++k) {
-        const auto& s = samples[k];
-        const Rgb lum = luminaire_light(gatherer, luminaires, s.point, s.normal);
-        const Rgb colour = lit_colour(mesh, *hits[k], direct[k], indirect, lum);
-        for (int c = 0; c < 3; ++c) sum[c] += colour[c];
-    }
-}
-
-// Neighbouring pixels share which lights they see (the light tree's cut; each light's value
-// is still found per pixel): a pixel at an even column wholly on one patch keeps its cut, and
-// the next pixel, wholly on that patch, takes it. Per row, in column order: the same at any
-// thread count and in any --rows band.
-struct CutShare {
-    Gatherer::KeptCut kept;
+// A pixel's front-facing samples on one patch: what changes little across a pixel is found
+// once at the samples' mean (`centre`, `facing`): the lights they see and what each gives
+// unshadowed, and the indirect light: the cache's, or where no record covers the mean, one
+// gather there (a gather's rays, --gather N) for these samples only. Each sample is shadowed
+// from its own point.
+struct PatchGroup {
     std::int64_t patch = -1;
+    Vec3 centre{0, 0, 0}, facing{0, 0, 0};
+    std::vector<Gatherer::DirectSample> samples;
+    std::vector<std::size_t> of; // each sample's place in its pixel's samples
+    Gatherer::SeenLights seen;
 };
 
-// The cut a pixel's samples keep or take (nullptr: neither, they span patches).
-Gatherer::KeptCut* shared_cut(std::int64_t patch, bool one_patch, bool second, CutShare& share) {
-    Gatherer::KeptCut* kept = nullptr;
-    if (second) {
-        if (one_patch && share.patch == patch) kept = &share.kept;
-    } else if (one_patch) {
-        share.kept.held = false;
-        kept = &share.kept;
-    }
-    share.patch = !second && one_patch ? patch : -1;
-    return kept;
-}
-
-// A pixel's front-facing samples by the cache, patch by patch (add_cached_patch); `second`:
-// the pixel is at an odd column (it may take its left neighbour's cut).
+// A pixel's samples by the cache, grouped by patch; `kept`: its cut of the light tree when
+// it lies wholly on one patch (the even pixel two columns on, on that patch too, may take it).
 struct PixelSample {
     RayScene::Hit hit;
     Vec3 point;
     std::uint64_t index;
 };
-void add_cached_samples(const Gatherer& gatherer, const IrradianceCache& cache,
-                        const LuminaireSet* luminaires, std::span<const PixelSample> samples,
-                        bool second, CutShare& share, std::atomic<long>& own, double sum[3]) {
-    thread_local std::vector<Gatherer::DirectSample> on_patch;
-    thread_local std::vector<const RayScene::Hit*> hits;
-    thread_local std::vector<char> done;
-    done.assign(samples.size(), 0);
-    const bool one_patch =
-        !samples.empty() && std::all_of(samples.begin(), samples.end(), [&](const auto& s) {
-            return s.hit.patch == samples[0].hit.patch;
-        });
-    Gatherer::KeptCut* kept =
-        shared_cut(samples.empty() ? -1 : samples[0].hit.patch, one_patch, second, share);
-    for (std::size_t first = 0; first < samples.size(); ++first) {
-        if (done[first]) continue;
-        on_patch.clear();
-        hits.clear();
-        for (std::size_t k = first; k < samples.size(); ++k) {
-            if (done[k] || samples[k].hit.patch != samples[first].hit.patch) continue;
-            done[k] = 1;
-            hits.push_back(&samples[k].hit);
-            on_patch.push_back(
-                {samples[k].point, gatherer.shading_normal(samples[k].hit), samples[k].index});
-        }
-        add_cached_patch(gatherer, cache, luminaires, on_patch, hits, kept, own, sum);
+struct CachedPixel {
+    std::vector<PixelSample> samples;
+    std::vector<PatchGroup> groups;
+    std::size_t group_count = 0;
+    int backs = 0;
+    bool covered = false;
+    Gatherer::KeptCut kept;
+    bool one_patch() const { return group_count == 1; }
+    const PatchGroup* group_on(std::int64_t patch) const {
+        for (std::size_t g = 0; g < group_count; ++g)
+            if (groups[g].patch == patch) return &groups[g];
+        return nullptr;
     }
+};
+
+// Pixel x's samples of row y traced and grouped by the patch they lie on.
+void trace_pixel(const Gatherer& gatherer, const View& view, int x, int y, int ss, int W, int H,
+                 CachedPixel& px) {
+    px.samples.clear();
+    px.backs = 0;
+    px.covered = false;
+    for (int sy = 0; sy < ss; ++sy)
+        for (int sx = 0; sx < ss; ++sx) {
+            // The sample's centre, in the rasteriser's screen convention.
+            const double sample_x = x * ss + sx + 0.5, sample_y = y * ss + sy + 0.5;
+            const Vec3 ray = view_ray(view, sample_x / W, sample_y / H);
+            const auto hit = gatherer.scene().trace(view.position, ray);
+            if (hit.patch < 0) continue;
+            px.covered = true;
+            if (!hit.front) {
+                ++px.backs;
+                continue;
+            }
+            const std::uint64_t index = std::uint64_t(y * ss + sy) * W + (x * ss + sx);
+            px.samples.push_back({hit, view.position + ray * hit.distance, index});
+        }
+    px.group_count = 0;
+    for (std::size_t k = 0; k < px.samples.size(); ++k) {
+        const auto patch = px.samples[k].hit.patch;
+        if (px.group_on(patch)) continue;
+        if (px.group_count == px.groups.size()) px.groups.emplace_back();
+        PatchGroup& g = px.groups[px.group_count++];
+        g.patch = patch;
+        g.samples.clear();
+        g.of.clear();
+        Vec3 centre{0, 0, 0}, facing{0, 0, 0};
+        for (std::size_t m = k; m < px.samples.size(); ++m) {
+            if (px.samples[m].hit.patch != patch) continue;
+            const auto& s = px.samples[m];
+            g.samples.push_back({s.point, gatherer.shading_normal(s.hit), s.index});
+            g.of.push_back(m);
+            centre = centre + s.point;
+            facing = facing + g.samples.back().normal;
+        }
+        g.centre = centre * (1.0 / double(g.samples.size()));
+        const double n = length(facing);
+        g.facing = n > 0 ? facing * (1 / n) : g.samples[0].normal;
+    }
+}
+
+// The lights a pixel at an even column sees, group by group at each group's centre. Wholly
+// on one patch, it keeps its cut of the light tree, or takes `previous`'s (the even pixel
+// before it, two columns away), when that one lies wholly on the same patch: their cuts would
+// differ by nothing or a group opened one level more or less, and the pixel between them then
+// finds all its lights in both (find_odd).
+void find_even(const Gatherer& gatherer, CachedPixel& px, CachedPixel* previous) {
+    px.kept.held = false;
+    Gatherer::KeptCut* kept = nullptr;
+    if (px.one_patch()) {
+        const bool take = previous && previous->one_patch() && previous->kept.held &&
+                          previous->groups[0].patch == px.groups[0].patch;
+        kept = take ? &previous->kept : &px.kept;
+    }
+    for (std::size_t g = 0; g < px.group_count; ++g)
+        gatherer.seen_lights(px.groups[g].centre, px.groups[g].facing, px.groups[g].seen, kept);
+}
+
+// The lights a pixel at an odd column sees. What a light gives unshadowed is smooth along a
+// surface: where its left neighbour has samples on the group's patch, the group takes that
+// neighbour's cut, each light and group of it blended linearly between the two neighbours'
+// values to the group's centre where the right one found it too, and found there where not
+// (Gatherer::seen_between): the exact form factors, most of a pixel's cost beside its shadow
+// rays, for about half the pixels. Elsewhere it finds its own.
+constexpr double kMostOffLine = 0.05; // of the neighbours' distance apart
+
+void find_odd(const Gatherer& gatherer, CachedPixel& px, const CachedPixel& left,
+              const CachedPixel* right) {
+    static const Gatherer::SeenLights none;
+    for (std::size_t g = 0; g < px.group_count; ++g) {
+        PatchGroup& group = px.groups[g];
+        const PatchGroup* a = left.group_on(group.patch);
+        if (!a) {
+            gatherer.seen_lights(group.centre, group.facing, group.seen);
+            continue;
+        }
+        const PatchGroup* b = right ? right->group_on(group.patch) : nullptr;
+        const Vec3 span = b ? b->centre - a->centre : Vec3{0, 0, 0};
+        const double span2 = dot(span, span);
+        const double share =
+            span2 > 0 ? std::clamp(dot(group.centre - a->centre, span) / span2, 0.0, 1.0) : 0.0;
+        // Off the line between them (a pixel partly on the patch has its samples' centre
+        // off its own), the light changes across the line too: none is blended.
+        const Vec3 off = group.centre - a->centre - span * share;
+        if (dot(off, off) > kMostOffLine * kMostOffLine * span2) b = nullptr;
+        gatherer.seen_between(a->seen, b ? b->seen : none, share, group.centre, group.facing,
+                              group.seen);
+    }
+}
+
+// The pixel's colour: its groups' samples shadowed, their indirect light from the cache (or
+// one gather where no record covers the centre), their sum over the pixel's samples;
+// `own` counts the samples no record covered.
+Rgb shade_pixel(const Gatherer& gatherer, const IrradianceCache& cache,
+                const LuminaireSet* luminaires, CachedPixel& px, std::atomic<long>& own) {
+    const auto& mesh = gatherer.mesh();
+    thread_local std::vector<Rgb> direct;
+    Rgb sum{0, 0, 0};
+    for (std::size_t g = 0; g < px.group_count; ++g) {
+        PatchGroup& group = px.groups[g];
+        direct.resize(group.samples.size());
+        gatherer.direct_light(group.seen, group.samples, direct);
+        Rgb indirect;
+        if (!cache.lookup(group.centre, group.facing, indirect)) {
+            own += long(group.samples.size());
+            const Vec3 surface = mesh.patches[static_cast<std::size_t>(group.patch)].normal;
+            indirect = gatherer
+                           .indirect_sample(group.centre, group.facing, surface,
+                                            std::max(1, gatherer.options().rays),
+                                            kUncoveredStreams + group.samples[0].index)
+                           .indirect;
+        }
+        for (std::size_t k = 0; k < group.samples.size(); ++k) {
+            const auto& s = group.samples[k];
+            const Rgb lum = luminaire_light(gatherer, luminaires, s.point, s.normal);
+            const Rgb colour =
+                lit_colour(mesh, px.samples[group.of[k]].hit, direct[k], indirect, lum);
+            for (int c = 0; c < 3; ++c) sum[c] += colour[c];
+        }
+    }
+    return sum;
+}
+
+// A row by the cache. Pixels at even columns find their lights first, so that each pixel
+// between two may blend theirs (find_odd); per row, in column order: the same at any thread
+// count and in any --rows band.
+void render_cached_row(const Gatherer& gatherer, const IrradianceCache& cache,
+                       const LuminaireSet* luminaires, const View& view, int y, int ss,
+                       Image& image, std::atomic<long>& own) {
+    const int width = image.width, W = width * ss, H = image.height * ss;
+    if (width <= 0) return;
+    thread_local CachedPixel left, middle, right;
+    const auto finish = [&](CachedPixel& px, int x) {
+        const Rgb sum = shade_pixel(gatherer, cache, luminaires, px, own);
+        const std::size_t at = std::size_t(y) * width + x;
+        for (int c = 0; c < 3; ++c) image.rgb[3 * at + c] = static_cast<float>(sum[c] / (ss * ss));
+        image.covered[at] = px.covered;
+        image.back_coverage[at] = float(px.backs) / float(ss * ss);
+    };
+    trace_pixel(gatherer, view, 0, y, ss, W, H, left);
+    find_even(gatherer, left, nullptr);
+    for (int x = 1; x < width; x += 2) {
+        trace_pixel(gatherer, view, x, y, ss, W, H, middle);
+        const bool has_right = x + 1 < width;
+        if (has_right) {
+            trace_pixel(gatherer, view, x + 1, y, ss, W, H, right);
+            // Even pixels pair up: 0 keeps its cut and 2 takes it, 4 keeps and 6 takes...
+            find_even(gatherer, right, (x + 1) % 4 == 2 ? &left : nullptr);
+        }
+        find_odd(gatherer, middle, left, has_right ? &right : nullptr);
+        finish(left, x - 1);
+        finish(middle, x);
+        if (has_right)
+            std::swap(left, right);
+        else
+            return;
+    }
+    finish(left, width - 1); // an odd width's last pixel
 }
 } // namespace
 
@@ -268,12 +369,14 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
     }
     Progress progress("rad-shade gather", std::uint64_t(end_row - first_row), quiet);
     tbb::parallel_for(first_row, end_row, [&](int y) {
-        thread_local std::vector<PixelSample> samples;
-        CutShare share;
+        if (cache) {
+            render_cached_row(gatherer, *cache, luminaires, view, y, ss, image, own);
+            progress.advance(1);
+            return;
+        }
         for (int x = 0; x < width; ++x) {
             double sum[3] = {0, 0, 0}, squared_error[3] = {0, 0, 0};
             int backs = 0;
-            samples.clear();
             for (int sy = 0; sy < ss; ++sy)
                 for (int sx = 0; sx < ss; ++sx) {
                     // The sample's centre, in the rasteriser's screen convention.
@@ -288,10 +391,6 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
                     }
                     const std::uint64_t index = std::uint64_t(y * ss + sy) * W + (x * ss + sx);
                     const Vec3 point = view.position + ray * hit.distance;
-                    if (cache) {
-                        samples.push_back({hit, point, index});
-                        continue;
-                    }
                     Rgb error{0, 0, 0};
                     const auto colour =
                         gathered_colour(gatherer, luminaires, hit, point, index, &error);
@@ -300,17 +399,13 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
                         squared_error[c] += error[c] * error[c];
                     }
                 }
-            if (cache)
-                add_cached_samples(gatherer, *cache, luminaires, samples, x % 2 == 1, share, own,
-                                   sum);
             // The pixel is the mean of its samples, each gathered from its own streams: its
             // error, theirs added in quadrature over the count.
             const std::size_t at = std::size_t(y) * width + x;
             for (int c = 0; c < 3; ++c) {
                 image.rgb[3 * at + c] = static_cast<float>(sum[c] / (ss * ss));
-                if (!cache)
-                    image.error[3 * at + c] =
-                        static_cast<float>(std::sqrt(squared_error[c]) / (ss * ss));
+                image.error[3 * at + c] =
+                    static_cast<float>(std::sqrt(squared_error[c]) / (ss * ss));
             }
             image.back_coverage[at] = float(backs) / float(ss * ss);
         }
