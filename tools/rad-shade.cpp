@@ -26,7 +26,9 @@
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 namespace {
@@ -197,6 +199,26 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
 }
 
 // Combinations that cannot work, refused before anything is read.
+// -o is an OpenEXR image and --png a PNG: a name that says the other format would hold what
+// it does not say (an EXR named .png opens nowhere).
+void check_output_names(const ShadeArgs& a) {
+    const auto extension = [](const std::string& path) {
+        auto e = std::filesystem::path(path).extension().string();
+        for (auto& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return e;
+    };
+    const auto o = extension(a.output);
+    if (o == ".png" || o == ".jpg" || o == ".jpeg")
+        throw rad::InputError("-o " + a.output +
+                              ": -o writes the OpenEXR image (high dynamic range): name it .exr, "
+                              "and give --png " +
+                              a.output + " for the tone-mapped PNG");
+    if (extension(a.png) == ".exr")
+        throw rad::InputError("--png " + a.png +
+                              ": --png writes a tone-mapped PNG: name it .png (-o writes the "
+                              "OpenEXR image)");
+}
+
 void check_combinations(const ShadeArgs& a) {
     if (a.error_layer && a.gather <= 0)
         throw rad::InputError("--error-layer holds the final gather's errors: give --gather");
@@ -475,6 +497,7 @@ void write_luminance(const ShadeArgs& a, const rad::Image& image,
 
 // --merge: the bands into the image (and PNG) one run writes.
 int merge_parts(ShadeArgs& a) {
+    check_output_names(a);
     if (!a.rows.empty()) throw rad::InputError("--merge joins parts: not with --rows");
     if (!a.falsecolor.empty() || !a.luminance_table.empty())
         throw rad::InputError("--falsecolor and --luminance-table are written by a run of the "
@@ -542,6 +565,7 @@ int shade(ShadeArgs& a, int argc, char** argv) {
     // The image, its preview and the PLY land together or not at all.
     radfmt::OutputBatch outputs;
     rad::ThreadLimit thread_limit(a.threads);
+    check_output_names(a);
     check_combinations(a);
     rad::View view = a.view_file.empty() ? rad::View{} : rad::read_view_file(a.view_file);
     if (!a.view_text.empty()) view = rad::parse_view(a.view_text, rad::FileLoc{"--view"}, view);

@@ -76,6 +76,9 @@ expect_error "--mix: no light group 'sun'" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/g
 expect_error "daylight, lamp" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/g.mesh" "$TMP/g.rad" -o "$TMP/x.exr" --view-file "$RV" --mix sun=1
 expect_error "has no light groups to mix" "$TMP/x.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/x.exr" --view-file "$VF" --mix light=2
 expect_error "--png and -o both write" "$TMP/both.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/both.exr" --png "$TMP/./both.exr" --view-file "$VF"
+# -o is the OpenEXR image and --png the PNG: a name saying the other format is refused.
+expect_error "-o writes the OpenEXR image (high dynamic range): name it .exr, and give --png $TMP/view.png" "$TMP/view.png" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/view.png" --view-file "$VF"
+expect_error "--png $TMP/view.EXR: --png writes a tone-mapped PNG: name it .png" "$TMP/named.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/named.exr" --png "$TMP/view.EXR" --view-file "$VF"
 # Nonsense option values are refused with the allowed range.
 expect_error "--crease-angle: 'nan' is not a number in [0, 180]" "$TMP/n.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/n.exr" --view-file "$VF" --crease-angle nan
 expect_error "--exposure: 'nan' is not a number in [0, 1e+30]" "$TMP/n.exr" "$BIN/rad-shade" "$TMP/c.mesh" "$TMP/c.rad" -o "$TMP/n.exr" --view-file "$VF" --exposure nan
