@@ -20,6 +20,18 @@
 namespace rad {
 
 namespace {
+// E + rho x (the direct, indirect and luminaires' light at a sample on `hit`'s patch).
+Rgb lit_colour(const radfmt::MeshData& mesh, const RayScene::Hit& hit, const Rgb& direct,
+               const Rgb& indirect, const Rgb& luminaires) {
+    const auto& patch = mesh.patches[static_cast<std::size_t>(hit.patch)];
+    const auto& material = mesh.materials[patch.material];
+    Rgb out;
+    for (int c = 0; c < 3; ++c)
+        out[c] = material.emission[c] +
+                 material.reflectance[c] * (direct[c] + indirect[c] + luminaires[c]);
+    return out;
+}
+
 // E + rho x (what is gathered at the point, and the luminaires' direct light there); with
 // `error`, rho x the gather's standard error there.
 Rgb gathered_colour(const Gatherer& gatherer, const LuminaireSet* luminaires,
@@ -31,10 +43,7 @@ Rgb gathered_colour(const Gatherer& gatherer, const LuminaireSet* luminaires,
     const auto normal = gatherer.shading_normal(hit);
     const Rgb known = luminaire_light(gatherer, luminaires, point, normal); // exactly
     const auto gathered = gatherer.gather(point, normal, patch.normal, index, known);
-    const auto h = gathered.total();
-    Rgb out;
-    for (int c = 0; c < 3; ++c)
-        out[c] = material.emission[c] + material.reflectance[c] * (h[c] + known[c]);
+    const Rgb out = lit_colour(mesh, hit, gathered.direct, gathered.indirect, known);
     if (error)
         for (int c = 0; c < 3; ++c) (*error)[c] = material.reflectance[c] * gathered.error[c];
     return out;
@@ -124,18 +133,6 @@ IrradianceCache build_cache(const Gatherer& gatherer, const View& view, int widt
     for (std::size_t k = 0; k < slots.size(); ++k)
         if (used[k]) records.push_back(slots[k]);
     return IrradianceCache(std::move(records), o.accuracy);
-}
-
-// E + rho x (the direct, indirect and luminaires' light at a sample on `hit`'s patch).
-Rgb lit_colour(const radfmt::MeshData& mesh, const RayScene::Hit& hit, const Rgb& direct,
-               const Rgb& indirect, const Rgb& luminaires) {
-    const auto& patch = mesh.patches[static_cast<std::size_t>(hit.patch)];
-    const auto& material = mesh.materials[patch.material];
-    Rgb out;
-    for (int c = 0; c < 3; ++c)
-        out[c] = material.emission[c] +
-                 material.reflectance[c] * (direct[c] + indirect[c] + luminaires[c]);
-    return out;
 }
 
 // The streams of gathers made where no record reaches: apart from the records' (numbered by
