@@ -174,12 +174,14 @@ struct CachedPixel {
     }
 };
 
-// Pixel x's samples of row y traced and grouped by the patch they lie on.
-void trace_pixel(const Gatherer& gatherer, const View& view, int x, int y, int ss, int W, int H,
-                 CachedPixel& px) {
-    px.samples.clear();
-    px.backs = 0;
-    px.covered = false;
+// Pixel x's ss x ss samples of row y (of a W x H grid of samples) traced: those that met the
+// front of a surface into `front`, in order; `backs` counts those that met a back, `covered`
+// says whether any met a surface.
+void trace_samples(const Gatherer& gatherer, const View& view, int x, int y, int ss, int W, int H,
+                   std::vector<PixelSample>& front, int& backs, bool& covered) {
+    front.clear();
+    backs = 0;
+    covered = false;
     for (int sy = 0; sy < ss; ++sy)
         for (int sx = 0; sx < ss; ++sx) {
             // The sample's centre, in the rasteriser's screen convention.
@@ -187,14 +189,20 @@ void trace_pixel(const Gatherer& gatherer, const View& view, int x, int y, int s
             const Vec3 ray = view_ray(view, sample_x / W, sample_y / H);
             const auto hit = gatherer.scene().trace(view.position, ray);
             if (hit.patch < 0) continue;
-            px.covered = true;
+            covered = true;
             if (!hit.front) {
-                ++px.backs;
+                ++backs;
                 continue;
             }
             const std::uint64_t index = std::uint64_t(y * ss + sy) * W + (x * ss + sx);
-            px.samples.push_back({hit, view.position + ray * hit.distance, index});
+            front.push_back({hit, view.position + ray * hit.distance, index});
         }
+}
+
+// Pixel x's samples of row y traced and grouped by the patch they lie on.
+void trace_pixel(const Gatherer& gatherer, const View& view, int x, int y, int ss, int W, int H,
+                 CachedPixel& px) {
+    trace_samples(gatherer, view, x, y, ss, W, H, px.samples, px.backs, px.covered);
     px.group_count = 0;
     for (std::size_t k = 0; k < px.samples.size(); ++k) {
         const auto patch = px.samples[k].hit.patch;
@@ -371,31 +379,22 @@ Image render_gathered(const Gatherer& gatherer, const View& view, int width, int
             progress.advance(1);
             return;
         }
+        thread_local std::vector<PixelSample> front;
         for (int x = 0; x < width; ++x) {
             double sum[3] = {0, 0, 0}, squared_error[3] = {0, 0, 0};
             int backs = 0;
-            for (int sy = 0; sy < ss; ++sy)
-                for (int sx = 0; sx < ss; ++sx) {
-                    // The sample's centre, in the rasteriser's screen convention.
-                    const double px = x * ss + sx + 0.5, py = y * ss + sy + 0.5;
-                    const Vec3 ray = view_ray(view, px / W, py / H);
-                    const auto hit = gatherer.scene().trace(view.position, ray);
-                    if (hit.patch < 0) continue;
-                    covered[std::size_t(y) * width + x] = 1;
-                    if (!hit.front) {
-                        ++backs;
-                        continue;
-                    }
-                    const std::uint64_t index = std::uint64_t(y * ss + sy) * W + (x * ss + sx);
-                    const Vec3 point = view.position + ray * hit.distance;
-                    Rgb error{0, 0, 0};
-                    const auto colour =
-                        gathered_colour(gatherer, luminaires, hit, point, index, &error);
-                    for (int c = 0; c < 3; ++c) {
-                        sum[c] += colour[c];
-                        squared_error[c] += error[c] * error[c];
-                    }
+            bool any = false;
+            trace_samples(gatherer, view, x, y, ss, W, H, front, backs, any);
+            if (any) covered[std::size_t(y) * width + x] = 1;
+            for (const auto& s : front) {
+                Rgb error{0, 0, 0};
+                const auto colour =
+                    gathered_colour(gatherer, luminaires, s.hit, s.point, s.index, &error);
+                for (int c = 0; c < 3; ++c) {
+                    sum[c] += colour[c];
+                    squared_error[c] += error[c] * error[c];
                 }
+            }
             // The pixel is the mean of its samples, each gathered from its own streams: its
             // error, theirs added in quadrature over the count.
             const std::size_t at = std::size_t(y) * width + x;
