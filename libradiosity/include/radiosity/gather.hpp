@@ -194,16 +194,10 @@ class Gatherer {
     struct Evidence;
     void find_bright_patches();
     void build_light_tree();
-    // The lights the point sees (its cut of the light tree, unshadowed), into a per-thread
-    // buffer; `total` is their weight.
-    std::span<Seen> seen_lights(const Vec3& point, const Vec3& normal, double& total,
-                                KeptCut* kept = nullptr) const;
-    void find_seen(const Vec3& point, const Vec3& normal, KeptCut* kept, std::vector<Seen>& seen,
-                   std::size_t& count, double& total) const;
-    // One batch: the direct light of `seen` with `shadow_rays` shadow rays, and the indirect
-    // light of `rays` rays (`evidence` counts what they hit).
-    Rgb direct_batch(const Vec3& point, const Vec3& normal, std::span<Seen> seen, double total,
-                     int shadow_rays, Rng& rng) const;
+    // Single light `light` (of the light tree's lights) seen from the point, into `s`: its
+    // exact form factor (returned; 0 when the point is behind it) times its radiosity.
+    double value_light(std::uint32_t light, const Vec3& point, const Vec3& normal, Seen& s) const;
+    // One batch: the indirect light of `rays` rays (`evidence` counts what they hit).
     Rgb indirect_batch(const Vec3& point, const Vec3& normal, const Vec3& surface, int rays,
                        Rng& rng, Evidence& evidence) const;
     Rgb cast_indirect(const Vec3& point, const Vec3& normal, const Vec3& surface, int rays,
@@ -218,6 +212,7 @@ class Gatherer {
         int pooled_rays = 0;
     };
     void share_shadow_rays(std::span<Seen> seen, double total, int budget, ShadowShares& out) const;
+    // One batch: the direct light of what a point sees, its shadow rays shared as `shares`.
     Rgb direct_batch(const Vec3& point, const Vec3& normal, const ShadowShares& shares,
                      int shadow_rays, Rng& rng) const;
     Rgb shadowed(const Vec3& point, const Vec3& normal, const ShadowShares& shares, Rng& rng) const;

@@ -220,25 +220,11 @@ void find_cut(const gather::LightTree& lights, const GatherOptions& o, const Vec
 } // namespace
 
 // The point's cut of the light tree (or the one `kept`): single lights by their exact form
-// factors, groups as one, unshadowed.
-std::span<Gatherer::Seen> Gatherer::seen_lights(const Vec3& point, const Vec3& normal,
-                                                double& total, KeptCut* kept) const {
-    thread_local std::vector<Seen> seen; // kept between points for their buffers
-    std::size_t count = 0;
-    find_seen(point, normal, kept, seen, count, total);
-    return {seen.data(), count};
-}
-
-void Gatherer::seen_lights(const Vec3& centre, const Vec3& facing, SeenLights& out,
+// factors, groups as one, unshadowed (the buffers of `out` reused).
+void Gatherer::seen_lights(const Vec3& point, const Vec3& normal, SeenLights& out,
                            KeptCut* kept) const {
-    find_seen(centre, facing, kept, out.lights, out.count, out.total);
-}
-
-// The point's cut into `seen[0, count)` (the buffers reused), `total` their weight.
-void Gatherer::find_seen(const Vec3& point, const Vec3& normal, KeptCut* kept,
-                         std::vector<Seen>& seen, std::size_t& count, double& total) const {
-    total = 0;
-    count = 0;
+    out.total = 0;
+    out.count = 0;
     if (lights_->empty()) return;
     thread_local gather::LightTree::Cut cut;
     if (kept && kept->held) {
@@ -255,31 +241,37 @@ void Gatherer::find_seen(const Vec3& point, const Vec3& normal, KeptCut* kept,
             kept->held = true;
         }
     }
+    auto& seen = out.lights;
     for (const auto i : cut.lights) {
-        const auto& light = lights_->lights()[i];
-        if (count == seen.size()) seen.emplace_back();
-        Seen& s = seen[count];
-        const double f = form_factor_to(point, normal, light.patch, s.clipped);
-        if (f <= 0) continue;
-        s.cluster = false;
-        s.id = light.patch;
-        s.order = i;
-        for (int k = 0; k < 3; ++k) s.irradiance[k] = light.radiosity[k] * f;
-        s.weight = brightness(s.irradiance);
-        total += s.weight;
-        ++count;
+        if (out.count == seen.size()) seen.emplace_back();
+        Seen& s = seen[out.count];
+        if (value_light(i, point, normal, s) <= 0) continue;
+        out.total += s.weight;
+        ++out.count;
     }
     for (const auto& c : cut.clusters) {
         if (!(brightness(c.irradiance) > 0)) continue;
-        if (count == seen.size()) seen.emplace_back();
-        Seen& s = seen[count++];
+        if (out.count == seen.size()) seen.emplace_back();
+        Seen& s = seen[out.count++];
         s.cluster = true;
         s.id = c.node;
         s.order = lights_->first_of(c.node);
         s.irradiance = c.irradiance;
         s.weight = brightness(c.irradiance);
-        total += s.weight;
+        out.total += s.weight;
     }
+}
+
+double Gatherer::value_light(std::uint32_t light, const Vec3& point, const Vec3& normal,
+                             Seen& s) const {
+    const auto& l = lights_->lights()[light];
+    const double f = form_factor_to(point, normal, l.patch, s.clipped);
+    s.cluster = false;
+    s.id = l.patch;
+    s.order = light;
+    for (int k = 0; k < 3; ++k) s.irradiance[k] = l.radiosity[k] * f;
+    s.weight = brightness(s.irradiance);
+    return f;
 }
 
 namespace {
@@ -310,23 +302,23 @@ void Gatherer::seen_between(const SeenLights& a, const SeenLights& b, double sha
                           b.lights[j].id == from.id &&
                           blends(from.weight, b.lights[j].weight, a.total);
         Seen& s = out.lights[out.count];
-        s.cluster = from.cluster;
-        s.id = from.id;
-        s.order = from.order;
-        if (in_b) {
-            const Seen& to = b.lights[j];
-            for (int c = 0; c < 3; ++c)
-                s.irradiance[c] =
-                    from.irradiance[c] + share * (to.irradiance[c] - from.irradiance[c]);
-            s.clipped = from.clipped;
-        } else if (from.cluster) {
-            s.irradiance = lights_->cluster_irradiance(from.id, point, normal);
+        if (!from.cluster && !in_b) {
+            if (value_light(from.order, point, normal, s) <= 0) continue;
         } else {
-            const double f = form_factor_to(point, normal, from.id, s.clipped);
-            const auto& radiosity = lights_->lights()[from.order].radiosity;
-            for (int c = 0; c < 3; ++c) s.irradiance[c] = radiosity[c] * std::max(f, 0.0);
+            s.cluster = from.cluster;
+            s.id = from.id;
+            s.order = from.order;
+            if (in_b) {
+                const Seen& to = b.lights[j];
+                for (int c = 0; c < 3; ++c)
+                    s.irradiance[c] =
+                        from.irradiance[c] + share * (to.irradiance[c] - from.irradiance[c]);
+                s.clipped = from.clipped;
+            } else {
+                s.irradiance = lights_->cluster_irradiance(from.id, point, normal);
+            }
+            s.weight = brightness(s.irradiance);
         }
-        s.weight = brightness(s.irradiance);
         if (!(s.weight > 0)) continue;
         out.total += s.weight;
         ++out.count;
@@ -335,13 +327,6 @@ void Gatherer::seen_between(const SeenLights& a, const SeenLights& b, double sha
 
 // One batch's direct light: the seen lights with shadow rays shared among them by what each
 // gives, and the emitters seen in planar mirrors.
-Rgb Gatherer::direct_batch(const Vec3& point, const Vec3& normal, std::span<Seen> seen,
-                           double total, int shadow_rays, Rng& rng) const {
-    thread_local ShadowShares shares;
-    share_shadow_rays(seen, total, shadow_rays, shares);
-    return direct_batch(point, normal, shares, shadow_rays, rng);
-}
-
 Rgb Gatherer::direct_batch(const Vec3& point, const Vec3& normal, const ShadowShares& shares,
                            int shadow_rays, Rng& rng) const {
     Rgb out = shadowed(point, normal, shares, rng);

@@ -219,15 +219,17 @@ double combined(double a, double b) {
 Irradiance Gatherer::gather(const Vec3& point, const Vec3& normal, const Vec3& surface,
                             std::uint64_t index, const Rgb& known) const {
     const BatchPlan plan = plan_batches(options_);
-    double total = 0;
-    const auto seen = seen_lights(point, normal, total);
+    thread_local SeenLights seen;
+    seen_lights(point, normal, seen);
+    thread_local ShadowShares shares; // the same for every batch: shared once
+    share_shadow_rays(seen.seen(), seen.total, plan.shadow_rays, shares);
     BatchError direct, indirect;
     Evidence evidence;
     int direct_target = plan.first, indirect_target = plan.first;
     for (;;) {
         while (direct.count() < direct_target) {
             Rng rng = batch_stream(options_.seed ^ 0xD1EC7ull, index, direct.count());
-            direct.add(direct_batch(point, normal, seen, total, plan.shadow_rays, rng));
+            direct.add(direct_batch(point, normal, shares, plan.shadow_rays, rng));
         }
         while (indirect.count() < indirect_target) {
             Rng rng = batch_stream(options_.seed, index, indirect.count());
