@@ -20,11 +20,10 @@
 namespace rad {
 
 namespace {
-// E + rho x (the direct, indirect and luminaires' light at a sample on `hit`'s patch).
-Rgb lit_colour(const radfmt::MeshData& mesh, const RayScene::Hit& hit, const Rgb& direct,
+// E + rho x (the direct, indirect and luminaires' light at a sample on `patch`).
+Rgb lit_colour(const radfmt::MeshData& mesh, std::int64_t patch, const Rgb& direct,
                const Rgb& indirect, const Rgb& luminaires) {
-    const auto& patch = mesh.patches[static_cast<std::size_t>(hit.patch)];
-    const auto& material = mesh.materials[patch.material];
+    const auto& material = mesh.materials[mesh.patches[static_cast<std::size_t>(patch)].material];
     Rgb out;
     for (int c = 0; c < 3; ++c)
         out[c] = material.emission[c] +
@@ -43,7 +42,7 @@ Rgb gathered_colour(const Gatherer& gatherer, const LuminaireSet* luminaires,
     const auto normal = gatherer.shading_normal(hit);
     const Rgb known = luminaire_light(gatherer, luminaires, point, normal); // exactly
     const auto gathered = gatherer.gather(point, normal, patch.normal, index, known);
-    const Rgb out = lit_colour(mesh, hit, gathered.direct, gathered.indirect, known);
+    const Rgb out = lit_colour(mesh, hit.patch, gathered.direct, gathered.indirect, known);
     if (error)
         for (int c = 0; c < 3; ++c) (*error)[c] = material.reflectance[c] * gathered.error[c];
     return out;
@@ -148,17 +147,18 @@ struct PatchGroup {
     std::int64_t patch = -1;
     Vec3 centre{0, 0, 0}, facing{0, 0, 0};
     std::vector<Gatherer::DirectSample> samples;
-    std::vector<std::size_t> of; // each sample's place in its pixel's samples
     Gatherer::SeenLights seen;
 };
 
-// A pixel's samples by the cache, grouped by patch; `kept`: its cut of the light tree when
-// it lies wholly on one patch (the even pixel two columns on, on that patch too, may take it).
+// A sample that met the front of a surface: where, and its random streams' index.
 struct PixelSample {
     RayScene::Hit hit;
     Vec3 point;
     std::uint64_t index;
 };
+
+// A pixel's samples by the cache, grouped by patch; `kept`: its cut of the light tree when
+// it lies wholly on one patch (the even pixel two columns on, on that patch too, may take it).
 struct CachedPixel {
     std::vector<PixelSample> samples;
     std::vector<PatchGroup> groups;
@@ -211,13 +211,11 @@ void trace_pixel(const Gatherer& gatherer, const View& view, int x, int y, int s
         PatchGroup& g = px.groups[px.group_count++];
         g.patch = patch;
         g.samples.clear();
-        g.of.clear();
         Vec3 centre{0, 0, 0}, facing{0, 0, 0};
         for (std::size_t m = k; m < px.samples.size(); ++m) {
             if (px.samples[m].hit.patch != patch) continue;
             const auto& s = px.samples[m];
             g.samples.push_back({s.point, gatherer.shading_normal(s.hit), s.index});
-            g.of.push_back(m);
             centre = centre + s.point;
             facing = facing + g.samples.back().normal;
         }
@@ -244,14 +242,16 @@ void find_even(const Gatherer& gatherer, CachedPixel& px, CachedPixel* previous)
         gatherer.seen_lights(px.groups[g].centre, px.groups[g].facing, px.groups[g].seen, kept);
 }
 
+// How far off the line between its neighbours a group's centre may lie and still blend their
+// lights, as a share of their distance apart.
+constexpr double kMostOffLine = 0.05;
+
 // The lights a pixel at an odd column sees. What a light gives unshadowed is smooth along a
 // surface: where its left neighbour has samples on the group's patch, the group takes that
 // neighbour's cut, each light and group of it blended linearly between the two neighbours'
 // values to the group's centre where the right one found it too, and found there where not
 // (Gatherer::seen_between): the exact form factors, most of a pixel's cost beside its shadow
 // rays, for about half the pixels. Elsewhere it finds its own.
-constexpr double kMostOffLine = 0.05; // of the neighbours' distance apart
-
 void find_odd(const Gatherer& gatherer, CachedPixel& px, const CachedPixel& left,
               const CachedPixel* right) {
     static const Gatherer::SeenLights none;
@@ -301,8 +301,7 @@ Rgb shade_pixel(const Gatherer& gatherer, const IrradianceCache& cache,
         for (std::size_t k = 0; k < group.samples.size(); ++k) {
             const auto& s = group.samples[k];
             const Rgb lum = luminaire_light(gatherer, luminaires, s.point, s.normal);
-            const Rgb colour =
-                lit_colour(mesh, px.samples[group.of[k]].hit, direct[k], indirect, lum);
+            const Rgb colour = lit_colour(mesh, group.patch, direct[k], indirect, lum);
             for (int c = 0; c < 3; ++c) sum[c] += colour[c];
         }
     }
