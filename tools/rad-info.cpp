@@ -7,8 +7,6 @@
 #include "radiosity/ugr_table.hpp"
 #include "tool.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 
 #include <filesystem>
@@ -52,9 +50,7 @@ int report_inputs(const std::string& path, const radfmt::Header& h,
 }
 
 bool is_photometric_file(const std::string& path) {
-    auto extension = std::filesystem::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const auto extension = rad::tool::lower_extension(path);
     return extension == ".ies" || extension == ".ldt";
 }
 

@@ -26,9 +26,7 @@
 #include "radiosity/version.hpp"
 #include "tool.hpp"
 
-#include <cctype>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 
 namespace {
@@ -198,27 +196,22 @@ void add_light_options(CLI::App& app, ShadeArgs& a) {
                  "(docs/uncertainty.md)");
 }
 
-// Combinations that cannot work, refused before anything is read.
 // -o is an OpenEXR image and --png a PNG: a name that says the other format would hold what
 // it does not say (an EXR named .png opens nowhere).
 void check_output_names(const ShadeArgs& a) {
-    const auto extension = [](const std::string& path) {
-        auto e = std::filesystem::path(path).extension().string();
-        for (auto& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        return e;
-    };
-    const auto o = extension(a.output);
+    const auto o = rad::tool::lower_extension(a.output);
     if (o == ".png" || o == ".jpg" || o == ".jpeg")
         throw rad::InputError("-o " + a.output +
                               ": -o writes the OpenEXR image (high dynamic range): name it .exr, "
                               "and give --png " +
                               a.output + " for the tone-mapped PNG");
-    if (extension(a.png) == ".exr")
+    if (rad::tool::lower_extension(a.png) == ".exr")
         throw rad::InputError("--png " + a.png +
                               ": --png writes a tone-mapped PNG: name it .png (-o writes the "
                               "OpenEXR image)");
 }
 
+// Combinations that cannot work, refused before anything is read.
 void check_combinations(const ShadeArgs& a) {
     if (a.error_layer && a.gather <= 0)
         throw rad::InputError("--error-layer holds the final gather's errors: give --gather");

@@ -7,6 +7,7 @@
 #include "radiosity/numbers.hpp"
 #include "radiosity/progress.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <csignal>
@@ -104,6 +105,12 @@ CLI::Validator finite_range(double lo, double hi) {
             return {};
         },
         description);
+}
+
+std::string lower_extension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (auto& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return extension;
 }
 
 std::string one_of(const std::vector<std::string>& names) {

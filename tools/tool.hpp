@@ -57,6 +57,9 @@ std::uint64_t memory_limit(const std::string& max_memory);
 // limit (ulimit -v), 1.5 GiB)": for messages refusing work over the limit.
 std::string memory_limit_text(const std::string& max_memory);
 
+// A path's extension in lower case (".png"): what format a name says.
+std::string lower_extension(const std::string& path);
+
 // "name1, name2 or name3" for help texts.
 std::string one_of(const std::vector<std::string>& names);
 
