@@ -31,6 +31,19 @@ NodeGeometry merged(const NodeGeometry& a, const NodeGeometry& b, double toleran
 }
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
+// How many of the ascending values[0, size) are at or below `target` (std::upper_bound's
+// place) without a branch on them: the oracle draws its points at random places of the
+// node, so the branches of a binary search were mispredicted half the time.
+std::uint32_t last_at_or_before(const double* values, std::uint32_t size, double target) {
+    const double* first = values;
+    while (size > 1) {
+        const std::uint32_t half = size / 2;
+        first += half * static_cast<std::uint32_t>(first[half - 1] <= target);
+        size -= half;
+    }
+    return static_cast<std::uint32_t>(first - values) + (size == 1 && *first <= target);
+}
+
 double polygon_area(std::span<const Vec3> polygon) {
     Vec3 sum{0, 0, 0};
     for (std::size_t k = 0; k + 2 < polygon.size(); ++k)
@@ -57,8 +70,7 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
                                const std::vector<std::uint32_t>& surface)
     : mesh_(mesh), polygons_(polygons), tree_(tree), nodes_(tree.nodes.size()) {
     tolerance_ = 1e-9 * bounds(mesh.vertices).diagonal();
-    first_share_.reserve(mesh.patches.size());
-    for (const auto& g : polygons) first_share_.push_back(ff::fan_cdf(g.points()).front());
+    add_leaf_patches(polygons);
     area_before_.assign(tree.leaf_order.size() + 1, 0.0);
     for (std::size_t k = 0; k < tree.leaf_order.size(); ++k)
         area_before_[k + 1] = area_before_[k] + mesh.patches[tree.leaf_order[k]].area;
@@ -84,6 +96,26 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
             leaf.surface = surface[tree.leaf_order[n.first]];
         }
         add_outline(static_cast<std::uint32_t>(i));
+    }
+}
+
+void NodeGeometries::add_leaf_patches(const std::vector<PatchPolygon>& polygons) {
+    const auto& order = tree_.leaf_order;
+    leaf_start_.assign(order.size() + 1, 0);
+    leaf_normal_.reserve(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const auto points = polygons[order[k]].points();
+        leaf_points_.insert(leaf_points_.end(), points.begin(), points.end());
+        leaf_start_[k + 1] = static_cast<std::uint32_t>(leaf_points_.size());
+        leaf_normal_.push_back(mesh_.patches[order[k]].normal);
+        const auto cdf = ff::fan_cdf(points);
+        if (polygons[order[k]].is_polygon()) {
+            leaf_cdf_.insert(leaf_cdf_.end(), cdf.begin(), cdf.end());
+        } else {
+            // A quad's second triangle ends at exactly 1 (a triangle has one entry).
+            const double quad[2] = {cdf.front(), 1.0};
+            leaf_cdf_.insert(leaf_cdf_.end(), quad, quad + points.size() - 2);
+        }
     }
 }
 
@@ -117,20 +149,15 @@ NodePoint NodeGeometries::point(std::uint32_t node, double u, double v, double w
     const double lo = area_before_[n.first], hi = area_before_[n.first + n.count];
     const double target = lo + u * (hi - lo);
     // The last patch that starts at or before the target.
-    const auto begin = area_before_.begin() + n.first + 1;
-    const auto end = area_before_.begin() + n.first + n.count;
     const auto k =
-        n.first + static_cast<std::uint32_t>(std::upper_bound(begin, end, target) - begin);
-    const auto patch = tree_.leaf_order[k];
-    const auto& g = polygons_[patch];
-    // w picks the fan triangle of a quad (or polygon) by area, then serves again within it.
-    const double quad_cdf[2] = {first_share_[patch], 1.0};
-    const auto polygon_cdf = g.is_polygon() ? ff::fan_cdf(g.points()) : std::vector<double>();
-    const auto cdf = g.is_polygon() ? std::span<const double>(polygon_cdf)
-                                    : std::span<const double>(quad_cdf, std::size_t(g.count - 2));
+        n.first + last_at_or_before(area_before_.data() + n.first + 1, n.count - 1, target);
+    const std::uint32_t start = leaf_start_[k], count = leaf_start_[k + 1] - start;
+    const std::span<const Vec3> points(leaf_points_.data() + start, count);
+    // w picks the fan triangle by area, then serves again within it.
+    const std::span<const double> cdf(leaf_cdf_.data() + start - 2 * k, count - 2);
     double within = 0;
     const auto triangle = ff::pick_fan_triangle(cdf, w, &within);
-    return {ff::fan_triangle_point(g.points(), triangle, v, within), mesh_.patches[patch].normal};
+    return {ff::fan_triangle_point(points, triangle, v, within), leaf_normal_[k]};
 }
 
 bool NodeGeometries::all_behind(std::uint32_t a, std::uint32_t b) const {
