@@ -69,19 +69,6 @@ std::vector<Sample> gauss_samples(const PatchPolygon& g, double area,
     return out;
 }
 
-std::size_t pick_fan_triangle(std::span<const double> cdf, double u, double* remainder) {
-    std::size_t tri = 0;
-    double lo = 0;
-    while (tri + 1 < cdf.size() && u > cdf[tri]) lo = cdf[tri++];
-    if (remainder) *remainder = (u - lo) / std::max(1e-300, cdf[tri] - lo);
-    return tri;
-}
-
-Vec3 fan_triangle_point(std::span<const Vec3> poly, std::size_t tri, double u, double v) {
-    const double r = std::sqrt(u);
-    return poly[0] * (1 - r) + poly[tri + 1] * (r * (1 - v)) + poly[tri + 2] * (r * v);
-}
-
 Vec3 uniform_point(std::span<const Vec3> poly, std::span<const double> cdf, double u0, double u1,
                    double u2) {
     return fan_triangle_point(poly, pick_fan_triangle(cdf, u0), u1, u2);

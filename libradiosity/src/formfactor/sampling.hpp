@@ -3,6 +3,7 @@
 #include "radiosity/formfactor_method.hpp"
 #include "radiosity/vec.hpp"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -39,10 +40,20 @@ std::vector<Sample> gauss_samples(const PatchPolygon& g, double area,
 
 // The fan triangle (of a convex polygon) that u in [0,1) falls in by area; `remainder`, when
 // asked for, is u rescaled to [0,1) within that triangle, so one number can serve twice.
-std::size_t pick_fan_triangle(std::span<const double> fan_cdf, double u,
-                              double* remainder = nullptr);
+// (Inline, as fan_triangle_point: the hierarchy's oracle draws tens of millions of points.)
+inline std::size_t pick_fan_triangle(std::span<const double> fan_cdf, double u,
+                                     double* remainder = nullptr) {
+    std::size_t tri = 0;
+    double lo = 0;
+    while (tri + 1 < fan_cdf.size() && u > fan_cdf[tri]) lo = fan_cdf[tri++];
+    if (remainder) *remainder = (u - lo) / std::max(1e-300, fan_cdf[tri] - lo);
+    return tri;
+}
 // An area-uniform point of fan triangle `tri` (vertices 0, tri+1, tri+2) for u, v in [0,1).
-Vec3 fan_triangle_point(std::span<const Vec3> poly, std::size_t tri, double u, double v);
+inline Vec3 fan_triangle_point(std::span<const Vec3> poly, std::size_t tri, double u, double v) {
+    const double r = std::sqrt(u);
+    return poly[0] * (1 - r) + poly[tri + 1] * (r * (1 - v)) + poly[tri + 2] * (r * v);
+}
 // An area-uniform point on a convex polygon (fan of triangles).
 Vec3 uniform_point(std::span<const Vec3> poly, std::span<const double> fan_cdf, double u0,
                    double u1, double u2);
