@@ -2,18 +2,22 @@
 // against closed forms, a furnace, reciprocity, the analytic matrix and themselves.
 #include "helpers.hpp"
 #include "hierarchy/direct_light.hpp"
+#include "hierarchy/node_geometry.hpp"
 #include "hierarchy/surfaces.hpp"
 #include "radfmt/container.hpp"
 #include "radiosity/formfactor.hpp"
 #include "radiosity/hierarchy.hpp"
 #include "radiosity/progress.hpp"
+#include "radiosity/random.hpp"
 #include "radiosity/solver.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
+#include <span>
 
 using namespace testing_helpers;
 using Catch::Matchers::Contains;
@@ -545,4 +549,82 @@ TEST_CASE("links files: written and read back whole; a broken tree is refused") 
     CHECK_THROWS_WITH(radfmt::read_links(dir / "g.links"),
                       Contains("which shares its patches (a patch would light itself)"));
     fs::remove_all(dir);
+}
+
+TEST_CASE("hierarchical: a node's points fall on its patches by area, each on the patch the "
+          "area table picks") {
+    using rad::operator+, rad::operator-;
+    // Patches of unequal area and shape, one a face (max_edge beyond every face): a floor of
+    // four quads of different sizes, a triangle, a quad facing down, and a hexagon added as a
+    // polygon patch, so point() picks among quads, a triangle and a polygon's fan, and each
+    // point's normal is its own patch's.
+    std::string obj;
+    int count = 0;
+    for (const auto& [x0, x1, y1] :
+         {std::array<double, 3>{0, 0.3, 1}, {0.3, 1, 1}, {1, 1.2, 0.4}, {1.2, 2, 0.4}})
+        append_obj_face(obj, count, {{x0, 0, 0}, {x1, 0, 0}, {x1, y1, 0}, {x0, y1, 0}}, "grey",
+                        "floor");
+    append_obj_face(obj, count, {{2, 2, 0}, {3, 2, 0}, {2, 2.5, 0}}, "grey", "triangle");
+    append_obj_face(obj, count, {{0, 3, 0}, {0, 4, 0}, {1.5, 4, 0}, {1.5, 3, 0}}, "grey",
+                    "ceiling"); // facing down
+    auto mesh = mesh_from_obj(obj, 10);
+    // A hexagon: a rectangle 1 x 1.6 and two triangles of base 1.6 and height 0.6.
+    add_polygon_patch(
+        mesh, {{4, 0, 0}, {5, 0, 0}, {5.6, 0.8, 0}, {5, 1.6, 0}, {4, 1.6, 0}, {3.4, 0.8, 0}}, 2.56,
+        {4.5, 0.8, 0}, {0, 0, 1}, mesh.patches.front().material);
+    const rad::RayScene scene(mesh);
+    const rad::FormFactorContext context(mesh, scene);
+    const auto surface = rad::hierarchy::connected_surfaces(mesh);
+    const auto tree = rad::hierarchy::build_surface_tree(mesh, surface);
+    const std::vector<bool> emitter(mesh.materials.size(), false);
+    const rad::hierarchy::NodeGeometries geometry(mesh, context.polygons, tree, emitter, surface);
+    REQUIRE(std::any_of(context.polygons.begin(), context.polygons.end(),
+                        [](const rad::PatchPolygon& g) { return g.is_polygon(); }));
+    // Inside a convex polygon of the plane z = 0 (either winding), up to rounding.
+    auto inside = [](const rad::Vec3& p, std::span<const rad::Vec3> polygon) {
+        for (std::size_t k = 0; k < polygon.size(); ++k) {
+            const auto& a = polygon[k];
+            const auto& b = polygon[(k + 1) % polygon.size()];
+            const double side = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+            if (std::abs(side) > 1e-12 &&
+                (side > 0) != (rad::cross(polygon[1] - polygon[0], polygon[2] - polygon[0])[2] > 0))
+                return false;
+        }
+        return std::abs(p[2]) < 1e-12;
+    };
+    rad::Rng rng(7, 0);
+    int checked = 0;
+    for (std::uint32_t node = 0; node < tree.nodes.size(); ++node) {
+        const auto& n = tree.nodes[node];
+        // Where each of the node's patches ends in its area, in leaf order.
+        std::vector<double> ends;
+        double total = 0;
+        for (auto k = n.first; k < n.first + n.count; ++k)
+            ends.push_back(total += mesh.patches[tree.leaf_order[k]].area);
+        rad::Vec3 sum{0, 0, 0};
+        const int points = 16000;
+        for (int s = 0; s < points; ++s) {
+            const double u = (s + rng.uniform()) / points;
+            const auto x = geometry.point(node, u, rng.uniform(), rng.uniform());
+            // std::upper_bound over the ends: the patch whose share of the area u falls in.
+            const auto k = n.first + static_cast<std::uint32_t>(
+                                         std::upper_bound(ends.begin(), ends.end() - 1, u * total) -
+                                         ends.begin());
+            const auto patch = tree.leaf_order[k];
+            INFO("node " << node << ", u " << u);
+            REQUIRE(inside(x.point, context.polygons[patch].points()));
+            CHECK(x.normal[2] == mesh.patches[patch].normal[2]);
+            sum = sum + x.point;
+            ++checked;
+        }
+        // Area-uniform: the points' mean is the node's centroid (their mean's spread
+        // is far below 1% of the node's size).
+        const double size = geometry[node].box.diagonal();
+        INFO("node " << node << " of " << n.count << " patches, centroid "
+                     << geometry[node].centroid[0] << ", " << geometry[node].centroid[1]
+                     << ", points' mean " << sum[0] / points << ", " << sum[1] / points);
+        for (int c = 0; c < 2; ++c)
+            CHECK(std::abs(sum[c] / points - geometry[node].centroid[c]) < 0.01 * size);
+    }
+    CHECK(checked > 150000);
 }
