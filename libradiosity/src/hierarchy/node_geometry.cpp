@@ -70,7 +70,7 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
                                const std::vector<std::uint32_t>& surface)
     : mesh_(mesh), polygons_(polygons), tree_(tree), nodes_(tree.nodes.size()) {
     tolerance_ = 1e-9 * bounds(mesh.vertices).diagonal();
-    add_leaf_patches(polygons);
+    add_leaf_patches();
     area_before_.assign(tree.leaf_order.size() + 1, 0.0);
     for (std::size_t k = 0; k < tree.leaf_order.size(); ++k)
         area_before_[k + 1] = area_before_[k] + mesh.patches[tree.leaf_order[k]].area;
@@ -99,23 +99,17 @@ NodeGeometries::NodeGeometries(const radfmt::MeshData& mesh,
     }
 }
 
-void NodeGeometries::add_leaf_patches(const std::vector<PatchPolygon>& polygons) {
+void NodeGeometries::add_leaf_patches() {
     const auto& order = tree_.leaf_order;
     leaf_start_.assign(order.size() + 1, 0);
     leaf_normal_.reserve(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) {
-        const auto points = polygons[order[k]].points();
+        const auto points = polygons_[order[k]].points();
         leaf_points_.insert(leaf_points_.end(), points.begin(), points.end());
         leaf_start_[k + 1] = static_cast<std::uint32_t>(leaf_points_.size());
         leaf_normal_.push_back(mesh_.patches[order[k]].normal);
         const auto cdf = ff::fan_cdf(points);
-        if (polygons[order[k]].is_polygon()) {
-            leaf_cdf_.insert(leaf_cdf_.end(), cdf.begin(), cdf.end());
-        } else {
-            // A quad's second triangle ends at exactly 1 (a triangle has one entry).
-            const double quad[2] = {cdf.front(), 1.0};
-            leaf_cdf_.insert(leaf_cdf_.end(), quad, quad + points.size() - 2);
-        }
+        leaf_cdf_.insert(leaf_cdf_.end(), cdf.begin(), cdf.end());
     }
 }
 

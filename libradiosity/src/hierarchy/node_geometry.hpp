@@ -52,7 +52,7 @@ class NodeGeometries {
 
   private:
     void add_outline(std::uint32_t node);
-    void add_leaf_patches(const std::vector<PatchPolygon>& polygons);
+    void add_leaf_patches();
     const radfmt::MeshData& mesh_;
     const std::vector<PatchPolygon>& polygons_;
     const radfmt::LinkData& tree_;
